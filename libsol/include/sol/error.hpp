@@ -1,0 +1,33 @@
+// Error types thrown by libsol.
+//
+// Every public function of libsol validates its arguments: a NaN or infinite
+// coordinate, a zero direction or an out-of-range option throws
+// sol::InvalidArgument (a std::invalid_argument) whose message names the
+// function and the offending argument. libsol never returns a silent NaN.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace sol {
+
+/// Thrown when an argument is NaN, infinite or otherwise invalid.
+class InvalidArgument : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Thrown when a result does not fit in double (for example a geodesic so
+/// long that e^{z} overflows).
+class OutOfRange : public std::range_error {
+ public:
+  using std::range_error::range_error;
+};
+
+/// Thrown when a requested feature (for example a Method) is not available.
+class NotImplemented : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+}  // namespace sol

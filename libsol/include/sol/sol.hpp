@@ -1,0 +1,10 @@
+// libsol: the whole public API.
+#pragma once
+
+#include "sol/elliptic.hpp"
+#include "sol/error.hpp"
+#include "sol/group.hpp"
+#include "sol/geodesic.hpp"
+#include "sol/lattice.hpp"
+#include "sol/observer.hpp"
+#include "sol/version.hpp"

@@ -1,0 +1,1 @@
+#include "sol/elliptic.hpp"

@@ -1,0 +1,139 @@
+#include "sol/geodesic.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "check.hpp"
+#include "ode.hpp"
+#include "sol/group.hpp"
+
+// The geodesic and transport equations in the frame E1 = e^{z}∂x,
+// E2 = e^{-z}∂y, E3 = ∂z. Brackets: [E3,E1] = E1, [E3,E2] = -E2, [E1,E2] = 0.
+// The Koszul formula gives the Levi-Civita connection
+//   ∇_{E1}E1 = E3, ∇_{E1}E3 = -E1, ∇_{E2}E2 = -E3, ∇_{E2}E3 = E2,
+// all other ∇_{Ei}Ej = 0. A vector w transported along a curve with frame
+// velocity u satisfies w' + ∇_u w = 0, i.e.
+//   w1' = u1 w3, w2' = -u2 w3, w3' = -u1 w1 + u2 w2   (w' = -B w),
+// and the geodesic equation is the case w = u.
+
+namespace sol {
+namespace {
+
+using detail::State;
+
+// (x, y, z, u1, u2, u3): position relative to the start and frame velocity.
+State<6> geodesic_rhs(const State<6>& s) {
+  const double ez = std::exp(s[2]);
+  return {ez * s[3], s[4] / ez, s[5], s[3] * s[5], -s[4] * s[5], s[4] * s[4] - s[3] * s[3]};
+}
+
+// Geodesic state followed by Q in column-major order (Q' = -B Q).
+State<15> transport_rhs(const State<15>& s) {
+  State<15> r;
+  const State<6> g = geodesic_rhs(State<6>{s[0], s[1], s[2], s[3], s[4], s[5]});
+  for (int i = 0; i < 6; ++i) r[i] = g[i];
+  const double u1 = s[3], u2 = s[4];
+  for (int c = 0; c < 3; ++c) {
+    const double w1 = s[6 + 3 * c], w2 = s[7 + 3 * c], w3 = s[8 + 3 * c];
+    r[6 + 3 * c] = u1 * w3;
+    r[7 + 3 * c] = -u2 * w3;
+    r[8 + 3 * c] = -u1 * w1 + u2 * w2;
+  }
+  return r;
+}
+
+void validate(const GeodesicState& start, double t, const FlowOptions& options, const char* function) {
+  detail::require_finite(start.position, function, "start.position");
+  detail::require_finite(start.direction, function, "start.direction");
+  detail::require_finite(t, function, "t");
+  if (glm::length(start.direction) == 0.0) {
+    throw InvalidArgument(std::string(function) + ": argument 'start.direction' is zero");
+  }
+  if (!(options.rk4_step > 0.0) || !std::isfinite(options.rk4_step)) {
+    throw InvalidArgument(std::string(function) + ": FlowOptions::rk4_step must be finite and > 0");
+  }
+  if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance)) {
+    throw InvalidArgument(std::string(function) + ": FlowOptions::tolerance must be finite and > 0");
+  }
+}
+
+Method resolve(Method method, const char* function) {
+  switch (method) {
+    case Method::Auto:
+      return Method::DormandPrince;
+    case Method::ClosedForm:
+      throw NotImplemented(std::string(function) +
+                           ": Method::ClosedForm is not available yet; use Auto, RK4 or DormandPrince");
+    default:
+      return method;
+  }
+}
+
+template <std::size_t N, class F>
+State<N> integrate(const F& f, const State<N>& y0, double t, Method method, const FlowOptions& options) {
+  return method == Method::RK4 ? detail::integrate_rk4(f, y0, t, options.rk4_step)
+                               : detail::integrate_dormand_prince(f, y0, t, options.tolerance);
+}
+
+template <std::size_t N>
+void require_finite_result(const State<N>& y, const char* function) {
+  for (double v : y) {
+    if (!std::isfinite(v)) {
+      throw OutOfRange(std::string(function) +
+                       ": the geodesic leaves the range of double (e^{z} overflows); shorten t");
+    }
+  }
+}
+
+}  // namespace
+
+GeodesicState flow(const GeodesicState& start, double t, Method method) {
+  FlowOptions options;
+  options.method = method;
+  return flow(start, t, options);
+}
+
+GeodesicState flow(const GeodesicState& start, double t, const FlowOptions& options) {
+  constexpr const char* function = "sol::flow";
+  validate(start, t, options, function);
+  const Method method = resolve(options.method, function);
+  const glm::dvec3 u = glm::normalize(start.direction);
+  const State<6> y = integrate(geodesic_rhs, State<6>{0, 0, 0, u.x, u.y, u.z}, t, method, options);
+  require_finite_result(y, function);
+  // Left-invariance: the geodesic from p is p * (geodesic from the origin).
+  return {multiply(start.position, {y[0], y[1], y[2]}), {y[3], y[4], y[5]}};
+}
+
+glm::dmat3 transport(const GeodesicState& start, double t, Method method) {
+  FlowOptions options;
+  options.method = method;
+  return transport(start, t, options);
+}
+
+glm::dmat3 transport(const GeodesicState& start, double t, const FlowOptions& options) {
+  return flow_with_transport(start, t, options).transport;
+}
+
+FlowTransport flow_with_transport(const GeodesicState& start, double t, const FlowOptions& options) {
+  constexpr const char* function = "sol::transport";
+  validate(start, t, options, function);
+  const Method method = resolve(options.method, function);
+  const glm::dvec3 u = glm::normalize(start.direction);
+  // Q depends only on the frame velocity u(t), which is left-invariant, so
+  // the start position does not enter.
+  const State<15> y = integrate(transport_rhs, State<15>{0, 0, 0, u.x, u.y, u.z, 1, 0, 0, 0, 1, 0, 0, 0, 1},
+                                t, method, options);
+  require_finite_result(y, function);
+  return {{multiply(start.position, {y[0], y[1], y[2]}), {y[3], y[4], y[5]}},
+          glm::dmat3(y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13], y[14])};
+}
+
+glm::dvec3 geodesic_acceleration(const glm::dvec3& direction) {
+  detail::require_finite(direction, "sol::geodesic_acceleration", "direction");
+  return {direction.x * direction.z, -direction.y * direction.z,
+          direction.y * direction.y - direction.x * direction.x};
+}
+
+}  // namespace sol

@@ -1,0 +1,98 @@
+#include "sol/lattice.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "check.hpp"
+#include "sol/group.hpp"
+
+namespace sol {
+
+Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height)
+    : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)} {
+  // Inverse of the 2x2 matrix with columns g1, g2.
+  const double det = g1.x * g2.y - g2.x * g1.y;
+  m_coordinates_row0 = glm::dvec2(g2.y, -g2.x) / det;
+  m_coordinates_row1 = glm::dvec2(-g1.y, g1.x) / det;
+}
+
+Lattice Lattice::golden() {
+  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+  return Lattice({phi, -1.0}, {1.0, phi}, 2.0 * std::log(phi));
+}
+
+glm::dvec3 Lattice::element(long long n1, long long n2, long long n3) const {
+  // γ1 and γ2 lie in z = 0 and commute: γ1^n1 γ2^n2 = (n1 γ1 + n2 γ2) as a translation.
+  const glm::dvec3 translation = static_cast<double>(n1) * m_generators[0] + static_cast<double>(n2) * m_generators[1];
+  return multiply(translation, {0.0, 0.0, static_cast<double>(n3) * height()});
+}
+
+glm::dvec2 Lattice::lattice_coordinates(double x, double y) const {
+  return {m_coordinates_row0.x * x + m_coordinates_row0.y * y, m_coordinates_row1.x * x + m_coordinates_row1.y * y};
+}
+
+bool Lattice::contains(const glm::dvec3& p) const {
+  if (!(p.z >= 0.0 && p.z < height())) return false;
+  const glm::dvec2 sr = lattice_coordinates(p.x, p.y);
+  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0;
+}
+
+namespace {
+
+// The fractional part of v in [0, 1): v - floor(v) can round up to 1.
+double fraction(double v, double& whole) {
+  whole = std::floor(v);
+  double f = v - whole;
+  if (f >= 1.0) {
+    f = 0.0;
+    whole += 1.0;
+  }
+  return f;
+}
+
+}  // namespace
+
+Teleport Lattice::teleport(const glm::dvec3& p) const {
+  detail::require_finite(p, "sol::Lattice::teleport", "p");
+  const double h = height();
+  // 1. A power of γ3 brings z into [0, h): γ3^{-n} * p = (e^{-nh} x, e^{nh} y, z - nh).
+  double n = std::floor(p.z / h);
+  double z = p.z - n * h;
+  if (z < 0.0) {
+    n -= 1.0;
+    z = p.z - n * h;
+  }
+  if (z >= h) {
+    n += 1.0;
+    z = p.z - n * h;
+  }
+  if (!(z >= 0.0 && z < h)) z = 0.0;  // |z| so large that nh is not exact: rounding, stay in D
+  const double scale = std::exp(-n * h);
+  const double x = scale * p.x;
+  const double y = p.y / scale;
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    throw OutOfRange("sol::Lattice::teleport: point too far from the origin to teleport in double");
+  }
+  // 2. The commuting translations γ1, γ2 bring (x, y) into the parallelogram.
+  const glm::dvec2 sr = lattice_coordinates(x, y);
+  double s_whole = 0.0, r_whole = 0.0;
+  double s = fraction(sr.x, s_whole);
+  double r = fraction(sr.y, r_whole);
+  const glm::dvec2 g1(m_generators[0]), g2(m_generators[1]);
+  Teleport result;
+  result.element = glm::dvec3(-s_whole * g1 - r_whole * g2, -n * h);
+  result.point = glm::dvec3(s * g1 + r * g2, z);
+  // Rounding in s*g1 + r*g2 can put a point with s or r at 0 or near 1 just
+  // outside D; pull the coordinates inward by ulps until it is inside.
+  for (int i = 0; i < 64 && !contains(result.point); ++i) {
+    const glm::dvec2 c = lattice_coordinates(result.point.x, result.point.y);
+    if (c.x < 0.0) s = std::nextafter(s, 1.0);
+    if (c.x >= 1.0) s = std::nextafter(s, 0.0);
+    if (c.y < 0.0) r = std::nextafter(r, 1.0);
+    if (c.y >= 1.0) r = std::nextafter(r, 0.0);
+    result.point = glm::dvec3(s * g1 + r * g2, z);
+  }
+  return result;
+}
+
+}  // namespace sol
