@@ -1,1 +1,133 @@
+// The lattice Γ: relations, fundamental domain, teleport.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
 #include <gtest/gtest.h>
+#include <sol/sol.hpp>
+
+namespace {
+
+using glm::dvec3;
+
+double diff(const dvec3& a, const dvec3& b) {
+  const dvec3 d = glm::abs(a - b);
+  return std::max({d.x, d.y, d.z});
+}
+
+TEST(Lattice, GeneratorsAreThoseOfTheDesign) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  const double phi = (1 + std::sqrt(5.0)) / 2;
+  EXPECT_LT(diff(lattice.generators()[0], {phi, -1, 0}), 1e-15);
+  EXPECT_LT(diff(lattice.generators()[1], {1, phi, 0}), 1e-15);
+  EXPECT_LT(diff(lattice.generators()[2], {0, 0, 2 * std::log(phi)}), 1e-15);
+}
+
+TEST(Lattice, ConjugationByGamma3IsTheAnosovMap) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1], g3 = lattice.generators()[2];
+  // γ3 γ1 γ3⁻¹ = γ1² γ2 and γ3 γ2 γ3⁻¹ = γ1 γ2, with the group law only.
+  const dvec3 lhs1 = sol::multiply(sol::multiply(g3, g1), sol::inverse(g3));
+  const dvec3 rhs1 = sol::multiply(sol::multiply(g1, g1), g2);
+  const dvec3 lhs2 = sol::multiply(sol::multiply(g3, g2), sol::inverse(g3));
+  const dvec3 rhs2 = sol::multiply(g1, g2);
+  EXPECT_LT(diff(lhs1, rhs1), 1e-14);
+  EXPECT_LT(diff(lhs2, rhs2), 1e-14);
+  // γ1 and γ2 commute.
+  EXPECT_LT(diff(sol::multiply(g1, g2), sol::multiply(g2, g1)), 1e-15);
+  // element(n1, n2, n3) is γ1^n1 γ2^n2 γ3^n3.
+  const dvec3 e = lattice.element(2, -3, 1);
+  const dvec3 by_hand = sol::multiply(
+      sol::multiply(sol::multiply(g1, g1), sol::multiply(sol::inverse(g2), sol::multiply(sol::inverse(g2), sol::inverse(g2)))), g3);
+  EXPECT_LT(diff(e, by_hand), 1e-14);
+}
+
+TEST(Lattice, ContainsIsTheHalfOpenDomain) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  const double h = lattice.height();
+  EXPECT_TRUE(lattice.contains({0, 0, 0}));
+  EXPECT_TRUE(lattice.contains(0.5 * g1 + 0.5 * g2 + dvec3(0, 0, 0.5 * h)));
+  EXPECT_FALSE(lattice.contains({0, 0, h}));
+  EXPECT_FALSE(lattice.contains({0, 0, -1e-12}));
+  EXPECT_FALSE(lattice.contains(g1));
+  EXPECT_FALSE(lattice.contains(-0.01 * g2 + 0.5 * g1));
+  EXPECT_FALSE(lattice.contains(1.01 * g2 + 0.5 * g1));
+}
+
+// Bound on |multiply(element, p) - point| from rounding: a few ulp of the
+// largest intermediate value, which is max(|x|, |y|) after the z-scaling
+// by γ3^n (φ^{2|n|} ≈ e^{|z|}) and the size of the element itself.
+double teleport_tolerance(const dvec3& p, const sol::Teleport& t) {
+  const double scale = std::max({1.0, std::abs(p.x) * std::exp(std::abs(p.z) + 1.0),
+                                 std::abs(p.y) * std::exp(std::abs(p.z) + 1.0), std::abs(t.element.x),
+                                 std::abs(t.element.y), std::abs(t.element.z)});
+  return 16 * std::numeric_limits<double>::epsilon() * scale;
+}
+
+TEST(Lattice, TeleportLandsInTheDomain) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> xy(-1e6, 1e6), z(-50, 50);
+  double worst_relative = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const dvec3 p(xy(rng), xy(rng), z(rng));
+    const sol::Teleport t = lattice.teleport(p);
+    ASSERT_TRUE(lattice.contains(t.point)) << p.x << " " << p.y << " " << p.z;
+    const double err = diff(sol::multiply(t.element, p), t.point);
+    worst_relative = std::max(worst_relative, err / teleport_tolerance(p, t));
+    // element is in Γ: its z is a whole multiple of the height (its (x, y) part is checked below).
+    const double n3 = t.element.z / lattice.height();
+    ASSERT_NEAR(n3, std::round(n3), 1e-9);
+  }
+  std::printf("teleport: worst |element*p - point| = %.3f of the stated tolerance\n", worst_relative);
+  EXPECT_LE(worst_relative, 1.0);
+}
+
+TEST(Lattice, TeleportIsExactForModeratePoints) {
+  // For |x|,|y| <= 10 and |z| <= 5 the stated tolerance is below 1e-11.
+  const sol::Lattice lattice = sol::Lattice::golden();
+  std::mt19937_64 rng(32);
+  std::uniform_real_distribution<double> xy(-10, 10), z(-5, 5);
+  for (int i = 0; i < 10000; ++i) {
+    const dvec3 p(xy(rng), xy(rng), z(rng));
+    const sol::Teleport t = lattice.teleport(p);
+    EXPECT_LT(diff(sol::multiply(t.element, p), t.point), 1e-11);
+    // The element's translation part has whole lattice coordinates once γ3^n is split off.
+    const double n3 = std::round(t.element.z / lattice.height());
+    const dvec3 translation = sol::multiply(t.element, sol::inverse(lattice.element(0, 0, static_cast<long long>(n3))));
+    const glm::dvec2 sr = lattice.lattice_coordinates(translation.x, translation.y);
+    EXPECT_NEAR(sr.x, std::round(sr.x), 1e-9);
+    EXPECT_NEAR(sr.y, std::round(sr.y), 1e-9);
+    EXPECT_NEAR(translation.z, 0.0, 1e-12);
+  }
+}
+
+TEST(Lattice, EquivalentPointsTeleportToTheSamePoint) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<double> xy(-20, 20), z(-3, 3);
+  std::uniform_int_distribution<int> n(-4, 4);
+  for (int i = 0; i < 10000; ++i) {
+    const dvec3 p(xy(rng), xy(rng), z(rng));
+    const dvec3 g = lattice.element(n(rng), n(rng), n(rng));
+    const dvec3 gp = sol::multiply(g, p);
+    const sol::Teleport a = lattice.teleport(p), b = lattice.teleport(gp);
+    // Points that differ by rounding may land on opposite faces of D; compare modulo Γ
+    // by checking the distance after moving b next to a by γ1, γ2 translations.
+    dvec3 d = b.point - a.point;
+    const glm::dvec2 sr = lattice.lattice_coordinates(d.x, d.y);
+    d -= std::round(sr.x) * lattice.generators()[0] + std::round(sr.y) * lattice.generators()[1];
+    EXPECT_LT(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), 1e-8) << i;
+  }
+}
+
+TEST(Lattice, RejectsNonFinitePoints) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  EXPECT_THROW(lattice.teleport({std::numeric_limits<double>::quiet_NaN(), 0, 0}), sol::InvalidArgument);
+  EXPECT_THROW(lattice.teleport({0, 0, std::numeric_limits<double>::infinity()}), sol::InvalidArgument);
+  EXPECT_FALSE(lattice.contains({std::numeric_limits<double>::quiet_NaN(), 0, 0}));
+}
+
+}  // namespace

@@ -83,13 +83,15 @@ Teleport Lattice::teleport(const glm::dvec3& p) const {
   result.element = glm::dvec3(-s_whole * g1 - r_whole * g2, -n * h);
   result.point = glm::dvec3(s * g1 + r * g2, z);
   // Rounding in s*g1 + r*g2 can put a point with s or r at 0 or near 1 just
-  // outside D; pull the coordinates inward by ulps until it is inside.
+  // outside D; push the offending coordinate inward by twice its excess
+  // (at least an ulp of 1) until the point is inside.
+  constexpr double ulp = std::numeric_limits<double>::epsilon();
   for (int i = 0; i < 64 && !contains(result.point); ++i) {
     const glm::dvec2 c = lattice_coordinates(result.point.x, result.point.y);
-    if (c.x < 0.0) s = std::nextafter(s, 1.0);
-    if (c.x >= 1.0) s = std::nextafter(s, 0.0);
-    if (c.y < 0.0) r = std::nextafter(r, 1.0);
-    if (c.y >= 1.0) r = std::nextafter(r, 0.0);
+    if (c.x < 0.0) s += std::max(-2.0 * c.x, ulp);
+    if (c.x >= 1.0) s -= std::max(2.0 * (c.x - 1.0), ulp);
+    if (c.y < 0.0) r += std::max(-2.0 * c.y, ulp);
+    if (c.y >= 1.0) r -= std::max(2.0 * (c.y - 1.0), ulp);
     result.point = glm::dvec3(s * g1 + r * g2, z);
   }
   return result;

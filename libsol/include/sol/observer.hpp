@@ -32,7 +32,8 @@ class Observer {
   glm::dvec3 right() const { return m_frame[0]; }
   glm::dvec3 up() const { return m_frame[1]; }
   glm::dvec3 forward() const { return m_frame[2]; }
-  /// Columns right, up, forward: maps observer-local components to frame components.
+  /// Columns right, up, forward: maps observer-local components to frame
+  /// components. With right = forward × up this matrix has determinant -1.
   const glm::dmat3& frame() const { return m_frame; }
 
   /// Moves `distance` along the geodesic whose initial direction is
