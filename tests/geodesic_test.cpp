@@ -239,8 +239,12 @@ TEST(Geodesic, RejectsBadInput) {
   EXPECT_THROW(sol::flow(good, 1.0, rk4(nan)), sol::InvalidArgument);
   EXPECT_THROW(sol::flow(good, 1.0, dopri(-1.0)), sol::InvalidArgument);
   EXPECT_THROW(sol::transport({dvec3(0.0), {nan, 0, 0}}, 1.0), sol::InvalidArgument);
-  // A vertical geodesic of length 1000 leaves double range: a clear error, not inf or NaN.
-  EXPECT_THROW(sol::flow({{1, 1, 0}, {0, 0, 1}}, 1000.0), sol::OutOfRange);
+  // Integrating a vertical geodesic of length 1000 overflows e^{z} in the
+  // ODE: a clear error, not inf or NaN. The closed form reaches it exactly.
+  EXPECT_THROW(sol::flow({{1, 1, 0}, {0, 0, 1}}, 1000.0, sol::Method::DormandPrince), sol::OutOfRange);
+  EXPECT_EQ(sol::flow({{1, 1, 0}, {0, 0, 1}}, 1000.0).position, dvec3(1, 1, 1000));
+  // An arc length beyond double's resolution of the period: a clear error.
+  EXPECT_THROW(sol::flow({dvec3(0.0), {0.48, 0.6, 0.64}}, 1e300), sol::OutOfRange);
 }
 
 }  // namespace

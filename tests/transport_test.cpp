@@ -37,7 +37,7 @@ TEST(Transport, IsOrthogonalAndCarriesTheTangent) {
       EXPECT_GT(glm::determinant(q), 0.0);  // a rotation: transport preserves orientation
     }
   }
-  std::printf("transport (DP 1e-12, t<=50): |Q^T Q - I| <= %.2e, |Q u0 - u(t)| <= %.2e\n", worst_orth, worst_tangent);
+  std::printf("transport (Auto: closed-form u(t), Dormand–Prince 1e-12, t<=50): |Q^T Q - I| <= %.2e, |Q u0 - u(t)| <= %.2e\n", worst_orth, worst_tangent);
   EXPECT_LT(worst_orth, 1e-9);
   EXPECT_LT(worst_tangent, 1e-9);
 }

@@ -7,6 +7,7 @@
 
 #include "check.hpp"
 #include "ode.hpp"
+#include "sol/closed_form.hpp"
 #include "sol/group.hpp"
 
 // The geodesic and transport equations in the frame E1 = e^{z}∂x,
@@ -59,16 +60,38 @@ void validate(const GeodesicState& start, double t, const FlowOptions& options, 
   }
 }
 
-Method resolve(Method method, const char* function) {
-  switch (method) {
-    case Method::Auto:
-      return Method::DormandPrince;
-    case Method::ClosedForm:
-      throw NotImplemented(std::string(function) +
-                           ": Method::ClosedForm is not available yet; use Auto, RK4 or DormandPrince");
-    default:
-      return method;
-  }
+template <std::size_t N>
+void require_finite_result(const State<N>& y, const char* function);
+
+Method resolve(Method method) { return method == Method::Auto ? Method::ClosedForm : method; }
+
+// Q' = -B(u(t)) Q with u(t) from the closed form, integrated by Dormand–Prince
+// (state: Q column-major, then t): the transport ODE alone, no geodesic ODE.
+glm::dmat3 transport_along(const ClosedFormGeodesic<double>& geodesic, double t, double tolerance) {
+  auto rhs = [&geodesic](const State<10>& s) {
+    const glm::dvec3 u = geodesic.direction_at(s[9]);
+    State<10> r;
+    for (int c = 0; c < 3; ++c) {
+      const double w1 = s[3 * c], w2 = s[3 * c + 1], w3 = s[3 * c + 2];
+      r[3 * c] = u.x * w3;
+      r[3 * c + 1] = -u.y * w3;
+      r[3 * c + 2] = -u.x * w1 + u.y * w2;
+    }
+    r[9] = 1.0;
+    return r;
+  };
+  State<10> absolute;
+  absolute.fill(1.0);
+  const State<10> y = detail::integrate_dormand_prince(rhs, State<10>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0}, t, tolerance, absolute);
+  return glm::dmat3(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8]);
+}
+
+GeodesicState closed_form_state(const ClosedFormGeodesic<double>& geodesic, const glm::dvec3& origin, double t,
+                                const char* function) {
+  const ClosedFormGeodesic<double>::State s = geodesic.at(t);
+  const State<6> y{s.position.x, s.position.y, s.position.z, s.direction.x, s.direction.y, s.direction.z};
+  require_finite_result(y, function);
+  return {multiply(origin, s.position), s.direction};
 }
 
 // Error control per component: u1 = a e^{z} and u2 = b e^{-z} decay
@@ -111,8 +134,9 @@ GeodesicState flow(const GeodesicState& start, double t, Method method) {
 GeodesicState flow(const GeodesicState& start, double t, const FlowOptions& options) {
   constexpr const char* function = "sol::flow";
   validate(start, t, options, function);
-  const Method method = resolve(options.method, function);
+  const Method method = resolve(options.method);
   const glm::dvec3 u = glm::normalize(start.direction);
+  if (method == Method::ClosedForm) return closed_form_state(ClosedFormGeodesic<double>(u), start.position, t, function);
   const State<6> y = integrate(geodesic_rhs, State<6>{0, 0, 0, u.x, u.y, u.z}, t, method, options);
   require_finite_result(y, function);
   // Left-invariance: the geodesic from p is p * (geodesic from the origin).
@@ -132,8 +156,15 @@ glm::dmat3 transport(const GeodesicState& start, double t, const FlowOptions& op
 FlowTransport flow_with_transport(const GeodesicState& start, double t, const FlowOptions& options) {
   constexpr const char* function = "sol::transport";
   validate(start, t, options, function);
-  const Method method = resolve(options.method, function);
+  const Method method = resolve(options.method);
   const glm::dvec3 u = glm::normalize(start.direction);
+  if (method == Method::ClosedForm) {
+    const ClosedFormGeodesic<double> geodesic(u);
+    const glm::dmat3 q = transport_along(geodesic, t, options.tolerance);
+    const State<9> values{q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1], q[2][2]};
+    require_finite_result(values, function);
+    return {closed_form_state(geodesic, start.position, t, function), q};
+  }
   // Q depends only on the frame velocity u(t), which is left-invariant, so
   // the start position does not enter.
   const State<15> y = integrate(transport_rhs, State<15>{0, 0, 0, u.x, u.y, u.z, 1, 0, 0, 0, 1, 0, 0, 0, 1},

@@ -1,6 +1,7 @@
 // libsol: the whole public API.
 #pragma once
 
+#include "sol/closed_form.hpp"
 #include "sol/elliptic.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
