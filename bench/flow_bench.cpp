@@ -27,9 +27,12 @@ namespace {
 
 using glm::dvec3;
 
+enum class Kind { Ode, ClosedDouble, ClosedDoubleNoPrecompute, ClosedFloat, ClosedFloatNoPrecompute };
+
 struct Setting {
   std::string method;   // e.g. "rk4"
   std::string setting;  // e.g. "h=1e-3"
+  Kind kind = Kind::Ode;
   sol::FlowOptions options;
 };
 
@@ -41,7 +44,7 @@ std::vector<Setting> settings() {
     o.rk4_step = h;
     char name[32];
     std::snprintf(name, sizeof name, "h=%g", h);
-    out.push_back({"rk4", name, o});
+    out.push_back({"rk4", name, Kind::Ode, o});
   }
   for (double tol : {1e-6, 1e-8, 1e-10, 1e-12}) {
     sol::FlowOptions o;
@@ -49,8 +52,14 @@ std::vector<Setting> settings() {
     o.tolerance = tol;
     char name[32];
     std::snprintf(name, sizeof name, "tol=%g", tol);
-    out.push_back({"dopri5", name, o});
+    out.push_back({"dopri5", name, Kind::Ode, o});
   }
+  // Closed form: "precomputed" evaluates a ClosedFormGeodesic built once per
+  // direction (the kernel's per-ray setup); "per call" builds it every time.
+  out.push_back({"closed-double", "precomputed", Kind::ClosedDouble, {}});
+  out.push_back({"closed-double", "per call", Kind::ClosedDoubleNoPrecompute, {}});
+  out.push_back({"closed-float", "precomputed", Kind::ClosedFloat, {}});
+  out.push_back({"closed-float", "per call", Kind::ClosedFloatNoPrecompute, {}});
   return out;
 }
 
@@ -58,7 +67,10 @@ const std::vector<double> kArcLengths = {1.0, 10.0, 50.0};
 
 struct Case {
   dvec3 direction;
-  std::vector<dvec3> reference;  // one per arc length
+  std::vector<dvec3> reference;        // one per arc length
+  sol::ClosedFormGeodesic<double> closed;
+  sol::ClosedFormGeodesic<float> closed_float;
+  std::vector<dvec3> reference_float;  // for the float-rounded direction the float form uses
 };
 
 std::vector<Case> make_cases() {
@@ -67,13 +79,36 @@ std::vector<Case> make_cases() {
   for (std::size_t i = 0; i < stiff.size(); i += 4) dirs.push_back(stiff[i]);
   std::vector<Case> cases;
   for (const dvec3& d : dirs) {
+    Case c{d, {}, sol::ClosedFormGeodesic<double>(d), sol::ClosedFormGeodesic<float>(glm::vec3(d)), {}};
     sol::test::ReferenceGeodesic<> reference(d);
-    Case c{d, {}};
-    for (double t : kArcLengths) c.reference.push_back(reference.at(t).position);
+    sol::test::ReferenceGeodesic<> reference_float{glm::dvec3(c.closed_float.direction())};
+    for (double t : kArcLengths) {
+      c.reference.push_back(reference.at(t).position);
+      c.reference_float.push_back(reference_float.at(t).position);
+    }
     cases.push_back(c);
   }
   return cases;
 }
+
+// One evaluation of a method: the endpoint of the geodesic from the origin.
+dvec3 evaluate(const Setting& s, const Case& c, double t) {
+  switch (s.kind) {
+    case Kind::Ode:
+      return sol::flow({dvec3(0.0), c.direction}, t, s.options).position;
+    case Kind::ClosedDouble:
+      return c.closed.at(t).position;
+    case Kind::ClosedDoubleNoPrecompute:
+      return sol::flow({dvec3(0.0), c.direction}, t, sol::Method::ClosedForm).position;
+    case Kind::ClosedFloat:
+      return dvec3(c.closed_float.at(static_cast<float>(t)).position);
+    case Kind::ClosedFloatNoPrecompute:
+      return dvec3(sol::ClosedFormGeodesic<float>(glm::vec3(c.direction)).at(static_cast<float>(t)).position);
+  }
+  return dvec3(0.0);
+}
+
+bool is_float(const Setting& s) { return s.kind == Kind::ClosedFloat || s.kind == Kind::ClosedFloatNoPrecompute; }
 
 // Collects each benchmark's real time per iteration (ns) by name.
 class CollectingReporter : public benchmark::ConsoleReporter {
@@ -122,16 +157,17 @@ int main(int argc, char** argv) {
       const double t = kArcLengths[k];
       double worst = 0;
       for (const Case& c : cases) {
-        const dvec3 p = sol::flow({dvec3(0.0), c.direction}, t, s.options).position;
-        worst = std::max(worst, sol::test::scaled_error(p, c.reference[k]));
+        const dvec3& reference = is_float(s) ? c.reference_float[k] : c.reference[k];
+        worst = std::max(worst, sol::test::scaled_error(evaluate(s, c, t), reference));
       }
-      const std::string name = s.method + "/" + s.setting + "/t=" + std::to_string(static_cast<int>(t));
+      std::string setting = s.setting;
+      for (char& ch : setting) ch = ch == ' ' ? '-' : ch;
+      const std::string name = s.method + "/" + setting + "/t=" + std::to_string(static_cast<int>(t));
       rows.push_back({name, &s, t, worst});
       benchmark::RegisterBenchmark(name.c_str(), [&s, &cases, t](benchmark::State& state) {
         std::size_t i = 0;
         for (auto _ : state) {
-          const dvec3& d = cases[i++ % cases.size()].direction;
-          benchmark::DoNotOptimize(sol::flow({dvec3(0.0), d}, t, s.options));
+          benchmark::DoNotOptimize(evaluate(s, cases[i++ % cases.size()], t));
         }
       });
     }
