@@ -327,6 +327,21 @@ typename ClosedFormGeodesic<T>::Vec3 ClosedFormGeodesic<T>::direction_at(T t) co
 }
 
 template <class T>
+T ClosedFormGeodesic<T>::height_at(T t) const {
+  switch (m_regime) {
+    case Regime::Vertical:
+      return m_c * t;
+    case Regime::Straight:
+      return T(0);
+    case Regime::Plane:
+      return plane(t).position.z;
+    case Regime::General:
+      break;
+  }
+  return std::log(point_at(phase(t)).ew) - m_w0;
+}
+
+template <class T>
 T ClosedFormGeodesic<T>::period() const {
   if (m_regime != Regime::General) return std::numeric_limits<T>::infinity();
   return T(4) * m_K / m_lambda;

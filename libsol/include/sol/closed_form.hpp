@@ -56,6 +56,9 @@ class ClosedFormGeodesic {
   /// Only the unit tangent at arc length t (cheaper than at(t)).
   Vec3 direction_at(T t) const;
 
+  /// Only the height z at arc length t (cheaper than at(t): no integrals).
+  T height_at(T t) const;
+
   /// Arc length of one z-oscillation (+inf when z does not oscillate).
   T period() const;
   /// (X_T, Y_T, 0) with γ(t + T) = (X_T, Y_T, 0) * γ(t); zero when no period.

@@ -1,0 +1,74 @@
+// The CPU reference ray-marcher: the same march and shading as the Vulkan
+// kernels, in double precision, multi-threaded. The kernels are tested
+// against it.
+//
+// The march (one ray per pixel, camera convention of DESIGN.md §2):
+//  1. The scene is expressed relative to the camera (left-translation by the
+//     camera position's inverse), so every ray starts at the origin; a plane
+//     x = c becomes x = e^{-p_z}(c - p_x), y = c becomes y = e^{p_z}(c - p_y),
+//     z = c becomes z = c - p_z.
+//  2. Per ray, the closed-form geodesic is precomputed once
+//     (ClosedFormGeodesic<double>); each step evaluates it at the accumulated
+//     arc length t from the ray's origin, so no error accumulates from step
+//     to step.
+//  3. t advances by the exact distance to the nearest object (sol/distance.hpp);
+//     the ray hits when that distance is below hit_epsilon, and misses when t
+//     exceeds max_distance or the steps exceed max_steps.
+// Shading: base colour times the pattern (in the plane's own world
+// coordinates), times ambient + (1 - ambient) max(0, n·l) with n the unit
+// gradient of the distance (frame components, facing the ray's side) and l
+// the light direction, times exp(-t / fog_distance). Misses are black.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sol/scene.hpp"
+
+namespace sol {
+
+/// The ray through the centre of pixel (i, j) (row 0 at the top) of a
+/// width × height image: unit direction in frame components at the camera.
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height);
+
+/// Result of marching one ray.
+struct MarchHit {
+  int object = 0;              ///< 0: no hit; k: the k-th object of the scene (1-based)
+  double distance = 0.0;       ///< arc length to the hit (to where the march stopped on a miss)
+  glm::dvec3 point{0.0};       ///< hit point, world coordinates
+  glm::dvec3 normal{0.0};      ///< unit surface normal at the hit, frame components, facing the ray
+  int steps = 0;               ///< march steps used
+};
+
+/// Marches the ray from the camera position with unit direction `direction`
+/// (frame components at the camera).
+MarchHit march(const Scene& scene, const glm::dvec3& direction);
+
+/// Linear RGB of a hit (black for a miss).
+glm::dvec3 shade(const Scene& scene, const MarchHit& hit);
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  unsigned threads = 0;  ///< 0: all hardware threads
+  /// Called now and then from the calling thread with the finished fraction in [0, 1].
+  std::function<void(double)> progress;
+};
+
+/// An image and its arbitrary output variables, row-major, row 0 at the top.
+struct RenderResult {
+  int width = 0, height = 0;
+  std::vector<float> rgba;      ///< 4 per pixel, linear RGB, alpha 1
+  std::vector<float> object;    ///< per pixel: 0 = no hit, k = k-th object (1-based)
+  std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
+  std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
+  std::vector<float> steps;     ///< march steps used
+};
+
+/// Renders the scene on the CPU. Throws InvalidArgument for an invalid scene
+/// or sizes outside [1, 16384].
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace sol

@@ -1,0 +1,79 @@
+// Scene description: camera, objects, light, fog and march limits, read from
+// JSON (README "Scene files" documents the schema) or taken from a preset.
+//
+// All positions are Sol coordinates; all directions are frame components
+// (DESIGN.md §2). A light direction is constant in the left-invariant frame,
+// so it means the same everywhere.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace sol {
+
+enum class ObjectType {
+  PlaneX,  ///< the plane x = c (a totally geodesic hyperbolic plane)
+  PlaneY,  ///< the plane y = c
+  PlaneZ,  ///< the plane z = c (a flat horizontal plane)
+};
+
+enum class Pattern {
+  None,     ///< plain base colour
+  Circles,  ///< discs of radius 0.3 centred on the unit grid of the plane's own coordinates
+  Checker,  ///< unit checkerboard in the plane's own coordinates
+};
+
+struct SceneObject {
+  ObjectType type = ObjectType::PlaneZ;
+  double c = 0.0;                      ///< the plane's constant coordinate
+  glm::dvec3 color{0.8, 0.8, 0.8};     ///< linear RGB in [0, 1]
+  Pattern pattern = Pattern::None;
+};
+
+struct Camera {
+  glm::dvec3 position{0.0, 0.0, 0.0};
+  glm::dvec3 forward{1.0, 0.0, 0.0};  ///< frame components at position
+  glm::dvec3 up{0.0, 0.0, 1.0};       ///< frame components; not parallel to forward
+  double fov = 60.0;                  ///< vertical field of view, degrees, in (0, 180)
+};
+
+struct Scene {
+  Camera camera;
+  std::vector<SceneObject> objects;
+  glm::dvec3 light_direction{0.3, 0.5, 1.0};  ///< towards the light, frame components (normalised on use)
+  double ambient = 0.15;                       ///< light reaching surfaces facing away, in [0, 1]
+  double fog_distance = 0.0;                   ///< colour *= exp(-arc length / fog_distance); 0 = no fog
+  double max_distance = 30.0;                  ///< arc length after which a ray misses
+  int max_steps = 200;                         ///< march steps after which a ray misses
+  double hit_epsilon = 5e-5;                   ///< a ray hits when the distance falls below this
+};
+
+/// Checks every field (finite numbers, non-zero and non-parallel camera
+/// vectors, fov in (0, 180), positive limits, colours in [0, 1], at least
+/// one object); throws InvalidArgument naming the field.
+void validate(const Scene& scene);
+
+/// Parses a scene from JSON text; `source` (a file name) prefixes every error
+/// message. Unknown keys are errors (a typo must not pass silently). Throws
+/// InvalidArgument on malformed or inconsistent input.
+Scene parse_scene(std::string_view json, std::string_view source = "<scene>");
+
+/// Reads and parses a scene file; InvalidArgument if unreadable or invalid.
+Scene load_scene(const std::string& path);
+
+/// Built-in scenes: "plane" (z = 0 tiled with circles, seen from (0,0,1.5)
+/// looking straight down), "sandwich" (planes z = ±1, observer at the
+/// origin), "sheets" (planes x = 0 and y = 0). InvalidArgument if unknown.
+Scene preset_scene(std::string_view name);
+std::vector<std::string> preset_names();
+
+/// Scene as JSON text in the documented schema (parse_scene reads it back).
+std::string to_json(const Scene& scene);
+
+const char* to_string(ObjectType type);
+const char* to_string(Pattern pattern);
+
+}  // namespace sol

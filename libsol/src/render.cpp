@@ -1,0 +1,208 @@
+#include "sol/render.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "sol/closed_form.hpp"
+#include "sol/distance.hpp"
+#include "sol/error.hpp"
+#include "sol/group.hpp"
+
+namespace sol {
+namespace {
+
+// A plane's constant in camera-relative coordinates (see render.hpp).
+double relative_constant(const SceneObject& o, const glm::dvec3& p) {
+  switch (o.type) {
+    case ObjectType::PlaneX:
+      return std::exp(-p.z) * (o.c - p.x);
+    case ObjectType::PlaneY:
+      return std::exp(p.z) * (o.c - p.y);
+    case ObjectType::PlaneZ:
+      return o.c - p.z;
+  }
+  return 0.0;
+}
+
+double object_distance(ObjectType type, const glm::dvec3& q, double c) {
+  switch (type) {
+    case ObjectType::PlaneX:
+      return sdf_plane_x(q, c);
+    case ObjectType::PlaneY:
+      return sdf_plane_y(q, c);
+    case ObjectType::PlaneZ:
+      return sdf_plane_z(q, c);
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+glm::dvec3 object_normal(ObjectType type, const glm::dvec3& q, double c) {
+  switch (type) {
+    case ObjectType::PlaneX:
+      return sdf_plane_x_gradient(q, c);
+    case ObjectType::PlaneY:
+      return sdf_plane_y_gradient(q, c);
+    case ObjectType::PlaneZ:
+      return sdf_plane_z_gradient(q, c);
+  }
+  return {0.0, 0.0, 1.0};
+}
+
+// Pattern factor from the hit's coordinates in the plane (world).
+double pattern_factor(Pattern pattern, double u, double v) {
+  switch (pattern) {
+    case Pattern::None:
+      return 1.0;
+    case Pattern::Circles: {
+      const double du = u - std::floor(u) - 0.5, dv = v - std::floor(v) - 0.5;
+      return du * du + dv * dv < 0.3 * 0.3 ? 1.0 : 0.3;
+    }
+    case Pattern::Checker:
+      return std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
+  }
+  return 1.0;
+}
+
+void require_size(int value, const char* name) {
+  if (value < 1 || value > 16384) {
+    throw InvalidArgument(std::string("sol::render_cpu: ") + name + " must be in [1, 16384], got " +
+                          std::to_string(value));
+  }
+}
+
+}  // namespace
+
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
+  const glm::dvec3 forward = glm::normalize(camera.forward);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double tan_half = std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0);
+  const double sx = (2.0 * (i + 0.5) / width - 1.0) * tan_half * width / height;
+  const double sy = (1.0 - 2.0 * (j + 0.5) / height) * tan_half;
+  return glm::normalize(sx * right + sy * up + forward);
+}
+
+MarchHit march(const Scene& scene, const glm::dvec3& direction) {
+  const glm::dvec3 origin = scene.camera.position;
+  const std::size_t n = scene.objects.size();
+  std::vector<double> constants(n);
+  bool heights_only = true;  // only planes z = c: the march needs z alone
+  for (std::size_t k = 0; k < n; ++k) {
+    constants[k] = relative_constant(scene.objects[k], origin);
+    heights_only = heights_only && scene.objects[k].type == ObjectType::PlaneZ;
+  }
+  const ClosedFormGeodesic<double> ray(direction);
+  MarchHit hit;
+  double t = 0.0;
+  for (int step = 0; step < scene.max_steps; ++step) {
+    const glm::dvec3 q = heights_only ? glm::dvec3(0.0, 0.0, ray.height_at(t)) : ray.at(t).position;
+    double nearest = std::numeric_limits<double>::infinity();
+    std::size_t nearest_k = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double d = object_distance(scene.objects[k].type, q, constants[k]);
+      if (d < nearest) {
+        nearest = d;
+        nearest_k = k;
+      }
+    }
+    hit.steps = step + 1;
+    if (nearest < scene.hit_epsilon) {
+      const glm::dvec3 p = ray.at(t).position;
+      hit.object = static_cast<int>(nearest_k) + 1;
+      hit.distance = t;
+      hit.point = multiply(origin, p);
+      hit.normal = object_normal(scene.objects[nearest_k].type, p, constants[nearest_k]);
+      return hit;
+    }
+    t += nearest;
+    if (t > scene.max_distance) break;
+  }
+  hit.distance = std::min(t, scene.max_distance);
+  return hit;
+}
+
+glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
+  if (hit.object == 0) return glm::dvec3(0.0);
+  const SceneObject& o = scene.objects[static_cast<std::size_t>(hit.object - 1)];
+  const glm::dvec3& p = hit.point;
+  double u = p.x, v = p.y;  // the plane's own coordinates
+  if (o.type == ObjectType::PlaneX) u = p.y, v = p.z;
+  if (o.type == ObjectType::PlaneY) u = p.x, v = p.z;
+  const double lambert = std::max(0.0, glm::dot(hit.normal, glm::normalize(scene.light_direction)));
+  double factor = pattern_factor(o.pattern, u, v) * (scene.ambient + (1.0 - scene.ambient) * lambert);
+  if (scene.fog_distance > 0.0) factor *= std::exp(-hit.distance / scene.fog_distance);
+  return o.color * factor;
+}
+
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
+  validate(scene);
+  require_size(settings.width, "width");
+  require_size(settings.height, "height");
+  const int w = settings.width, h = settings.height;
+  const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  RenderResult r;
+  r.width = w;
+  r.height = h;
+  r.rgba.assign(4 * pixels, 0.0f);
+  r.object.assign(pixels, 0.0f);
+  r.distance.assign(pixels, 0.0f);
+  r.px.assign(pixels, 0.0f);
+  r.py.assign(pixels, 0.0f);
+  r.pz.assign(pixels, 0.0f);
+  r.steps.assign(pixels, 0.0f);
+
+  std::atomic<int> next_row{0}, rows_done{0};
+  auto worker = [&]() {
+    for (int j = next_row++; j < h; j = next_row++) {
+      for (int i = 0; i < w; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+        const MarchHit hit = march(scene, camera_ray(scene.camera, i, j, w, h));
+        const glm::dvec3 c = shade(scene, hit);
+        r.rgba[4 * k + 0] = static_cast<float>(c.r);
+        r.rgba[4 * k + 1] = static_cast<float>(c.g);
+        r.rgba[4 * k + 2] = static_cast<float>(c.b);
+        r.rgba[4 * k + 3] = 1.0f;
+        r.object[k] = static_cast<float>(hit.object);
+        r.steps[k] = static_cast<float>(hit.steps);
+        if (hit.object != 0) {
+          r.distance[k] = static_cast<float>(hit.distance);
+          r.px[k] = static_cast<float>(hit.point.x);
+          r.py[k] = static_cast<float>(hit.point.y);
+          r.pz[k] = static_cast<float>(hit.point.z);
+        }
+      }
+      ++rows_done;
+    }
+  };
+  unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
+  if (settings.progress) {
+    // The calling thread reports progress while the pool works.
+    if (pool.empty()) {
+      worker();
+    } else {
+      while (rows_done.load() < h) {
+        settings.progress(static_cast<double>(rows_done.load()) / h);
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        if (next_row.load() >= h) break;
+      }
+    }
+  } else {
+    worker();
+  }
+  if (settings.progress && !pool.empty()) worker();  // help with any rows left
+  for (std::thread& t : pool) t.join();
+  if (settings.progress) settings.progress(1.0);
+  return r;
+}
+
+}  // namespace sol

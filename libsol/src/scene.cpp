@@ -1,0 +1,233 @@
+#include "sol/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sol/error.hpp"
+
+namespace sol {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(std::string_view source, const std::string& what) {
+  throw InvalidArgument(std::string(source) + ": " + what);
+}
+
+void require_known_keys(const json& object, std::initializer_list<const char*> keys, std::string_view source,
+                        const std::string& where) {
+  const std::set<std::string> known(keys.begin(), keys.end());
+  for (const auto& item : object.items()) {
+    if (!known.count(item.key())) {
+      std::string list;
+      for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+      fail(source, "unknown key '" + item.key() + "' in " + where + " (known: " + list + ")");
+    }
+  }
+}
+
+double number(const json& value, std::string_view source, const std::string& name) {
+  if (!value.is_number()) fail(source, "'" + name + "' must be a number, got " + value.dump());
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) fail(source, "'" + name + "' must be finite");
+  return v;
+}
+
+glm::dvec3 vec3(const json& value, std::string_view source, const std::string& name) {
+  if (!value.is_array() || value.size() != 3) fail(source, "'" + name + "' must be an array of 3 numbers, got " + value.dump());
+  return {number(value[0], source, name + "[0]"), number(value[1], source, name + "[1]"),
+          number(value[2], source, name + "[2]")};
+}
+
+ObjectType object_type(const json& value, std::string_view source, const std::string& name) {
+  const std::string s = value.is_string() ? value.get<std::string>() : value.dump();
+  if (s == "plane_x") return ObjectType::PlaneX;
+  if (s == "plane_y") return ObjectType::PlaneY;
+  if (s == "plane_z") return ObjectType::PlaneZ;
+  fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, got " + s);
+}
+
+Pattern pattern(const json& value, std::string_view source, const std::string& name) {
+  const std::string s = value.is_string() ? value.get<std::string>() : value.dump();
+  if (s == "none") return Pattern::None;
+  if (s == "circles") return Pattern::Circles;
+  if (s == "checker") return Pattern::Checker;
+  fail(source, "'" + name + "' must be one of none, circles, checker, got " + s);
+}
+
+void validate_in(const Scene& s, std::string_view source) {
+  const Camera& c = s.camera;
+  auto finite3 = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite3(c.position)) fail(source, "camera.position must be finite");
+  if (!finite3(c.forward) || glm::length(c.forward) == 0.0) fail(source, "camera.forward must be finite and non-zero");
+  if (!finite3(c.up) || glm::length(c.up) == 0.0) fail(source, "camera.up must be finite and non-zero");
+  if (glm::length(glm::cross(glm::normalize(c.forward), glm::normalize(c.up))) < 1e-9) {
+    fail(source, "camera.forward and camera.up must not be parallel");
+  }
+  if (!(c.fov > 0.0 && c.fov < 180.0)) fail(source, "camera.fov must be in (0, 180) degrees");
+  if (s.objects.empty()) fail(source, "the scene has no objects");
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const SceneObject& o = s.objects[i];
+    const std::string at = "objects[" + std::to_string(i) + "]";
+    if (!std::isfinite(o.c)) fail(source, at + ".c must be finite");
+    for (int k = 0; k < 3; ++k) {
+      if (!(o.color[k] >= 0.0 && o.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
+    }
+  }
+  if (!finite3(s.light_direction) || glm::length(s.light_direction) == 0.0) {
+    fail(source, "light.direction must be finite and non-zero");
+  }
+  if (!(s.ambient >= 0.0 && s.ambient <= 1.0)) fail(source, "light.ambient must be in [0, 1]");
+  if (!(s.fog_distance >= 0.0) || !std::isfinite(s.fog_distance)) fail(source, "fog_distance must be >= 0");
+  if (!(s.max_distance > 0.0 && s.max_distance <= 1e4)) fail(source, "max_distance must be in (0, 10000]");
+  if (!(s.max_steps >= 1 && s.max_steps <= 100000)) fail(source, "max_steps must be in [1, 100000]");
+  if (!(s.hit_epsilon > 0.0 && s.hit_epsilon <= 0.1)) fail(source, "hit_epsilon must be in (0, 0.1]");
+}
+
+}  // namespace
+
+const char* to_string(ObjectType type) {
+  switch (type) {
+    case ObjectType::PlaneX:
+      return "plane_x";
+    case ObjectType::PlaneY:
+      return "plane_y";
+    case ObjectType::PlaneZ:
+      return "plane_z";
+  }
+  return "?";
+}
+
+const char* to_string(Pattern p) {
+  switch (p) {
+    case Pattern::None:
+      return "none";
+    case Pattern::Circles:
+      return "circles";
+    case Pattern::Checker:
+      return "checker";
+  }
+  return "?";
+}
+
+void validate(const Scene& scene) { validate_in(scene, "sol::validate(Scene)"); }
+
+Scene parse_scene(std::string_view text, std::string_view source) {
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {  // syntax errors and numbers out of range
+    fail(source, std::string("malformed JSON: ") + e.what());
+  }
+  if (!root.is_object()) fail(source, "the scene must be a JSON object");
+  require_known_keys(root, {"camera", "objects", "light", "fog_distance", "max_distance", "max_steps", "hit_epsilon"},
+                     source, "the scene");
+  Scene s;
+  if (root.contains("camera")) {
+    const json& c = root["camera"];
+    if (!c.is_object()) fail(source, "'camera' must be an object");
+    require_known_keys(c, {"position", "forward", "up", "fov"}, source, "camera");
+    if (c.contains("position")) s.camera.position = vec3(c["position"], source, "camera.position");
+    if (c.contains("forward")) s.camera.forward = vec3(c["forward"], source, "camera.forward");
+    if (c.contains("up")) s.camera.up = vec3(c["up"], source, "camera.up");
+    if (c.contains("fov")) s.camera.fov = number(c["fov"], source, "camera.fov");
+  }
+  if (!root.contains("objects") || !root["objects"].is_array()) fail(source, "'objects' must be an array");
+  const json& objects = root["objects"];
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const json& o = objects[i];
+    const std::string at = "objects[" + std::to_string(i) + "]";
+    if (!o.is_object()) fail(source, at + " must be an object");
+    require_known_keys(o, {"type", "c", "color", "pattern"}, source, at);
+    if (!o.contains("type")) fail(source, at + " needs a 'type'");
+    SceneObject obj;
+    obj.type = object_type(o["type"], source, at + ".type");
+    if (o.contains("c")) obj.c = number(o["c"], source, at + ".c");
+    if (o.contains("color")) obj.color = vec3(o["color"], source, at + ".color");
+    if (o.contains("pattern")) obj.pattern = pattern(o["pattern"], source, at + ".pattern");
+    s.objects.push_back(obj);
+  }
+  if (root.contains("light")) {
+    const json& l = root["light"];
+    if (!l.is_object()) fail(source, "'light' must be an object");
+    require_known_keys(l, {"direction", "ambient"}, source, "light");
+    if (l.contains("direction")) s.light_direction = vec3(l["direction"], source, "light.direction");
+    if (l.contains("ambient")) s.ambient = number(l["ambient"], source, "light.ambient");
+  }
+  if (root.contains("fog_distance")) s.fog_distance = number(root["fog_distance"], source, "fog_distance");
+  if (root.contains("max_distance")) s.max_distance = number(root["max_distance"], source, "max_distance");
+  if (root.contains("hit_epsilon")) s.hit_epsilon = number(root["hit_epsilon"], source, "hit_epsilon");
+  if (root.contains("max_steps")) {
+    const json& m = root["max_steps"];
+    if (!m.is_number_integer()) fail(source, "'max_steps' must be an integer, got " + m.dump());
+    const auto v = m.get<long long>();
+    if (v < 1 || v > 100000) fail(source, "max_steps must be in [1, 100000]");
+    s.max_steps = static_cast<int>(v);
+  }
+  validate_in(s, source);
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InvalidArgument(path + ": cannot read scene file");
+  return parse_scene(text.str(), path);
+}
+
+std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets"}; }
+
+Scene preset_scene(std::string_view name) {
+  Scene s;
+  if (name == "plane") {
+    // The paper's "rolled into a tube" view: z = 0 seen from above.
+    s.camera = {{0.0, 0.0, 1.5}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 90.0};
+    s.objects = {{ObjectType::PlaneZ, 0.0, {0.95, 0.75, 0.3}, Pattern::Circles}};
+  } else if (name == "sandwich") {
+    // Looking along x + y: rays tilted up reach z = 1, tilted down z = -1
+    // (straight along x every ray bends down, along y up).
+    s.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 90.0};
+    s.objects = {{ObjectType::PlaneZ, 1.0, {0.35, 0.6, 0.95}, Pattern::Circles},
+                 {ObjectType::PlaneZ, -1.0, {0.95, 0.55, 0.3}, Pattern::Circles}};
+    s.fog_distance = 20.0;
+  } else if (name == "sheets") {
+    s.camera = {{1.0, 1.5, 0.2}, glm::normalize(glm::dvec3(-1.0, -1.2, -0.1)), {0.0, 0.0, 1.0}, 75.0};
+    s.objects = {{ObjectType::PlaneX, 0.0, {0.9, 0.4, 0.35}, Pattern::Checker},
+                 {ObjectType::PlaneY, 0.0, {0.35, 0.8, 0.45}, Pattern::Checker}};
+    s.fog_distance = 25.0;
+  } else {
+    std::string list;
+    for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
+    throw InvalidArgument("unknown preset '" + std::string(name) + "' (presets: " + list + ")");
+  }
+  return s;
+}
+
+std::string to_json(const Scene& s) {
+  auto arr = [](const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); };
+  json root;
+  root["camera"] = {{"position", arr(s.camera.position)},
+                    {"forward", arr(s.camera.forward)},
+                    {"up", arr(s.camera.up)},
+                    {"fov", s.camera.fov}};
+  root["objects"] = json::array();
+  for (const SceneObject& o : s.objects) {
+    root["objects"].push_back(
+        {{"type", to_string(o.type)}, {"c", o.c}, {"color", arr(o.color)}, {"pattern", to_string(o.pattern)}});
+  }
+  root["light"] = {{"direction", arr(s.light_direction)}, {"ambient", s.ambient}};
+  root["fog_distance"] = s.fog_distance;
+  root["max_distance"] = s.max_distance;
+  root["max_steps"] = s.max_steps;
+  root["hit_epsilon"] = s.hit_epsilon;
+  return root.dump(2);
+}
+
+}  // namespace sol

@@ -1,0 +1,159 @@
+// The CPU reference renderer: its AOVs against libsol's Dormand–Prince flow
+// (independent of the closed form the march uses), exact distances, the
+// camera convention, invariance under translations and the (y, x, -z)
+// symmetry, and no NaN.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+
+#include "support/directions.hpp"
+
+namespace {
+
+using glm::dvec3;
+
+sol::FlowOptions dopri() {
+  sol::FlowOptions o;
+  o.method = sol::Method::DormandPrince;
+  o.tolerance = 1e-12;
+  return o;
+}
+
+TEST(Render, CameraConvention) {
+  const sol::Camera cam{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 90.0};
+  // Centre of an odd image is straight ahead; right = forward × up = -y.
+  const dvec3 centre = sol::camera_ray(cam, 2, 2, 5, 5);
+  EXPECT_NEAR(glm::length(centre - dvec3(1, 0, 0)), 0.0, 1e-15);
+  const dvec3 right_edge = sol::camera_ray(cam, 4, 2, 5, 5);
+  EXPECT_LT(right_edge.y, 0.0);
+  const dvec3 top = sol::camera_ray(cam, 2, 0, 5, 5);
+  EXPECT_GT(top.z, 0.0);
+  // sx = (2(i+0.5)/W - 1) tan(fov/2) W/H at the last column of a 4x2 image: 0.75 * 1 * 2.
+  const dvec3 d = sol::camera_ray(cam, 3, 1, 4, 2);
+  EXPECT_NEAR(-d.y / d.x, 1.5, 1e-14);
+  EXPECT_NEAR(-d.z / d.x, 0.5, 1e-14);
+}
+
+TEST(Render, ExactDistancesAreDistances) {
+  // The vertical segment and the hyperbolic-plane formula: flowing from a
+  // point along the distance gradient's reverse by the distance reaches the plane.
+  for (const dvec3& p : {dvec3(0.3, -0.2, 0.7), dvec3(-1.5, 2.0, -0.4), dvec3(2.0, 0.5, 1.3)}) {
+    const double dx = sol::sdf_plane_x(p, 0.1);
+    const sol::GeodesicState sx = sol::flow({p, -sol::sdf_plane_x_gradient(p, 0.1)}, dx, dopri());
+    EXPECT_NEAR(sx.position.x, 0.1, 1e-9);
+    const double dy = sol::sdf_plane_y(p, -0.3);
+    const sol::GeodesicState sy = sol::flow({p, -sol::sdf_plane_y_gradient(p, -0.3)}, dy, dopri());
+    EXPECT_NEAR(sy.position.y, -0.3, 1e-9);
+    // No shorter path: random directions flowed by 0.999 d stay off the plane.
+    for (const dvec3& u : sol::test::random_directions(200, 5)) {
+      const dvec3 q = sol::flow({p, u}, 0.999 * dx, dopri()).position;
+      EXPECT_GT((q.x - 0.1) * (p.x - 0.1), 0.0);
+    }
+  }
+}
+
+// AOV truth for `plane`: hits lie on z = 0 and agree with the flow; misses
+// are rays whose flow never reaches z = 0 within max_distance.
+TEST(Render, PlaneAovsAgreeWithTheFlow) {
+  const sol::Scene scene = sol::preset_scene("plane");
+  sol::RenderSettings settings;
+  settings.width = 24;
+  settings.height = 20;
+  const sol::RenderResult r = sol::render_cpu(scene, settings);
+  int hits = 0, misses = 0;
+  for (int j = 0; j < r.height; ++j) {
+    for (int i = 0; i < r.width; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j * r.width + i);
+      const dvec3 dir = sol::camera_ray(scene.camera, i, j, r.width, r.height);
+      const sol::GeodesicState start{scene.camera.position, dir};
+      if (r.object[k] == 1.0f) {
+        ++hits;
+        EXPECT_LT(std::abs(r.pz[k]), 1e-4f);
+        const dvec3 p = sol::flow(start, r.distance[k], dopri()).position;
+        // float AOVs: 1e-6 relative rounding of coordinates up to ~10.
+        EXPECT_LT(glm::length(p - dvec3(r.px[k], r.py[k], r.pz[k])), 1e-5) << i << "," << j;
+      } else {
+        ++misses;
+        // Follow the flow in small pieces: z stays above the plane up to max_distance.
+        sol::GeodesicState s = start;
+        double lowest = s.position.z;
+        for (double t = 0; t < scene.max_distance; t += 0.05) {
+          s = sol::flow(s, 0.05, dopri());
+          lowest = std::min(lowest, s.position.z);
+        }
+        EXPECT_GT(lowest, 0.0) << i << "," << j;
+      }
+    }
+  }
+  EXPECT_GT(hits, 20);
+  EXPECT_GT(misses, 20);
+}
+
+double max_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  double d = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, static_cast<double>(std::abs(a[k] - b[k])));
+  return d;
+}
+
+TEST(Render, TranslationInvariance) {
+  // The circles have period 1 in x and y, so (X, Y, 0) with integers X, Y is
+  // a symmetry of `plane`: the image must not change, however far away.
+  sol::Scene scene = sol::preset_scene("plane");
+  sol::RenderSettings settings;
+  settings.width = 32;
+  settings.height = 32;
+  const sol::RenderResult here = sol::render_cpu(scene, settings);
+  scene.camera.position = sol::multiply(dvec3(1e6, -1e6, 0.0), scene.camera.position);
+  const sol::RenderResult there = sol::render_cpu(scene, settings);
+  EXPECT_EQ(here.object, there.object);
+  // Colours: rounding of the hit point's world coordinates (1e6 * 1e-16) may
+  // move a boundary pixel by a disc edge; everything else agrees to rounding.
+  int different = 0;
+  for (std::size_t k = 0; k < here.rgba.size(); ++k) different += std::abs(here.rgba[k] - there.rgba[k]) > 1e-6f;
+  EXPECT_LE(different, 3);
+  EXPECT_LT(max_difference(here.distance, there.distance), 1e-6);
+}
+
+TEST(Render, SwapSymmetry) {
+  // σ(x, y, z) = (y, x, -z) is an isometry; on frame components it swaps E1, E2
+  // and negates E3. The view of z = 1 from (0, 0, h) looking down equals the
+  // view of z = -1 from (0, 0, -h) looking up with the camera mapped by σ.
+  auto sigma = [](const dvec3& v) { return dvec3(v.y, v.x, -v.z); };
+  sol::Scene a;
+  a.camera = {{0, 0, 2.2}, {0.1, 0.05, -1}, {0, 1, 0}, 80.0};
+  a.objects = {{sol::ObjectType::PlaneZ, 1.0, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
+  a.light_direction = {0.2, 0.4, 1.0};
+  sol::Scene b = a;
+  b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
+  b.objects[0].c = -1.0;
+  b.light_direction = sigma(a.light_direction);
+  sol::RenderSettings settings;
+  settings.width = 24;
+  settings.height = 24;
+  const sol::RenderResult ra = sol::render_cpu(a, settings), rb = sol::render_cpu(b, settings);
+  EXPECT_EQ(ra.object, rb.object);
+  EXPECT_LT(max_difference(ra.distance, rb.distance), 1e-9);
+  EXPECT_LT(max_difference(ra.px, rb.py), 1e-9);
+  EXPECT_LT(max_difference(ra.rgba, rb.rgba), 1e-6);
+}
+
+TEST(Render, EveryPresetRendersWithoutNaN) {
+  for (const std::string& name : sol::preset_names()) {
+    sol::RenderSettings settings;
+    settings.width = 16;
+    settings.height = 12;
+    const sol::RenderResult r = sol::render_cpu(sol::preset_scene(name), settings);
+    int hits = 0;
+    for (float v : r.rgba) ASSERT_TRUE(std::isfinite(v)) << name;
+    for (float v : r.distance) ASSERT_TRUE(std::isfinite(v)) << name;
+    for (float v : r.object) hits += v > 0;
+    EXPECT_GT(hits, 0) << name;
+  }
+  sol::RenderSettings bad;
+  bad.width = 0;
+  EXPECT_THROW(sol::render_cpu(sol::preset_scene("plane"), bad), sol::InvalidArgument);
+}
+
+}  // namespace

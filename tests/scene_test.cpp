@@ -1,0 +1,84 @@
+// Scene files: the documented schema parses, every malformed or inconsistent
+// input is rejected with a message naming the problem, presets are valid and
+// to_json round-trips.
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+
+namespace {
+
+// The example of the issue, verbatim.
+const char* kMinimal = R"({"camera": {"position": [0, 0, 1.5], "forward": [0, 0, -1], "up": [0, 1, 0], "fov": 90},
+  "objects": [{"type": "plane_z", "c": 0.0, "color": [0.9, 0.8, 0.3], "pattern": "circles"}],
+  "max_distance": 30, "max_steps": 200})";
+
+TEST(Scene, ParsesTheDocumentedExample) {
+  const sol::Scene s = sol::parse_scene(kMinimal);
+  EXPECT_EQ(s.camera.position, glm::dvec3(0, 0, 1.5));
+  EXPECT_EQ(s.camera.forward, glm::dvec3(0, 0, -1));
+  EXPECT_EQ(s.camera.fov, 90.0);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].type, sol::ObjectType::PlaneZ);
+  EXPECT_EQ(s.objects[0].pattern, sol::Pattern::Circles);
+  EXPECT_EQ(s.objects[0].color, glm::dvec3(0.9, 0.8, 0.3));
+  EXPECT_EQ(s.max_distance, 30.0);
+  EXPECT_EQ(s.max_steps, 200);
+}
+
+// Each bad input must throw InvalidArgument whose message contains the given words.
+void expect_rejected(const std::string& json, const std::string& words) {
+  try {
+    (void)sol::parse_scene(json, "bad.json");
+    ADD_FAILURE() << "accepted: " << json;
+  } catch (const sol::InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.json"), std::string::npos) << what;  // names the source
+    EXPECT_NE(what.find(words), std::string::npos) << "message '" << what << "' lacks '" << words << "'";
+  }
+}
+
+TEST(Scene, RejectsMalformedAndInconsistentInput) {
+  const std::string objects = R"("objects": [{"type": "plane_z"}])";
+  expect_rejected("{", "malformed JSON");
+  expect_rejected("[1, 2]", "JSON object");
+  expect_rejected("{}", "'objects'");
+  expect_rejected(R"({"objects": []})", "no objects");
+  expect_rejected(R"({"objects": [{"type": "sphere"}]})", "plane_x, plane_y, plane_z");
+  expect_rejected(R"({"objects": [{"c": 1}]})", "needs a 'type'");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "colour": [1, 1, 1]}]})", "unknown key 'colour'");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "color": [1, 1]}]})", "array of 3 numbers");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "color": [2, 0, 0]}]})", "color");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "c": "nan"}]})", "must be a number");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "dots"}]})", "none, circles, checker");
+  expect_rejected(R"({"camera": {"forward": [0, 0, 0]}, )" + objects + "}", "camera.forward");
+  expect_rejected(R"({"camera": {"forward": [0, 0, 2], "up": [0, 0, -1]}, )" + objects + "}", "parallel");
+  expect_rejected(R"({"camera": {"fov": 180}, )" + objects + "}", "fov");
+  expect_rejected(R"({"camera": {"zoom": 2}, )" + objects + "}", "unknown key 'zoom'");
+  expect_rejected(R"({"max_steps": 2.5, )" + objects + "}", "integer");
+  expect_rejected(R"({"max_steps": 0, )" + objects + "}", "max_steps");
+  expect_rejected(R"({"max_distance": -1, )" + objects + "}", "max_distance");
+  expect_rejected(R"({"max_distance": 1e999, )" + objects + "}", "1e999");
+  expect_rejected(R"({"frobnicate": 1, )" + objects + "}", "unknown key 'frobnicate'");
+}
+
+TEST(Scene, PresetsAreValidAndRoundTrip) {
+  for (const std::string& name : sol::preset_names()) {
+    const sol::Scene s = sol::preset_scene(name);
+    EXPECT_NO_THROW(sol::validate(s)) << name;
+    const sol::Scene back = sol::parse_scene(sol::to_json(s), name);
+    EXPECT_EQ(back.camera.position, s.camera.position);
+    EXPECT_EQ(back.camera.forward, s.camera.forward);
+    EXPECT_EQ(back.objects.size(), s.objects.size());
+    for (std::size_t k = 0; k < s.objects.size(); ++k) {
+      EXPECT_EQ(back.objects[k].type, s.objects[k].type);
+      EXPECT_EQ(back.objects[k].c, s.objects[k].c);
+      EXPECT_EQ(back.objects[k].pattern, s.objects[k].pattern);
+    }
+    EXPECT_EQ(back.fog_distance, s.fog_distance);
+  }
+  EXPECT_THROW(sol::preset_scene("nope"), sol::InvalidArgument);
+  EXPECT_THROW(sol::load_scene("/nonexistent/scene.json"), sol::InvalidArgument);
+}
+
+}  // namespace
