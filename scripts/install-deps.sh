@@ -7,7 +7,8 @@ packages=(
   libboost-dev          # header-only Boost.Math / Odeint / Multiprecision: independent test references
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
-  nlohmann-json3-dev
+  nlohmann-json3-dev    # scene files
+  libopenimageio-dev openimageio-tools  # image files (OIIO's CMake config also checks for its tools)
   python3-matplotlib    # bench plots
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi

@@ -1,0 +1,78 @@
+#include "image_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <OpenImageIO/imageio.h>
+
+namespace sol::viewer {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool float_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+}
+
+// IEC 61966-2-1 transfer function.
+float srgb_encode(float linear) {
+  const float v = std::clamp(linear, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+bool can_write(const std::string& path) {
+  auto out = OIIO::ImageOutput::create(path);
+  return out != nullptr;
+}
+
+void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
+  const int channels = static_cast<int>(channel_names.size());
+  if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+    throw std::runtime_error(path + ": internal error: pixel data size does not match the image");
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error(path + ": no image format for this file name (" + OIIO::geterror() + ")");
+  const bool as_float = float_format(path);
+  OIIO::ImageSpec spec(width, height, channels, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.channelnames = channel_names;
+  if (channels == 4 && channel_names[3] == "A") spec.alpha_channel = 3;
+  std::vector<float> data = interleaved;
+  if (!as_float && srgb_for_8bit) {
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = srgb_encode(data[i]);
+    }
+  }
+  // Same directory (rename stays atomic); the writer was chosen from the real name.
+  const std::string temporary = path + ".partial";
+  if (!out->open(temporary, spec)) {
+    std::string reason = out->geterror();
+    std::remove(temporary.c_str());
+    throw std::runtime_error(path + ": cannot write: " + reason);
+  }
+  const bool written = out->write_image(OIIO::TypeDesc::FLOAT, data.data());
+  const std::string reason = written ? std::string() : out->geterror();
+  const bool closed = out->close();
+  if (!written || !closed) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error(path + ": cannot move the finished image into place: " + ec.message());
+  }
+}
+
+}  // namespace sol::viewer

@@ -1,0 +1,23 @@
+// Writing images and AOVs with OpenImageIO, atomically: the data go to a
+// temporary file beside the target, renamed into place only when complete,
+// so a failure never leaves a partial output file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sol::viewer {
+
+/// Writes a width × height image with the given channels (interleaved floats,
+/// row 0 at the top) in the format the extension names (any OpenImageIO
+/// writes). Formats with float pixels (EXR, HDR, TIFF, PFM) get the linear
+/// values; 8-bit formats (PNG, JPEG, ...) get them sRGB-encoded when
+/// `srgb_for_8bit` is set. Throws std::runtime_error naming the file and the
+/// reason on failure.
+void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+                 const std::vector<float>& interleaved, bool srgb_for_8bit);
+
+/// Whether OpenImageIO can write files with this name's extension.
+bool can_write(const std::string& path);
+
+}  // namespace sol::viewer

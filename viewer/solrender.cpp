@@ -1,0 +1,210 @@
+// solrender: renders a Sol scene headless to an image file (any format
+// OpenImageIO writes) and optionally its AOVs to an EXR.
+//
+//   solrender --scene plane -o plane.png
+//   solrender --scene my.json -o out.exr --aov aov.exr --width 256 --height 256
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include <sol/sol.hpp>
+
+#include "image_file.hpp"
+
+namespace {
+
+void print_usage(std::FILE* out) {
+  std::fprintf(out,
+               "usage: solrender [options] -o OUT\n"
+               "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol geodesic.\n\n"
+               "  --scene NAME|FILE      a preset (plane, sandwich, sheets) or a JSON scene file (default plane)\n"
+               "  -o, --output OUT       image file; the format follows the extension (png, exr, jpg, tif, ...)\n"
+               "  --aov FILE.exr         also write float channels object, distance, Px, Py, Pz, steps\n"
+               "  --width W, --height H  image size in pixels, 1..16384 (default 512 x 512)\n"
+               "  --fov DEG              vertical field of view in degrees, (0, 180)\n"
+               "  --position X,Y,Z       camera position (Sol coordinates)\n"
+               "  --forward A,B,C        view direction, frame components at the camera\n"
+               "  --up A,B,C             up direction, frame components (not parallel to forward)\n"
+               "  --max-distance D       arc length after which a ray misses\n"
+               "  --max-steps N          march steps after which a ray misses\n"
+               "  --device auto|vulkan|cpu  where to render (default auto)\n"
+               "  --threads N            CPU threads for --device cpu (default: all)\n"
+               "  --print-scene          print the effective scene as JSON and exit\n"
+               "  --help                 this text\n\n"
+               "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
+               "linear ones. On failure nothing is written and the exit status is non-zero.\n");
+}
+
+[[noreturn]] void fail(const std::string& message) {
+  std::fprintf(stderr, "solrender: %s\n", message.c_str());
+  std::exit(2);
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+    fail("option " + option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size()) fail("option " + option + " expects an integer, got '" + text + "'");
+  if (value < lo || value > hi) {
+    fail("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  }
+  return static_cast<int>(value);
+}
+
+glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ',') {
+      parts.emplace_back();
+    } else {
+      parts.back() += c;
+    }
+  }
+  if (parts.size() != 3) fail("option " + option + " expects three comma-separated numbers like 0,0,1.5, got '" + text + "'");
+  return {parse_number(parts[0], option), parse_number(parts[1], option), parse_number(parts[2], option)};
+}
+
+// Interleaves the AOV planes into object, distance, Px, Py, Pz, steps.
+std::vector<float> interleave_aovs(const sol::RenderResult& r) {
+  const std::size_t n = r.object.size();
+  std::vector<float> out(6 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out[6 * k + 0] = r.object[k];
+    out[6 * k + 1] = r.distance[k];
+    out[6 * k + 2] = r.px[k];
+    out[6 * k + 3] = r.py[k];
+    out[6 * k + 4] = r.pz[k];
+    out[6 * k + 5] = r.steps[k];
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_arg = "plane", output, aov, device = "auto";
+  int width = 512, height = 512;
+  unsigned threads = 0;
+  bool print_scene = false;
+  struct Overrides {
+    std::optional<double> fov, max_distance;
+    std::optional<glm::dvec3> position, forward, up;
+    std::optional<int> max_steps;
+  } o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) fail("option " + arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      return 0;
+    } else if (arg == "--scene") {
+      scene_arg = value();
+    } else if (arg == "-o" || arg == "--output") {
+      output = value();
+    } else if (arg == "--aov") {
+      aov = value();
+    } else if (arg == "--width") {
+      width = parse_int(value(), arg, 1, 16384);
+    } else if (arg == "--height") {
+      height = parse_int(value(), arg, 1, 16384);
+    } else if (arg == "--fov") {
+      o.fov = parse_number(value(), arg);
+    } else if (arg == "--position") {
+      o.position = parse_vec3(value(), arg);
+    } else if (arg == "--forward") {
+      o.forward = parse_vec3(value(), arg);
+    } else if (arg == "--up") {
+      o.up = parse_vec3(value(), arg);
+    } else if (arg == "--max-distance") {
+      o.max_distance = parse_number(value(), arg);
+    } else if (arg == "--max-steps") {
+      o.max_steps = parse_int(value(), arg, 1, 100000);
+    } else if (arg == "--device") {
+      device = value();
+      if (device != "auto" && device != "vulkan" && device != "cpu") {
+        fail("option --device expects auto, vulkan or cpu, got '" + device + "'");
+      }
+    } else if (arg == "--threads") {
+      threads = static_cast<unsigned>(parse_int(value(), arg, 1, 1024));
+    } else if (arg == "--print-scene") {
+      print_scene = true;
+    } else {
+      fail("unknown option '" + arg + "' (see solrender --help)");
+    }
+  }
+
+  sol::Scene scene;
+  try {
+    const bool is_file = std::filesystem::exists(scene_arg) || scene_arg.find('.') != std::string::npos ||
+                         scene_arg.find('/') != std::string::npos;
+    scene = is_file ? sol::load_scene(scene_arg) : sol::preset_scene(scene_arg);
+    if (o.fov) scene.camera.fov = *o.fov;
+    if (o.position) scene.camera.position = *o.position;
+    if (o.forward) scene.camera.forward = *o.forward;
+    if (o.up) scene.camera.up = *o.up;
+    if (o.max_distance) scene.max_distance = *o.max_distance;
+    if (o.max_steps) scene.max_steps = *o.max_steps;
+    sol::validate(scene);
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
+  if (print_scene) {
+    std::printf("%s\n", sol::to_json(scene).c_str());
+    return 0;
+  }
+  if (output.empty()) fail("no output file: give -o OUT (see solrender --help)");
+  if (!sol::viewer::can_write(output)) fail(output + ": no image format for this file name extension");
+  if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") fail("--aov needs an .exr file name, got " + aov);
+  if (device == "vulkan") fail("--device vulkan: the Vulkan kernels are not built into this solrender yet; use --device cpu");
+
+  const bool tty = isatty(fileno(stderr));
+  sol::RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.threads = threads;
+  if (tty) {
+    settings.progress = [](double fraction) { std::fprintf(stderr, "\rsolrender: %3.0f%%", 100.0 * fraction); };
+  }
+  const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  bool wrote_output = false;
+  try {
+    const auto begin = std::chrono::steady_clock::now();
+    const sol::RenderResult r = sol::render_cpu(scene, settings);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    if (tty) std::fprintf(stderr, "\r");
+    sol::viewer::write_image(output, width, height, {"R", "G", "B", "A"}, r.rgba, true);
+    wrote_output = true;
+    if (!aov.empty()) {
+      sol::viewer::write_image(aov, width, height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+                               interleave_aovs(r), false);
+    }
+    std::fprintf(stderr, "solrender: %dx%d on cpu (%u threads): %.3f s, %.2f M rays/s -> %s\n", width, height,
+                 used_threads, seconds, width * static_cast<double>(height) / seconds * 1e-6, output.c_str());
+  } catch (const std::exception& e) {
+    if (tty) std::fprintf(stderr, "\n");
+    // A main image already written stays valid; a failed AOV must not leave
+    // the pair half-done, so remove the image written in this run.
+    if (wrote_output) std::filesystem::remove(output);
+    fail(e.what());
+  }
+  return 0;
+}
