@@ -51,7 +51,7 @@ TEST(ClosedForm, MatchesReferenceInEveryRegime) {
       // Bulirsch–Stoer reference at 1e-12 is ~1e-10 accurate and 20x cheaper.
       sol::test::ReferenceGeodesic<> reference(sign * d, false, 1e-24);  // ~1e-16 here: ample for the 1e-10 goal
       sol::test::ReferenceGeodesic<double> reference_f(sign * df, false, 1e-12);
-      for (const double t : {0.5, 1.0, 10.0, 50.0}) {
+      for (const double t : {0.5, 1.0, 3.0, 10.0, 17.0, 30.0, 50.0}) {
         const sol::test::ReferencePoint r = reference.at(t);
         const auto s = g.at(sign * t);
         const double e = std::max(scaled_error(s.position, r.position), scaled_error(sign * s.direction, r.direction));

@@ -31,19 +31,23 @@ struct Factors {
 };
 
 // Carlson's [1,-1,-1] integral ∫ √t dt / √((t - s₋)(s₊ - t)) between limits
-// with factors x and y, |x - y| = gap; d12 d13 = -s₋ s₊ = -1. Near a turning
-// point the integrand is ~1/√(gap·span) (span = s₊ - s₋), so a gap below
-// eps²·span contributes below ~eps√t and is dropped (this also keeps
-// U ~ √(t·span/gap) below √t/eps: U² < s₊/eps², in range for μ above the
-// plane threshold of each precision).
+// with factors x and y, |x - y| = gap; d12 d13 = -s₋ s₊ = -1:
+//   J = 2 X1 Y1 / U1 - (2/3) R_D(U2², U3², U1²),  U_i = V_i / gap.
+// U can overflow when μ is small (V ~ √s₊ (s₊ - s₋)) and the gap tiny, so
+// with V_i = W_i V_max and r = gap / V_max, using R_D's homogeneity:
+//   J = 2 X1 Y1 r / W1 - (2/3) r³ R_D(W2², W3², W1²),
+// every argument in [0, 1]. For a small gap the first term is the integrand
+// times the gap and the second O(gap³): nothing cancels, nothing is dropped.
 template <class T>
-T carlson_piece(const Factors<T>& x, const Factors<T>& y, T gap, T span) {
-  constexpr T tiny = std::numeric_limits<T>::epsilon() * std::numeric_limits<T>::epsilon();
-  if (!(gap > tiny * span)) return T(0);
-  const T u1 = (x.x1 * y.x2 * y.x3 + y.x1 * x.x2 * x.x3) / gap;
-  const T u2 = (x.x2 * y.x1 * y.x3 + y.x2 * x.x1 * x.x3) / gap;
-  const T u3 = (x.x3 * y.x1 * y.x2 + y.x3 * x.x1 * x.x2) / gap;
-  return T(2) * x.x1 * y.x1 / u1 - T(2) / T(3) * detail::carlson_rd(u2 * u2, u3 * u3, u1 * u1);
+T carlson_piece(const Factors<T>& x, const Factors<T>& y, T gap) {
+  if (!(gap > T(0))) return T(0);
+  const T v1 = x.x1 * y.x2 * y.x3 + y.x1 * x.x2 * x.x3;
+  const T v2 = x.x2 * y.x1 * y.x3 + y.x2 * x.x1 * x.x3;
+  const T v3 = x.x3 * y.x1 * y.x2 + y.x3 * x.x1 * x.x2;
+  const T v_max = std::max({v1, v2, v3});
+  if (!(v1 > T(0))) return T(0);  // both limits at turning points: not a piece within one quarter
+  const T w1 = v1 / v_max, w2 = v2 / v_max, w3 = v3 / v_max, r = gap / v_max;
+  return T(2) * x.x1 * y.x1 * r / w1 - T(2) / T(3) * r * r * r * detail::carlson_rd(w2 * w2, w3 * w3, w1 * w1);
 }
 
 // Factors of σ = 1/t from those of t: σ - s₋ = s₋ (s₊ - t)/t, s₊ - σ = s₊ (t - s₋)/t.
@@ -81,7 +85,8 @@ ClosedFormGeodesic<T>::ClosedFormGeodesic(const Vec3& direction) {
   m_mu = m_a * m_b;
   // Below this μ the geodesic leaves its hyperbolic plane by about μ e^{2|z|}:
   // < 1e-30 for |z| < 100 in double, < 1e-7 for |z| < 20 in float, below the
-  // rounding of each; above it s₊ ~ 1/μ keeps Carlson's U² within range.
+  // rounding of each; above it the factors (up to √s₊ ~ μ^{-1/2}) and their
+  // triple products (Carlson pieces) stay within range of each type.
   const T mu_plane = std::is_same_v<T, float> ? T(1e-24) : T(1e-120);
   if (m_mu < mu_plane) {
     m_regime = Regime::Plane;
@@ -127,8 +132,8 @@ ClosedFormGeodesic<T>::ClosedFormGeodesic(const Vec3& direction) {
   const Factors<T> bottom{m_sqrt_sm, T(0), std::sqrt(m_sp_minus_sm)};
   const Factors<T> middle{T(1), std::sqrt(m_one_minus_sm), std::sqrt(m_sp_minus_one)};
   const Factors<T> top{m_sqrt_sp, std::sqrt(m_sp_minus_sm), T(0)};
-  m_quarter_lo = carlson_piece(bottom, middle, m_one_minus_sm, m_sp_minus_sm) / (T(2) * m_sqrt_mu);
-  m_quarter_hi = carlson_piece(middle, top, m_sp_minus_one, m_sp_minus_sm) / (T(2) * m_sqrt_mu);
+  m_quarter_lo = carlson_piece(bottom, middle, m_one_minus_sm) / (T(2) * m_sqrt_mu);
+  m_quarter_hi = carlson_piece(middle, top, m_sp_minus_one) / (T(2) * m_sqrt_mu);
   m_start = point_at(m_u0);
   m_start_quarter = absolute_quarter(m_u0, m_start.quarter);
   anchor_piece(m_start, kStartAnchor[m_start.quarter], m_head_a, m_head_b);
@@ -210,9 +215,9 @@ void ClosedFormGeodesic<T>::anchor_piece(const Point& p, int anchor, T& integral
       break;
   }
   const T scale = T(1) / (T(2) * m_sqrt_mu);
-  integral_a = carlson_piece(fp, fa, gap, m_sp_minus_sm) * scale;
+  integral_a = carlson_piece(fp, fa, gap) * scale;
   const T gap_sigma = gap / (p.ew * p.ew * s_anchor);
-  integral_b = carlson_piece(reciprocal(fp, m_sqrt_sm, m_sqrt_sp), reciprocal(fa, m_sqrt_sm, m_sqrt_sp), gap_sigma, m_sp_minus_sm) * scale;
+  integral_b = carlson_piece(reciprocal(fp, m_sqrt_sm, m_sqrt_sp), reciprocal(fa, m_sqrt_sm, m_sqrt_sp), gap_sigma) * scale;
 }
 
 template <class T>
@@ -228,9 +233,9 @@ void ClosedFormGeodesic<T>::two_point_piece(const Point& p, const Point& q, T& i
   const Factors<T> fp{p.ew, std::sqrt(p.f2), std::sqrt(p.f3)};
   const Factors<T> fq{q.ew, std::sqrt(q.f2), std::sqrt(q.f3)};
   const T scale = T(1) / (T(2) * m_sqrt_mu);
-  integral_a = carlson_piece(fp, fq, gap, m_sp_minus_sm) * scale;
+  integral_a = carlson_piece(fp, fq, gap) * scale;
   const T gap_sigma = gap / (p.ew * p.ew * q.ew * q.ew);
-  integral_b = carlson_piece(reciprocal(fp, m_sqrt_sm, m_sqrt_sp), reciprocal(fq, m_sqrt_sm, m_sqrt_sp), gap_sigma, m_sp_minus_sm) * scale;
+  integral_b = carlson_piece(reciprocal(fp, m_sqrt_sm, m_sqrt_sp), reciprocal(fq, m_sqrt_sm, m_sqrt_sp), gap_sigma) * scale;
 }
 
 template <class T>
