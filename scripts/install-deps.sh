@@ -10,6 +10,11 @@ packages=(
   nlohmann-json3-dev    # scene files
   libopenimageio-dev openimageio-tools  # image files (OIIO's CMake config also checks for its tools)
   python3-matplotlib    # bench plots
+  libvulkan-dev         # Vulkan headers and loader (Sol::vk)
+  mesa-vulkan-drivers   # lavapipe: the CPU Vulkan device the tests run on
+  glslang-tools         # glslangValidator: GLSL compute shaders to SPIR-V at build time
+  spirv-tools           # SPIRV-Tools library: Sol::vk validates SPIR-V before a driver sees it
+  vulkan-validationlayers  # VK_LAYER_KHRONOS_validation, on in the Vulkan tests
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()

@@ -1,0 +1,104 @@
+// The Vulkan instance, the chosen physical device and its logical device.
+//
+// A Context is the first object of Sol::vk: it creates a Vulkan 1.2 instance,
+// picks one physical device, creates a logical device with one queue that
+// supports compute, and submits work to it. Buffers, images and pipelines are
+// created from a Context and share ownership of its device: whatever order
+// they are destroyed in, the device goes last. A Context and the objects made
+// from it are for one thread at a time.
+//
+// Device choice: ContextOptions::preference, where Auto (the default) takes a
+// GPU (discrete before integrated before virtual) when there is one and else
+// the CPU device (Mesa's lavapipe); the environment variable
+// SOL_VK_DEVICE=gpu|cpu|auto overrides Auto (and only Auto). Only devices
+// with Vulkan 1.2, a compute queue and the requested device extensions count.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+namespace sol::vk {
+
+namespace detail {
+struct Device;
+}
+
+enum class DevicePreference { Auto, Gpu, Cpu };
+
+/// "auto", "gpu" or "cpu" (any case); std::nullopt for anything else.
+std::optional<DevicePreference> parse_device_preference(std::string_view text);
+std::string_view to_string(DevicePreference preference);
+
+struct ContextOptions {
+  DevicePreference preference = DevicePreference::Auto;
+  /// Enables VK_LAYER_KHRONOS_validation (with synchronisation validation)
+  /// and collects its error messages, see Context::validation_errors(). When
+  /// the layer is not installed this prints a warning on stderr and goes on
+  /// without it.
+  bool validation = false;
+  /// Extra extensions to enable, for example a presenter's surface and
+  /// swapchain extensions. Devices lacking a device extension are not chosen.
+  std::vector<std::string> instance_extensions{};
+  std::vector<std::string> device_extensions{};
+};
+
+class Context {
+ public:
+  /// Throws VulkanError when there is no Vulkan driver or device, or no
+  /// device meets the preference (the message lists the devices found), and
+  /// std::invalid_argument when SOL_VK_DEVICE has a value other than
+  /// gpu, cpu or auto.
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(Context&&) noexcept;
+  Context& operator=(Context&&) noexcept;
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  const std::string& device_name() const;
+  VkPhysicalDeviceType device_type() const;
+  /// True for a CPU implementation such as lavapipe.
+  bool is_cpu() const;
+  /// The device's Vulkan version (VK_API_VERSION_MAJOR/MINOR/PATCH decode it).
+  std::uint32_t api_version() const;
+  /// Whether the queue writes timestamps; when it does not, timings are host times.
+  bool timestamps_supported() const;
+  /// Nanoseconds per timestamp tick (VkPhysicalDeviceLimits::timestampPeriod).
+  float timestamp_period() const;
+  const VkPhysicalDeviceLimits& limits() const;
+
+  /// Whether the validation layer is active (requested and installed).
+  bool validation_enabled() const;
+  /// Error messages the validation layer reported so far, oldest first.
+  std::vector<std::string> validation_errors() const;
+
+  /// Records commands with `record` into a fresh primary command buffer,
+  /// submits it, waits for it to finish and returns its duration in
+  /// milliseconds: from timestamps written before and after the recorded
+  /// commands when supported, else the host time from submit to completion.
+  double submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+  /// Waits until the device is idle.
+  void wait_idle();
+
+  /// Raw handles, for code that records its own commands (a presenter).
+  VkInstance instance() const;
+  VkPhysicalDevice physical_device() const;
+  VkDevice device() const;
+  VkQueue queue() const;
+  std::uint32_t queue_family_index() const;
+
+  /// Library internals; not part of the API.
+  const std::shared_ptr<detail::Device>& internals() const { return m_device; }
+
+ private:
+  std::shared_ptr<detail::Device> m_device;
+};
+
+}  // namespace sol::vk

@@ -1,0 +1,64 @@
+// A 2D storage image for compute shaders to write, with download to the host.
+//
+// The image lives in device memory with usage STORAGE | TRANSFER_SRC. It is
+// in VK_IMAGE_LAYOUT_GENERAL (the layout storage images need) from creation
+// on, between any two commands of Sol::vk: code that records its own commands
+// finds it in GENERAL and must leave it there.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+namespace sol::vk {
+
+class Context;
+namespace detail {
+struct Device;
+}
+
+class StorageImage {
+ public:
+  /// Throws std::invalid_argument for a zero or too large extent, VulkanError
+  /// when the device cannot use `format` as a storage image.
+  StorageImage(Context& context, std::uint32_t width, std::uint32_t height,
+               VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT);
+  ~StorageImage();
+  StorageImage(StorageImage&& other) noexcept;
+  StorageImage& operator=(StorageImage&& other) noexcept;
+  StorageImage(const StorageImage&) = delete;
+  StorageImage& operator=(const StorageImage&) = delete;
+
+  std::uint32_t width() const { return m_width; }
+  std::uint32_t height() const { return m_height; }
+  VkFormat format() const { return m_format; }
+  VkImage handle() const { return m_image; }
+  VkImageView view() const { return m_view; }
+  /// VK_IMAGE_LAYOUT_GENERAL, the layout between commands.
+  VkImageLayout layout() const { return VK_IMAGE_LAYOUT_GENERAL; }
+
+  /// The float channels per pixel of a 32-bit float format (R32, R32G32,
+  /// R32G32B32A32 SFLOAT); 0 for any other format.
+  std::uint32_t float_channels() const;
+
+  /// Copies the image to the host after all work submitted before: pixels
+  /// row by row from the top (y = 0), channels interleaved,
+  /// width·height·float_channels() values. Throws std::logic_error for a
+  /// format that is not 32-bit float.
+  std::vector<float> download() const;
+
+ private:
+  void release() noexcept;
+
+  std::shared_ptr<detail::Device> m_owner;
+  VkImage m_image = VK_NULL_HANDLE;
+  VkDeviceMemory m_memory = VK_NULL_HANDLE;
+  VkImageView m_view = VK_NULL_HANDLE;
+  std::uint32_t m_width = 0;
+  std::uint32_t m_height = 0;
+  VkFormat m_format = VK_FORMAT_UNDEFINED;
+};
+
+}  // namespace sol::vk

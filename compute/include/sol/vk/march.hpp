@@ -1,0 +1,60 @@
+// The Sol ray-marcher on the GPU (or lavapipe): compute/shaders/march.comp
+// driven from a sol::Scene, producing the same RenderResult (image and AOVs)
+// as libsol's CPU reference renderer, sol::render_cpu.
+//
+// The host does in double what must be exact: the camera basis, the scene
+// made relative to the camera (plane constants), the pattern phase (the
+// camera position's fractional part), e^{±z} of the camera; the kernel then
+// works near the origin in float, so an observer at (1e6, -1e6, 0.3) sees
+// what one at (0, 0, 0.3) sees in a scene invariant under that translation.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec4.hpp>
+#include <sol/render.hpp>
+#include <sol/scene.hpp>
+
+namespace sol::vk {
+
+class Context;
+
+enum class Integrator {
+  ClosedForm,  ///< the closed-form geodesic, evaluated at the accumulated arc length (the default)
+  RK4,         ///< classical RK4 from step to step with a fixed substep (for comparison)
+};
+
+struct MarchOptions {
+  Integrator integrator = Integrator::ClosedForm;
+  double rk4_step = 0.01;  ///< RK4 substep in arc length, > 0
+};
+
+/// Most objects a scene may hold on the GPU.
+constexpr int kMaxGpuObjects = 8;
+
+class MarchRenderer {
+ public:
+  /// Builds the pipeline; throws VulkanError on failure, InvalidArgument for bad options.
+  explicit MarchRenderer(Context& context, const MarchOptions& options = {});
+  ~MarchRenderer();
+  MarchRenderer(MarchRenderer&&) noexcept;
+  MarchRenderer& operator=(MarchRenderer&&) noexcept;
+
+  /// Renders `scene` at width × height (1..16384). Throws sol::InvalidArgument
+  /// for an invalid scene, sizes out of range or more than kMaxGpuObjects
+  /// objects. `device_ms` receives the kernel's time on the device.
+  RenderResult render(const Scene& scene, int width, int height, double* device_ms = nullptr);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+/// Evaluates the kernel's closed-form geodesic (compute/shaders/flow.comp)
+/// for queries (direction xyz, arc length w); returns (position xyz, height
+/// from the height-only path w) per query. For tests and benchmarks.
+std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries);
+
+}  // namespace sol::vk

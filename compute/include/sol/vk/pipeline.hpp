@@ -1,0 +1,138 @@
+// A compute pipeline with its descriptor set, and the dispatch that runs it.
+//
+// One pipeline = one SPIR-V compute shader (entry point "main"), one
+// descriptor set (set = 0) whose bindings are listed in the description, an
+// optional push-constant block and specialisation constants (the tuning
+// knobs: workgroup size, integrator, ...). Resources are bound by binding
+// number; run() records and submits one dispatch and waits for it.
+//
+//   sol::vk::ComputePipeline fill(context, {.name = "fill",
+//                                           .spirv = sol::vk::shaders::fill(),
+//                                           .bindings = {{0, sol::vk::DescriptorType::StorageImage}},
+//                                           .push_constant_size = sizeof(float)});
+//   fill.bind(0, image);
+//   double ms = fill.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8), 0.5f);
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <ranges>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+namespace sol::vk {
+
+class Buffer;
+class Context;
+class StorageImage;
+namespace detail {
+struct Device;
+}
+
+enum class DescriptorType { StorageImage, StorageBuffer, UniformBuffer };
+
+struct Binding {
+  std::uint32_t binding = 0;
+  DescriptorType type = DescriptorType::StorageImage;
+};
+
+/// A specialisation constant: `layout(constant_id = id)`. Every scalar
+/// constant is 32 bits: store an int or uint as it is, a bool as 0 or 1, a
+/// float as std::bit_cast<std::uint32_t>(x).
+struct SpecializationConstant {
+  std::uint32_t id = 0;
+  std::uint32_t value = 0;
+};
+
+// Members have default initialisers so that designated initialisers may leave
+// any out without -Wmissing-field-initializers.
+struct ComputePipelineDesc {
+  /// Names the pipeline in error messages.
+  std::string name{};
+  /// The SPIR-V words; validated with SPIRV-Tools before the driver sees them.
+  std::span<const std::uint32_t> spirv{};
+  std::vector<Binding> bindings{};
+  /// Bytes of the push-constant block (a multiple of 4, at most the device's
+  /// maxPushConstantsSize; 0 for none).
+  std::uint32_t push_constant_size = 0;
+  std::vector<SpecializationConstant> specialization{};
+};
+
+/// Workgroups needed to cover `extent` invocations with groups of `local_size`.
+constexpr std::uint32_t group_count(std::uint32_t extent, std::uint32_t local_size) {
+  return extent / local_size + (extent % local_size != 0 ? 1u : 0u);
+}
+
+/// A push-constant block passed by value: a trivially copyable struct or
+/// scalar (not a pointer, span or other range, which would copy the wrong bytes).
+template <class T>
+concept PushConstantBlock =
+    std::is_trivially_copyable_v<T> && !std::is_pointer_v<T> && !std::ranges::range<T>;
+
+class ComputePipeline {
+ public:
+  /// Throws VulkanError for SPIR-V that does not validate or that the driver
+  /// rejects, std::invalid_argument for a bad description (duplicate binding,
+  /// push-constant size).
+  ComputePipeline(Context& context, const ComputePipelineDesc& desc);
+  ~ComputePipeline();
+  ComputePipeline(ComputePipeline&& other) noexcept;
+  ComputePipeline& operator=(ComputePipeline&& other) noexcept;
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  /// Binds a resource to `binding`: a StorageImage to a StorageImage binding,
+  /// a Storage buffer to a StorageBuffer binding, a Uniform buffer to a
+  /// UniformBuffer binding. Anything else throws std::invalid_argument. The
+  /// resource must outlive its use by run(). Not while a dispatch is running.
+  void bind(std::uint32_t binding, const StorageImage& image);
+  void bind(std::uint32_t binding, const Buffer& buffer);
+
+  /// Dispatches groups_x × groups_y × 1 workgroups and waits for them; returns
+  /// the time the device took in milliseconds (see Context::submit_and_wait).
+  /// Shader writes are visible to the host and to later dispatches when it
+  /// returns. Throws std::logic_error when a binding has nothing bound,
+  /// std::invalid_argument when the push constants do not have
+  /// push_constant_size bytes or a group count is 0 or over the device limit.
+  double run(std::uint32_t groups_x, std::uint32_t groups_y,
+             std::span<const std::byte> push_constants = {});
+  template <PushConstantBlock T>
+  double run(std::uint32_t groups_x, std::uint32_t groups_y, const T& push_constants) {
+    return run(groups_x, groups_y, std::as_bytes(std::span(&push_constants, 1)));
+  }
+
+  /// Records the dispatch alone (bind pipeline and set, push constants,
+  /// vkCmdDispatch) into a command buffer of the caller, who provides the
+  /// barriers around it. Same checks as run().
+  void record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
+                       std::span<const std::byte> push_constants = {}) const;
+
+  const std::string& name() const { return m_name; }
+  VkPipeline handle() const { return m_pipeline; }
+  VkPipelineLayout layout() const { return m_layout; }
+  VkDescriptorSet descriptor_set() const { return m_set; }
+
+ private:
+  const Binding& find_binding(std::uint32_t binding, DescriptorType type) const;
+  void check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
+                      std::span<const std::byte> push_constants) const;
+  void release() noexcept;
+
+  std::shared_ptr<detail::Device> m_owner;
+  std::string m_name;
+  std::vector<Binding> m_bindings;
+  std::vector<bool> m_bound;
+  std::uint32_t m_push_constant_size = 0;
+  VkDescriptorSetLayout m_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout m_layout = VK_NULL_HANDLE;
+  VkPipeline m_pipeline = VK_NULL_HANDLE;
+  VkDescriptorPool m_pool = VK_NULL_HANDLE;
+  VkDescriptorSet m_set = VK_NULL_HANDLE;
+};
+
+}  // namespace sol::vk

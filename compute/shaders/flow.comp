@@ -1,0 +1,27 @@
+#version 450
+// Evaluates the kernel's closed-form geodesic for a list of (direction, arc
+// length) pairs: the test that holds sol_geodesic.glsl to libsol's double
+// closed form (tests/kernel_test.cpp).
+#extension GL_GOOGLE_include_directive : require
+
+#include "sol_geodesic.glsl"
+
+layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+
+layout(std430, set = 0, binding = 0) readonly buffer Queries {
+  vec4 queries[];  // xyz: direction (frame components), w: arc length
+};
+layout(std430, set = 0, binding = 1) writeonly buffer Results {
+  vec4 results[];  // xyz: position, w: height from sol_height
+};
+layout(push_constant) uniform Count {
+  uint count;
+} pc;
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  const vec4 query = queries[i];
+  const SolRay ray = sol_ray(query.xyz);
+  results[i] = vec4(sol_position(ray, query.w), sol_height(ray, query.w));
+}

@@ -1,0 +1,179 @@
+#version 450
+// The Sol ray-marcher: one invocation per pixel. The GLSL twin of libsol's
+// CPU reference (libsol/src/render.cpp, documented in sol/render.hpp):
+// camera-relative scene, closed-form geodesic precomputed once per ray and
+// evaluated at the accumulated arc length from the ray's origin (no error
+// accumulates), exact plane distances, the same shading.
+//
+// INTEGRATOR = 1 replaces the closed form by classical RK4 on the geodesic
+// ODE in frame components with step `forward.w`; it advances from the last
+// step's state, so its error accumulates (that is what the bench measures).
+#extension GL_GOOGLE_include_directive : require
+
+#include "sol_geodesic.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(constant_id = 0) const int INTEGRATOR = 0;
+
+const int MAX_OBJECTS = 8;
+
+struct Object {
+  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z), y: constant relative to the camera, z: pattern (0 none, 1 circles, 2 checker)
+  vec4 color;  // rgb
+};
+
+layout(std140, set = 0, binding = 0) uniform Params {
+  vec4 right;        // xyz: camera right (frame components); w: tan(fov/2)
+  vec4 up;           // xyz: camera up; w: width / height
+  vec4 forward;      // xyz: camera forward; w: RK4 step
+  vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
+  vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
+  vec4 light;        // xyz: unit light direction; w: ambient
+  vec4 limits;       // x: max distance, y: hit epsilon, z: fog distance (0: none), w: max steps
+  ivec4 counts;      // x: objects, y: width, z: height, w: 1 when every object is a plane z = c
+  Object objects[MAX_OBJECTS];
+} params;
+
+layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
+layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
+
+float plane_distance(int type, vec3 q, float c) {
+  if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
+  if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
+  return abs(q.z - c);
+}
+
+// Unit gradient of the distance, frame components (see sol/distance.hpp).
+vec3 plane_normal(int type, vec3 q, float c) {
+  if (type == 0) {
+    float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
+    return vec3((q.x >= c ? 1.0 : -1.0) * r, 0.0, -w * r);
+  }
+  if (type == 1) {
+    float w = abs(q.y - c) * exp(q.z), r = inversesqrt(1.0 + w * w);
+    return vec3(0.0, (q.y >= c ? 1.0 : -1.0) * r, w * r);
+  }
+  return vec3(0.0, 0.0, q.z >= c ? 1.0 : -1.0);
+}
+
+float pattern_factor(int pattern, float u, float v) {
+  if (pattern == 1) {
+    float du = fract(u) - 0.5, dv = fract(v) - 0.5;
+    return du * du + dv * dv < 0.09 ? 1.0 : 0.3;
+  }
+  if (pattern == 2) return mod(floor(u) + floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
+  return 1.0;
+}
+
+// Geodesic ODE in frame components: x' = e^{z}u1, y' = e^{-z}u2, z' = u3,
+// u1' = u1 u3, u2' = -u2 u3, u3' = u2² - u1².
+void geodesic_rhs(vec3 p, vec3 u, out vec3 dp, out vec3 du) {
+  float ez = exp(p.z);
+  dp = vec3(ez * u.x, u.y / ez, u.z);
+  du = vec3(u.x * u.z, -u.y * u.z, u.y * u.y - u.x * u.x);
+}
+
+void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
+  int n = max(1, int(ceil(length / step)));
+  float h = length / float(n);
+  for (int i = 0; i < n; ++i) {
+    vec3 p1, u1, p2, u2, p3, u3, p4, u4;
+    geodesic_rhs(p, u, p1, u1);
+    geodesic_rhs(p + 0.5 * h * p1, u + 0.5 * h * u1, p2, u2);
+    geodesic_rhs(p + 0.5 * h * p2, u + 0.5 * h * u2, p3, u3);
+    geodesic_rhs(p + h * p3, u + h * u3, p4, u4);
+    p += h / 6.0 * (p1 + 2.0 * p2 + 2.0 * p3 + p4);
+    u += h / 6.0 * (u1 + 2.0 * u2 + 2.0 * u3 + u4);
+  }
+}
+
+void main() {
+  // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
+  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  const int width = params.counts.y, height = params.counts.z;
+  if (pixel.x >= width || pixel.y >= height) return;
+  const int count = min(params.counts.x, MAX_OBJECTS);
+  const bool heights_only = params.counts.w == 1;
+  int types[MAX_OBJECTS];
+  float constants[MAX_OBJECTS];
+  for (int k = 0; k < MAX_OBJECTS; ++k) {
+    types[k] = int(params.objects[k].plane.x);
+    constants[k] = params.objects[k].plane.y;
+  }
+  const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
+  const int max_steps = int(params.limits.w);
+  const float rk4_step = params.forward.w;
+
+  // The camera convention of DESIGN.md §2.
+  const float tan_half = params.right.w, aspect = params.up.w;
+  const float sx = (2.0 * (float(pixel.x) + 0.5) / float(width) - 1.0) * tan_half * aspect;
+  const float sy = (1.0 - 2.0 * (float(pixel.y) + 0.5) / float(height)) * tan_half;
+  const vec3 direction = normalize(sx * params.right.xyz + sy * params.up.xyz + params.forward.xyz);
+
+  SolRay ray;
+  if (INTEGRATOR == 0) ray = sol_ray(direction);
+  vec3 rk_p = vec3(0.0), rk_u = direction;
+  float rk_t = 0.0;
+
+  int hit = 0, steps = 0;
+  float t = 0.0;
+  vec3 q = vec3(0.0);
+  for (int step = 0; step < max_steps; ++step) {
+    if (INTEGRATOR == 0) {
+      q = heights_only ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position(ray, t);
+    } else {
+      rk4_advance(rk_p, rk_u, t - rk_t, rk4_step);
+      rk_t = t;
+      q = rk_p;
+    }
+    float nearest = 1e30;
+    int nearest_k = 0;
+    for (int k = 0; k < count; ++k) {
+      float d = plane_distance(types[k], q, constants[k]);
+      if (d < nearest) {
+        nearest = d;
+        nearest_k = k;
+      }
+    }
+    steps = step + 1;
+    if (nearest < hit_epsilon) {
+      hit = nearest_k + 1;
+      break;
+    }
+    t += nearest;
+    if (t > max_distance) break;
+  }
+
+  vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
+  vec4 hit_aov = vec4(float(hit), 0.0, float(steps), 0.0);
+  vec4 point_aov = vec4(0.0);
+  if (hit != 0) {
+    if (INTEGRATOR == 0 && heights_only) q = sol_position(ray, t);
+    const int k = hit - 1;
+    const int type = types[k];
+    const vec3 n = plane_normal(type, q, constants[k]);
+    // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
+    // the pattern takes the camera position modulo 2 (exact, from double).
+    const vec3 scaled = vec3(params.camera.w * q.x, params.camera_frac.w * q.y, q.z);
+    const vec3 phase = params.camera_frac.xyz + scaled;
+    float u = phase.x, v = phase.y;
+    if (type == 0) {
+      u = phase.y;
+      v = phase.z;
+    } else if (type == 1) {
+      u = phase.x;
+      v = phase.z;
+    }
+    const float ambient = params.light.w;
+    const float lambert = max(0.0, dot(n, params.light.xyz));
+    float factor = pattern_factor(int(params.objects[k].plane.z), u, v) * (ambient + (1.0 - ambient) * lambert);
+    if (params.limits.z > 0.0) factor *= exp(-t / params.limits.z);
+    color = vec4(params.objects[k].color.rgb * factor, 1.0);
+    hit_aov.y = t;
+    point_aov = vec4(params.camera.xyz + scaled, 0.0);
+  }
+  imageStore(color_image, pixel, color);
+  imageStore(aov_hit, pixel, hit_aov);
+  imageStore(aov_point, pixel, point_aov);
+}

@@ -1,0 +1,385 @@
+// Closed-form Sol geodesics from the origin in float: the GLSL mirror of
+// libsol's ClosedFormGeodesic<float> (libsol/src/closed_form.cpp, the
+// derivation in libsol/include/sol/closed_form.hpp) and of the elliptic
+// functions it needs (libsol/src/elliptic.cpp, carlson.hpp). Keep the two in
+// step: tests/kernel_test.cpp holds them together.
+//
+// Differences from the C++ float version, all below float rounding at the
+// arc lengths a frame uses: K comes from a float AGM (no double-double
+// K_lo), the AGM chain of sn, cn, dn runs in float, and the AGM sequence is
+// computed once per ray.
+
+const float SOL_PI = 3.14159265358979;
+const float SOL_EPS = 1.1920929e-7;
+
+// ---- Carlson's R_F and R_D (Carlson 1995), square roots only ------------------
+
+float carlson_rf(float x, float y, float z) {
+  float a = (x + y + z) / 3.0;
+  // (3 eps)^(-1/6) for float.
+  float q = 11.8693820 * max(max(abs(a - x), abs(a - y)), abs(a - z));
+  float scale = 1.0;
+  for (int i = 0; i < 80 && q * scale >= abs(a); ++i) {  // 4^80 covers any float spread
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    float l = sx * sy + sy * sz + sz * sx;
+    x = (x + l) * 0.25;
+    y = (y + l) * 0.25;
+    z = (z + l) * 0.25;
+    a = (a + l) * 0.25;
+    scale *= 0.25;
+  }
+  float X = 1.0 - x / a, Y = 1.0 - y / a, Z = -(X + Y);
+  float e2 = X * Y - Z * Z, e3 = X * Y * Z;
+  return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / sqrt(a);
+}
+
+float carlson_rd(float x, float y, float z) {
+  float a = (x + y + 3.0 * z) / 5.0;
+  // (eps/4)^(-1/6) for float.
+  float q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
+  float scale = 1.0, sum = 0.0;
+  for (int i = 0; i < 80 && q * scale >= abs(a); ++i) {  // 4^80 covers any float spread
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    float l = sx * sy + sy * sz + sz * sx;
+    sum += scale / (sz * (z + l));
+    x = (x + l) * 0.25;
+    y = (y + l) * 0.25;
+    z = (z + l) * 0.25;
+    a = (a + l) * 0.25;
+    scale *= 0.25;
+  }
+  float X = 1.0 - x / a, Y = 1.0 - y / a, Z = -(X + Y) / 3.0;
+  float xy = X * Y, z2 = Z * Z;
+  float e2 = xy - 6.0 * z2, e3 = (3.0 * xy - 8.0 * z2) * Z, e4 = 3.0 * (xy - z2) * z2, e5 = xy * z2 * Z;
+  float s = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
+            3.0 * e5 / 26.0;
+  return scale * s / (a * sqrt(a)) + 3.0 * sum;
+}
+
+// ---- Jacobi functions ------------------------------------------------------------
+
+// The arithmetic–geometric mean of 1 and k' with its sequence: depends only
+// on the parameter, so a ray computes it once (Bulirsch's sncndn splits the
+// same way).
+struct SolAgm {
+  float mean[10];
+  float root[10];
+  int last;
+  float c;  // the mean: π/(2K)
+};
+
+SolAgm sol_agm(float m1) {
+  SolAgm g;
+  float a = 1.0, c = 1.0, b2 = m1;
+  g.last = 0;
+  for (int i = 0; i < 10; ++i) {
+    g.last = i;
+    g.mean[i] = a;
+    g.root[i] = sqrt(b2);
+    c = 0.5 * (a + g.root[i]);
+    if (abs(a - g.root[i]) <= 3.4527e-4 * a) break;  // √eps: one more step reaches eps
+    b2 = g.root[i] * a;
+    a = c;
+  }
+  g.c = c;
+  return g;
+}
+
+// sn, cn, dn of |r| <= K/2: Bulirsch's multiplicative back-substitution
+// down the AGM sequence; dn from cn (dn² = m1 + m cn²).
+vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
+  if (abs(r) < 0.0093) {  // r⁴ below rounding: Taylor series
+    float r2 = r * r;
+    return vec3(r * (1.0 - (1.0 + m) * r2 / 6.0), 1.0 - r2 / 2.0, 1.0 - m * r2 / 2.0);
+  }
+  float c = agm.c, dn = 1.0;
+  float scaled = r * c;
+  float sn = sin(scaled), cn = cos(scaled);
+  float ratio = cn / sn;
+  c *= ratio;
+  for (int i = agm.last; i >= 0; --i) {
+    ratio *= c;
+    c *= dn;
+    dn = (agm.root[i] + ratio) / (agm.mean[i] + ratio);
+    ratio = c / agm.mean[i];
+  }
+  float s = sign(sn) / sqrt(c * c + 1.0);
+  float cn_r = c * s;
+  return vec3(s, cn_r, sqrt(m1 + m * cn_r * cn_r));
+}
+
+// sn, cn, dn of any u: u = nK + r, |r| <= K/2, then the quarter shifts.
+vec3 jacobi(float u, float m, float m1, float K, float kc, SolAgm agm) {
+  float n = round(u / K);
+  float r = u - n * K;
+  vec3 j = jacobi_agm(r, m, m1, agm);
+  int quarter = int(n - 4.0 * floor(n / 4.0));  // n mod 4 in [0, 3]
+  if (quarter == 0) return j;
+  if (quarter == 2) return vec3(-j.x, -j.y, j.z);
+  // sn(K + r) = cd r, cn(K + r) = -k' sd r, dn(K + r) = k' nd r.
+  vec3 shifted = vec3(j.y / j.z, -kc * j.x / j.z, kc / j.z);
+  return quarter == 1 ? shifted : vec3(-shifted.x, -shifted.y, shifted.z);
+}
+
+// ---- The geodesic ----------------------------------------------------------------
+
+const int REGIME_VERTICAL = 0;
+const int REGIME_PLANE = 1;
+const int REGIME_STRAIGHT = 2;
+const int REGIME_GENERAL = 3;
+
+struct SolPoint {
+  vec3 jac;  // sn, cn, dn
+  float ew;   // e^{w}
+  float f2;   // s - s₋
+  float f3;   // s₊ - s
+  float sm1;  // s - 1
+  int quarter;
+};
+
+struct SolRay {
+  vec3 direction;
+  int regime;
+  float sign_x, sign_y;
+  bool swapped;
+  float a, b, c;
+  float s0;  // plane regime
+  float mu, sqrt_mu, lambda, k, kc, w0, m, m1, K, u0;
+  float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
+  float quarter_lo, quarter_hi;
+  SolAgm agm;
+  SolPoint start;
+  int start_quarter;
+  float head_a, head_b, tail_a, tail_b;
+};
+
+SolPoint sol_point(SolRay g, float u) {
+  vec3 j = jacobi(u, g.m, g.m1, g.K, g.kc, g.agm);
+  SolPoint p;
+  p.jac = j;
+  float k = g.k, kc = g.kc, sn2 = j.x * j.x;
+  if (j.y >= 0.0) {
+    p.ew = (j.z + k * j.y) / kc;
+    float top_gap = k * sn2 * (k / (1.0 + j.z) + 1.0 / (1.0 + j.y)) / kc;  // e^{W} - e^{w}
+    p.f3 = top_gap * (g.sqrt_sp + p.ew);
+    p.sm1 = 2.0 * p.ew * k * j.y / kc;
+    p.f2 = p.sm1 + g.one_minus_sm;
+  } else {
+    float dmk = j.z - k * j.y;
+    p.ew = kc / dmk;
+    float one_minus_k = kc * kc / (1.0 + k);
+    float bottom_gap = k * sn2 * (one_minus_k + kc * p.ew) / ((1.0 - j.y) * (1.0 + j.z) * kc);  // e^{w} - e^{-W}
+    p.f2 = bottom_gap * (p.ew + g.sqrt_sm);
+    p.sm1 = 2.0 * p.ew * k * j.y / kc;
+    p.f3 = g.sp_minus_one - p.sm1;
+  }
+  p.quarter = j.x < 0.0 ? (j.y < 0.0 ? 0 : 1) : (j.y >= 0.0 ? 2 : 3);
+  return p;
+}
+
+int sol_absolute_quarter(SolRay g, float u, int quarter) {
+  int q = int(floor((u + 2.0 * g.K) / g.K));
+  int r = ((q % 4) + 4) % 4;
+  int diff = (quarter - r + 4) % 4;
+  if (diff == 1) ++q;
+  if (diff == 3) --q;
+  return q;
+}
+
+// Carlson's [1,-1,-1] integral between two limits given by their factors
+// (√t, √(t - s₋), √(s₊ - t)); gap = |t_x - t_y|. Scaled by the largest V_i
+// so nothing overflows (see carlson_piece in libsol/src/closed_form.cpp).
+float carlson_piece(vec3 x, vec3 y, float gap) {
+  if (!(gap > 0.0)) return 0.0;
+  float v1 = x.x * y.y * y.z + y.x * x.y * x.z;
+  float v2 = x.y * y.x * y.z + y.y * x.x * x.z;
+  float v3 = x.z * y.x * y.y + y.z * x.x * x.y;
+  float v_max = max(max(v1, v2), v3);
+  if (!(v1 > 0.0)) return 0.0;
+  float w1 = v1 / v_max, w2 = v2 / v_max, w3 = v3 / v_max, r = gap / v_max;
+  return 2.0 * x.x * y.x * r / w1 - (2.0 / 3.0) * r * r * r * carlson_rd(w2 * w2, w3 * w3, w1 * w1);
+}
+
+vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
+  return vec3(1.0 / f.x, sqrt_sm * f.z / f.x, sqrt_sp * f.y / f.x);
+}
+
+// Time integrals of s and 1/s between a point and an anchor (0: s₋, 1: middle, 2: s₊).
+vec2 sol_anchor_piece(SolRay g, SolPoint p, int anchor) {
+  vec3 fp = vec3(p.ew, sqrt(p.f2), sqrt(p.f3));
+  vec3 fa;
+  float gap, s_anchor;
+  if (anchor == 0) {
+    fa = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
+    gap = p.f2;
+    s_anchor = g.sqrt_sm * g.sqrt_sm;
+  } else if (anchor == 1) {
+    fa = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
+    gap = abs(p.sm1);
+    s_anchor = 1.0;
+  } else {
+    fa = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
+    gap = p.f3;
+    s_anchor = g.sqrt_sp * g.sqrt_sp;
+  }
+  float scale = 1.0 / (2.0 * g.sqrt_mu);
+  float ia = carlson_piece(fp, fa, gap) * scale;
+  float gap_sigma = gap / (p.ew * p.ew * s_anchor);
+  float ib = carlson_piece(sol_reciprocal(fp, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fa, g.sqrt_sm, g.sqrt_sp),
+                           gap_sigma) * scale;
+  return vec2(ia, ib);
+}
+
+vec2 sol_two_point_piece(SolRay g, SolPoint p, SolPoint q) {
+  bool lower = p.quarter == 0 || p.quarter == 3;
+  float via_anchor = lower ? abs(p.f2 - q.f2) : abs(p.f3 - q.f3);
+  float size_anchor = lower ? max(p.f2, q.f2) : max(p.f3, q.f3);
+  float via_middle = abs(p.sm1 - q.sm1);
+  float size_middle = max(abs(p.sm1), abs(q.sm1));
+  float gap = size_anchor < size_middle ? via_anchor : via_middle;
+  vec3 fp = vec3(p.ew, sqrt(p.f2), sqrt(p.f3));
+  vec3 fq = vec3(q.ew, sqrt(q.f2), sqrt(q.f3));
+  float scale = 1.0 / (2.0 * g.sqrt_mu);
+  float ia = carlson_piece(fp, fq, gap) * scale;
+  float gap_sigma = gap / (p.ew * p.ew * q.ew * q.ew);
+  float ib = carlson_piece(sol_reciprocal(fp, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fq, g.sqrt_sm, g.sqrt_sp),
+                           gap_sigma) * scale;
+  return vec2(ia, ib);
+}
+
+vec2 sol_quarters(SolRay g, int first, int last) {
+  if (last < first) return vec2(0.0);
+  int count = last - first + 1;
+  int periods = count / 4;
+  float whole = float(periods) * 2.0 * (g.quarter_lo + g.quarter_hi);
+  vec2 r = vec2(whole);
+  for (int j = first + 4 * periods; j <= last; ++j) {
+    int q = ((j % 4) + 4) % 4;
+    bool lower = q == 0 || q == 3;
+    r += lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
+  }
+  return r;
+}
+
+int sol_start_anchor(int q) { return q == 0 ? 0 : (q == 2 ? 2 : 1); }
+int sol_end_anchor(int q) { return q == 1 ? 2 : (q == 3 ? 0 : 1); }
+
+SolRay sol_ray(vec3 direction) {
+  SolRay g;
+  g.direction = normalize(direction);
+  g.sign_x = g.direction.x < 0.0 ? -1.0 : 1.0;
+  g.sign_y = g.direction.y < 0.0 ? -1.0 : 1.0;
+  g.a = abs(g.direction.x);
+  g.b = abs(g.direction.y);
+  g.c = g.direction.z;
+  g.swapped = false;
+  g.s0 = 0.0;
+  g.mu = g.a * g.b;
+  if (g.a == 0.0 && g.b == 0.0) {
+    g.regime = REGIME_VERTICAL;
+    return g;
+  }
+  if (g.mu < 1e-24) {
+    g.regime = REGIME_PLANE;
+    if (g.b > g.a) {  // x = const: mapped to y = const by (x, y, z) -> (y, x, -z)
+      g.swapped = true;
+      float t = g.a;
+      g.a = g.b;
+      g.b = t;
+      g.c = -g.c;
+    }
+    g.s0 = asinh(-g.c / g.a);
+    return g;
+  }
+  float m2 = (g.a - g.b) * (g.a - g.b) + g.c * g.c;
+  if (m2 == 0.0) {
+    g.regime = REGIME_STRAIGHT;
+    return g;
+  }
+  g.regime = REGIME_GENERAL;
+  g.sqrt_mu = sqrt(g.mu);
+  g.lambda = sqrt(1.0 + 2.0 * g.mu);
+  g.m = m2 / (g.lambda * g.lambda);
+  g.m1 = 4.0 * g.mu / (g.lambda * g.lambda);
+  g.k = sqrt(g.m);
+  g.kc = 2.0 * g.sqrt_mu / g.lambda;
+  g.agm = sol_agm(g.m1);
+  g.K = SOL_PI / (2.0 * g.agm.c);  // K = π / (2 AGM(1, k'))
+  g.w0 = 0.5 * (log(g.a) - log(g.b));
+  // u0 from sn u0, cn u0, dn u0 directly (never through the angle).
+  float root = sqrt(m2);
+  float sn0 = -g.c / root, cn0 = (g.a - g.b) / root, dn0 = (g.a + g.b) / g.lambda;
+  float f = sn0 * carlson_rf(cn0 * cn0, dn0 * dn0, 1.0);
+  g.u0 = cn0 >= 0.0 ? f : (sn0 < 0.0 ? -2.0 : 2.0) * g.K - f;
+  g.sqrt_sm = g.kc / (1.0 + g.k);
+  g.sqrt_sp = (1.0 + g.k) / g.kc;
+  g.one_minus_sm = 2.0 * g.k / (1.0 + g.k);
+  g.sp_minus_one = 2.0 * g.k * (1.0 + g.k) / g.m1;
+  g.sp_minus_sm = 4.0 * g.k / g.m1;
+  vec3 bottom = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
+  vec3 middle = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
+  vec3 top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
+  g.quarter_lo = carlson_piece(bottom, middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
+  g.quarter_hi = carlson_piece(middle, top, g.sp_minus_one) / (2.0 * g.sqrt_mu);
+  g.start = sol_point(g, g.u0);
+  g.start_quarter = sol_absolute_quarter(g, g.u0, g.start.quarter);
+  vec2 head = sol_anchor_piece(g, g.start, sol_start_anchor(g.start.quarter));
+  vec2 tail = sol_anchor_piece(g, g.start, sol_end_anchor(g.start.quarter));
+  g.head_a = head.x;
+  g.head_b = head.y;
+  g.tail_a = tail.x;
+  g.tail_b = tail.y;
+  return g;
+}
+
+float sol_log_cosh(float v) {
+  float a = abs(v);
+  return a + log(1.0 + exp(-2.0 * a)) - 0.693147181;
+}
+
+// Position at arc length t in the plane regime (the hyperbolic plane y = 0).
+vec3 sol_plane_position(SolRay g, float t) {
+  float v = t + g.s0;
+  float x;
+  if (max(abs(t), abs(v)) < 40.0) {
+    x = sinh(t) / cosh(v);
+  } else {
+    float at = abs(t);
+    float log_sinh = at + log(1.0 - exp(-2.0 * at)) - 0.693147181;
+    x = sign(t) * exp(log_sinh - sol_log_cosh(v));
+  }
+  vec3 p = vec3(x, 0.0, sol_log_cosh(g.s0) - sol_log_cosh(v));
+  if (g.swapped) p = vec3(p.y, p.x, -p.z);
+  return vec3(g.sign_x * p.x, g.sign_y * p.y, p.z);
+}
+
+// Height z at arc length t: no integrals.
+float sol_height(SolRay g, float t) {
+  if (g.regime == REGIME_VERTICAL) return g.c * t;
+  if (g.regime == REGIME_STRAIGHT) return 0.0;
+  if (g.regime == REGIME_PLANE) return sol_plane_position(g, t).z;
+  SolPoint p = sol_point(g, g.lambda * t + g.u0);
+  return log(p.ew) - g.w0;
+}
+
+// Position (relative to the start) at arc length t.
+vec3 sol_position(SolRay g, float t) {
+  if (g.regime == REGIME_VERTICAL) return vec3(0.0, 0.0, g.c * t);
+  if (g.regime == REGIME_STRAIGHT) return vec3(g.direction.x * t, g.direction.y * t, 0.0);
+  if (g.regime == REGIME_PLANE) return sol_plane_position(g, t);
+  float u = g.lambda * t + g.u0;
+  SolPoint p = sol_point(g, u);
+  int q = sol_absolute_quarter(g, u, p.quarter);
+  vec2 integral;
+  if (q == g.start_quarter) {
+    integral = sol_two_point_piece(g, g.start, p);
+    if (t < 0.0) integral = -integral;
+  } else if (q > g.start_quarter) {
+    integral = vec2(g.tail_a, g.tail_b) + sol_quarters(g, g.start_quarter + 1, q - 1) +
+               sol_anchor_piece(g, p, sol_start_anchor(p.quarter));
+  } else {
+    integral = -(vec2(g.head_a, g.head_b) + sol_quarters(g, q + 1, g.start_quarter - 1) +
+                 sol_anchor_piece(g, p, sol_end_anchor(p.quarter)));
+  }
+  return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+}

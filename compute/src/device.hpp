@@ -1,0 +1,51 @@
+// The state behind a sol::vk::Context (not installed). Buffers, images and
+// pipelines share its ownership, so the device outlives them all and the
+// Context object itself may be moved or destroyed first.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+namespace sol::vk::detail {
+
+struct Device {
+  Device() = default;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+  /// Destroys whatever was created, in reverse order (also after a failed
+  /// construction).
+  ~Device();
+
+  /// A memory type index allowed by `type_bits` with all `required` flags,
+  /// one that also has `preferred` when there is one. Throws VulkanError.
+  std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                            VkMemoryPropertyFlags preferred, const char* what) const;
+
+  /// See Context::submit_and_wait.
+  double submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger = nullptr;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  std::uint32_t queue_family = 0;
+  VkCommandPool command_pool = VK_NULL_HANDLE;
+  VkQueryPool timestamp_pool = VK_NULL_HANDLE;  // two queries: before, after; null when unsupported
+  std::uint32_t timestamp_valid_bits = 0;
+  VkPhysicalDeviceProperties properties{};
+  std::string name;  // properties.deviceName
+  VkPhysicalDeviceMemoryProperties memory_properties{};
+  bool validation = false;
+
+  mutable std::mutex messages_mutex;  // the debug messenger may call from any thread
+  std::vector<std::string> validation_errors;
+};
+
+}  // namespace sol::vk::detail

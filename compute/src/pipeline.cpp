@@ -1,0 +1,354 @@
+#include "sol/vk/pipeline.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <spirv-tools/libspirv.hpp>
+
+#include "device.hpp"
+#include "sol/vk/buffer.hpp"
+#include "sol/vk/context.hpp"
+#include "sol/vk/error.hpp"
+#include "sol/vk/image.hpp"
+
+namespace sol::vk {
+namespace {
+
+const char* type_name(DescriptorType type) {
+  switch (type) {
+    case DescriptorType::StorageImage: return "storage image";
+    case DescriptorType::StorageBuffer: return "storage buffer";
+    default: return "uniform buffer";
+  }
+}
+
+VkDescriptorType vk_type(DescriptorType type) {
+  switch (type) {
+    case DescriptorType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case DescriptorType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    default: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  }
+}
+
+/// Whether the module declares `OpEntryPoint GLCompute %id "main"`. The
+/// words are valid SPIR-V already: a header of five words, then instructions
+/// whose first word holds (word count << 16) | opcode.
+bool has_compute_main(std::span<const std::uint32_t> words) {
+  constexpr std::uint32_t kOpEntryPoint = 15;
+  constexpr std::uint32_t kGLCompute = 5;
+  for (std::size_t at = 5; at < words.size();) {
+    const std::uint32_t count = words[at] >> 16;
+    const std::uint32_t opcode = words[at] & 0xffffu;
+    if (count == 0 || at + count > words.size()) return false;
+    if (opcode == kOpEntryPoint && count >= 4 && words[at + 1] == kGLCompute) {
+      // The name: a nul-terminated string packed little-endian into words.
+      std::string name;
+      for (std::size_t w = at + 3; w < at + count && name.size() == 4 * (w - at - 3); ++w) {
+        for (int byte = 0; byte < 4; ++byte) {
+          const char ch = static_cast<char>((words[w] >> (8 * byte)) & 0xffu);
+          if (ch == '\0') break;
+          name.push_back(ch);
+        }
+      }
+      if (name == "main") return true;
+    }
+    at += count;
+  }
+  return false;
+}
+
+/// Drivers are not required to survive invalid SPIR-V (and some do not), so
+/// it is checked here, with the validator glslang uses, before any driver sees it.
+void validate_spirv(std::span<const std::uint32_t> words, const std::string& pipeline) {
+  const std::string prefix = "pipeline '" + pipeline + "': invalid SPIR-V (not passed to vkCreateShaderModule): ";
+  if (words.empty()) throw VulkanError(VK_ERROR_UNKNOWN, prefix + "no code");
+  std::string diagnostics;
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_2);
+  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
+    if (!diagnostics.empty()) diagnostics += "; ";
+    diagnostics += message;
+    diagnostics += " (word " + std::to_string(position.index) + ")";
+  });
+  if (!tools.Validate(words.data(), words.size())) {
+    throw VulkanError(VK_ERROR_UNKNOWN,
+                      prefix + (diagnostics.empty() ? std::string("rejected by the validator") : diagnostics));
+  }
+  if (!has_compute_main(words)) throw VulkanError(VK_ERROR_UNKNOWN, prefix + "no GLCompute entry point 'main'");
+}
+
+}  // namespace
+
+ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& desc)
+    : m_owner(context.internals()),
+      m_name(desc.name.empty() ? std::string("unnamed") : desc.name),
+      m_bindings(desc.bindings),
+      m_bound(desc.bindings.size(), false),
+      m_push_constant_size(desc.push_constant_size) {
+  detail::Device& d = *m_owner;
+  for (std::size_t i = 0; i < m_bindings.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (m_bindings[i].binding == m_bindings[j].binding) {
+        throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(m_bindings[i].binding) +
+                                    " listed twice");
+      }
+    }
+  }
+  if (m_push_constant_size % 4 != 0 || m_push_constant_size > d.properties.limits.maxPushConstantsSize) {
+    throw std::invalid_argument("pipeline '" + m_name + "': push-constant size " + std::to_string(m_push_constant_size) +
+                                " is not a multiple of 4 in [0, " +
+                                std::to_string(d.properties.limits.maxPushConstantsSize) + "]");
+  }
+  validate_spirv(desc.spirv, m_name);
+
+  VkShaderModule module = VK_NULL_HANDLE;
+  try {
+    std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+    std::vector<VkDescriptorPoolSize> pool_sizes;
+    for (const Binding& b : m_bindings) {
+      VkDescriptorSetLayoutBinding lb{};
+      lb.binding = b.binding;
+      lb.descriptorType = vk_type(b.type);
+      lb.descriptorCount = 1;
+      lb.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+      layout_bindings.push_back(lb);
+      auto size = std::find_if(pool_sizes.begin(), pool_sizes.end(),
+                               [&](const VkDescriptorPoolSize& s) { return s.type == lb.descriptorType; });
+      if (size == pool_sizes.end()) {
+        pool_sizes.push_back({lb.descriptorType, 1});
+      } else {
+        ++size->descriptorCount;
+      }
+    }
+    VkDescriptorSetLayoutCreateInfo set_info{};
+    set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    set_info.bindingCount = static_cast<std::uint32_t>(layout_bindings.size());
+    set_info.pBindings = layout_bindings.data();
+    check(vkCreateDescriptorSetLayout(d.device, &set_info, nullptr, &m_set_layout), "vkCreateDescriptorSetLayout");
+
+    const VkPushConstantRange push_range{VK_SHADER_STAGE_COMPUTE_BIT, 0, m_push_constant_size};
+    VkPipelineLayoutCreateInfo layout_info{};
+    layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    layout_info.setLayoutCount = 1;
+    layout_info.pSetLayouts = &m_set_layout;
+    layout_info.pushConstantRangeCount = m_push_constant_size > 0 ? 1 : 0;
+    layout_info.pPushConstantRanges = &push_range;
+    check(vkCreatePipelineLayout(d.device, &layout_info, nullptr, &m_layout), "vkCreatePipelineLayout");
+
+    VkShaderModuleCreateInfo module_info{};
+
+    module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    module_info.codeSize = desc.spirv.size_bytes();
+    module_info.pCode = desc.spirv.data();
+    check(vkCreateShaderModule(d.device, &module_info, nullptr, &module), "vkCreateShaderModule");
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<std::uint32_t> values;
+    for (const SpecializationConstant& constant : desc.specialization) {
+      entries.push_back({constant.id, static_cast<std::uint32_t>(values.size() * sizeof(std::uint32_t)),
+                         sizeof(std::uint32_t)});
+      values.push_back(constant.value);
+    }
+    VkSpecializationInfo specialization{};
+    specialization.mapEntryCount = static_cast<std::uint32_t>(entries.size());
+    specialization.pMapEntries = entries.data();
+    specialization.dataSize = values.size() * sizeof(std::uint32_t);
+    specialization.pData = values.data();
+
+    VkComputePipelineCreateInfo pipeline_info{};
+
+    pipeline_info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipeline_info.stage.module = module;
+    pipeline_info.stage.pName = "main";
+    pipeline_info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
+    pipeline_info.layout = m_layout;
+    check(vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &m_pipeline),
+          "vkCreateComputePipelines");
+    vkDestroyShaderModule(d.device, module, nullptr);  // the pipeline keeps what it needs
+    module = VK_NULL_HANDLE;
+
+    if (!m_bindings.empty()) {
+      VkDescriptorPoolCreateInfo pool_info{};
+      pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+      pool_info.maxSets = 1;
+      pool_info.poolSizeCount = static_cast<std::uint32_t>(pool_sizes.size());
+      pool_info.pPoolSizes = pool_sizes.data();
+      check(vkCreateDescriptorPool(d.device, &pool_info, nullptr, &m_pool), "vkCreateDescriptorPool");
+      VkDescriptorSetAllocateInfo allocate{};
+      allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+      allocate.descriptorPool = m_pool;
+      allocate.descriptorSetCount = 1;
+      allocate.pSetLayouts = &m_set_layout;
+      check(vkAllocateDescriptorSets(d.device, &allocate, &m_set), "vkAllocateDescriptorSets");
+    }
+  } catch (...) {
+    if (module != VK_NULL_HANDLE) vkDestroyShaderModule(d.device, module, nullptr);
+    release();
+    throw;
+  }
+}
+
+ComputePipeline::~ComputePipeline() { release(); }
+
+ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept
+    : m_owner(std::exchange(other.m_owner, nullptr)),
+      m_name(std::move(other.m_name)),
+      m_bindings(std::move(other.m_bindings)),
+      m_bound(std::move(other.m_bound)),
+      m_push_constant_size(std::exchange(other.m_push_constant_size, 0)),
+      m_set_layout(std::exchange(other.m_set_layout, VK_NULL_HANDLE)),
+      m_layout(std::exchange(other.m_layout, VK_NULL_HANDLE)),
+      m_pipeline(std::exchange(other.m_pipeline, VK_NULL_HANDLE)),
+      m_pool(std::exchange(other.m_pool, VK_NULL_HANDLE)),
+      m_set(std::exchange(other.m_set, VK_NULL_HANDLE)) {}
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
+  if (this != &other) {
+    release();
+    m_owner = std::exchange(other.m_owner, nullptr);
+    m_name = std::move(other.m_name);
+    m_bindings = std::move(other.m_bindings);
+    m_bound = std::move(other.m_bound);
+    m_push_constant_size = std::exchange(other.m_push_constant_size, 0);
+    m_set_layout = std::exchange(other.m_set_layout, VK_NULL_HANDLE);
+    m_layout = std::exchange(other.m_layout, VK_NULL_HANDLE);
+    m_pipeline = std::exchange(other.m_pipeline, VK_NULL_HANDLE);
+    m_pool = std::exchange(other.m_pool, VK_NULL_HANDLE);
+    m_set = std::exchange(other.m_set, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void ComputePipeline::release() noexcept {
+  if (m_owner == nullptr) return;
+  const VkDevice device = m_owner->device;
+  if (m_pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, m_pool, nullptr);  // frees the set
+  if (m_pipeline != VK_NULL_HANDLE) vkDestroyPipeline(device, m_pipeline, nullptr);
+  if (m_layout != VK_NULL_HANDLE) vkDestroyPipelineLayout(device, m_layout, nullptr);
+  if (m_set_layout != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device, m_set_layout, nullptr);
+  m_pool = VK_NULL_HANDLE;
+  m_set = VK_NULL_HANDLE;
+  m_pipeline = VK_NULL_HANDLE;
+  m_layout = VK_NULL_HANDLE;
+  m_set_layout = VK_NULL_HANDLE;
+  m_owner = nullptr;
+}
+
+const Binding& ComputePipeline::find_binding(std::uint32_t binding, DescriptorType type) const {
+  if (m_owner == nullptr) throw std::logic_error("ComputePipeline: the pipeline was moved from");
+  for (const Binding& b : m_bindings) {
+    if (b.binding != binding) continue;
+    if (b.type != type) {
+      throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) + " is a " +
+                                  type_name(b.type) + ", not a " + type_name(type));
+    }
+    return b;
+  }
+  throw std::invalid_argument("pipeline '" + m_name + "' has no binding " + std::to_string(binding));
+}
+
+void ComputePipeline::bind(std::uint32_t binding, const StorageImage& image) {
+  const Binding& b = find_binding(binding, DescriptorType::StorageImage);
+  if (image.view() == VK_NULL_HANDLE) {
+    throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) +
+                                ": the image was moved from");
+  }
+  const VkDescriptorImageInfo info{VK_NULL_HANDLE, image.view(), image.layout()};
+  VkWriteDescriptorSet write{};
+  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  write.dstSet = m_set;
+  write.dstBinding = b.binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  write.pImageInfo = &info;
+  vkUpdateDescriptorSets(m_owner->device, 1, &write, 0, nullptr);
+  m_bound[static_cast<std::size_t>(&b - m_bindings.data())] = true;
+}
+
+void ComputePipeline::bind(std::uint32_t binding, const Buffer& buffer) {
+  const bool uniform = buffer.usage() == BufferUsage::Uniform;
+  const Binding& b = find_binding(binding, uniform ? DescriptorType::UniformBuffer : DescriptorType::StorageBuffer);
+  if (buffer.handle() == VK_NULL_HANDLE) {
+    throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) +
+                                ": the buffer was moved from");
+  }
+  const VkPhysicalDeviceLimits& limits = m_owner->properties.limits;
+  const VkDeviceSize max_range = uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
+  if (buffer.size() > max_range) {
+    throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) + ": " +
+                                std::to_string(buffer.size()) + " bytes exceed the device's limit of " +
+                                std::to_string(max_range) + " for a " + type_name(b.type));
+  }
+  const VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write{};
+  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  write.dstSet = m_set;
+  write.dstBinding = b.binding;
+  write.descriptorCount = 1;
+  write.descriptorType = vk_type(b.type);
+  write.pBufferInfo = &info;
+  vkUpdateDescriptorSets(m_owner->device, 1, &write, 0, nullptr);
+  m_bound[static_cast<std::size_t>(&b - m_bindings.data())] = true;
+}
+
+void ComputePipeline::check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
+                                     std::span<const std::byte> push_constants) const {
+  if (m_owner == nullptr) throw std::logic_error("ComputePipeline: the pipeline was moved from");
+  for (std::size_t i = 0; i < m_bindings.size(); ++i) {
+    if (!m_bound[i]) {
+      throw std::logic_error("pipeline '" + m_name + "': nothing bound to binding " +
+                             std::to_string(m_bindings[i].binding));
+    }
+  }
+  if (push_constants.size() != m_push_constant_size) {
+    throw std::invalid_argument("pipeline '" + m_name + "': " + std::to_string(push_constants.size()) +
+                                " bytes of push constants, expected " + std::to_string(m_push_constant_size));
+  }
+  const std::uint32_t* max = m_owner->properties.limits.maxComputeWorkGroupCount;
+  if (groups_x == 0 || groups_y == 0 || groups_x > max[0] || groups_y > max[1]) {
+    throw std::invalid_argument("pipeline '" + m_name + "': " + std::to_string(groups_x) + "x" +
+                                std::to_string(groups_y) + " workgroups outside [1, " + std::to_string(max[0]) +
+                                "]x[1, " + std::to_string(max[1]) + "]");
+  }
+}
+
+void ComputePipeline::record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
+                                      std::span<const std::byte> push_constants) const {
+  check_dispatch(groups_x, groups_y, push_constants);
+  vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline);
+  if (m_set != VK_NULL_HANDLE) {
+    vkCmdBindDescriptorSets(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout, 0, 1, &m_set, 0, nullptr);
+  }
+  if (!push_constants.empty()) {
+    vkCmdPushConstants(command_buffer, m_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       static_cast<std::uint32_t>(push_constants.size()), push_constants.data());
+  }
+  vkCmdDispatch(command_buffer, groups_x, groups_y, 1);
+}
+
+double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants) {
+  check_dispatch(groups_x, groups_y, push_constants);  // before anything is recorded
+  return m_owner->submit_and_wait([&](VkCommandBuffer commands) {
+    // Earlier submissions' shader writes and copies (to and from the same
+    // images and buffers) complete before this dispatch reads or overwrites them.
+    VkMemoryBarrier before{};
+    before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
+    record_dispatch(commands, groups_x, groups_y, push_constants);
+    // The host reads mapped buffers as soon as run() returns.
+    VkMemoryBarrier after{};
+    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    after.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0,
+                         nullptr, 0, nullptr);
+  });
+}
+
+}  // namespace sol::vk

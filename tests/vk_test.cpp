@@ -1,0 +1,325 @@
+// Sol::vk on whatever Vulkan device ctest provides (lavapipe in CI, see
+// tests/CMakeLists.txt): device choice, buffers, storage images, the fill
+// kernel end to end under the validation layer, and errors that must be
+// exceptions rather than crashes.
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <sol/vk/vk.hpp>
+
+namespace {
+
+using sol::vk::Buffer;
+using sol::vk::BufferUsage;
+using sol::vk::ComputePipeline;
+using sol::vk::ComputePipelineDesc;
+using sol::vk::Context;
+using sol::vk::ContextOptions;
+using sol::vk::DescriptorType;
+using sol::vk::DevicePreference;
+using sol::vk::StorageImage;
+using sol::vk::VulkanError;
+
+ContextOptions validated() {
+  ContextOptions options;
+  options.validation = true;
+  return options;
+}
+
+ComputePipelineDesc fill_desc() {
+  return {.name = "fill",
+          .spirv = sol::vk::shaders::fill(),
+          .bindings = {{0, DescriptorType::StorageImage}},
+          .push_constant_size = sizeof(float)};
+}
+
+/// Sets an environment variable for one scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : m_name(name) {
+    if (const char* old = std::getenv(name)) m_old = old;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (m_old) {
+      ::setenv(m_name, m_old->c_str(), 1);
+    } else {
+      ::unsetenv(m_name);
+    }
+  }
+
+ private:
+  const char* m_name;
+  std::optional<std::string> m_old;
+};
+
+void expect_fill(const std::vector<float>& pixels, std::uint32_t width, std::uint32_t height, float value) {
+  ASSERT_EQ(pixels.size(), std::size_t{width} * height * 4);
+  for (std::uint32_t y = 0; y < height; ++y) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+      const float* p = &pixels[(std::size_t{y} * width + x) * 4];
+      ASSERT_EQ(p[0], static_cast<float>(x)) << "pixel " << x << "," << y;
+      ASSERT_EQ(p[1], static_cast<float>(y)) << "pixel " << x << "," << y;
+      ASSERT_EQ(p[2], value) << "pixel " << x << "," << y;
+      ASSERT_EQ(p[3], 1.0f) << "pixel " << x << "," << y;
+    }
+  }
+}
+
+TEST(VkError, NamesTheCallAndTheResult) {
+  const VulkanError error("vkCreateDevice", VK_ERROR_INITIALIZATION_FAILED);
+  EXPECT_STREQ(error.what(), "vkCreateDevice failed: VK_ERROR_INITIALIZATION_FAILED");
+  EXPECT_EQ(error.result(), VK_ERROR_INITIALIZATION_FAILED);
+  EXPECT_EQ(sol::vk::result_name(VK_ERROR_DEVICE_LOST), "VK_ERROR_DEVICE_LOST");
+  EXPECT_EQ(sol::vk::result_name(static_cast<VkResult>(-123456)), "VkResult(-123456)");
+  EXPECT_THROW(sol::vk::check(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateMemory"), VulkanError);
+  EXPECT_NO_THROW(sol::vk::check(VK_SUCCESS, "vkAllocateMemory"));
+}
+
+TEST(VkContext, ParsesDevicePreferences) {
+  EXPECT_EQ(sol::vk::parse_device_preference("gpu"), DevicePreference::Gpu);
+  EXPECT_EQ(sol::vk::parse_device_preference("CPU"), DevicePreference::Cpu);
+  EXPECT_EQ(sol::vk::parse_device_preference("auto"), DevicePreference::Auto);
+  EXPECT_EQ(sol::vk::parse_device_preference("tpu"), std::nullopt);
+  EXPECT_EQ(sol::vk::to_string(DevicePreference::Cpu), "cpu");
+}
+
+TEST(VkContext, CpuPreferenceSelectsTheCpuDevice) {
+  ContextOptions options;
+  options.preference = DevicePreference::Cpu;
+  const Context context(options);
+  EXPECT_TRUE(context.is_cpu()) << context.device_name();
+  EXPECT_EQ(context.device_type(), VK_PHYSICAL_DEVICE_TYPE_CPU);
+  EXPECT_GE(context.api_version(), VK_API_VERSION_1_2);
+  EXPECT_FALSE(context.device_name().empty());
+  EXPECT_NE(context.device(), VK_NULL_HANDLE);
+  EXPECT_NE(context.queue(), VK_NULL_HANDLE);
+}
+
+TEST(VkContext, EnvironmentOverridesAuto) {
+  {
+    const ScopedEnv env("SOL_VK_DEVICE", "cpu");
+    EXPECT_TRUE(Context().is_cpu());
+  }
+  {
+    const ScopedEnv env("SOL_VK_DEVICE", "banana");
+    try {
+      const Context context;
+      FAIL() << "SOL_VK_DEVICE=banana was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("SOL_VK_DEVICE must be gpu, cpu or auto, got 'banana'"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(VkContext, GpuPreferenceFailsClearlyWithoutAGpu) {
+  const ScopedEnv env("SOL_VK_DEVICE", "auto");
+  if (!Context().is_cpu()) GTEST_SKIP() << "a GPU is present";
+  ContextOptions options;
+  options.preference = DevicePreference::Gpu;
+  try {
+    const Context context(options);
+    FAIL() << "no GPU, yet a context was created on " << context.device_name();
+  } catch (const VulkanError& e) {
+    EXPECT_NE(std::string(e.what()).find("no usable Vulkan GPU (devices found: "), std::string::npos) << e.what();
+  }
+}
+
+TEST(VkContext, MissingDeviceExtensionIsAClearError) {
+  ContextOptions options;
+  options.device_extensions = {"VK_SOL_no_such_extension"};
+  try {
+    const Context context(options);
+    FAIL() << "a device claimed VK_SOL_no_such_extension";
+  } catch (const VulkanError& e) {
+    EXPECT_NE(std::string(e.what()).find("unusable: no VK_SOL_no_such_extension"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VkContext, MovesKeepResourcesValid) {
+  Context first(validated());
+  StorageImage image(first, 5, 3);
+  ComputePipeline fill(first, fill_desc());
+  // Resources share the device, not the Context object: moving the Context
+  // and then destroying it before them (it is declared last) is fine.
+  Context context = std::move(first);
+  fill.bind(0, image);
+  fill.run(1u, 1u, 7.0f);
+  StorageImage moved = std::move(image);
+  EXPECT_EQ(image.handle(), VK_NULL_HANDLE);
+  expect_fill(moved.download(), 5, 3, 7.0f);
+  EXPECT_THROW((void)image.download(), std::logic_error);
+  ComputePipeline other = std::move(fill);
+  EXPECT_THROW(fill.run(1u, 1u, 7.0f), std::logic_error);
+  other.bind(0, moved);
+  other.run(1u, 1u, 8.0f);
+  expect_fill(moved.download(), 5, 3, 8.0f);
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
+TEST(VkBuffer, WritesAndReadsBack) {
+  Context context(validated());
+  Buffer buffer(context, 64, BufferUsage::Storage);
+  EXPECT_EQ(buffer.size(), 64u);
+  const std::vector<float> values{1.0f, -2.5f, 3.25f};
+  buffer.write(values, 8);
+  std::array<float, 3> back{};
+  buffer.read(back, 8);
+  EXPECT_EQ(back[0], 1.0f);
+  EXPECT_EQ(back[1], -2.5f);
+  EXPECT_EQ(back[2], 3.25f);
+  std::array<float, 2> head{};
+  buffer.read(head);  // zero-initialised
+  EXPECT_EQ(head[0], 0.0f);
+  EXPECT_EQ(head[1], 0.0f);
+  EXPECT_THROW(buffer.write(values, 56), std::out_of_range);
+  EXPECT_THROW(buffer.read(back, 100), std::out_of_range);
+  EXPECT_THROW(Buffer(context, 0), std::invalid_argument);
+  Buffer moved = std::move(buffer);
+  EXPECT_EQ(buffer.handle(), VK_NULL_HANDLE);
+  EXPECT_NE(moved.handle(), VK_NULL_HANDLE);
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
+TEST(VkImage, RejectsBadExtentsAndDownloadsOnlyFloats) {
+  Context context(validated());
+  EXPECT_THROW(StorageImage(context, 0, 4), std::invalid_argument);
+  EXPECT_THROW(StorageImage(context, 4, 1u << 30), std::invalid_argument);
+  const StorageImage bytes(context, 4, 4, VK_FORMAT_R8G8B8A8_UNORM);
+  EXPECT_EQ(bytes.float_channels(), 0u);
+  EXPECT_THROW((void)bytes.download(), std::logic_error);
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
+// The end-to-end check: 13×7 is no multiple of the 8×8 workgroup, so the
+// rounded-up grid has invocations outside the image that must not write.
+TEST(VkPipeline, FillWritesEveryPixelExactly) {
+  Context context(validated());
+  if (!context.validation_enabled()) std::fprintf(stderr, "note: validation layer not installed\n");
+  constexpr std::uint32_t width = 13, height = 7;
+  StorageImage image(context, width, height, VK_FORMAT_R32G32B32A32_SFLOAT);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, image);
+  const double ms = fill.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8), 0.25f);
+  EXPECT_TRUE(std::isfinite(ms));
+  EXPECT_GE(ms, 0.0);
+  expect_fill(image.download(), width, height, 0.25f);
+
+  // Again with another value: the pipeline and image are reusable.
+  fill.run(2u, 1u, -3.5f);
+  expect_fill(image.download(), width, height, -3.5f);
+
+  const std::vector<std::string> errors = context.validation_errors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
+// The empty validation_errors() elsewhere mean something only if the layer
+// and its synchronisation validation are really listening.
+TEST(VkValidation, ReportsAMissingBarrier) {
+  Context context(validated());
+  if (!context.validation_enabled()) GTEST_SKIP() << "VK_LAYER_KHRONOS_validation is not installed";
+  Buffer source(context, 256), target(context, 256);
+  // Two copies into the same buffer with no barrier between them.
+  context.submit_and_wait([&](VkCommandBuffer commands) {
+    const VkBufferCopy region{0, 0, 256};
+    vkCmdCopyBuffer(commands, source.handle(), target.handle(), 1, &region);
+    vkCmdCopyBuffer(commands, source.handle(), target.handle(), 1, &region);
+  });
+  const std::vector<std::string> errors = context.validation_errors();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors.front().find("SYNC-HAZARD-WRITE-AFTER-WRITE"), std::string::npos) << errors.front();
+}
+
+TEST(VkPipeline, InvalidSpirvThrowsInsteadOfCrashing) {
+  Context context(validated());
+  const std::vector<std::uint32_t> garbage{0xdeadbeefu, 0x00010500u, 0u, 8u, 0u, 0x12345678u};
+  const std::vector<std::uint32_t> header_only{0x07230203u, 0x00010500u, 0u, 8u, 0u};
+  const std::span<const std::uint32_t> fill = sol::vk::shaders::fill();
+  const std::vector<std::uint32_t> truncated(fill.begin(), fill.begin() + static_cast<std::ptrdiff_t>(fill.size() / 2));
+  for (const auto* words : {&garbage, &header_only, &truncated}) {
+    ComputePipelineDesc desc = fill_desc();
+    desc.spirv = *words;
+    try {
+      ComputePipeline pipeline(context, desc);
+      FAIL() << "invalid SPIR-V of " << words->size() << " words was accepted";
+    } catch (const VulkanError& e) {
+      EXPECT_NE(std::string(e.what()).find("pipeline 'fill': invalid SPIR-V"), std::string::npos) << e.what();
+    }
+  }
+  ComputePipelineDesc empty = fill_desc();
+  empty.spirv = {};
+  EXPECT_THROW(ComputePipeline(context, empty), VulkanError);
+  // Rejected before the driver saw it: the validation layer has nothing to say.
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
+TEST(VkPipeline, MisuseThrows) {
+  Context context(validated());
+  StorageImage image(context, 8, 8);
+  Buffer storage(context, 16, BufferUsage::Storage);
+  ComputePipeline fill(context, fill_desc());
+  EXPECT_THROW(fill.run(1u, 1u, 1.0f), std::logic_error);  // nothing bound yet
+  EXPECT_THROW(fill.bind(0, storage), std::invalid_argument);
+  EXPECT_THROW(fill.bind(1, image), std::invalid_argument);
+  fill.bind(0, image);
+  EXPECT_THROW(fill.run(1u, 1u), std::invalid_argument);           // no push constants
+  EXPECT_THROW(fill.run(1u, 1u, 1.0), std::invalid_argument);      // a double: 8 bytes
+  EXPECT_THROW(fill.run(0u, 1u, 1.0f), std::invalid_argument);     // no groups
+  ComputePipelineDesc twice = fill_desc();
+  twice.bindings.push_back({0, DescriptorType::StorageBuffer});
+  EXPECT_THROW(ComputePipeline(context, twice), std::invalid_argument);
+  ComputePipelineDesc odd = fill_desc();
+  odd.push_constant_size = 6;
+  EXPECT_THROW(ComputePipeline(context, odd), std::invalid_argument);
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
+TEST(VkPipeline, GroupCountRoundsUp) {
+  EXPECT_EQ(sol::vk::group_count(13, 8), 2u);
+  EXPECT_EQ(sol::vk::group_count(16, 8), 2u);
+  EXPECT_EQ(sol::vk::group_count(1, 8), 1u);
+  EXPECT_EQ(sol::vk::group_count(0, 8), 0u);
+}
+
+#ifdef SOLVKINFO_PATH
+/// Runs solvkinfo with `args`; returns its exit status and, in `output`, its
+/// stdout and stderr together.
+int run_solvkinfo(const std::string& args, std::string& output) {
+  const std::string command = std::string("'") + SOLVKINFO_PATH + "' " + args + " 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return -1;
+  std::array<char, 256> chunk{};
+  while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) output += chunk.data();
+  const int status = ::pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SolVkInfo, PrintsTheDeviceAndFailsCleanly) {
+  std::string out;
+  EXPECT_EQ(run_solvkinfo("--device cpu", out), 0) << out;
+  EXPECT_NE(out.find("type: CPU"), std::string::npos) << out;
+  EXPECT_NE(out.find("vulkan: 1."), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(run_solvkinfo("--help", out), 0) << out;
+  EXPECT_NE(out.find("usage: solvkinfo"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(run_solvkinfo("--device tpu", out), 1) << out;
+  EXPECT_NE(out.find("solvkinfo: option --device expects auto, gpu or cpu, got 'tpu'"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(run_solvkinfo("--frobnicate", out), 1) << out;
+  EXPECT_NE(out.find("unknown option '--frobnicate'"), std::string::npos) << out;
+}
+#endif
+
+}  // namespace
