@@ -71,6 +71,7 @@ TEST(Render, PlaneAovsAgreeWithTheFlow) {
       if (r.object[k] == 1.0f) {
         ++hits;
         EXPECT_LT(std::abs(r.pz[k]), 1e-4f);
+        EXPECT_GT(r.rgba[4 * k], 0.2f);  // lit from above (see kernel_test: 0.25 lit, 0.043 unlit)
         const dvec3 p = sol::flow(start, r.distance[k], dopri()).position;
         // float AOVs: 1e-6 relative rounding of coordinates up to ~10.
         EXPECT_LT(glm::length(p - dvec3(r.px[k], r.py[k], r.pz[k])), 1e-5) << i << "," << j;

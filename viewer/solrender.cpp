@@ -16,6 +16,10 @@
 #include <vector>
 
 #include <sol/sol.hpp>
+#ifdef SOL_HAVE_VULKAN
+#include <sol/vk/context.hpp>
+#include <sol/vk/march.hpp>
+#endif
 
 #include "image_file.hpp"
 
@@ -35,7 +39,10 @@ void print_usage(std::FILE* out) {
                "  --up A,B,C             up direction, frame components (not parallel to forward)\n"
                "  --max-distance D       arc length after which a ray misses\n"
                "  --max-steps N          march steps after which a ray misses\n"
-               "  --device auto|vulkan|cpu  where to render (default auto)\n"
+               "  --device auto|vulkan|cpu  where to render: auto takes Vulkan (a GPU, else lavapipe) when\n"
+               "                         available and the CPU renderer otherwise (default auto)\n"
+               "  --integrator closed|rk4   the kernel's geodesic flow (default closed; vulkan only)\n"
+               "  --rk-step H            RK4 substep in arc length for --integrator rk4 (default 0.01)\n"
                "  --threads N            CPU threads for --device cpu (default: all)\n"
                "  --print-scene          print the effective scene as JSON and exit\n"
                "  --help                 this text\n\n"
@@ -98,7 +105,8 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_arg = "plane", output, aov, device = "auto";
+  std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
+  double rk_step = 0.01;
   int width = 512, height = 512;
   unsigned threads = 0;
   bool print_scene = false;
@@ -143,6 +151,14 @@ int main(int argc, char** argv) {
       if (device != "auto" && device != "vulkan" && device != "cpu") {
         fail("option --device expects auto, vulkan or cpu, got '" + device + "'");
       }
+    } else if (arg == "--integrator") {
+      integrator = value();
+      if (integrator != "closed" && integrator != "rk4") {
+        fail("option --integrator expects closed or rk4, got '" + integrator + "'");
+      }
+    } else if (arg == "--rk-step") {
+      rk_step = parse_number(value(), arg);
+      if (!(rk_step > 0.0)) fail("option --rk-step must be > 0");
     } else if (arg == "--threads") {
       threads = static_cast<unsigned>(parse_int(value(), arg, 1, 1024));
     } else if (arg == "--print-scene") {
@@ -174,35 +190,69 @@ int main(int argc, char** argv) {
   if (output.empty()) fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::viewer::can_write(output)) fail(output + ": no image format for this file name extension");
   if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") fail("--aov needs an .exr file name, got " + aov);
-  if (device == "vulkan") fail("--device vulkan: the Vulkan kernels are not built into this solrender yet; use --device cpu");
+  if (integrator == "rk4" && device == "cpu") fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 
   const bool tty = isatty(fileno(stderr));
-  sol::RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.threads = threads;
-  if (tty) {
-    settings.progress = [](double fraction) { std::fprintf(stderr, "\rsolrender: %3.0f%%", 100.0 * fraction); };
-  }
-  const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   bool wrote_output = false;
   try {
-    const auto begin = std::chrono::steady_clock::now();
-    const sol::RenderResult r = sol::render_cpu(scene, settings);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    if (tty) std::fprintf(stderr, "\r");
+    sol::RenderResult r;
+    std::string where;
+    double seconds = 0;
+    bool rendered = false;
+#ifdef SOL_HAVE_VULKAN
+    if (device != "cpu") {
+      std::optional<sol::vk::Context> context;
+      try {
+        context.emplace();
+      } catch (const std::exception& e) {
+        if (device == "vulkan") throw;
+        std::fprintf(stderr, "solrender: no Vulkan device (%s); rendering on the CPU\n", e.what());
+      }
+      if (context) {
+        sol::vk::MarchOptions options;
+        options.integrator = integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
+        options.rk4_step = rk_step;
+        sol::vk::MarchRenderer renderer(*context, options);
+        const auto begin = std::chrono::steady_clock::now();
+        double device_ms = 0;
+        r = renderer.render(scene, width, height, &device_ms);
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "vulkan '%s' (kernel %.1f ms)", context->device_name().c_str(), device_ms);
+        where = buf;
+        rendered = true;
+      }
+    }
+#else
+    if (device == "vulkan") fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
+#endif
+    if (!rendered) {
+      if (integrator == "rk4") fail("--integrator rk4 needs the Vulkan kernel");
+      sol::RenderSettings settings;
+      settings.width = width;
+      settings.height = height;
+      settings.threads = threads;
+      if (tty) {
+        settings.progress = [](double fraction) { std::fprintf(stderr, "\rsolrender: %3.0f%%", 100.0 * fraction); };
+      }
+      const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+      const auto begin = std::chrono::steady_clock::now();
+      r = sol::render_cpu(scene, settings);
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      if (tty) std::fprintf(stderr, "\r");
+      where = "cpu (" + std::to_string(used_threads) + " threads)";
+    }
     sol::viewer::write_image(output, width, height, {"R", "G", "B", "A"}, r.rgba, true);
     wrote_output = true;
     if (!aov.empty()) {
       sol::viewer::write_image(aov, width, height, {"object", "distance", "Px", "Py", "Pz", "steps"},
                                interleave_aovs(r), false);
     }
-    std::fprintf(stderr, "solrender: %dx%d on cpu (%u threads): %.3f s, %.2f M rays/s -> %s\n", width, height,
-                 used_threads, seconds, width * static_cast<double>(height) / seconds * 1e-6, output.c_str());
+    std::fprintf(stderr, "solrender: %dx%d on %s: %.3f s, %.2f M rays/s -> %s\n", width, height, where.c_str(),
+                 seconds, width * static_cast<double>(height) / seconds * 1e-6, output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
-    // A main image already written stays valid; a failed AOV must not leave
-    // the pair half-done, so remove the image written in this run.
+    // A failed AOV must not leave the pair half-done: remove the image of this run.
     if (wrote_output) std::filesystem::remove(output);
     fail(e.what());
   }

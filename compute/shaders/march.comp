@@ -44,17 +44,20 @@ float plane_distance(int type, vec3 q, float c) {
   return abs(q.z - c);
 }
 
-// Unit gradient of the distance, frame components (see sol/distance.hpp).
+// Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
+// camera's side (the origin): the march stops within hit_epsilon, possibly
+// just across the plane. Mirrors object_normal in libsol/src/render.cpp.
 vec3 plane_normal(int type, vec3 q, float c) {
+  float side = 0.0 >= c ? 1.0 : -1.0;
   if (type == 0) {
     float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
-    return vec3((q.x >= c ? 1.0 : -1.0) * r, 0.0, -w * r);
+    return vec3(side * r, 0.0, -w * r);
   }
   if (type == 1) {
     float w = abs(q.y - c) * exp(q.z), r = inversesqrt(1.0 + w * w);
-    return vec3(0.0, (q.y >= c ? 1.0 : -1.0) * r, w * r);
+    return vec3(0.0, side * r, w * r);
   }
-  return vec3(0.0, 0.0, q.z >= c ? 1.0 : -1.0);
+  return vec3(0.0, 0.0, side);
 }
 
 float pattern_factor(int pattern, float u, float v) {

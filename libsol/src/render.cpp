@@ -43,16 +43,20 @@ double object_distance(ObjectType type, const glm::dvec3& q, double c) {
   return std::numeric_limits<double>::infinity();
 }
 
+// The unit normal at a hit q (camera-relative), facing the camera's side:
+// the march stops within hit_epsilon of the plane, possibly just across it,
+// so the side comes from the camera (the origin), not from q.
 glm::dvec3 object_normal(ObjectType type, const glm::dvec3& q, double c) {
-  switch (type) {
-    case ObjectType::PlaneX:
-      return sdf_plane_x_gradient(q, c);
-    case ObjectType::PlaneY:
-      return sdf_plane_y_gradient(q, c);
-    case ObjectType::PlaneZ:
-      return sdf_plane_z_gradient(q, c);
+  const double side = 0.0 >= c ? 1.0 : -1.0;
+  glm::dvec3 n{0.0, 0.0, side};
+  if (type == ObjectType::PlaneX) {
+    n = sdf_plane_x_gradient(q, c);
+    n.x = side * std::abs(n.x);
+  } else if (type == ObjectType::PlaneY) {
+    n = sdf_plane_y_gradient(q, c);
+    n.y = side * std::abs(n.y);
   }
-  return {0.0, 0.0, 1.0};
+  return n;
 }
 
 // Pattern factor from the hit's coordinates in the plane (world).
