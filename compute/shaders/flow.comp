@@ -22,6 +22,7 @@ void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const vec4 query = queries[i];
-  const SolRay ray = sol_ray(query.xyz);
+  SolRay ray = sol_ray(query.xyz);
+  sol_ray_integrals(ray);
   results[i] = vec4(sol_position(ray, query.w), sol_height(ray, query.w));
 }

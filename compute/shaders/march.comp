@@ -14,6 +14,10 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(constant_id = 0) const int INTEGRATOR = 0;
+// Every object a plane z = c: the march needs heights only. A specialisation
+// constant, not a uniform: lavapipe evaluates both sides of every branch, so
+// only a compile-time branch saves the other side's cost.
+layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
 
 const int MAX_OBJECTS = 8;
 
@@ -30,7 +34,7 @@ layout(std140, set = 0, binding = 0) uniform Params {
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
   vec4 light;        // xyz: unit light direction; w: ambient
   vec4 limits;       // x: max distance, y: hit epsilon, z: fog distance (0: none), w: max steps
-  ivec4 counts;      // x: objects, y: width, z: height, w: 1 when every object is a plane z = c
+  ivec4 counts;      // x: objects, y: width, z: height, w: unused
   Object objects[MAX_OBJECTS];
 } params;
 
@@ -97,7 +101,7 @@ void main() {
   const int width = params.counts.y, height = params.counts.z;
   if (pixel.x >= width || pixel.y >= height) return;
   const int count = min(params.counts.x, MAX_OBJECTS);
-  const bool heights_only = params.counts.w == 1;
+  const bool heights_only = HEIGHTS_ONLY;
   int types[MAX_OBJECTS];
   float constants[MAX_OBJECTS];
   for (int k = 0; k < MAX_OBJECTS; ++k) {
@@ -115,7 +119,10 @@ void main() {
   const vec3 direction = normalize(sx * params.right.xyz + sy * params.up.xyz + params.forward.xyz);
 
   SolRay ray;
-  if (INTEGRATOR == 0) ray = sol_ray(direction);
+  if (INTEGRATOR == 0) {
+    ray = sol_ray(direction);
+    if (!heights_only) sol_ray_integrals(ray);
+  }
   vec3 rk_p = vec3(0.0), rk_u = direction;
   float rk_t = 0.0;
 
@@ -133,7 +140,7 @@ void main() {
     float nearest = 1e30;
     int nearest_k = 0;
     for (int k = 0; k < count; ++k) {
-      float d = plane_distance(types[k], q, constants[k]);
+      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : plane_distance(types[k], q, constants[k]);
       if (d < nearest) {
         nearest = d;
         nearest_k = k;
@@ -152,7 +159,10 @@ void main() {
   vec4 hit_aov = vec4(float(hit), 0.0, float(steps), 0.0);
   vec4 point_aov = vec4(0.0);
   if (hit != 0) {
-    if (INTEGRATOR == 0 && heights_only) q = sol_position(ray, t);
+    if (INTEGRATOR == 0 && heights_only) {
+      sol_ray_integrals(ray);
+      q = sol_position(ray, t);
+    }
     const int k = hit - 1;
     const int type = types[k];
     const vec3 n = plane_normal(type, q, constants[k]);

@@ -12,6 +12,12 @@
 const float SOL_PI = 3.14159265358979;
 const float SOL_EPS = 1.1920929e-7;
 
+// log cosh v without overflow.
+float sol_log_cosh(float v) {
+  float a = abs(v);
+  return a + log(1.0 + exp(-2.0 * a)) - 0.693147181;
+}
+
 // ---- Carlson's R_F and R_D (Carlson 1995), square roots only ------------------
 
 float carlson_rf(float x, float y, float z) {
@@ -60,28 +66,29 @@ float carlson_rd(float x, float y, float z) {
 
 // The arithmetic–geometric mean of 1 and k' with its sequence: depends only
 // on the parameter, so a ray computes it once (Bulirsch's sncndn splits the
-// same way).
+// same way). A fixed number of levels, SOL_AGM_LEVELS, keeps every loop
+// constant (lavapipe then keeps the arrays in registers): 7 levels converge
+// in float for k' >= 2e-12 (the smallest k' of the general regime, μ >= 1e-24);
+// levels past convergence are exact identities (a = b).
+const int SOL_AGM_LEVELS = 7;
+
 struct SolAgm {
-  float mean[10];
-  float root[10];
-  int last;
+  float mean[SOL_AGM_LEVELS];
+  float root[SOL_AGM_LEVELS];
   float c;  // the mean: π/(2K)
 };
 
 SolAgm sol_agm(float m1) {
   SolAgm g;
-  float a = 1.0, c = 1.0, b2 = m1;
-  g.last = 0;
-  for (int i = 0; i < 10; ++i) {
-    g.last = i;
+  float a = 1.0, b = sqrt(m1);
+  for (int i = 0; i < SOL_AGM_LEVELS; ++i) {
     g.mean[i] = a;
-    g.root[i] = sqrt(b2);
-    c = 0.5 * (a + g.root[i]);
-    if (abs(a - g.root[i]) <= 3.4527e-4 * a) break;  // √eps: one more step reaches eps
-    b2 = g.root[i] * a;
-    a = c;
+    g.root[i] = b;
+    float next = 0.5 * (a + b);
+    b = sqrt(a * b);
+    a = next;
   }
-  g.c = c;
+  g.c = a;
   return g;
 }
 
@@ -97,7 +104,7 @@ vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
   float sn = sin(scaled), cn = cos(scaled);
   float ratio = cn / sn;
   c *= ratio;
-  for (int i = agm.last; i >= 0; --i) {
+  for (int i = SOL_AGM_LEVELS - 1; i >= 0; --i) {
     ratio *= c;
     c *= dn;
     dn = (agm.root[i] + ratio) / (agm.mean[i] + ratio);
@@ -148,13 +155,18 @@ struct SolRay {
   float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
   float quarter_lo, quarter_hi;
   SolAgm agm;
+  // Heights by Jacobi theta series (sol_height): nome q <= e^{-π} of k'
+  // (hyperbolic form, m > 1/2) or of k (m <= 1/2), K' = K(m1).
+  bool theta_hyperbolic;
+  float nome, Kp, sqrt_k, sqrt_kc;
+  float log_cosh_s0;  // plane regime
   SolPoint start;
   int start_quarter;
   float head_a, head_b, tail_a, tail_b;
 };
 
-SolPoint sol_point(SolRay g, float u) {
-  vec3 j = jacobi(u, g.m, g.m1, g.K, g.kc, g.agm);
+// The path's values from sn, cn, dn at one parameter (see sol_point).
+SolPoint sol_point_from(SolRay g, vec3 j) {
   SolPoint p;
   p.jac = j;
   float k = g.k, kc = g.kc, sn2 = j.x * j.x;
@@ -176,6 +188,8 @@ SolPoint sol_point(SolRay g, float u) {
   p.quarter = j.x < 0.0 ? (j.y < 0.0 ? 0 : 1) : (j.y >= 0.0 ? 2 : 3);
   return p;
 }
+
+SolPoint sol_point(SolRay g, float u) { return sol_point_from(g, jacobi(u, g.m, g.m1, g.K, g.kc, g.agm)); }
 
 int sol_absolute_quarter(SolRay g, float u, int quarter) {
   int q = int(floor((u + 2.0 * g.K) / g.K));
@@ -274,6 +288,17 @@ SolRay sol_ray(vec3 direction) {
   g.c = g.direction.z;
   g.swapped = false;
   g.s0 = 0.0;
+  g.log_cosh_s0 = 0.0;
+  // Defaults that keep sol_height's branch-free arithmetic finite in every regime.
+  g.K = 1.0;
+  g.Kp = 1.0;
+  g.nome = 0.0;
+  g.theta_hyperbolic = true;
+  g.sqrt_k = 0.0;
+  g.sqrt_kc = 1.0;
+  g.lambda = 1.0;
+  g.u0 = 0.0;
+  g.w0 = 0.0;
   g.mu = g.a * g.b;
   if (g.a == 0.0 && g.b == 0.0) {
     g.regime = REGIME_VERTICAL;
@@ -289,6 +314,7 @@ SolRay sol_ray(vec3 direction) {
       g.c = -g.c;
     }
     g.s0 = asinh(-g.c / g.a);
+    g.log_cosh_s0 = sol_log_cosh(g.s0);
     return g;
   }
   float m2 = (g.a - g.b) * (g.a - g.b) + g.c * g.c;
@@ -316,26 +342,38 @@ SolRay sol_ray(vec3 direction) {
   g.one_minus_sm = 2.0 * g.k / (1.0 + g.k);
   g.sp_minus_one = 2.0 * g.k * (1.0 + g.k) / g.m1;
   g.sp_minus_sm = 4.0 * g.k / g.m1;
+  // K' = π / (2 AGM(1, k)) for the nome.
+  SolAgm agm_c = sol_agm(g.m);
+  g.Kp = SOL_PI / (2.0 * agm_c.c);
+  g.theta_hyperbolic = g.m > 0.5;
+  g.nome = exp(g.theta_hyperbolic ? -SOL_PI * g.K / g.Kp : -SOL_PI * g.Kp / g.K);
+  g.sqrt_k = sqrt(g.k);
+  g.sqrt_kc = sqrt(g.kc);
+  // The start from its exact sn, cn, dn: no Jacobi evaluation in the setup.
+  g.start = sol_point_from(g, vec3(sn0, cn0, dn0));
+  g.start_quarter = sol_absolute_quarter(g, g.u0, g.start.quarter);
+  g.quarter_lo = g.quarter_hi = g.head_a = g.head_b = g.tail_a = g.tail_b = 0.0;
+  return g;
+}
+
+// The time integrals of a ray (quarters, head and tail of the start's
+// quarter): needed by sol_position, not by sol_height, so a march that only
+// needs heights computes them once, at the hit.
+void sol_ray_integrals(inout SolRay g) {
+  if (g.regime != REGIME_GENERAL) return;
   vec3 bottom = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
   vec3 middle = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
   vec3 top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
   g.quarter_lo = carlson_piece(bottom, middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
   g.quarter_hi = carlson_piece(middle, top, g.sp_minus_one) / (2.0 * g.sqrt_mu);
-  g.start = sol_point(g, g.u0);
-  g.start_quarter = sol_absolute_quarter(g, g.u0, g.start.quarter);
   vec2 head = sol_anchor_piece(g, g.start, sol_start_anchor(g.start.quarter));
   vec2 tail = sol_anchor_piece(g, g.start, sol_end_anchor(g.start.quarter));
   g.head_a = head.x;
   g.head_b = head.y;
   g.tail_a = tail.x;
   g.tail_b = tail.y;
-  return g;
 }
 
-float sol_log_cosh(float v) {
-  float a = abs(v);
-  return a + log(1.0 + exp(-2.0 * a)) - 0.693147181;
-}
 
 // Position at arc length t in the plane regime (the hyperbolic plane y = 0).
 vec3 sol_plane_position(SolRay g, float t) {
@@ -353,16 +391,58 @@ vec3 sol_plane_position(SolRay g, float t) {
   return vec3(g.sign_x * p.x, g.sign_y * p.y, p.z);
 }
 
-// Height z at arc length t: no integrals.
-float sol_height(SolRay g, float t) {
-  if (g.regime == REGIME_VERTICAL) return g.c * t;
-  if (g.regime == REGIME_STRAIGHT) return 0.0;
-  if (g.regime == REGIME_PLANE) return sol_plane_position(g, t).z;
-  SolPoint p = sol_point(g, g.lambda * t + g.u0);
-  return log(p.ew) - g.w0;
+// e^{w} = (dn u + k cn u)/k' by Jacobi theta series, the cheap path for
+// heights (one exp or cos per call; DESIGN.md §4). e^{w} is even in u and
+// e^{w(u + 2K)} = e^{-w(u)}, so u is reduced to r ∈ [0, K]. With the nome
+// q <= e^{-π} the series below are truncated below 4e-9 relative (checked
+// against mpmath for m from 1e-6 to 1 - 1e-20).
+//  m <= 1/2, v = πr/(2K):  e^{w} = (θ3(v) + √k θ2(v)) / (√k' θ4(v)).
+//  m >  1/2, by Jacobi's imaginary transformation (DLMF 22.6.1) with the
+//  nome q of k' and P = q e^{2y} = exp(π(r - K)/K') ∈ [q, 1]:
+//    θ3 = 1 + P + q²/P + q²P² + q⁶/P²,  θ4 = 1 - P - q²/P + q²P² + q⁶/P²,
+//    T2 = 1 + qP + q/P + q⁴P² + q⁴/P²,  e^{w} = (θ3 + √k θ4) q^{1/4} / (√k' √P T2).
+float sol_theta_ew_from(SolRay g, float r, float P) {
+  float q = g.nome;
+  float q2 = q * q, q4 = q2 * q2;
+  // m > 1/2: the imaginary transformation, P = exp(π(r - K)/K').
+  float iP = 1.0 / P, iP2 = iP * iP, P2 = P * P;
+  float th3h = 1.0 + P + q2 * iP + q2 * P2 + q4 * q2 * iP2;
+  float th4h = 1.0 - P - q2 * iP + q2 * P2 + q4 * q2 * iP2;
+  float t2h = 1.0 + q * P + q * iP + q4 * P2 + q4 * iP2;
+  float hyperbolic = (th3h + g.sqrt_k * th4h) * sqrt(sqrt(q)) / (g.sqrt_kc * sqrt(P) * t2h);
+  // m <= 1/2: v = πr/(2K).
+  float c1 = cos(SOL_PI * r / (2.0 * g.K)), c2 = 2.0 * c1 * c1 - 1.0;
+  float c3 = c1 * (2.0 * c2 - 1.0), c4 = 2.0 * c2 * c2 - 1.0, c5 = 2.0 * c1 * c4 - c3;
+  float th2 = 2.0 * sqrt(sqrt(q)) * (c1 + q2 * c3 + q4 * q2 * c5);
+  float th3 = 1.0 + 2.0 * q * c2 + 2.0 * q4 * c4;
+  float th4 = 1.0 - 2.0 * q * c2 + 2.0 * q4 * c4;
+  float elliptic = (th3 + g.sqrt_k * th2) / (g.sqrt_kc * th4);
+  return g.theta_hyperbolic ? hyperbolic : elliptic;
 }
 
-// Position (relative to the start) at arc length t.
+// Height z at arc length t: no integrals, no sn/cn/dn. Written without
+// branches (lavapipe evaluates both sides of every branch): every regime's
+// value comes from one shared exp and one log.
+float sol_height(SolRay g, float t) {
+  float u = g.lambda * t + g.u0;
+  float n = round(u / (2.0 * g.K));
+  float r = abs(u - 2.0 * g.K * n);
+  bool flip = n - 2.0 * floor(0.5 * n) != 0.0;
+  bool plane = g.regime == REGIME_PLANE;
+  // Plane regime (the hyperbolic plane y = 0): z = log cosh s0 - log cosh v,
+  // v = t + s0, log cosh v = |v| - ln 2 + log(1 + e^{-2|v|}) (no overflow).
+  float v = abs(t + g.s0);
+  // The shared exp: P of the theta series, or e^{-2|v|}.
+  float E = exp(plane ? -2.0 * v : SOL_PI * (r - g.K) / g.Kp);
+  float ew = sol_theta_ew_from(g, r, max(E, 1e-37));
+  ew = flip ? 1.0 / ew : ew;
+  float logged = log(plane ? 1.0 + E : ew);
+  float z = plane ? g.log_cosh_s0 - v + 0.693147181 - logged : logged - g.w0;
+  z = plane && g.swapped ? -z : z;
+  return g.regime == REGIME_VERTICAL ? g.c * t : (g.regime == REGIME_STRAIGHT ? 0.0 : z);
+}
+
+// Position (relative to the start) at arc length t; needs sol_ray_integrals(g) first.
 vec3 sol_position(SolRay g, float t) {
   if (g.regime == REGIME_VERTICAL) return vec3(0.0, 0.0, g.c * t);
   if (g.regime == REGIME_STRAIGHT) return vec3(g.direction.x * t, g.direction.y * t, 0.0);

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -111,25 +112,33 @@ void require_size(int value, const char* name) {
   }
 }
 
+
+ComputePipeline make_pipeline(Context& c, const MarchOptions& o, bool heights_only) {
+  return ComputePipeline(c, {.name = heights_only ? "march (heights only)" : "march",
+                             .spirv = std::span<const std::uint32_t>(march_comp_spv),
+                             .bindings = {{0, DescriptorType::UniformBuffer},
+                                          {1, DescriptorType::StorageImage},
+                                          {2, DescriptorType::StorageImage},
+                                          {3, DescriptorType::StorageImage}},
+                             .push_constant_size = 0,
+                             .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u},
+                                                {1, heights_only ? 1u : 0u}}});
+}
+
 }  // namespace
 
 struct MarchRenderer::Impl {
   Context& context;
   MarchOptions options;
-  ComputePipeline pipeline;
+  // One pipeline per specialisation: scenes of planes z = c only, and the rest.
+  std::optional<ComputePipeline> heights_only, general;
   Buffer params;
-  Impl(Context& c, const MarchOptions& o)
-      : context(c),
-        options(o),
-        pipeline(c, {.name = "march",
-                     .spirv = std::span<const std::uint32_t>(march_comp_spv),
-                     .bindings = {{0, DescriptorType::UniformBuffer},
-                                  {1, DescriptorType::StorageImage},
-                                  {2, DescriptorType::StorageImage},
-                                  {3, DescriptorType::StorageImage}},
-                     .push_constant_size = 0,
-                     .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u}}}),
-        params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
+  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
+  ComputePipeline& pipeline(bool only_heights) {
+    std::optional<ComputePipeline>& p = only_heights ? heights_only : general;
+    if (!p) p.emplace(make_pipeline(context, options, only_heights));
+    return *p;
+  }
 };
 
 MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
@@ -137,6 +146,7 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
   }
   m_impl = std::make_unique<Impl>(context, options);
+  m_impl->pipeline(true);  // build the common one now: errors surface here, not at the first frame
 }
 
 MarchRenderer::~MarchRenderer() = default;
@@ -156,11 +166,12 @@ RenderResult MarchRenderer::render(const Scene& scene, int width, int height, do
   m.params.write(std::span<const GpuParams>(&g, 1));
   const auto w = static_cast<std::uint32_t>(width), h = static_cast<std::uint32_t>(height);
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  m.pipeline.bind(0, m.params);
-  m.pipeline.bind(1, color);
-  m.pipeline.bind(2, hit);
-  m.pipeline.bind(3, point);
-  const double ms = m.pipeline.run(group_count(w, 8), group_count(h, 8));
+  ComputePipeline& pipeline = m.pipeline(g.counts[3] == 1);
+  pipeline.bind(0, m.params);
+  pipeline.bind(1, color);
+  pipeline.bind(2, hit);
+  pipeline.bind(3, point);
+  const double ms = pipeline.run(group_count(w, 8), group_count(h, 8));
   if (device_ms) *device_ms = ms;
 
   RenderResult r;
