@@ -203,7 +203,11 @@ int main(int argc, char** argv) {
     if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {
-        context.emplace();
+        sol::vk::ContextOptions context_options;
+#ifndef NDEBUG
+        context_options.validation = true;  // validation layers in debug builds
+#endif
+        context.emplace(context_options);
       } catch (const std::exception& e) {
         if (device == "vulkan") throw;
         std::fprintf(stderr, "solrender: no Vulkan device (%s); rendering on the CPU\n", e.what());
