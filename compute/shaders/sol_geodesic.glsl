@@ -158,11 +158,10 @@ struct SolRay {
   // Heights by Jacobi theta series (sol_height): nome q <= e^{-π} of k'
   // (hyperbolic form, m > 1/2) or of k (m <= 1/2), K' = K(m1).
   bool theta_hyperbolic;
-  float nome, Kp, sqrt_k, sqrt_kc;
+  float nome, nome_quarter, Kp, sqrt_k, sqrt_kc;
   float log_cosh_s0;  // plane regime
   SolPoint start;
   int start_quarter;
-  float head_a, head_b, tail_a, tail_b;
 };
 
 // The path's values from sn, cn, dn at one parameter (see sol_point).
@@ -219,46 +218,36 @@ vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
 }
 
 // Time integrals of s and 1/s between a point and an anchor (0: s₋, 1: middle, 2: s₊).
-vec2 sol_anchor_piece(SolRay g, SolPoint p, int anchor) {
-  vec3 fp = vec3(p.ew, sqrt(p.f2), sqrt(p.f3));
-  vec3 fa;
-  float gap, s_anchor;
-  if (anchor == 0) {
-    fa = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
-    gap = p.f2;
-    s_anchor = g.sqrt_sm * g.sqrt_sm;
-  } else if (anchor == 1) {
-    fa = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
-    gap = abs(p.sm1);
-    s_anchor = 1.0;
-  } else {
-    fa = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
-    gap = p.f3;
-    s_anchor = g.sqrt_sp * g.sqrt_sp;
-  }
+// The integrals of s and 1/s between limits with factors fx, fy
+// (first factor e^{w}) and s-gap `gap`; the 1/s gap is gap/(s_x s_y).
+vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
   float scale = 1.0 / (2.0 * g.sqrt_mu);
-  float ia = carlson_piece(fp, fa, gap) * scale;
-  float gap_sigma = gap / (p.ew * p.ew * s_anchor);
-  float ib = carlson_piece(sol_reciprocal(fp, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fa, g.sqrt_sm, g.sqrt_sp),
+  float ia = carlson_piece(fx, fy, gap) * scale;
+  float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
+  float ib = carlson_piece(sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp),
                            gap_sigma) * scale;
   return vec2(ia, ib);
 }
 
-vec2 sol_two_point_piece(SolRay g, SolPoint p, SolPoint q) {
+vec3 sol_factors(SolPoint p) { return vec3(p.ew, sqrt(p.f2), sqrt(p.f3)); }
+
+// An anchor's factors (0: s₋, 1: middle, 2: s₊) and the s-gap from p to it.
+vec3 sol_anchor(SolRay g, SolPoint p, int anchor, out float gap) {
+  gap = anchor == 0 ? p.f2 : (anchor == 1 ? abs(p.sm1) : p.f3);
+  return anchor == 0 ? vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm))
+                     : (anchor == 1 ? vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one))
+                                    : vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0));
+}
+
+// |s_p - s_q| of two points of one quarter from the representation with the
+// smaller operands (each relatively accurate).
+float sol_two_point_gap(SolPoint p, SolPoint q) {
   bool lower = p.quarter == 0 || p.quarter == 3;
   float via_anchor = lower ? abs(p.f2 - q.f2) : abs(p.f3 - q.f3);
   float size_anchor = lower ? max(p.f2, q.f2) : max(p.f3, q.f3);
   float via_middle = abs(p.sm1 - q.sm1);
   float size_middle = max(abs(p.sm1), abs(q.sm1));
-  float gap = size_anchor < size_middle ? via_anchor : via_middle;
-  vec3 fp = vec3(p.ew, sqrt(p.f2), sqrt(p.f3));
-  vec3 fq = vec3(q.ew, sqrt(q.f2), sqrt(q.f3));
-  float scale = 1.0 / (2.0 * g.sqrt_mu);
-  float ia = carlson_piece(fp, fq, gap) * scale;
-  float gap_sigma = gap / (p.ew * p.ew * q.ew * q.ew);
-  float ib = carlson_piece(sol_reciprocal(fp, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fq, g.sqrt_sm, g.sqrt_sp),
-                           gap_sigma) * scale;
-  return vec2(ia, ib);
+  return size_anchor < size_middle ? via_anchor : via_middle;
 }
 
 vec2 sol_quarters(SolRay g, int first, int last) {
@@ -293,6 +282,7 @@ SolRay sol_ray(vec3 direction) {
   g.K = 1.0;
   g.Kp = 1.0;
   g.nome = 0.0;
+  g.nome_quarter = 0.0;
   g.theta_hyperbolic = true;
   g.sqrt_k = 0.0;
   g.sqrt_kc = 1.0;
@@ -343,21 +333,30 @@ SolRay sol_ray(vec3 direction) {
   g.sp_minus_one = 2.0 * g.k * (1.0 + g.k) / g.m1;
   g.sp_minus_sm = 4.0 * g.k / g.m1;
   // K' = π / (2 AGM(1, k)) for the nome.
-  SolAgm agm_c = sol_agm(g.m);
-  g.Kp = SOL_PI / (2.0 * agm_c.c);
+  // The nome of the smaller modulus (k' when m > 1/2, else k) by its
+  // λ-series, q = λ + 2λ⁵ + 15λ⁹ + 150λ¹³ with λ = (1 - √κ')/(2(1 + √κ'))
+  // <= 0.0434 (DLMF 22.2.2 and the classical expansion; the terms left out
+  // are below 3e-16), 1 - √κ' formed from m1 or m without cancellation;
+  // then K' = K(m1) from q = exp(-πK/K').
   g.theta_hyperbolic = g.m > 0.5;
-  g.nome = exp(g.theta_hyperbolic ? -SOL_PI * g.K / g.Kp : -SOL_PI * g.Kp / g.K);
+  float root_other = g.theta_hyperbolic ? sqrt(g.k) : sqrt(g.kc);
+  float other = g.theta_hyperbolic ? g.k : g.kc;
+  float lambda_q = (g.theta_hyperbolic ? g.m1 : g.m) / (2.0 * (1.0 + other) * (1.0 + root_other) * (1.0 + root_other));
+  float l4 = lambda_q * lambda_q * lambda_q * lambda_q;
+  g.nome = lambda_q * (1.0 + l4 * (2.0 + l4 * (15.0 + 150.0 * l4)));
+  g.nome_quarter = sqrt(sqrt(g.nome));
+  g.Kp = g.theta_hyperbolic ? -SOL_PI * g.K / log(g.nome) : 1.0;
   g.sqrt_k = sqrt(g.k);
   g.sqrt_kc = sqrt(g.kc);
   // The start from its exact sn, cn, dn: no Jacobi evaluation in the setup.
   g.start = sol_point_from(g, vec3(sn0, cn0, dn0));
   g.start_quarter = sol_absolute_quarter(g, g.u0, g.start.quarter);
-  g.quarter_lo = g.quarter_hi = g.head_a = g.head_b = g.tail_a = g.tail_b = 0.0;
+  g.quarter_lo = g.quarter_hi = 0.0;
   return g;
 }
 
-// The time integrals of a ray (quarters, head and tail of the start's
-// quarter): needed by sol_position, not by sol_height, so a march that only
+// The time integrals of a ray over whole lower and upper quarters: needed by
+// sol_position, not by sol_height, so a march that only
 // needs heights computes them once, at the hit.
 void sol_ray_integrals(inout SolRay g) {
   if (g.regime != REGIME_GENERAL) return;
@@ -366,12 +365,6 @@ void sol_ray_integrals(inout SolRay g) {
   vec3 top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
   g.quarter_lo = carlson_piece(bottom, middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
   g.quarter_hi = carlson_piece(middle, top, g.sp_minus_one) / (2.0 * g.sqrt_mu);
-  vec2 head = sol_anchor_piece(g, g.start, sol_start_anchor(g.start.quarter));
-  vec2 tail = sol_anchor_piece(g, g.start, sol_end_anchor(g.start.quarter));
-  g.head_a = head.x;
-  g.head_b = head.y;
-  g.tail_a = tail.x;
-  g.tail_b = tail.y;
 }
 
 
@@ -400,20 +393,22 @@ vec3 sol_plane_position(SolRay g, float t) {
 //  m >  1/2, by Jacobi's imaginary transformation (DLMF 22.6.1) with the
 //  nome q of k' and P = q e^{2y} = exp(π(r - K)/K') ∈ [q, 1]:
 //    θ3 = 1 + P + q²/P + q²P² + q⁶/P²,  θ4 = 1 - P - q²/P + q²P² + q⁶/P²,
-//    T2 = 1 + qP + q/P + q⁴P² + q⁴/P²,  e^{w} = (θ3 + √k θ4) q^{1/4} / (√k' √P T2).
-float sol_theta_ew_from(SolRay g, float r, float P) {
+//    T2 = 1 + qP + q/P + q⁴P² + q⁴/P²,  e^{w} = (θ3 + √k θ4) q^{1/4} / (√k' √P T2),
+//  with √P = exp(π(r - K)/(2K')) the one exp per step.
+float sol_theta_ew_from(SolRay g, float r, float Q) {
   float q = g.nome;
   float q2 = q * q, q4 = q2 * q2;
-  // m > 1/2: the imaginary transformation, P = exp(π(r - K)/K').
+  // m > 1/2: the imaginary transformation, Q = √P = exp(π(r - K)/(2K')).
+  float P = Q * Q;
   float iP = 1.0 / P, iP2 = iP * iP, P2 = P * P;
   float th3h = 1.0 + P + q2 * iP + q2 * P2 + q4 * q2 * iP2;
   float th4h = 1.0 - P - q2 * iP + q2 * P2 + q4 * q2 * iP2;
   float t2h = 1.0 + q * P + q * iP + q4 * P2 + q4 * iP2;
-  float hyperbolic = (th3h + g.sqrt_k * th4h) * sqrt(sqrt(q)) / (g.sqrt_kc * sqrt(P) * t2h);
+  float hyperbolic = (th3h + g.sqrt_k * th4h) * g.nome_quarter / (g.sqrt_kc * Q * t2h);
   // m <= 1/2: v = πr/(2K).
   float c1 = cos(SOL_PI * r / (2.0 * g.K)), c2 = 2.0 * c1 * c1 - 1.0;
   float c3 = c1 * (2.0 * c2 - 1.0), c4 = 2.0 * c2 * c2 - 1.0, c5 = 2.0 * c1 * c4 - c3;
-  float th2 = 2.0 * sqrt(sqrt(q)) * (c1 + q2 * c3 + q4 * q2 * c5);
+  float th2 = 2.0 * g.nome_quarter * (c1 + q2 * c3 + q4 * q2 * c5);
   float th3 = 1.0 + 2.0 * q * c2 + 2.0 * q4 * c4;
   float th4 = 1.0 - 2.0 * q * c2 + 2.0 * q4 * c4;
   float elliptic = (th3 + g.sqrt_k * th2) / (g.sqrt_kc * th4);
@@ -432,9 +427,9 @@ float sol_height(SolRay g, float t) {
   // Plane regime (the hyperbolic plane y = 0): z = log cosh s0 - log cosh v,
   // v = t + s0, log cosh v = |v| - ln 2 + log(1 + e^{-2|v|}) (no overflow).
   float v = abs(t + g.s0);
-  // The shared exp: P of the theta series, or e^{-2|v|}.
-  float E = exp(plane ? -2.0 * v : SOL_PI * (r - g.K) / g.Kp);
-  float ew = sol_theta_ew_from(g, r, max(E, 1e-37));
+  // The shared exp: √P of the theta series, or e^{-2|v|}.
+  float E = exp(plane ? -2.0 * v : SOL_PI * (r - g.K) / (2.0 * g.Kp));
+  float ew = sol_theta_ew_from(g, r, max(E, 1e-18));
   ew = flip ? 1.0 / ew : ew;
   float logged = log(plane ? 1.0 + E : ew);
   float z = plane ? g.log_cosh_s0 - v + 0.693147181 - logged : logged - g.w0;
@@ -450,16 +445,21 @@ vec3 sol_position(SolRay g, float t) {
   float u = g.lambda * t + g.u0;
   SolPoint p = sol_point(g, u);
   int q = sol_absolute_quarter(g, u, p.quarter);
-  vec2 integral;
-  if (q == g.start_quarter) {
-    integral = sol_two_point_piece(g, g.start, p);
-    if (t < 0.0) integral = -integral;
-  } else if (q > g.start_quarter) {
-    integral = vec2(g.tail_a, g.tail_b) + sol_quarters(g, g.start_quarter + 1, q - 1) +
-               sol_anchor_piece(g, p, sol_start_anchor(p.quarter));
-  } else {
-    integral = -(vec2(g.head_a, g.head_b) + sol_quarters(g, q + 1, g.start_quarter - 1) +
-                 sol_anchor_piece(g, p, sol_end_anchor(p.quarter)));
-  }
+  bool same = q == g.start_quarter, forward = q > g.start_quarter;
+  // Written with selected inputs, so that each Carlson pair is evaluated once
+  // (lavapipe would pay for every branch): the path is
+  //   same quarter:  start -> p
+  //   forward:       start -> end of its quarter, whole quarters, start of p's quarter -> p
+  //   backward:      the same, mirrored, with the sign flipped.
+  float gap_near;
+  vec3 f_near = sol_anchor(g, p, forward ? sol_start_anchor(p.quarter) : sol_end_anchor(p.quarter), gap_near);
+  f_near = same ? sol_factors(g.start) : f_near;
+  gap_near = same ? sol_two_point_gap(g.start, p) : gap_near;
+  vec2 near = sol_piece(g, f_near, sol_factors(p), gap_near);
+  float gap_far;
+  vec3 f_far = sol_anchor(g, g.start, forward ? sol_end_anchor(g.start.quarter) : sol_start_anchor(g.start.quarter), gap_far);
+  vec2 far = sol_piece(g, sol_factors(g.start), f_far, same ? 0.0 : gap_far);
+  vec2 middle = forward ? sol_quarters(g, g.start_quarter + 1, q - 1) : sol_quarters(g, q + 1, g.start_quarter - 1);
+  vec2 integral = same ? (t < 0.0 ? -near : near) : (forward ? far + middle + near : -(far + middle + near));
   return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
 }
