@@ -163,3 +163,43 @@ TEST(ClosedForm, RejectsBadDirections) {
 }
 
 }  // namespace
+
+namespace {
+
+// The height range against the Dormand–Prince flow sampled over one period
+// (independent of the closed form): the extremes agree and nothing leaves it.
+TEST(ClosedForm, HeightRangeMatchesTheFlow) {
+  sol::FlowOptions dopri;
+  dopri.method = sol::Method::DormandPrince;
+  int checked = 0;
+  for (const dvec3& d : sol::test::random_directions(20, 81)) {
+    const sol::ClosedFormGeodesic<double> g(d);
+    const double period = g.period();
+    if (period > 60) continue;
+    ++checked;
+    double lo = 1e300, hi = -1e300;
+    sol::GeodesicState s{dvec3(0.0), d};
+    const int n = 4000;
+    for (int i = 0; i <= n; ++i) {
+      lo = std::min(lo, s.position.z);
+      hi = std::max(hi, s.position.z);
+      s = sol::flow(s, period / n, dopri);
+    }
+    // Sampling misses the extreme by at most ~(period/n)^2 |z''| / 8.
+    const double slack = 1e-6;
+    EXPECT_LE(g.min_height(), lo + 1e-12) << d.x << " " << d.y << " " << d.z;
+    EXPECT_GE(g.max_height(), hi - 1e-12);
+    EXPECT_NEAR(g.min_height(), lo, slack);
+    EXPECT_NEAR(g.max_height(), hi, slack);
+  }
+  EXPECT_GE(checked, 10);
+  // Degenerate regimes: unbounded or flat.
+  EXPECT_EQ(sol::ClosedFormGeodesic<double>(dvec3(0, 0, 1)).min_height(), -std::numeric_limits<double>::infinity());
+  const double h = 1.0 / std::sqrt(2.0);
+  EXPECT_EQ(sol::ClosedFormGeodesic<double>(dvec3(h, h, 0)).max_height(), 0.0);
+  const sol::ClosedFormGeodesic<double> in_plane(dvec3(0.6, 0.0, 0.8));
+  EXPECT_EQ(in_plane.min_height(), -std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(in_plane.max_height(), std::log(1.0 / 0.6), 1e-15);  // top of the H² geodesic: e^{z} = 1/a
+}
+
+}  // namespace

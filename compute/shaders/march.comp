@@ -129,7 +129,15 @@ void main() {
   int hit = 0, steps = 0;
   float t = 0.0;
   vec3 q = vec3(0.0);
-  for (int step = 0; step < max_steps; ++step) {
+  // Exact culling for planes z = c (as the CPU reference): a ray whose whole
+  // z-range misses every plane by more than the hit epsilon never hits.
+  bool reachable = true;
+  if (HEIGHTS_ONLY && INTEGRATOR == 0) {
+    vec2 range = sol_height_range(ray) + vec2(-hit_epsilon, hit_epsilon);
+    reachable = false;
+    for (int k = 0; k < count; ++k) reachable = reachable || (constants[k] >= range.x && constants[k] <= range.y);
+  }
+  for (int step = 0; step < max_steps && reachable; ++step) {
     if (INTEGRATOR == 0) {
       q = heights_only ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position(ray, t);
     } else {

@@ -289,6 +289,8 @@ SolRay sol_ray(vec3 direction) {
   g.lambda = 1.0;
   g.u0 = 0.0;
   g.w0 = 0.0;
+  g.sqrt_sm = 1.0;
+  g.sqrt_sp = 1.0;
   g.mu = g.a * g.b;
   if (g.a == 0.0 && g.b == 0.0) {
     g.regime = REGIME_VERTICAL;
@@ -435,6 +437,16 @@ float sol_height(SolRay g, float t) {
   float z = plane ? g.log_cosh_s0 - v + 0.693147181 - logged : logged - g.w0;
   z = plane && g.swapped ? -z : z;
   return g.regime == REGIME_VERTICAL ? g.c * t : (g.regime == REGIME_STRAIGHT ? 0.0 : z);
+}
+
+// The heights the whole geodesic visits (x: lowest, y: highest), ±1e30 where
+// unbounded: z oscillates between the turning points log √s± - w0.
+vec2 sol_height_range(SolRay g) {
+  vec2 general = vec2(log(g.sqrt_sm), log(g.sqrt_sp)) - g.w0;
+  float top = sol_log_cosh(g.s0);
+  vec2 plane = g.swapped ? vec2(-top, 1e30) : vec2(-1e30, top);
+  vec2 r = g.regime == REGIME_GENERAL ? general : (g.regime == REGIME_PLANE ? plane : vec2(-1e30, 1e30));
+  return g.regime == REGIME_STRAIGHT ? vec2(0.0) : r;
 }
 
 // Position (relative to the start) at arc length t; needs sol_ray_integrals(g) first.

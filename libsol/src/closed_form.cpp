@@ -347,6 +347,38 @@ T ClosedFormGeodesic<T>::height_at(T t) const {
 }
 
 template <class T>
+T ClosedFormGeodesic<T>::min_height() const {
+  constexpr T inf = std::numeric_limits<T>::infinity();
+  switch (m_regime) {
+    case Regime::Vertical:
+      return m_c == T(0) ? T(0) : -inf;
+    case Regime::Straight:
+      return T(0);
+    case Regime::Plane:  // the top is at v = 0: z = log cosh s0 (negated when swapped)
+      return m_swapped ? -log_cosh(m_s0) : -inf;
+    case Regime::General:
+      break;
+  }
+  return std::log(m_sqrt_sm) - m_w0;
+}
+
+template <class T>
+T ClosedFormGeodesic<T>::max_height() const {
+  constexpr T inf = std::numeric_limits<T>::infinity();
+  switch (m_regime) {
+    case Regime::Vertical:
+      return m_c == T(0) ? T(0) : inf;
+    case Regime::Straight:
+      return T(0);
+    case Regime::Plane:
+      return m_swapped ? inf : log_cosh(m_s0);
+    case Regime::General:
+      break;
+  }
+  return std::log(m_sqrt_sp) - m_w0;
+}
+
+template <class T>
 T ClosedFormGeodesic<T>::period() const {
   if (m_regime != Regime::General) return std::numeric_limits<T>::infinity();
   return T(4) * m_K / m_lambda;

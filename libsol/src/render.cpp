@@ -104,6 +104,15 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   }
   const ClosedFormGeodesic<double> ray(direction);
   MarchHit hit;
+  if (heights_only) {
+    // Exact culling: z stays within [min_height, max_height] along the whole
+    // geodesic, so planes z = c outside that range (by more than the hit
+    // epsilon) are never reached. A ray that reaches none is a miss with 0 steps.
+    const double lo = ray.min_height() - scene.hit_epsilon, hi = ray.max_height() + scene.hit_epsilon;
+    bool reachable = false;
+    for (std::size_t k = 0; k < n; ++k) reachable = reachable || (constants[k] >= lo && constants[k] <= hi);
+    if (!reachable) return hit;
+  }
   double t = 0.0;
   for (int step = 0; step < scene.max_steps; ++step) {
     const glm::dvec3 q = heights_only ? glm::dvec3(0.0, 0.0, ray.height_at(t)) : ray.at(t).position;

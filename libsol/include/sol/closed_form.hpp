@@ -59,6 +59,11 @@ class ClosedFormGeodesic {
   /// Only the height z at arc length t (cheaper than at(t): no integrals).
   T height_at(T t) const;
 
+  /// The range of heights the whole geodesic (t in R) visits: z oscillates
+  /// between the turning points when ab != 0; ±inf where z is unbounded.
+  T min_height() const;
+  T max_height() const;
+
   /// Arc length of one z-oscillation (+inf when z does not oscillate).
   T period() const;
   /// (X_T, Y_T, 0) with γ(t + T) = (X_T, Y_T, 0) * γ(t); zero when no period.

@@ -13,7 +13,10 @@
 //     to step.
 //  3. t advances by the exact distance to the nearest object (sol/distance.hpp);
 //     the ray hits when that distance is below hit_epsilon, and misses when t
-//     exceeds max_distance or the steps exceed max_steps.
+//     exceeds max_distance or the steps exceed max_steps. When every object
+//     is a plane z = c, the march evaluates heights only, and a ray whose
+//     whole z-range (between its turning points) misses every plane by more
+//     than hit_epsilon is a miss at once (0 steps): an exact test.
 // Shading: base colour times the pattern (in the plane's own world
 // coordinates), times ambient + (1 - ambient) max(0, n·l) with n the unit
 // gradient of the distance (frame components, facing the ray's side) and l
@@ -39,7 +42,7 @@ struct MarchHit {
   double distance = 0.0;       ///< arc length to the hit (to where the march stopped on a miss)
   glm::dvec3 point{0.0};       ///< hit point, world coordinates
   glm::dvec3 normal{0.0};      ///< unit surface normal at the hit, frame components, facing the ray
-  int steps = 0;               ///< march steps used
+  int steps = 0;               ///< march steps used (0: culled by its height range)
 };
 
 /// Marches the ray from the camera position with unit direction `direction`
