@@ -140,6 +140,45 @@ TEST(Render, SwapSymmetry) {
   EXPECT_LT(max_difference(ra.rgba, rb.rgba), 1e-6);
 }
 
+TEST(Render, StereoEyesAreOneGeodesicApart) {
+  sol::Camera cam{{0.3, -0.2, 0.7}, {0.2, 0.9, -0.3}, {0, 0, 1}, 70.0};
+  const double ipd = 0.3;
+  const sol::StereoEyes eyes = sol::stereo_eyes(cam, ipd);
+  // Flowing from the left eye along its own right vector by ipd reaches the
+  // right eye, and transports the left frame onto the right frame
+  // (Dormand–Prince: independent of the closed form the eyes were made with).
+  const dvec3 right_l = glm::normalize(glm::cross(eyes.left.forward, eyes.left.up));
+  const sol::FlowTransport ft = sol::flow_with_transport({eyes.left.position, right_l}, ipd, dopri());
+  EXPECT_LT(glm::length(ft.state.position - eyes.right.position), 1e-10);
+  EXPECT_LT(glm::length(ft.transport * eyes.left.forward - eyes.right.forward), 1e-10);
+  EXPECT_LT(glm::length(ft.transport * eyes.left.up - eyes.right.up), 1e-10);
+  // The camera sits halfway.
+  const dvec3 right_c = glm::normalize(glm::cross(cam.forward, cam.up));
+  EXPECT_LT(glm::length(sol::flow({cam.position, right_c}, ipd / 2, dopri()).position - eyes.right.position), 1e-10);
+  EXPECT_THROW(sol::stereo_eyes(cam, -1.0), sol::InvalidArgument);
+}
+
+TEST(Render, StereoHalvesAreTheEyesMonoRenders) {
+  const sol::Scene scene = sol::preset_scene("sandwich");
+  sol::RenderSettings settings;
+  settings.width = 12;
+  settings.height = 8;
+  const sol::RenderResult both = sol::render_cpu_stereo(scene, settings, 0.5);
+  ASSERT_EQ(both.width, 24);
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.5);
+  sol::Scene left = scene, right = scene;
+  left.camera = eyes.left;
+  right.camera = eyes.right;
+  const sol::RenderResult l = sol::render_cpu(left, settings), r = sol::render_cpu(right, settings);
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 12; ++i) {
+      EXPECT_EQ(both.distance[static_cast<std::size_t>(j * 24 + i)], l.distance[static_cast<std::size_t>(j * 12 + i)]);
+      EXPECT_EQ(both.distance[static_cast<std::size_t>(j * 24 + 12 + i)], r.distance[static_cast<std::size_t>(j * 12 + i)]);
+      EXPECT_EQ(both.rgba[static_cast<std::size_t>(4 * (j * 24 + 12 + i))], r.rgba[static_cast<std::size_t>(4 * (j * 12 + i))]);
+    }
+  }
+}
+
 TEST(Render, EveryPresetRendersWithoutNaN) {
   for (const std::string& name : sol::preset_names()) {
     sol::RenderSettings settings;

@@ -43,6 +43,8 @@ void print_usage(std::FILE* out) {
                "                         available and the CPU renderer otherwise (default auto)\n"
                "  --integrator closed|rk4   the kernel's geodesic flow (default closed; vulkan only)\n"
                "  --rk-step H            RK4 substep in arc length for --integrator rk4 (default 0.01)\n"
+               "  --stereo               both eyes side by side (image width 2 W), DESIGN.md §2\n"
+               "  --ipd D                eye separation in Sol units for --stereo (default 0.064)\n"
                "  --threads N            CPU threads for --device cpu (default: all)\n"
                "  --print-scene          print the effective scene as JSON and exit\n"
                "  --help                 this text\n\n"
@@ -106,7 +108,8 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
 
 int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
-  double rk_step = 0.01;
+  double rk_step = 0.01, ipd = 0.064;
+  bool stereo = false;
   int width = 512, height = 512;
   unsigned threads = 0;
   bool print_scene = false;
@@ -159,6 +162,11 @@ int main(int argc, char** argv) {
     } else if (arg == "--rk-step") {
       rk_step = parse_number(value(), arg);
       if (!(rk_step > 0.0)) fail("option --rk-step must be > 0");
+    } else if (arg == "--stereo") {
+      stereo = true;
+    } else if (arg == "--ipd") {
+      ipd = parse_number(value(), arg);
+      if (ipd < 0.0) fail("option --ipd must be >= 0");
     } else if (arg == "--threads") {
       threads = static_cast<unsigned>(parse_int(value(), arg, 1, 1024));
     } else if (arg == "--print-scene") {
@@ -219,7 +227,8 @@ int main(int argc, char** argv) {
         sol::vk::MarchRenderer renderer(*context, options);
         const auto begin = std::chrono::steady_clock::now();
         double device_ms = 0;
-        r = renderer.render(scene, width, height, &device_ms);
+        r = stereo ? renderer.render_stereo(scene, width, height, ipd, &device_ms)
+                   : renderer.render(scene, width, height, &device_ms);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
         char buf[256];
         std::snprintf(buf, sizeof buf, "vulkan '%s' (kernel %.1f ms)", context->device_name().c_str(), device_ms);
@@ -241,19 +250,20 @@ int main(int argc, char** argv) {
       }
       const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
       const auto begin = std::chrono::steady_clock::now();
-      r = sol::render_cpu(scene, settings);
+      r = stereo ? sol::render_cpu_stereo(scene, settings, ipd) : sol::render_cpu(scene, settings);
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       if (tty) std::fprintf(stderr, "\r");
       where = "cpu (" + std::to_string(used_threads) + " threads)";
     }
-    sol::viewer::write_image(output, width, height, {"R", "G", "B", "A"}, r.rgba, true);
+    sol::viewer::write_image(output, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
     wrote_output = true;
     if (!aov.empty()) {
-      sol::viewer::write_image(aov, width, height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+      sol::viewer::write_image(aov, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
                                interleave_aovs(r), false);
     }
-    std::fprintf(stderr, "solrender: %dx%d on %s: %.3f s, %.2f M rays/s -> %s\n", width, height, where.c_str(),
-                 seconds, width * static_cast<double>(height) / seconds * 1e-6, output.c_str());
+    std::fprintf(stderr, "solrender: %dx%d%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
+                 stereo ? " (stereo)" : "", where.c_str(), seconds, r.width * static_cast<double>(r.height) / seconds * 1e-6,
+                 output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
     // A failed AOV must not leave the pair half-done: remove the image of this run.

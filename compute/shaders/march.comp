@@ -22,19 +22,26 @@ layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
 const int MAX_OBJECTS = 8;
 
 struct Object {
-  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z), y: constant relative to the camera, z: pattern (0 none, 1 circles, 2 checker)
+  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z), z: pattern (0 none, 1 circles, 2 checker)
   vec4 color;  // rgb
 };
 
-layout(std140, set = 0, binding = 0) uniform Params {
+// One eye (a mono image has one; a side-by-side stereo image two, rendered in
+// one dispatch: the left eye's pixels are x < eye width).
+struct Eye {
   vec4 right;        // xyz: camera right (frame components); w: tan(fov/2)
-  vec4 up;           // xyz: camera up; w: width / height
+  vec4 up;           // xyz: camera up; w: eye width / height
   vec4 forward;      // xyz: camera forward; w: RK4 step
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
+  vec4 constants[MAX_OBJECTS / 4];  // each object's plane constant relative to this eye
+};
+
+layout(std140, set = 0, binding = 0) uniform Params {
+  Eye eyes[2];
   vec4 light;        // xyz: unit light direction; w: ambient
   vec4 limits;       // x: max distance, y: hit epsilon, z: fog distance (0: none), w: max steps
-  ivec4 counts;      // x: objects, y: width, z: height, w: unused
+  ivec4 counts;      // x: objects, y: eye width, z: height, w: eyes (1 or 2)
   Object objects[MAX_OBJECTS];
 } params;
 
@@ -99,24 +106,28 @@ void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   const int width = params.counts.y, height = params.counts.z;
-  if (pixel.x >= width || pixel.y >= height) return;
+  if (pixel.x >= width * params.counts.w || pixel.y >= height) return;
+  const int eye = pixel.x >= width ? 1 : 0;
+  const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
+  const vec4 eye_right = params.eyes[eye].right, eye_up = params.eyes[eye].up, eye_forward = params.eyes[eye].forward;
+  const vec4 eye_camera = params.eyes[eye].camera, eye_frac = params.eyes[eye].camera_frac;
   const int count = min(params.counts.x, MAX_OBJECTS);
   const bool heights_only = HEIGHTS_ONLY;
   int types[MAX_OBJECTS];
   float constants[MAX_OBJECTS];
   for (int k = 0; k < MAX_OBJECTS; ++k) {
     types[k] = int(params.objects[k].plane.x);
-    constants[k] = params.objects[k].plane.y;
+    constants[k] = params.eyes[eye].constants[k / 4][k % 4];
   }
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
   const int max_steps = int(params.limits.w);
-  const float rk4_step = params.forward.w;
+  const float rk4_step = eye_forward.w;
 
-  // The camera convention of DESIGN.md §2.
-  const float tan_half = params.right.w, aspect = params.up.w;
-  const float sx = (2.0 * (float(pixel.x) + 0.5) / float(width) - 1.0) * tan_half * aspect;
-  const float sy = (1.0 - 2.0 * (float(pixel.y) + 0.5) / float(height)) * tan_half;
-  const vec3 direction = normalize(sx * params.right.xyz + sy * params.up.xyz + params.forward.xyz);
+  // The camera convention of DESIGN.md §2, per eye.
+  const float tan_half = eye_right.w, aspect = eye_up.w;
+  const float sx = (2.0 * (float(local.x) + 0.5) / float(width) - 1.0) * tan_half * aspect;
+  const float sy = (1.0 - 2.0 * (float(local.y) + 0.5) / float(height)) * tan_half;
+  const vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
 
   SolRay ray;
   if (INTEGRATOR == 0) {
@@ -176,8 +187,8 @@ void main() {
     const vec3 n = plane_normal(type, q, constants[k]);
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
-    const vec3 scaled = vec3(params.camera.w * q.x, params.camera_frac.w * q.y, q.z);
-    const vec3 phase = params.camera_frac.xyz + scaled;
+    const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
+    const vec3 phase = eye_frac.xyz + scaled;
     float u = phase.x, v = phase.y;
     if (type == 0) {
       u = phase.y;
@@ -192,7 +203,7 @@ void main() {
     if (params.limits.z > 0.0) factor *= exp(-t / params.limits.z);
     color = vec4(params.objects[k].color.rgb * factor, 1.0);
     hit_aov.y = t;
-    point_aov = vec4(params.camera.xyz + scaled, 0.0);
+    point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }
   imageStore(color_image, pixel, color);
   imageStore(aov_hit, pixel, hit_aov);

@@ -1,5 +1,6 @@
 #include "sol/vk/march.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -23,15 +24,22 @@ namespace {
 
 // std140 mirror of march.comp's Params block (vec4 and ivec4 only: no padding).
 struct GpuObject {
-  float plane[4];  // type, relative constant, pattern, 0
+  float plane[4];  // type, 0, pattern, 0
   float color[4];
 };
+struct GpuEye {
+  float right[4], up[4], forward[4], camera[4], camera_frac[4];
+  float constants[kMaxGpuObjects];
+};
 struct GpuParams {
-  float right[4], up[4], forward[4], camera[4], camera_frac[4], light[4], limits[4];
+  GpuEye eyes[2];
+  float light[4], limits[4];
   std::int32_t counts[4];
   GpuObject objects[kMaxGpuObjects];
 };
-static_assert(sizeof(GpuParams) == 8 * 16 + kMaxGpuObjects * 32, "std140 layout of Params");
+static_assert(kMaxGpuObjects % 4 == 0, "constants are packed in vec4s");
+static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 4, "std140 layout of Eye");
+static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 3 * 16 + kMaxGpuObjects * 32, "std140 layout of Params");
 
 float type_code(ObjectType type) {
   switch (type) {
@@ -57,52 +65,62 @@ float pattern_code(Pattern pattern) {
   return 0.0f;
 }
 
-GpuParams make_params(const Scene& scene, int width, int height, double rk4_step) {
-  const Camera& cam = scene.camera;
-  // The camera basis of DESIGN.md §2, in double (as sol::camera_ray).
+void set4(float* dst, const glm::dvec3& v, double w) {
+  dst[0] = static_cast<float>(v.x);
+  dst[1] = static_cast<float>(v.y);
+  dst[2] = static_cast<float>(v.z);
+  dst[3] = static_cast<float>(w);
+}
+
+// One eye: camera basis, position terms and the plane constants relative to
+// it, all in double (see march.hpp).
+GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, double rk4_step) {
   const glm::dvec3 forward = glm::normalize(cam.forward);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, cam.up));
   const glm::dvec3 up = glm::cross(right, forward);
   const double tan_half = std::tan(cam.fov * 0.5 * 3.14159265358979323846 / 180.0);
   const glm::dvec3 p = cam.position;
-  const glm::dvec3 light = glm::normalize(scene.light_direction);
-  GpuParams g{};
-  auto set = [](float* dst, const glm::dvec3& v, double w) {
-    dst[0] = static_cast<float>(v.x);
-    dst[1] = static_cast<float>(v.y);
-    dst[2] = static_cast<float>(v.z);
-    dst[3] = static_cast<float>(w);
-  };
-  set(g.right, right, tan_half);
-  set(g.up, up, static_cast<double>(width) / height);
-  set(g.forward, forward, rk4_step);
-  set(g.camera, p, std::exp(p.z));
+  GpuEye e{};
+  set4(e.right, right, tan_half);
+  set4(e.up, up, static_cast<double>(width) / height);
+  set4(e.forward, forward, rk4_step);
+  set4(e.camera, p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
-  set(g.camera_frac, p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
-  set(g.light, light, scene.ambient);
+  set4(e.camera_frac, p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& o = scene.objects[k];
+    double c = o.c - p.z;  // the plane relative to the camera (see sol/render.hpp)
+    if (o.type == ObjectType::PlaneX) c = std::exp(-p.z) * (o.c - p.x);
+    if (o.type == ObjectType::PlaneY) c = std::exp(p.z) * (o.c - p.y);
+    e.constants[k] = static_cast<float>(c);
+  }
+  return e;
+}
+
+GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int width, int height, double rk4_step) {
+  GpuParams g{};
+  for (std::size_t i = 0; i < eyes.size(); ++i) g.eyes[i] = make_eye(scene, eyes[i], width, height, rk4_step);
+  set4(g.light, glm::normalize(scene.light_direction), scene.ambient);
   g.limits[0] = static_cast<float>(scene.max_distance);
   g.limits[1] = static_cast<float>(scene.hit_epsilon);
   g.limits[2] = static_cast<float>(scene.fog_distance);
   g.limits[3] = static_cast<float>(scene.max_steps);
-  bool heights_only = true;
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    const SceneObject& o = scene.objects[k];
-    // The plane relative to the camera (see sol/render.hpp), in double.
-    double c = o.c - p.z;
-    if (o.type == ObjectType::PlaneX) c = std::exp(-p.z) * (o.c - p.x);
-    if (o.type == ObjectType::PlaneY) c = std::exp(p.z) * (o.c - p.y);
-    g.objects[k].plane[0] = type_code(o.type);
-    g.objects[k].plane[1] = static_cast<float>(c);
-    g.objects[k].plane[2] = pattern_code(o.pattern);
-    set(g.objects[k].color, o.color, 1.0);
-    heights_only = heights_only && o.type == ObjectType::PlaneZ;
+    g.objects[k].plane[0] = type_code(scene.objects[k].type);
+    g.objects[k].plane[2] = pattern_code(scene.objects[k].pattern);
+    set4(g.objects[k].color, scene.objects[k].color, 1.0);
   }
   g.counts[0] = static_cast<std::int32_t>(scene.objects.size());
   g.counts[1] = width;
   g.counts[2] = height;
-  g.counts[3] = heights_only ? 1 : 0;
+  g.counts[3] = static_cast<std::int32_t>(eyes.size());
   return g;
+}
+
+bool heights_only(const Scene& scene) {
+  return std::all_of(scene.objects.begin(), scene.objects.end(),
+                     [](const SceneObject& o) { return o.type == ObjectType::PlaneZ; });
 }
 
 void require_size(int value, const char* name) {
@@ -154,6 +172,16 @@ MarchRenderer::MarchRenderer(MarchRenderer&&) noexcept = default;
 MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
 RenderResult MarchRenderer::render(const Scene& scene, int width, int height, double* device_ms) {
+  return render_eyes(scene, {scene.camera}, width, height, device_ms);
+}
+
+RenderResult MarchRenderer::render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms) {
+  const StereoEyes eyes = stereo_eyes(scene.camera, ipd);
+  return render_eyes(scene, {eyes.left, eyes.right}, width, height, device_ms);
+}
+
+RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
+                                        double* device_ms) {
   validate(scene);
   require_size(width, "width");
   require_size(height, "height");
@@ -162,11 +190,12 @@ RenderResult MarchRenderer::render(const Scene& scene, int width, int height, do
                           " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
   }
   Impl& m = *m_impl;
-  const GpuParams g = make_params(scene, width, height, m.options.rk4_step);
+  const GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
   m.params.write(std::span<const GpuParams>(&g, 1));
-  const auto w = static_cast<std::uint32_t>(width), h = static_cast<std::uint32_t>(height);
+  const auto w = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
+  const auto h = static_cast<std::uint32_t>(height);
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = m.pipeline(g.counts[3] == 1);
+  ComputePipeline& pipeline = m.pipeline(heights_only(scene));
   pipeline.bind(0, m.params);
   pipeline.bind(1, color);
   pipeline.bind(2, hit);
@@ -175,7 +204,7 @@ RenderResult MarchRenderer::render(const Scene& scene, int width, int height, do
   if (device_ms) *device_ms = ms;
 
   RenderResult r;
-  r.width = width;
+  r.width = static_cast<int>(w);
   r.height = height;
   r.rgba = color.download();
   const std::vector<float> hits = hit.download(), points = point.download();

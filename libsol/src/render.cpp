@@ -13,6 +13,7 @@
 #include "sol/closed_form.hpp"
 #include "sol/distance.hpp"
 #include "sol/error.hpp"
+#include "sol/geodesic.hpp"
 #include "sol/group.hpp"
 
 namespace sol {
@@ -215,6 +216,55 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
   if (settings.progress && !pool.empty()) worker();  // help with any rows left
   for (std::thread& t : pool) t.join();
   if (settings.progress) settings.progress(1.0);
+  return r;
+}
+
+StereoEyes stereo_eyes(const Camera& camera, double ipd) {
+  if (!std::isfinite(ipd) || ipd < 0.0) {
+    throw InvalidArgument("sol::stereo_eyes: ipd must be finite and >= 0, got " + std::to_string(ipd));
+  }
+  const glm::dvec3 forward = glm::normalize(camera.forward);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  auto eye = [&](double t) {
+    // Flow along `right` by t; the frame vectors follow by parallel transport.
+    const FlowTransport ft = flow_with_transport({camera.position, right}, t, FlowOptions{});
+    Camera c = camera;
+    c.position = ft.state.position;
+    c.forward = ft.transport * forward;
+    c.up = ft.transport * up;
+    return c;
+  };
+  return {eye(-0.5 * ipd), eye(0.5 * ipd)};
+}
+
+RenderResult render_cpu_stereo(const Scene& scene, const RenderSettings& settings, double ipd) {
+  const StereoEyes eyes = stereo_eyes(scene.camera, ipd);
+  Scene left = scene, right = scene;
+  left.camera = eyes.left;
+  right.camera = eyes.right;
+  const RenderResult a = render_cpu(left, settings), b = render_cpu(right, settings);
+  const int w = settings.width, h = settings.height;
+  RenderResult r;
+  r.width = 2 * w;
+  r.height = h;
+  auto join = [&](const std::vector<float>& x, const std::vector<float>& y, int channels) {
+    std::vector<float> out(static_cast<std::size_t>(2 * w) * h * channels);
+    const std::size_t row = static_cast<std::size_t>(w) * channels;
+    for (int j = 0; j < h; ++j) {
+      std::copy_n(x.begin() + static_cast<std::ptrdiff_t>(j * row), row, out.begin() + static_cast<std::ptrdiff_t>(2 * j * row));
+      std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(j * row), row,
+                  out.begin() + static_cast<std::ptrdiff_t>((2 * j + 1) * row));
+    }
+    return out;
+  };
+  r.rgba = join(a.rgba, b.rgba, 4);
+  r.object = join(a.object, b.object, 1);
+  r.distance = join(a.distance, b.distance, 1);
+  r.px = join(a.px, b.px, 1);
+  r.py = join(a.py, b.py, 1);
+  r.pz = join(a.pz, b.pz, 1);
+  r.steps = join(a.steps, b.steps, 1);
   return r;
 }
 

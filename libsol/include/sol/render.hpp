@@ -74,4 +74,17 @@ struct RenderResult {
 /// or sizes outside [1, 16384].
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings);
 
+/// The two eyes of DESIGN.md §2: at the geodesic flow of the camera by
+/// ∓ipd/2 along its right vector, their frames (forward, up) parallel-
+/// transported along that flow; same field of view. ipd must be finite and
+/// >= 0 (InvalidArgument otherwise).
+struct StereoEyes {
+  Camera left, right;
+};
+StereoEyes stereo_eyes(const Camera& camera, double ipd);
+
+/// Both eyes side by side in one image of width 2 × settings.width (left eye
+/// on the left), AOVs likewise: each half is render_cpu of that eye's camera.
+RenderResult render_cpu_stereo(const Scene& scene, const RenderSettings& settings, double ipd);
+
 }  // namespace sol

@@ -47,7 +47,13 @@ class MarchRenderer {
   /// objects. `device_ms` receives the kernel's time on the device.
   RenderResult render(const Scene& scene, int width, int height, double* device_ms = nullptr);
 
+  /// Both eyes of sol::stereo_eyes(scene.camera, ipd) side by side in one
+  /// dispatch: a (2 width) × height image and AOVs, left eye on the left.
+  RenderResult render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms = nullptr);
+
  private:
+  RenderResult render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
+                           double* device_ms);
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };
