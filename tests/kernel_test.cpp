@@ -112,6 +112,38 @@ TEST(Kernel, PresetsMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+TEST(Kernel, BallsMatchTheCpuRenderer) {
+  sol::Scene scene;
+  scene.camera = {{0.3, -0.2, 0.1}, {1, 0.2, 0.1}, {0, 0, 1}, 70.0};
+  sol::SceneObject ball;
+  ball.type = sol::ObjectType::Ball;
+  ball.center = {2.0, 0.5, 0.2};
+  ball.radius = 0.6;
+  ball.color = {0.3, 0.8, 0.4};
+  sol::SceneObject floor;
+  floor.type = sol::ObjectType::PlaneZ;
+  floor.c = -0.8;
+  floor.pattern = sol::Pattern::Checker;
+  scene.objects = {ball, floor};
+  sol::RenderSettings settings;
+  settings.width = 40;
+  settings.height = 30;
+  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+  sol::vk::MarchRenderer renderer(context());
+  const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+  const Comparison c = compare(gpu, cpu);
+  std::printf("ball scene: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
+              c.mask_differs, c.pixels, c.color_differs, c.distance);
+  // Same tolerances as the presets (float against double, edges may flip).
+  EXPECT_LE(c.mask_differs, c.pixels / 100);
+  EXPECT_LE(c.color_differs, c.pixels / 100);
+  EXPECT_LT(c.distance, 1e-3);
+  int balls = 0;
+  for (float o : gpu.object) balls += o == 1.0f;
+  EXPECT_GT(balls, 30);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PlaneAovsLieOnThePlane) {
   sol::vk::MarchRenderer renderer(context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.

@@ -4,6 +4,7 @@
 // symmetry, and no NaN.
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
@@ -138,6 +139,51 @@ TEST(Render, SwapSymmetry) {
   EXPECT_LT(max_difference(ra.distance, rb.distance), 1e-9);
   EXPECT_LT(max_difference(ra.px, rb.py), 1e-9);
   EXPECT_LT(max_difference(ra.rgba, rb.rgba), 1e-6);
+}
+
+TEST(Render, DistanceLowerBoundNeverExceedsGeodesicLength) {
+  // Any geodesic segment of length L joins points at distance <= L: the
+  // bound may not exceed L. Geodesics inside a plane y = const project
+  // isometrically onto the (x, z) hyperbolic plane: there it equals L.
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> coord(-2.0, 2.0), length(0.01, 4.0);
+  double worst_excess = 0, worst_in_plane = 0;
+  for (const dvec3& d : sol::test::random_directions(300, 42)) {
+    const dvec3 p(coord(rng), coord(rng), coord(rng));
+    const double L = length(rng);
+    const dvec3 q = sol::flow({p, d}, L, dopri()).position;
+    worst_excess = std::max(worst_excess, sol::distance_lower_bound(p, q) - L);
+    const dvec3 in_plane = glm::normalize(dvec3(d.x, 0.0, d.z));
+    const dvec3 r = sol::flow({p, in_plane}, L, dopri()).position;
+    worst_in_plane = std::max(worst_in_plane, std::abs(sol::distance_lower_bound(p, r) - L) / L);
+  }
+  EXPECT_LE(worst_excess, 1e-12);
+  EXPECT_LT(worst_in_plane, 1e-10);
+  EXPECT_EQ(sol::distance_lower_bound(dvec3(1, 2, 3), dvec3(1, 2, 3)), 0.0);
+}
+
+TEST(Render, BallHitsLieOnTheBoundSurface) {
+  sol::Scene scene;
+  scene.camera = {{0, 0, 0}, {1, 0.2, 0.1}, {0, 0, 1}, 60.0};
+  sol::SceneObject ball;
+  ball.type = sol::ObjectType::Ball;
+  ball.center = {2.0, 0.5, 0.2};
+  ball.radius = 0.6;
+  ball.color = {0.3, 0.8, 0.4};
+  scene.objects = {ball};
+  sol::RenderSettings settings;
+  settings.width = 24;
+  settings.height = 18;
+  const sol::RenderResult r = sol::render_cpu(scene, settings);
+  int hits = 0;
+  for (std::size_t k = 0; k < r.object.size(); ++k) {
+    if (r.object[k] != 1.0f) continue;
+    ++hits;
+    const dvec3 p(r.px[k], r.py[k], r.pz[k]);
+    // Within the hit epsilon of the drawn surface (plus float rounding of the AOV).
+    EXPECT_NEAR(sol::distance_lower_bound(p, ball.center), ball.radius, 1e-4);
+  }
+  EXPECT_GT(hits, 20);
 }
 
 TEST(Render, StereoEyesAreOneGeodesicApart) {

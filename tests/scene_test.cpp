@@ -60,6 +60,13 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"max_distance": -1, )" + objects + "}", "max_distance");
   expect_rejected(R"({"max_distance": 1e999, )" + objects + "}", "1e999");
   expect_rejected(R"({"frobnicate": 1, )" + objects + "}", "unknown key 'frobnicate'");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
+  expect_rejected(R"({"objects": [{"type": "ball", "radius": 1}]})", "needs a 'center'");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": -1}]})", "objects[0].radius");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "circles"}]})",
+                  "balls take no pattern");
 }
 
 TEST(Scene, PresetsAreValidAndRoundTrip) {
@@ -74,6 +81,8 @@ TEST(Scene, PresetsAreValidAndRoundTrip) {
       EXPECT_EQ(back.objects[k].type, s.objects[k].type);
       EXPECT_EQ(back.objects[k].c, s.objects[k].c);
       EXPECT_EQ(back.objects[k].pattern, s.objects[k].pattern);
+      EXPECT_EQ(back.objects[k].center, s.objects[k].center);
+      EXPECT_EQ(back.objects[k].radius, s.objects[k].radius);
     }
     EXPECT_EQ(back.fog_distance, s.fog_distance);
   }

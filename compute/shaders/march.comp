@@ -22,7 +22,7 @@ layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
 const int MAX_OBJECTS = 8;
 
 struct Object {
-  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z), z: pattern (0 none, 1 circles, 2 checker)
+  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball), y: ball radius, z: pattern (0 none, 1 circles, 2 checker)
   vec4 color;  // rgb
 };
 
@@ -34,7 +34,7 @@ struct Eye {
   vec4 forward;      // xyz: camera forward; w: RK4 step
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
-  vec4 constants[MAX_OBJECTS / 4];  // each object's plane constant relative to this eye
+  vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0)
 };
 
 layout(std140, set = 0, binding = 0) uniform Params {
@@ -49,7 +49,19 @@ layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
 
-float plane_distance(int type, vec3 q, float c) {
+// The lower bound of the Sol distance (sol::distance_lower_bound, DESIGN.md §3).
+float distance_lower_bound(vec3 p, vec3 q) {
+  float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
+  float a = max(0.5 * dx * dx * exp(-sum), 0.5 * dy * dy * exp(sum));
+  float sh = sinh(0.5 * dz);
+  return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
+}
+
+// Distance (planes: exact; balls: the bound minus the radius) to an object
+// given relative to the camera.
+float object_distance(int type, vec3 q, vec4 rel, float radius) {
+  if (type == 3) return distance_lower_bound(q, rel.xyz) - radius;
+  float c = rel.x;
   if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
   if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
   return abs(q.z - c);
@@ -58,7 +70,15 @@ float plane_distance(int type, vec3 q, float c) {
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
-vec3 plane_normal(int type, vec3 q, float c) {
+vec3 plane_normal(int type, vec3 q, float c, vec4 rel, float radius) {
+  if (type == 3) {  // balls: central differences along E1, E2, E3 (as the CPU reference)
+    float h = 1e-3, ez = exp(q.z);
+    vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
+    vec3 g = vec3(object_distance(3, q + e1, rel, radius) - object_distance(3, q - e1, rel, radius),
+                  object_distance(3, q + e2, rel, radius) - object_distance(3, q - e2, rel, radius),
+                  object_distance(3, q + e3, rel, radius) - object_distance(3, q - e3, rel, radius));
+    return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
+  }
   float side = 0.0 >= c ? 1.0 : -1.0;
   if (type == 0) {
     float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
@@ -114,10 +134,13 @@ void main() {
   const int count = min(params.counts.x, MAX_OBJECTS);
   const bool heights_only = HEIGHTS_ONLY;
   int types[MAX_OBJECTS];
-  float constants[MAX_OBJECTS];
+  float constants[MAX_OBJECTS], radii[MAX_OBJECTS];
+  vec4 relative[MAX_OBJECTS];
   for (int k = 0; k < MAX_OBJECTS; ++k) {
     types[k] = int(params.objects[k].plane.x);
-    constants[k] = params.eyes[eye].constants[k / 4][k % 4];
+    radii[k] = params.objects[k].plane.y;
+    relative[k] = params.eyes[eye].relative[k];
+    constants[k] = relative[k].x;
   }
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
   const int max_steps = int(params.limits.w);
@@ -159,7 +182,7 @@ void main() {
     float nearest = 1e30;
     int nearest_k = 0;
     for (int k = 0; k < count; ++k) {
-      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : plane_distance(types[k], q, constants[k]);
+      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], radii[k]);
       if (d < nearest) {
         nearest = d;
         nearest_k = k;
@@ -184,7 +207,7 @@ void main() {
     }
     const int k = hit - 1;
     const int type = types[k];
-    const vec3 n = plane_normal(type, q, constants[k]);
+    const vec3 n = plane_normal(type, q, constants[k], relative[k], radii[k]);
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);

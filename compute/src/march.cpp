@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 #include <sol/error.hpp>
+#include <sol/group.hpp>
 
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
@@ -24,12 +25,12 @@ namespace {
 
 // std140 mirror of march.comp's Params block (vec4 and ivec4 only: no padding).
 struct GpuObject {
-  float plane[4];  // type, 0, pattern, 0
+  float plane[4];  // type, radius (balls), pattern, 0
   float color[4];
 };
 struct GpuEye {
   float right[4], up[4], forward[4], camera[4], camera_frac[4];
-  float constants[kMaxGpuObjects];
+  float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); relative to the eye
 };
 struct GpuParams {
   GpuEye eyes[2];
@@ -37,8 +38,7 @@ struct GpuParams {
   std::int32_t counts[4];
   GpuObject objects[kMaxGpuObjects];
 };
-static_assert(kMaxGpuObjects % 4 == 0, "constants are packed in vec4s");
-static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 4, "std140 layout of Eye");
+static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 16, "std140 layout of Eye");
 static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 3 * 16 + kMaxGpuObjects * 32, "std140 layout of Params");
 
 float type_code(ObjectType type) {
@@ -49,6 +49,8 @@ float type_code(ObjectType type) {
       return 1.0f;
     case ObjectType::PlaneZ:
       return 2.0f;
+    case ObjectType::Ball:
+      return 3.0f;
   }
   return 2.0f;
 }
@@ -93,7 +95,8 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
     double c = o.c - p.z;  // the plane relative to the camera (see sol/render.hpp)
     if (o.type == ObjectType::PlaneX) c = std::exp(-p.z) * (o.c - p.x);
     if (o.type == ObjectType::PlaneY) c = std::exp(p.z) * (o.c - p.y);
-    e.constants[k] = static_cast<float>(c);
+    const glm::dvec3 centre = multiply(inverse(p), o.center);  // balls: centre relative to the camera
+    set4(e.relative[k], o.type == ObjectType::Ball ? centre : glm::dvec3(c, 0.0, 0.0), 0.0);
   }
   return e;
 }
@@ -108,6 +111,7 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
   g.limits[3] = static_cast<float>(scene.max_steps);
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
     g.objects[k].plane[0] = type_code(scene.objects[k].type);
+    g.objects[k].plane[1] = static_cast<float>(scene.objects[k].radius);
     g.objects[k].plane[2] = pattern_code(scene.objects[k].pattern);
     set4(g.objects[k].color, scene.objects[k].color, 1.0);
   }

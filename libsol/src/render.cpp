@@ -19,42 +19,69 @@
 namespace sol {
 namespace {
 
-// A plane's constant in camera-relative coordinates (see render.hpp).
-double relative_constant(const SceneObject& o, const glm::dvec3& p) {
+// An object relative to the camera (see render.hpp): planes by their
+// constant, balls by their centre left-translated by the camera's inverse.
+struct RelativeObject {
+  ObjectType type = ObjectType::PlaneZ;
+  double c = 0.0;
+  glm::dvec3 center{0.0};
+  double radius = 0.0;
+};
+
+RelativeObject relative_object(const SceneObject& o, const glm::dvec3& p) {
+  RelativeObject r{o.type, 0.0, glm::dvec3(0.0), o.radius};
   switch (o.type) {
     case ObjectType::PlaneX:
-      return std::exp(-p.z) * (o.c - p.x);
+      r.c = std::exp(-p.z) * (o.c - p.x);
+      break;
     case ObjectType::PlaneY:
-      return std::exp(p.z) * (o.c - p.y);
+      r.c = std::exp(p.z) * (o.c - p.y);
+      break;
     case ObjectType::PlaneZ:
-      return o.c - p.z;
+      r.c = o.c - p.z;
+      break;
+    case ObjectType::Ball:
+      r.center = multiply(inverse(p), o.center);
+      break;
   }
-  return 0.0;
+  return r;
 }
 
-double object_distance(ObjectType type, const glm::dvec3& q, double c) {
-  switch (type) {
+double object_distance(const RelativeObject& o, const glm::dvec3& q) {
+  switch (o.type) {
     case ObjectType::PlaneX:
-      return sdf_plane_x(q, c);
+      return sdf_plane_x(q, o.c);
     case ObjectType::PlaneY:
-      return sdf_plane_y(q, c);
+      return sdf_plane_y(q, o.c);
     case ObjectType::PlaneZ:
-      return sdf_plane_z(q, c);
+      return sdf_plane_z(q, o.c);
+    case ObjectType::Ball:
+      return sdf_ball(q, o.center, o.radius);
   }
   return std::numeric_limits<double>::infinity();
 }
 
 // The unit normal at a hit q (camera-relative), facing the camera's side:
-// the march stops within hit_epsilon of the plane, possibly just across it,
-// so the side comes from the camera (the origin), not from q.
-glm::dvec3 object_normal(ObjectType type, const glm::dvec3& q, double c) {
-  const double side = 0.0 >= c ? 1.0 : -1.0;
+// the march stops within hit_epsilon of a plane, possibly just across it,
+// so a plane's side comes from the camera (the origin), not from q. Balls:
+// the gradient of the distance bound by central differences along the frame
+// E1 = e^{z}∂x, E2 = e^{-z}∂y, E3 = ∂z (the same step as the kernel's).
+glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
+  if (o.type == ObjectType::Ball) {
+    const double h = 1e-3, ez = std::exp(q.z);
+    const glm::dvec3 e1(h * ez, 0.0, 0.0), e2(0.0, h / ez, 0.0), e3(0.0, 0.0, h);
+    const glm::dvec3 g(object_distance(o, q + e1) - object_distance(o, q - e1),
+                       object_distance(o, q + e2) - object_distance(o, q - e2),
+                       object_distance(o, q + e3) - object_distance(o, q - e3));
+    return glm::length(g) > 0.0 ? glm::normalize(g) : glm::dvec3(0.0, 0.0, 1.0);
+  }
+  const double side = 0.0 >= o.c ? 1.0 : -1.0;
   glm::dvec3 n{0.0, 0.0, side};
-  if (type == ObjectType::PlaneX) {
-    n = sdf_plane_x_gradient(q, c);
+  if (o.type == ObjectType::PlaneX) {
+    n = sdf_plane_x_gradient(q, o.c);
     n.x = side * std::abs(n.x);
-  } else if (type == ObjectType::PlaneY) {
-    n = sdf_plane_y_gradient(q, c);
+  } else if (o.type == ObjectType::PlaneY) {
+    n = sdf_plane_y_gradient(q, o.c);
     n.y = side * std::abs(n.y);
   }
   return n;
@@ -97,10 +124,10 @@ glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height)
 MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   const glm::dvec3 origin = scene.camera.position;
   const std::size_t n = scene.objects.size();
-  std::vector<double> constants(n);
+  std::vector<RelativeObject> objects(n);
   bool heights_only = true;  // only planes z = c: the march needs z alone
   for (std::size_t k = 0; k < n; ++k) {
-    constants[k] = relative_constant(scene.objects[k], origin);
+    objects[k] = relative_object(scene.objects[k], origin);
     heights_only = heights_only && scene.objects[k].type == ObjectType::PlaneZ;
   }
   const ClosedFormGeodesic<double> ray(direction);
@@ -111,7 +138,7 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
     // epsilon) are never reached. A ray that reaches none is a miss with 0 steps.
     const double lo = ray.min_height() - scene.hit_epsilon, hi = ray.max_height() + scene.hit_epsilon;
     bool reachable = false;
-    for (std::size_t k = 0; k < n; ++k) reachable = reachable || (constants[k] >= lo && constants[k] <= hi);
+    for (std::size_t k = 0; k < n; ++k) reachable = reachable || (objects[k].c >= lo && objects[k].c <= hi);
     if (!reachable) return hit;
   }
   double t = 0.0;
@@ -120,7 +147,7 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
     double nearest = std::numeric_limits<double>::infinity();
     std::size_t nearest_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
-      const double d = object_distance(scene.objects[k].type, q, constants[k]);
+      const double d = object_distance(objects[k], q);
       if (d < nearest) {
         nearest = d;
         nearest_k = k;
@@ -132,7 +159,7 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
       hit.object = static_cast<int>(nearest_k) + 1;
       hit.distance = t;
       hit.point = multiply(origin, p);
-      hit.normal = object_normal(scene.objects[nearest_k].type, p, constants[nearest_k]);
+      hit.normal = object_normal(objects[nearest_k], p);
       return hit;
     }
     t += nearest;

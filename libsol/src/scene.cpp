@@ -49,7 +49,8 @@ ObjectType object_type(const json& value, std::string_view source, const std::st
   if (s == "plane_x") return ObjectType::PlaneX;
   if (s == "plane_y") return ObjectType::PlaneY;
   if (s == "plane_z") return ObjectType::PlaneZ;
-  fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, got " + s);
+  if (s == "ball") return ObjectType::Ball;
+  fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, ball, got " + s);
 }
 
 Pattern pattern(const json& value, std::string_view source, const std::string& name) {
@@ -75,6 +76,11 @@ void validate_in(const Scene& s, std::string_view source) {
     const SceneObject& o = s.objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
     if (!std::isfinite(o.c)) fail(source, at + ".c must be finite");
+    if (o.type == ObjectType::Ball) {
+      if (!finite3(o.center)) fail(source, at + ".center must be finite");
+      if (!(o.radius > 0.0) || !std::isfinite(o.radius)) fail(source, at + ".radius must be finite and > 0");
+      if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls take no pattern");
+    }
     for (int k = 0; k < 3; ++k) {
       if (!(o.color[k] >= 0.0 && o.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
     }
@@ -99,6 +105,8 @@ const char* to_string(ObjectType type) {
       return "plane_y";
     case ObjectType::PlaneZ:
       return "plane_z";
+    case ObjectType::Ball:
+      return "ball";
   }
   return "?";
 }
@@ -143,10 +151,18 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     const json& o = objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
     if (!o.is_object()) fail(source, at + " must be an object");
-    require_known_keys(o, {"type", "c", "color", "pattern"}, source, at);
     if (!o.contains("type")) fail(source, at + " needs a 'type'");
     SceneObject obj;
     obj.type = object_type(o["type"], source, at + ".type");
+    if (obj.type == ObjectType::Ball) {
+      require_known_keys(o, {"type", "center", "radius", "color", "pattern"}, source, at + " (a ball)");
+      if (!o.contains("center")) fail(source, at + " (a ball) needs a 'center'");
+      if (!o.contains("radius")) fail(source, at + " (a ball) needs a 'radius'");
+      obj.center = vec3(o["center"], source, at + ".center");
+      obj.radius = number(o["radius"], source, at + ".radius");
+    } else {
+      require_known_keys(o, {"type", "c", "color", "pattern"}, source, at);
+    }
     if (o.contains("c")) obj.c = number(o["c"], source, at + ".c");
     if (o.contains("color")) obj.color = vec3(o["color"], source, at + ".color");
     if (o.contains("pattern")) obj.pattern = pattern(o["pattern"], source, at + ".pattern");
@@ -219,8 +235,15 @@ std::string to_json(const Scene& s) {
                     {"fov", s.camera.fov}};
   root["objects"] = json::array();
   for (const SceneObject& o : s.objects) {
-    root["objects"].push_back(
-        {{"type", to_string(o.type)}, {"c", o.c}, {"color", arr(o.color)}, {"pattern", to_string(o.pattern)}});
+    if (o.type == ObjectType::Ball) {
+      root["objects"].push_back({{"type", to_string(o.type)},
+                                 {"center", arr(o.center)},
+                                 {"radius", o.radius},
+                                 {"color", arr(o.color)}});
+    } else {
+      root["objects"].push_back(
+          {{"type", to_string(o.type)}, {"c", o.c}, {"color", arr(o.color)}, {"pattern", to_string(o.pattern)}});
+    }
   }
   root["light"] = {{"direction", arr(s.light_direction)}, {"ambient", s.ambient}};
   root["fog_distance"] = s.fog_distance;

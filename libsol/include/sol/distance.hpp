@@ -9,6 +9,7 @@
 // E3 = ∂z), pointing away from the plane: on the surface they are its normal.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/vec3.hpp>
@@ -34,6 +35,27 @@ inline glm::dvec3 sdf_plane_x_gradient(const glm::dvec3& p, double c) {
 inline glm::dvec3 sdf_plane_y_gradient(const glm::dvec3& p, double c) {
   const double w = std::abs(p.y - c) * std::exp(p.z), r = 1.0 / std::sqrt(1.0 + w * w);
   return {0.0, (p.y >= c ? 1.0 : -1.0) * r, w * r};
+}
+
+/// A lower bound of the Sol distance between p and q (DESIGN.md §3): the
+/// projections (x, y, z) -> (x, z) and -> (y, z) onto the hyperbolic planes
+/// e^{-2z}dx² + dz² and e^{2z}dy² + dz² do not increase lengths, and there
+///   cosh d = cosh Δz + ½ Δx² e^{-(z1+z2)},   cosh d = cosh Δz + ½ Δy² e^{z1+z2}.
+/// Written as d = 2 asinh √(sinh²(Δz/2) + A/2), A the larger of the two
+/// terms, so that small distances keep their relative accuracy.
+inline double distance_lower_bound(const glm::dvec3& p, const glm::dvec3& q) {
+  const double dz = p.z - q.z, sum = p.z + q.z;
+  const double dx = p.x - q.x, dy = p.y - q.y;
+  const double a = std::max(0.5 * dx * dx * std::exp(-sum), 0.5 * dy * dy * std::exp(sum));
+  const double sh = std::sinh(0.5 * dz);
+  return 2.0 * std::asinh(std::sqrt(sh * sh + 0.5 * a));
+}
+
+/// Signed distance bound of the ball (center, radius): never more than the
+/// true distance to the geodesic ball, so sphere tracing never tunnels; its
+/// zero set is the surface drawn (README: how it differs from the sphere).
+inline double sdf_ball(const glm::dvec3& p, const glm::dvec3& center, double radius) {
+  return distance_lower_bound(p, center) - radius;
 }
 
 }  // namespace sol

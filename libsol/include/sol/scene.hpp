@@ -18,6 +18,7 @@ enum class ObjectType {
   PlaneX,  ///< the plane x = c (a totally geodesic hyperbolic plane)
   PlaneY,  ///< the plane y = c
   PlaneZ,  ///< the plane z = c (a flat horizontal plane)
+  Ball,    ///< the points within `radius` of `center`, drawn with a distance bound (README)
 };
 
 enum class Pattern {
@@ -28,9 +29,11 @@ enum class Pattern {
 
 struct SceneObject {
   ObjectType type = ObjectType::PlaneZ;
-  double c = 0.0;                      ///< the plane's constant coordinate
+  double c = 0.0;                      ///< planes: the constant coordinate
   glm::dvec3 color{0.8, 0.8, 0.8};     ///< linear RGB in [0, 1]
-  Pattern pattern = Pattern::None;
+  Pattern pattern = Pattern::None;     ///< planes only (balls: none)
+  glm::dvec3 center{0.0, 0.0, 0.0};    ///< balls: centre (Sol coordinates)
+  double radius = 0.5;                 ///< balls: radius, > 0
 };
 
 struct Camera {
