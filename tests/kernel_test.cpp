@@ -125,6 +125,15 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   floor.c = -0.8;
   floor.pattern = sol::Pattern::Checker;
   scene.objects = {ball, floor};
+  // A point light and coloured fog: shading as sol::light_at on both sides.
+  sol::Light point;
+  point.type = sol::LightType::Point;
+  point.position = {1.2, -0.5, 0.9};
+  point.color = {1.0, 0.9, 0.7};
+  point.intensity = 3.0;
+  scene.lights.push_back(point);
+  scene.fog_color = {0.2, 0.25, 0.3};
+  scene.fog_density = 0.08;
   sol::RenderSettings settings;
   settings.width = 40;
   settings.height = 30;
@@ -141,6 +150,22 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   int balls = 0;
   for (float o : gpu.object) balls += o == 1.0f;
   EXPECT_GT(balls, 30);
+  expect_no_validation_errors();
+}
+
+TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
+  // The kernel specialised to a scene's features and the one with every
+  // feature compiled in compute the same march (the general one evaluates
+  // full positions where the specialised one needs heights only, so float
+  // rounding differs: same tolerances as against the CPU).
+  sol::vk::MarchRenderer specialised(context()), general(context(), {.all_features = true});
+  for (const std::string& name : sol::preset_names()) {
+    const sol::Scene scene = sol::preset_scene(name);
+    const Comparison c = compare(specialised.render(scene, 40, 30), general.render(scene, 40, 30));
+    EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+    EXPECT_LE(c.color_differs, c.pixels / 100) << name;
+    EXPECT_LT(c.distance, 1e-3) << name;
+  }
   expect_no_validation_errors();
 }
 
@@ -186,7 +211,7 @@ TEST(Kernel, SwapSymmetry) {
   sol::Scene b = a;
   b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
   b.objects[0].c = -1.0;
-  b.light_direction = sigma(a.light_direction);
+  b.lights[0].direction = sigma(a.lights[0].direction);
   sol::vk::MarchRenderer renderer(context());
   const sol::RenderResult ra = renderer.render(a, 40, 30), rb = renderer.render(b, 40, 30);
   const Comparison c = compare(ra, rb);

@@ -126,11 +126,20 @@ TEST(Render, SwapSymmetry) {
   sol::Scene a;
   a.camera = {{0, 0, 2.2}, {0.1, 0.05, -1}, {0, 1, 0}, 80.0};
   a.objects = {{sol::ObjectType::PlaneZ, 1.0, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
-  a.light_direction = {0.2, 0.4, 1.0};
+  a.lights[0].direction = {0.2, 0.4, 1.0};
+  sol::Light point;  // a point light maps by σ on its position
+  point.type = sol::LightType::Point;
+  point.position = {0.5, -0.3, 1.6};
+  point.color = {1.0, 0.8, 0.6};
+  point.intensity = 2.0;
+  a.lights.push_back(point);
+  a.fog_color = {0.1, 0.1, 0.2};
+  a.fog_density = 0.1;
   sol::Scene b = a;
   b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
   b.objects[0].c = -1.0;
-  b.light_direction = sigma(a.light_direction);
+  b.lights[0].direction = sigma(a.lights[0].direction);
+  b.lights[1].position = sigma(a.lights[1].position);
   sol::RenderSettings settings;
   settings.width = 24;
   settings.height = 24;

@@ -61,12 +61,37 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"max_distance": 1e999, )" + objects + "}", "1e999");
   expect_rejected(R"({"frobnicate": 1, )" + objects + "}", "unknown key 'frobnicate'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
+  expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
+  expect_rejected(R"({"lights": [{"type": "point"}], )" + objects + "}", "needs a 'position'");
+  expect_rejected(R"({"lights": [{"type": "point", "position": [0, 0, 1], "intensity": -1}], )" + objects + "}",
+                  "lights[0].intensity");
+  expect_rejected(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}], )" + objects + "}",
+                  "lights[0].direction");
+  expect_rejected(R"({"fog": {"density": -0.1}, )" + objects + "}", "fog.density");
+  expect_rejected(R"({"fog": {"colour": [0, 0, 0]}, )" + objects + "}", "unknown key 'colour'");
+  expect_rejected(R"({"fog": {}, "fog_distance": 3, )" + objects + "}", "either 'fog' or 'fog_distance'");
   expect_rejected(R"({"objects": [{"type": "ball", "radius": 1}]})", "needs a 'center'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": -1}]})", "objects[0].radius");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "circles"}]})",
                   "balls take no pattern");
+}
+
+TEST(Scene, LightsAndFog) {
+  const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}],
+    "lights": [{"type": "directional", "direction": [0, 0, 1], "color": [1, 0.5, 0.5], "intensity": 0.7},
+               {"type": "point", "position": [1, 2, 3]}],
+    "ambient": 0.2, "fog": {"color": [0.1, 0.2, 0.3], "density": 0.05}})");
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, sol::LightType::Directional);
+  EXPECT_EQ(s.lights[0].intensity, 0.7);
+  EXPECT_EQ(s.lights[1].type, sol::LightType::Point);
+  EXPECT_EQ(s.lights[1].position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(s.ambient, 0.2);
+  EXPECT_EQ(s.fog_density, 0.05);
+  // The first schema's keys still read: fog_distance d is density 1/d.
+  EXPECT_EQ(sol::parse_scene(R"({"objects": [{"type": "plane_z"}], "fog_distance": 4})").fog_density, 0.25);
 }
 
 TEST(Scene, PresetsAreValidAndRoundTrip) {
@@ -84,7 +109,8 @@ TEST(Scene, PresetsAreValidAndRoundTrip) {
       EXPECT_EQ(back.objects[k].center, s.objects[k].center);
       EXPECT_EQ(back.objects[k].radius, s.objects[k].radius);
     }
-    EXPECT_EQ(back.fog_distance, s.fog_distance);
+    EXPECT_EQ(back.fog_density, s.fog_density);
+    EXPECT_EQ(back.lights.size(), s.lights.size());
   }
   EXPECT_THROW(sol::preset_scene("nope"), sol::InvalidArgument);
   EXPECT_THROW(sol::load_scene("/nonexistent/scene.json"), sol::InvalidArgument);

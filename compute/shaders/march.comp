@@ -18,8 +18,13 @@ layout(constant_id = 0) const int INTEGRATOR = 0;
 // constant, not a uniform: lavapipe evaluates both sides of every branch, so
 // only a compile-time branch saves the other side's cost.
 layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
+// What else the scene uses: the compiler folds away what it does not.
+layout(constant_id = 2) const bool HAS_BALLS = true;
+layout(constant_id = 3) const bool HAS_POINT_LIGHTS = true;
+layout(constant_id = 4) const bool HAS_FOG = true;
 
 const int MAX_OBJECTS = 8;
+const int MAX_LIGHTS = 4;
 
 struct Object {
   vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball), y: ball radius, z: pattern (0 none, 1 circles, 2 checker)
@@ -35,13 +40,16 @@ struct Eye {
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
   vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0)
+  vec4 lights[MAX_LIGHTS];     // directional: unit direction; point: position relative to this eye
 };
 
 layout(std140, set = 0, binding = 0) uniform Params {
   Eye eyes[2];
-  vec4 light;        // xyz: unit light direction; w: ambient
-  vec4 limits;       // x: max distance, y: hit epsilon, z: fog distance (0: none), w: max steps
+  vec4 shading;      // x: ambient, y: fog density, z: lights
+  vec4 fog_color;    // rgb
+  vec4 limits;       // x: max distance, y: hit epsilon, w: max steps
   ivec4 counts;      // x: objects, y: eye width, z: height, w: eyes (1 or 2)
+  vec4 light_color[MAX_LIGHTS];  // rgb: colour * intensity; w: 0 directional, 1 point
   Object objects[MAX_OBJECTS];
 } params;
 
@@ -60,7 +68,7 @@ float distance_lower_bound(vec3 p, vec3 q) {
 // Distance (planes: exact; balls: the bound minus the radius) to an object
 // given relative to the camera.
 float object_distance(int type, vec3 q, vec4 rel, float radius) {
-  if (type == 3) return distance_lower_bound(q, rel.xyz) - radius;
+  if (HAS_BALLS && type == 3) return distance_lower_bound(q, rel.xyz) - radius;
   float c = rel.x;
   if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
   if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
@@ -71,7 +79,7 @@ float object_distance(int type, vec3 q, vec4 rel, float radius) {
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
 vec3 plane_normal(int type, vec3 q, float c, vec4 rel, float radius) {
-  if (type == 3) {  // balls: central differences along E1, E2, E3 (as the CPU reference)
+  if (HAS_BALLS && type == 3) {  // balls: central differences along E1, E2, E3 (as the CPU reference)
     float h = 1e-3, ez = exp(q.z);
     vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
     vec3 g = vec3(object_distance(3, q + e1, rel, radius) - object_distance(3, q - e1, rel, radius),
@@ -220,11 +228,29 @@ void main() {
       u = phase.x;
       v = phase.z;
     }
-    const float ambient = params.light.w;
-    const float lambert = max(0.0, dot(n, params.light.xyz));
-    float factor = pattern_factor(int(params.objects[k].plane.z), u, v) * (ambient + (1.0 - ambient) * lambert);
-    if (params.limits.z > 0.0) factor *= exp(-t / params.limits.z);
-    color = vec4(params.objects[k].color.rgb * factor, 1.0);
+    // Lights as sol::light_at: point lights by the coordinate difference in
+    // frame components at the hit and 1/(1 + r²) on the distance bound.
+    const float ambient = params.shading.x;
+    const int light_count = min(int(params.shading.z), MAX_LIGHTS);
+    vec3 light = vec3(0.0);
+    for (int i = 0; i < light_count; ++i) {
+      const vec4 lc = params.light_color[i];
+      const vec3 lp = params.eyes[eye].lights[i].xyz;
+      vec3 l = lp;
+      float attenuation = 1.0;
+      if (HAS_POINT_LIGHTS) {
+        const vec3 diff = lp - q;
+        const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
+        const float r = distance_lower_bound(q, lp);
+        l = lc.w == 0.0 ? lp : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+        attenuation = lc.w == 0.0 ? 1.0 : 1.0 / (1.0 + r * r);
+      }
+      light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
+    }
+    const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), u, v) *
+                         (ambient + (1.0 - ambient) * light);
+    const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
+    color = vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -31,15 +32,20 @@ struct GpuObject {
 struct GpuEye {
   float right[4], up[4], forward[4], camera[4], camera_frac[4];
   float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); relative to the eye
+  float lights[kMaxLights][4];        // directional: direction; point: position relative to the eye
 };
 struct GpuParams {
   GpuEye eyes[2];
-  float light[4], limits[4];
+  float shading[4];    // ambient, fog density, light count, 0
+  float fog_color[4];
+  float limits[4];
   std::int32_t counts[4];
+  float light_color[kMaxLights][4];  // rgb * intensity, type (0 directional, 1 point)
   GpuObject objects[kMaxGpuObjects];
 };
-static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 16, "std140 layout of Eye");
-static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 3 * 16 + kMaxGpuObjects * 32, "std140 layout of Params");
+static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
+static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 4 * 16 + kMaxLights * 16 + kMaxGpuObjects * 32,
+              "std140 layout of Params");
 
 float type_code(ObjectType type) {
   switch (type) {
@@ -98,16 +104,27 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
     const glm::dvec3 centre = multiply(inverse(p), o.center);  // balls: centre relative to the camera
     set4(e.relative[k], o.type == ObjectType::Ball ? centre : glm::dvec3(c, 0.0, 0.0), 0.0);
   }
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    set4(e.lights[i], l.type == LightType::Directional ? glm::normalize(l.direction) : multiply(inverse(p), l.position),
+         0.0);
+  }
   return e;
 }
 
 GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int width, int height, double rk4_step) {
   GpuParams g{};
   for (std::size_t i = 0; i < eyes.size(); ++i) g.eyes[i] = make_eye(scene, eyes[i], width, height, rk4_step);
-  set4(g.light, glm::normalize(scene.light_direction), scene.ambient);
+  g.shading[0] = static_cast<float>(scene.ambient);
+  g.shading[1] = static_cast<float>(scene.fog_density);
+  g.shading[2] = static_cast<float>(scene.lights.size());
+  set4(g.fog_color, scene.fog_color, 0.0);
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    set4(g.light_color[i], l.color * l.intensity, l.type == LightType::Point ? 1.0 : 0.0);
+  }
   g.limits[0] = static_cast<float>(scene.max_distance);
   g.limits[1] = static_cast<float>(scene.hit_epsilon);
-  g.limits[2] = static_cast<float>(scene.fog_distance);
   g.limits[3] = static_cast<float>(scene.max_steps);
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
     g.objects[k].plane[0] = type_code(scene.objects[k].type);
@@ -135,8 +152,28 @@ void require_size(int value, const char* name) {
 }
 
 
-ComputePipeline make_pipeline(Context& c, const MarchOptions& o, bool heights_only) {
-  return ComputePipeline(c, {.name = heights_only ? "march (heights only)" : "march",
+// The features a scene uses: each is a specialisation constant of
+// march.comp, so a scene's kernel contains only what it needs.
+struct Features {
+  bool heights_only = false, balls = false, point_lights = false, fog = false;
+  std::uint32_t key() const {
+    return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u);
+  }
+};
+
+Features features_of(const Scene& scene) {
+  Features f;
+  f.heights_only = heights_only(scene);
+  f.balls = std::any_of(scene.objects.begin(), scene.objects.end(),
+                        [](const SceneObject& o) { return o.type == ObjectType::Ball; });
+  f.point_lights = std::any_of(scene.lights.begin(), scene.lights.end(),
+                               [](const Light& l) { return l.type == LightType::Point; });
+  f.fog = scene.fog_density > 0.0;
+  return f;
+}
+
+ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features& f) {
+  return ComputePipeline(c, {.name = "march (features " + std::to_string(f.key()) + ")",
                              .spirv = std::span<const std::uint32_t>(march_comp_spv),
                              .bindings = {{0, DescriptorType::UniformBuffer},
                                           {1, DescriptorType::StorageImage},
@@ -144,7 +181,10 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, bool heights_on
                                           {3, DescriptorType::StorageImage}},
                              .push_constant_size = 0,
                              .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u},
-                                                {1, heights_only ? 1u : 0u}}});
+                                                {1, f.heights_only ? 1u : 0u},
+                                                {2, f.balls ? 1u : 0u},
+                                                {3, f.point_lights ? 1u : 0u},
+                                                {4, f.fog ? 1u : 0u}}});
 }
 
 }  // namespace
@@ -152,14 +192,14 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, bool heights_on
 struct MarchRenderer::Impl {
   Context& context;
   MarchOptions options;
-  // One pipeline per specialisation: scenes of planes z = c only, and the rest.
-  std::optional<ComputePipeline> heights_only, general;
+  // One pipeline per feature set, built when first needed.
+  std::map<std::uint32_t, ComputePipeline> pipelines;
   Buffer params;
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
-  ComputePipeline& pipeline(bool only_heights) {
-    std::optional<ComputePipeline>& p = only_heights ? heights_only : general;
-    if (!p) p.emplace(make_pipeline(context, options, only_heights));
-    return *p;
+  ComputePipeline& pipeline(const Features& f) {
+    auto it = pipelines.find(f.key());
+    if (it == pipelines.end()) it = pipelines.emplace(f.key(), make_pipeline(context, options, f)).first;
+    return it->second;
   }
 };
 
@@ -168,7 +208,7 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
   }
   m_impl = std::make_unique<Impl>(context, options);
-  m_impl->pipeline(true);  // build the common one now: errors surface here, not at the first frame
+  m_impl->pipeline(Features{.heights_only = true});  // build one now: errors surface here, not at the first frame
 }
 
 MarchRenderer::~MarchRenderer() = default;
@@ -199,7 +239,7 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   const auto w = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
   const auto h = static_cast<std::uint32_t>(height);
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = m.pipeline(heights_only(scene));
+  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true} : features_of(scene));
   pipeline.bind(0, m.params);
   pipeline.bind(1, color);
   pipeline.bind(2, hit);

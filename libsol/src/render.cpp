@@ -176,10 +176,14 @@ glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
   double u = p.x, v = p.y;  // the plane's own coordinates
   if (o.type == ObjectType::PlaneX) u = p.y, v = p.z;
   if (o.type == ObjectType::PlaneY) u = p.x, v = p.z;
-  const double lambert = std::max(0.0, glm::dot(hit.normal, glm::normalize(scene.light_direction)));
-  double factor = pattern_factor(o.pattern, u, v) * (scene.ambient + (1.0 - scene.ambient) * lambert);
-  if (scene.fog_distance > 0.0) factor *= std::exp(-hit.distance / scene.fog_distance);
-  return o.color * factor;
+  glm::dvec3 light(0.0);
+  for (const Light& l : scene.lights) {
+    const LightAtPoint at = light_at(l, p);
+    light += l.color * (l.intensity * at.attenuation * std::max(0.0, glm::dot(hit.normal, at.direction)));
+  }
+  const glm::dvec3 surface = o.color * pattern_factor(o.pattern, u, v) * (scene.ambient + (1.0 - scene.ambient) * light);
+  const double transmittance = std::exp(-scene.fog_density * hit.distance);
+  return scene.fog_color + (surface - scene.fog_color) * transmittance;
 }
 
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
@@ -244,6 +248,17 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
   for (std::thread& t : pool) t.join();
   if (settings.progress) settings.progress(1.0);
   return r;
+}
+
+LightAtPoint light_at(const Light& light, const glm::dvec3& p) {
+  if (light.type == LightType::Directional) return {glm::normalize(light.direction), 1.0};
+  const glm::dvec3 d = light.position - p;
+  // The coordinate difference in frame components at p (left-invariant, like
+  // everything here), and the inverse-square law on the distance bound.
+  const glm::dvec3 v(std::exp(-p.z) * d.x, std::exp(p.z) * d.y, d.z);
+  const double r = distance_lower_bound(p, light.position);
+  const double len = glm::length(v);
+  return {len > 0.0 ? v / len : glm::dvec3(0.0, 0.0, 1.0), 1.0 / (1.0 + r * r)};
 }
 
 StereoEyes stereo_eyes(const Camera& camera, double ipd) {

@@ -85,11 +85,26 @@ void validate_in(const Scene& s, std::string_view source) {
       if (!(o.color[k] >= 0.0 && o.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
     }
   }
-  if (!finite3(s.light_direction) || glm::length(s.light_direction) == 0.0) {
-    fail(source, "light.direction must be finite and non-zero");
+  if (s.lights.size() > static_cast<std::size_t>(kMaxLights)) {
+    fail(source, "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(s.lights.size()));
   }
-  if (!(s.ambient >= 0.0 && s.ambient <= 1.0)) fail(source, "light.ambient must be in [0, 1]");
-  if (!(s.fog_distance >= 0.0) || !std::isfinite(s.fog_distance)) fail(source, "fog_distance must be >= 0");
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& l = s.lights[i];
+    const std::string at = "lights[" + std::to_string(i) + "]";
+    if (l.type == LightType::Directional && (!finite3(l.direction) || glm::length(l.direction) == 0.0)) {
+      fail(source, at + ".direction must be finite and non-zero");
+    }
+    if (l.type == LightType::Point && !finite3(l.position)) fail(source, at + ".position must be finite");
+    for (int k = 0; k < 3; ++k) {
+      if (!(l.color[k] >= 0.0 && l.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
+    }
+    if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity)) fail(source, at + ".intensity must be finite and >= 0");
+  }
+  if (!(s.ambient >= 0.0 && s.ambient <= 1.0)) fail(source, "ambient must be in [0, 1]");
+  for (int k = 0; k < 3; ++k) {
+    if (!(s.fog_color[k] >= 0.0 && s.fog_color[k] <= 1.0)) fail(source, "fog.color components must be in [0, 1]");
+  }
+  if (!(s.fog_density >= 0.0) || !std::isfinite(s.fog_density)) fail(source, "fog.density must be finite and >= 0");
   if (!(s.max_distance > 0.0 && s.max_distance <= 1e4)) fail(source, "max_distance must be in (0, 10000]");
   if (!(s.max_steps >= 1 && s.max_steps <= 100000)) fail(source, "max_steps must be in [1, 100000]");
   if (!(s.hit_epsilon > 0.0 && s.hit_epsilon <= 0.1)) fail(source, "hit_epsilon must be in (0, 0.1]");
@@ -133,7 +148,9 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     fail(source, std::string("malformed JSON: ") + e.what());
   }
   if (!root.is_object()) fail(source, "the scene must be a JSON object");
-  require_known_keys(root, {"camera", "objects", "light", "fog_distance", "max_distance", "max_steps", "hit_epsilon"},
+  require_known_keys(root,
+                     {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
+                      "max_steps", "hit_epsilon"},
                      source, "the scene");
   Scene s;
   if (root.contains("camera")) {
@@ -168,14 +185,57 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (o.contains("pattern")) obj.pattern = pattern(o["pattern"], source, at + ".pattern");
     s.objects.push_back(obj);
   }
+  // "light" and "fog_distance": the first schema's single directional light and fog.
   if (root.contains("light")) {
     const json& l = root["light"];
     if (!l.is_object()) fail(source, "'light' must be an object");
     require_known_keys(l, {"direction", "ambient"}, source, "light");
-    if (l.contains("direction")) s.light_direction = vec3(l["direction"], source, "light.direction");
+    if (l.contains("direction")) s.lights[0].direction = vec3(l["direction"], source, "light.direction");
     if (l.contains("ambient")) s.ambient = number(l["ambient"], source, "light.ambient");
   }
-  if (root.contains("fog_distance")) s.fog_distance = number(root["fog_distance"], source, "fog_distance");
+  if (root.contains("lights")) {
+    if (root.contains("light")) fail(source, "give either 'light' or 'lights', not both");
+    const json& list = root["lights"];
+    if (!list.is_array()) fail(source, "'lights' must be an array");
+    s.lights.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const json& l = list[i];
+      const std::string at = "lights[" + std::to_string(i) + "]";
+      if (!l.is_object()) fail(source, at + " must be an object");
+      if (!l.contains("type")) fail(source, at + " needs a 'type' (directional or point)");
+      Light light;
+      const std::string type = l["type"].is_string() ? l["type"].get<std::string>() : l["type"].dump();
+      if (type == "directional") {
+        light.type = LightType::Directional;
+        require_known_keys(l, {"type", "direction", "color", "intensity"}, source, at);
+        if (l.contains("direction")) light.direction = vec3(l["direction"], source, at + ".direction");
+      } else if (type == "point") {
+        light.type = LightType::Point;
+        require_known_keys(l, {"type", "position", "color", "intensity"}, source, at);
+        if (!l.contains("position")) fail(source, at + " (a point light) needs a 'position'");
+        light.position = vec3(l["position"], source, at + ".position");
+      } else {
+        fail(source, "'" + at + ".type' must be directional or point, got " + type);
+      }
+      if (l.contains("color")) light.color = vec3(l["color"], source, at + ".color");
+      if (l.contains("intensity")) light.intensity = number(l["intensity"], source, at + ".intensity");
+      s.lights.push_back(light);
+    }
+  }
+  if (root.contains("ambient")) s.ambient = number(root["ambient"], source, "ambient");
+  if (root.contains("fog_distance")) {
+    const double d = number(root["fog_distance"], source, "fog_distance");
+    if (d < 0.0) fail(source, "fog_distance must be >= 0");
+    s.fog_density = d > 0.0 ? 1.0 / d : 0.0;
+  }
+  if (root.contains("fog")) {
+    if (root.contains("fog_distance")) fail(source, "give either 'fog' or 'fog_distance', not both");
+    const json& f = root["fog"];
+    if (!f.is_object()) fail(source, "'fog' must be an object");
+    require_known_keys(f, {"color", "density"}, source, "fog");
+    if (f.contains("color")) s.fog_color = vec3(f["color"], source, "fog.color");
+    if (f.contains("density")) s.fog_density = number(f["density"], source, "fog.density");
+  }
   if (root.contains("max_distance")) s.max_distance = number(root["max_distance"], source, "max_distance");
   if (root.contains("hit_epsilon")) s.hit_epsilon = number(root["hit_epsilon"], source, "hit_epsilon");
   if (root.contains("max_steps")) {
@@ -212,12 +272,12 @@ Scene preset_scene(std::string_view name) {
     s.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 90.0};
     s.objects = {{ObjectType::PlaneZ, 1.0, {0.35, 0.6, 0.95}, Pattern::Circles},
                  {ObjectType::PlaneZ, -1.0, {0.95, 0.55, 0.3}, Pattern::Circles}};
-    s.fog_distance = 20.0;
+    s.fog_density = 1.0 / 20.0;
   } else if (name == "sheets") {
     s.camera = {{1.0, 1.5, 0.2}, glm::normalize(glm::dvec3(-1.0, -1.2, -0.1)), {0.0, 0.0, 1.0}, 75.0};
     s.objects = {{ObjectType::PlaneX, 0.0, {0.9, 0.4, 0.35}, Pattern::Checker},
                  {ObjectType::PlaneY, 0.0, {0.35, 0.8, 0.45}, Pattern::Checker}};
-    s.fog_distance = 25.0;
+    s.fog_density = 1.0 / 25.0;
   } else {
     std::string list;
     for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
@@ -245,8 +305,20 @@ std::string to_json(const Scene& s) {
           {{"type", to_string(o.type)}, {"c", o.c}, {"color", arr(o.color)}, {"pattern", to_string(o.pattern)}});
     }
   }
-  root["light"] = {{"direction", arr(s.light_direction)}, {"ambient", s.ambient}};
-  root["fog_distance"] = s.fog_distance;
+  root["lights"] = json::array();
+  for (const Light& l : s.lights) {
+    json j = {{"color", arr(l.color)}, {"intensity", l.intensity}};
+    if (l.type == LightType::Directional) {
+      j["type"] = "directional";
+      j["direction"] = arr(l.direction);
+    } else {
+      j["type"] = "point";
+      j["position"] = arr(l.position);
+    }
+    root["lights"].push_back(j);
+  }
+  root["ambient"] = s.ambient;
+  root["fog"] = {{"color", arr(s.fog_color)}, {"density", s.fog_density}};
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
   root["hit_epsilon"] = s.hit_epsilon;

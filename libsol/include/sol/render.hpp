@@ -18,9 +18,11 @@
 //     whole z-range (between its turning points) misses every plane by more
 //     than hit_epsilon is a miss at once (0 steps): an exact test.
 // Shading: base colour times the pattern (in the plane's own world
-// coordinates), times ambient + (1 - ambient) max(0, n·l) with n the unit
-// gradient of the distance (frame components, facing the ray's side) and l
-// the light direction, times exp(-t / fog_distance). Misses are black.
+// coordinates), times ambient + (1 - ambient) Σ_lights colour · intensity ·
+// attenuation · max(0, n·l), n the unit gradient of the distance (frame
+// components, facing the ray's side) and l the direction to the light
+// (light_at); then exponential fog: mix(fog colour, colour, e^{-density t}).
+// Misses are black.
 #pragma once
 
 #include <functional>
@@ -31,6 +33,19 @@
 #include "sol/scene.hpp"
 
 namespace sol {
+
+/// What a light contributes at a point p (world coordinates):
+///  - directional: l = normalize(direction), attenuation 1;
+///  - point: l = the coordinate difference to the light in frame components
+///    at p, normalize(e^{-z}Δx, e^{z}Δy, Δz) (left-invariant, but not the
+///    direction of the geodesic to the light: that comes in a later issue,
+///    through this function), attenuation 1 / (1 + r²), r =
+///    distance_lower_bound(p, light.position).
+struct LightAtPoint {
+  glm::dvec3 direction;  ///< unit, frame components at p, towards the light
+  double attenuation;
+};
+LightAtPoint light_at(const Light& light, const glm::dvec3& p);
 
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.

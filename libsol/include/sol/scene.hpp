@@ -36,6 +36,22 @@ struct SceneObject {
   double radius = 0.5;                 ///< balls: radius, > 0
 };
 
+enum class LightType {
+  Directional,  ///< from `direction` (frame components: the same at every point)
+  Point,        ///< from `position` (see sol/render.hpp for the direction and attenuation used)
+};
+
+struct Light {
+  LightType type = LightType::Directional;
+  glm::dvec3 direction{0.3, 0.5, 1.0};  ///< directional: towards the light (normalised on use)
+  glm::dvec3 position{0.0, 0.0, 0.0};   ///< point: Sol coordinates
+  glm::dvec3 color{1.0, 1.0, 1.0};      ///< linear RGB in [0, 1]
+  double intensity = 1.0;               ///< >= 0
+};
+
+/// Most lights a scene may hold.
+constexpr int kMaxLights = 4;
+
 struct Camera {
   glm::dvec3 position{0.0, 0.0, 0.0};
   glm::dvec3 forward{1.0, 0.0, 0.0};  ///< frame components at position
@@ -46,9 +62,10 @@ struct Camera {
 struct Scene {
   Camera camera;
   std::vector<SceneObject> objects;
-  glm::dvec3 light_direction{0.3, 0.5, 1.0};  ///< towards the light, frame components (normalised on use)
+  std::vector<Light> lights{Light{}};           ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                       ///< light reaching surfaces facing away, in [0, 1]
-  double fog_distance = 0.0;                   ///< colour *= exp(-arc length / fog_distance); 0 = no fog
+  glm::dvec3 fog_color{0.0, 0.0, 0.0};         ///< exponential fog: colour = mix(fog_color, colour, e^{-density t})
+  double fog_density = 0.0;                    ///< per unit arc length, >= 0; 0 = no fog
   double max_distance = 30.0;                  ///< arc length after which a ray misses
   int max_steps = 200;                         ///< march steps after which a ray misses
   double hit_epsilon = 5e-5;                   ///< a ray hits when the distance falls below this

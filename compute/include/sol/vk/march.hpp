@@ -29,6 +29,10 @@ enum class Integrator {
 struct MarchOptions {
   Integrator integrator = Integrator::ClosedForm;
   double rk4_step = 0.01;  ///< RK4 substep in arc length, > 0
+  /// Use the kernel with every feature compiled in, whatever the scene uses
+  /// (the default specialises it to the scene: planes z = c only, balls,
+  /// point lights, fog). Same image; for benchmarks.
+  bool all_features = false;
 };
 
 /// Most objects a scene may hold on the GPU.
