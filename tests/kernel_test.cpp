@@ -169,6 +169,30 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   expect_no_validation_errors();
 }
 
+TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
+  sol::Scene scene = sol::preset_scene("plane");
+  scene.objects[0].cutout = true;
+  sol::SceneObject floor;
+  floor.type = sol::ObjectType::PlaneZ;
+  floor.c = -1.0;
+  floor.pattern = sol::Pattern::Checker;
+  scene.objects.push_back(floor);
+  sol::RenderSettings settings;
+  settings.width = 48;
+  settings.height = 48;
+  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+  sol::vk::MarchRenderer renderer(context());
+  const sol::RenderResult gpu = renderer.render(scene, 48, 48);
+  const Comparison c = compare(gpu, cpu);
+  std::printf("cutout: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
+              c.mask_differs, c.pixels, c.color_differs, c.distance);
+  // Disc edges may go either way in float (1% as for the presets).
+  EXPECT_LE(c.mask_differs, c.pixels / 100);
+  EXPECT_LE(c.color_differs, c.pixels / 100);
+  EXPECT_LT(c.distance, 1e-3);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PlaneAovsLieOnThePlane) {
   sol::vk::MarchRenderer renderer(context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.

@@ -195,6 +195,38 @@ TEST(Render, BallHitsLieOnTheBoundSurface) {
   EXPECT_GT(hits, 20);
 }
 
+sol::Scene cutout_scene() {
+  // The plane z = 0 as a cutout of discs above a checkered floor z = -1.
+  sol::Scene scene = sol::preset_scene("plane");
+  scene.objects[0].cutout = true;
+  sol::SceneObject floor;
+  floor.type = sol::ObjectType::PlaneZ;
+  floor.c = -1.0;
+  floor.pattern = sol::Pattern::Checker;
+  scene.objects.push_back(floor);
+  return scene;
+}
+
+TEST(Render, CutoutPlanesAreSolidOnlyOnTheirDiscs) {
+  const sol::Scene scene = cutout_scene();
+  sol::RenderSettings settings;
+  settings.width = 48;
+  settings.height = 48;
+  const sol::RenderResult r = sol::render_cpu(scene, settings);
+  int discs = 0, through = 0;
+  for (std::size_t k = 0; k < r.object.size(); ++k) {
+    if (r.object[k] == 1.0f) {
+      ++discs;  // hits on z = 0 lie on a disc: within 0.3 of a cell centre
+      const double du = r.px[k] - std::floor(r.px[k]) - 0.5, dv = r.py[k] - std::floor(r.py[k]) - 0.5;
+      EXPECT_LT(du * du + dv * dv, 0.09 + 1e-6);
+    } else if (r.object[k] == 2.0f) {
+      ++through;
+    }
+  }
+  EXPECT_GT(discs, 20);
+  EXPECT_GT(through, 20);  // rays between the discs reach the floor
+}
+
 TEST(Render, StereoEyesAreOneGeodesicApart) {
   sol::Camera cam{{0.3, -0.2, 0.7}, {0.2, 0.9, -0.3}, {0, 0, 1}, 70.0};
   const double ipd = 0.3;

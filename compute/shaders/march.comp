@@ -22,12 +22,13 @@ layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
 layout(constant_id = 2) const bool HAS_BALLS = true;
 layout(constant_id = 3) const bool HAS_POINT_LIGHTS = true;
 layout(constant_id = 4) const bool HAS_FOG = true;
+layout(constant_id = 5) const bool HAS_CUTOUT = true;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
 
 struct Object {
-  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball), y: ball radius, z: pattern (0 none, 1 circles, 2 checker)
+  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball), y: ball radius, z: pattern (0 none, 1 circles, 2 checker), w: cutout
   vec4 color;  // rgb
 };
 
@@ -108,6 +109,13 @@ float pattern_factor(int pattern, float u, float v) {
   return 1.0;
 }
 
+// The plane's own world coordinates of a camera-relative point q: world =
+// camera * q; the pattern takes the camera position modulo 2 (exact, from double).
+vec2 plane_coordinates(int type, vec3 q, vec4 eye_camera, vec4 eye_frac) {
+  const vec3 phase = eye_frac.xyz + vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
+  return type == 0 ? phase.yz : (type == 1 ? phase.xz : phase.xy);
+}
+
 // Geodesic ODE in frame components: x' = e^{z}u1, y' = e^{-z}u2, z' = u3,
 // u1' = u1 u3, u2' = -u2 u3, u3' = u2² - u1².
 void geodesic_rhs(vec3 p, vec3 u, out vec3 dp, out vec3 du) {
@@ -163,12 +171,13 @@ void main() {
   SolRay ray;
   if (INTEGRATOR == 0) {
     ray = sol_ray(direction);
-    if (!heights_only) sol_ray_integrals(ray);
+    if (!heights_only || HAS_CUTOUT) sol_ray_integrals(ray);
   }
   vec3 rk_p = vec3(0.0), rk_u = direction;
   float rk_t = 0.0;
 
   int hit = 0, steps = 0;
+  uint passing = 0u;
   float t = 0.0;
   vec3 q = vec3(0.0);
   // Exact culling for planes z = c (as the CPU reference): a ray whose whole
@@ -187,21 +196,36 @@ void main() {
       rk_t = t;
       q = rk_p;
     }
-    float nearest = 1e30;
+    float nearest = 1e30, nearest_hit = 1e30;
     int nearest_k = 0;
     for (int k = 0; k < count; ++k) {
       float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], radii[k]);
-      if (d < nearest) {
-        nearest = d;
+      // Cutout planes being passed through (between their discs) are not hits
+      // until the ray is 2 hit_epsilon away again (as the CPU reference).
+      const uint bit = 1u << uint(k);
+      if (HAS_CUTOUT && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
+      nearest = min(nearest, d);
+      if ((!HAS_CUTOUT || (passing & bit) == 0u) && d < nearest_hit) {
+        nearest_hit = d;
         nearest_k = k;
       }
     }
     steps = step + 1;
-    if (nearest < hit_epsilon) {
+    if (nearest_hit < hit_epsilon) {
+      if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
+        const vec3 qp = (INTEGRATOR == 0 && HEIGHTS_ONLY) ? sol_position(ray, t) : q;
+        const vec2 uv = plane_coordinates(types[nearest_k], qp, eye_camera, eye_frac);
+        if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
+          passing |= 1u << uint(nearest_k);  // between the discs: go through
+          t += max(nearest, 2.0 * hit_epsilon);
+          if (t > max_distance) break;
+          continue;
+        }
+      }
       hit = nearest_k + 1;
       break;
     }
-    t += nearest;
+    t += (HAS_CUTOUT && passing != 0u) ? max(nearest, 2.0 * hit_epsilon) : nearest;
     if (t > max_distance) break;
   }
 
@@ -219,15 +243,8 @@ void main() {
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
-    const vec3 phase = eye_frac.xyz + scaled;
-    float u = phase.x, v = phase.y;
-    if (type == 0) {
-      u = phase.y;
-      v = phase.z;
-    } else if (type == 1) {
-      u = phase.x;
-      v = phase.z;
-    }
+    const vec2 uv = plane_coordinates(type, q, eye_camera, eye_frac);
+    const float u = uv.x, v = uv.y;
     // Lights as sol::light_at: point lights by the coordinate difference in
     // frame components at the hit and 1/(1 + r²) on the distance bound.
     const float ambient = params.shading.x;

@@ -130,6 +130,7 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
     g.objects[k].plane[0] = type_code(scene.objects[k].type);
     g.objects[k].plane[1] = static_cast<float>(scene.objects[k].radius);
     g.objects[k].plane[2] = pattern_code(scene.objects[k].pattern);
+    g.objects[k].plane[3] = scene.objects[k].cutout ? 1.0f : 0.0f;
     set4(g.objects[k].color, scene.objects[k].color, 1.0);
   }
   g.counts[0] = static_cast<std::int32_t>(scene.objects.size());
@@ -155,9 +156,10 @@ void require_size(int value, const char* name) {
 // The features a scene uses: each is a specialisation constant of
 // march.comp, so a scene's kernel contains only what it needs.
 struct Features {
-  bool heights_only = false, balls = false, point_lights = false, fog = false;
+  bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false;
   std::uint32_t key() const {
-    return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u);
+    return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u) |
+           (cutout ? 16u : 0u);
   }
 };
 
@@ -169,6 +171,7 @@ Features features_of(const Scene& scene) {
   f.point_lights = std::any_of(scene.lights.begin(), scene.lights.end(),
                                [](const Light& l) { return l.type == LightType::Point; });
   f.fog = scene.fog_density > 0.0;
+  f.cutout = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.cutout; });
   return f;
 }
 
@@ -184,7 +187,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                                                 {1, f.heights_only ? 1u : 0u},
                                                 {2, f.balls ? 1u : 0u},
                                                 {3, f.point_lights ? 1u : 0u},
-                                                {4, f.fog ? 1u : 0u}}});
+                                                {4, f.fog ? 1u : 0u},
+                                                {5, f.cutout ? 1u : 0u}}});
 }
 
 }  // namespace
@@ -239,7 +243,7 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   const auto w = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
   const auto h = static_cast<std::uint32_t>(height);
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true} : features_of(scene));
+  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true, true} : features_of(scene));
   pipeline.bind(0, m.params);
   pipeline.bind(1, color);
   pipeline.bind(2, hit);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <thread>
@@ -87,6 +88,11 @@ glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
   return n;
 }
 
+// A plane's own coordinates of a world point: (x, y) for z = c, (y, z) for
+// x = c, (x, z) for y = c.
+double plane_u(ObjectType type, const glm::dvec3& p) { return type == ObjectType::PlaneX ? p.y : p.x; }
+double plane_v(ObjectType type, const glm::dvec3& p) { return type == ObjectType::PlaneZ || type == ObjectType::Ball ? p.y : p.z; }
+
 // Pattern factor from the hit's coordinates in the plane (world).
 double pattern_factor(Pattern pattern, double u, double v) {
   switch (pattern) {
@@ -142,27 +148,42 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
     if (!reachable) return hit;
   }
   double t = 0.0;
+  // Cutout planes the ray is passing through (between their discs): not hits
+  // until the ray is 2 hit_epsilon away from them again; meanwhile the step
+  // is at least 2 hit_epsilon, so the ray leaves the plane.
+  std::uint64_t passing = 0;
   for (int step = 0; step < scene.max_steps; ++step) {
     const glm::dvec3 q = heights_only ? glm::dvec3(0.0, 0.0, ray.height_at(t)) : ray.at(t).position;
-    double nearest = std::numeric_limits<double>::infinity();
-    std::size_t nearest_k = 0;
+    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
+    std::size_t hit_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const double d = object_distance(objects[k], q);
-      if (d < nearest) {
-        nearest = d;
-        nearest_k = k;
+      const std::uint64_t bit = std::uint64_t{1} << k;
+      if ((passing & bit) && d > 2.0 * scene.hit_epsilon) passing &= ~bit;
+      nearest = std::min(nearest, d);
+      if (!(passing & bit) && d < nearest_hit) {
+        nearest_hit = d;
+        hit_k = k;
       }
     }
     hit.steps = step + 1;
-    if (nearest < scene.hit_epsilon) {
+    if (nearest_hit < scene.hit_epsilon) {
       const glm::dvec3 p = ray.at(t).position;
-      hit.object = static_cast<int>(nearest_k) + 1;
+      const SceneObject& o = scene.objects[hit_k];
+      const glm::dvec3 world = multiply(origin, p);
+      if (o.cutout && pattern_factor(o.pattern, plane_u(o.type, world), plane_v(o.type, world)) != 1.0) {
+        passing |= std::uint64_t{1} << hit_k;  // between the discs: go through
+        t += std::max(nearest, 2.0 * scene.hit_epsilon);
+        if (t > scene.max_distance) break;
+        continue;
+      }
+      hit.object = static_cast<int>(hit_k) + 1;
       hit.distance = t;
-      hit.point = multiply(origin, p);
-      hit.normal = object_normal(objects[nearest_k], p);
+      hit.point = world;
+      hit.normal = object_normal(objects[hit_k], p);
       return hit;
     }
-    t += nearest;
+    t += passing ? std::max(nearest, 2.0 * scene.hit_epsilon) : nearest;
     if (t > scene.max_distance) break;
   }
   hit.distance = std::min(t, scene.max_distance);
@@ -173,9 +194,7 @@ glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
   if (hit.object == 0) return glm::dvec3(0.0);
   const SceneObject& o = scene.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
-  double u = p.x, v = p.y;  // the plane's own coordinates
-  if (o.type == ObjectType::PlaneX) u = p.y, v = p.z;
-  if (o.type == ObjectType::PlaneY) u = p.x, v = p.z;
+  const double u = plane_u(o.type, p), v = plane_v(o.type, p);
   glm::dvec3 light(0.0);
   for (const Light& l : scene.lights) {
     const LightAtPoint at = light_at(l, p);

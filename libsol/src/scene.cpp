@@ -72,6 +72,7 @@ void validate_in(const Scene& s, std::string_view source) {
   }
   if (!(c.fov > 0.0 && c.fov < 180.0)) fail(source, "camera.fov must be in (0, 180) degrees");
   if (s.objects.empty()) fail(source, "the scene has no objects");
+  if (s.objects.size() > 64) fail(source, "at most 64 objects, got " + std::to_string(s.objects.size()));
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const SceneObject& o = s.objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
@@ -80,6 +81,9 @@ void validate_in(const Scene& s, std::string_view source) {
       if (!finite3(o.center)) fail(source, at + ".center must be finite");
       if (!(o.radius > 0.0) || !std::isfinite(o.radius)) fail(source, at + ".radius must be finite and > 0");
       if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls take no pattern");
+    }
+    if (o.cutout && (o.type == ObjectType::Ball || o.pattern == Pattern::None)) {
+      fail(source, at + ".cutout needs a plane with a pattern (circles or checker)");
     }
     for (int k = 0; k < 3; ++k) {
       if (!(o.color[k] >= 0.0 && o.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
@@ -178,7 +182,11 @@ Scene parse_scene(std::string_view text, std::string_view source) {
       obj.center = vec3(o["center"], source, at + ".center");
       obj.radius = number(o["radius"], source, at + ".radius");
     } else {
-      require_known_keys(o, {"type", "c", "color", "pattern"}, source, at);
+      require_known_keys(o, {"type", "c", "color", "pattern", "cutout"}, source, at);
+      if (o.contains("cutout")) {
+        if (!o["cutout"].is_boolean()) fail(source, "'" + at + ".cutout' must be true or false, got " + o["cutout"].dump());
+        obj.cutout = o["cutout"].get<bool>();
+      }
     }
     if (o.contains("c")) obj.c = number(o["c"], source, at + ".c");
     if (o.contains("color")) obj.color = vec3(o["color"], source, at + ".color");
@@ -301,8 +309,11 @@ std::string to_json(const Scene& s) {
                                  {"radius", o.radius},
                                  {"color", arr(o.color)}});
     } else {
-      root["objects"].push_back(
-          {{"type", to_string(o.type)}, {"c", o.c}, {"color", arr(o.color)}, {"pattern", to_string(o.pattern)}});
+      root["objects"].push_back({{"type", to_string(o.type)},
+                                 {"c", o.c},
+                                 {"color", arr(o.color)},
+                                 {"pattern", to_string(o.pattern)},
+                                 {"cutout", o.cutout}});
     }
   }
   root["lights"] = json::array();

@@ -32,6 +32,7 @@ struct SceneObject {
   double c = 0.0;                      ///< planes: the constant coordinate
   glm::dvec3 color{0.8, 0.8, 0.8};     ///< linear RGB in [0, 1]
   Pattern pattern = Pattern::None;     ///< planes only (balls: none)
+  bool cutout = false;                 ///< planes: only the pattern's bright cells (discs, light squares) are solid
   glm::dvec3 center{0.0, 0.0, 0.0};    ///< balls: centre (Sol coordinates)
   double radius = 0.5;                 ///< balls: radius, > 0
 };
