@@ -64,7 +64,14 @@ Pattern pattern(const json& value, std::string_view source, const std::string& n
 void validate_in(const Scene& s, std::string_view source) {
   const Camera& c = s.camera;
   auto finite3 = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-  if (!finite3(c.position)) fail(source, "camera.position must be finite");
+  // Beyond 1e15 double cannot resolve unit-size features (ulp 0.125) and the
+  // float AOVs cannot hold the coordinates: such input is refused.
+  constexpr double kMaxCoordinate = 1e15;
+  auto bounded3 = [&](const glm::dvec3& v) {
+    return finite3(v) && std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
+           std::abs(v.z) <= kMaxCoordinate;
+  };
+  if (!bounded3(c.position)) fail(source, "camera.position must be finite and within 1e15 of the origin");
   if (!finite3(c.forward) || glm::length(c.forward) == 0.0) fail(source, "camera.forward must be finite and non-zero");
   if (!finite3(c.up) || glm::length(c.up) == 0.0) fail(source, "camera.up must be finite and non-zero");
   if (glm::length(glm::cross(glm::normalize(c.forward), glm::normalize(c.up))) < 1e-9) {
@@ -76,9 +83,9 @@ void validate_in(const Scene& s, std::string_view source) {
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const SceneObject& o = s.objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
-    if (!std::isfinite(o.c)) fail(source, at + ".c must be finite");
+    if (!std::isfinite(o.c) || std::abs(o.c) > kMaxCoordinate) fail(source, at + ".c must be finite and within 1e15");
     if (o.type == ObjectType::Ball) {
-      if (!finite3(o.center)) fail(source, at + ".center must be finite");
+      if (!bounded3(o.center)) fail(source, at + ".center must be finite and within 1e15 of the origin");
       if (!(o.radius > 0.0) || !std::isfinite(o.radius)) fail(source, at + ".radius must be finite and > 0");
       if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls take no pattern");
     }
@@ -98,7 +105,9 @@ void validate_in(const Scene& s, std::string_view source) {
     if (l.type == LightType::Directional && (!finite3(l.direction) || glm::length(l.direction) == 0.0)) {
       fail(source, at + ".direction must be finite and non-zero");
     }
-    if (l.type == LightType::Point && !finite3(l.position)) fail(source, at + ".position must be finite");
+    if (l.type == LightType::Point && !bounded3(l.position)) {
+      fail(source, at + ".position must be finite and within 1e15 of the origin");
+    }
     for (int k = 0; k < 3; ++k) {
       if (!(l.color[k] >= 0.0 && l.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
     }
