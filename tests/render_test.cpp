@@ -284,3 +284,92 @@ TEST(Render, EveryPresetRendersWithoutNaN) {
 }
 
 }  // namespace
+
+namespace {
+
+using glm::dvec3;
+
+int count_differences(const sol::RenderResult& a, const sol::RenderResult& b, double& worst_distance) {
+  int differ = 0;
+  worst_distance = 0;
+  for (std::size_t k = 0; k < a.object.size(); ++k) {
+    if (a.object[k] != b.object[k]) {
+      ++differ;
+    } else if (a.object[k] != 0) {
+      worst_distance = std::max(worst_distance, static_cast<double>(std::abs(a.distance[k] - b.distance[k])));
+    }
+  }
+  return differ;
+}
+
+// In Γ\Sol the observer at p and at g·p (g ∈ Γ) see the same image.
+TEST(Quotient, ObserverAtPAndGpSeeTheSameImage) {
+  sol::Scene scene = sol::preset_scene("lattice-balls");
+  scene.max_distance = 6.0;
+  sol::RenderSettings settings;
+  settings.width = 20;
+  settings.height = 16;
+  const sol::RenderResult here = sol::render_cpu(scene, settings);
+  const sol::Lattice lattice = sol::Lattice::golden();
+  for (const dvec3& g : {lattice.element(1, 0, 0), lattice.element(0, 0, 1), lattice.element(3, -2, -2),
+                         lattice.element(-5, 7, 3)}) {
+    sol::Scene moved = scene;
+    moved.camera.position = sol::multiply(g, scene.camera.position);
+    double worst = 0;
+    const int differ = count_differences(here, sol::render_cpu(moved, settings), worst);
+    // Teleporting g·p back to p rounds at ~1e-15 of its coordinates: a ray
+    // grazing a ball may flip (at most 2 pixels); distances agree closely.
+    EXPECT_LE(differ, 2);
+    EXPECT_LT(worst, 1e-6);
+  }
+  sol::Scene far = scene;  // far outside D
+  far.camera.position = sol::multiply(lattice.element(400000, -300000, 0), scene.camera.position);
+  double worst = 0;
+  EXPECT_LE(count_differences(here, sol::render_cpu(far, settings), worst), 2);
+  EXPECT_LT(worst, 1e-6);
+}
+
+// A thin plane just inside a face of D (z = 1e-4 and z = h - 1e-4): the
+// quotient render equals the cover render with the plane's images z = c + k h,
+// so no step carries a ray through a face and past the plane unnoticed.
+TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
+  const double h = sol::Lattice::golden().height();
+  for (const double c : {1e-4, h - 1e-4}) {
+    sol::Scene quotient;
+    quotient.quotient = sol::Quotient::Golden;
+    quotient.camera = {{0.7, 0.4, 0.5 * h}, {0.3, 0.5, -0.2}, {0, 0, 1}, 100.0};
+    quotient.max_distance = 8.0;
+    quotient.max_steps = 400;
+    sol::SceneObject plane;
+    plane.type = sol::ObjectType::PlaneZ;
+    plane.c = c;
+    quotient.objects = {plane};
+    sol::Scene cover = quotient;
+    cover.quotient = sol::Quotient::None;
+    cover.objects.clear();
+    for (int k = -30; k <= 30; ++k) {
+      plane.c = c + k * h;
+      cover.objects.push_back(plane);
+    }
+    sol::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    const sol::RenderResult a = sol::render_cpu(quotient, settings), b = sol::render_cpu(cover, settings);
+    int hits_a = 0, hits_b = 0, differ = 0;
+    double worst = 0;
+    for (std::size_t k = 0; k < a.object.size(); ++k) {
+      hits_a += a.object[k] != 0;
+      hits_b += b.object[k] != 0;
+      if ((a.object[k] != 0) != (b.object[k] != 0)) {
+        ++differ;
+      } else if (a.object[k] != 0) {
+        worst = std::max(worst, static_cast<double>(std::abs(a.distance[k] - b.distance[k])));
+      }
+    }
+    EXPECT_GT(hits_a, 50);
+    EXPECT_EQ(differ, 0) << "c = " << c << ", hits " << hits_a << " vs " << hits_b;
+    EXPECT_LT(worst, 1e-4) << "c = " << c;  // both stop within the hit epsilon (5e-5) of the plane
+  }
+}
+
+}  // namespace

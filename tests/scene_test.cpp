@@ -63,6 +63,8 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
+  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden");
+  expect_rejected(R"({"quotient": "golden", "objects": [{"type": "plane_x"}]})", "not supported in the quotient");
   expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "circles", "cutout": 1}]})", "true or false");
   expect_rejected(R"({"lights": [{"type": "point"}], )" + objects + "}", "needs a 'position'");
   expect_rejected(R"({"lights": [{"type": "point", "position": [0, 0, 1], "intensity": -1}], )" + objects + "}",

@@ -233,6 +233,9 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   validate(scene);
   require_size(width, "width");
   require_size(height, "height");
+  if (scene.quotient != Quotient::None) {
+    throw NotImplemented("sol::vk::MarchRenderer: the kernel does not render the quotient Γ\\Sol yet; use the CPU renderer");
+  }
   if (scene.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(scene.objects.size()) +
                           " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));

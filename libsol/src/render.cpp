@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -16,6 +17,7 @@
 #include "sol/error.hpp"
 #include "sol/geodesic.hpp"
 #include "sol/group.hpp"
+#include "sol/lattice.hpp"
 
 namespace sol {
 namespace {
@@ -127,7 +129,9 @@ glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height)
   return glm::normalize(sx * right + sy * up + forward);
 }
 
-MarchHit march(const Scene& scene, const glm::dvec3& direction) {
+namespace {
+
+MarchHit march_cover(const Scene& scene, const glm::dvec3& direction) {
   const glm::dvec3 origin = scene.camera.position;
   const std::size_t n = scene.objects.size();
   std::vector<RelativeObject> objects(n);
@@ -188,6 +192,116 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   }
   hit.distance = std::min(t, scene.max_distance);
   return hit;
+}
+
+// The images of the scene's objects that can meet the fundamental domain D
+// (or the thin shell a step may cross before the ray teleports): planes
+// z = c by their three images around [0, h); balls by the images of their
+// centre (moved into D) under γ1^a γ2^b γ3^c with |a|, |b| <= 3, |c| <= 1,
+// which covers every cell adjacent to D (the cells above and below are
+// stretched by φ^{±2} along x, y).
+struct Image {
+  RelativeObject object;  // in world coordinates (the "camera" at the identity)
+  std::size_t owner;      // index of the scene object it is an image of
+};
+
+std::vector<Image> quotient_images(const Scene& scene, const Lattice& lattice) {
+  std::vector<Image> images;
+  const double h = lattice.height();
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    if (o.type == ObjectType::PlaneZ) {
+      const double c0 = o.c - h * std::floor(o.c / h);
+      for (int k = -1; k <= 1; ++k) images.push_back({{ObjectType::PlaneZ, c0 + k * h, glm::dvec3(0.0), 0.0}, i});
+    } else if (o.type == ObjectType::Ball) {
+      const glm::dvec3 c0 = lattice.teleport(o.center).point;
+      for (int c = -1; c <= 1; ++c) {
+        for (int a = -3; a <= 3; ++a) {
+          for (int b = -3; b <= 3; ++b) {
+            images.push_back({{ObjectType::Ball, 0.0, multiply(lattice.element(a, b, c), c0), o.radius}, i});
+          }
+        }
+      }
+    }
+  }
+  return images;
+}
+
+// The march in Γ\Sol: the ray lives in D. Every step starts in D (a ray
+// found outside is first teleported back by an element of Γ; its direction,
+// in frame components, is unchanged by the left-translation, and its
+// closed-form geodesic restarts there) and is at most kMaxStep long. The
+// distance bounds of all images of the objects in the cells around D are in
+// the step, so a step may cross a face of D but never passes through an
+// object beyond it. For speed only the images within kKeep of the last
+// filter point are evaluated, and the step is also kept below kKeep minus
+// the arc length since that filter, so that no dropped image can be reached
+// (a dropped image's bound exceeded kKeep there, and bounds are 1-Lipschitz
+// lower bounds of the distance).
+MarchHit march_quotient(const Scene& scene, const glm::dvec3& direction) {
+  constexpr double kMaxStep = 0.5, kKeep = 1.25;
+  const Lattice lattice = Lattice::golden();
+  const std::vector<Image> images = quotient_images(scene, lattice);
+  glm::dvec3 origin = lattice.teleport(scene.camera.position).point;
+  auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
+  std::vector<std::size_t> kept;
+  double since_filter = kKeep;  // forces a filter at the start
+  MarchHit hit;
+  double t = 0.0, local = 0.0;  // total arc length; arc length since the last teleport
+  for (int step = 0; step < scene.max_steps; ++step) {
+    glm::dvec3 q = multiply(origin, ray->at(local).position);
+    if (!lattice.contains(q)) {
+      const glm::dvec3 u = ray->direction_at(local);
+      origin = lattice.teleport(q).point;
+      ray = std::make_unique<ClosedFormGeodesic<double>>(u);
+      local = 0.0;
+      q = origin;
+      since_filter = kKeep;
+    }
+    if (kKeep - since_filter < 0.25) {
+      kept.clear();
+      for (std::size_t k = 0; k < images.size(); ++k) {
+        if (object_distance(images[k].object, q) <= kKeep) kept.push_back(k);
+      }
+      since_filter = 0.0;
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    std::size_t nearest_k = 0;
+    for (std::size_t k : kept) {
+      const double d = object_distance(images[k].object, q);
+      if (d < nearest) {
+        nearest = d;
+        nearest_k = k;
+      }
+    }
+    hit.steps = step + 1;
+    if (nearest < scene.hit_epsilon) {
+      hit.object = static_cast<int>(images[nearest_k].owner) + 1;
+      hit.distance = t;
+      hit.point = q;
+      // Normals are left-invariant: evaluate relative to the segment's origin
+      // (a plane then faces the side the ray comes from, as in the cover).
+      RelativeObject rel = images[nearest_k].object;
+      const glm::dvec3 qi = multiply(inverse(origin), q);
+      if (rel.type == ObjectType::Ball) rel.center = multiply(inverse(origin), rel.center);
+      if (rel.type == ObjectType::PlaneZ) rel.c -= origin.z;
+      hit.normal = object_normal(rel, qi);
+      return hit;
+    }
+    const double step_length = std::min({nearest, kMaxStep, kKeep - since_filter});
+    t += step_length;
+    local += step_length;
+    since_filter += step_length;
+    if (t > scene.max_distance) break;
+  }
+  hit.distance = std::min(t, scene.max_distance);
+  return hit;
+}
+
+}  // namespace
+
+MarchHit march(const Scene& scene, const glm::dvec3& direction) {
+  return scene.quotient == Quotient::Golden ? march_quotient(scene, direction) : march_cover(scene, direction);
 }
 
 glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {

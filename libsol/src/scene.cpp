@@ -80,6 +80,15 @@ void validate_in(const Scene& s, std::string_view source) {
   if (!(c.fov > 0.0 && c.fov < 180.0)) fail(source, "camera.fov must be in (0, 180) degrees");
   if (s.objects.empty()) fail(source, "the scene has no objects");
   if (s.objects.size() > 64) fail(source, "at most 64 objects, got " + std::to_string(s.objects.size()));
+  if (s.quotient == Quotient::Golden) {
+    for (std::size_t i = 0; i < s.objects.size(); ++i) {
+      const ObjectType t = s.objects[i].type;
+      if (t == ObjectType::PlaneX || t == ObjectType::PlaneY) {
+        fail(source, "objects[" + std::to_string(i) + "].type: planes x, y = c are not supported in the quotient " +
+                         "(their images under Γ are not coordinate planes)");
+      }
+    }
+  }
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const SceneObject& o = s.objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
@@ -163,7 +172,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (!root.is_object()) fail(source, "the scene must be a JSON object");
   require_known_keys(root,
                      {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
-                      "max_steps", "hit_epsilon"},
+                      "max_steps", "hit_epsilon", "quotient"},
                      source, "the scene");
   Scene s;
   if (root.contains("camera")) {
@@ -240,6 +249,17 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     }
   }
   if (root.contains("ambient")) s.ambient = number(root["ambient"], source, "ambient");
+  if (root.contains("quotient")) {
+    const json& q = root["quotient"];
+    const std::string name = q.is_string() ? q.get<std::string>() : q.dump();
+    if (name == "none") {
+      s.quotient = Quotient::None;
+    } else if (name == "golden") {
+      s.quotient = Quotient::Golden;
+    } else {
+      fail(source, "'quotient' must be none or golden, got " + name);
+    }
+  }
   if (root.contains("fog_distance")) {
     const double d = number(root["fog_distance"], source, "fog_distance");
     if (d < 0.0) fail(source, "fog_distance must be >= 0");
@@ -275,7 +295,7 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets"}; }
+std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets", "lattice-balls"}; }
 
 Scene preset_scene(std::string_view name) {
   Scene s;
@@ -295,6 +315,20 @@ Scene preset_scene(std::string_view name) {
     s.objects = {{ObjectType::PlaneX, 0.0, {0.9, 0.4, 0.35}, Pattern::Checker},
                  {ObjectType::PlaneY, 0.0, {0.35, 0.8, 0.45}, Pattern::Checker}};
     s.fog_density = 1.0 / 25.0;
+  } else if (name == "lattice-balls") {
+    // One ball at the base point of M = Γ\Sol: in the cover, a ball at every
+    // point of Γ·o. Looking along z from inside the domain.
+    s.quotient = Quotient::Golden;
+    s.camera = {{0.9, 0.3, 0.45}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 90.0};
+    SceneObject ball;
+    ball.type = ObjectType::Ball;
+    ball.center = {0.0, 0.0, 0.0};
+    ball.radius = 0.25;
+    ball.color = {0.9, 0.55, 0.3};
+    s.objects = {ball};
+    s.fog_density = 1.0 / 12.0;
+    s.max_distance = 12.0;
+    s.max_steps = 400;
   } else {
     std::string list;
     for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
@@ -339,6 +373,7 @@ std::string to_json(const Scene& s) {
   }
   root["ambient"] = s.ambient;
   root["fog"] = {{"color", arr(s.fog_color)}, {"density", s.fog_density}};
+  root["quotient"] = s.quotient == Quotient::Golden ? "golden" : "none";
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
   root["hit_epsilon"] = s.hit_epsilon;

@@ -60,8 +60,14 @@ struct Camera {
   double fov = 60.0;                  ///< vertical field of view, degrees, in (0, 180)
 };
 
+/// The space the rays live in: Sol itself, or the compact quotient Γ\Sol
+/// of the golden lattice (sol/lattice.hpp), where rays stay in the
+/// fundamental domain D and teleport back by an element of Γ.
+enum class Quotient { None, Golden };
+
 struct Scene {
   Camera camera;
+  Quotient quotient = Quotient::None;
   std::vector<SceneObject> objects;
   std::vector<Light> lights{Light{}};           ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                       ///< light reaching surfaces facing away, in [0, 1]
