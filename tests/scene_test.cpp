@@ -82,6 +82,15 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
                   "balls take no pattern");
 }
 
+TEST(Scene, ErrorsSayWhereInTheFile) {
+  // Each message names the field and the line its value starts on.
+  const std::string text = "{\n  \"camera\": {\"fov\": 90},\n  \"objects\": [\n    {\"type\": \"plane_z\"},\n"
+                           "    {\"type\": \"ball\", \"center\": [0, 0, 0],\n     \"radius\": -2}\n  ]\n}\n";
+  expect_rejected(text, "objects[1].radius must be finite and > 0 (line 6)");
+  expect_rejected("{\"objects\": [{\"type\": \"plane_z\",\n \"colour\": [1, 0, 0]}]}", "(line 2)");
+  expect_rejected("{\"objects\": [{\"type\": \"plane_z\"}],\n\n \"max_steps\": 0}", "max_steps must be in [1, 100000] (line 3)");
+}
+
 TEST(Scene, LightsAndFog) {
   const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}],
     "lights": [{"type": "directional", "direction": [0, 0, 1], "color": [1, 0.5, 0.5], "intensity": 0.7},

@@ -1,7 +1,9 @@
 #include "sol/scene.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -15,18 +17,123 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(std::string_view source, const std::string& what) {
-  throw InvalidArgument(std::string(source) + ": " + what);
+// The line on which each value of a JSON text starts, by path ("camera.fov",
+// "objects[2].radius"): nlohmann::json keeps no positions, so errors found
+// after parsing take their line from here. Run on text that parsed.
+class LineIndex {
+ public:
+  explicit LineIndex(std::string_view text) : m_text(text) { value(""); }
+  const std::map<std::string, int>& lines() const { return m_lines; }
+
+ private:
+  bool more() const { return m_pos < m_text.size(); }
+  void skip_space() {
+    while (more() && std::isspace(static_cast<unsigned char>(m_text[m_pos]))) {
+      if (m_text[m_pos] == '\n') ++m_line;
+      ++m_pos;
+    }
+  }
+  std::string string() {
+    std::string out;
+    ++m_pos;  // opening quote
+    while (more() && m_text[m_pos] != '"') {
+      if (m_text[m_pos] == '\\' && m_pos + 1 < m_text.size()) ++m_pos;
+      out += m_text[m_pos++];
+    }
+    ++m_pos;  // closing quote
+    return out;
+  }
+  void value(const std::string& path) {
+    skip_space();
+    if (!more()) return;
+    m_lines.emplace(path, m_line);
+    const char c = m_text[m_pos];
+    if (c == '{') {
+      ++m_pos;
+      for (;;) {
+        skip_space();
+        if (!more() || m_text[m_pos] == '}') break;
+        if (m_text[m_pos] == ',') {
+          ++m_pos;
+          continue;
+        }
+        const std::string key = string();
+        skip_space();
+        if (more() && m_text[m_pos] == ':') ++m_pos;
+        value(path.empty() ? key : path + "." + key);
+      }
+      ++m_pos;
+    } else if (c == '[') {
+      ++m_pos;
+      for (int i = 0;; ++i) {
+        skip_space();
+        if (!more() || m_text[m_pos] == ']') break;
+        if (m_text[m_pos] == ',') {
+          ++m_pos;
+          --i;
+          continue;
+        }
+        value(path + "[" + std::to_string(i) + "]");
+      }
+      ++m_pos;
+    } else if (c == '"') {
+      string();
+    } else {
+      while (more() && std::string_view(",}] \t\r\n").find(m_text[m_pos]) == std::string_view::npos) ++m_pos;
+    }
+  }
+
+  std::string_view m_text;
+  std::size_t m_pos = 0;
+  int m_line = 1;
+  std::map<std::string, int> m_lines;
+};
+
+// The index of the text being parsed (parse_scene sets it), so that every
+// error message can say where in the file its field is.
+thread_local const LineIndex* t_lines = nullptr;
+
+bool identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// " (line N)" for the longest field path named in `what` (or `path`), if known.
+std::string where_in_file(const std::string& what, const std::string& path) {
+  if (!t_lines) return {};
+  const auto& lines = t_lines->lines();
+  if (!path.empty()) {
+    const auto it = lines.find(path);
+    return it == lines.end() ? std::string() : " (line " + std::to_string(it->second) + ")";
+  }
+  std::size_t best_length = 0;
+  int best_line = 0;
+  for (const auto& [p, line] : lines) {
+    if (p.size() <= best_length) continue;
+    for (std::size_t at = what.find(p); at != std::string::npos; at = what.find(p, at + 1)) {
+      const bool starts = at == 0 || !identifier_char(what[at - 1]);
+      const std::size_t end = at + p.size();
+      const bool ends = end == what.size() || (!identifier_char(what[end]) && what[end] != '[');
+      if (starts && ends) {
+        best_length = p.size();
+        best_line = line;
+        break;
+      }
+    }
+  }
+  return best_length ? " (line " + std::to_string(best_line) + ")" : std::string();
+}
+
+[[noreturn]] void fail(std::string_view source, const std::string& what, const std::string& path = {}) {
+  throw InvalidArgument(std::string(source) + ": " + what + where_in_file(what, path));
 }
 
 void require_known_keys(const json& object, std::initializer_list<const char*> keys, std::string_view source,
-                        const std::string& where) {
+                        const std::string& where, const std::string& path = {}) {
   const std::set<std::string> known(keys.begin(), keys.end());
   for (const auto& item : object.items()) {
     if (!known.count(item.key())) {
       std::string list;
       for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-      fail(source, "unknown key '" + item.key() + "' in " + where + " (known: " + list + ")");
+      fail(source, "unknown key '" + item.key() + "' in " + where + " (known: " + list + ")",
+           path.empty() ? item.key() : path + "." + item.key());
     }
   }
 }
@@ -169,6 +276,11 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   } catch (const json::exception& e) {  // syntax errors and numbers out of range
     fail(source, std::string("malformed JSON: ") + e.what());
   }
+  const LineIndex index(text);
+  struct Scope {  // the index is in effect for this parse only
+    explicit Scope(const LineIndex* i) { t_lines = i; }
+    ~Scope() { t_lines = nullptr; }
+  } scope(&index);
   if (!root.is_object()) fail(source, "the scene must be a JSON object");
   require_known_keys(root,
                      {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
@@ -178,7 +290,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("camera")) {
     const json& c = root["camera"];
     if (!c.is_object()) fail(source, "'camera' must be an object");
-    require_known_keys(c, {"position", "forward", "up", "fov"}, source, "camera");
+    require_known_keys(c, {"position", "forward", "up", "fov"}, source, "camera", "camera");
     if (c.contains("position")) s.camera.position = vec3(c["position"], source, "camera.position");
     if (c.contains("forward")) s.camera.forward = vec3(c["forward"], source, "camera.forward");
     if (c.contains("up")) s.camera.up = vec3(c["up"], source, "camera.up");
@@ -194,13 +306,13 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     SceneObject obj;
     obj.type = object_type(o["type"], source, at + ".type");
     if (obj.type == ObjectType::Ball) {
-      require_known_keys(o, {"type", "center", "radius", "color", "pattern"}, source, at + " (a ball)");
+      require_known_keys(o, {"type", "center", "radius", "color", "pattern"}, source, at + " (a ball)", at);
       if (!o.contains("center")) fail(source, at + " (a ball) needs a 'center'");
       if (!o.contains("radius")) fail(source, at + " (a ball) needs a 'radius'");
       obj.center = vec3(o["center"], source, at + ".center");
       obj.radius = number(o["radius"], source, at + ".radius");
     } else {
-      require_known_keys(o, {"type", "c", "color", "pattern", "cutout"}, source, at);
+      require_known_keys(o, {"type", "c", "color", "pattern", "cutout"}, source, at, at);
       if (o.contains("cutout")) {
         if (!o["cutout"].is_boolean()) fail(source, "'" + at + ".cutout' must be true or false, got " + o["cutout"].dump());
         obj.cutout = o["cutout"].get<bool>();
@@ -215,7 +327,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("light")) {
     const json& l = root["light"];
     if (!l.is_object()) fail(source, "'light' must be an object");
-    require_known_keys(l, {"direction", "ambient"}, source, "light");
+    require_known_keys(l, {"direction", "ambient"}, source, "light", "light");
     if (l.contains("direction")) s.lights[0].direction = vec3(l["direction"], source, "light.direction");
     if (l.contains("ambient")) s.ambient = number(l["ambient"], source, "light.ambient");
   }
@@ -233,11 +345,11 @@ Scene parse_scene(std::string_view text, std::string_view source) {
       const std::string type = l["type"].is_string() ? l["type"].get<std::string>() : l["type"].dump();
       if (type == "directional") {
         light.type = LightType::Directional;
-        require_known_keys(l, {"type", "direction", "color", "intensity"}, source, at);
+        require_known_keys(l, {"type", "direction", "color", "intensity"}, source, at, at);
         if (l.contains("direction")) light.direction = vec3(l["direction"], source, at + ".direction");
       } else if (type == "point") {
         light.type = LightType::Point;
-        require_known_keys(l, {"type", "position", "color", "intensity"}, source, at);
+        require_known_keys(l, {"type", "position", "color", "intensity"}, source, at, at);
         if (!l.contains("position")) fail(source, at + " (a point light) needs a 'position'");
         light.position = vec3(l["position"], source, at + ".position");
       } else {
@@ -269,7 +381,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (root.contains("fog_distance")) fail(source, "give either 'fog' or 'fog_distance', not both");
     const json& f = root["fog"];
     if (!f.is_object()) fail(source, "'fog' must be an object");
-    require_known_keys(f, {"color", "density"}, source, "fog");
+    require_known_keys(f, {"color", "density"}, source, "fog", "fog");
     if (f.contains("color")) s.fog_color = vec3(f["color"], source, "fog.color");
     if (f.contains("density")) s.fog_density = number(f["density"], source, "fog.density");
   }
