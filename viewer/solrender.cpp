@@ -208,11 +208,7 @@ int main(int argc, char** argv) {
     double seconds = 0;
     bool rendered = false;
 #ifdef SOL_HAVE_VULKAN
-    if (device != "cpu" && scene.quotient != sol::Quotient::None) {
-      if (device == "vulkan") fail("--device vulkan: the kernel does not render the quotient yet; use --device cpu");
-      std::fprintf(stderr, "solrender: the quotient renders on the CPU (the kernel does not support it yet)\n");
-    }
-    if (device != "cpu" && scene.quotient == sol::Quotient::None) {
+    if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {
         sol::vk::ContextOptions context_options;

@@ -23,6 +23,8 @@ layout(constant_id = 2) const bool HAS_BALLS = true;
 layout(constant_id = 3) const bool HAS_POINT_LIGHTS = true;
 layout(constant_id = 4) const bool HAS_FOG = true;
 layout(constant_id = 5) const bool HAS_CUTOUT = true;
+// The compact quotient Γ\Sol (see march_quotient below).
+layout(constant_id = 6) const bool QUOTIENT = false;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
@@ -57,6 +59,11 @@ layout(std140, set = 0, binding = 0) uniform Params {
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
+// Quotient scenes: the images of the objects around D, in world coordinates:
+// pairs (geometry: ball centre or (c, 0, 0) for a plane z = c; (type, radius, owner, 0)).
+layout(std430, set = 0, binding = 4) readonly buffer Images {
+  vec4 images[];
+};
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, DESIGN.md §3).
 float distance_lower_bound(vec3 p, vec3 q) {
@@ -138,6 +145,79 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
   }
 }
 
+// Colour of a hit on object k with unit normal n (frame components), plane
+// coordinates uv, arc length t; q and the eye's light positions are in the
+// same coordinates (camera-relative in Sol, world in the quotient). Lights
+// as sol::light_at: point lights by the coordinate difference in frame
+// components at the hit and 1/(1 + r²) on the distance bound.
+vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
+  const float ambient = params.shading.x;
+  const int light_count = min(int(params.shading.z), MAX_LIGHTS);
+  vec3 light = vec3(0.0);
+  for (int i = 0; i < light_count; ++i) {
+    const vec4 lc = params.light_color[i];
+    const vec3 lp = params.eyes[eye].lights[i].xyz;
+    vec3 l = lp;
+    float attenuation = 1.0;
+    if (HAS_POINT_LIGHTS) {
+      const vec3 diff = lp - q;
+      const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
+      const float r = distance_lower_bound(q, lp);
+      l = lc.w == 0.0 ? lp : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+      attenuation = lc.w == 0.0 ? 1.0 : 1.0 / (1.0 + r * r);
+    }
+    light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
+  }
+  const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
+                       (ambient + (1.0 - ambient) * light);
+  const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
+  return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
+}
+
+// ---- The quotient Γ\Sol of the golden lattice (mirrors march_quotient in
+// libsol/src/render.cpp and sol::Lattice::golden()) ----------------------------
+
+const float PHI = 1.61803398874989;
+const float LATTICE_HEIGHT = 0.962423650119206;  // 2 ln φ
+
+bool in_domain(vec3 p) {
+  // (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ).
+  const float det = PHI * PHI + 1.0;
+  const float s = (PHI * p.x - p.y) / det, r = (p.x + PHI * p.y) / det;
+  return s >= 0.0 && s < 1.0 && r >= 0.0 && r < 1.0 && p.z >= 0.0 && p.z < LATTICE_HEIGHT;
+}
+
+// The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
+// y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram.
+vec3 teleport(vec3 p) {
+  const float n = -floor(p.z / LATTICE_HEIGHT);
+  const float scale = pow(PHI, 2.0 * n);
+  vec3 q = vec3(scale * p.x, p.y / scale, p.z + n * LATTICE_HEIGHT);
+  q.z = min(max(q.z, 0.0), LATTICE_HEIGHT * 0.9999999);
+  const float det = PHI * PHI + 1.0;
+  const float fs = floor((PHI * q.x - q.y) / det), fr = floor((q.x + PHI * q.y) / det);
+  q.x -= fs * PHI + fr;
+  q.y -= -fs + fr * PHI;
+  return q;
+}
+
+// The unit tangent (frame components) of the closed-form ray at arc length t.
+vec3 sol_direction(SolRay g, float t) {
+  if (g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT) return g.direction;
+  if (g.regime == REGIME_PLANE) {
+    const float v = t + g.s0;
+    vec3 d = vec3(1.0 / cosh(v), 0.0, -tanh(v));
+    if (g.swapped) d = vec3(d.y, d.x, -d.z);
+    return vec3(g.sign_x * d.x, g.sign_y * d.y, d.z);
+  }
+  const SolPoint p = sol_point(g, g.lambda * t + g.u0);
+  return vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
+}
+
+vec3 world_from(vec3 origin, vec3 local) {
+  return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
+}
+
 void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -167,6 +247,81 @@ void main() {
   const float sx = (2.0 * (float(local.x) + 0.5) / float(width) - 1.0) * tan_half * aspect;
   const float sy = (1.0 - 2.0 * (float(local.y) + 0.5) / float(height)) * tan_half;
   const vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
+
+  if (QUOTIENT) {
+    // The march of libsol's march_quotient: rays in D, teleported back when a
+    // step ends outside; each step bounded by the images of the objects in the
+    // cells around D (kept within 1.25 of the last filter point).
+    const int image_count = params.counts.x;  // image pairs
+    const float max_step = 0.5, keep = 1.25;
+    vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
+    SolRay qray = sol_ray(direction);
+    sol_ray_integrals(qray);
+    int kept[32];
+    int kept_count = 0;
+    float since_filter = keep, t = 0.0, local_t = 0.0;
+    int hit_image = -1, steps = 0;
+    vec3 q = origin;
+    for (int step = 0; step < max_steps; ++step) {
+      q = world_from(origin, sol_position(qray, local_t));
+      if (!in_domain(q)) {
+        const vec3 u = sol_direction(qray, local_t);
+        origin = teleport(q);
+        qray = sol_ray(u);
+        sol_ray_integrals(qray);
+        local_t = 0.0;
+        q = origin;
+        since_filter = keep;
+      }
+      if (keep - since_filter < 0.25) {
+        kept_count = 0;
+        for (int i = 0; i < image_count && kept_count < 32; ++i) {
+          const vec4 geom = images[2 * i], info = images[2 * i + 1];
+          const float d = int(info.x) == 3 ? distance_lower_bound(q, geom.xyz) - info.y : abs(q.z - geom.x);
+          if (d <= keep) kept[kept_count++] = i;
+        }
+        since_filter = 0.0;
+      }
+      float nearest = 1e30;
+      int nearest_i = -1;
+      for (int j = 0; j < kept_count; ++j) {
+        const vec4 geom = images[2 * kept[j]], info = images[2 * kept[j] + 1];
+        const float d = int(info.x) == 3 ? distance_lower_bound(q, geom.xyz) - info.y : abs(q.z - geom.x);
+        if (d < nearest) {
+          nearest = d;
+          nearest_i = kept[j];
+        }
+      }
+      steps = step + 1;
+      if (nearest < hit_epsilon) {
+        hit_image = nearest_i;
+        break;
+      }
+      const float step_length = min(min(nearest, max_step), keep - since_filter);
+      t += step_length;
+      local_t += step_length;
+      since_filter += step_length;
+      if (t > max_distance) break;
+    }
+    vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
+    vec4 hit_aov = vec4(0.0, 0.0, float(steps), 0.0);
+    vec4 point_aov = vec4(0.0);
+    if (hit_image >= 0) {
+      const vec4 geom = images[2 * hit_image], info = images[2 * hit_image + 1];
+      const int k = int(info.z), type = int(info.x);
+      // Normal relative to the segment's origin (planes face the ray's side).
+      const vec3 n = type == 3 ? plane_normal(3, q, 0.0, geom, info.y)
+                               : vec3(0.0, 0.0, origin.z >= geom.x ? 1.0 : -1.0);
+      color = shade_hit(k, n, type == 3 ? q.xy : q.xy, t, q, eye);
+      hit_aov.x = float(k + 1);
+      hit_aov.y = t;
+      point_aov = vec4(q, 0.0);
+    }
+    imageStore(color_image, pixel, color);
+    imageStore(aov_hit, pixel, hit_aov);
+    imageStore(aov_point, pixel, point_aov);
+    return;
+  }
 
   SolRay ray;
   if (INTEGRATOR == 0) {
@@ -244,30 +399,7 @@ void main() {
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
     const vec2 uv = plane_coordinates(type, q, eye_camera, eye_frac);
-    const float u = uv.x, v = uv.y;
-    // Lights as sol::light_at: point lights by the coordinate difference in
-    // frame components at the hit and 1/(1 + r²) on the distance bound.
-    const float ambient = params.shading.x;
-    const int light_count = min(int(params.shading.z), MAX_LIGHTS);
-    vec3 light = vec3(0.0);
-    for (int i = 0; i < light_count; ++i) {
-      const vec4 lc = params.light_color[i];
-      const vec3 lp = params.eyes[eye].lights[i].xyz;
-      vec3 l = lp;
-      float attenuation = 1.0;
-      if (HAS_POINT_LIGHTS) {
-        const vec3 diff = lp - q;
-        const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
-        const float r = distance_lower_bound(q, lp);
-        l = lc.w == 0.0 ? lp : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
-        attenuation = lc.w == 0.0 ? 1.0 : 1.0 / (1.0 + r * r);
-      }
-      light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
-    }
-    const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), u, v) *
-                         (ambient + (1.0 - ambient) * light);
-    const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
-    color = vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
+    color = shade_hit(k, n, uv, t, q, eye);
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <sol/error.hpp>
 #include <sol/group.hpp>
+#include <sol/lattice.hpp>
 
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
@@ -87,7 +88,10 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
   const glm::dvec3 right = glm::normalize(glm::cross(forward, cam.up));
   const glm::dvec3 up = glm::cross(right, forward);
   const double tan_half = std::tan(cam.fov * 0.5 * 3.14159265358979323846 / 180.0);
-  const glm::dvec3 p = cam.position;
+  const bool quotient = scene.quotient != Quotient::None;
+  // In the quotient the kernel works in world coordinates inside D: the eye
+  // is teleported there (in double) and point lights stay in world coordinates.
+  const glm::dvec3 p = quotient ? Lattice::golden().teleport(cam.position).point : cam.position;
   GpuEye e{};
   set4(e.right, right, tan_half);
   set4(e.up, up, static_cast<double>(width) / height);
@@ -106,8 +110,8 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    set4(e.lights[i], l.type == LightType::Directional ? glm::normalize(l.direction) : multiply(inverse(p), l.position),
-         0.0);
+    const glm::dvec3 position = quotient ? l.position : multiply(inverse(p), l.position);
+    set4(e.lights[i], l.type == LightType::Directional ? glm::normalize(l.direction) : position, 0.0);
   }
   return e;
 }
@@ -133,11 +137,40 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
     g.objects[k].plane[3] = scene.objects[k].cutout ? 1.0f : 0.0f;
     set4(g.objects[k].color, scene.objects[k].color, 1.0);
   }
-  g.counts[0] = static_cast<std::int32_t>(scene.objects.size());
+  g.counts[0] = static_cast<std::int32_t>(scene.objects.size());  // quotient: the image count (render_eyes)
   g.counts[1] = width;
   g.counts[2] = height;
   g.counts[3] = static_cast<std::int32_t>(eyes.size());
   return g;
+}
+
+// The images of the objects around D, as libsol's CPU reference takes them
+// (render.cpp, quotient_images): planes z = c at c0 + k h, k = -1..1; balls
+// at γ1^a γ2^b γ3^c · (centre moved into D), |a|, |b| <= 3, |c| <= 1. Pairs of
+// vec4: (geometry), (type, radius, owner, 0).
+std::vector<float> quotient_images(const Scene& scene) {
+  const Lattice lattice = Lattice::golden();
+  const double h = lattice.height();
+  std::vector<float> out;
+  auto push = [&out](const glm::dvec3& geometry, float type, double radius, std::size_t owner) {
+    for (double v : {geometry.x, geometry.y, geometry.z, 0.0}) out.push_back(static_cast<float>(v));
+    for (double v : {static_cast<double>(type), radius, static_cast<double>(owner), 0.0}) out.push_back(static_cast<float>(v));
+  };
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    if (o.type == ObjectType::PlaneZ) {
+      const double c0 = o.c - h * std::floor(o.c / h);
+      for (int k = -1; k <= 1; ++k) push(glm::dvec3(c0 + k * h, 0.0, 0.0), 2.0f, 0.0, i);
+    } else if (o.type == ObjectType::Ball) {
+      const glm::dvec3 c0 = lattice.teleport(o.center).point;
+      for (int c = -1; c <= 1; ++c) {
+        for (int a = -3; a <= 3; ++a) {
+          for (int b = -3; b <= 3; ++b) push(multiply(lattice.element(a, b, c), c0), 3.0f, o.radius, i);
+        }
+      }
+    }
+  }
+  return out;
 }
 
 bool heights_only(const Scene& scene) {
@@ -156,16 +189,17 @@ void require_size(int value, const char* name) {
 // The features a scene uses: each is a specialisation constant of
 // march.comp, so a scene's kernel contains only what it needs.
 struct Features {
-  bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false;
+  bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false, quotient = false;
   std::uint32_t key() const {
     return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u) |
-           (cutout ? 16u : 0u);
+           (cutout ? 16u : 0u) | (quotient ? 32u : 0u);
   }
 };
 
 Features features_of(const Scene& scene) {
   Features f;
-  f.heights_only = heights_only(scene);
+  f.quotient = scene.quotient != Quotient::None;
+  f.heights_only = heights_only(scene) && !f.quotient;
   f.balls = std::any_of(scene.objects.begin(), scene.objects.end(),
                         [](const SceneObject& o) { return o.type == ObjectType::Ball; });
   f.point_lights = std::any_of(scene.lights.begin(), scene.lights.end(),
@@ -181,14 +215,16 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                              .bindings = {{0, DescriptorType::UniformBuffer},
                                           {1, DescriptorType::StorageImage},
                                           {2, DescriptorType::StorageImage},
-                                          {3, DescriptorType::StorageImage}},
+                                          {3, DescriptorType::StorageImage},
+                                          {4, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {1, f.heights_only ? 1u : 0u},
                                                 {2, f.balls ? 1u : 0u},
                                                 {3, f.point_lights ? 1u : 0u},
                                                 {4, f.fog ? 1u : 0u},
-                                                {5, f.cutout ? 1u : 0u}}});
+                                                {5, f.cutout ? 1u : 0u},
+                                                {6, f.quotient ? 1u : 0u}}});
 }
 
 }  // namespace
@@ -233,24 +269,27 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   validate(scene);
   require_size(width, "width");
   require_size(height, "height");
-  if (scene.quotient != Quotient::None) {
-    throw NotImplemented("sol::vk::MarchRenderer: the kernel does not render the quotient Γ\\Sol yet; use the CPU renderer");
-  }
   if (scene.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(scene.objects.size()) +
                           " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
   }
   Impl& m = *m_impl;
-  const GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
+  GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
+  // Quotient scenes: the images of the objects (binding 4); else a stub.
+  const std::vector<float> images = scene.quotient != Quotient::None ? quotient_images(scene) : std::vector<float>(8, 0.0f);
+  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 8);
+  Buffer image_buffer(m.context, images.size() * sizeof(float));
+  image_buffer.write(images);
   m.params.write(std::span<const GpuParams>(&g, 1));
   const auto w = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
   const auto h = static_cast<std::uint32_t>(height);
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true, true} : features_of(scene));
+  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true, true, scene.quotient != Quotient::None} : features_of(scene));
   pipeline.bind(0, m.params);
   pipeline.bind(1, color);
   pipeline.bind(2, hit);
   pipeline.bind(3, point);
+  pipeline.bind(4, image_buffer);
   const double ms = pipeline.run(group_count(w, 8), group_count(h, 8));
   if (device_ms) *device_ms = ms;
 
