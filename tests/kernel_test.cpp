@@ -124,7 +124,13 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   floor.type = sol::ObjectType::PlaneZ;
   floor.c = -0.8;
   floor.pattern = sol::Pattern::Checker;
-  scene.objects = {ball, floor};
+  sol::SceneObject tube;
+  tube.type = sol::ObjectType::Tube;
+  tube.axis = 2;
+  tube.center = {1.5, -0.8, 0.0};
+  tube.radius = 0.2;
+  tube.color = {0.8, 0.3, 0.8};
+  scene.objects = {ball, floor, tube};
   // A point light and coloured fog: shading as sol::light_at on both sides.
   sol::Light point;
   point.type = sol::LightType::Point;
@@ -141,6 +147,9 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   sol::vk::MarchRenderer renderer(context());
   const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
   const Comparison c = compare(gpu, cpu);
+  int tubes = 0;
+  for (float o : gpu.object) tubes += o == 3.0f;
+  EXPECT_GT(tubes, 10);
   std::printf("ball scene: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
               c.mask_differs, c.pixels, c.color_differs, c.distance);
   // Same tolerances as the presets (float against double, edges may flip).

@@ -171,6 +171,50 @@ TEST(Render, DistanceLowerBoundNeverExceedsGeodesicLength) {
   EXPECT_EQ(sol::distance_lower_bound(dvec3(1, 2, 3), dvec3(1, 2, 3)), 0.0);
 }
 
+// Length of the coordinate curve a -> b through `via` heights: piecewise
+// straight in coordinates, the metric integrated by the midpoint rule.
+double path_length(const std::vector<dvec3>& points) {
+  double length = 0;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const int n = 400;
+    const dvec3 d = (points[i + 1] - points[i]) / double(n);
+    for (int k = 0; k < n; ++k) {
+      const double z = points[i].z + (k + 0.5) * d.z;
+      length += std::sqrt(std::exp(-2 * z) * d.x * d.x + std::exp(2 * z) * d.y * d.y + d.z * d.z);
+    }
+  }
+  return length;
+}
+
+TEST(Render, TubeBoundsNeverExceedPathLengthsAndAreExactInTheirPlanes) {
+  std::mt19937_64 rng(51);
+  std::uniform_real_distribution<double> coord(-1.5, 1.5), height(-1.5, 1.5);
+  const dvec3 through(0.2, -0.3, 0.4);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < 200; ++i) {
+      const dvec3 p(coord(rng), coord(rng), coord(rng));
+      const double bound = sol::sdf_tube(p, through, axis, 0.0);
+      // Any curve from p to a point of the line is at least the distance.
+      double shortest = 1e300;
+      for (int j = 0; j < 40; ++j) {
+        dvec3 a = through;
+        a[axis] = through[axis] + 3.0 * coord(rng);
+        const double mid = height(rng);
+        shortest = std::min({shortest, path_length({p, a}), path_length({p, dvec3(p.x, p.y, mid), dvec3(a.x, a.y, mid), a})});
+      }
+      EXPECT_LE(bound, shortest + 1e-9) << axis << " " << p.x << " " << p.y << " " << p.z;
+    }
+  }
+  // Exact in the plane containing the line: for axis z and p in y = y0 the
+  // geodesic of the hyperbolic plane y = y0 reaches the line at that length.
+  for (const dvec3& p : {dvec3(1.1, through.y, 0.3), dvec3(-0.7, through.y, -0.9)}) {
+    const double d = sol::sdf_tube(p, through, 2, 0.0);
+    const dvec3 end = sol::flow({p, -sol::sdf_plane_x_gradient(p, through.x)}, d, dopri()).position;
+    EXPECT_NEAR(end.x, through.x, 1e-9);
+    EXPECT_NEAR(end.y, through.y, 1e-12);
+  }
+}
+
 TEST(Render, BallHitsLieOnTheBoundSurface) {
   sol::Scene scene;
   scene.camera = {{0, 0, 0}, {1, 0.2, 0.1}, {0, 0, 1}, 60.0};

@@ -64,6 +64,8 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
   expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden");
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})", "x, y or z");
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": "x", "radius": 1}]})", "needs 'through'");
   expect_rejected(R"({"quotient": "golden", "objects": [{"type": "plane_x"}]})", "not supported in the quotient");
   expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "circles", "cutout": 1}]})", "true or false");
   expect_rejected(R"({"lights": [{"type": "point"}], )" + objects + "}", "needs a 'position'");
@@ -79,7 +81,7 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "circles"}]})",
-                  "balls take no pattern");
+                  "balls and tubes take no pattern");
 }
 
 TEST(Scene, ErrorsSayWhereInTheFile) {

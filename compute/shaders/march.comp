@@ -30,7 +30,7 @@ const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
 
 struct Object {
-  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball), y: ball radius, z: pattern (0 none, 1 circles, 2 checker), w: cutout
+  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball, 4 tube), y: radius, z: pattern (0 none, 1 circles, 2 checker), w: cutout
   vec4 color;  // rgb
 };
 
@@ -42,7 +42,7 @@ struct Eye {
   vec4 forward;      // xyz: camera forward; w: RK4 step
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
-  vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0)
+  vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0), tubes (point, axis)
   vec4 lights[MAX_LIGHTS];     // directional: unit direction; point: position relative to this eye
 };
 
@@ -75,8 +75,17 @@ float distance_lower_bound(vec3 p, vec3 q) {
 
 // Distance (planes: exact; balls: the bound minus the radius) to an object
 // given relative to the camera.
+// Tubes: the bound of sol::sdf_tube (the two coordinate planes containing the axis).
+float tube_distance(vec3 q, vec3 through, int axis, float radius) {
+  const float to_x = asinh(abs(q.x - through.x) * exp(-q.z));
+  const float to_y = asinh(abs(q.y - through.y) * exp(q.z));
+  const float to_z = abs(q.z - through.z);
+  return (axis == 2 ? max(to_x, to_y) : (axis == 0 ? max(to_y, to_z) : max(to_x, to_z))) - radius;
+}
+
 float object_distance(int type, vec3 q, vec4 rel, float radius) {
   if (HAS_BALLS && type == 3) return distance_lower_bound(q, rel.xyz) - radius;
+  if (HAS_BALLS && type == 4) return tube_distance(q, rel.xyz, int(rel.w), radius);
   float c = rel.x;
   if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
   if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
@@ -87,12 +96,12 @@ float object_distance(int type, vec3 q, vec4 rel, float radius) {
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
 vec3 plane_normal(int type, vec3 q, float c, vec4 rel, float radius) {
-  if (HAS_BALLS && type == 3) {  // balls: central differences along E1, E2, E3 (as the CPU reference)
+  if (HAS_BALLS && type >= 3) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
     float h = 1e-3, ez = exp(q.z);
     vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-    vec3 g = vec3(object_distance(3, q + e1, rel, radius) - object_distance(3, q - e1, rel, radius),
-                  object_distance(3, q + e2, rel, radius) - object_distance(3, q - e2, rel, radius),
-                  object_distance(3, q + e3, rel, radius) - object_distance(3, q - e3, rel, radius));
+    vec3 g = vec3(object_distance(type, q + e1, rel, radius) - object_distance(type, q - e1, rel, radius),
+                  object_distance(type, q + e2, rel, radius) - object_distance(type, q - e2, rel, radius),
+                  object_distance(type, q + e3, rel, radius) - object_distance(type, q - e3, rel, radius));
     return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
   }
   float side = 0.0 >= c ? 1.0 : -1.0;

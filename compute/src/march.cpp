@@ -58,6 +58,8 @@ float type_code(ObjectType type) {
       return 2.0f;
     case ObjectType::Ball:
       return 3.0f;
+    case ObjectType::Tube:
+      return 4.0f;
   }
   return 2.0f;
 }
@@ -105,8 +107,10 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
     double c = o.c - p.z;  // the plane relative to the camera (see sol/render.hpp)
     if (o.type == ObjectType::PlaneX) c = std::exp(-p.z) * (o.c - p.x);
     if (o.type == ObjectType::PlaneY) c = std::exp(p.z) * (o.c - p.y);
-    const glm::dvec3 centre = multiply(inverse(p), o.center);  // balls: centre relative to the camera
-    set4(e.relative[k], o.type == ObjectType::Ball ? centre : glm::dvec3(c, 0.0, 0.0), 0.0);
+    // Balls: centre; tubes: a point of the axis (left-translation keeps it a coordinate line) and the axis.
+    const glm::dvec3 centre = multiply(inverse(p), o.center);
+    const bool solid = o.type == ObjectType::Ball || o.type == ObjectType::Tube;
+    set4(e.relative[k], solid ? centre : glm::dvec3(c, 0.0, 0.0), o.type == ObjectType::Tube ? o.axis : 0.0);
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -200,8 +204,9 @@ Features features_of(const Scene& scene) {
   Features f;
   f.quotient = scene.quotient != Quotient::None;
   f.heights_only = heights_only(scene) && !f.quotient;
-  f.balls = std::any_of(scene.objects.begin(), scene.objects.end(),
-                        [](const SceneObject& o) { return o.type == ObjectType::Ball; });
+  f.balls = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) {
+    return o.type == ObjectType::Ball || o.type == ObjectType::Tube;
+  });
   f.point_lights = std::any_of(scene.lights.begin(), scene.lights.end(),
                                [](const Light& l) { return l.type == LightType::Point; });
   f.fog = scene.fog_density > 0.0;

@@ -29,10 +29,11 @@ struct RelativeObject {
   double c = 0.0;
   glm::dvec3 center{0.0};
   double radius = 0.0;
+  int axis = 2;
 };
 
 RelativeObject relative_object(const SceneObject& o, const glm::dvec3& p) {
-  RelativeObject r{o.type, 0.0, glm::dvec3(0.0), o.radius};
+  RelativeObject r{o.type, 0.0, glm::dvec3(0.0), o.radius, o.axis};
   switch (o.type) {
     case ObjectType::PlaneX:
       r.c = std::exp(-p.z) * (o.c - p.x);
@@ -44,6 +45,7 @@ RelativeObject relative_object(const SceneObject& o, const glm::dvec3& p) {
       r.c = o.c - p.z;
       break;
     case ObjectType::Ball:
+    case ObjectType::Tube:  // left-translation maps coordinate lines to coordinate lines
       r.center = multiply(inverse(p), o.center);
       break;
   }
@@ -60,6 +62,8 @@ double object_distance(const RelativeObject& o, const glm::dvec3& q) {
       return sdf_plane_z(q, o.c);
     case ObjectType::Ball:
       return sdf_ball(q, o.center, o.radius);
+    case ObjectType::Tube:
+      return sdf_tube(q, o.center, o.axis, o.radius);
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -70,7 +74,7 @@ double object_distance(const RelativeObject& o, const glm::dvec3& q) {
 // the gradient of the distance bound by central differences along the frame
 // E1 = e^{z}∂x, E2 = e^{-z}∂y, E3 = ∂z (the same step as the kernel's).
 glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
-  if (o.type == ObjectType::Ball) {
+  if (o.type == ObjectType::Ball || o.type == ObjectType::Tube) {
     const double h = 1e-3, ez = std::exp(q.z);
     const glm::dvec3 e1(h * ez, 0.0, 0.0), e2(0.0, h / ez, 0.0), e3(0.0, 0.0, h);
     const glm::dvec3 g(object_distance(o, q + e1) - object_distance(o, q - e1),
@@ -93,7 +97,9 @@ glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
 // A plane's own coordinates of a world point: (x, y) for z = c, (y, z) for
 // x = c, (x, z) for y = c.
 double plane_u(ObjectType type, const glm::dvec3& p) { return type == ObjectType::PlaneX ? p.y : p.x; }
-double plane_v(ObjectType type, const glm::dvec3& p) { return type == ObjectType::PlaneZ || type == ObjectType::Ball ? p.y : p.z; }
+double plane_v(ObjectType type, const glm::dvec3& p) {
+  return type == ObjectType::PlaneX || type == ObjectType::PlaneY ? p.z : p.y;
+}
 
 // Pattern factor from the hit's coordinates in the plane (world).
 double pattern_factor(Pattern pattern, double u, double v) {

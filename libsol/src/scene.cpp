@@ -157,7 +157,8 @@ ObjectType object_type(const json& value, std::string_view source, const std::st
   if (s == "plane_y") return ObjectType::PlaneY;
   if (s == "plane_z") return ObjectType::PlaneZ;
   if (s == "ball") return ObjectType::Ball;
-  fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, ball, got " + s);
+  if (s == "tube") return ObjectType::Tube;
+  fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, ball, tube, got " + s);
 }
 
 Pattern pattern(const json& value, std::string_view source, const std::string& name) {
@@ -190,9 +191,9 @@ void validate_in(const Scene& s, std::string_view source) {
   if (s.quotient == Quotient::Golden) {
     for (std::size_t i = 0; i < s.objects.size(); ++i) {
       const ObjectType t = s.objects[i].type;
-      if (t == ObjectType::PlaneX || t == ObjectType::PlaneY) {
-        fail(source, "objects[" + std::to_string(i) + "].type: planes x, y = c are not supported in the quotient " +
-                         "(their images under Γ are not coordinate planes)");
+      if (t == ObjectType::PlaneX || t == ObjectType::PlaneY || t == ObjectType::Tube) {
+        fail(source, "objects[" + std::to_string(i) + "].type: planes x, y = c and tubes are not supported in the " +
+                         "quotient yet (their images under Γ are not of the same kind)");
       }
     }
   }
@@ -200,12 +201,13 @@ void validate_in(const Scene& s, std::string_view source) {
     const SceneObject& o = s.objects[i];
     const std::string at = "objects[" + std::to_string(i) + "]";
     if (!std::isfinite(o.c) || std::abs(o.c) > kMaxCoordinate) fail(source, at + ".c must be finite and within 1e15");
-    if (o.type == ObjectType::Ball) {
+    if (o.type == ObjectType::Ball || o.type == ObjectType::Tube) {
       if (!bounded3(o.center)) fail(source, at + ".center must be finite and within 1e15 of the origin");
       if (!(o.radius > 0.0) || !std::isfinite(o.radius)) fail(source, at + ".radius must be finite and > 0");
-      if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls take no pattern");
+      if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls and tubes take no pattern");
+      if (o.axis < 0 || o.axis > 2) fail(source, at + ".axis must be x, y or z");
     }
-    if (o.cutout && (o.type == ObjectType::Ball || o.pattern == Pattern::None)) {
+    if (o.cutout && (o.type == ObjectType::Ball || o.type == ObjectType::Tube || o.pattern == Pattern::None)) {
       fail(source, at + ".cutout needs a plane with a pattern (circles or checker)");
     }
     for (int k = 0; k < 3; ++k) {
@@ -251,6 +253,8 @@ const char* to_string(ObjectType type) {
       return "plane_z";
     case ObjectType::Ball:
       return "ball";
+    case ObjectType::Tube:
+      return "tube";
   }
   return "?";
 }
@@ -310,6 +314,16 @@ Scene parse_scene(std::string_view text, std::string_view source) {
       if (!o.contains("center")) fail(source, at + " (a ball) needs a 'center'");
       if (!o.contains("radius")) fail(source, at + " (a ball) needs a 'radius'");
       obj.center = vec3(o["center"], source, at + ".center");
+      obj.radius = number(o["radius"], source, at + ".radius");
+    } else if (obj.type == ObjectType::Tube) {
+      require_known_keys(o, {"type", "axis", "through", "radius", "color", "pattern"}, source, at + " (a tube)", at);
+      for (const char* key : {"axis", "through", "radius"}) {
+        if (!o.contains(key)) fail(source, at + " (a tube) needs '" + key + "'");
+      }
+      const std::string axis = o["axis"].is_string() ? o["axis"].get<std::string>() : o["axis"].dump();
+      if (axis != "x" && axis != "y" && axis != "z") fail(source, "'" + at + ".axis' must be x, y or z, got " + axis);
+      obj.axis = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
+      obj.center = vec3(o["through"], source, at + ".through");
       obj.radius = number(o["radius"], source, at + ".radius");
     } else {
       require_known_keys(o, {"type", "c", "color", "pattern", "cutout"}, source, at, at);
@@ -458,7 +472,13 @@ std::string to_json(const Scene& s) {
                     {"fov", s.camera.fov}};
   root["objects"] = json::array();
   for (const SceneObject& o : s.objects) {
-    if (o.type == ObjectType::Ball) {
+    if (o.type == ObjectType::Tube) {
+      root["objects"].push_back({{"type", to_string(o.type)},
+                                 {"axis", o.axis == 0 ? "x" : (o.axis == 1 ? "y" : "z")},
+                                 {"through", arr(o.center)},
+                                 {"radius", o.radius},
+                                 {"color", arr(o.color)}});
+    } else if (o.type == ObjectType::Ball) {
       root["objects"].push_back({{"type", to_string(o.type)},
                                  {"center", arr(o.center)},
                                  {"radius", o.radius},

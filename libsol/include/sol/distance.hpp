@@ -58,4 +58,22 @@ inline double sdf_ball(const glm::dvec3& p, const glm::dvec3& center, double rad
   return distance_lower_bound(p, center) - radius;
 }
 
+/// Signed distance bound of the tube of `radius` around the line through
+/// `through` along coordinate `axis` (0 x, 1 y, 2 z). The line lies in two
+/// coordinate planes, and the distance to a set is at least the distance to
+/// any set containing it:
+///   axis z: {x = x0} ∩ {y = y0}: max(asinh(|Δx| e^{-z}), asinh(|Δy| e^{z}))
+///   axis x: {y = y0} ∩ {z = z0}: max(asinh(|Δy| e^{z}), |Δz|)
+///   axis y: {x = x0} ∩ {z = z0}: max(asinh(|Δx| e^{-z}), |Δz|)
+/// Exact for points in the totally geodesic plane x = x0 or y = y0 that
+/// contains the line (there the hyperbolic-plane distance to a geodesic,
+/// resp. to a horocycle, is attained); a lower bound elsewhere.
+inline double sdf_tube(const glm::dvec3& p, const glm::dvec3& through, int axis, double radius) {
+  const double to_x = std::asinh(std::abs(p.x - through.x) * std::exp(-p.z));
+  const double to_y = std::asinh(std::abs(p.y - through.y) * std::exp(p.z));
+  const double to_z = std::abs(p.z - through.z);
+  const double d = axis == 2 ? std::max(to_x, to_y) : (axis == 0 ? std::max(to_y, to_z) : std::max(to_x, to_z));
+  return d - radius;
+}
+
 }  // namespace sol

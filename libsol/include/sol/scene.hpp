@@ -19,6 +19,7 @@ enum class ObjectType {
   PlaneY,  ///< the plane y = c
   PlaneZ,  ///< the plane z = c (a flat horizontal plane)
   Ball,    ///< the points within `radius` of `center`, drawn with a distance bound (README)
+  Tube,    ///< the points within `radius` of the line through `center` along `axis` (a bound; README)
 };
 
 enum class Pattern {
@@ -34,7 +35,8 @@ struct SceneObject {
   Pattern pattern = Pattern::None;     ///< planes only (balls: none)
   bool cutout = false;                 ///< planes: only the pattern's bright cells (discs, light squares) are solid
   glm::dvec3 center{0.0, 0.0, 0.0};    ///< balls: centre (Sol coordinates)
-  double radius = 0.5;                 ///< balls: radius, > 0
+  double radius = 0.5;                 ///< balls, tubes: radius, > 0
+  int axis = 2;                        ///< tubes: 0 x, 1 y, 2 z (the line through `center`)
 };
 
 enum class LightType {
