@@ -321,7 +321,7 @@ void main() {
       // Normal relative to the segment's origin (planes face the ray's side).
       const vec3 n = type == 3 ? plane_normal(3, q, 0.0, geom, info.y)
                                : vec3(0.0, 0.0, origin.z >= geom.x ? 1.0 : -1.0);
-      color = shade_hit(k, n, type == 3 ? q.xy : q.xy, t, q, eye);
+      color = shade_hit(k, n, q.xy, t, q, eye);  // planes z = c: their own coordinates are (x, y)
       hit_aov.x = float(k + 1);
       hit_aov.y = t;
       point_aov = vec4(q, 0.0);

@@ -86,31 +86,25 @@ void set4(float* dst, const glm::dvec3& v, double w) {
 // One eye: camera basis, position terms and the plane constants relative to
 // it, all in double (see march.hpp).
 GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, double rk4_step) {
-  const glm::dvec3 forward = glm::normalize(cam.forward);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, cam.up));
-  const glm::dvec3 up = glm::cross(right, forward);
-  const double tan_half = std::tan(cam.fov * 0.5 * 3.14159265358979323846 / 180.0);
+  const CameraBasis basis = camera_basis(cam);
   const bool quotient = scene.quotient != Quotient::None;
   // In the quotient the kernel works in world coordinates inside D: the eye
   // is teleported there (in double) and point lights stay in world coordinates.
   const glm::dvec3 p = quotient ? Lattice::golden().teleport(cam.position).point : cam.position;
   GpuEye e{};
-  set4(e.right, right, tan_half);
-  set4(e.up, up, static_cast<double>(width) / height);
-  set4(e.forward, forward, rk4_step);
+  set4(e.right, basis.right, basis.tan_half_fov);
+  set4(e.up, basis.up, static_cast<double>(width) / height);
+  set4(e.forward, basis.forward, rk4_step);
   set4(e.camera, p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
   set4(e.camera_frac, p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    const SceneObject& o = scene.objects[k];
-    double c = o.c - p.z;  // the plane relative to the camera (see sol/render.hpp)
-    if (o.type == ObjectType::PlaneX) c = std::exp(-p.z) * (o.c - p.x);
-    if (o.type == ObjectType::PlaneY) c = std::exp(p.z) * (o.c - p.y);
-    // Balls: centre; tubes: a point of the axis (left-translation keeps it a coordinate line) and the axis.
-    const glm::dvec3 centre = multiply(inverse(p), o.center);
-    const bool solid = o.type == ObjectType::Ball || o.type == ObjectType::Tube;
-    set4(e.relative[k], solid ? centre : glm::dvec3(c, 0.0, 0.0), o.type == ObjectType::Tube ? o.axis : 0.0);
+    // Camera-relative, as the CPU reference (sol::relative_object): planes
+    // (constant, 0, 0, 0), balls (centre, 0), tubes (point of the axis, axis).
+    const MarchObject r = relative_object(scene.objects[k], p, k);
+    const bool solid = r.type == ObjectType::Ball || r.type == ObjectType::Tube;
+    set4(e.relative[k], solid ? r.center : glm::dvec3(r.c, 0.0, 0.0), r.type == ObjectType::Tube ? r.axis : 0.0);
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -148,30 +142,16 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
   return g;
 }
 
-// The images of the objects around D, as libsol's CPU reference takes them
-// (render.cpp, quotient_images): planes z = c at c0 + k h, k = -1..1; balls
-// at γ1^a γ2^b γ3^c · (centre moved into D), |a|, |b| <= 3, |c| <= 1. Pairs of
-// vec4: (geometry), (type, radius, owner, 0).
-std::vector<float> quotient_images(const Scene& scene) {
-  const Lattice lattice = Lattice::golden();
-  const double h = lattice.height();
+// The quotient images (sol::quotient_images, shared with the CPU reference)
+// packed for binding 4: pairs of vec4 (geometry: centre or (c, 0, 0)),
+// (type, radius, owner, 0).
+std::vector<float> pack_images(const std::vector<MarchObject>& images) {
   std::vector<float> out;
-  auto push = [&out](const glm::dvec3& geometry, float type, double radius, std::size_t owner) {
-    for (double v : {geometry.x, geometry.y, geometry.z, 0.0}) out.push_back(static_cast<float>(v));
-    for (double v : {static_cast<double>(type), radius, static_cast<double>(owner), 0.0}) out.push_back(static_cast<float>(v));
-  };
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& o = scene.objects[i];
-    if (o.type == ObjectType::PlaneZ) {
-      const double c0 = o.c - h * std::floor(o.c / h);
-      for (int k = -1; k <= 1; ++k) push(glm::dvec3(c0 + k * h, 0.0, 0.0), 2.0f, 0.0, i);
-    } else if (o.type == ObjectType::Ball) {
-      const glm::dvec3 c0 = lattice.teleport(o.center).point;
-      for (int c = -1; c <= 1; ++c) {
-        for (int a = -3; a <= 3; ++a) {
-          for (int b = -3; b <= 3; ++b) push(multiply(lattice.element(a, b, c), c0), 3.0f, o.radius, i);
-        }
-      }
+  for (const MarchObject& m : images) {
+    const glm::dvec3 geometry = m.type == ObjectType::Ball ? m.center : glm::dvec3(m.c, 0.0, 0.0);
+    for (double v : {geometry.x, geometry.y, geometry.z, 0.0, static_cast<double>(type_code(m.type)), m.radius,
+                     static_cast<double>(m.owner), 0.0}) {
+      out.push_back(static_cast<float>(v));
     }
   }
   return out;
@@ -281,7 +261,8 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   Impl& m = *m_impl;
   GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
   // Quotient scenes: the images of the objects (binding 4); else a stub.
-  const std::vector<float> images = scene.quotient != Quotient::None ? quotient_images(scene) : std::vector<float>(8, 0.0f);
+  const std::vector<float> images =
+      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(8, 0.0f);
   if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 8);
   Buffer image_buffer(m.context, images.size() * sizeof(float));
   image_buffer.write(images);

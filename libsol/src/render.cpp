@@ -22,35 +22,7 @@
 namespace sol {
 namespace {
 
-// An object relative to the camera (see render.hpp): planes by their
-// constant, balls by their centre left-translated by the camera's inverse.
-struct RelativeObject {
-  ObjectType type = ObjectType::PlaneZ;
-  double c = 0.0;
-  glm::dvec3 center{0.0};
-  double radius = 0.0;
-  int axis = 2;
-};
-
-RelativeObject relative_object(const SceneObject& o, const glm::dvec3& p) {
-  RelativeObject r{o.type, 0.0, glm::dvec3(0.0), o.radius, o.axis};
-  switch (o.type) {
-    case ObjectType::PlaneX:
-      r.c = std::exp(-p.z) * (o.c - p.x);
-      break;
-    case ObjectType::PlaneY:
-      r.c = std::exp(p.z) * (o.c - p.y);
-      break;
-    case ObjectType::PlaneZ:
-      r.c = o.c - p.z;
-      break;
-    case ObjectType::Ball:
-    case ObjectType::Tube:  // left-translation maps coordinate lines to coordinate lines
-      r.center = multiply(inverse(p), o.center);
-      break;
-  }
-  return r;
-}
+using RelativeObject = MarchObject;
 
 double object_distance(const RelativeObject& o, const glm::dvec3& q) {
   switch (o.type) {
@@ -125,27 +97,90 @@ void require_size(int value, const char* name) {
 
 }  // namespace
 
-glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
+CameraBasis camera_basis(const Camera& camera) {
   const glm::dvec3 forward = glm::normalize(camera.forward);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
-  const glm::dvec3 up = glm::cross(right, forward);
-  const double tan_half = std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0);
-  const double sx = (2.0 * (i + 0.5) / width - 1.0) * tan_half * width / height;
-  const double sy = (1.0 - 2.0 * (j + 0.5) / height) * tan_half;
-  return glm::normalize(sx * right + sy * up + forward);
+  return {right, glm::cross(right, forward), forward, std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0)};
+}
+
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
+  const CameraBasis b = camera_basis(camera);
+  const double sx = (2.0 * (i + 0.5) / width - 1.0) * b.tan_half_fov * width / height;
+  const double sy = (1.0 - 2.0 * (j + 0.5) / height) * b.tan_half_fov;
+  return glm::normalize(sx * b.right + sy * b.up + b.forward);
+}
+
+MarchObject relative_object(const SceneObject& o, const glm::dvec3& p, std::size_t owner) {
+  MarchObject r{o.type, 0.0, glm::dvec3(0.0), o.radius, o.axis, owner};
+  switch (o.type) {
+    case ObjectType::PlaneX:
+      r.c = std::exp(-p.z) * (o.c - p.x);
+      break;
+    case ObjectType::PlaneY:
+      r.c = std::exp(p.z) * (o.c - p.y);
+      break;
+    case ObjectType::PlaneZ:
+      r.c = o.c - p.z;
+      break;
+    case ObjectType::Ball:
+    case ObjectType::Tube:
+      r.center = multiply(inverse(p), o.center);
+      break;
+  }
+  return r;
+}
+
+std::vector<MarchObject> quotient_images(const Scene& scene) {
+  const Lattice lattice = Lattice::golden();
+  std::vector<MarchObject> images;
+  const double h = lattice.height();
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    if (o.type == ObjectType::PlaneZ) {
+      const double c0 = o.c - h * std::floor(o.c / h);
+      for (int k = -1; k <= 1; ++k) images.push_back({ObjectType::PlaneZ, c0 + k * h, glm::dvec3(0.0), 0.0, 2, i});
+    } else if (o.type == ObjectType::Ball) {
+      const glm::dvec3 c0 = lattice.teleport(o.center).point;
+      for (int c = -1; c <= 1; ++c) {
+        for (int a = -3; a <= 3; ++a) {
+          for (int b = -3; b <= 3; ++b) {
+            images.push_back({ObjectType::Ball, 0.0, multiply(lattice.element(a, b, c), c0), o.radius, 2, i});
+          }
+        }
+      }
+    }
+  }
+  return images;
 }
 
 namespace {
 
-MarchHit march_cover(const Scene& scene, const glm::dvec3& direction) {
-  const glm::dvec3 origin = scene.camera.position;
-  const std::size_t n = scene.objects.size();
-  std::vector<RelativeObject> objects(n);
+// What every ray of a render shares, computed once per render: the objects
+// relative to the camera (cover) or their images around D (quotient).
+struct PreparedScene {
+  std::vector<MarchObject> objects;
   bool heights_only = true;  // only planes z = c: the march needs z alone
-  for (std::size_t k = 0; k < n; ++k) {
-    objects[k] = relative_object(scene.objects[k], origin);
-    heights_only = heights_only && scene.objects[k].type == ObjectType::PlaneZ;
+};
+
+PreparedScene prepare(const Scene& scene) {
+  PreparedScene p;
+  if (scene.quotient == Quotient::Golden) {
+    p.objects = quotient_images(scene);
+    p.heights_only = false;
+    return p;
   }
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    p.objects.push_back(relative_object(scene.objects[k], scene.camera.position, k));
+    p.heights_only = p.heights_only && scene.objects[k].type == ObjectType::PlaneZ;
+  }
+  return p;
+}
+
+MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const glm::dvec3& direction) {
+  const glm::dvec3 origin = scene.camera.position;
+  const std::vector<MarchObject>& objects = prepared.objects;
+  const std::size_t n = objects.size();
+  const bool heights_only = prepared.heights_only;
   const ClosedFormGeodesic<double> ray(direction);
   MarchHit hit;
   if (heights_only) {
@@ -178,7 +213,7 @@ MarchHit march_cover(const Scene& scene, const glm::dvec3& direction) {
     }
     hit.steps = step + 1;
     if (nearest_hit < scene.hit_epsilon) {
-      const glm::dvec3 p = ray.at(t).position;
+      const glm::dvec3 p = heights_only ? ray.at(t).position : q;  // the full position, once
       const SceneObject& o = scene.objects[hit_k];
       const glm::dvec3 world = multiply(origin, p);
       if (o.cutout && pattern_factor(o.pattern, plane_u(o.type, world), plane_v(o.type, world)) != 1.0) {
@@ -200,39 +235,6 @@ MarchHit march_cover(const Scene& scene, const glm::dvec3& direction) {
   return hit;
 }
 
-// The images of the scene's objects that can meet the fundamental domain D
-// (or the thin shell a step may cross before the ray teleports): planes
-// z = c by their three images around [0, h); balls by the images of their
-// centre (moved into D) under γ1^a γ2^b γ3^c with |a|, |b| <= 3, |c| <= 1,
-// which covers every cell adjacent to D (the cells above and below are
-// stretched by φ^{±2} along x, y).
-struct Image {
-  RelativeObject object;  // in world coordinates (the "camera" at the identity)
-  std::size_t owner;      // index of the scene object it is an image of
-};
-
-std::vector<Image> quotient_images(const Scene& scene, const Lattice& lattice) {
-  std::vector<Image> images;
-  const double h = lattice.height();
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& o = scene.objects[i];
-    if (o.type == ObjectType::PlaneZ) {
-      const double c0 = o.c - h * std::floor(o.c / h);
-      for (int k = -1; k <= 1; ++k) images.push_back({{ObjectType::PlaneZ, c0 + k * h, glm::dvec3(0.0), 0.0}, i});
-    } else if (o.type == ObjectType::Ball) {
-      const glm::dvec3 c0 = lattice.teleport(o.center).point;
-      for (int c = -1; c <= 1; ++c) {
-        for (int a = -3; a <= 3; ++a) {
-          for (int b = -3; b <= 3; ++b) {
-            images.push_back({{ObjectType::Ball, 0.0, multiply(lattice.element(a, b, c), c0), o.radius}, i});
-          }
-        }
-      }
-    }
-  }
-  return images;
-}
-
 // The march in Γ\Sol: the ray lives in D. Every step starts in D (a ray
 // found outside is first teleported back by an element of Γ; its direction,
 // in frame components, is unchanged by the left-translation, and its
@@ -244,10 +246,10 @@ std::vector<Image> quotient_images(const Scene& scene, const Lattice& lattice) {
 // the arc length since that filter, so that no dropped image can be reached
 // (a dropped image's bound exceeded kKeep there, and bounds are 1-Lipschitz
 // lower bounds of the distance).
-MarchHit march_quotient(const Scene& scene, const glm::dvec3& direction) {
+MarchHit march_quotient(const Scene& scene, const PreparedScene& prepared, const glm::dvec3& direction) {
   constexpr double kMaxStep = 0.5, kKeep = 1.25;
   const Lattice lattice = Lattice::golden();
-  const std::vector<Image> images = quotient_images(scene, lattice);
+  const std::vector<MarchObject>& images = prepared.objects;
   glm::dvec3 origin = lattice.teleport(scene.camera.position).point;
   auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
   std::vector<std::size_t> kept;
@@ -267,14 +269,14 @@ MarchHit march_quotient(const Scene& scene, const glm::dvec3& direction) {
     if (kKeep - since_filter < 0.25) {
       kept.clear();
       for (std::size_t k = 0; k < images.size(); ++k) {
-        if (object_distance(images[k].object, q) <= kKeep) kept.push_back(k);
+        if (object_distance(images[k], q) <= kKeep) kept.push_back(k);
       }
       since_filter = 0.0;
     }
     double nearest = std::numeric_limits<double>::infinity();
     std::size_t nearest_k = 0;
     for (std::size_t k : kept) {
-      const double d = object_distance(images[k].object, q);
+      const double d = object_distance(images[k], q);
       if (d < nearest) {
         nearest = d;
         nearest_k = k;
@@ -287,7 +289,7 @@ MarchHit march_quotient(const Scene& scene, const glm::dvec3& direction) {
       hit.point = q;
       // Normals are left-invariant: evaluate relative to the segment's origin
       // (a plane then faces the side the ray comes from, as in the cover).
-      RelativeObject rel = images[nearest_k].object;
+      RelativeObject rel = images[nearest_k];
       const glm::dvec3 qi = multiply(inverse(origin), q);
       if (rel.type == ObjectType::Ball) rel.center = multiply(inverse(origin), rel.center);
       if (rel.type == ObjectType::PlaneZ) rel.c -= origin.z;
@@ -304,10 +306,16 @@ MarchHit march_quotient(const Scene& scene, const glm::dvec3& direction) {
   return hit;
 }
 
+
+MarchHit march_prepared(const Scene& scene, const PreparedScene& prepared, const glm::dvec3& direction) {
+  return scene.quotient == Quotient::Golden ? march_quotient(scene, prepared, direction)
+                                            : march_cover(scene, prepared, direction);
+}
+
 }  // namespace
 
 MarchHit march(const Scene& scene, const glm::dvec3& direction) {
-  return scene.quotient == Quotient::Golden ? march_quotient(scene, direction) : march_cover(scene, direction);
+  return march_prepared(scene, prepare(scene), direction);
 }
 
 glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
@@ -342,12 +350,13 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
   r.pz.assign(pixels, 0.0f);
   r.steps.assign(pixels, 0.0f);
 
+  const PreparedScene prepared = prepare(scene);  // shared by every ray
   std::atomic<int> next_row{0}, rows_done{0};
   auto worker = [&]() {
     for (int j = next_row++; j < h; j = next_row++) {
       for (int i = 0; i < w; ++i) {
         const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
-        const MarchHit hit = march(scene, camera_ray(scene.camera, i, j, w, h));
+        const MarchHit hit = march_prepared(scene, prepared, camera_ray(scene.camera, i, j, w, h));
         const glm::dvec3 c = shade(scene, hit);
         r.rgba[4 * k + 0] = static_cast<float>(c.r);
         r.rgba[4 * k + 1] = static_cast<float>(c.g);
@@ -404,9 +413,8 @@ StereoEyes stereo_eyes(const Camera& camera, double ipd) {
   if (!std::isfinite(ipd) || ipd < 0.0) {
     throw InvalidArgument("sol::stereo_eyes: ipd must be finite and >= 0, got " + std::to_string(ipd));
   }
-  const glm::dvec3 forward = glm::normalize(camera.forward);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
-  const glm::dvec3 up = glm::cross(right, forward);
+  const CameraBasis basis = camera_basis(camera);
+  const glm::dvec3 forward = basis.forward, right = basis.right, up = basis.up;
   auto eye = [&](double t) {
     // Flow along `right` by t; the frame vectors follow by parallel transport.
     const FlowTransport ft = flow_with_transport({camera.position, right}, t, FlowOptions{});

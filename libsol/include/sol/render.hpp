@@ -25,6 +25,7 @@
 // Misses are black.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -46,6 +47,36 @@ struct LightAtPoint {
   double attenuation;
 };
 LightAtPoint light_at(const Light& light, const glm::dvec3& p);
+
+/// The camera's orthonormal basis of DESIGN.md §2 (frame components):
+/// right = normalize(forward × up), up' = right × forward.
+struct CameraBasis {
+  glm::dvec3 right, up, forward;
+  double tan_half_fov;  ///< tan(fov / 2)
+};
+CameraBasis camera_basis(const Camera& camera);
+
+/// An object as the march sees it, left-translated by origin⁻¹ (origin at the
+/// identity: world coordinates): planes by their constant (x = e^{-z_o}(c - x_o),
+/// y = e^{z_o}(c - y_o), z = c - z_o), balls by their centre, tubes by a point
+/// of their axis (left-translation maps coordinate lines to coordinate lines).
+/// The CPU renderer and the kernels' hosts share it.
+struct MarchObject {
+  ObjectType type = ObjectType::PlaneZ;
+  double c = 0.0;
+  glm::dvec3 center{0.0};
+  double radius = 0.0;
+  int axis = 2;
+  std::size_t owner = 0;  ///< index of the scene object
+};
+MarchObject relative_object(const SceneObject& object, const glm::dvec3& origin, std::size_t owner);
+
+/// Quotient scenes: the images, in world coordinates, of the scene's objects
+/// that can meet the fundamental domain D or the shell a step may cross:
+/// planes z = c at c0 + k h (c0 = c mod h, k = -1..1); balls at
+/// γ1^a γ2^b γ3^c · (centre moved into D), |a|, |b| <= 3, |c| <= 1 (the cells
+/// above and below D are stretched by φ^{±2} along x, y).
+std::vector<MarchObject> quotient_images(const Scene& scene);
 
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.
