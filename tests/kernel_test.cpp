@@ -130,7 +130,15 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   tube.center = {1.5, -0.8, 0.0};
   tube.radius = 0.2;
   tube.color = {0.8, 0.3, 0.8};
-  scene.objects = {ball, floor, tube};
+  tube.pattern = sol::Pattern::Checker;
+  ball.pattern = sol::Pattern::Circles;
+  // A tube along γ1 (a horizontal line of irrational slope), patterned.
+  sol::SceneObject slanted = tube;
+  slanted.axis = sol::kAxisGamma1;
+  slanted.center = {2.4, 0.3, -0.35};
+  slanted.radius = 0.15;
+  slanted.color = {0.9, 0.8, 0.2};
+  scene.objects = {ball, floor, tube, slanted};
   // A point light and coloured fog: shading as sol::light_at on both sides.
   sol::Light point;
   point.type = sol::LightType::Point;
@@ -159,6 +167,9 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   int balls = 0;
   for (float o : gpu.object) balls += o == 1.0f;
   EXPECT_GT(balls, 30);
+  int slanted_hits = 0;
+  for (float o : gpu.object) slanted_hits += o == 4.0f;
+  EXPECT_GT(slanted_hits, 10);
   expect_no_validation_errors();
 }
 
@@ -204,16 +215,18 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
 
 TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   sol::vk::MarchRenderer renderer(context());
-  sol::Scene scene = sol::preset_scene("lattice-balls");
-  scene.max_distance = 6.0;
-  const sol::RenderResult here = renderer.render(scene, 24, 18);
   const sol::Lattice lattice = sol::Lattice::golden();
-  for (const dvec3& g : {lattice.element(0, 0, 1), lattice.element(3, -2, -2), lattice.element(400000, -300000, 0)}) {
-    sol::Scene moved = scene;
-    moved.camera.position = sol::multiply(g, scene.camera.position);
-    const Comparison c = compare(renderer.render(moved, 24, 18), here);
-    EXPECT_LE(c.mask_differs, 2);  // the eye is teleported in double: same float input up to rounding
-    EXPECT_LT(c.distance, 1e-4);
+  for (const char* name : {"lattice-balls", "lattice-pillars"}) {
+    sol::Scene scene = sol::preset_scene(name);
+    scene.max_distance = 6.0;
+    const sol::RenderResult here = renderer.render(scene, 24, 18);
+    for (const dvec3& g : {lattice.element(0, 0, 1), lattice.element(3, -2, -2), lattice.element(400000, -300000, 0)}) {
+      sol::Scene moved = scene;
+      moved.camera.position = sol::multiply(g, scene.camera.position);
+      const Comparison c = compare(renderer.render(moved, 24, 18), here);
+      EXPECT_LE(c.mask_differs, 2) << name;  // the eye is teleported in double: same float input up to rounding
+      EXPECT_LT(c.distance, 1e-4) << name;
+    }
   }
   // Thin planes 1e-4 inside the faces z = 0 and z = h: as the CPU reference
   // (which render_test.cpp holds to the cover with all the plane's images).

@@ -215,6 +215,94 @@ TEST(Render, TubeBoundsNeverExceedPathLengthsAndAreExactInTheirPlanes) {
   }
 }
 
+// Tubes around horizontal lines of any direction (the γ1, γ2 curves of the
+// quotient): the bound never exceeds the length of a curve from p to the line.
+TEST(Render, HorizontalTubeBoundsNeverExceedPathLengths) {
+  std::mt19937_64 rng(52);
+  std::uniform_real_distribution<double> coord(-1.5, 1.5), angle(0.0, 6.283185307179586);
+  const dvec3 through(0.2, -0.3, 0.4);
+  std::vector<glm::dvec2> headings;
+  for (int axis : {sol::kAxisX, sol::kAxisY, sol::kAxisGamma1, sol::kAxisGamma2}) {
+    const dvec3 d = sol::tube_axis_direction(axis);
+    headings.emplace_back(d.x, d.y);
+  }
+  for (int i = 0; i < 4; ++i) {
+    const double a = angle(rng);
+    headings.emplace_back(std::cos(a), std::sin(a));
+  }
+  double tightest = 1e300;
+  for (const glm::dvec2& h : headings) {
+    for (int i = 0; i < 150; ++i) {
+      const dvec3 p(coord(rng), coord(rng), coord(rng));
+      const double bound = sol::sdf_tube_horizontal(p, through, h, 0.0);
+      double shortest = 1e300;
+      for (int j = 0; j < 40; ++j) {
+        const double s = 3.0 * coord(rng), mid = coord(rng);
+        const dvec3 a = through + s * dvec3(h, 0.0);
+        shortest = std::min({shortest, path_length({p, a}), path_length({p, dvec3(p.x, p.y, mid), dvec3(a.x, a.y, mid), a})});
+      }
+      EXPECT_LE(bound, shortest + 1e-9) << h.x << " " << h.y << " at " << p.x << " " << p.y << " " << p.z;
+      tightest = std::min(tightest, shortest - bound);
+    }
+  }
+  EXPECT_LT(tightest, 0.05);  // the bound is not vacuous: some paths come close to it
+  // The coordinate axes: the same bound as sdf_tube's.
+  const dvec3 p(0.9, -1.1, 0.7);
+  EXPECT_DOUBLE_EQ(sol::sdf_tube_horizontal(p, through, {1.0, 0.0}, 0.1),
+                   std::max(std::asinh(std::abs(p.y - through.y) * std::exp(p.z)), std::abs(p.z - through.z)) - 0.1);
+  EXPECT_DOUBLE_EQ(sol::sdf_tube_horizontal(p, through, {0.0, -1.0}, 0.1),
+                   std::max(std::asinh(std::abs(p.x - through.x) * std::exp(-p.z)), std::abs(p.z - through.z)) - 0.1);
+}
+
+// Patterns on balls and tubes: with w = centre⁻¹·hit (left-translation, DESIGN
+// §2 group law written out here), the checker's cell comes from the
+// documented coordinates (4/π)(longitude, latitude) and, on a vertical tube,
+// (4/π)(angle, z / radius). Each hit pixel's colour over the plain object's
+// is 1 or 0.45 as that cell says (pixels within 0.03 of a cell edge skipped:
+// the AOV point is float).
+TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
+  sol::Scene scene;
+  scene.camera = {{0, 0, 0}, {1, 0.1, 0.05}, {0, 0, 1}, 70.0};
+  sol::SceneObject ball;
+  ball.type = sol::ObjectType::Ball;
+  ball.center = {2.0, 0.6, 0.2};
+  ball.radius = 0.6;
+  sol::SceneObject tube;
+  tube.type = sol::ObjectType::Tube;
+  tube.axis = sol::kAxisZ;
+  tube.center = {1.6, -0.7, 0.3};
+  tube.radius = 0.25;
+  scene.objects = {ball, tube};
+  sol::RenderSettings settings;
+  settings.width = 40;
+  settings.height = 30;
+  const sol::RenderResult plain = sol::render_cpu(scene, settings);
+  for (auto& o : scene.objects) o.pattern = sol::Pattern::Checker;
+  const sol::RenderResult checker = sol::render_cpu(scene, settings);
+  const double pi = 3.14159265358979323846;
+  int checked[3] = {0, 0, 0}, dark = 0;
+  for (std::size_t k = 0; k < plain.object.size(); ++k) {
+    ASSERT_EQ(plain.object[k], checker.object[k]);
+    const int object = static_cast<int>(plain.object[k]);
+    if (object == 0) continue;
+    const sol::SceneObject& o = scene.objects[static_cast<std::size_t>(object - 1)];
+    const dvec3 c = o.center;
+    const dvec3 w(std::exp(-c.z) * (plain.px[k] - c.x), std::exp(c.z) * (plain.py[k] - c.y), plain.pz[k] - c.z);
+    const double u = 4.0 / pi * std::atan2(w.y, w.x);
+    const double v = object == 1 ? 4.0 / pi * std::atan2(w.z, std::hypot(w.x, w.y)) : 4.0 / pi * w.z / o.radius;
+    const double edge = 0.03;
+    if (std::abs(u - std::round(u)) < edge || std::abs(v - std::round(v)) < edge) continue;
+    const double expected = std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
+    const double ratio = checker.rgba[4 * k] / plain.rgba[4 * k];
+    EXPECT_NEAR(ratio, expected, 1e-4) << "object " << object << " u " << u << " v " << v;
+    ++checked[object];
+    dark += expected != 1.0;
+  }
+  EXPECT_GT(checked[1], 40);
+  EXPECT_GT(checked[2], 20);
+  EXPECT_GT(dark, 20);
+}
+
 TEST(Render, BallHitsLieOnTheBoundSurface) {
   sol::Scene scene;
   scene.camera = {{0, 0, 0}, {1, 0.2, 0.1}, {0, 0, 1}, 60.0};
@@ -347,8 +435,12 @@ int count_differences(const sol::RenderResult& a, const sol::RenderResult& b, do
 }
 
 // In Γ\Sol the observer at p and at g·p (g ∈ Γ) see the same image.
-TEST(Quotient, ObserverAtPAndGpSeeTheSameImage) {
-  sol::Scene scene = sol::preset_scene("lattice-balls");
+class QuotientPresets : public ::testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(Quotient, QuotientPresets, ::testing::Values("lattice-balls", "lattice-pillars"),
+                         [](const auto& p) { return std::string(p.param[8] == 'b' ? "Balls" : "Pillars"); });
+
+TEST_P(QuotientPresets, ObserverAtPAndGpSeeTheSameImage) {
+  sol::Scene scene = sol::preset_scene(GetParam());
   scene.max_distance = 6.0;
   sol::RenderSettings settings;
   settings.width = 20;
@@ -413,6 +505,117 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
     EXPECT_GT(hits_a, 50);
     EXPECT_EQ(differ, 0) << "c = " << c << ", hits " << hits_a << " vs " << hits_b;
     EXPECT_LT(worst, 1e-4) << "c = " << c;  // both stop within the hit epsilon (5e-5) of the plane
+  }
+}
+
+// Whether two world-coordinate images are the same set (a test-side check).
+bool same_set(const sol::MarchObject& a, const sol::MarchObject& b) {
+  if (a.type != b.type || a.owner != b.owner) return false;
+  if (a.type == sol::ObjectType::PlaneZ) return std::abs(a.c - b.c) < 1e-9;
+  if (a.type == sol::ObjectType::Ball) return glm::length(a.center - b.center) < 1e-9;
+  if (a.axis == sol::kAxisZ) return std::hypot(a.center.x - b.center.x, a.center.y - b.center.y) < 1e-9;
+  const double cross = a.heading.x * (b.center.y - a.center.y) - a.heading.y * (b.center.x - a.center.x);
+  return std::abs(a.center.z - b.center.z) < 1e-9 && std::abs(a.heading.x * b.heading.y - a.heading.y * b.heading.x) < 1e-9 &&
+         std::abs(cross) < 1e-9;
+}
+
+// sol::quotient_images lists every image a march step (<= 0.5 from a point of
+// D) can reach: against a far wider enumeration (|a|, |b| <= 16, |c| <= 3,
+// from the objects as given, not first moved into D), every image whose
+// bound is within the step at some sampled point of D (random, on the faces,
+// at the corners) is listed. And no listed image is far out of reach (it
+// would only cost time): each comes within 0.5 + 1 of a point of D (the
+// domain bound uses P's bounding box in x and y, looser by up to ~0.85).
+TEST(Quotient, ImagesAreCompleteAndReachable) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  const double h = lattice.height();
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<dvec3> samples;
+  const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  auto in_d = [&](double s, double r, double z) { return s * g1 + r * g2 + dvec3(0, 0, z * h * (1 - 1e-12)); };
+  for (int i = 0; i < 3000; ++i) samples.push_back(in_d(unit(rng), unit(rng), unit(rng)));
+  for (int i = 0; i < 600; ++i) {  // faces and edges
+    const double s = unit(rng), r = unit(rng), z = unit(rng);
+    for (const dvec3& f : {in_d(0, r, z), in_d(1, r, z), in_d(s, 0, z), in_d(s, 1, z), in_d(s, r, 0), in_d(s, r, 1),
+                           in_d(0, 0, z), in_d(1, 1, z), in_d(0, r, 1), in_d(s, 1, 0)}) {
+      samples.push_back(f);
+    }
+  }
+  // Speed: object_distance is 1-Lipschitz in the Sol distance, so an image
+  // farther than 0.5 + R from D's centre, R >= the distance from the centre
+  // to every sample (a horizontal then vertical coordinate path), is never
+  // within 0.5 of a sample and need not be checked against each.
+  const dvec3 centre = in_d(0.5, 0.5, 0.5);
+  double reach = 0.0;
+  for (const dvec3& q : samples) {
+    reach = std::max(reach, std::abs(q.x - centre.x) * std::exp(-centre.z) + std::abs(q.y - centre.y) * std::exp(centre.z) +
+                                std::abs(q.z - centre.z));
+  }
+  std::vector<sol::Scene> scenes = {sol::preset_scene("lattice-balls"), sol::preset_scene("lattice-pillars")};
+  sol::Scene mixed;
+  mixed.quotient = sol::Quotient::Golden;
+  std::uniform_real_distribution<double> coord(-3.0, 3.0);
+  for (int i = 0; i < 3; ++i) {
+    sol::SceneObject ball;
+    ball.type = sol::ObjectType::Ball;
+    ball.center = {coord(rng), coord(rng), coord(rng)};
+    ball.radius = 0.45;  // the largest allowed in the quotient
+    sol::SceneObject tube;
+    tube.type = sol::ObjectType::Tube;
+    tube.axis = i == 0 ? sol::kAxisGamma1 : sol::kAxisGamma2;
+    tube.center = {coord(rng), coord(rng), coord(rng)};
+    tube.radius = 0.45;
+    mixed.objects.push_back(ball);
+    mixed.objects.push_back(tube);
+  }
+  sol::SceneObject plane;
+  plane.c = 0.3;
+  mixed.objects.push_back(plane);
+  sol::SceneObject vertical;
+  vertical.type = sol::ObjectType::Tube;
+  vertical.axis = sol::kAxisZ;
+  vertical.center = sol::multiply(lattice.element(2, -3, 0), dvec3(0, 0, 1.7));
+  vertical.radius = 0.3;
+  mixed.objects.push_back(vertical);
+  sol::validate(mixed);
+  scenes.push_back(mixed);
+  for (const sol::Scene& scene : scenes) {
+    const std::vector<sol::MarchObject> listed = sol::quotient_images(scene);
+    std::vector<bool> reached(listed.size(), false);
+    int needed = 0;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const sol::MarchObject world = sol::relative_object(scene.objects[i], dvec3(0.0), i);
+      for (int c = -3; c <= 3; ++c) {
+        for (int a = -16; a <= 16; ++a) {
+          for (int b = -16; b <= 16; ++b) {
+            const sol::MarchObject image = sol::relative_to(world, sol::inverse(lattice.element(a, b, c)));
+            if (sol::object_distance(image, centre) > sol::kQuotientMaxStep + reach) continue;
+            bool within = false;
+            for (const dvec3& q : samples) {
+              if (sol::object_distance(image, q) <= sol::kQuotientMaxStep) {
+                within = true;
+                break;
+              }
+            }
+            if (!within) continue;
+            ++needed;
+            bool found = false;
+            for (std::size_t k = 0; k < listed.size(); ++k) {
+              if (same_set(listed[k], image)) found = reached[k] = true;
+            }
+            EXPECT_TRUE(found) << "object " << i << " image (" << a << ", " << b << ", " << c << ") is within a step of D "
+                               << "but not listed";
+          }
+        }
+      }
+    }
+    EXPECT_GT(needed, 0);
+    for (std::size_t k = 0; k < listed.size(); ++k) {
+      double closest = reached[k] ? 0.0 : 1e300;
+      for (const dvec3& q : samples) closest = std::min(closest, sol::object_distance(listed[k], q));
+      EXPECT_LE(closest, sol::kQuotientMaxStep + 1.0) << "listed image " << k << " is never within reach";
+    }
   }
 }
 

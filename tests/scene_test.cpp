@@ -1,7 +1,10 @@
 // Scene files: the documented schema parses, every malformed or inconsistent
 // input is rejected with a message naming the problem, presets are valid and
 // to_json round-trips.
+#include <cmath>
 #include <string>
+
+#include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
@@ -64,7 +67,10 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
   expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden");
-  expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})", "x, y or z");
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})",
+                  "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got w");
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": 2, "through": [0, 0, 0], "radius": 1}]})",
+                  "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got 2");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "x", "radius": 1}]})", "needs 'through'");
   expect_rejected(R"({"quotient": "golden", "objects": [{"type": "plane_x"}]})", "not supported in the quotient");
   expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "circles", "cutout": 1}]})", "true or false");
@@ -80,8 +86,43 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": -1}]})", "objects[0].radius");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
-  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "circles"}]})",
-                  "balls and tubes take no pattern");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "stripes"}]})",
+                  "'objects[0].pattern' must be one of none, circles, checker, got stripes");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "cutout": true}]})",
+                  "unknown key 'cutout'");
+  // The quotient: only objects whose images under Γ stay finite near D.
+  const std::string golden = R"({"quotient": "golden", "objects": [)";
+  expect_rejected(golden + R"({"type": "tube", "axis": "x", "through": [0, 0, 0], "radius": 0.1}]})",
+                  "objects[0].axis: tubes along x or y do not close up in the quotient");
+  expect_rejected(golden + R"({"type": "tube", "axis": "z", "through": [0.5, 0, 0], "radius": 0.1}]})",
+                  "objects[0].through: a tube along z in the quotient must pass through a point (x, y) of the lattice");
+  expect_rejected(golden + R"({"type": "ball", "center": [0, 0, 0], "radius": 0.5}]})",
+                  "objects[0].radius must be <= 0.45 in the quotient");
+  expect_rejected(golden + R"({"type": "plane_y", "c": 0}]})", "objects[0].type: planes x, y = c are not supported");
+}
+
+TEST(Scene, TubeAxesAndPatternsOnSolids) {
+  const sol::Scene s = sol::parse_scene(R"({"quotient": "golden", "objects": [
+    {"type": "tube", "axis": "gamma1", "through": [0, 0, 0.2], "radius": 0.1, "pattern": "checker"},
+    {"type": "tube", "axis": "gamma2", "through": [0.3, 0, 0], "radius": 0.1},
+    {"type": "tube", "axis": "gamma3", "through": [1, 1.618033988749895, 5], "radius": 0.1},
+    {"type": "ball", "center": [0, 0, 0], "radius": 0.2, "pattern": "circles"}]})");
+  EXPECT_EQ(s.objects[0].axis, sol::kAxisGamma1);
+  EXPECT_EQ(s.objects[0].pattern, sol::Pattern::Checker);
+  EXPECT_EQ(s.objects[1].axis, sol::kAxisGamma2);
+  EXPECT_EQ(s.objects[2].axis, sol::kAxisZ);  // gamma3's closed curve is the vertical line
+  EXPECT_EQ(s.objects[3].pattern, sol::Pattern::Circles);
+  // The axes are the lattice's directions: γ1 = (φ, -1, 0), γ2 = (1, φ, 0).
+  const double phi = 0.5 * (1.0 + std::sqrt(5.0));
+  const glm::dvec3 g1 = sol::tube_axis_direction(sol::kAxisGamma1), g2 = sol::tube_axis_direction(sol::kAxisGamma2);
+  EXPECT_NEAR(g1.x * -1.0 - g1.y * phi, 0.0, 1e-15);
+  EXPECT_NEAR(g2.x * phi - g2.y * 1.0, 0.0, 1e-15);
+  EXPECT_NEAR(glm::length(g1), 1.0, 1e-15);
+  const sol::Scene back = sol::parse_scene(sol::to_json(s));
+  for (std::size_t k = 0; k < s.objects.size(); ++k) {
+    EXPECT_EQ(back.objects[k].axis, s.objects[k].axis);
+    EXPECT_EQ(back.objects[k].pattern, s.objects[k].pattern);
+  }
 }
 
 TEST(Scene, ErrorsSayWhereInTheFile) {

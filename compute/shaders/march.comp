@@ -28,6 +28,7 @@ layout(constant_id = 6) const bool QUOTIENT = false;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
+const int MAX_IMAGES = 64;  // quotient images (sol::vk::kMaxGpuImages)
 
 struct Object {
   vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball, 4 tube), y: radius, z: pattern (0 none, 1 circles, 2 checker), w: cutout
@@ -43,6 +44,7 @@ struct Eye {
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
   vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0), tubes (point, axis)
+  vec4 heading[MAX_OBJECTS];   // horizontal tubes: xy the axis's unit coordinate direction relative to this eye
   vec4 lights[MAX_LIGHTS];     // directional: unit direction; point: position relative to this eye
 };
 
@@ -59,8 +61,9 @@ layout(std140, set = 0, binding = 0) uniform Params {
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
-// Quotient scenes: the images of the objects around D, in world coordinates:
-// pairs (geometry: ball centre or (c, 0, 0) for a plane z = c; (type, radius, owner, 0)).
+// Quotient scenes: the images of the objects around D, in world coordinates
+// (sol::quotient_images): triples (geometry: ball centre, (tube point, axis)
+// or (c, 0, 0, 0) for a plane z = c; (type, radius, owner, 0); (tube heading, 0, 0)).
 layout(std430, set = 0, binding = 4) readonly buffer Images {
   vec4 images[];
 };
@@ -73,19 +76,22 @@ float distance_lower_bound(vec3 p, vec3 q) {
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
 
-// Distance (planes: exact; balls: the bound minus the radius) to an object
-// given relative to the camera.
-// Tubes: the bound of sol::sdf_tube (the two coordinate planes containing the axis).
-float tube_distance(vec3 q, vec3 through, int axis, float radius) {
-  const float to_x = asinh(abs(q.x - through.x) * exp(-q.z));
-  const float to_y = asinh(abs(q.y - through.y) * exp(q.z));
-  const float to_z = abs(q.z - through.z);
-  return (axis == 2 ? max(to_x, to_y) : (axis == 0 ? max(to_y, to_z) : max(to_x, to_z))) - radius;
+// Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
+// containing it) and sol::sdf_tube_horizontal (a horizontal line along the
+// unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
+float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
+  const vec3 d = q - through;
+  const float ez = exp(q.z);
+  if (axis == 2) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
+  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
+  return max(asinh(across), abs(d.z)) - radius;
 }
 
-float object_distance(int type, vec3 q, vec4 rel, float radius) {
+// Distance (planes: exact; balls, tubes: the bound minus the radius) to an
+// object given in the coordinates of q (camera-relative, or world in the quotient).
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   if (HAS_BALLS && type == 3) return distance_lower_bound(q, rel.xyz) - radius;
-  if (HAS_BALLS && type == 4) return tube_distance(q, rel.xyz, int(rel.w), radius);
+  if (HAS_BALLS && type == 4) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
   float c = rel.x;
   if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
   if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
@@ -95,13 +101,13 @@ float object_distance(int type, vec3 q, vec4 rel, float radius) {
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
-vec3 plane_normal(int type, vec3 q, float c, vec4 rel, float radius) {
+vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radius) {
   if (HAS_BALLS && type >= 3) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
     float h = 1e-3, ez = exp(q.z);
     vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-    vec3 g = vec3(object_distance(type, q + e1, rel, radius) - object_distance(type, q - e1, rel, radius),
-                  object_distance(type, q + e2, rel, radius) - object_distance(type, q - e2, rel, radius),
-                  object_distance(type, q + e3, rel, radius) - object_distance(type, q - e3, rel, radius));
+    vec3 g = vec3(object_distance(type, q + e1, rel, heading, radius) - object_distance(type, q - e1, rel, heading, radius),
+                  object_distance(type, q + e2, rel, heading, radius) - object_distance(type, q - e2, rel, heading, radius),
+                  object_distance(type, q + e3, rel, heading, radius) - object_distance(type, q - e3, rel, heading, radius));
     return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
   }
   float side = 0.0 >= c ? 1.0 : -1.0;
@@ -123,6 +129,20 @@ float pattern_factor(int pattern, float u, float v) {
   }
   if (pattern == 2) return mod(floor(u) + floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
   return 1.0;
+}
+
+// Pattern coordinates on a ball or tube (sol::pattern_coordinates) of a point
+// q given in the coordinates of the centre (axis point) `rel`: with
+// w = rel⁻¹·q, balls (4/π)(longitude, latitude); tubes (4/π)(angle around
+// the axis, coordinate along it / radius).
+vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  const float cells = 1.27323954;  // 4/π: 8 cells per turn
+  const float ez = exp(rel.z);
+  const vec3 w = vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
+  if (type == 3) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
+  if (int(rel.w) == 2) return cells * vec2(atan(w.y, w.x), w.z / radius);
+  const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
+  return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
 }
 
 // The plane's own world coordinates of a camera-relative point q: world =
@@ -241,10 +261,12 @@ void main() {
   int types[MAX_OBJECTS];
   float constants[MAX_OBJECTS], radii[MAX_OBJECTS];
   vec4 relative[MAX_OBJECTS];
+  vec2 headings[MAX_OBJECTS];
   for (int k = 0; k < MAX_OBJECTS; ++k) {
     types[k] = int(params.objects[k].plane.x);
     radii[k] = params.objects[k].plane.y;
     relative[k] = params.eyes[eye].relative[k];
+    headings[k] = params.eyes[eye].heading[k].xy;
     constants[k] = relative[k].x;
   }
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
@@ -261,12 +283,12 @@ void main() {
     // The march of libsol's march_quotient: rays in D, teleported back when a
     // step ends outside; each step bounded by the images of the objects in the
     // cells around D (kept within 1.25 of the last filter point).
-    const int image_count = params.counts.x;  // image pairs
+    const int image_count = min(params.counts.x, MAX_IMAGES);  // image triples
     const float max_step = 0.5, keep = 1.25;
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     SolRay qray = sol_ray(direction);
     sol_ray_integrals(qray);
-    int kept[32];
+    int kept[MAX_IMAGES];
     int kept_count = 0;
     float since_filter = keep, t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
@@ -284,9 +306,9 @@ void main() {
       }
       if (keep - since_filter < 0.25) {
         kept_count = 0;
-        for (int i = 0; i < image_count && kept_count < 32; ++i) {
-          const vec4 geom = images[2 * i], info = images[2 * i + 1];
-          const float d = int(info.x) == 3 ? distance_lower_bound(q, geom.xyz) - info.y : abs(q.z - geom.x);
+        for (int i = 0; i < image_count; ++i) {
+          const vec4 geom = images[3 * i], info = images[3 * i + 1];
+          const float d = object_distance(int(info.x), q, geom, images[3 * i + 2].xy, info.y);
           if (d <= keep) kept[kept_count++] = i;
         }
         since_filter = 0.0;
@@ -294,8 +316,9 @@ void main() {
       float nearest = 1e30;
       int nearest_i = -1;
       for (int j = 0; j < kept_count; ++j) {
-        const vec4 geom = images[2 * kept[j]], info = images[2 * kept[j] + 1];
-        const float d = int(info.x) == 3 ? distance_lower_bound(q, geom.xyz) - info.y : abs(q.z - geom.x);
+        const int i = kept[j];
+        const vec4 geom = images[3 * i], info = images[3 * i + 1];
+        const float d = object_distance(int(info.x), q, geom, images[3 * i + 2].xy, info.y);
         if (d < nearest) {
           nearest = d;
           nearest_i = kept[j];
@@ -316,12 +339,16 @@ void main() {
     vec4 hit_aov = vec4(0.0, 0.0, float(steps), 0.0);
     vec4 point_aov = vec4(0.0);
     if (hit_image >= 0) {
-      const vec4 geom = images[2 * hit_image], info = images[2 * hit_image + 1];
+      const vec4 geom = images[3 * hit_image], info = images[3 * hit_image + 1];
+      const vec2 heading = images[3 * hit_image + 2].xy;
       const int k = int(info.z), type = int(info.x);
-      // Normal relative to the segment's origin (planes face the ray's side).
-      const vec3 n = type == 3 ? plane_normal(3, q, 0.0, geom, info.y)
-                               : vec3(0.0, 0.0, origin.z >= geom.x ? 1.0 : -1.0);
-      color = shade_hit(k, n, q.xy, t, q, eye);  // planes z = c: their own coordinates are (x, y)
+      // Planes face the side of the segment's origin (the ray's side); the
+      // bounds of balls and tubes are left-invariant, so their gradients
+      // along the frame are taken in world coordinates.
+      const vec3 n = plane_normal(type, q, geom.x - origin.z, geom, heading, info.y);
+      // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
+      const vec2 uv = type >= 3 ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
+      color = shade_hit(k, n, uv, t, q, eye);
       hit_aov.x = float(k + 1);
       hit_aov.y = t;
       point_aov = vec4(q, 0.0);
@@ -363,7 +390,7 @@ void main() {
     float nearest = 1e30, nearest_hit = 1e30;
     int nearest_k = 0;
     for (int k = 0; k < count; ++k) {
-      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], radii[k]);
+      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
       // Cutout planes being passed through (between their discs) are not hits
       // until the ray is 2 hit_epsilon away again (as the CPU reference).
       const uint bit = 1u << uint(k);
@@ -403,11 +430,12 @@ void main() {
     }
     const int k = hit - 1;
     const int type = types[k];
-    const vec3 n = plane_normal(type, q, constants[k], relative[k], radii[k]);
+    const vec3 n = plane_normal(type, q, constants[k], relative[k], headings[k], radii[k]);
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
-    const vec2 uv = plane_coordinates(type, q, eye_camera, eye_frac);
+    const vec2 uv = (HAS_BALLS && type >= 3) ? solid_coordinates(type, q, relative[k], headings[k], radii[k])
+                                             : plane_coordinates(type, q, eye_camera, eye_frac);
     color = shade_hit(k, n, uv, t, q, eye);
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);

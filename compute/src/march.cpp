@@ -32,7 +32,8 @@ struct GpuObject {
 };
 struct GpuEye {
   float right[4], up[4], forward[4], camera[4], camera_frac[4];
-  float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); relative to the eye
+  float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); tubes (point, axis); relative to the eye
+  float heading[kMaxGpuObjects][4];   // horizontal tubes: the axis's unit coordinate direction relative to the eye
   float lights[kMaxLights][4];        // directional: direction; point: position relative to the eye
 };
 struct GpuParams {
@@ -44,7 +45,7 @@ struct GpuParams {
   float light_color[kMaxLights][4];  // rgb * intensity, type (0 directional, 1 point)
   GpuObject objects[kMaxGpuObjects];
 };
-static_assert(sizeof(GpuEye) == 5 * 16 + kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
+static_assert(sizeof(GpuEye) == 5 * 16 + 2 * kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
 static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 4 * 16 + kMaxLights * 16 + kMaxGpuObjects * 32,
               "std140 layout of Params");
 
@@ -105,6 +106,7 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
     const MarchObject r = relative_object(scene.objects[k], p, k);
     const bool solid = r.type == ObjectType::Ball || r.type == ObjectType::Tube;
     set4(e.relative[k], solid ? r.center : glm::dvec3(r.c, 0.0, 0.0), r.type == ObjectType::Tube ? r.axis : 0.0);
+    set4(e.heading[k], glm::dvec3(r.heading, 0.0), 0.0);
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -143,14 +145,21 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
 }
 
 // The quotient images (sol::quotient_images, shared with the CPU reference)
-// packed for binding 4: pairs of vec4 (geometry: centre or (c, 0, 0)),
-// (type, radius, owner, 0).
+// packed for binding 4: triples of vec4 (geometry: centre, (axis point,
+// axis) or (c, 0, 0, 0)), (type, radius, owner, 0), (heading, 0, 0).
 std::vector<float> pack_images(const std::vector<MarchObject>& images) {
+  if (images.size() > static_cast<std::size_t>(kMaxGpuImages)) {
+    throw InvalidArgument("sol::vk::MarchRenderer: the quotient scene has " + std::to_string(images.size()) +
+                          " object images around the domain; the kernel takes at most " +
+                          std::to_string(kMaxGpuImages) + " (fewer or smaller objects)");
+  }
   std::vector<float> out;
   for (const MarchObject& m : images) {
-    const glm::dvec3 geometry = m.type == ObjectType::Ball ? m.center : glm::dvec3(m.c, 0.0, 0.0);
-    for (double v : {geometry.x, geometry.y, geometry.z, 0.0, static_cast<double>(type_code(m.type)), m.radius,
-                     static_cast<double>(m.owner), 0.0}) {
+    const bool solid = m.type == ObjectType::Ball || m.type == ObjectType::Tube;
+    const glm::dvec3 geometry = solid ? m.center : glm::dvec3(m.c, 0.0, 0.0);
+    for (double v : {geometry.x, geometry.y, geometry.z, m.type == ObjectType::Tube ? m.axis : 0.0,
+                     static_cast<double>(type_code(m.type)), m.radius, static_cast<double>(m.owner), 0.0,
+                     m.heading.x, m.heading.y, 0.0, 0.0}) {
       out.push_back(static_cast<float>(v));
     }
   }
@@ -262,8 +271,8 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
   // Quotient scenes: the images of the objects (binding 4); else a stub.
   const std::vector<float> images =
-      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(8, 0.0f);
-  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 8);
+      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(12, 0.0f);
+  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 12);
   Buffer image_buffer(m.context, images.size() * sizeof(float));
   image_buffer.write(images);
   m.params.write(std::span<const GpuParams>(&g, 1));

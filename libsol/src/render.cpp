@@ -20,11 +20,8 @@
 #include "sol/lattice.hpp"
 
 namespace sol {
-namespace {
 
-using RelativeObject = MarchObject;
-
-double object_distance(const RelativeObject& o, const glm::dvec3& q) {
+double object_distance(const MarchObject& o, const glm::dvec3& q) {
   switch (o.type) {
     case ObjectType::PlaneX:
       return sdf_plane_x(q, o.c);
@@ -35,10 +32,15 @@ double object_distance(const RelativeObject& o, const glm::dvec3& q) {
     case ObjectType::Ball:
       return sdf_ball(q, o.center, o.radius);
     case ObjectType::Tube:
-      return sdf_tube(q, o.center, o.axis, o.radius);
+      return o.axis == kAxisZ ? sdf_tube(q, o.center, kAxisZ, o.radius)
+                              : sdf_tube_horizontal(q, o.center, o.heading, o.radius);
   }
   return std::numeric_limits<double>::infinity();
 }
+
+namespace {
+
+using RelativeObject = MarchObject;
 
 // The unit normal at a hit q (camera-relative), facing the camera's side:
 // the march stops within hit_epsilon of a plane, possibly just across it,
@@ -64,13 +66,6 @@ glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
     n.y = side * std::abs(n.y);
   }
   return n;
-}
-
-// A plane's own coordinates of a world point: (x, y) for z = c, (y, z) for
-// x = c, (x, z) for y = c.
-double plane_u(ObjectType type, const glm::dvec3& p) { return type == ObjectType::PlaneX ? p.y : p.x; }
-double plane_v(ObjectType type, const glm::dvec3& p) {
-  return type == ObjectType::PlaneX || type == ObjectType::PlaneY ? p.z : p.y;
 }
 
 // Pattern factor from the hit's coordinates in the plane (world).
@@ -110,8 +105,22 @@ glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height)
   return glm::normalize(sx * b.right + sy * b.up + b.forward);
 }
 
-MarchObject relative_object(const SceneObject& o, const glm::dvec3& p, std::size_t owner) {
-  MarchObject r{o.type, 0.0, glm::dvec3(0.0), o.radius, o.axis, owner};
+namespace {
+
+// A scene object in world coordinates, as the march sees it.
+MarchObject world_object(const SceneObject& o, std::size_t owner) {
+  MarchObject r{o.type, o.c, o.center, o.radius, o.axis, owner, glm::dvec2(0.0)};
+  if (o.type == ObjectType::Tube && o.axis != kAxisZ) {
+    const glm::dvec3 d = tube_axis_direction(o.axis);
+    r.heading = {d.x, d.y};
+  }
+  return r;
+}
+
+}  // namespace
+
+MarchObject relative_to(const MarchObject& o, const glm::dvec3& p) {
+  MarchObject r = o;
   switch (o.type) {
     case ObjectType::PlaneX:
       r.c = std::exp(-p.z) * (o.c - p.x);
@@ -125,26 +134,154 @@ MarchObject relative_object(const SceneObject& o, const glm::dvec3& p, std::size
     case ObjectType::Ball:
     case ObjectType::Tube:
       r.center = multiply(inverse(p), o.center);
+      // p⁻¹ maps (x, y, z) to (e^{-p_z}(x - p_x), e^{p_z}(y - p_y), z - p_z).
+      if (o.type == ObjectType::Tube && o.axis != kAxisZ) {
+        r.heading = glm::normalize(glm::dvec2(std::exp(-p.z) * o.heading.x, std::exp(p.z) * o.heading.y));
+      }
       break;
   }
   return r;
 }
 
+MarchObject relative_object(const SceneObject& o, const glm::dvec3& p, std::size_t owner) {
+  return relative_to(world_object(o, owner), p);
+}
+
+glm::dvec2 pattern_coordinates(const MarchObject& o, const glm::dvec3& q) {
+  constexpr double kCells = 4.0 / 3.14159265358979323846;  // 8 cells per turn
+  switch (o.type) {
+    case ObjectType::PlaneX:
+      return {q.y, q.z};
+    case ObjectType::PlaneY:
+      return {q.x, q.z};
+    case ObjectType::PlaneZ:
+      return {q.x, q.y};
+    case ObjectType::Ball: {
+      const glm::dvec3 w = multiply(inverse(o.center), q);
+      return {kCells * std::atan2(w.y, w.x), kCells * std::atan2(w.z, std::hypot(w.x, w.y))};
+    }
+    case ObjectType::Tube: {
+      const glm::dvec3 w = multiply(inverse(o.center), q);
+      if (o.axis == kAxisZ) return {kCells * std::atan2(w.y, w.x), kCells * w.z / o.radius};
+      // The axis direction relative to the point `center` (see relative_to).
+      const glm::dvec2 h =
+          glm::normalize(glm::dvec2(std::exp(-o.center.z) * o.heading.x, std::exp(o.center.z) * o.heading.y));
+      const double along = w.x * h.x + w.y * h.y, across = w.y * h.x - w.x * h.y;
+      return {kCells * std::atan2(w.z, across), kCells * along / o.radius};
+    }
+  }
+  return {0.0, 0.0};
+}
+
+namespace {
+
+double gap(double v, double lo, double hi) { return v < lo ? lo - v : (v > hi ? v - hi : 0.0); }
+
+// A lower bound, over every point q of D, of object_distance(o, q) (world
+// coordinates). D = {s γ1 + r γ2} × [0, h): its (x, y) lie in the
+// parallelogram P with corners 0, γ1, γ2, γ1 + γ2. D is cut into slabs
+// z in [z0, z1] and the bound is the least of the slabs' bounds:
+//  - plane z = c: |q_z - c| >= the gap between c and [z0, z1];
+//  - ball, vertical tube: the distance bound is at least the distance to the
+//    plane x = c_x, asinh(|q_x - c_x| e^{-q_z}) >= asinh(gap_x e^{-z1}), and
+//    to y = c_y, asinh(|q_y - c_y| e^{q_z}) >= asinh(gap_y e^{z0}) (gap_x,
+//    gap_y: from c_x, c_y to P's x- and y-ranges); balls also >= |Δz|;
+//  - horizontal tube: |h_y Δx - h_x Δy| is linear on P, so its least value
+//    is 0 when the corners' values differ in sign and else the least corner
+//    value; the denominator |h_x| e^{-z} + |h_y| e^{z} is convex in z, so at
+//    most its larger value at z0 or z1; also >= |Δz|.
+double lower_bound_over_domain(const MarchObject& o, const Lattice& lattice) {
+  const double h = lattice.height();
+  if (o.type == ObjectType::PlaneZ) return gap(o.c, 0.0, h);
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  const glm::dvec2 corners[4] = {{0.0, 0.0}, {g1.x, g1.y}, {g2.x, g2.y}, {g1.x + g2.x, g1.y + g2.y}};
+  double xlo = 0.0, xhi = 0.0, ylo = 0.0, yhi = 0.0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;  // h_y Δx - h_x Δy over P
+  const glm::dvec3& c = o.center;
+  for (const glm::dvec2& k : corners) {
+    xlo = std::min(xlo, k.x);
+    xhi = std::max(xhi, k.x);
+    ylo = std::min(ylo, k.y);
+    yhi = std::max(yhi, k.y);
+    const double v = o.heading.y * (k.x - c.x) - o.heading.x * (k.y - c.y);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  const bool horizontal = o.type == ObjectType::Tube && o.axis != kAxisZ;
+  const double least_across = lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(std::abs(lo), std::abs(hi));
+  const double gx = gap(c.x, xlo, xhi), gy = gap(c.y, ylo, yhi);
+  const double hx = std::abs(o.heading.x), hy = std::abs(o.heading.y);
+  constexpr int kSlabs = 16;
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < kSlabs; ++i) {
+    const double z0 = h * i / kSlabs, z1 = h * (i + 1) / kSlabs;
+    double b = 0.0;
+    if (horizontal) {
+      const double denominator = std::max(hx * std::exp(-z0) + hy * std::exp(z0), hx * std::exp(-z1) + hy * std::exp(z1));
+      b = std::max(gap(c.z, z0, z1), std::asinh(least_across / denominator));
+    } else {
+      b = std::max(std::asinh(gx * std::exp(-z1)), std::asinh(gy * std::exp(z0)));
+      if (o.type == ObjectType::Ball) b = std::max(b, gap(c.z, z0, z1));
+    }
+    least = std::min(least, b);
+  }
+  return least - o.radius;
+}
+
+// Whether two images are the same set (tubes: the same line).
+bool same_image(const MarchObject& a, const MarchObject& b) {
+  if (a.type != b.type || a.owner != b.owner) return false;
+  constexpr double kTolerance = 1e-9;
+  if (a.type == ObjectType::PlaneZ) return std::abs(a.c - b.c) < kTolerance;
+  if (a.type != ObjectType::Tube) return glm::length(a.center - b.center) < kTolerance;
+  if (a.axis == kAxisZ) return std::abs(a.center.x - b.center.x) < kTolerance && std::abs(a.center.y - b.center.y) < kTolerance;
+  const glm::dvec2 d(b.center.x - a.center.x, b.center.y - a.center.y);
+  return std::abs(a.center.z - b.center.z) < kTolerance &&
+         std::abs(a.heading.x * b.heading.y - a.heading.y * b.heading.x) < kTolerance &&
+         std::abs(a.heading.x * d.y - a.heading.y * d.x) < kTolerance;
+}
+
+}  // namespace
+
+// Why these images are all a march step can reach. A step starts at a point
+// q of D and is at most kQuotientMaxStep (0.5) long, and object_distance is
+// a lower bound of the distance to the drawn object; so an image whose bound
+// exceeds 0.5 all over D is never reached, and lower_bound_over_domain
+// (above) proves that for the images dropped here. The enumeration is wide
+// enough: (1) |c| >= 2 moves an object, first moved into the cells z in
+// [0, h), by at least h = 0.962 in z from D, beyond 0.5 + radius while the
+// radius is at most kMaxQuotientRadius (0.45; validate checks it); (2) an
+// image within reach lies over x in [-3.1, φ + 4.1], y in [-2.2, φ + 1.2]
+// (asinh(gap e^{-h}) <= 0.95), whose lattice coordinates are below 3.4 in
+// size, while γ3^{±1} moves a point of D to lattice coordinates below 3 (the
+// entries of [[2,1],[1,1]] and its inverse), so |a|, |b| <= 7 suffice for
+// balls and vertical lines; a horizontal line along a lattice vector of
+// length <= 4.3 has a point γ3^c o + λ within 4.3 of any of its points, which
+// adds at most 2.3 to |a|, |b|. The test Quotient.ImagesAreCompleteAndReachable
+// checks that a wider enumeration finds nothing more.
 std::vector<MarchObject> quotient_images(const Scene& scene) {
   const Lattice lattice = Lattice::golden();
+  constexpr int kRange = 10;
   std::vector<MarchObject> images;
   const double h = lattice.height();
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& o = scene.objects[i];
-    if (o.type == ObjectType::PlaneZ) {
-      const double c0 = o.c - h * std::floor(o.c / h);
-      for (int k = -1; k <= 1; ++k) images.push_back({ObjectType::PlaneZ, c0 + k * h, glm::dvec3(0.0), 0.0, 2, i});
-    } else if (o.type == ObjectType::Ball) {
-      const glm::dvec3 c0 = lattice.teleport(o.center).point;
-      for (int c = -1; c <= 1; ++c) {
-        for (int a = -3; a <= 3; ++a) {
-          for (int b = -3; b <= 3; ++b) {
-            images.push_back({ObjectType::Ball, 0.0, multiply(lattice.element(a, b, c), c0), o.radius, 2, i});
+    MarchObject base = world_object(scene.objects[i], i);
+    if (base.type == ObjectType::PlaneZ) {
+      base.c -= h * std::floor(base.c / h);
+    } else {
+      // Move the centre (axis point) into D, the axis along with it.
+      const Teleport t = lattice.teleport(base.center);
+      base = relative_to(base, inverse(t.element));
+      base.center = t.point;
+    }
+    const int range = base.type == ObjectType::PlaneZ ? 0 : kRange;  // (x, y) translations fix planes z = c
+    for (int c = -1; c <= 1; ++c) {
+      for (int a = -range; a <= range; ++a) {
+        for (int b = -range; b <= range; ++b) {
+          const MarchObject image = relative_to(base, inverse(lattice.element(a, b, c)));
+          if (lower_bound_over_domain(image, lattice) > kQuotientMaxStep) continue;
+          if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
+            images.push_back(image);
           }
         }
       }
@@ -216,7 +353,11 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
       const glm::dvec3 p = heights_only ? ray.at(t).position : q;  // the full position, once
       const SceneObject& o = scene.objects[hit_k];
       const glm::dvec3 world = multiply(origin, p);
-      if (o.cutout && pattern_factor(o.pattern, plane_u(o.type, world), plane_v(o.type, world)) != 1.0) {
+      // Planes: their own world coordinates; balls, tubes: relative to the
+      // centre (axis point), left-invariant, so camera-relative coordinates do.
+      const bool plane = o.type != ObjectType::Ball && o.type != ObjectType::Tube;
+      const glm::dvec2 uv = pattern_coordinates(objects[hit_k], plane ? world : p);
+      if (o.cutout && pattern_factor(o.pattern, uv.x, uv.y) != 1.0) {
         passing |= std::uint64_t{1} << hit_k;  // between the discs: go through
         t += std::max(nearest, 2.0 * scene.hit_epsilon);
         if (t > scene.max_distance) break;
@@ -226,6 +367,7 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
       hit.distance = t;
       hit.point = world;
       hit.normal = object_normal(objects[hit_k], p);
+      hit.pattern_uv = uv;
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * scene.hit_epsilon) : nearest;
@@ -247,7 +389,7 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
 // (a dropped image's bound exceeded kKeep there, and bounds are 1-Lipschitz
 // lower bounds of the distance).
 MarchHit march_quotient(const Scene& scene, const PreparedScene& prepared, const glm::dvec3& direction) {
-  constexpr double kMaxStep = 0.5, kKeep = 1.25;
+  constexpr double kMaxStep = kQuotientMaxStep, kKeep = 1.25;
   const Lattice lattice = Lattice::golden();
   const std::vector<MarchObject>& images = prepared.objects;
   glm::dvec3 origin = lattice.teleport(scene.camera.position).point;
@@ -289,11 +431,8 @@ MarchHit march_quotient(const Scene& scene, const PreparedScene& prepared, const
       hit.point = q;
       // Normals are left-invariant: evaluate relative to the segment's origin
       // (a plane then faces the side the ray comes from, as in the cover).
-      RelativeObject rel = images[nearest_k];
-      const glm::dvec3 qi = multiply(inverse(origin), q);
-      if (rel.type == ObjectType::Ball) rel.center = multiply(inverse(origin), rel.center);
-      if (rel.type == ObjectType::PlaneZ) rel.c -= origin.z;
-      hit.normal = object_normal(rel, qi);
+      hit.normal = object_normal(relative_to(images[nearest_k], origin), multiply(inverse(origin), q));
+      hit.pattern_uv = pattern_coordinates(images[nearest_k], q);  // world coordinates, the image's own
       return hit;
     }
     const double step_length = std::min({nearest, kMaxStep, kKeep - since_filter});
@@ -322,13 +461,12 @@ glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
   if (hit.object == 0) return glm::dvec3(0.0);
   const SceneObject& o = scene.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
-  const double u = plane_u(o.type, p), v = plane_v(o.type, p);
   glm::dvec3 light(0.0);
   for (const Light& l : scene.lights) {
     const LightAtPoint at = light_at(l, p);
     light += l.color * (l.intensity * at.attenuation * std::max(0.0, glm::dot(hit.normal, at.direction)));
   }
-  const glm::dvec3 surface = o.color * pattern_factor(o.pattern, u, v) * (scene.ambient + (1.0 - scene.ambient) * light);
+  const glm::dvec3 surface = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) * (scene.ambient + (1.0 - scene.ambient) * light);
   const double transmittance = std::exp(-scene.fog_density * hit.distance);
   return scene.fog_color + (surface - scene.fog_color) * transmittance;
 }

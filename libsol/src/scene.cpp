@@ -1,7 +1,9 @@
 #include "sol/scene.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <iterator>
 #include <fstream>
 #include <map>
 #include <set>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sol/error.hpp"
+#include "sol/lattice.hpp"
 
 namespace sol {
 namespace {
@@ -161,6 +164,9 @@ ObjectType object_type(const json& value, std::string_view source, const std::st
   fail(source, "'" + name + "' must be one of plane_x, plane_y, plane_z, ball, tube, got " + s);
 }
 
+// JSON names of the tube axes, indexed by TubeAxis.
+constexpr const char* kAxisNames[] = {"x", "y", "z", "gamma1", "gamma2"};
+
 Pattern pattern(const json& value, std::string_view source, const std::string& name) {
   const std::string s = value.is_string() ? value.get<std::string>() : value.dump();
   if (s == "none") return Pattern::None;
@@ -189,11 +195,30 @@ void validate_in(const Scene& s, std::string_view source) {
   if (s.objects.empty()) fail(source, "the scene has no objects");
   if (s.objects.size() > 64) fail(source, "at most 64 objects, got " + std::to_string(s.objects.size()));
   if (s.quotient == Quotient::Golden) {
+    const Lattice lattice = Lattice::golden();
     for (std::size_t i = 0; i < s.objects.size(); ++i) {
-      const ObjectType t = s.objects[i].type;
-      if (t == ObjectType::PlaneX || t == ObjectType::PlaneY || t == ObjectType::Tube) {
-        fail(source, "objects[" + std::to_string(i) + "].type: planes x, y = c and tubes are not supported in the " +
-                         "quotient yet (their images under Γ are not of the same kind)");
+      const SceneObject& o = s.objects[i];
+      const std::string at = "objects[" + std::to_string(i) + "]";
+      if (o.type == ObjectType::PlaneX || o.type == ObjectType::PlaneY) {
+        fail(source, at + ".type: planes x, y = c are not supported in the quotient (Γ maps them to planes of "
+                          "every slope, dense in M)");
+      }
+      if ((o.type == ObjectType::Ball || o.type == ObjectType::Tube) && o.radius > kMaxQuotientRadius) {
+        fail(source, at + ".radius must be <= 0.45 in the quotient (one cell's height, 2 ln φ, less the longest step)");
+      }
+      if (o.type != ObjectType::Tube) continue;
+      if (o.axis == kAxisX || o.axis == kAxisY) {
+        fail(source, at + ".axis: tubes along x or y do not close up in the quotient (their images are dense); "
+                          "use gamma1, gamma2 or z");
+      }
+      if (o.axis == kAxisZ && std::isfinite(o.center.x) && std::isfinite(o.center.y)) {
+        // A vertical line closes up (as the curve of γ3) when it passes through
+        // a lattice point of ⟨γ1, γ2⟩, which γ3 maps into the lattice.
+        const glm::dvec2 st = lattice.lattice_coordinates(o.center.x, o.center.y);
+        if (std::abs(st.x - std::round(st.x)) > 1e-9 || std::abs(st.y - std::round(st.y)) > 1e-9) {
+          fail(source, at + ".through: a tube along z in the quotient must pass through a point (x, y) of the "
+                            "lattice ⟨γ1, γ2⟩ (then it is the closed curve of γ3)");
+        }
       }
     }
   }
@@ -204,8 +229,9 @@ void validate_in(const Scene& s, std::string_view source) {
     if (o.type == ObjectType::Ball || o.type == ObjectType::Tube) {
       if (!bounded3(o.center)) fail(source, at + ".center must be finite and within 1e15 of the origin");
       if (!(o.radius > 0.0) || !std::isfinite(o.radius)) fail(source, at + ".radius must be finite and > 0");
-      if (o.pattern != Pattern::None) fail(source, at + ".pattern: balls and tubes take no pattern");
-      if (o.axis < 0 || o.axis > 2) fail(source, at + ".axis must be x, y or z");
+      if (o.type == ObjectType::Tube && (o.axis < kAxisX || o.axis > kAxisGamma2)) {
+        fail(source, at + ".axis must be x, y, z, gamma1 or gamma2");
+      }
     }
     if (o.cutout && (o.type == ObjectType::Ball || o.type == ObjectType::Tube || o.pattern == Pattern::None)) {
       fail(source, at + ".cutout needs a plane with a pattern (circles or checker)");
@@ -321,8 +347,14 @@ Scene parse_scene(std::string_view text, std::string_view source) {
         if (!o.contains(key)) fail(source, at + " (a tube) needs '" + key + "'");
       }
       const std::string axis = o["axis"].is_string() ? o["axis"].get<std::string>() : o["axis"].dump();
-      if (axis != "x" && axis != "y" && axis != "z") fail(source, "'" + at + ".axis' must be x, y or z, got " + axis);
-      obj.axis = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
+      const auto known = std::find(std::begin(kAxisNames), std::end(kAxisNames), axis);
+      if (axis == "gamma3") {
+        obj.axis = kAxisZ;  // the closed curve of γ3 is the vertical line
+      } else if (known == std::end(kAxisNames)) {
+        fail(source, "'" + at + ".axis' must be x, y, z, gamma1, gamma2 or gamma3, got " + axis);
+      } else {
+        obj.axis = static_cast<int>(known - std::begin(kAxisNames));
+      }
       obj.center = vec3(o["through"], source, at + ".through");
       obj.radius = number(o["radius"], source, at + ".radius");
     } else {
@@ -421,7 +453,23 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets", "lattice-balls"}; }
+std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars"}; }
+
+glm::dvec3 tube_axis_direction(int axis) {
+  const double phi = 0.5 * (1.0 + std::sqrt(5.0));
+  switch (axis) {
+    case kAxisX:
+      return {1.0, 0.0, 0.0};
+    case kAxisY:
+      return {0.0, 1.0, 0.0};
+    case kAxisGamma1:
+      return glm::normalize(glm::dvec3(phi, -1.0, 0.0));
+    case kAxisGamma2:
+      return glm::normalize(glm::dvec3(1.0, phi, 0.0));
+    default:
+      return {0.0, 0.0, 1.0};
+  }
+}
 
 Scene preset_scene(std::string_view name) {
   Scene s;
@@ -455,6 +503,25 @@ Scene preset_scene(std::string_view name) {
     s.fog_density = 1.0 / 12.0;
     s.max_distance = 12.0;
     s.max_steps = 400;
+  } else if (name == "lattice-pillars") {
+    // Tubes along the closed curves of γ1, γ2 and γ3 through the base point
+    // of M: in the cover they run along the edges of the fundamental domains
+    // and stake them out. Looking along x = y from the middle of the domain.
+    s.quotient = Quotient::Golden;
+    s.camera = {{1.3, 0.3, 0.48}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 90.0};
+    SceneObject tube;
+    tube.type = ObjectType::Tube;
+    tube.radius = 0.06;
+    for (const auto& [axis, color] : {std::pair{kAxisGamma1, glm::dvec3(0.9, 0.35, 0.3)},
+                                      std::pair{kAxisGamma2, glm::dvec3(0.35, 0.8, 0.4)},
+                                      std::pair{kAxisZ, glm::dvec3(0.35, 0.5, 0.95)}}) {
+      tube.axis = axis;
+      tube.color = color;
+      s.objects.push_back(tube);
+    }
+    s.fog_density = 1.0 / 5.0;
+    s.max_distance = 10.0;
+    s.max_steps = 400;
   } else {
     std::string list;
     for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
@@ -474,7 +541,8 @@ std::string to_json(const Scene& s) {
   for (const SceneObject& o : s.objects) {
     if (o.type == ObjectType::Tube) {
       root["objects"].push_back({{"type", to_string(o.type)},
-                                 {"axis", o.axis == 0 ? "x" : (o.axis == 1 ? "y" : "z")},
+                                 {"axis", kAxisNames[std::clamp(o.axis, 0, 4)]},
+                                 {"pattern", to_string(o.pattern)},
                                  {"through", arr(o.center)},
                                  {"radius", o.radius},
                                  {"color", arr(o.color)}});
@@ -482,6 +550,7 @@ std::string to_json(const Scene& s) {
       root["objects"].push_back({{"type", to_string(o.type)},
                                  {"center", arr(o.center)},
                                  {"radius", o.radius},
+                                 {"pattern", to_string(o.pattern)},
                                  {"color", arr(o.color)}});
     } else {
       root["objects"].push_back({{"type", to_string(o.type)},

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace sol {
@@ -68,12 +69,28 @@ inline double sdf_ball(const glm::dvec3& p, const glm::dvec3& center, double rad
 /// Exact for points in the totally geodesic plane x = x0 or y = y0 that
 /// contains the line (there the hyperbolic-plane distance to a geodesic,
 /// resp. to a horocycle, is attained); a lower bound elsewhere.
+/// Signed distance bound of the tube of `radius` around the horizontal line
+/// {through + s (h.x, h.y, 0)}, h ≠ 0 a coordinate direction. For each point
+/// q(s) of the line, d(p, q(s)) is at least the distances to the planes
+/// x = q_x(s) and y = q_y(s), asinh(A |s - s1|) and asinh(B |s - s2|) with
+/// A = |h.x| e^{-z}, B = |h.y| e^{z} (z = p.z, s1, s2 where the line meets
+/// x = p.x, y = p.y); the smaller over s of the larger of two such V shapes
+/// is reached where they cross:
+///   d(p, line) >= max(|Δz|, asinh(|h.y Δx - h.x Δy| / (|h.x| e^{-z} + |h.y| e^{z}))).
+/// For h = (1, 0) or (0, 1) this is sdf_tube's bound for the x or y axis.
+inline double sdf_tube_horizontal(const glm::dvec3& p, const glm::dvec3& through, const glm::dvec2& h, double radius) {
+  const double dx = p.x - through.x, dy = p.y - through.y;
+  const double across =
+      std::abs(h.y * dx - h.x * dy) / (std::abs(h.x) * std::exp(-p.z) + std::abs(h.y) * std::exp(p.z));
+  return std::max(std::asinh(across), std::abs(p.z - through.z)) - radius;
+}
+
 inline double sdf_tube(const glm::dvec3& p, const glm::dvec3& through, int axis, double radius) {
+  if (axis == 0) return sdf_tube_horizontal(p, through, {1.0, 0.0}, radius);
+  if (axis == 1) return sdf_tube_horizontal(p, through, {0.0, 1.0}, radius);
   const double to_x = std::asinh(std::abs(p.x - through.x) * std::exp(-p.z));
   const double to_y = std::asinh(std::abs(p.y - through.y) * std::exp(p.z));
-  const double to_z = std::abs(p.z - through.z);
-  const double d = axis == 2 ? std::max(to_x, to_y) : (axis == 0 ? std::max(to_y, to_z) : std::max(to_x, to_z));
-  return d - radius;
+  return std::max(to_x, to_y) - radius;
 }
 
 }  // namespace sol

@@ -29,6 +29,7 @@
 #include <functional>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "sol/scene.hpp"
@@ -59,24 +60,46 @@ CameraBasis camera_basis(const Camera& camera);
 /// An object as the march sees it, left-translated by origin⁻¹ (origin at the
 /// identity: world coordinates): planes by their constant (x = e^{-z_o}(c - x_o),
 /// y = e^{z_o}(c - y_o), z = c - z_o), balls by their centre, tubes by a point
-/// of their axis (left-translation maps coordinate lines to coordinate lines).
+/// of their axis and, for horizontal axes, the axis's unit coordinate
+/// direction `heading` (left-translation maps lines to lines and scales a
+/// horizontal direction (h_x, h_y) to (e^{-z_o} h_x, e^{z_o} h_y)).
 /// The CPU renderer and the kernels' hosts share it.
 struct MarchObject {
   ObjectType type = ObjectType::PlaneZ;
   double c = 0.0;
   glm::dvec3 center{0.0};
   double radius = 0.0;
-  int axis = 2;
-  std::size_t owner = 0;  ///< index of the scene object
+  int axis = 2;              ///< tubes: 2 vertical, anything else horizontal along `heading`
+  std::size_t owner = 0;     ///< index of the scene object
+  glm::dvec2 heading{0.0};   ///< horizontal tubes: unit coordinate direction of the axis
 };
 MarchObject relative_object(const SceneObject& object, const glm::dvec3& origin, std::size_t owner);
+/// The same object left-translated by origin⁻¹ (from world coordinates to
+/// coordinates relative to `origin`).
+MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin);
+
+/// The signed distance (exact for planes, a lower bound for balls and
+/// tubes: sol/distance.hpp) from q to an object in the same coordinates.
+double object_distance(const MarchObject& object, const glm::dvec3& q);
+
+/// Pattern coordinates (u, v) of a hit point q on an object given in the
+/// same coordinates as q. Planes: their own world coordinates (pass world
+/// coordinates). Balls: with w = centre⁻¹·q, (4/π)·longitude atan2(w_y, w_x)
+/// and (4/π)·latitude atan2(w_z, |w_xy|) (8 cells around, 4 from pole to
+/// pole). Tubes: with w = through⁻¹·q, (4/π)·the angle around the axis and
+/// 4/(π r)·the coordinate along it (square cells of side πr/4 on the surface).
+glm::dvec2 pattern_coordinates(const MarchObject& object, const glm::dvec3& q);
 
 /// Quotient scenes: the images, in world coordinates, of the scene's objects
-/// that can meet the fundamental domain D or the shell a step may cross:
-/// planes z = c at c0 + k h (c0 = c mod h, k = -1..1); balls at
-/// γ1^a γ2^b γ3^c · (centre moved into D), |a|, |b| <= 3, |c| <= 1 (the cells
-/// above and below D are stretched by φ^{±2} along x, y).
+/// that a march step can reach from D. Each object is first moved by Γ so
+/// that its centre or axis point lies in D; its images g·object, g =
+/// γ1^a γ2^b γ3^c with |a|, |b| <= 10, |c| <= 1, are kept when a lower bound
+/// of their distance bound over all of D is at most the longest step (0.5):
+/// see the proof in render.cpp. Lines that coincide are listed once.
 std::vector<MarchObject> quotient_images(const Scene& scene);
+
+/// The longest march step in the quotient: no image beyond it is listed.
+constexpr double kQuotientMaxStep = 0.5;
 
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.
@@ -88,6 +111,7 @@ struct MarchHit {
   double distance = 0.0;       ///< arc length to the hit (to where the march stopped on a miss)
   glm::dvec3 point{0.0};       ///< hit point, world coordinates
   glm::dvec3 normal{0.0};      ///< unit surface normal at the hit, frame components, facing the ray
+  glm::dvec2 pattern_uv{0.0};  ///< the object's pattern coordinates at the hit (pattern_coordinates)
   int steps = 0;               ///< march steps used (0: culled by its height range)
 };
 

@@ -28,15 +28,30 @@ enum class Pattern {
   Checker,  ///< unit checkerboard in the plane's own coordinates
 };
 
+/// The axis of a tube: a coordinate line, or the horizontal line along γ1 =
+/// (φ, -1, 0) or γ2 = (1, φ, 0) (the one-parameter subgroups t·γ1, t·γ2 of the
+/// plane z = 0, translated): through a point of Γ·o these are the closed
+/// curves of γ1, γ2 in M = Γ\Sol, and the z-line is the closed curve of γ3.
+enum TubeAxis : int { kAxisX = 0, kAxisY = 1, kAxisZ = 2, kAxisGamma1 = 3, kAxisGamma2 = 4 };
+
+/// Unit coordinate direction of a tube axis: (1,0,0), (0,1,0), (0,0,1),
+/// (φ,-1,0)/|.|, (1,φ,0)/|.|. Every axis but z is horizontal.
+glm::dvec3 tube_axis_direction(int axis);
+
+/// Largest radius of a ball or tube in a quotient scene: the images of the
+/// objects are listed for the cells next to D only (sol::quotient_images),
+/// which holds while h - radius exceeds the longest quotient step (0.5).
+constexpr double kMaxQuotientRadius = 0.45;
+
 struct SceneObject {
   ObjectType type = ObjectType::PlaneZ;
   double c = 0.0;                      ///< planes: the constant coordinate
   glm::dvec3 color{0.8, 0.8, 0.8};     ///< linear RGB in [0, 1]
-  Pattern pattern = Pattern::None;     ///< planes only (balls: none)
+  Pattern pattern = Pattern::None;     ///< planes: in their own coordinates; balls, tubes: see sol/render.hpp
   bool cutout = false;                 ///< planes: only the pattern's bright cells (discs, light squares) are solid
   glm::dvec3 center{0.0, 0.0, 0.0};    ///< balls: centre (Sol coordinates)
   double radius = 0.5;                 ///< balls, tubes: radius, > 0
-  int axis = 2;                        ///< tubes: 0 x, 1 y, 2 z (the line through `center`)
+  int axis = 2;                        ///< tubes: a TubeAxis (the line through `center`)
 };
 
 enum class LightType {
@@ -95,7 +110,9 @@ Scene load_scene(const std::string& path);
 
 /// Built-in scenes: "plane" (z = 0 tiled with circles, seen from (0,0,1.5)
 /// looking straight down), "sandwich" (planes z = ±1, observer at the
-/// origin), "sheets" (planes x = 0 and y = 0). InvalidArgument if unknown.
+/// origin), "sheets" (planes x = 0 and y = 0), "lattice-balls" (Γ\Sol, one
+/// ball at the base point), "lattice-pillars" (Γ\Sol, tubes along the closed
+/// curves of γ1, γ2, γ3 through the base point). InvalidArgument if unknown.
 Scene preset_scene(std::string_view name);
 std::vector<std::string> preset_names();
 

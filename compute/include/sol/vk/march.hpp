@@ -37,6 +37,9 @@ struct MarchOptions {
 
 /// Most objects a scene may hold on the GPU.
 constexpr int kMaxGpuObjects = 8;
+/// Most images of the objects around the domain in a quotient scene
+/// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
+constexpr int kMaxGpuImages = 64;
 
 class MarchRenderer {
  public:
