@@ -145,6 +145,21 @@ vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
 }
 
+// sol::cutout_gap_bound: a lower bound of the distance to the solid part of
+// a cutout plane z = c (discs, light squares) from a point with world
+// coordinates (u, v) (modulo 2) and e^{z} = ez; combined with |z - c| by max.
+float cutout_gap_bound(int pattern, vec2 uv, float ez) {
+  const vec2 f = fract(uv);
+  if (pattern == 2) {
+    if (mod(floor(uv.x) + floor(uv.y), 2.0) == 0.0) return 0.0;  // on a light square
+    return asinh(min(min(f.x, 1.0 - f.x) / ez, min(f.y, 1.0 - f.y) * ez));
+  }
+  const vec2 d = abs(f - 0.5);
+  const float boxes = max(max(0.0, d.x - 0.3) / ez, max(0.0, d.y - 0.3) * ez);
+  const float gap = max(0.0, length(d) - 0.3);
+  return asinh(max(boxes, min(ez, 1.0 / ez) * gap * 0.70710678));
+}
+
 // The plane's own world coordinates of a camera-relative point q: world =
 // camera * q; the pattern takes the camera position modulo 2 (exact, from double).
 vec2 plane_coordinates(int type, vec3 q, vec4 eye_camera, vec4 eye_frac) {
@@ -262,8 +277,10 @@ void main() {
   float constants[MAX_OBJECTS], radii[MAX_OBJECTS];
   vec4 relative[MAX_OBJECTS];
   vec2 headings[MAX_OBJECTS];
+  int cutouts[MAX_OBJECTS];  // cutout planes z = c: their pattern (1 circles, 2 checker); else 0
   for (int k = 0; k < MAX_OBJECTS; ++k) {
     types[k] = int(params.objects[k].plane.x);
+    cutouts[k] = HAS_CUTOUT && types[k] == 2 && params.objects[k].plane.w != 0.0 ? int(params.objects[k].plane.z) : 0;
     radii[k] = params.objects[k].plane.y;
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
@@ -381,7 +398,8 @@ void main() {
   }
   for (int step = 0; step < max_steps && reachable; ++step) {
     if (INTEGRATOR == 0) {
-      q = heights_only ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position(ray, t);
+      // Cutout planes need the full position for their gap bounds.
+      q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position(ray, t);
     } else {
       rk4_advance(rk_p, rk_u, t - rk_t, rk4_step);
       rk_t = t;
@@ -391,6 +409,9 @@ void main() {
     int nearest_k = 0;
     for (int k = 0; k < count; ++k) {
       float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
+      if (HAS_CUTOUT && cutouts[k] != 0) {
+        d = max(d, cutout_gap_bound(cutouts[k], plane_coordinates(2, q, eye_camera, eye_frac), eye_camera.w * exp(q.z)));
+      }
       // Cutout planes being passed through (between their discs) are not hits
       // until the ray is 2 hit_epsilon away again (as the CPU reference).
       const uint bit = 1u << uint(k);
@@ -404,7 +425,7 @@ void main() {
     steps = step + 1;
     if (nearest_hit < hit_epsilon) {
       if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
-        const vec3 qp = (INTEGRATOR == 0 && HEIGHTS_ONLY) ? sol_position(ray, t) : q;
+        const vec3 qp = q;  // full positions whenever the scene has cutouts
         const vec2 uv = plane_coordinates(types[nearest_k], qp, eye_camera, eye_frac);
         if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
           passing |= 1u << uint(nearest_k);  // between the discs: go through
@@ -424,7 +445,7 @@ void main() {
   vec4 hit_aov = vec4(float(hit), 0.0, float(steps), 0.0);
   vec4 point_aov = vec4(0.0);
   if (hit != 0) {
-    if (INTEGRATOR == 0 && heights_only) {
+    if (INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
       sol_ray_integrals(ray);
       q = sol_position(ray, t);
     }

@@ -147,6 +147,22 @@ MarchObject relative_object(const SceneObject& o, const glm::dvec3& p, std::size
   return relative_to(world_object(o, owner), p);
 }
 
+double cutout_gap_bound(Pattern pattern, const glm::dvec3& w) {
+  const double ez = std::exp(w.z);
+  const double fu = w.x - std::floor(w.x), fv = w.y - std::floor(w.y);
+  if (pattern == Pattern::Checker) {
+    if (std::fmod(std::floor(w.x) + std::floor(w.y), 2.0) == 0.0) return 0.0;  // on a light square
+    // The nearest light squares share an edge with this dark one.
+    return std::asinh(std::min(std::min(fu, 1.0 - fu) / ez, std::min(fv, 1.0 - fv) * ez));
+  }
+  if (pattern != Pattern::Circles) return 0.0;
+  // The nearest disc is this cell's (the cells are the grid's Voronoi cells).
+  const double du = std::abs(fu - 0.5), dv = std::abs(fv - 0.5);
+  const double boxes = std::max(std::max(0.0, du - 0.3) / ez, std::max(0.0, dv - 0.3) * ez);
+  const double gap = std::max(0.0, std::hypot(du, dv) - 0.3);
+  return std::asinh(std::max(boxes, std::min(ez, 1.0 / ez) * gap / std::sqrt(2.0)));
+}
+
 glm::dvec2 pattern_coordinates(const MarchObject& o, const glm::dvec3& q) {
   constexpr double kCells = 4.0 / 3.14159265358979323846;  // 8 cells per turn
   switch (o.type) {
@@ -296,7 +312,8 @@ namespace {
 // relative to the camera (cover) or their images around D (quotient).
 struct PreparedScene {
   std::vector<MarchObject> objects;
-  bool heights_only = true;  // only planes z = c: the march needs z alone
+  bool heights_only = true;  // only planes z = c: the march needs z alone (and culls by the z-range)
+  bool cutout_gaps = false;  // cutout planes z = c: their gap bounds need the full position
 };
 
 PreparedScene prepare(const Scene& scene) {
@@ -309,6 +326,7 @@ PreparedScene prepare(const Scene& scene) {
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
     p.objects.push_back(relative_object(scene.objects[k], scene.camera.position, k));
     p.heights_only = p.heights_only && scene.objects[k].type == ObjectType::PlaneZ;
+    p.cutout_gaps = p.cutout_gaps || (scene.objects[k].cutout && scene.objects[k].type == ObjectType::PlaneZ);
   }
   return p;
 }
@@ -335,11 +353,14 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
   // is at least 2 hit_epsilon, so the ray leaves the plane.
   std::uint64_t passing = 0;
   for (int step = 0; step < scene.max_steps; ++step) {
-    const glm::dvec3 q = heights_only ? glm::dvec3(0.0, 0.0, ray.height_at(t)) : ray.at(t).position;
+    const bool full = !heights_only || prepared.cutout_gaps;
+    const glm::dvec3 q = full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
     std::size_t hit_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
-      const double d = object_distance(objects[k], q);
+      double d = object_distance(objects[k], q);
+      const SceneObject& o = scene.objects[k];
+      if (o.cutout && o.type == ObjectType::PlaneZ) d = std::max(d, cutout_gap_bound(o.pattern, multiply(origin, q)));
       const std::uint64_t bit = std::uint64_t{1} << k;
       if ((passing & bit) && d > 2.0 * scene.hit_epsilon) passing &= ~bit;
       nearest = std::min(nearest, d);
@@ -350,7 +371,7 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
     }
     hit.steps = step + 1;
     if (nearest_hit < scene.hit_epsilon) {
-      const glm::dvec3 p = heights_only ? ray.at(t).position : q;  // the full position, once
+      const glm::dvec3 p = full ? q : ray.at(t).position;  // the full position, once
       const SceneObject& o = scene.objects[hit_k];
       const glm::dvec3 world = multiply(origin, p);
       // Planes: their own world coordinates; balls, tubes: relative to the

@@ -90,6 +90,22 @@ double object_distance(const MarchObject& object, const glm::dvec3& q);
 /// 4/(π r)·the coordinate along it (square cells of side πr/4 on the surface).
 glm::dvec2 pattern_coordinates(const MarchObject& object, const glm::dvec3& q);
 
+/// A lower bound of the distance from the world point w to the solid part of
+/// a cutout plane z = c with `pattern` (its discs or light squares), to be
+/// combined with |w_z - c| by max; 0 where it cannot help (on a light square,
+/// pattern none). A point p of the plane at planar offset (Δx, Δy) from w is
+/// at distance >= asinh(|Δx| e^{-z}) and >= asinh(|Δy| e^{z}) (the planes
+/// x, y = const through p), z = w_z, so:
+///  - checker, w over a dark square: the light squares nearest in both
+///    senses share an edge with it: asinh(min(min(f_u, 1 - f_u) e^{-z}, min(f_v, 1 - f_v) e^{z}));
+///  - circles: the nearest disc is the cell's own, inside the square
+///    [0.2, 0.8]² of the cell: asinh(max(g_u e^{-z}, g_v e^{z})) with the gaps
+///    g to that square's sides; and max(|Δx|e^{-z}, |Δy|e^{z}) >=
+///    e^{-|z|}|Δ|/√2, so also asinh(e^{-|z|} g/√2), g the planar gap to the disc.
+/// With it the march steps across the holes of a cutout instead of edging
+/// through them by 2 hit_epsilon at a time.
+double cutout_gap_bound(Pattern pattern, const glm::dvec3& w);
+
 /// Quotient scenes: the images, in world coordinates, of the scene's objects
 /// that a march step can reach from D. Each object is first moved by Γ so
 /// that its centre or axis point lies in D; its images g·object, g =
