@@ -147,6 +147,53 @@ TEST(VkContext, MissingDeviceExtensionIsAClearError) {
   }
 }
 
+// The creation hooks (how an OpenXR runtime supplies the instance and the
+// device): each is called once with the Context's create info, and the
+// Context runs on what they return; a null device is a clear error.
+TEST(VkContext, CreationHooksSupplyTheInstanceAndDevice) {
+  ContextOptions options = validated();
+  int instances = 0, choices = 0, devices = 0;
+  VkPhysicalDevice picked = VK_NULL_HANDLE;
+  options.create_instance = [&](const VkInstanceCreateInfo& info, VkInstance* instance) {
+    ++instances;
+    EXPECT_EQ(info.pApplicationInfo->apiVersion, VK_API_VERSION_1_2);
+    return vkCreateInstance(&info, nullptr, instance);
+  };
+  options.choose_physical_device = [&](VkInstance instance) {
+    ++choices;
+    std::uint32_t count = 1;
+    const VkResult result = vkEnumeratePhysicalDevices(instance, &count, &picked);
+    EXPECT_TRUE(result == VK_SUCCESS || result == VK_INCOMPLETE);
+    return picked;
+  };
+  options.create_device = [&](VkPhysicalDevice physical_device, const VkDeviceCreateInfo& info, VkDevice* device) {
+    ++devices;
+    EXPECT_EQ(physical_device, picked);
+    return vkCreateDevice(physical_device, &info, nullptr, device);
+  };
+  {
+    Context context(options);
+    EXPECT_EQ(context.physical_device(), picked);
+    StorageImage image(context, 4, 2);
+    ComputePipeline fill(context, fill_desc());
+    fill.bind(0, image);
+    fill.run(1u, 1u, 3.0f);
+    expect_fill(image.download(), 4, 2, 3.0f);
+    EXPECT_TRUE(context.validation_errors().empty());
+  }
+  EXPECT_EQ(instances, 1);
+  EXPECT_EQ(choices, 1);
+  EXPECT_EQ(devices, 1);
+
+  options.choose_physical_device = [](VkInstance) { return VkPhysicalDevice{VK_NULL_HANDLE}; };
+  try {
+    const Context context(options);
+    FAIL() << "a null physical device was accepted";
+  } catch (const VulkanError& e) {
+    EXPECT_NE(std::string(e.what()).find("no Vulkan device was given"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VkContext, MovesKeepResourcesValid) {
   Context first(validated());
   StorageImage image(first, 5, 3);

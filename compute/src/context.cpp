@@ -368,7 +368,8 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   instance_info.ppEnabledExtensionNames = extensions.data();
   // Chained here too so that instance creation and destruction are validated.
   if (d.validation) instance_info.pNext = &messenger_info;
-  const VkResult created = vkCreateInstance(&instance_info, nullptr, &d.instance);
+  const VkResult created = options.create_instance ? options.create_instance(instance_info, &d.instance)
+                                                   : vkCreateInstance(&instance_info, nullptr, &d.instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
     throw VulkanError(created,
                       "no Vulkan 1.2 driver found (vkCreateInstance failed: VK_ERROR_INCOMPATIBLE_DRIVER); install "
@@ -400,7 +401,21 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   }
   std::vector<Candidate> candidates;
   for (VkPhysicalDevice handle : handles) candidates.push_back(inspect(handle, options.device_extensions));
-  const Candidate& chosen = choose(candidates, preference);
+  Candidate given;  // the hook's choice
+  if (options.choose_physical_device) {
+    const VkPhysicalDevice handle = options.choose_physical_device(d.instance);
+    if (handle == VK_NULL_HANDLE) {
+      throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "no Vulkan device was given (devices found: " +
+                                                            describe(candidates) + ")");
+    }
+    given = inspect(handle, options.device_extensions);
+    if (!given.unusable.empty()) {
+      throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "the Vulkan device given, '" +
+                                                            std::string(given.properties.deviceName) +
+                                                            "', is unusable: " + given.unusable);
+    }
+  }
+  const Candidate& chosen = options.choose_physical_device ? given : choose(candidates, preference);
   d.physical_device = chosen.handle;
   d.properties = chosen.properties;
   d.name = chosen.properties.deviceName;
@@ -422,7 +437,9 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   device_info.pQueueCreateInfos = &queue_info;
   device_info.enabledExtensionCount = static_cast<std::uint32_t>(device_extensions.size());
   device_info.ppEnabledExtensionNames = device_extensions.data();
-  check(vkCreateDevice(d.physical_device, &device_info, nullptr, &d.device), "vkCreateDevice");
+  check(options.create_device ? options.create_device(d.physical_device, device_info, &d.device)
+                              : vkCreateDevice(d.physical_device, &device_info, nullptr, &d.device),
+        "vkCreateDevice");
   vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
 
   VkCommandPoolCreateInfo pool_info{};

@@ -47,6 +47,21 @@ struct ContextOptions {
   /// swapchain extensions. Devices lacking a device extension are not chosen.
   std::vector<std::string> instance_extensions{};
   std::vector<std::string> device_extensions{};
+
+  /// Hooks for a caller that must put the Context on objects someone else
+  /// creates, such as an OpenXR runtime (XR_KHR_vulkan_enable2:
+  /// xrCreateVulkanInstanceKHR, xrGetVulkanGraphicsDevice2KHR,
+  /// xrCreateVulkanDeviceKHR). Each is given the create info the Context
+  /// built (layers, extensions, API version 1.2) and must create the object
+  /// from it, extending it as it needs to; the Context owns and destroys
+  /// what they return. Unset hooks take the default path (vkCreateInstance,
+  /// the device choice above, vkCreateDevice). A chosen physical device that
+  /// is unusable (no Vulkan 1.2, no compute queue, a missing extension) makes
+  /// the constructor throw VulkanError naming why.
+  std::function<VkResult(const VkInstanceCreateInfo& info, VkInstance* instance)> create_instance{};
+  std::function<VkPhysicalDevice(VkInstance instance)> choose_physical_device{};
+  std::function<VkResult(VkPhysicalDevice physical_device, const VkDeviceCreateInfo& info, VkDevice* device)>
+      create_device{};
 };
 
 class Context {
