@@ -15,6 +15,7 @@ packages=(
   glslang-tools         # glslangValidator: GLSL compute shaders to SPIR-V at build time
   spirv-tools           # SPIRV-Tools library: Sol::vk validates SPIR-V before a driver sees it
   vulkan-validationlayers  # VK_LAYER_KHRONOS_validation, on in the Vulkan tests
+  libopenxr-dev libopenxr-loader1  # OpenXR headers and loader: solxr and its headless test runtime
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()

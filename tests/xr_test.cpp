@@ -1,0 +1,325 @@
+// solxr through the headless OpenXR test runtime (tests/xr_runtime/), loaded
+// by the real OpenXR loader (XR_RUNTIME_JSON), on lavapipe with the Vulkan
+// validation layer on: eye images against the CPU reference renderer for
+// the eyes the head poses give, head motion, locomotion, the session's life
+// cycle and leaks, and the failures (no runtime, no Vulkan support, no
+// headset, bad options).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+
+#include "eye_pose.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SolxrRun {
+  int exit_code = -1;
+  std::string err;  // stderr and stdout
+  fs::path dir;     // the script, the log and the saved eye images
+};
+
+/// Runs solxr with `args` against the test runtime playing `script` (JSON,
+/// without the "output" key, which is added). A fresh directory per call.
+SolxrRun run_solxr(const std::string& name, const std::string& script, const std::string& args,
+              const std::string& runtime_json = SOL_XR_TEST_RUNTIME_JSON) {
+  SolxrRun r;
+  r.dir = fs::path(SOL_XR_TEST_DIR) / name;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir);
+  std::string body = script;
+  const std::size_t brace = body.find('{');
+  body.insert(brace + 1, "\"output\": \"" + r.dir.string() + "\", ");
+  std::ofstream(r.dir / "script.json") << body;
+  const fs::path log = r.dir / "log.txt";
+  const std::string command = "XR_RUNTIME_JSON='" + runtime_json + "' SOLXR_TEST_SCRIPT='" + (r.dir / "script.json").string() +
+                              "' '" SOLXR_PATH "' --validation " + args + " > '" + log.string() + "' 2>&1";
+  const int status = std::system(command.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream text;
+  text << std::ifstream(log).rdbuf();
+  r.err = text.str();
+  return r;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+/// A clean run: exit 0, the runtime saw every object destroyed, no Vulkan
+/// validation message.
+void expect_clean(const SolxrRun& r) {
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
+  EXPECT_FALSE(contains(r.err, "LEAK")) << r.err;
+  EXPECT_FALSE(contains(r.err, "validation error")) << r.err;
+  EXPECT_FALSE(contains(r.err, "validation warning")) << r.err;
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgba;
+};
+
+Image load_eye(const fs::path& dir, int frame, int view) {
+  Image image;
+  const fs::path path = dir / ("frame" + std::to_string(frame) + "_view" + std::to_string(view) + ".rgba32f");
+  std::ifstream in(path, std::ios::binary);
+  std::string magic, type;
+  in >> magic >> type >> image.width >> image.height;
+  in.get();  // the newline
+  EXPECT_EQ(magic, "SOLXR") << path;
+  image.rgba.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(image.rgba.size() * sizeof(float)));
+  EXPECT_TRUE(in.good()) << "cannot read " << path;
+  return image;
+}
+
+/// Pixels whose colour differs by more than `tolerance` in some channel.
+int differing_pixels(const Image& xr, const sol::RenderResult& cpu, float tolerance) {
+  EXPECT_EQ(xr.width, cpu.width);
+  EXPECT_EQ(xr.height, cpu.height);
+  if (xr.rgba.size() != cpu.rgba.size()) return xr.width * xr.height;
+  int differs = 0;
+  for (std::size_t k = 0; k < xr.rgba.size() / 4; ++k) {
+    bool d = false;
+    for (int c = 0; c < 3; ++c) d = d || !(std::abs(xr.rgba[4 * k + c] - cpu.rgba[4 * k + c]) <= tolerance);
+    differs += d;
+  }
+  return differs;
+}
+
+sol::RenderResult cpu_render(sol::Scene scene, const sol::Camera& eye, int width, int height) {
+  scene.camera = eye;
+  sol::RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  return sol::render_cpu(scene, settings);
+}
+
+// The kernel renders in float, the CPU reference in double: as in
+// kernel_test.cpp, a pixel counts as equal within 2e-3 per channel (float
+// rounding of the shading), and up to 2% of the pixels may differ (rays
+// grazing an edge or a pattern border land on one side in float and on the
+// other in double: kernel_test allows 1% mask and 1% colour flips). 8-bit
+// sRGB swapchains add half a quantisation step, 0.5/255 in sRGB, which is at
+// most 0.5/255 · 2.4/1.055 ≈ 4.5e-3 in linear units (the decoding's steepest
+// slope, at 1): 7e-3 covers both.
+constexpr float kFloatTolerance = 2e-3f, kSrgbTolerance = 7e-3f;
+int allowed(const Image& image) { return image.width * image.height / 50; }
+
+sol::Scene plane_with_fov(double fov) {
+  sol::Scene scene = sol::preset_scene("plane");
+  scene.camera.fov = fov;
+  return scene;
+}
+
+// --- the pose mapping alone ---
+
+TEST(XrEyePose, EyesAtHalfTheIpdAreTheStereoEyes) {
+  const sol::Scene scene = plane_with_fov(70);
+  const sol::Observer base(scene.camera.position, scene.camera.forward, scene.camera.up);
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.3);
+  const sol::Camera left = sol::xr::eye_camera(base, {{-0.15, 0, 0}, {1, 0, 0, 0}}, 1.0, scene.camera);
+  const sol::Camera right = sol::xr::eye_camera(base, {{0.075, 0, 0}, {1, 0, 0, 0}}, 2.0, scene.camera);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(left.position[i], eyes.left.position[i], 1e-12);
+    EXPECT_NEAR(right.position[i], eyes.right.position[i], 1e-12);
+    EXPECT_NEAR(left.forward[i], eyes.left.forward[i], 1e-10);
+    EXPECT_NEAR(right.up[i], eyes.right.up[i], 1e-10);
+  }
+  const sol::Camera still = sol::xr::eye_camera(base, {}, 1.0, scene.camera);
+  const sol::CameraBasis b = sol::camera_basis(scene.camera);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(still.position[i], scene.camera.position[i]);
+    EXPECT_NEAR(still.forward[i], b.forward[i], 1e-15);
+    EXPECT_NEAR(still.up[i], b.up[i], 1e-15);
+  }
+}
+
+TEST(XrEyePose, TranslationIsTheGeodesicOfThatLengthAndRotationTurnsTheEye) {
+  const sol::Observer base({0.2, -0.1, 0.7}, {1, 0.3, 0.2}, {0, 0, 1});
+  // OpenXR: a head 0.5 m forward (-z) and 0.2 m up, turned 90° left (about +y).
+  const glm::dquat left90 = glm::angleAxis(M_PI / 2, glm::dvec3(0, 1, 0));
+  const sol::Camera eye = sol::xr::eye_camera(base, {{0, 0.2, -0.5}, left90}, 1.0, sol::Camera{});
+  const glm::dvec3 d = 0.2 * base.up() + 0.5 * base.forward();
+  const double length = glm::length(d);
+  const sol::GeodesicState end = sol::flow({base.position(), d / length}, length);
+  const glm::dmat3 q = sol::transport({base.position(), d / length}, length);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(eye.position[i], end.position[i], 1e-12);
+    // Turned left: the eye looks along the transported -right, up unchanged.
+    EXPECT_NEAR(eye.forward[i], -(q * base.right())[i], 1e-9);
+    EXPECT_NEAR(eye.up[i], (q * base.up())[i], 1e-9);
+  }
+}
+
+// --- solxr through the test runtime ---
+
+TEST(XrSolxr, EachEyeImageIsTheCpuRenderOfThatEye) {
+  const SolxrRun r = run_solxr("stereo", R"({"width": 32, "height": 32, "fov": 60, "ipd": 0.2, "frames": [{}, {}, {}]})",
+                          "--scene plane");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "3 frames ended, 6 images saved")) << r.err;
+  const sol::Scene scene = plane_with_fov(60);
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
+  const sol::RenderResult left = cpu_render(scene, eyes.left, 32, 32), right = cpu_render(scene, eyes.right, 32, 32);
+  for (int frame = 0; frame < 3; ++frame) {
+    const Image l = load_eye(r.dir, frame, 0), rr = load_eye(r.dir, frame, 1);
+    EXPECT_LE(differing_pixels(l, left, kFloatTolerance), allowed(l)) << "frame " << frame;
+    EXPECT_LE(differing_pixels(rr, right, kFloatTolerance), allowed(rr)) << "frame " << frame;
+  }
+  // The eyes see different images (the test has teeth).
+  EXPECT_GT(differing_pixels(load_eye(r.dir, 0, 0), right, kFloatTolerance), allowed(load_eye(r.dir, 0, 0)));
+}
+
+TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {
+  const SolxrRun r = run_solxr("srgb", R"({"width": 24, "height": 16, "fov": 50, "ipd": 0.1, "formats": ["srgb8"],
+                                      "frames": [{}]})",
+                          "--scene sandwich");
+  expect_clean(r);
+  sol::Scene scene = sol::preset_scene("sandwich");
+  scene.camera.fov = 50;
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.1);
+  const Image l = load_eye(r.dir, 0, 0);
+  EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 24, 16), kSrgbTolerance), allowed(l));
+}
+
+TEST(XrSolxr, ATranslatedTurnedHeadSeesFromTheFlowedEye) {
+  // Head 0.4 m right, 0.3 m up, 0.5 m back, turned 30° left; ipd 0.1.
+  const SolxrRun r = run_solxr("motion",
+                          R"({"width": 32, "height": 32, "fov": 60, "ipd": 0.1,
+                              "frames": [{"position": [0.4, 0.3, 0.5], "orientation": [0, 0.25881904510252074, 0, 0.9659258262890683]}]})",
+                          "--scene plane");
+  expect_clean(r);
+  const sol::Scene scene = plane_with_fov(60);
+  // Independently of eye_pose.cpp: the runtime puts the left eye at the head
+  // position plus the rotated offset (-ipd/2, 0, 0); sol::Observer walks
+  // there (flow and transport) and turns by the head's yaw.
+  const glm::dquat q = glm::angleAxis(M_PI / 6, glm::dvec3(0, 1, 0));
+  const glm::dvec3 t = glm::dvec3(0.4, 0.3, 0.5) + q * glm::dvec3(-0.05, 0, 0);
+  sol::Observer eye(scene.camera.position, scene.camera.forward, scene.camera.up);
+  eye.move({t.x, t.y, -t.z}, glm::length(t));
+  eye.yaw(-M_PI / 6);  // yaw turns right; the head turned left
+  sol::Camera camera = scene.camera;
+  camera.position = eye.position();
+  camera.forward = eye.forward();
+  camera.up = eye.up();
+  const Image l = load_eye(r.dir, 0, 0);
+  EXPECT_LE(differing_pixels(l, cpu_render(scene, camera, 32, 32), kFloatTolerance), allowed(l));
+  const sol::RenderResult unmoved = cpu_render(scene, sol::stereo_eyes(scene.camera, 0.1).left, 32, 32);
+  EXPECT_GT(differing_pixels(l, unmoved, kFloatTolerance), allowed(l));
+}
+
+TEST(XrSolxr, TheLeftStickWalksAlongTheGeodesicAhead) {
+  // 90 Hz; --speed 9 walks 0.1 per frame from the second frame on (the first has no elapsed time).
+  const SolxrRun r = run_solxr("walk",
+                          R"({"width": 32, "height": 32, "fov": 60, "ipd": 0, "controllers": true,
+                              "frames": [{"left_stick": [0, 1]}, {"left_stick": [0, 1]}, {"left_stick": [0, 1]},
+                                         {"left_stick": [0, 1]}, {"left_stick": [0, 1]}]})",
+                          "--scene plane --speed 9");
+  expect_clean(r);
+  const sol::Scene scene = plane_with_fov(60);
+  sol::Observer walker(scene.camera.position, scene.camera.forward, scene.camera.up);
+  walker.move({0, 0, 1}, 4 * 9 * 11'111'111e-9);
+  sol::Camera camera = scene.camera;
+  camera.position = walker.position();
+  camera.forward = walker.forward();
+  camera.up = walker.up();
+  const Image last = load_eye(r.dir, 4, 0);
+  EXPECT_LE(differing_pixels(last, cpu_render(scene, camera, 32, 32), kFloatTolerance), allowed(last));
+  EXPECT_GT(differing_pixels(last, cpu_render(scene, scene.camera, 32, 32), kFloatTolerance), allowed(last));
+}
+
+TEST(XrSolxr, WithoutControllersThereIsNoLocomotion) {
+  const SolxrRun r = run_solxr("nocontrollers",
+                          R"({"width": 16, "height": 16, "ipd": 0, "controllers": false,
+                              "frames": [{"left_stick": [0, 1]}, {"left_stick": [0, 1]}, {"left_stick": [0, 1]}]})",
+                          "--scene plane --speed 9");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "no controllers")) << r.err;
+  const sol::Scene scene = plane_with_fov(60);
+  const Image last = load_eye(r.dir, 2, 0);
+  EXPECT_LE(differing_pixels(last, cpu_render(scene, scene.camera, 16, 16), kFloatTolerance), allowed(last));
+}
+
+TEST(XrSolxr, FocusLossAndRuntimeRequestedExitEndCleanly) {
+  const SolxrRun r = run_solxr("lifecycle",
+                          R"({"width": 8, "height": 8, "frames": [{}, {"event": "focus_loss"}, {}, {"event": "focus_gain"},
+                              {}, {"event": "exit"}, {}, {}, {}, {}]})",
+                          "--scene plane");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "visible, not focused")) << r.err;
+  EXPECT_TRUE(contains(r.err, "session ended")) << r.err;
+  EXPECT_TRUE(contains(r.err, "6 frames ended")) << r.err;  // exit requested while frame 5 is waited for
+}
+
+TEST(XrSolxr, LossPendingExitsCleanly) {
+  const SolxrRun r = run_solxr("loss", R"({"width": 8, "height": 8, "frames": [{}, {"event": "loss_pending"}, {}, {}]})", "");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "losing the session")) << r.err;
+}
+
+TEST(XrSolxr, FramesOptionAsksTheRuntimeToExit) {
+  const SolxrRun r = run_solxr("frames", R"({"width": 8, "height": 8, "frames": [{}, {}, {}, {}, {}, {}, {}, {}, {}, {}]})",
+                          "--frames 3 --stats");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "per eye")) << r.err;
+  EXPECT_TRUE(contains(r.err, "4 frames ended")) << r.err;  // 3, then the one waited for while stopping
+}
+
+TEST(XrSolxr, NoRuntimeIsAClearError) {
+  const SolxrRun r = run_solxr("noruntime", "{}", "", (fs::path(SOL_XR_TEST_DIR) / "no-such-runtime.json").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "solxr: no OpenXR runtime available")) << r.err;
+}
+
+TEST(XrSolxr, RuntimeWithoutVulkanIsAClearError) {
+  const SolxrRun r = run_solxr("novulkan", R"({"mode": "no_vulkan"})", "");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "does not support Vulkan (no XR_KHR_vulkan_enable2)")) << r.err;
+  EXPECT_FALSE(contains(r.err, "LEAK")) << r.err;
+}
+
+TEST(XrSolxr, NoHeadsetIsAClearError) {
+  const SolxrRun r = run_solxr("nohmd", R"({"mode": "no_hmd"})", "");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "finds no headset")) << r.err;
+  EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
+}
+
+TEST(XrSolxr, BadOptionsAreClearErrors) {
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--frobnicate", "solxr: unknown option '--frobnicate'"},
+      {"--scene tube", "unknown preset 'tube'"},
+      {"--scale 0", "--scale must be > 0"},
+      {"--width 0 --height 4", "--width must be in [1, 16384]"},
+      {"--width 4", "--width and --height go together"},
+      {"--reference floor", "--reference expects local or stage"},
+      {"--frames x", "--frames expects an integer"},
+      {"--position 1,2", "three comma-separated numbers"},
+      {"--speed", "--speed needs a value"},
+  };
+  for (const auto& c : cases) {
+    const SolxrRun r = run_solxr("badoptions", "{}", c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, c.message)) << c.args << ": " << r.err;
+  }
+  const SolxrRun help = run_solxr("help", "{}", "--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_TRUE(contains(help.err, "usage: solxr")) << help.err;
+}
+
+}  // namespace

@@ -1,0 +1,794 @@
+// solxr: stands you inside Sol with a headset. Each eye is rendered by the
+// Vulkan ray-marcher (sol::vk::MarchRenderer) on the device the OpenXR
+// runtime asks for (XR_KHR_vulkan_enable2) and copied into that eye's
+// swapchain image; head poses become Sol eyes by the exponential map at the
+// base observer (eye_pose.hpp); the left thumbstick walks along geodesics,
+// the right one turns.
+//
+//   solxr --scene plane
+//   solxr --scene lattice-balls --frames 600 --stats
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+#define XR_USE_GRAPHICS_API_VULKAN
+#include <openxr/openxr.h>
+#include <openxr/openxr_platform.h>
+
+#include <sol/sol.hpp>
+#include <sol/vk/buffer.hpp>
+#include <sol/vk/context.hpp>
+#include <sol/vk/march.hpp>
+
+#include "eye_pose.hpp"
+
+namespace {
+
+void print_usage(std::FILE* out) {
+  std::fprintf(out,
+               "usage: solxr [options]\n"
+               "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye follows a\n"
+               "Sol geodesic. Head motion moves the eyes along geodesics from the base observer (the scene camera);\n"
+               "the left thumbstick walks, the right one turns.\n\n"
+               "  --scene NAME|FILE      a preset (plane, sandwich, sheets, ...) or a JSON scene file (default plane);\n"
+               "                         quotient and lights come from the scene, as for solrender\n"
+               "  --position X,Y,Z       base observer position (Sol coordinates)\n"
+               "  --forward A,B,C        base view direction, frame components\n"
+               "  --up A,B,C             base up direction, frame components (not parallel to forward)\n"
+               "  --max-distance D       arc length after which a ray misses\n"
+               "  --max-steps N          march steps after which a ray misses\n"
+               "  --integrator closed|rk4   the kernel's geodesic flow (default closed)\n"
+               "  --rk-step H            RK4 substep for --integrator rk4 (default 0.01)\n"
+               "  --width W, --height H  per-eye image size, 1..16384 (default: the runtime's recommendation)\n"
+               "  --scale S              Sol units per metre of head motion, > 0 (default 1)\n"
+               "  --speed V              walking speed, Sol units per second at full stick (default 1)\n"
+               "  --turn-rate DEG        turning rate, degrees per second at full stick (default 90)\n"
+               "  --reference local|stage   the reference space head poses are in (default local)\n"
+               "  --frames N             ask the runtime to end the session after N frames (default: run until\n"
+               "                         the runtime ends it)\n"
+               "  --stats                print per-eye frame times at exit\n"
+               "  --validation           enable the Vulkan validation layer; validation errors fail the run\n"
+               "  --help                 this text\n\n"
+               "The field of view and the eye separation come from the runtime. Exit status: 0 when the session\n"
+               "ended normally, 1 when there is no runtime, no headset or no Vulkan support, or on an error, 2 for\n"
+               "bad options.\n");
+}
+
+[[noreturn]] void fail_option(const std::string& message) {
+  std::fprintf(stderr, "solxr: %s\n", message.c_str());
+  std::exit(2);
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+    fail_option("option " + option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    fail_option("option " + option + " expects an integer, got '" + text + "'");
+  }
+  if (value < lo || value > hi) {
+    fail_option("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  }
+  return static_cast<int>(value);
+}
+
+glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ',') {
+      parts.emplace_back();
+    } else {
+      parts.back() += c;
+    }
+  }
+  if (parts.size() != 3) {
+    fail_option("option " + option + " expects three comma-separated numbers like 0,0,1.5, got '" + text + "'");
+  }
+  return {parse_number(parts[0], option), parse_number(parts[1], option), parse_number(parts[2], option)};
+}
+
+struct Options {
+  std::string scene = "plane", integrator = "closed", reference = "local";
+  double rk_step = 0.01, scale = 1.0, speed = 1.0, turn_rate = 90.0;
+  int width = 0, height = 0;  // 0: the runtime's recommendation
+  long frames = 0;            // 0: until the runtime ends the session
+  bool stats = false, validation = false;
+  std::optional<double> max_distance;
+  std::optional<glm::dvec3> position, forward, up;
+  std::optional<int> max_steps;
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) fail_option("option " + arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      std::exit(0);
+    } else if (arg == "--scene") {
+      o.scene = value();
+    } else if (arg == "--position") {
+      o.position = parse_vec3(value(), arg);
+    } else if (arg == "--forward") {
+      o.forward = parse_vec3(value(), arg);
+    } else if (arg == "--up") {
+      o.up = parse_vec3(value(), arg);
+    } else if (arg == "--max-distance") {
+      o.max_distance = parse_number(value(), arg);
+    } else if (arg == "--max-steps") {
+      o.max_steps = parse_int(value(), arg, 1, 100000);
+    } else if (arg == "--integrator") {
+      o.integrator = value();
+      if (o.integrator != "closed" && o.integrator != "rk4") {
+        fail_option("option --integrator expects closed or rk4, got '" + o.integrator + "'");
+      }
+    } else if (arg == "--rk-step") {
+      o.rk_step = parse_number(value(), arg);
+      if (!(o.rk_step > 0.0)) fail_option("option --rk-step must be > 0");
+    } else if (arg == "--width") {
+      o.width = parse_int(value(), arg, 1, 16384);
+    } else if (arg == "--height") {
+      o.height = parse_int(value(), arg, 1, 16384);
+    } else if (arg == "--scale") {
+      o.scale = parse_number(value(), arg);
+      if (!(o.scale > 0.0)) fail_option("option --scale must be > 0");
+    } else if (arg == "--speed") {
+      o.speed = parse_number(value(), arg);
+    } else if (arg == "--turn-rate") {
+      o.turn_rate = parse_number(value(), arg);
+    } else if (arg == "--reference") {
+      o.reference = value();
+      if (o.reference != "local" && o.reference != "stage") {
+        fail_option("option --reference expects local or stage, got '" + o.reference + "'");
+      }
+    } else if (arg == "--frames") {
+      o.frames = parse_int(value(), arg, 1, 1 << 30);
+    } else if (arg == "--stats") {
+      o.stats = true;
+    } else if (arg == "--validation") {
+      o.validation = true;
+    } else {
+      fail_option("unknown option '" + arg + "' (see solxr --help)");
+    }
+  }
+  if ((o.width == 0) != (o.height == 0)) fail_option("options --width and --height go together");
+  return o;
+}
+
+sol::Scene load_scene(const Options& o) {
+  sol::Scene scene;
+  try {
+    const bool is_file = std::filesystem::exists(o.scene) || o.scene.find('.') != std::string::npos ||
+                         o.scene.find('/') != std::string::npos;
+    scene = is_file ? sol::load_scene(o.scene) : sol::preset_scene(o.scene);
+    if (o.position) scene.camera.position = *o.position;
+    if (o.forward) scene.camera.forward = *o.forward;
+    if (o.up) scene.camera.up = *o.up;
+    if (o.max_distance) scene.max_distance = *o.max_distance;
+    if (o.max_steps) scene.max_steps = *o.max_steps;
+    sol::validate(scene);
+  } catch (const std::exception& e) {
+    fail_option(e.what());
+  }
+  return scene;
+}
+
+// ---------------------------------------------------------------------------
+// OpenXR errors.
+
+/// An OpenXR failure; the message names the call and the result.
+class XrError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string result_name(XrInstance instance, XrResult result) {
+  char text[XR_MAX_RESULT_STRING_SIZE] = {};
+  if (instance == XR_NULL_HANDLE || XR_FAILED(xrResultToString(instance, result, text))) {
+    return "XrResult " + std::to_string(static_cast<int>(result));
+  }
+  return text;
+}
+
+/// Throws XrError unless `result` succeeded (qualified successes such as
+/// XR_SESSION_NOT_FOCUSED pass and are returned).
+XrResult xr_check(XrInstance instance, XrResult result, const char* call) {
+  if (XR_FAILED(result)) throw XrError(std::string(call) + " failed: " + result_name(instance, result));
+  return result;
+}
+
+template <class F>
+F xr_function(XrInstance instance, const char* name) {
+  PFN_xrVoidFunction f = nullptr;
+  xr_check(instance, xrGetInstanceProcAddr(instance, name, &f), name);
+  return reinterpret_cast<F>(f);
+}
+
+/// An OpenXR input or output structure: zeroed, with its type set.
+template <class T>
+T xr_struct(XrStructureType type) {
+  T value{};
+  value.type = type;
+  return value;
+}
+
+// ---------------------------------------------------------------------------
+
+/// sRGB encoding of a linear value, for 8-bit sRGB swapchains.
+std::uint8_t srgb_byte(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  const float s = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return static_cast<std::uint8_t>(std::lround(s * 255.0f));
+}
+
+/// Swapchain formats solxr can fill from the renderer's linear float RGBA,
+/// and the bytes per texel.
+std::size_t texel_size(std::int64_t format) {
+  switch (format) {
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_SRGB: return 4;
+    default: return 0;
+  }
+}
+
+struct Eye {
+  XrSwapchain swapchain = XR_NULL_HANDLE;
+  std::vector<VkImage> images;
+  std::optional<sol::vk::Buffer> staging;
+  std::vector<std::byte> texels;
+};
+
+struct Timing {
+  long eyes = 0;
+  double render_ms = 0, kernel_ms = 0, upload_ms = 0, total_ms = 0;
+};
+
+/// The OpenXR objects in creation order; the destructor takes them down in
+/// reverse, so every path out (an exception included) leaves nothing behind.
+/// The Vulkan context sits between the instance and the session: the session
+/// and its swapchains go before the VkDevice, the XrInstance after it.
+struct App {
+  XrInstance instance = XR_NULL_HANDLE;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  std::optional<sol::vk::Context> context;
+  std::optional<sol::vk::MarchRenderer> renderer;
+  XrSession session = XR_NULL_HANDLE;
+  XrSpace space = XR_NULL_HANDLE;
+  std::vector<Eye> eyes;
+  XrActionSet action_set = XR_NULL_HANDLE;
+  XrAction move = XR_NULL_HANDLE, turn = XR_NULL_HANDLE;
+
+  App() = default;
+  App(const App&) = delete;
+  App& operator=(const App&) = delete;
+  ~App() {
+    if (context) {
+      try {
+        context->wait_idle();
+      } catch (const std::exception&) {
+      }
+    }
+    for (Eye& eye : eyes) {
+      eye.staging.reset();
+      if (eye.swapchain != XR_NULL_HANDLE) xrDestroySwapchain(eye.swapchain);
+    }
+    if (move != XR_NULL_HANDLE) xrDestroyAction(move);
+    if (turn != XR_NULL_HANDLE) xrDestroyAction(turn);
+    if (action_set != XR_NULL_HANDLE) xrDestroyActionSet(action_set);
+    if (space != XR_NULL_HANDLE) xrDestroySpace(space);
+    if (session != XR_NULL_HANDLE) xrDestroySession(session);
+    renderer.reset();
+    context.reset();
+    if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
+  }
+};
+
+void create_instance(App& app) {
+  std::uint32_t count = 0;
+  XrResult r = xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr);
+  if (XR_FAILED(r)) {
+    const char* json = std::getenv("XR_RUNTIME_JSON");
+    throw XrError(std::string("no OpenXR runtime available (xrEnumerateInstanceExtensionProperties: ") +
+                  result_name(XR_NULL_HANDLE, r) + "): install and activate one (Monado, SteamVR, ...)" +
+                  (json != nullptr ? std::string(", or check XR_RUNTIME_JSON=") + json : std::string(" or set XR_RUNTIME_JSON")));
+  }
+  std::vector<XrExtensionProperties> extensions(count, xr_struct<XrExtensionProperties>(XR_TYPE_EXTENSION_PROPERTIES));
+  xr_check(XR_NULL_HANDLE, xrEnumerateInstanceExtensionProperties(nullptr, count, &count, extensions.data()),
+           "xrEnumerateInstanceExtensionProperties");
+  const bool vulkan = std::any_of(extensions.begin(), extensions.end(), [](const XrExtensionProperties& e) {
+    return std::strcmp(e.extensionName, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0;
+  });
+  if (!vulkan) {
+    throw XrError("the OpenXR runtime does not support Vulkan (no " XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME
+                  "); solxr needs a runtime with Vulkan support");
+  }
+  const char* enabled[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+  auto info = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+  std::snprintf(info.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "solxr");
+  std::snprintf(info.applicationInfo.engineName, XR_MAX_ENGINE_NAME_SIZE, "Sol");
+  info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  info.enabledExtensionCount = 1;
+  info.enabledExtensionNames = enabled;
+  xr_check(XR_NULL_HANDLE, xrCreateInstance(&info, &app.instance), "xrCreateInstance");
+
+  auto props = xr_struct<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
+  xr_check(app.instance, xrGetInstanceProperties(app.instance, &props), "xrGetInstanceProperties");
+  auto system_info = xr_struct<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
+  system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  r = xrGetSystem(app.instance, &system_info, &app.system);
+  if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE || r == XR_ERROR_FORM_FACTOR_UNSUPPORTED) {
+    throw XrError(std::string("the OpenXR runtime '") + props.runtimeName + "' finds no headset (" +
+                  result_name(app.instance, r) + "): connect one and try again");
+  }
+  xr_check(app.instance, r, "xrGetSystem");
+  std::fprintf(stderr, "solxr: OpenXR runtime '%s' %u.%u.%u\n", props.runtimeName, XR_VERSION_MAJOR(props.runtimeVersion),
+               XR_VERSION_MINOR(props.runtimeVersion), XR_VERSION_PATCH(props.runtimeVersion));
+}
+
+/// The Vulkan context on the runtime's device: the Context's create infos go
+/// through xrCreateVulkanInstanceKHR / xrGetVulkanGraphicsDevice2KHR /
+/// xrCreateVulkanDeviceKHR, which add what the runtime needs.
+void create_context(App& app, bool validation) {
+  const XrInstance instance = app.instance;
+  const XrSystemId system = app.system;
+  auto requirements_fn = xr_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, "xrGetVulkanGraphicsRequirements2KHR");
+  auto create_instance_fn = xr_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
+  auto device_fn = xr_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
+  auto create_device_fn = xr_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
+
+  auto requirements = xr_struct<XrGraphicsRequirementsVulkan2KHR>(XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR);
+  xr_check(instance, requirements_fn(instance, system, &requirements), "xrGetVulkanGraphicsRequirements2KHR");
+  // Sol::vk asks for Vulkan 1.2.
+  const XrVersion ours = XR_MAKE_VERSION(1, 2, 0);
+  if (requirements.minApiVersionSupported > ours) {
+    throw XrError("the OpenXR runtime needs Vulkan " + std::to_string(XR_VERSION_MAJOR(requirements.minApiVersionSupported)) +
+                  "." + std::to_string(XR_VERSION_MINOR(requirements.minApiVersionSupported)) +
+                  " or later; solxr uses Vulkan 1.2");
+  }
+
+  sol::vk::ContextOptions options;
+  options.validation = validation;
+  options.create_instance = [=](const VkInstanceCreateInfo& info, VkInstance* out) {
+    auto xr_info = xr_struct<XrVulkanInstanceCreateInfoKHR>(XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR);
+    xr_info.systemId = system;
+    xr_info.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+    xr_info.vulkanCreateInfo = &info;
+    VkResult vk_result = VK_SUCCESS;
+    xr_check(instance, create_instance_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanInstanceKHR");
+    return vk_result;
+  };
+  options.choose_physical_device = [=](VkInstance vk_instance) {
+    auto get = xr_struct<XrVulkanGraphicsDeviceGetInfoKHR>(XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR);
+    get.systemId = system;
+    get.vulkanInstance = vk_instance;
+    VkPhysicalDevice device = VK_NULL_HANDLE;
+    xr_check(instance, device_fn(instance, &get, &device), "xrGetVulkanGraphicsDevice2KHR");
+    return device;
+  };
+  options.create_device = [=](VkPhysicalDevice physical, const VkDeviceCreateInfo& info, VkDevice* out) {
+    auto xr_info = xr_struct<XrVulkanDeviceCreateInfoKHR>(XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR);
+    xr_info.systemId = system;
+    xr_info.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+    xr_info.vulkanPhysicalDevice = physical;
+    xr_info.vulkanCreateInfo = &info;
+    VkResult vk_result = VK_SUCCESS;
+    xr_check(instance, create_device_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanDeviceKHR");
+    return vk_result;
+  };
+  app.context.emplace(options);
+  std::fprintf(stderr, "solxr: Vulkan device '%s'\n", app.context->device_name().c_str());
+}
+
+void create_session(App& app, const Options& o) {
+  auto binding = xr_struct<XrGraphicsBindingVulkan2KHR>(XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR);
+  binding.instance = app.context->instance();
+  binding.physicalDevice = app.context->physical_device();
+  binding.device = app.context->device();
+  binding.queueFamilyIndex = app.context->queue_family_index();
+  binding.queueIndex = 0;
+  auto info = xr_struct<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
+  info.next = &binding;
+  info.systemId = app.system;
+  xr_check(app.instance, xrCreateSession(app.instance, &info, &app.session), "xrCreateSession");
+
+  auto space_info = xr_struct<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
+  space_info.referenceSpaceType = o.reference == "stage" ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
+  space_info.poseInReferenceSpace.orientation.w = 1.0f;
+  xr_check(app.instance, xrCreateReferenceSpace(app.session, &space_info, &app.space), "xrCreateReferenceSpace");
+}
+
+/// One swapchain per view, in the first format (the runtime's preference
+/// comes first) that solxr can fill; images are written by transfer.
+std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width, std::uint32_t& height) {
+  std::uint32_t count = 0;
+  xr_check(app.instance,
+           xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &count,
+                                             nullptr),
+           "xrEnumerateViewConfigurationViews");
+  std::vector<XrViewConfigurationView> views(count, xr_struct<XrViewConfigurationView>(XR_TYPE_VIEW_CONFIGURATION_VIEW));
+  xr_check(app.instance,
+           xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count,
+                                             &count, views.data()),
+           "xrEnumerateViewConfigurationViews");
+  if (views.empty()) throw XrError("the OpenXR runtime offers no views for the primary stereo configuration");
+
+  xr_check(app.instance, xrEnumerateSwapchainFormats(app.session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
+  std::vector<std::int64_t> formats(count);
+  xr_check(app.instance, xrEnumerateSwapchainFormats(app.session, count, &count, formats.data()),
+           "xrEnumerateSwapchainFormats");
+  const auto format = std::find_if(formats.begin(), formats.end(), [](std::int64_t f) { return texel_size(f) != 0; });
+  if (format == formats.end()) {
+    throw XrError("the OpenXR runtime offers no swapchain format solxr can fill (RGBA32F, RGBA8 sRGB, BGRA8 sRGB)");
+  }
+
+  width = o.width > 0 ? static_cast<std::uint32_t>(o.width) : views[0].recommendedImageRectWidth;
+  height = o.height > 0 ? static_cast<std::uint32_t>(o.height) : views[0].recommendedImageRectHeight;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    Eye& eye = app.eyes.emplace_back();
+    auto info = xr_struct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
+    info.usageFlags = XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT | XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+    info.format = *format;
+    info.sampleCount = 1;
+    info.width = width;
+    info.height = height;
+    info.faceCount = 1;
+    info.arraySize = 1;
+    info.mipCount = 1;
+    xr_check(app.instance, xrCreateSwapchain(app.session, &info, &eye.swapchain), "xrCreateSwapchain");
+    xr_check(app.instance, xrEnumerateSwapchainImages(eye.swapchain, 0, &count, nullptr), "xrEnumerateSwapchainImages");
+    std::vector<XrSwapchainImageVulkan2KHR> images(count, xr_struct<XrSwapchainImageVulkan2KHR>(XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR));
+    xr_check(app.instance,
+             xrEnumerateSwapchainImages(eye.swapchain, count, &count,
+                                        reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())),
+             "xrEnumerateSwapchainImages");
+    for (const auto& image : images) eye.images.push_back(image.image);
+    const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(*format);
+    eye.staging.emplace(*app.context, bytes);
+    eye.texels.resize(bytes);
+  }
+  return *format;
+}
+
+/// Thumbstick actions. Bindings are suggested for common controllers; a
+/// runtime that rejects a profile or has no controllers leaves the actions
+/// inactive, and solxr then has no locomotion.
+void create_actions(App& app) {
+  auto set_info = xr_struct<XrActionSetCreateInfo>(XR_TYPE_ACTION_SET_CREATE_INFO);
+  std::snprintf(set_info.actionSetName, XR_MAX_ACTION_SET_NAME_SIZE, "locomotion");
+  std::snprintf(set_info.localizedActionSetName, XR_MAX_LOCALIZED_ACTION_SET_NAME_SIZE, "Locomotion");
+  xr_check(app.instance, xrCreateActionSet(app.instance, &set_info, &app.action_set), "xrCreateActionSet");
+  auto action = [&](const char* name, const char* localized, XrAction* out) {
+    auto info = xr_struct<XrActionCreateInfo>(XR_TYPE_ACTION_CREATE_INFO);
+    info.actionType = XR_ACTION_TYPE_VECTOR2F_INPUT;
+    std::snprintf(info.actionName, XR_MAX_ACTION_NAME_SIZE, "%s", name);
+    std::snprintf(info.localizedActionName, XR_MAX_LOCALIZED_ACTION_NAME_SIZE, "%s", localized);
+    xr_check(app.instance, xrCreateAction(app.action_set, &info, out), "xrCreateAction");
+  };
+  action("move", "Walk along geodesics", &app.move);
+  action("turn", "Turn", &app.turn);
+  auto path = [&](const char* text) {
+    XrPath p = XR_NULL_PATH;
+    xr_check(app.instance, xrStringToPath(app.instance, text, &p), "xrStringToPath");
+    return p;
+  };
+  struct Profile {
+    const char* profile;
+    const char* left;
+    const char* right;
+  };
+  const Profile profiles[] = {
+      {"/interaction_profiles/oculus/touch_controller", "/user/hand/left/input/thumbstick", "/user/hand/right/input/thumbstick"},
+      {"/interaction_profiles/valve/index_controller", "/user/hand/left/input/thumbstick", "/user/hand/right/input/thumbstick"},
+      {"/interaction_profiles/microsoft/motion_controller", "/user/hand/left/input/thumbstick",
+       "/user/hand/right/input/thumbstick"},
+      {"/interaction_profiles/htc/vive_controller", "/user/hand/left/input/trackpad", "/user/hand/right/input/trackpad"},
+  };
+  for (const Profile& p : profiles) {
+    const XrActionSuggestedBinding bindings[] = {{app.move, path(p.left)}, {app.turn, path(p.right)}};
+    auto suggested = xr_struct<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
+    suggested.interactionProfile = path(p.profile);
+    suggested.countSuggestedBindings = 2;
+    suggested.suggestedBindings = bindings;
+    const XrResult r = xrSuggestInteractionProfileBindings(app.instance, &suggested);
+    if (XR_FAILED(r)) {
+      std::fprintf(stderr, "solxr: the runtime refuses bindings for %s (%s)\n", p.profile, result_name(app.instance, r).c_str());
+    }
+  }
+  auto attach = xr_struct<XrSessionActionSetsAttachInfo>(XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO);
+  attach.countActionSets = 1;
+  attach.actionSets = &app.action_set;
+  xr_check(app.instance, xrAttachSessionActionSets(app.session, &attach), "xrAttachSessionActionSets");
+}
+
+/// Walks and turns the base observer by the thumbsticks over `seconds`.
+void locomote(App& app, sol::Observer& base, const Options& o, double seconds, bool& announced) {
+  XrActiveActionSet active{app.action_set, XR_NULL_PATH};
+  auto sync = xr_struct<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
+  sync.countActiveActionSets = 1;
+  sync.activeActionSets = &active;
+  if (xr_check(app.instance, xrSyncActions(app.session, &sync), "xrSyncActions") != XR_SUCCESS) return;  // not focused
+  auto stick = [&](XrAction action) -> std::optional<glm::dvec2> {
+    auto get = xr_struct<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
+    get.action = action;
+    auto state = xr_struct<XrActionStateVector2f>(XR_TYPE_ACTION_STATE_VECTOR2F);
+    xr_check(app.instance, xrGetActionStateVector2f(app.session, &get, &state), "xrGetActionStateVector2f");
+    if (!state.isActive) return std::nullopt;
+    return glm::dvec2(state.currentState.x, state.currentState.y);
+  };
+  const std::optional<glm::dvec2> move = stick(app.move), turn = stick(app.turn);
+  if (!announced && !move && !turn) {
+    std::fprintf(stderr, "solxr: no controllers: no locomotion (head tracking only)\n");
+    announced = true;
+  }
+  if (turn && turn->x != 0.0) base.yaw(turn->x * o.turn_rate * M_PI / 180.0 * seconds);
+  if (move && (move->x != 0.0 || move->y != 0.0)) {
+    // Stick forward walks along the geodesic straight ahead, sideways strafes.
+    const glm::dvec3 local(move->x, 0.0, move->y);
+    base.move(local, glm::length(local) * o.speed * seconds);
+  }
+}
+
+/// Renders each view's eye into its swapchain image.
+void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, const Options& o, std::int64_t format,
+                  std::uint32_t width, std::uint32_t height, const std::vector<XrView>& views, Timing& timing,
+                  std::vector<XrCompositionLayerProjectionView>& layer_views, bool& warned_fov) {
+  for (std::size_t v = 0; v < app.eyes.size(); ++v) {
+    Eye& eye = app.eyes[v];
+    const auto begin = std::chrono::steady_clock::now();
+    const XrView& view = views[v];
+    // The kernel's camera is a centred frustum with vertical field of view
+    // angleUp - angleDown; the horizontal one follows from width / height.
+    const XrFovf& f = view.fov;
+    const double vertical = static_cast<double>(f.angleUp) - f.angleDown;
+    const double horizontal = 2.0 * std::atan(std::tan(0.5 * vertical) * width / height);
+    if (!warned_fov && (std::abs(f.angleUp + f.angleDown) > 1e-3f || std::abs(f.angleLeft + f.angleRight) > 1e-3f ||
+                        std::abs(horizontal - (static_cast<double>(f.angleRight) - f.angleLeft)) > 1e-3)) {
+      std::fprintf(stderr,
+                   "solxr: warning: the runtime's field of view is off-centre or of another aspect than the image; "
+                   "rendering a centred one of the same vertical extent\n");
+      warned_fov = true;
+    }
+    sol::xr::ViewPose pose;
+    pose.position = {view.pose.position.x, view.pose.position.y, view.pose.position.z};
+    pose.orientation = glm::dquat(view.pose.orientation.w, view.pose.orientation.x, view.pose.orientation.y,
+                                  view.pose.orientation.z);
+    sol::Scene eye_scene = scene;
+    eye_scene.camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
+    eye_scene.camera.fov = vertical * 180.0 / M_PI;
+    double kernel_ms = 0;
+    const sol::RenderResult image = app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
+    const auto rendered = std::chrono::steady_clock::now();
+
+    // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+      std::memcpy(eye.texels.data(), image.rgba.data(), pixels * 16);
+    } else {
+      const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB;
+      auto* out = reinterpret_cast<std::uint8_t*>(eye.texels.data());
+      for (std::size_t k = 0; k < pixels; ++k) {
+        const float* in = &image.rgba[4 * k];
+        out[4 * k + 0] = srgb_byte(in[bgr ? 2 : 0]);
+        out[4 * k + 1] = srgb_byte(in[1]);
+        out[4 * k + 2] = srgb_byte(in[bgr ? 0 : 2]);
+        out[4 * k + 3] = 255;
+      }
+    }
+    eye.staging->write(eye.texels);
+
+    std::uint32_t index = 0;
+    auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
+    xr_check(app.instance, xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
+    auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
+    wait.timeout = XR_INFINITE_DURATION;
+    xr_check(app.instance, xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
+    const VkImage target = eye.images.at(index);
+    const VkBuffer staging = eye.staging->handle();
+    app.context->submit_and_wait([&](VkCommandBuffer cmd) {
+      // The whole image is overwritten: its old contents may be discarded.
+      VkImageMemoryBarrier barrier{};
+      barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+      barrier.srcAccessMask = 0;
+      barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barrier.image = target;
+      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      // The runtime's last read of this image (its compositor) precedes the write.
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                           1, &barrier);
+      VkBufferImageCopy region{};
+      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.imageExtent = {width, height, 1};
+      vkCmdCopyBufferToImage(cmd, staging, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+      // The runtime expects released colour images in COLOR_ATTACHMENT_OPTIMAL
+      // (XR_KHR_vulkan_enable2), with our copy finished before it reads.
+      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+      barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+      barrier.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0, nullptr,
+                           0, nullptr, 1, &barrier);
+    });
+    auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+    xr_check(app.instance, xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
+    const auto end = std::chrono::steady_clock::now();
+
+    XrCompositionLayerProjectionView& lv = layer_views[v];
+    lv = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
+    lv.pose = view.pose;
+    lv.fov = view.fov;
+    lv.subImage.swapchain = eye.swapchain;
+    lv.subImage.imageRect = {{0, 0}, {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height)}};
+    lv.subImage.imageArrayIndex = 0;
+
+    ++timing.eyes;
+    timing.render_ms += std::chrono::duration<double, std::milli>(rendered - begin).count();
+    timing.kernel_ms += kernel_ms;
+    timing.upload_ms += std::chrono::duration<double, std::milli>(end - rendered).count();
+    timing.total_ms += std::chrono::duration<double, std::milli>(end - begin).count();
+  }
+}
+
+int run(const Options& o, const sol::Scene& scene) {
+  App app;
+  create_instance(app);
+  create_context(app, o.validation);
+  sol::vk::MarchOptions march;
+  march.integrator = o.integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
+  march.rk4_step = o.rk_step;
+  app.renderer.emplace(*app.context, march);
+  create_session(app, o);
+  std::uint32_t width = 0, height = 0;
+  const std::int64_t format = create_swapchains(app, o, width, height);
+  create_actions(app);
+  std::fprintf(stderr, "solxr: %zu views of %ux%u\n", app.eyes.size(), width, height);
+
+  sol::Observer base(scene.camera.position, scene.camera.forward, scene.camera.up);
+  if (scene.quotient != sol::Quotient::None) base.bind(sol::Lattice::golden());
+
+  bool running = false, quit = false, exit_requested = false, announced = false, warned_fov = false;
+  long frames = 0;
+  Timing timing;
+  XrTime last_time = 0;
+  while (!quit) {
+    // Session state machine: begin when ready, end when stopping, leave on exiting or loss.
+    auto event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+    while (xr_check(app.instance, xrPollEvent(app.instance, &event), "xrPollEvent") == XR_SUCCESS) {
+      if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
+        const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+        switch (changed.state) {
+          case XR_SESSION_STATE_READY: {
+            auto begin = xr_struct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
+            begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+            xr_check(app.instance, xrBeginSession(app.session, &begin), "xrBeginSession");
+            running = true;
+            std::fprintf(stderr, "solxr: session running\n");
+            break;
+          }
+          case XR_SESSION_STATE_FOCUSED: std::fprintf(stderr, "solxr: focused\n"); break;
+          case XR_SESSION_STATE_VISIBLE: std::fprintf(stderr, "solxr: visible, not focused\n"); break;
+          case XR_SESSION_STATE_STOPPING:
+            xr_check(app.instance, xrEndSession(app.session), "xrEndSession");
+            running = false;
+            std::fprintf(stderr, "solxr: session ended\n");
+            break;
+          case XR_SESSION_STATE_EXITING: quit = true; break;
+          case XR_SESSION_STATE_LOSS_PENDING:
+            std::fprintf(stderr, "solxr: the runtime is losing the session; exiting\n");
+            quit = true;
+            break;
+          default: break;
+        }
+      } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
+        std::fprintf(stderr, "solxr: the runtime is going away; exiting\n");
+        quit = true;
+      }
+      event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+    }
+    if (quit) break;
+    if (!running) {  // idle until the runtime says ready (or exiting)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      continue;
+    }
+
+    if (o.frames > 0 && frames >= o.frames && !exit_requested) {
+      xr_check(app.instance, xrRequestExitSession(app.session), "xrRequestExitSession");
+      exit_requested = true;
+    }
+    auto wait = xr_struct<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
+    auto frame = xr_struct<XrFrameState>(XR_TYPE_FRAME_STATE);
+    xr_check(app.instance, xrWaitFrame(app.session, &wait, &frame), "xrWaitFrame");
+    auto begin = xr_struct<XrFrameBeginInfo>(XR_TYPE_FRAME_BEGIN_INFO);
+    xr_check(app.instance, xrBeginFrame(app.session, &begin), "xrBeginFrame");
+
+    const double seconds = last_time == 0 ? 0.0 : static_cast<double>(frame.predictedDisplayTime - last_time) * 1e-9;
+    last_time = frame.predictedDisplayTime;
+    locomote(app, base, o, seconds, announced);
+
+    std::vector<XrCompositionLayerProjectionView> layer_views(app.eyes.size());
+    auto layer = xr_struct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
+    const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
+    auto end = xr_struct<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
+    end.displayTime = frame.predictedDisplayTime;
+    end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    if (frame.shouldRender) {
+      auto locate = xr_struct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
+      locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+      locate.displayTime = frame.predictedDisplayTime;
+      locate.space = app.space;
+      auto view_state = xr_struct<XrViewState>(XR_TYPE_VIEW_STATE);
+      std::uint32_t count = 0;
+      std::vector<XrView> views(app.eyes.size(), xr_struct<XrView>(XR_TYPE_VIEW));
+      xr_check(app.instance,
+               xrLocateViews(app.session, &locate, &view_state, static_cast<std::uint32_t>(views.size()), &count, views.data()),
+               "xrLocateViews");
+      const XrViewStateFlags needed = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
+      if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
+        render_views(app, scene, base, o, format, width, height, views, timing, layer_views, warned_fov);
+        layer.space = app.space;
+        layer.viewCount = static_cast<std::uint32_t>(layer_views.size());
+        layer.views = layer_views.data();
+        end.layerCount = 1;
+        end.layers = layers;
+      }
+    }
+    xr_check(app.instance, xrEndFrame(app.session, &end), "xrEndFrame");
+    ++frames;
+  }
+
+  std::fprintf(stderr, "solxr: %ld frames\n", frames);
+  if (o.stats && timing.eyes > 0) {
+    const double n = static_cast<double>(timing.eyes);
+    std::printf("solxr: %ux%u per eye on '%s': %.2f ms per eye (render %.2f ms of which kernel %.2f ms, upload %.2f ms), "
+                "%ld eye images\n",
+                width, height, app.context->device_name().c_str(), timing.total_ms / n, timing.render_ms / n,
+                timing.kernel_ms / n, timing.upload_ms / n, timing.eyes);
+  }
+  if (o.validation) {
+    const std::size_t errors = app.context->validation_errors().size();
+    if (errors > 0) {
+      std::fprintf(stderr, "solxr: %zu Vulkan validation errors\n", errors);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse_options(argc, argv);
+  const sol::Scene scene = load_scene(options);
+  try {
+    return run(options, scene);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "solxr: %s\n", e.what());
+    return 1;
+  }
+}
