@@ -1,7 +1,6 @@
 #include "eye_pose.hpp"
 
 #include <cmath>
-
 #include <sol/geodesic.hpp>
 
 namespace sol::xr {

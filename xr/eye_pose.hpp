@@ -26,8 +26,8 @@
 namespace sol::xr {
 
 struct ViewPose {
-  glm::dvec3 position{0.0};                           ///< metres, reference space (OpenXR axes)
-  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};         ///< unit quaternion (w, x, y, z)
+  glm::dvec3 position{0.0};                    ///< metres, reference space (OpenXR axes)
+  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< unit quaternion (w, x, y, z)
 };
 
 /// The eye camera (position, forward, up; fov left as in `base_camera`) for

@@ -7,6 +7,8 @@
 //
 //   solxr --scene plane
 //   solxr --scene lattice-balls --frames 600 --stats
+#include <vulkan/vulkan.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,11 +22,10 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 #define XR_USE_GRAPHICS_API_VULKAN
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
+#include <openxr/openxr_reflection.h>
 
 #include <sol/sol.hpp>
 #include <sol/vk/buffer.hpp>
@@ -36,33 +37,34 @@
 namespace {
 
 void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: solxr [options]\n"
-               "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye follows a\n"
-               "Sol geodesic. Head motion moves the eyes along geodesics from the base observer (the scene camera);\n"
-               "the left thumbstick walks, the right one turns.\n\n"
-               "  --scene NAME|FILE      a preset (plane, sandwich, sheets, ...) or a JSON scene file (default plane);\n"
-               "                         quotient and lights come from the scene, as for solrender\n"
-               "  --position X,Y,Z       base observer position (Sol coordinates)\n"
-               "  --forward A,B,C        base view direction, frame components\n"
-               "  --up A,B,C             base up direction, frame components (not parallel to forward)\n"
-               "  --max-distance D       arc length after which a ray misses\n"
-               "  --max-steps N          march steps after which a ray misses\n"
-               "  --integrator closed|rk4   the kernel's geodesic flow (default closed)\n"
-               "  --rk-step H            RK4 substep for --integrator rk4 (default 0.01)\n"
-               "  --width W, --height H  per-eye image size, 1..16384 (default: the runtime's recommendation)\n"
-               "  --scale S              Sol units per metre of head motion, > 0 (default 1)\n"
-               "  --speed V              walking speed, Sol units per second at full stick (default 1)\n"
-               "  --turn-rate DEG        turning rate, degrees per second at full stick (default 90)\n"
-               "  --reference local|stage   the reference space head poses are in (default local)\n"
-               "  --frames N             ask the runtime to end the session after N frames (default: run until\n"
-               "                         the runtime ends it)\n"
-               "  --stats                print per-eye frame times at exit\n"
-               "  --validation           enable the Vulkan validation layer; validation errors fail the run\n"
-               "  --help                 this text\n\n"
-               "The field of view and the eye separation come from the runtime. Exit status: 0 when the session\n"
-               "ended normally, 1 when there is no runtime, no headset or no Vulkan support, or on an error, 2 for\n"
-               "bad options.\n");
+  std::fprintf(
+      out,
+      "usage: solxr [options]\n"
+      "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye follows a\n"
+      "Sol geodesic. Head motion moves the eyes along geodesics from the base observer (the scene camera);\n"
+      "the left thumbstick walks, the right one turns.\n\n"
+      "  --scene NAME|FILE      a preset (plane, sandwich, sheets, ...) or a JSON scene file (default plane);\n"
+      "                         quotient and lights come from the scene, as for solrender\n"
+      "  --position X,Y,Z       base observer position (Sol coordinates)\n"
+      "  --forward A,B,C        base view direction, frame components\n"
+      "  --up A,B,C             base up direction, frame components (not parallel to forward)\n"
+      "  --max-distance D       arc length after which a ray misses\n"
+      "  --max-steps N          march steps after which a ray misses\n"
+      "  --integrator closed|rk4   the kernel's geodesic flow (default closed)\n"
+      "  --rk-step H            RK4 substep for --integrator rk4 (default 0.01)\n"
+      "  --width W, --height H  per-eye image size, 1..16384 (default: the runtime's recommendation)\n"
+      "  --scale S              Sol units per metre of head motion, > 0 (default 1)\n"
+      "  --speed V              walking speed, Sol units per second at full stick (default 1)\n"
+      "  --turn-rate DEG        turning rate, degrees per second at full stick (default 90)\n"
+      "  --reference local|stage   the reference space head poses are in (default local)\n"
+      "  --frames N             ask the runtime to end the session after N frames (default: run until\n"
+      "                         the runtime ends it)\n"
+      "  --stats                print per-eye frame times at exit\n"
+      "  --validation           enable the Vulkan validation layer; validation errors fail the run\n"
+      "  --help                 this text\n\n"
+      "The field of view and the eye separation come from the runtime. Exit status: 0 when the session\n"
+      "ended normally, 1 when there is no runtime, no headset or no Vulkan support, or on an error, 2 for\n"
+      "bad options.\n");
 }
 
 [[noreturn]] void fail_option(const std::string& message) {
@@ -86,7 +88,8 @@ int parse_int(const std::string& text, const std::string& option, int lo, int hi
     fail_option("option " + option + " expects an integer, got '" + text + "'");
   }
   if (value < lo || value > hi) {
-    fail_option("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+    fail_option("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                text);
   }
   return static_cast<int>(value);
 }
@@ -205,25 +208,28 @@ class XrError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string result_name(XrInstance instance, XrResult result) {
-  char text[XR_MAX_RESULT_STRING_SIZE] = {};
-  if (instance == XR_NULL_HANDLE || XR_FAILED(xrResultToString(instance, result, text))) {
-    return "XrResult " + std::to_string(static_cast<int>(result));
-  }
-  return text;
+/// The result's name (XR_ERROR_RUNTIME_UNAVAILABLE, ...), from the headers'
+/// reflection list: also when there is no instance to ask.
+std::string result_name(XrResult result) {
+#define SOL_XR_RESULT_NAME(name, value) \
+  case name:                            \
+    return #name;
+  switch (result) { XR_LIST_ENUM_XrResult(SOL_XR_RESULT_NAME) default : break; }
+#undef SOL_XR_RESULT_NAME
+  return "XrResult " + std::to_string(static_cast<int>(result));
 }
 
 /// Throws XrError unless `result` succeeded (qualified successes such as
 /// XR_SESSION_NOT_FOCUSED pass and are returned).
-XrResult xr_check(XrInstance instance, XrResult result, const char* call) {
-  if (XR_FAILED(result)) throw XrError(std::string(call) + " failed: " + result_name(instance, result));
+XrResult xr_check(XrResult result, const char* call) {
+  if (XR_FAILED(result)) throw XrError(std::string(call) + " failed: " + result_name(result));
   return result;
 }
 
 template <class F>
 F xr_function(XrInstance instance, const char* name) {
   PFN_xrVoidFunction f = nullptr;
-  xr_check(instance, xrGetInstanceProcAddr(instance, name, &f), name);
+  xr_check(xrGetInstanceProcAddr(instance, name, &f), name);
   return reinterpret_cast<F>(f);
 }
 
@@ -248,10 +254,13 @@ std::uint8_t srgb_byte(float linear) {
 /// and the bytes per texel.
 std::size_t texel_size(std::int64_t format) {
   switch (format) {
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
     case VK_FORMAT_R8G8B8A8_SRGB:
-    case VK_FORMAT_B8G8R8A8_SRGB: return 4;
-    default: return 0;
+    case VK_FORMAT_B8G8R8A8_SRGB:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -312,12 +321,13 @@ void create_instance(App& app) {
   XrResult r = xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr);
   if (XR_FAILED(r)) {
     const char* json = std::getenv("XR_RUNTIME_JSON");
-    throw XrError(std::string("no OpenXR runtime available (xrEnumerateInstanceExtensionProperties: ") +
-                  result_name(XR_NULL_HANDLE, r) + "): install and activate one (Monado, SteamVR, ...)" +
-                  (json != nullptr ? std::string(", or check XR_RUNTIME_JSON=") + json : std::string(" or set XR_RUNTIME_JSON")));
+    throw XrError(
+        std::string("no OpenXR runtime available (xrEnumerateInstanceExtensionProperties: ") + result_name(r) +
+        "): install and activate one (Monado, SteamVR, ...)" +
+        (json != nullptr ? std::string(", or check XR_RUNTIME_JSON=") + json : std::string(" or set XR_RUNTIME_JSON")));
   }
   std::vector<XrExtensionProperties> extensions(count, xr_struct<XrExtensionProperties>(XR_TYPE_EXTENSION_PROPERTIES));
-  xr_check(XR_NULL_HANDLE, xrEnumerateInstanceExtensionProperties(nullptr, count, &count, extensions.data()),
+  xr_check(xrEnumerateInstanceExtensionProperties(nullptr, count, &count, extensions.data()),
            "xrEnumerateInstanceExtensionProperties");
   const bool vulkan = std::any_of(extensions.begin(), extensions.end(), [](const XrExtensionProperties& e) {
     return std::strcmp(e.extensionName, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0;
@@ -333,20 +343,21 @@ void create_instance(App& app) {
   info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
   info.enabledExtensionCount = 1;
   info.enabledExtensionNames = enabled;
-  xr_check(XR_NULL_HANDLE, xrCreateInstance(&info, &app.instance), "xrCreateInstance");
+  xr_check(xrCreateInstance(&info, &app.instance), "xrCreateInstance");
 
   auto props = xr_struct<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
-  xr_check(app.instance, xrGetInstanceProperties(app.instance, &props), "xrGetInstanceProperties");
+  xr_check(xrGetInstanceProperties(app.instance, &props), "xrGetInstanceProperties");
   auto system_info = xr_struct<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
   system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
   r = xrGetSystem(app.instance, &system_info, &app.system);
   if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE || r == XR_ERROR_FORM_FACTOR_UNSUPPORTED) {
-    throw XrError(std::string("the OpenXR runtime '") + props.runtimeName + "' finds no headset (" +
-                  result_name(app.instance, r) + "): connect one and try again");
+    throw XrError(std::string("the OpenXR runtime '") + props.runtimeName + "' finds no headset (" + result_name(r) +
+                  "): connect one and try again");
   }
-  xr_check(app.instance, r, "xrGetSystem");
-  std::fprintf(stderr, "solxr: OpenXR runtime '%s' %u.%u.%u\n", props.runtimeName, XR_VERSION_MAJOR(props.runtimeVersion),
-               XR_VERSION_MINOR(props.runtimeVersion), XR_VERSION_PATCH(props.runtimeVersion));
+  xr_check(r, "xrGetSystem");
+  std::fprintf(stderr, "solxr: OpenXR runtime '%s' %u.%u.%u\n", props.runtimeName,
+               XR_VERSION_MAJOR(props.runtimeVersion), XR_VERSION_MINOR(props.runtimeVersion),
+               XR_VERSION_PATCH(props.runtimeVersion));
 }
 
 /// The Vulkan context on the runtime's device: the Context's create infos go
@@ -355,18 +366,20 @@ void create_instance(App& app) {
 void create_context(App& app, bool validation) {
   const XrInstance instance = app.instance;
   const XrSystemId system = app.system;
-  auto requirements_fn = xr_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, "xrGetVulkanGraphicsRequirements2KHR");
+  auto requirements_fn =
+      xr_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, "xrGetVulkanGraphicsRequirements2KHR");
   auto create_instance_fn = xr_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
   auto device_fn = xr_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
   auto create_device_fn = xr_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
 
   auto requirements = xr_struct<XrGraphicsRequirementsVulkan2KHR>(XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR);
-  xr_check(instance, requirements_fn(instance, system, &requirements), "xrGetVulkanGraphicsRequirements2KHR");
+  xr_check(requirements_fn(instance, system, &requirements), "xrGetVulkanGraphicsRequirements2KHR");
   // Sol::vk asks for Vulkan 1.2.
   const XrVersion ours = XR_MAKE_VERSION(1, 2, 0);
   if (requirements.minApiVersionSupported > ours) {
-    throw XrError("the OpenXR runtime needs Vulkan " + std::to_string(XR_VERSION_MAJOR(requirements.minApiVersionSupported)) +
-                  "." + std::to_string(XR_VERSION_MINOR(requirements.minApiVersionSupported)) +
+    throw XrError("the OpenXR runtime needs Vulkan " +
+                  std::to_string(XR_VERSION_MAJOR(requirements.minApiVersionSupported)) + "." +
+                  std::to_string(XR_VERSION_MINOR(requirements.minApiVersionSupported)) +
                   " or later; solxr uses Vulkan 1.2");
   }
 
@@ -378,7 +391,7 @@ void create_context(App& app, bool validation) {
     xr_info.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
     xr_info.vulkanCreateInfo = &info;
     VkResult vk_result = VK_SUCCESS;
-    xr_check(instance, create_instance_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanInstanceKHR");
+    xr_check(create_instance_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanInstanceKHR");
     return vk_result;
   };
   options.choose_physical_device = [=](VkInstance vk_instance) {
@@ -386,7 +399,7 @@ void create_context(App& app, bool validation) {
     get.systemId = system;
     get.vulkanInstance = vk_instance;
     VkPhysicalDevice device = VK_NULL_HANDLE;
-    xr_check(instance, device_fn(instance, &get, &device), "xrGetVulkanGraphicsDevice2KHR");
+    xr_check(device_fn(instance, &get, &device), "xrGetVulkanGraphicsDevice2KHR");
     return device;
   };
   options.create_device = [=](VkPhysicalDevice physical, const VkDeviceCreateInfo& info, VkDevice* out) {
@@ -396,7 +409,7 @@ void create_context(App& app, bool validation) {
     xr_info.vulkanPhysicalDevice = physical;
     xr_info.vulkanCreateInfo = &info;
     VkResult vk_result = VK_SUCCESS;
-    xr_check(instance, create_device_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanDeviceKHR");
+    xr_check(create_device_fn(instance, &xr_info, out, &vk_result), "xrCreateVulkanDeviceKHR");
     return vk_result;
   };
   app.context.emplace(options);
@@ -413,33 +426,32 @@ void create_session(App& app, const Options& o) {
   auto info = xr_struct<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
   info.next = &binding;
   info.systemId = app.system;
-  xr_check(app.instance, xrCreateSession(app.instance, &info, &app.session), "xrCreateSession");
+  xr_check(xrCreateSession(app.instance, &info, &app.session), "xrCreateSession");
 
   auto space_info = xr_struct<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
-  space_info.referenceSpaceType = o.reference == "stage" ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
+  space_info.referenceSpaceType =
+      o.reference == "stage" ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
   space_info.poseInReferenceSpace.orientation.w = 1.0f;
-  xr_check(app.instance, xrCreateReferenceSpace(app.session, &space_info, &app.space), "xrCreateReferenceSpace");
+  xr_check(xrCreateReferenceSpace(app.session, &space_info, &app.space), "xrCreateReferenceSpace");
 }
 
 /// One swapchain per view, in the first format (the runtime's preference
 /// comes first) that solxr can fill; images are written by transfer.
 std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width, std::uint32_t& height) {
   std::uint32_t count = 0;
-  xr_check(app.instance,
-           xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &count,
-                                             nullptr),
+  xr_check(xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0,
+                                             &count, nullptr),
            "xrEnumerateViewConfigurationViews");
-  std::vector<XrViewConfigurationView> views(count, xr_struct<XrViewConfigurationView>(XR_TYPE_VIEW_CONFIGURATION_VIEW));
-  xr_check(app.instance,
-           xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count,
+  std::vector<XrViewConfigurationView> views(count,
+                                             xr_struct<XrViewConfigurationView>(XR_TYPE_VIEW_CONFIGURATION_VIEW));
+  xr_check(xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count,
                                              &count, views.data()),
            "xrEnumerateViewConfigurationViews");
   if (views.empty()) throw XrError("the OpenXR runtime offers no views for the primary stereo configuration");
 
-  xr_check(app.instance, xrEnumerateSwapchainFormats(app.session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
+  xr_check(xrEnumerateSwapchainFormats(app.session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
   std::vector<std::int64_t> formats(count);
-  xr_check(app.instance, xrEnumerateSwapchainFormats(app.session, count, &count, formats.data()),
-           "xrEnumerateSwapchainFormats");
+  xr_check(xrEnumerateSwapchainFormats(app.session, count, &count, formats.data()), "xrEnumerateSwapchainFormats");
   const auto format = std::find_if(formats.begin(), formats.end(), [](std::int64_t f) { return texel_size(f) != 0; });
   if (format == formats.end()) {
     throw XrError("the OpenXR runtime offers no swapchain format solxr can fill (RGBA32F, RGBA8 sRGB, BGRA8 sRGB)");
@@ -458,11 +470,11 @@ std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width,
     info.faceCount = 1;
     info.arraySize = 1;
     info.mipCount = 1;
-    xr_check(app.instance, xrCreateSwapchain(app.session, &info, &eye.swapchain), "xrCreateSwapchain");
-    xr_check(app.instance, xrEnumerateSwapchainImages(eye.swapchain, 0, &count, nullptr), "xrEnumerateSwapchainImages");
-    std::vector<XrSwapchainImageVulkan2KHR> images(count, xr_struct<XrSwapchainImageVulkan2KHR>(XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR));
-    xr_check(app.instance,
-             xrEnumerateSwapchainImages(eye.swapchain, count, &count,
+    xr_check(xrCreateSwapchain(app.session, &info, &eye.swapchain), "xrCreateSwapchain");
+    xr_check(xrEnumerateSwapchainImages(eye.swapchain, 0, &count, nullptr), "xrEnumerateSwapchainImages");
+    std::vector<XrSwapchainImageVulkan2KHR> images(
+        count, xr_struct<XrSwapchainImageVulkan2KHR>(XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR));
+    xr_check(xrEnumerateSwapchainImages(eye.swapchain, count, &count,
                                         reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())),
              "xrEnumerateSwapchainImages");
     for (const auto& image : images) eye.images.push_back(image.image);
@@ -480,19 +492,19 @@ void create_actions(App& app) {
   auto set_info = xr_struct<XrActionSetCreateInfo>(XR_TYPE_ACTION_SET_CREATE_INFO);
   std::snprintf(set_info.actionSetName, XR_MAX_ACTION_SET_NAME_SIZE, "locomotion");
   std::snprintf(set_info.localizedActionSetName, XR_MAX_LOCALIZED_ACTION_SET_NAME_SIZE, "Locomotion");
-  xr_check(app.instance, xrCreateActionSet(app.instance, &set_info, &app.action_set), "xrCreateActionSet");
+  xr_check(xrCreateActionSet(app.instance, &set_info, &app.action_set), "xrCreateActionSet");
   auto action = [&](const char* name, const char* localized, XrAction* out) {
     auto info = xr_struct<XrActionCreateInfo>(XR_TYPE_ACTION_CREATE_INFO);
     info.actionType = XR_ACTION_TYPE_VECTOR2F_INPUT;
     std::snprintf(info.actionName, XR_MAX_ACTION_NAME_SIZE, "%s", name);
     std::snprintf(info.localizedActionName, XR_MAX_LOCALIZED_ACTION_NAME_SIZE, "%s", localized);
-    xr_check(app.instance, xrCreateAction(app.action_set, &info, out), "xrCreateAction");
+    xr_check(xrCreateAction(app.action_set, &info, out), "xrCreateAction");
   };
   action("move", "Walk along geodesics", &app.move);
   action("turn", "Turn", &app.turn);
   auto path = [&](const char* text) {
     XrPath p = XR_NULL_PATH;
-    xr_check(app.instance, xrStringToPath(app.instance, text, &p), "xrStringToPath");
+    xr_check(xrStringToPath(app.instance, text, &p), "xrStringToPath");
     return p;
   };
   struct Profile {
@@ -501,11 +513,14 @@ void create_actions(App& app) {
     const char* right;
   };
   const Profile profiles[] = {
-      {"/interaction_profiles/oculus/touch_controller", "/user/hand/left/input/thumbstick", "/user/hand/right/input/thumbstick"},
-      {"/interaction_profiles/valve/index_controller", "/user/hand/left/input/thumbstick", "/user/hand/right/input/thumbstick"},
+      {"/interaction_profiles/oculus/touch_controller", "/user/hand/left/input/thumbstick",
+       "/user/hand/right/input/thumbstick"},
+      {"/interaction_profiles/valve/index_controller", "/user/hand/left/input/thumbstick",
+       "/user/hand/right/input/thumbstick"},
       {"/interaction_profiles/microsoft/motion_controller", "/user/hand/left/input/thumbstick",
        "/user/hand/right/input/thumbstick"},
-      {"/interaction_profiles/htc/vive_controller", "/user/hand/left/input/trackpad", "/user/hand/right/input/trackpad"},
+      {"/interaction_profiles/htc/vive_controller", "/user/hand/left/input/trackpad",
+       "/user/hand/right/input/trackpad"},
   };
   for (const Profile& p : profiles) {
     const XrActionSuggestedBinding bindings[] = {{app.move, path(p.left)}, {app.turn, path(p.right)}};
@@ -515,13 +530,13 @@ void create_actions(App& app) {
     suggested.suggestedBindings = bindings;
     const XrResult r = xrSuggestInteractionProfileBindings(app.instance, &suggested);
     if (XR_FAILED(r)) {
-      std::fprintf(stderr, "solxr: the runtime refuses bindings for %s (%s)\n", p.profile, result_name(app.instance, r).c_str());
+      std::fprintf(stderr, "solxr: the runtime refuses bindings for %s (%s)\n", p.profile, result_name(r).c_str());
     }
   }
   auto attach = xr_struct<XrSessionActionSetsAttachInfo>(XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO);
   attach.countActionSets = 1;
   attach.actionSets = &app.action_set;
-  xr_check(app.instance, xrAttachSessionActionSets(app.session, &attach), "xrAttachSessionActionSets");
+  xr_check(xrAttachSessionActionSets(app.session, &attach), "xrAttachSessionActionSets");
 }
 
 /// Walks and turns the base observer by the thumbsticks over `seconds`.
@@ -530,12 +545,12 @@ void locomote(App& app, sol::Observer& base, const Options& o, double seconds, b
   auto sync = xr_struct<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
   sync.countActiveActionSets = 1;
   sync.activeActionSets = &active;
-  if (xr_check(app.instance, xrSyncActions(app.session, &sync), "xrSyncActions") != XR_SUCCESS) return;  // not focused
+  if (xr_check(xrSyncActions(app.session, &sync), "xrSyncActions") != XR_SUCCESS) return;  // not focused
   auto stick = [&](XrAction action) -> std::optional<glm::dvec2> {
     auto get = xr_struct<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
     get.action = action;
     auto state = xr_struct<XrActionStateVector2f>(XR_TYPE_ACTION_STATE_VECTOR2F);
-    xr_check(app.instance, xrGetActionStateVector2f(app.session, &get, &state), "xrGetActionStateVector2f");
+    xr_check(xrGetActionStateVector2f(app.session, &get, &state), "xrGetActionStateVector2f");
     if (!state.isActive) return std::nullopt;
     return glm::dvec2(state.currentState.x, state.currentState.y);
   };
@@ -574,13 +589,14 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
     }
     sol::xr::ViewPose pose;
     pose.position = {view.pose.position.x, view.pose.position.y, view.pose.position.z};
-    pose.orientation = glm::dquat(view.pose.orientation.w, view.pose.orientation.x, view.pose.orientation.y,
-                                  view.pose.orientation.z);
+    pose.orientation =
+        glm::dquat(view.pose.orientation.w, view.pose.orientation.x, view.pose.orientation.y, view.pose.orientation.z);
     sol::Scene eye_scene = scene;
     eye_scene.camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
     eye_scene.camera.fov = vertical * 180.0 / M_PI;
     double kernel_ms = 0;
-    const sol::RenderResult image = app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
+    const sol::RenderResult image =
+        app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
     const auto rendered = std::chrono::steady_clock::now();
 
     // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
@@ -602,10 +618,10 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
 
     std::uint32_t index = 0;
     auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
-    xr_check(app.instance, xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
+    xr_check(xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
     auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
     wait.timeout = XR_INFINITE_DURATION;
-    xr_check(app.instance, xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
+    xr_check(xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
     const VkImage target = eye.images.at(index);
     const VkBuffer staging = eye.staging->handle();
     app.context->submit_and_wait([&](VkCommandBuffer cmd) {
@@ -620,8 +636,8 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
       barrier.image = target;
       barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
       // The runtime's last read of this image (its compositor) precedes the write.
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                           1, &barrier);
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                           nullptr, 1, &barrier);
       VkBufferImageCopy region{};
       region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       region.imageExtent = {width, height, 1};
@@ -632,11 +648,11 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
       barrier.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
       barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
       barrier.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0, nullptr,
-                           0, nullptr, 1, &barrier);
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
+                           nullptr, 0, nullptr, 1, &barrier);
     });
     auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
-    xr_check(app.instance, xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
+    xr_check(xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
     const auto end = std::chrono::steady_clock::now();
 
     XrCompositionLayerProjectionView& lv = layer_views[v];
@@ -679,31 +695,38 @@ int run(const Options& o, const sol::Scene& scene) {
   while (!quit) {
     // Session state machine: begin when ready, end when stopping, leave on exiting or loss.
     auto event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
-    while (xr_check(app.instance, xrPollEvent(app.instance, &event), "xrPollEvent") == XR_SUCCESS) {
+    while (xr_check(xrPollEvent(app.instance, &event), "xrPollEvent") == XR_SUCCESS) {
       if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
         const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
         switch (changed.state) {
           case XR_SESSION_STATE_READY: {
             auto begin = xr_struct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
             begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
-            xr_check(app.instance, xrBeginSession(app.session, &begin), "xrBeginSession");
+            xr_check(xrBeginSession(app.session, &begin), "xrBeginSession");
             running = true;
             std::fprintf(stderr, "solxr: session running\n");
             break;
           }
-          case XR_SESSION_STATE_FOCUSED: std::fprintf(stderr, "solxr: focused\n"); break;
-          case XR_SESSION_STATE_VISIBLE: std::fprintf(stderr, "solxr: visible, not focused\n"); break;
+          case XR_SESSION_STATE_FOCUSED:
+            std::fprintf(stderr, "solxr: focused\n");
+            break;
+          case XR_SESSION_STATE_VISIBLE:
+            std::fprintf(stderr, "solxr: visible, not focused\n");
+            break;
           case XR_SESSION_STATE_STOPPING:
-            xr_check(app.instance, xrEndSession(app.session), "xrEndSession");
+            xr_check(xrEndSession(app.session), "xrEndSession");
             running = false;
             std::fprintf(stderr, "solxr: session ended\n");
             break;
-          case XR_SESSION_STATE_EXITING: quit = true; break;
+          case XR_SESSION_STATE_EXITING:
+            quit = true;
+            break;
           case XR_SESSION_STATE_LOSS_PENDING:
             std::fprintf(stderr, "solxr: the runtime is losing the session; exiting\n");
             quit = true;
             break;
-          default: break;
+          default:
+            break;
         }
       } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
         std::fprintf(stderr, "solxr: the runtime is going away; exiting\n");
@@ -718,14 +741,14 @@ int run(const Options& o, const sol::Scene& scene) {
     }
 
     if (o.frames > 0 && frames >= o.frames && !exit_requested) {
-      xr_check(app.instance, xrRequestExitSession(app.session), "xrRequestExitSession");
+      xr_check(xrRequestExitSession(app.session), "xrRequestExitSession");
       exit_requested = true;
     }
     auto wait = xr_struct<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
     auto frame = xr_struct<XrFrameState>(XR_TYPE_FRAME_STATE);
-    xr_check(app.instance, xrWaitFrame(app.session, &wait, &frame), "xrWaitFrame");
+    xr_check(xrWaitFrame(app.session, &wait, &frame), "xrWaitFrame");
     auto begin = xr_struct<XrFrameBeginInfo>(XR_TYPE_FRAME_BEGIN_INFO);
-    xr_check(app.instance, xrBeginFrame(app.session, &begin), "xrBeginFrame");
+    xr_check(xrBeginFrame(app.session, &begin), "xrBeginFrame");
 
     const double seconds = last_time == 0 ? 0.0 : static_cast<double>(frame.predictedDisplayTime - last_time) * 1e-9;
     last_time = frame.predictedDisplayTime;
@@ -745,8 +768,8 @@ int run(const Options& o, const sol::Scene& scene) {
       auto view_state = xr_struct<XrViewState>(XR_TYPE_VIEW_STATE);
       std::uint32_t count = 0;
       std::vector<XrView> views(app.eyes.size(), xr_struct<XrView>(XR_TYPE_VIEW));
-      xr_check(app.instance,
-               xrLocateViews(app.session, &locate, &view_state, static_cast<std::uint32_t>(views.size()), &count, views.data()),
+      xr_check(xrLocateViews(app.session, &locate, &view_state, static_cast<std::uint32_t>(views.size()), &count,
+                             views.data()),
                "xrLocateViews");
       const XrViewStateFlags needed = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
       if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
@@ -758,17 +781,18 @@ int run(const Options& o, const sol::Scene& scene) {
         end.layers = layers;
       }
     }
-    xr_check(app.instance, xrEndFrame(app.session, &end), "xrEndFrame");
+    xr_check(xrEndFrame(app.session, &end), "xrEndFrame");
     ++frames;
   }
 
   std::fprintf(stderr, "solxr: %ld frames\n", frames);
   if (o.stats && timing.eyes > 0) {
     const double n = static_cast<double>(timing.eyes);
-    std::printf("solxr: %ux%u per eye on '%s': %.2f ms per eye (render %.2f ms of which kernel %.2f ms, upload %.2f ms), "
-                "%ld eye images\n",
-                width, height, app.context->device_name().c_str(), timing.total_ms / n, timing.render_ms / n,
-                timing.kernel_ms / n, timing.upload_ms / n, timing.eyes);
+    std::printf(
+        "solxr: %ux%u per eye on '%s': %.2f ms per eye (render %.2f ms of which kernel %.2f ms, upload %.2f ms), "
+        "%ld eye images\n",
+        width, height, app.context->device_name().c_str(), timing.total_ms / n, timing.render_ms / n,
+        timing.kernel_ms / n, timing.upload_ms / n, timing.eyes);
   }
   if (o.validation) {
     const std::size_t errors = app.context->validation_errors().size();

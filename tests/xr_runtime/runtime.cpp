@@ -27,6 +27,8 @@
 // "SOLXR RGBA32F <width> <height>\n", then linear float RGBA, row 0 at the top
 // (8-bit sRGB swapchains are decoded to linear); DIR/views.txt gets a line per
 // image: "k v px py pz qx qy qz qw angleLeft angleRight angleUp angleDown".
+#include <vulkan/vulkan.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,11 +38,9 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
-#include <vulkan/vulkan.h>
 #define XR_USE_GRAPHICS_API_VULKAN
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
@@ -72,8 +72,8 @@ struct XrNegotiateRuntimeRequest {
   XrVersion runtimeApiVersion;
   PFN_xrGetInstanceProcAddr getInstanceProcAddr;
 };
-__attribute__((visibility("default"))) XrResult xrNegotiateLoaderRuntimeInterface(const XrNegotiateLoaderInfo* loaderInfo,
-                                                                                   XrNegotiateRuntimeRequest* runtimeRequest);
+__attribute__((visibility("default"))) XrResult xrNegotiateLoaderRuntimeInterface(
+    const XrNegotiateLoaderInfo* loaderInfo, XrNegotiateRuntimeRequest* runtimeRequest);
 }
 
 namespace {
@@ -149,7 +149,7 @@ struct Swapchain {
   std::uint32_t width = 0, height = 0;
   std::vector<VkImage> images;
   std::vector<VkDeviceMemory> memory;
-  std::uint32_t next = 0;           // next image to acquire
+  std::uint32_t next = 0;            // next image to acquire
   int acquired = -1, released = -1;  // last acquired / released image
 };
 
@@ -184,7 +184,8 @@ struct State {
   ~State() {
     // The loader unloads the runtime after xrDestroyInstance; whatever is
     // still alive now was never destroyed.
-    for (const auto& [handle, kind] : live) say("LEAK: " + kind + " " + std::to_string(handle) + " was never destroyed");
+    for (const auto& [handle, kind] : live)
+      say("LEAK: " + kind + " " + std::to_string(handle) + " was never destroyed");
   }
 };
 
@@ -262,7 +263,8 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   VkMemoryAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   ai.allocationSize = req.size;
-  ai.memoryTypeIndex = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  ai.memoryTypeIndex =
+      memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory memory;
   vk_check(vkAllocateMemory(st.device, &ai, nullptr, &memory), "vkAllocateMemory");
   vk_check(vkBindBufferMemory(st.device, buffer, memory, 0), "vkBindBufferMemory");
@@ -294,8 +296,8 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                       1, &barrier);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &barrier);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {sc.width, sc.height, 1};
@@ -312,8 +314,8 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   host.buffer = buffer;
   host.size = VK_WHOLE_SIZE;
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
-                       0, nullptr, 1, &host, 1, &barrier);
+                       VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0, nullptr, 1,
+                       &host, 1, &barrier);
   vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
@@ -376,12 +378,13 @@ std::vector<std::string> extension_names() {
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL EnumerateInstanceExtensionProperties(const char* layer, std::uint32_t capacity,
-                                                                     std::uint32_t* count, XrExtensionProperties* props) {
+                                                                    std::uint32_t* count,
+                                                                    XrExtensionProperties* props) {
   if (layer != nullptr) return XR_ERROR_API_LAYER_NOT_PRESENT;
   std::vector<XrExtensionProperties> items;
   for (const std::string& name : extension_names()) {
     XrExtensionProperties p{};
-  p.type = XR_TYPE_EXTENSION_PROPERTIES;
+    p.type = XR_TYPE_EXTENSION_PROPERTIES;
     std::snprintf(p.extensionName, sizeof p.extensionName, "%s", name.c_str());
     p.extensionVersion = 1;
     items.push_back(p);
@@ -428,11 +431,11 @@ XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProperties(XrInstance, XrInstancePrope
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL ResultToString(XrInstance, XrResult value, char buffer[XR_MAX_RESULT_STRING_SIZE]) {
-#define SOL_RESULT_CASE(name, val) \
-  case name: std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "%s", #name); return XR_SUCCESS;
-  switch (value) {
-    XR_LIST_ENUM_XrResult(SOL_RESULT_CASE) default : break;
-  }
+#define SOL_RESULT_CASE(name, val)                                 \
+  case name:                                                       \
+    std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "%s", #name); \
+    return XR_SUCCESS;
+  switch (value) { XR_LIST_ENUM_XrResult(SOL_RESULT_CASE) default : break; }
 #undef SOL_RESULT_CASE
   std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_RESULT_%d", static_cast<int>(value));
   return XR_SUCCESS;
@@ -457,7 +460,8 @@ XRAPI_ATTR XrResult XRAPI_CALL GetSystemProperties(XrInstance, XrSystemId, XrSys
   return XR_SUCCESS;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL GetVulkanGraphicsRequirements2KHR(XrInstance, XrSystemId, XrGraphicsRequirementsVulkanKHR* req) {
+XRAPI_ATTR XrResult XRAPI_CALL GetVulkanGraphicsRequirements2KHR(XrInstance, XrSystemId,
+                                                                 XrGraphicsRequirementsVulkanKHR* req) {
   req->minApiVersionSupported = XR_MAKE_VERSION(1, 0, 0);
   req->maxApiVersionSupported = XR_MAKE_VERSION(1, 3, 0);
   return XR_SUCCESS;
@@ -465,7 +469,8 @@ XRAPI_ATTR XrResult XRAPI_CALL GetVulkanGraphicsRequirements2KHR(XrInstance, XrS
 
 XRAPI_ATTR XrResult XRAPI_CALL CreateVulkanInstanceKHR(XrInstance, const XrVulkanInstanceCreateInfoKHR* info,
                                                        VkInstance* instance, VkResult* result) {
-  auto create = reinterpret_cast<PFN_vkCreateInstance>(info->pfnGetInstanceProcAddr(VK_NULL_HANDLE, "vkCreateInstance"));
+  auto create =
+      reinterpret_cast<PFN_vkCreateInstance>(info->pfnGetInstanceProcAddr(VK_NULL_HANDLE, "vkCreateInstance"));
   *result = create(info->vulkanCreateInfo, info->vulkanAllocator, instance);
   if (*result == VK_SUCCESS) state().vk_instance = *instance;
   return XR_SUCCESS;
@@ -483,8 +488,8 @@ XRAPI_ATTR XrResult XRAPI_CALL GetVulkanGraphicsDevice2KHR(XrInstance, const XrV
   return XR_SUCCESS;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL CreateVulkanDeviceKHR(XrInstance, const XrVulkanDeviceCreateInfoKHR* info, VkDevice* device,
-                                                     VkResult* result) {
+XRAPI_ATTR XrResult XRAPI_CALL CreateVulkanDeviceKHR(XrInstance, const XrVulkanDeviceCreateInfoKHR* info,
+                                                     VkDevice* device, VkResult* result) {
   if (info->vulkanPhysicalDevice != state().vk_physical) return XR_ERROR_VALIDATION_FAILURE;
   *result = vkCreateDevice(info->vulkanPhysicalDevice, info->vulkanCreateInfo, info->vulkanAllocator, device);
   return XR_SUCCESS;
@@ -492,7 +497,8 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateVulkanDeviceKHR(XrInstance, const XrVulkanD
 
 XRAPI_ATTR XrResult XRAPI_CALL EnumerateViewConfigurations(XrInstance, XrSystemId, std::uint32_t capacity,
                                                            std::uint32_t* count, XrViewConfigurationType* types) {
-  return two_call(capacity, count, types, std::vector<XrViewConfigurationType>{XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO});
+  return two_call(capacity, count, types,
+                  std::vector<XrViewConfigurationType>{XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO});
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL EnumerateViewConfigurationViews(XrInstance, XrSystemId, XrViewConfigurationType type,
@@ -518,7 +524,8 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance, const XrSessionCreateIn
   State& st = state();
   if (st.session != XR_NULL_HANDLE) return XR_ERROR_LIMIT_REACHED;
   const auto* binding = static_cast<const XrGraphicsBindingVulkanKHR*>(info->next);
-  if (binding == nullptr || binding->type != XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  if (binding == nullptr || binding->type != XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR)
+    return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   if (binding->physicalDevice != st.vk_physical) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   st.device = binding->device;
   st.queue_family = binding->queueFamilyIndex;
@@ -604,7 +611,8 @@ XRAPI_ATTR XrResult XRAPI_CALL EnumerateReferenceSpaces(XrSession, std::uint32_t
                                                     XR_REFERENCE_SPACE_TYPE_VIEW});
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL CreateReferenceSpace(XrSession session, const XrReferenceSpaceCreateInfo*, XrSpace* space) {
+XRAPI_ATTR XrResult XRAPI_CALL CreateReferenceSpace(XrSession session, const XrReferenceSpaceCreateInfo*,
+                                                    XrSpace* space) {
   if (session != state().session) return XR_ERROR_HANDLE_INVALID;
   *space = reinterpret_cast<XrSpace>(make("XrSpace"));
   return XR_SUCCESS;
@@ -625,7 +633,8 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSwapchain(XrSession session, const XrSwapch
   State& st = state();
   if (session != st.session) return XR_ERROR_HANDLE_INVALID;
   const auto& formats = st.script.formats;
-  if (std::find(formats.begin(), formats.end(), info->format) == formats.end()) return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
+  if (std::find(formats.begin(), formats.end(), info->format) == formats.end())
+    return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
   Swapchain sc;
   sc.session = session;
   sc.format = static_cast<VkFormat>(info->format);
@@ -638,7 +647,7 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSwapchain(XrSession session, const XrSwapch
   if (info->usageFlags & XR_SWAPCHAIN_USAGE_UNORDERED_ACCESS_BIT) usage |= VK_IMAGE_USAGE_STORAGE_BIT;
   for (std::uint32_t i = 0; i < kImagesPerSwapchain; ++i) {
     VkImageCreateInfo ii{};
-  ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     ii.imageType = VK_IMAGE_TYPE_2D;
     ii.format = sc.format;
     ii.extent = {sc.width, sc.height, 1};
@@ -653,7 +662,7 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSwapchain(XrSession session, const XrSwapch
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(st.device, image, &req);
     VkMemoryAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
     ai.allocationSize = req.size;
     ai.memoryTypeIndex = memory_type(req.memoryTypeBits, 0);
     VkDeviceMemory memory;
@@ -682,8 +691,8 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroySwapchain(XrSwapchain swapchain) {
   return XR_SUCCESS;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL EnumerateSwapchainImages(XrSwapchain swapchain, std::uint32_t capacity, std::uint32_t* count,
-                                                        XrSwapchainImageBaseHeader* images) {
+XRAPI_ATTR XrResult XRAPI_CALL EnumerateSwapchainImages(XrSwapchain swapchain, std::uint32_t capacity,
+                                                        std::uint32_t* count, XrSwapchainImageBaseHeader* images) {
   Swapchain* sc = find_swapchain(swapchain);
   if (sc == nullptr) return XR_ERROR_HANDLE_INVALID;
   *count = static_cast<std::uint32_t>(sc->images.size());
@@ -807,7 +816,8 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateViews(XrSession session, const XrViewLocate
     const double offset[3] = {(v == 0 ? -0.5 : 0.5) * st.script.ipd, 0.0, 0.0};
     double rotated[3];
     rotate(f.orientation, offset, rotated);
-    views[v].pose.position = {static_cast<float>(f.position[0] + rotated[0]), static_cast<float>(f.position[1] + rotated[1]),
+    views[v].pose.position = {static_cast<float>(f.position[0] + rotated[0]),
+                              static_cast<float>(f.position[1] + rotated[1]),
                               static_cast<float>(f.position[2] + rotated[2])};
     views[v].pose.orientation = {static_cast<float>(f.orientation[0]), static_cast<float>(f.orientation[1]),
                                  static_cast<float>(f.orientation[2]), static_cast<float>(f.orientation[3])};
@@ -876,7 +886,8 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroyAction(XrAction action) {
   return XR_SUCCESS;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL SuggestInteractionProfileBindings(XrInstance, const XrInteractionProfileSuggestedBinding* s) {
+XRAPI_ATTR XrResult XRAPI_CALL SuggestInteractionProfileBindings(XrInstance,
+                                                                 const XrInteractionProfileSuggestedBinding* s) {
   if (path_text(s->interactionProfile) != "/interaction_profiles/oculus/touch_controller") return XR_SUCCESS;
   for (std::uint32_t i = 0; i < s->countSuggestedBindings; ++i) {
     const std::string binding = path_text(s->suggestedBindings[i].binding);
@@ -899,17 +910,20 @@ XRAPI_ATTR XrResult XRAPI_CALL SyncActions(XrSession session, const XrActionsSyn
 
 XRAPI_ATTR XrResult XRAPI_CALL GetCurrentInteractionProfile(XrSession, XrPath, XrInteractionProfileState* profile) {
   XrPath touch = XR_NULL_PATH;
-  if (state().script.controllers) StringToPath(state().instance, "/interaction_profiles/oculus/touch_controller", &touch);
+  if (state().script.controllers)
+    StringToPath(state().instance, "/interaction_profiles/oculus/touch_controller", &touch);
   profile->interactionProfile = touch;
   return XR_SUCCESS;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL GetActionStateVector2f(XrSession, const XrActionStateGetInfo* info, XrActionStateVector2f* out) {
+XRAPI_ATTR XrResult XRAPI_CALL GetActionStateVector2f(XrSession, const XrActionStateGetInfo* info,
+                                                      XrActionStateVector2f* out) {
   State& st = state();
   const auto it = st.actions.find(reinterpret_cast<std::uint64_t>(info->action));
   if (it == st.actions.end()) return XR_ERROR_HANDLE_INVALID;
   if (it->second.type != XR_ACTION_TYPE_VECTOR2F_INPUT) return XR_ERROR_ACTION_TYPE_MISMATCH;
-  const bool active = st.script.controllers && !it->second.binding.empty() && st.polled_state == XR_SESSION_STATE_FOCUSED;
+  const bool active =
+      st.script.controllers && !it->second.binding.empty() && st.polled_state == XR_SESSION_STATE_FOCUSED;
   out->isActive = active ? XR_TRUE : XR_FALSE;
   out->changedSinceLastSync = XR_FALSE;
   out->currentState = {0, 0};
@@ -926,25 +940,59 @@ struct Entry {
   PFN_xrVoidFunction function;
 };
 
-#define SOL_ENTRY(name) {"xr" #name, reinterpret_cast<PFN_xrVoidFunction>(name)}
+#define SOL_ENTRY(name) \
+  { "xr" #name, reinterpret_cast<PFN_xrVoidFunction>(name) }
 const Entry kEntries[] = {
-    SOL_ENTRY(EnumerateInstanceExtensionProperties), SOL_ENTRY(CreateInstance), SOL_ENTRY(DestroyInstance),
-    SOL_ENTRY(GetInstanceProperties), SOL_ENTRY(ResultToString), SOL_ENTRY(GetSystem), SOL_ENTRY(GetSystemProperties),
-    SOL_ENTRY(GetVulkanGraphicsRequirements2KHR), SOL_ENTRY(CreateVulkanInstanceKHR), SOL_ENTRY(GetVulkanGraphicsDevice2KHR),
-    SOL_ENTRY(CreateVulkanDeviceKHR), SOL_ENTRY(EnumerateViewConfigurations), SOL_ENTRY(EnumerateViewConfigurationViews),
-    SOL_ENTRY(EnumerateEnvironmentBlendModes), SOL_ENTRY(CreateSession), SOL_ENTRY(DestroySession), SOL_ENTRY(BeginSession),
-    SOL_ENTRY(EndSession), SOL_ENTRY(RequestExitSession), SOL_ENTRY(PollEvent), SOL_ENTRY(EnumerateReferenceSpaces),
-    SOL_ENTRY(CreateReferenceSpace), SOL_ENTRY(DestroySpace), SOL_ENTRY(EnumerateSwapchainFormats),
-    SOL_ENTRY(CreateSwapchain), SOL_ENTRY(DestroySwapchain), SOL_ENTRY(EnumerateSwapchainImages),
-    SOL_ENTRY(AcquireSwapchainImage), SOL_ENTRY(WaitSwapchainImage), SOL_ENTRY(ReleaseSwapchainImage), SOL_ENTRY(WaitFrame),
-    SOL_ENTRY(BeginFrame), SOL_ENTRY(EndFrame), SOL_ENTRY(LocateViews), SOL_ENTRY(StringToPath), SOL_ENTRY(PathToString),
-    SOL_ENTRY(CreateActionSet), SOL_ENTRY(DestroyActionSet), SOL_ENTRY(CreateAction), SOL_ENTRY(DestroyAction),
-    SOL_ENTRY(SuggestInteractionProfileBindings), SOL_ENTRY(AttachSessionActionSets), SOL_ENTRY(SyncActions),
-    SOL_ENTRY(GetCurrentInteractionProfile), SOL_ENTRY(GetActionStateVector2f),
+    SOL_ENTRY(EnumerateInstanceExtensionProperties),
+    SOL_ENTRY(CreateInstance),
+    SOL_ENTRY(DestroyInstance),
+    SOL_ENTRY(GetInstanceProperties),
+    SOL_ENTRY(ResultToString),
+    SOL_ENTRY(GetSystem),
+    SOL_ENTRY(GetSystemProperties),
+    SOL_ENTRY(GetVulkanGraphicsRequirements2KHR),
+    SOL_ENTRY(CreateVulkanInstanceKHR),
+    SOL_ENTRY(GetVulkanGraphicsDevice2KHR),
+    SOL_ENTRY(CreateVulkanDeviceKHR),
+    SOL_ENTRY(EnumerateViewConfigurations),
+    SOL_ENTRY(EnumerateViewConfigurationViews),
+    SOL_ENTRY(EnumerateEnvironmentBlendModes),
+    SOL_ENTRY(CreateSession),
+    SOL_ENTRY(DestroySession),
+    SOL_ENTRY(BeginSession),
+    SOL_ENTRY(EndSession),
+    SOL_ENTRY(RequestExitSession),
+    SOL_ENTRY(PollEvent),
+    SOL_ENTRY(EnumerateReferenceSpaces),
+    SOL_ENTRY(CreateReferenceSpace),
+    SOL_ENTRY(DestroySpace),
+    SOL_ENTRY(EnumerateSwapchainFormats),
+    SOL_ENTRY(CreateSwapchain),
+    SOL_ENTRY(DestroySwapchain),
+    SOL_ENTRY(EnumerateSwapchainImages),
+    SOL_ENTRY(AcquireSwapchainImage),
+    SOL_ENTRY(WaitSwapchainImage),
+    SOL_ENTRY(ReleaseSwapchainImage),
+    SOL_ENTRY(WaitFrame),
+    SOL_ENTRY(BeginFrame),
+    SOL_ENTRY(EndFrame),
+    SOL_ENTRY(LocateViews),
+    SOL_ENTRY(StringToPath),
+    SOL_ENTRY(PathToString),
+    SOL_ENTRY(CreateActionSet),
+    SOL_ENTRY(DestroyActionSet),
+    SOL_ENTRY(CreateAction),
+    SOL_ENTRY(DestroyAction),
+    SOL_ENTRY(SuggestInteractionProfileBindings),
+    SOL_ENTRY(AttachSessionActionSets),
+    SOL_ENTRY(SyncActions),
+    SOL_ENTRY(GetCurrentInteractionProfile),
+    SOL_ENTRY(GetActionStateVector2f),
 };
 #undef SOL_ENTRY
 
-XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const char* name, PFN_xrVoidFunction* function) {
+XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const char* name,
+                                                   PFN_xrVoidFunction* function) {
   const std::string n = name;
   if (n == "xrGetInstanceProcAddr") {
     *function = reinterpret_cast<PFN_xrVoidFunction>(GetInstanceProcAddr);
@@ -960,14 +1008,15 @@ XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const ch
   }
   *function = nullptr;
   return instance == XR_NULL_HANDLE && n != "xrEnumerateApiLayerProperties" ? XR_ERROR_HANDLE_INVALID
-                                                                              : XR_ERROR_FUNCTION_UNSUPPORTED;
+                                                                            : XR_ERROR_FUNCTION_UNSUPPORTED;
 }
 
 }  // namespace
 
 extern "C" XrResult xrNegotiateLoaderRuntimeInterface(const XrNegotiateLoaderInfo* loaderInfo,
                                                       XrNegotiateRuntimeRequest* runtimeRequest) {
-  if (loaderInfo == nullptr || runtimeRequest == nullptr || loaderInfo->structType != XR_LOADER_INTERFACE_STRUCT_LOADER_INFO ||
+  if (loaderInfo == nullptr || runtimeRequest == nullptr ||
+      loaderInfo->structType != XR_LOADER_INTERFACE_STRUCT_LOADER_INFO ||
       runtimeRequest->structType != XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST || loaderInfo->minInterfaceVersion > 1 ||
       loaderInfo->maxInterfaceVersion < 1) {
     return XR_ERROR_INITIALIZATION_FAILED;
