@@ -194,6 +194,20 @@ TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {
   EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 24, 16), kSrgbTolerance), allowed(l));
 }
 
+// The quotient Γ\Sol and the lights come from the scene, as for solrender.
+TEST(XrSolxr, QuotientScenesMatchTheCpuRenderToo) {
+  const SolxrRun r = run_solxr("quotient", R"({"width": 32, "height": 24, "fov": 70, "ipd": 0.064, "frames": [{}]})",
+                               "--scene lattice-balls");
+  expect_clean(r);
+  sol::Scene scene = sol::preset_scene("lattice-balls");
+  ASSERT_NE(scene.quotient, sol::Quotient::None);
+  scene.camera.fov = 70;
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.064);
+  const Image l = load_eye(r.dir, 0, 0), rr = load_eye(r.dir, 0, 1);
+  EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 32, 24), kFloatTolerance), allowed(l));
+  EXPECT_LE(differing_pixels(rr, cpu_render(scene, eyes.right, 32, 24), kFloatTolerance), allowed(rr));
+}
+
 TEST(XrSolxr, ATranslatedTurnedHeadSeesFromTheFlowedEye) {
   // Head 0.4 m right, 0.3 m up, 0.5 m back, turned 30° left; ipd 0.1.
   const SolxrRun r = run_solxr("motion",
