@@ -254,6 +254,25 @@ TEST(XrSolxr, TheLeftStickWalksAlongTheGeodesicAhead) {
   EXPECT_GT(differing_pixels(last, cpu_render(scene, scene.camera, 32, 32), kFloatTolerance), allowed(last));
 }
 
+TEST(XrSolxr, TheRightStickTurns) {
+  // --turn-rate 900 turns 10° per 90 Hz frame from the second frame on: 20° right by frame 2.
+  const SolxrRun r = run_solxr("turn",
+                               R"({"width": 32, "height": 32, "fov": 60, "ipd": 0,
+                              "frames": [{"right_stick": [1, 0]}, {"right_stick": [1, 0]}, {"right_stick": [1, 0]}]})",
+                               "--scene sandwich --turn-rate 900");
+  expect_clean(r);
+  sol::Scene scene = sol::preset_scene("sandwich");
+  scene.camera.fov = 60;
+  sol::Observer turner(scene.camera.position, scene.camera.forward, scene.camera.up);
+  turner.yaw(2 * 900 * 11'111'111e-9 * M_PI / 180);
+  sol::Camera camera = scene.camera;
+  camera.forward = turner.forward();
+  camera.up = turner.up();
+  const Image last = load_eye(r.dir, 2, 0);
+  EXPECT_LE(differing_pixels(last, cpu_render(scene, camera, 32, 32), kFloatTolerance), allowed(last));
+  EXPECT_GT(differing_pixels(last, cpu_render(scene, scene.camera, 32, 32), kFloatTolerance), allowed(last));
+}
+
 TEST(XrSolxr, WithoutControllersThereIsNoLocomotion) {
   const SolxrRun r = run_solxr("nocontrollers",
                                R"({"width": 16, "height": 16, "ipd": 0, "controllers": false,
