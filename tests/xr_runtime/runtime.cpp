@@ -180,6 +180,7 @@ struct State {
   std::map<std::uint64_t, Swapchain> swapchains;
   std::map<std::uint64_t, Action> actions;
   std::uint64_t waited = 0, ended = 0, saved = 0;  // frames waited for / ended, images saved
+  bool frame_begun = false;                         // between xrBeginFrame and xrEndFrame
 
   ~State() {
     // The loader unloads the runtime after xrDestroyInstance; whatever is
@@ -533,6 +534,7 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance, const XrSessionCreateIn
   st.session = reinterpret_cast<XrSession>(make("XrSession"));
   st.running = st.exit_requested = false;
   st.waited = st.ended = 0;
+  st.frame_begun = false;
   *session = st.session;
   push_state(XR_SESSION_STATE_IDLE);
   push_state(XR_SESSION_STATE_READY);
@@ -753,15 +755,32 @@ XRAPI_ATTR XrResult XRAPI_CALL WaitFrame(XrSession session, const XrFrameWaitInf
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL BeginFrame(XrSession session, const XrFrameBeginInfo*) {
-  if (session != state().session) return XR_ERROR_HANDLE_INVALID;
-  return state().running ? XR_SUCCESS : XR_ERROR_SESSION_NOT_RUNNING;
+  State& st = state();
+  if (session != st.session) return XR_ERROR_HANDLE_INVALID;
+  if (!st.running) return XR_ERROR_SESSION_NOT_RUNNING;
+  // solxr waits, begins and ends each frame in turn: anything else is a bug.
+  if (st.frame_begun || st.waited != st.ended + 1) {
+    say("xrBeginFrame out of order");
+    return XR_ERROR_CALL_ORDER_INVALID;
+  }
+  st.frame_begun = true;
+  return XR_SUCCESS;
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo* info) {
   State& st = state();
   if (session != st.session) return XR_ERROR_HANDLE_INVALID;
   if (!st.running) return XR_ERROR_SESSION_NOT_RUNNING;
+  if (!st.frame_begun) {
+    say("xrEndFrame without xrBeginFrame");
+    return XR_ERROR_CALL_ORDER_INVALID;
+  }
+  st.frame_begun = false;
   const std::uint64_t k = static_cast<std::uint64_t>(info->displayTime / kPeriod) - 1;
+  if (info->displayTime != static_cast<XrTime>(st.waited) * kPeriod) {
+    say("xrEndFrame: displayTime is not the predicted one");
+    return XR_ERROR_TIME_INVALID;
+  }
   for (std::uint32_t l = 0; l < info->layerCount; ++l) {
     if (info->layers[l]->type != XR_TYPE_COMPOSITION_LAYER_PROJECTION) return XR_ERROR_LAYER_INVALID;
     const auto* layer = reinterpret_cast<const XrCompositionLayerProjection*>(info->layers[l]);
@@ -770,7 +789,17 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
       const XrCompositionLayerProjectionView& view = layer->views[v];
       Swapchain* sc = find_swapchain(view.subImage.swapchain);
       if (sc == nullptr) return XR_ERROR_HANDLE_INVALID;
-      if (sc->released < 0) return XR_ERROR_LAYER_INVALID;
+      if (sc->released < 0 || sc->acquired >= 0) {
+        say("xrEndFrame: a view's swapchain has no released image, or one still acquired");
+        return XR_ERROR_LAYER_INVALID;
+      }
+      const XrRect2Di& rect = view.subImage.imageRect;
+      if (rect.offset.x < 0 || rect.offset.y < 0 || rect.extent.width <= 0 || rect.extent.height <= 0 ||
+          static_cast<std::uint32_t>(rect.offset.x + rect.extent.width) > sc->width ||
+          static_cast<std::uint32_t>(rect.offset.y + rect.extent.height) > sc->height) {
+        say("xrEndFrame: imageRect outside the swapchain image");
+        return XR_ERROR_SWAPCHAIN_RECT_INVALID;
+      }
       if (st.script.output.empty()) continue;
       const std::string stem = st.script.output + "/frame" + std::to_string(k) + "_view" + std::to_string(v);
       save_image(*sc, sc->images[static_cast<std::size_t>(sc->released)], stem + ".rgba32f");
