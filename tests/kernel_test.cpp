@@ -280,6 +280,22 @@ TEST(Kernel, FarObserverSeesTheSameImage) {
   EXPECT_EQ(here.distance, there.distance);
 }
 
+TEST(Kernel, OffAxisWindowMatchesTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(context());
+  sol::Scene scene = sol::preset_scene("sandwich");
+  scene.camera.frustum = sol::Frustum{-1.3, 0.7, -0.9, 0.4};
+  sol::RenderSettings settings;
+  settings.width = 40;
+  settings.height = 24;
+  const Comparison c = compare(renderer.render(scene, 40, 24), sol::render_cpu(scene, settings));
+  EXPECT_LE(c.mask_differs, c.pixels / 100);  // as for the presets
+  EXPECT_LE(c.color_differs, c.pixels / 100);
+  sol::Scene centred = scene;
+  centred.camera.frustum.reset();
+  EXPECT_GT(compare(renderer.render(centred, 40, 24), sol::render_cpu(scene, settings)).color_differs, c.pixels / 10);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, SwapSymmetry) {
   // σ(x, y, z) = (y, x, -z): the view of z = 1 from (0, 0, h) looking down
   // equals the view of z = -1 from (0, 0, -h) looking up with the camera

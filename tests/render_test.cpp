@@ -35,6 +35,19 @@ TEST(Render, CameraConvention) {
   const dvec3 d = sol::camera_ray(cam, 3, 1, 4, 2);
   EXPECT_NEAR(-d.y / d.x, 1.5, 1e-14);
   EXPECT_NEAR(-d.z / d.x, 0.5, 1e-14);
+  // An off-axis window: pixel centres interpolate the edge tangents (left
+  // -0.8, right 0.4, down -0.6, up 0.2) across the image.
+  sol::Camera off = cam;
+  off.frustum = sol::Frustum{-0.8, 0.4, -0.6, 0.2};
+  const dvec3 corner = sol::camera_ray(off, 0, 0, 4, 2);  // top left: s_x = -0.8 + 1.2/8, s_y = 0.2 - 0.8/4
+  EXPECT_NEAR(-corner.y / corner.x, -0.8 + 1.2 / 8, 1e-14);
+  EXPECT_NEAR(corner.z / corner.x, 0.2 - 0.8 / 4, 1e-14);
+  const dvec3 last = sol::camera_ray(off, 3, 1, 4, 2);  // bottom right: s_x = 0.4 - 1.2/8, s_y = -0.6 + 0.8/4
+  EXPECT_NEAR(-last.y / last.x, 0.4 - 1.2 / 8, 1e-14);
+  EXPECT_NEAR(last.z / last.x, -0.6 + 0.8 / 4, 1e-14);
+  // A symmetric frustum is the fov camera.
+  off.frustum = sol::Frustum{-2.0, 2.0, -1.0, 1.0};
+  EXPECT_NEAR(glm::length(sol::camera_ray(off, 3, 1, 4, 2) - d), 0.0, 1e-15);
 }
 
 TEST(Render, ExactDistancesAreDistances) {

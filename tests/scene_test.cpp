@@ -58,6 +58,9 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"camera": {"forward": [0, 0, 2], "up": [0, 0, -1]}, )" + objects + "}", "parallel");
   expect_rejected(R"({"camera": {"fov": 180}, )" + objects + "}", "fov");
   expect_rejected(R"({"camera": {"zoom": 2}, )" + objects + "}", "unknown key 'zoom'");
+  expect_rejected(R"({"camera": {"frustum": [1, -1, -1, 1]}, )" + objects + "}", "camera.frustum must have left < right");
+  expect_rejected(R"({"camera": {"frustum": [-1, 1, -1]}, )" + objects + "}", "'camera.frustum' must be an array of 4");
+  expect_rejected(R"({"camera": {"frustum": [-1, 1, -1, 1e9]}, )" + objects + "}", "within [-1000, 1000]");
   expect_rejected(R"({"max_steps": 2.5, )" + objects + "}", "integer");
   expect_rejected(R"({"max_steps": 0, )" + objects + "}", "max_steps");
   expect_rejected(R"({"max_distance": -1, )" + objects + "}", "max_distance");
@@ -99,6 +102,18 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(golden + R"({"type": "ball", "center": [0, 0, 0], "radius": 0.5}]})",
                   "objects[0].radius must be <= 0.45 in the quotient");
   expect_rejected(golden + R"({"type": "plane_y", "c": 0}]})", "objects[0].type: planes x, y = c are not supported");
+}
+
+TEST(Scene, CameraFrustumRoundTrips) {
+  const sol::Scene s = sol::parse_scene(R"({"camera": {"frustum": [-0.9, 0.7, -0.8, 0.6]}, "objects": [{"type": "plane_z"}]})");
+  ASSERT_TRUE(s.camera.frustum.has_value());
+  EXPECT_EQ(s.camera.frustum->left, -0.9);
+  EXPECT_EQ(s.camera.frustum->up, 0.6);
+  const sol::Scene back = sol::parse_scene(sol::to_json(s));
+  ASSERT_TRUE(back.camera.frustum.has_value());
+  EXPECT_EQ(back.camera.frustum->right, 0.7);
+  EXPECT_EQ(back.camera.frustum->down, -0.8);
+  EXPECT_FALSE(sol::parse_scene(sol::to_json(sol::preset_scene("plane"))).camera.frustum.has_value());
 }
 
 TEST(Scene, TubeAxesAndPatternsOnSolids) {

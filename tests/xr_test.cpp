@@ -182,6 +182,30 @@ TEST(XrSolxr, EachEyeImageIsTheCpuRenderOfThatEye) {
   EXPECT_GT(differing_pixels(load_eye(r.dir, 0, 0), right, kFloatTolerance), allowed(load_eye(r.dir, 0, 0)));
 }
 
+// Headsets' eye frusta are off-centre (XrFovf angles, left/right and up/down
+// of different sizes): each eye image is the CPU render of that eye with
+// the same off-axis window (sol::Frustum), not a centred one.
+TEST(XrSolxr, OffCentreFieldsOfViewAreRenderedAsGiven) {
+  const SolxrRun r = run_solxr("off_axis", R"({"width": 40, "height": 32, "fov_angles": [-52, 38, -46, 30],
+                                             "ipd": 0.1, "frames": [{}]})",
+                               "--scene plane");
+  expect_clean(r);
+  sol::Scene scene = sol::preset_scene("plane");
+  const double deg = M_PI / 180.0;
+  // The runtime hands the angles over as floats.
+  auto tan_of = [&](double a) { return std::tan(static_cast<double>(static_cast<float>(a * deg))); };
+  scene.camera.frustum = sol::Frustum{tan_of(-52), tan_of(38), tan_of(-46), tan_of(30)};
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.1);
+  const Image l = load_eye(r.dir, 0, 0), rr = load_eye(r.dir, 0, 1);
+  EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 40, 32), kFloatTolerance), allowed(l));
+  EXPECT_LE(differing_pixels(rr, cpu_render(scene, eyes.right, 40, 32), kFloatTolerance), allowed(rr));
+  // A centred window of the same vertical extent gives another image.
+  sol::Scene centred = sol::preset_scene("plane");
+  centred.camera.fov = 76.0;
+  const sol::StereoEyes centred_eyes = sol::stereo_eyes(centred.camera, 0.1);
+  EXPECT_GT(differing_pixels(l, cpu_render(centred, centred_eyes.left, 40, 32), kFloatTolerance), allowed(l));
+}
+
 TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {
   const SolxrRun r = run_solxr("srgb", R"({"width": 24, "height": 16, "fov": 50, "ipd": 0.1, "formats": ["srgb8"],
                                       "frames": [{}]})",

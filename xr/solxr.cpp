@@ -570,22 +570,17 @@ void locomote(App& app, sol::Observer& base, const Options& o, double seconds, b
 /// Renders each view's eye into its swapchain image.
 void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, const Options& o, std::int64_t format,
                   std::uint32_t width, std::uint32_t height, const std::vector<XrView>& views, Timing& timing,
-                  std::vector<XrCompositionLayerProjectionView>& layer_views, bool& warned_fov) {
+                  std::vector<XrCompositionLayerProjectionView>& layer_views) {
   for (std::size_t v = 0; v < app.eyes.size(); ++v) {
     Eye& eye = app.eyes[v];
     const auto begin = std::chrono::steady_clock::now();
     const XrView& view = views[v];
-    // The kernel's camera is a centred frustum with vertical field of view
-    // angleUp - angleDown; the horizontal one follows from width / height.
+    // The eye's own, generally off-centre, view window (sol::Frustum).
     const XrFovf& f = view.fov;
-    const double vertical = static_cast<double>(f.angleUp) - f.angleDown;
-    const double horizontal = 2.0 * std::atan(std::tan(0.5 * vertical) * width / height);
-    if (!warned_fov && (std::abs(f.angleUp + f.angleDown) > 1e-3f || std::abs(f.angleLeft + f.angleRight) > 1e-3f ||
-                        std::abs(horizontal - (static_cast<double>(f.angleRight) - f.angleLeft)) > 1e-3)) {
-      std::fprintf(stderr,
-                   "solxr: warning: the runtime's field of view is off-centre or of another aspect than the image; "
-                   "rendering a centred one of the same vertical extent\n");
-      warned_fov = true;
+    const sol::Frustum frustum{std::tan(static_cast<double>(f.angleLeft)), std::tan(static_cast<double>(f.angleRight)),
+                               std::tan(static_cast<double>(f.angleDown)), std::tan(static_cast<double>(f.angleUp))};
+    if (!(frustum.left < frustum.right && frustum.down < frustum.up)) {
+      throw XrError("the OpenXR runtime gave view " + std::to_string(v) + " an empty field of view");
     }
     sol::xr::ViewPose pose;
     pose.position = {view.pose.position.x, view.pose.position.y, view.pose.position.z};
@@ -593,7 +588,7 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
         glm::dquat(view.pose.orientation.w, view.pose.orientation.x, view.pose.orientation.y, view.pose.orientation.z);
     sol::Scene eye_scene = scene;
     eye_scene.camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
-    eye_scene.camera.fov = vertical * 180.0 / M_PI;
+    eye_scene.camera.frustum = frustum;
     double kernel_ms = 0;
     const sol::RenderResult image =
         app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
@@ -688,7 +683,7 @@ int run(const Options& o, const sol::Scene& scene) {
   sol::Observer base(scene.camera.position, scene.camera.forward, scene.camera.up);
   if (scene.quotient != sol::Quotient::None) base.bind(sol::Lattice::golden());
 
-  bool running = false, quit = false, exit_requested = false, announced = false, warned_fov = false;
+  bool running = false, quit = false, exit_requested = false, announced = false;
   long frames = 0;
   Timing timing;
   XrTime last_time = 0;
@@ -773,7 +768,7 @@ int run(const Options& o, const sol::Scene& scene) {
                "xrLocateViews");
       const XrViewStateFlags needed = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
       if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
-        render_views(app, scene, base, o, format, width, height, views, timing, layer_views, warned_fov);
+        render_views(app, scene, base, o, format, width, height, views, timing, layer_views);
         layer.space = app.space;
         layer.viewCount = static_cast<std::uint32_t>(layer_views.size());
         layer.views = layer_views.data();

@@ -38,11 +38,12 @@ struct Object {
 // One eye (a mono image has one; a side-by-side stereo image two, rendered in
 // one dispatch: the left eye's pixels are x < eye width).
 struct Eye {
-  vec4 right;        // xyz: camera right (frame components); w: tan(fov/2)
-  vec4 up;           // xyz: camera up; w: eye width / height
+  vec4 right;        // xyz: camera right (frame components)
+  vec4 up;           // xyz: camera up
   vec4 forward;      // xyz: camera forward; w: RK4 step
   vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
   vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
+  vec4 window;       // sol::image_window: s_x at the left and right edges, s_y at the top and bottom edges
   vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0), tubes (point, axis)
   vec4 heading[MAX_OBJECTS];   // horizontal tubes: xy the axis's unit coordinate direction relative to this eye
   vec4 lights[MAX_LIGHTS];     // directional: unit direction; point: position relative to this eye
@@ -290,10 +291,10 @@ void main() {
   const int max_steps = int(params.limits.w);
   const float rk4_step = eye_forward.w;
 
-  // The camera convention of DESIGN.md §2, per eye.
-  const float tan_half = eye_right.w, aspect = eye_up.w;
-  const float sx = (2.0 * (float(local.x) + 0.5) / float(width) - 1.0) * tan_half * aspect;
-  const float sy = (1.0 - 2.0 * (float(local.y) + 0.5) / float(height)) * tan_half;
+  // The camera convention of DESIGN.md §2 (or the eye's off-axis window), per eye.
+  const vec4 window = params.eyes[eye].window;
+  const float sx = window.x + (window.y - window.x) * (float(local.x) + 0.5) / float(width);
+  const float sy = window.z + (window.w - window.z) * (float(local.y) + 0.5) / float(height);
   const vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
 
   if (QUOTIENT) {

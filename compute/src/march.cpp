@@ -31,7 +31,7 @@ struct GpuObject {
   float color[4];
 };
 struct GpuEye {
-  float right[4], up[4], forward[4], camera[4], camera_frac[4];
+  float right[4], up[4], forward[4], camera[4], camera_frac[4], window[4];
   float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); tubes (point, axis); relative to the eye
   float heading[kMaxGpuObjects][4];   // horizontal tubes: the axis's unit coordinate direction relative to the eye
   float lights[kMaxLights][4];        // directional: direction; point: position relative to the eye
@@ -45,7 +45,7 @@ struct GpuParams {
   float light_color[kMaxLights][4];  // rgb * intensity, type (0 directional, 1 point)
   GpuObject objects[kMaxGpuObjects];
 };
-static_assert(sizeof(GpuEye) == 5 * 16 + 2 * kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
+static_assert(sizeof(GpuEye) == 6 * 16 + 2 * kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
 static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 4 * 16 + kMaxLights * 16 + kMaxGpuObjects * 32,
               "std140 layout of Params");
 
@@ -93,8 +93,10 @@ GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, do
   // is teleported there (in double) and point lights stay in world coordinates.
   const glm::dvec3 p = quotient ? Lattice::golden().teleport(cam.position).point : cam.position;
   GpuEye e{};
-  set4(e.right, basis.right, basis.tan_half_fov);
-  set4(e.up, basis.up, static_cast<double>(width) / height);
+  set4(e.right, basis.right, 0.0);
+  set4(e.up, basis.up, 0.0);
+  const glm::dvec4 window = image_window(cam, width, height);
+  for (int i = 0; i < 4; ++i) e.window[i] = static_cast<float>(window[i]);
   set4(e.forward, basis.forward, rk4_step);
   set4(e.camera, p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the

@@ -98,10 +98,18 @@ CameraBasis camera_basis(const Camera& camera) {
   return {right, glm::cross(right, forward), forward, std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0)};
 }
 
+glm::dvec4 image_window(const Camera& camera, int width, int height) {
+  if (camera.frustum) return {camera.frustum->left, camera.frustum->right, camera.frustum->up, camera.frustum->down};
+  const double t = std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0);
+  const double aspect = static_cast<double>(width) / height;
+  return {-t * aspect, t * aspect, t, -t};
+}
+
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
   const CameraBasis b = camera_basis(camera);
-  const double sx = (2.0 * (i + 0.5) / width - 1.0) * b.tan_half_fov * width / height;
-  const double sy = (1.0 - 2.0 * (j + 0.5) / height) * b.tan_half_fov;
+  const glm::dvec4 window = image_window(camera, width, height);
+  const double sx = window.x + (window.y - window.x) * (i + 0.5) / width;
+  const double sy = window.z + (window.w - window.z) * (j + 0.5) / height;
   return glm::normalize(sx * b.right + sy * b.up + b.forward);
 }
 

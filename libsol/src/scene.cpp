@@ -192,6 +192,16 @@ void validate_in(const Scene& s, std::string_view source) {
     fail(source, "camera.forward and camera.up must not be parallel");
   }
   if (!(c.fov > 0.0 && c.fov < 180.0)) fail(source, "camera.fov must be in (0, 180) degrees");
+  if (c.frustum) {
+    // Tangents up to 1e3: edges up to 89.94° from forward.
+    const Frustum& f = *c.frustum;
+    for (const double v : {f.left, f.right, f.down, f.up}) {
+      if (!(std::abs(v) <= 1e3)) fail(source, "camera.frustum tangents must be finite and within [-1000, 1000]");
+    }
+    if (!(f.left < f.right) || !(f.down < f.up)) {
+      fail(source, "camera.frustum must have left < right and down < up");
+    }
+  }
   if (s.objects.empty()) fail(source, "the scene has no objects");
   if (s.objects.size() > 64) fail(source, "at most 64 objects, got " + std::to_string(s.objects.size()));
   if (s.quotient == Quotient::Golden) {
@@ -320,11 +330,19 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("camera")) {
     const json& c = root["camera"];
     if (!c.is_object()) fail(source, "'camera' must be an object");
-    require_known_keys(c, {"position", "forward", "up", "fov"}, source, "camera", "camera");
+    require_known_keys(c, {"position", "forward", "up", "fov", "frustum"}, source, "camera", "camera");
     if (c.contains("position")) s.camera.position = vec3(c["position"], source, "camera.position");
     if (c.contains("forward")) s.camera.forward = vec3(c["forward"], source, "camera.forward");
     if (c.contains("up")) s.camera.up = vec3(c["up"], source, "camera.up");
     if (c.contains("fov")) s.camera.fov = number(c["fov"], source, "camera.fov");
+    if (c.contains("frustum")) {
+      const json& f = c["frustum"];
+      if (!f.is_array() || f.size() != 4) {
+        fail(source, "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + f.dump());
+      }
+      s.camera.frustum = Frustum{number(f[0], source, "camera.frustum[0]"), number(f[1], source, "camera.frustum[1]"),
+                                 number(f[2], source, "camera.frustum[2]"), number(f[3], source, "camera.frustum[3]")};
+    }
   }
   if (!root.contains("objects") || !root["objects"].is_array()) fail(source, "'objects' must be an array");
   const json& objects = root["objects"];
@@ -537,6 +555,10 @@ std::string to_json(const Scene& s) {
                     {"forward", arr(s.camera.forward)},
                     {"up", arr(s.camera.up)},
                     {"fov", s.camera.fov}};
+  if (s.camera.frustum) {
+    const Frustum& f = *s.camera.frustum;
+    root["camera"]["frustum"] = json::array({f.left, f.right, f.down, f.up});
+  }
   root["objects"] = json::array();
   for (const SceneObject& o : s.objects) {
     if (o.type == ObjectType::Tube) {

@@ -13,6 +13,8 @@
 //    "width": 32, "height": 32,        recommended per-eye size
 //    "fov": 60,                        vertical field of view, degrees (symmetric;
 //                                      horizontal from width / height)
+//    "fov_angles": [l, r, d, u],       instead: XrFovf angles in degrees (off-centre;
+//                                      left and down negative), both eyes
 //    "ipd": 0.064,                     metres
 //    "formats": ["rgba32f", "srgb8"],  swapchain formats, runtime preference first
 //    "controllers": true,              false: no interaction profile, inactive actions
@@ -97,6 +99,7 @@ struct Script {
   std::string mode = "normal";
   std::uint32_t width = 32, height = 32;
   double fov = 60.0, ipd = 0.064;
+  std::vector<double> fov_angles;  // degrees: left, right, down, up (empty: symmetric from fov)
   std::vector<std::int64_t> formats{VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R8G8B8A8_SRGB};
   bool controllers = true;
   std::string output;
@@ -117,6 +120,7 @@ Script load_script() {
   s.width = j.value("width", s.width);
   s.height = j.value("height", s.height);
   s.fov = j.value("fov", s.fov);
+  if (j.contains("fov_angles")) s.fov_angles = j["fov_angles"].get<std::vector<double>>();
   s.ipd = j.value("ipd", s.ipd);
   s.controllers = j.value("controllers", s.controllers);
   s.output = j.value("output", s.output);
@@ -852,6 +856,12 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateViews(XrSession session, const XrViewLocate
                                  static_cast<float>(f.orientation[2]), static_cast<float>(f.orientation[3])};
     views[v].fov = {static_cast<float>(-horizontal), static_cast<float>(horizontal), static_cast<float>(half),
                     static_cast<float>(-half)};
+    if (st.script.fov_angles.size() == 4) {
+      const double deg = M_PI / 180.0;
+      const std::vector<double>& a = st.script.fov_angles;
+      views[v].fov = {static_cast<float>(a[0] * deg), static_cast<float>(a[1] * deg), static_cast<float>(a[3] * deg),
+                      static_cast<float>(a[2] * deg)};  // XrFovf: left, right, up, down
+    }
   }
   return XR_SUCCESS;
 }

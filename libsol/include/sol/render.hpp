@@ -31,6 +31,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "sol/scene.hpp"
 
@@ -56,6 +57,15 @@ struct CameraBasis {
   double tan_half_fov;  ///< tan(fov / 2)
 };
 CameraBasis camera_basis(const Camera& camera);
+
+/// The image's window on the plane one unit along forward, as
+/// (s_x at the left edge, s_x at the right edge, s_y at the top edge, s_y at
+/// the bottom edge): the centre of pixel (i, j) of a width × height image
+/// looks along s_x·right + s_y·up + forward, s_x and s_y interpolated
+/// linearly at (i + 0.5)/width and (j + 0.5)/height. Without a frustum
+/// (DESIGN.md §2): (-t·width/height, t·width/height, t, -t), t = tan(fov/2);
+/// with one: (left, right, up, down).
+glm::dvec4 image_window(const Camera& camera, int width, int height);
 
 /// An object as the march sees it, left-translated by origin⁻¹ (origin at the
 /// identity: world coordinates): planes by their constant (x = e^{-z_o}(c - x_o),

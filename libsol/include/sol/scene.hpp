@@ -6,6 +6,7 @@
 // so it means the same everywhere.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -70,11 +71,22 @@ struct Light {
 /// Most lights a scene may hold.
 constexpr int kMaxLights = 4;
 
+/// An off-axis view window (a headset eye's): the tangents of the angles
+/// from `forward` to the image's left, right, bottom and top edges, measured
+/// towards right and up (so left < right, down < up; OpenXR's XrFovf gives
+/// tan(angleLeft), tan(angleRight), tan(angleDown), tan(angleUp)).
+struct Frustum {
+  double left = -1.0, right = 1.0, down = -1.0, up = 1.0;
+};
+
 struct Camera {
   glm::dvec3 position{0.0, 0.0, 0.0};
   glm::dvec3 forward{1.0, 0.0, 0.0};  ///< frame components at position
   glm::dvec3 up{0.0, 0.0, 1.0};       ///< frame components; not parallel to forward
   double fov = 60.0;                  ///< vertical field of view, degrees, in (0, 180)
+  /// When set, the image spans this window instead of the centred one of
+  /// `fov` and the image's aspect ratio (sol::image_window).
+  std::optional<Frustum> frustum;
 };
 
 /// The space the rays live in: Sol itself, or the compact quotient Γ\Sol
