@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
 #include "support/directions.hpp"
@@ -347,6 +348,43 @@ TEST(Kernel, StereoInOneDispatchEqualsEachEyesMonoRender) {
   EXPECT_EQ(differ, 0);
   // And the two eyes do differ (the parallax is there).
   EXPECT_NE(l.distance, r.distance);
+  expect_no_validation_errors();
+}
+
+// MarchRenderer::record (the presenters' path: the caller's command buffer,
+// colour only) writes exactly render()'s colour, mono and stereo, with the
+// target larger than the image (the rest untouched).
+TEST(Kernel, RecordedDispatchWritesRendersColour) {
+  sol::vk::MarchRenderer renderer(context());
+  for (const char* name : {"sandwich", "lattice-balls"}) {
+    const sol::Scene scene = sol::preset_scene(name);
+    const int w = 12, h = 8;
+    const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
+    for (int n : {1, 2}) {
+      const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
+                                                   : std::vector<sol::Camera>{eyes.left, eyes.right};
+      const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
+      sol::vk::StorageImage target(context(), static_cast<std::uint32_t>(n * w + 3), h + 2);
+      context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, target); });
+      const std::vector<float> got = target.download();
+      int differ = 0;
+      for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < n * w; ++i) {
+          for (int c = 0; c < 4; ++c) {
+            const float a = got[(static_cast<std::size_t>(j) * (n * w + 3) + i) * 4 + c];
+            const float b = ref.rgba[(static_cast<std::size_t>(j) * n * w + i) * 4 + c];
+            differ += a != b;
+          }
+        }
+      }
+      EXPECT_EQ(differ, 0) << name << " eyes " << n;
+    }
+  }
+  const sol::Scene scene = sol::preset_scene("plane");
+  sol::vk::StorageImage small(context(), 4, 4);
+  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+    renderer.record(cb, scene, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
+  }), sol::InvalidArgument);
   expect_no_validation_errors();
 }
 

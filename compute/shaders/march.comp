@@ -25,6 +25,9 @@ layout(constant_id = 4) const bool HAS_FOG = true;
 layout(constant_id = 5) const bool HAS_CUTOUT = true;
 // The compact quotient Γ\Sol (see march_quotient below).
 layout(constant_id = 6) const bool QUOTIENT = false;
+// Write the AOV images (bindings 2, 3); off for presenters, which take the
+// colour alone (MarchRenderer::record) and bind the colour image there too.
+layout(constant_id = 7) const bool WRITE_AOVS = true;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
@@ -372,8 +375,10 @@ void main() {
       point_aov = vec4(q, 0.0);
     }
     imageStore(color_image, pixel, color);
-    imageStore(aov_hit, pixel, hit_aov);
-    imageStore(aov_point, pixel, point_aov);
+    if (WRITE_AOVS) {
+      imageStore(aov_hit, pixel, hit_aov);
+      imageStore(aov_point, pixel, point_aov);
+    }
     return;
   }
 
@@ -463,6 +468,8 @@ void main() {
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }
   imageStore(color_image, pixel, color);
-  imageStore(aov_hit, pixel, hit_aov);
-  imageStore(aov_point, pixel, point_aov);
+  if (WRITE_AOVS) {
+    imageStore(aov_hit, pixel, hit_aov);
+    imageStore(aov_point, pixel, point_aov);
+  }
 }

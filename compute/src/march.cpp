@@ -185,9 +185,10 @@ void require_size(int value, const char* name) {
 // march.comp, so a scene's kernel contains only what it needs.
 struct Features {
   bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false, quotient = false;
+  bool no_aovs = false;  // colour only (MarchRenderer::record)
   std::uint32_t key() const {
     return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u) |
-           (cutout ? 16u : 0u) | (quotient ? 32u : 0u);
+           (cutout ? 16u : 0u) | (quotient ? 32u : 0u) | (no_aovs ? 64u : 0u);
   }
 };
 
@@ -220,7 +221,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                                                 {3, f.point_lights ? 1u : 0u},
                                                 {4, f.fog ? 1u : 0u},
                                                 {5, f.cutout ? 1u : 0u},
-                                                {6, f.quotient ? 1u : 0u}}});
+                                                {6, f.quotient ? 1u : 0u},
+                                                {7, f.no_aovs ? 0u : 1u}}});
 }
 
 }  // namespace
@@ -231,6 +233,9 @@ struct MarchRenderer::Impl {
   // One pipeline per feature set, built when first needed.
   std::map<std::uint32_t, ComputePipeline> pipelines;
   Buffer params;
+  // The quotient images (binding 4), kept until the next frame: a recorded
+  // dispatch (record) still reads them after the call returns.
+  std::optional<Buffer> images;
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
   ComputePipeline& pipeline(const Features& f) {
     auto it = pipelines.find(f.key());
@@ -251,6 +256,45 @@ MarchRenderer::~MarchRenderer() = default;
 MarchRenderer::MarchRenderer(MarchRenderer&&) noexcept = default;
 MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
+struct MarchRenderer::Prepared {
+  ComputePipeline* pipeline;
+  std::uint32_t width, height;  // of the whole (side-by-side) image
+};
+
+// Everything render() and record() share: checks, uniforms, the quotient
+// images and the pipeline for the scene's features, with bindings 0 and 4 set.
+MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height,
+                                               bool aovs) {
+  validate(scene);
+  require_size(width, "width");
+  require_size(height, "height");
+  if (eyes.empty() || eyes.size() > 2) {
+    throw InvalidArgument("sol::vk::MarchRenderer: 1 or 2 eyes, got " + std::to_string(eyes.size()));
+  }
+  if (scene.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
+    throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(scene.objects.size()) +
+                          " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
+  }
+  Impl& m = *m_impl;
+  GpuParams g = make_params(scene, std::vector<Camera>(eyes.begin(), eyes.end()), width, height, m.options.rk4_step);
+  // Quotient scenes: the images of the objects (binding 4); else a stub.
+  const std::vector<float> images =
+      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(12, 0.0f);
+  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 12);
+  const VkDeviceSize image_bytes = images.size() * sizeof(float);
+  if (!m.images || m.images->size() != image_bytes) m.images.emplace(m.context, image_bytes);
+  m.images->write(images);
+  m.params.write(std::span<const GpuParams>(&g, 1));
+  Features f = m.options.all_features ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false}
+                                      : features_of(scene);
+  f.no_aovs = !aovs;
+  ComputePipeline& pipeline = m.pipeline(f);
+  pipeline.bind(0, m.params);
+  pipeline.bind(4, *m.images);
+  return {&pipeline, static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
+          static_cast<std::uint32_t>(height)};
+}
+
 RenderResult MarchRenderer::render(const Scene& scene, int width, int height, double* device_ms) {
   return render_eyes(scene, {scene.camera}, width, height, device_ms);
 }
@@ -260,33 +304,28 @@ RenderResult MarchRenderer::render_stereo(const Scene& scene, int width, int hei
   return render_eyes(scene, {eyes.left, eyes.right}, width, height, device_ms);
 }
 
+void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
+                           int height, const StorageImage& target) {
+  const Prepared p = prepare(scene, eyes, width, height, false);
+  if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() < p.width || target.height() < p.height) {
+    throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be R32G32B32A32_SFLOAT and at least " +
+                          std::to_string(p.width) + " x " + std::to_string(p.height));
+  }
+  // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
+  for (std::uint32_t b : {1u, 2u, 3u}) p.pipeline->bind(b, target);
+  p.pipeline->record_dispatch(command_buffer, group_count(p.width, 8), group_count(p.height, 8));
+}
+
 RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
                                         double* device_ms) {
-  validate(scene);
-  require_size(width, "width");
-  require_size(height, "height");
-  if (scene.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
-    throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(scene.objects.size()) +
-                          " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
-  }
   Impl& m = *m_impl;
-  GpuParams g = make_params(scene, eyes, width, height, m.options.rk4_step);
-  // Quotient scenes: the images of the objects (binding 4); else a stub.
-  const std::vector<float> images =
-      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(12, 0.0f);
-  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 12);
-  Buffer image_buffer(m.context, images.size() * sizeof(float));
-  image_buffer.write(images);
-  m.params.write(std::span<const GpuParams>(&g, 1));
-  const auto w = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
-  const auto h = static_cast<std::uint32_t>(height);
+  const Prepared p = prepare(scene, eyes, width, height, true);
+  const std::uint32_t w = p.width, h = p.height;
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = m.pipeline(m.options.all_features ? Features{false, true, true, true, true, scene.quotient != Quotient::None} : features_of(scene));
-  pipeline.bind(0, m.params);
+  ComputePipeline& pipeline = *p.pipeline;
   pipeline.bind(1, color);
   pipeline.bind(2, hit);
   pipeline.bind(3, point);
-  pipeline.bind(4, image_buffer);
   const double ms = pipeline.run(group_count(w, 8), group_count(h, 8));
   if (device_ms) *device_ms = ms;
 

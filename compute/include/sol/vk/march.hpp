@@ -11,15 +11,18 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/vec4.hpp>
+#include <vulkan/vulkan_core.h>
 #include <sol/render.hpp>
 #include <sol/scene.hpp>
 
 namespace sol::vk {
 
 class Context;
+class StorageImage;
 
 enum class Integrator {
   ClosedForm,  ///< the closed-form geodesic, evaluated at the accumulated arc length (the default)
@@ -58,7 +61,22 @@ class MarchRenderer {
   /// dispatch: a (2 width) × height image and AOVs, left eye on the left.
   RenderResult render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms = nullptr);
 
+  /// For presenters: records the kernel for one or two eyes (side by side,
+  /// each width × height, left eye on the left) into the caller's command
+  /// buffer, writing the linear RGBA colour alone (no AOVs) into `target`, an
+  /// R32G32B32A32_SFLOAT StorageImage of at least (eyes · width) × height,
+  /// in GENERAL layout. Records no barriers and submits nothing: the caller
+  /// orders the dispatch against earlier and later uses of `target`. The
+  /// renderer's uniforms are written now, so the caller must wait for its
+  /// previous recorded dispatch to finish before calling again (one frame in
+  /// flight per renderer), and keep `target` alive until this one finishes.
+  /// Same checks and exceptions as render().
+  void record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
+              int height, const StorageImage& target);
+
  private:
+  struct Prepared;
+  Prepared prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height, bool aovs);
   RenderResult render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
                            double* device_ms);
   struct Impl;
