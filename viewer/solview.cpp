@@ -1,0 +1,776 @@
+// solview: the real-time viewer. A GLFW window with a Vulkan swapchain that
+// shows the march kernel's image of a Sol scene, and controls to walk along
+// geodesics (viewer/controls.hpp). A thin presenter: the kernel
+// (sol::vk::MarchRenderer::record) writes an RGBA float image at the render
+// scale, which is blitted (scaled, sRGB-encoded) into the swapchain image.
+//
+//   solview --scene sandwich
+//   solview --scene plane --size 320x180 --frames 60 --screenshot last.png
+#include <GLFW/glfw3.h>  // after vulkan_core.h (GLFW_INCLUDE_VULKAN is defined by CMake)
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <sol/sol.hpp>
+#include <sol/vk/context.hpp>
+#include <sol/vk/error.hpp>
+#include <sol/vk/image.hpp>
+#include <sol/vk/march.hpp>
+
+#include "controls.hpp"
+#include "image_file.hpp"
+
+namespace {
+
+using sol::viewer::Key;
+
+const char* kControls =
+    "controls:\n"
+    "  W / S          move forward / back along the geodesic you look along\n"
+    "  A / D          move left / right along the geodesic in that direction\n"
+    "  R / F          move up / down along the geodesic in that direction\n"
+    "  Shift          move 5x faster\n"
+    "  arrows, drag   turn (left mouse button held: drag to look around)\n"
+    "  Q / E          roll left / right\n"
+    "  Home           back to the scene's camera\n"
+    "  Tab            next preset scene\n"
+    "  T              stereo side by side on / off\n"
+    "  Y              vsync on / off\n"
+    "  + / -          render scale up / down (fixes the scale: adaptive off)\n"
+    "  G              adaptive render scale on / off\n"
+    "  P              screenshot to solview-NNNN.png (the rendered frame)\n"
+    "  F11            fullscreen on / off\n"
+    "  H              print these controls\n"
+    "  Esc            quit\n"
+    "The frame is parallel-transported along every move; in the quotient\n"
+    "(lattice-balls) the observer is teleported back into the fundamental domain.\n";
+
+void print_usage(std::FILE* out) {
+  std::fprintf(out,
+               "usage: solview [options]\n"
+               "Walks through Thurston's Sol geometry in a window: every pixel follows a Sol geodesic.\n\n"
+               "  --scene NAME|FILE     a preset (%s) or a JSON scene file (default plane)\n"
+               "  --size WxH            window size in pixels (default 640x360)\n"
+               "  --scale S             render at S times the window size, (0, 1] (default 1), then upscale\n"
+               "  --target-fps F        adapt the render scale to hold F frames per second\n"
+               "  --min-scale S         lowest adaptive scale, (0, 1] (default 0.1)\n"
+               "  --vsync on|off        wait for the display's refresh (default on)\n"
+               "  --fullscreen          start fullscreen\n"
+               "  --stereo              both eyes side by side (each eye half the width)\n"
+               "  --ipd D               eye separation in Sol units (default 0.064)\n"
+               "  --frames N            exit after N frames\n"
+               "  --screenshot FILE     write the last frame (the rendered image) to FILE (png, exr, ...)\n"
+               "  --script FILE         replay timed inputs: lines 'TIME down KEY', 'TIME up KEY',\n"
+               "                        'TIME mouse DX DY' (TIME in seconds; replays step 1/60 s per frame)\n"
+               "  --record DIR          write every frame as DIR/frame-NNNNNN.png\n"
+               "  --state FILE          at exit, write the observer's position and frame to FILE\n"
+               "  --validation          enable the Vulkan validation layer; its errors make the exit status 3\n"
+               "  --help                this text\n\n"
+               "%s\n"
+               "Exit status: 0 on success, 1 when no window can be opened (no display), 2 for bad options,\n"
+               "3 for validation errors, 4 for other failures.\n",
+               [] {
+                 static std::string names;
+                 for (const std::string& n : sol::preset_names()) names += (names.empty() ? "" : ", ") + n;
+                 return names.c_str();
+               }(),
+               kControls);
+}
+
+[[noreturn]] void fail(const std::string& message, int status = 2) {
+  std::fprintf(stderr, "solview: %s\n", message.c_str());
+  std::exit(status);
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+    fail("option " + option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+long parse_int(const std::string& text, const std::string& option, long lo, long hi) {
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size()) fail("option " + option + " expects an integer, got '" + text + "'");
+  if (value < lo || value > hi) {
+    fail("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  }
+  return value;
+}
+
+struct Options {
+  std::string scene = "plane";
+  int width = 640, height = 360;
+  double scale = 1.0, min_scale = 0.1, ipd = 0.064;
+  std::optional<double> target_fps;
+  bool vsync = true, fullscreen = false, stereo = false, validation = false;
+  long frames = 0;  // 0: until the window closes
+  std::string screenshot, script, record, state;
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) fail("option " + arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      std::exit(0);
+    } else if (arg == "--scene") {
+      o.scene = value();
+    } else if (arg == "--size") {
+      const std::string v = value();
+      const auto x = v.find('x');
+      if (x == std::string::npos) fail("option --size expects WxH like 640x360, got '" + v + "'");
+      o.width = static_cast<int>(parse_int(v.substr(0, x), "--size (width)", 1, 16384));
+      o.height = static_cast<int>(parse_int(v.substr(x + 1), "--size (height)", 1, 16384));
+    } else if (arg == "--scale") {
+      o.scale = parse_number(value(), arg);
+      if (!(o.scale > 0.0 && o.scale <= 1.0)) fail("option --scale must be in (0, 1], got " + std::string(argv[i]));
+    } else if (arg == "--min-scale") {
+      o.min_scale = parse_number(value(), arg);
+      if (!(o.min_scale > 0.0 && o.min_scale <= 1.0)) fail("option --min-scale must be in (0, 1], got " + std::string(argv[i]));
+    } else if (arg == "--target-fps") {
+      o.target_fps = parse_number(value(), arg);
+      if (!(*o.target_fps > 0.0)) fail("option --target-fps must be > 0, got " + std::string(argv[i]));
+    } else if (arg == "--vsync") {
+      const std::string v = value();
+      if (v != "on" && v != "off") fail("option --vsync expects on or off, got '" + v + "'");
+      o.vsync = v == "on";
+    } else if (arg == "--fullscreen") {
+      o.fullscreen = true;
+    } else if (arg == "--stereo") {
+      o.stereo = true;
+    } else if (arg == "--ipd") {
+      o.ipd = parse_number(value(), arg);
+      if (o.ipd < 0.0) fail("option --ipd must be >= 0, got " + std::string(argv[i]));
+    } else if (arg == "--frames") {
+      o.frames = parse_int(value(), arg, 1, 100000000);
+    } else if (arg == "--screenshot") {
+      o.screenshot = value();
+    } else if (arg == "--script") {
+      o.script = value();
+    } else if (arg == "--record") {
+      o.record = value();
+    } else if (arg == "--state") {
+      o.state = value();
+    } else if (arg == "--validation") {
+      o.validation = true;
+    } else {
+      fail("unknown option '" + arg + "' (see solview --help)");
+    }
+  }
+  return o;
+}
+
+sol::Scene load(const std::string& arg) {
+  const bool is_file = std::filesystem::exists(arg) || arg.find('.') != std::string::npos || arg.find('/') != std::string::npos;
+  sol::Scene scene = is_file ? sol::load_scene(arg) : sol::preset_scene(arg);
+  sol::validate(scene);
+  return scene;
+}
+
+sol::Observer observer_for(const sol::Scene& scene) {
+  sol::Observer o(scene.camera.position, scene.camera.forward, scene.camera.up);
+  if (scene.quotient != sol::Quotient::None) o.bind(sol::Lattice::golden());  // stays in D
+  return o;
+}
+
+std::optional<Key> key_of(int glfw_key) {
+  switch (glfw_key) {
+    case GLFW_KEY_W: return Key::W;
+    case GLFW_KEY_S: return Key::S;
+    case GLFW_KEY_A: return Key::A;
+    case GLFW_KEY_D: return Key::D;
+    case GLFW_KEY_R: return Key::R;
+    case GLFW_KEY_F: return Key::F;
+    case GLFW_KEY_Q: return Key::Q;
+    case GLFW_KEY_E: return Key::E;
+    case GLFW_KEY_UP: return Key::Up;
+    case GLFW_KEY_DOWN: return Key::Down;
+    case GLFW_KEY_LEFT: return Key::Left;
+    case GLFW_KEY_RIGHT: return Key::Right;
+    case GLFW_KEY_LEFT_SHIFT:
+    case GLFW_KEY_RIGHT_SHIFT: return Key::Shift;
+    case GLFW_KEY_TAB: return Key::Tab;
+    case GLFW_KEY_HOME: return Key::Home;
+    case GLFW_KEY_T: return Key::T;
+    case GLFW_KEY_Y: return Key::Y;
+    case GLFW_KEY_P: return Key::P;
+    case GLFW_KEY_H: return Key::H;
+    case GLFW_KEY_G: return Key::G;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD: return Key::Plus;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT: return Key::Minus;
+    case GLFW_KEY_F11: return Key::F11;
+    case GLFW_KEY_ESCAPE: return Key::Escape;
+    default: return std::nullopt;
+  }
+}
+
+std::string glfw_error;
+void on_glfw_error(int, const char* description) { glfw_error = description ? description : "unknown GLFW error"; }
+
+// The viewer's state that callbacks reach through the window's user pointer.
+struct App {
+  Options options;
+  std::vector<std::string> presets = sol::preset_names();
+  sol::Scene scene;
+  std::string scene_name;
+  sol::Observer observer;
+  sol::viewer::Controls controls;
+  double scale = 1.0;
+  bool adaptive = false, stereo = false, vsync = true, fullscreen = false;
+  bool swapchain_dirty = false, want_screenshot = false, quit = false;
+  int screenshots = 0;
+  bool dragging = false;
+  double last_x = 0, last_y = 0;
+  int windowed[4] = {0, 0, 640, 360};
+  GLFWwindow* window = nullptr;
+
+  void set_scene(const std::string& name) {
+    scene = load(name);
+    scene_name = name;
+    observer = observer_for(scene);
+  }
+
+  // Keys with an effect on press (the held ones act in Controls::step).
+  void press(Key k) {
+    switch (k) {
+      case Key::Home: observer = observer_for(scene); break;
+      case Key::Tab: {
+        auto it = std::find(presets.begin(), presets.end(), scene_name);
+        const std::size_t next = it == presets.end() ? 0 : (static_cast<std::size_t>(it - presets.begin()) + 1) % presets.size();
+        set_scene(presets[next]);
+        break;
+      }
+      case Key::T: stereo = !stereo; break;
+      case Key::Y: vsync = !vsync; swapchain_dirty = true; break;
+      case Key::G: adaptive = !adaptive; break;
+      case Key::Plus: adaptive = false; scale = std::min(1.0, scale * 1.25); break;
+      case Key::Minus: adaptive = false; scale = std::max(options.min_scale, scale / 1.25); break;
+      case Key::P: want_screenshot = true; break;
+      case Key::H: std::printf("%s", kControls); std::fflush(stdout); break;
+      case Key::F11: toggle_fullscreen(); break;
+      case Key::Escape: quit = true; break;
+      default: break;
+    }
+  }
+  void key(Key k, bool down) {
+    if (down && !controls.held(k)) press(k);
+    controls.key(k, down);
+  }
+  void toggle_fullscreen() {
+    if (!window) return;
+    fullscreen = !fullscreen;
+    if (fullscreen) {
+      glfwGetWindowPos(window, &windowed[0], &windowed[1]);
+      glfwGetWindowSize(window, &windowed[2], &windowed[3]);
+      GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+      const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+      if (mode) glfwSetWindowMonitor(window, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+    } else {
+      glfwSetWindowMonitor(window, nullptr, windowed[0], windowed[1], windowed[2], windowed[3], 0);
+    }
+    swapchain_dirty = true;
+  }
+};
+
+App& app_of(GLFWwindow* w) { return *static_cast<App*>(glfwGetWindowUserPointer(w)); }
+
+// ---------------------------------------------------------------------------
+// Presentation: surface, swapchain and the per-frame commands.
+
+struct Presenter {
+  sol::vk::Context& context;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  std::vector<VkImage> images;
+  std::vector<VkSemaphore> rendered;  // one per swapchain image: present waits on it
+  VkSemaphore acquired = VK_NULL_HANDLE;
+  VkFence frame_done = VK_NULL_HANDLE;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  bool linear_blit = false;
+
+  explicit Presenter(sol::vk::Context& c) : context(c) {}
+  Presenter(const Presenter&) = delete;
+  Presenter& operator=(const Presenter&) = delete;
+
+  void init(GLFWwindow* window, bool vsync) {
+    VkDevice device = context.device();
+    sol::vk::check(glfwCreateWindowSurface(context.instance(), window, nullptr, &surface), "glfwCreateWindowSurface");
+    VkBool32 supported = VK_FALSE;
+    sol::vk::check(vkGetPhysicalDeviceSurfaceSupportKHR(context.physical_device(), context.queue_family_index(), surface, &supported),
+                   "vkGetPhysicalDeviceSurfaceSupportKHR");
+    if (!supported) throw std::runtime_error("the Vulkan device '" + context.device_name() + "' cannot present to this window");
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &props);
+    if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT)) {
+      throw std::runtime_error("the Vulkan device cannot blit from RGBA32F images");
+    }
+    linear_blit = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                                      VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, context.queue_family_index()};
+    sol::vk::check(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    sol::vk::check(vkAllocateCommandBuffers(device, &alloc, &commands), "vkAllocateCommandBuffers");
+    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+    sol::vk::check(vkCreateSemaphore(device, &sem, nullptr, &acquired), "vkCreateSemaphore");
+    // Signalled: the first frame's wait returns at once.
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+    sol::vk::check(vkCreateFence(device, &fence, nullptr, &frame_done), "vkCreateFence");
+    create_swapchain(window, vsync);
+  }
+
+  void create_swapchain(GLFWwindow* window, bool vsync) {
+    VkPhysicalDevice gpu = context.physical_device();
+    VkDevice device = context.device();
+    VkSurfaceCapabilitiesKHR caps{};
+    sol::vk::check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+    if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)) {
+      throw std::runtime_error("the surface's images cannot be blitted to (no TRANSFER_DST usage)");
+    }
+    std::uint32_t n = 0;
+    vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &n, nullptr);
+    std::vector<VkSurfaceFormatKHR> formats(n);
+    vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &n, formats.data());
+    if (formats.empty()) throw std::runtime_error("the surface offers no image formats");
+    // An sRGB format: the blit encodes the kernel's linear colours as solrender's PNGs do.
+    VkSurfaceFormatKHR chosen = formats[0];
+    for (const VkSurfaceFormatKHR& f : formats) {
+      if (f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) {
+        chosen = f;
+        break;
+      }
+    }
+    format = chosen.format;
+    vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &n, nullptr);
+    std::vector<VkPresentModeKHR> modes(n);
+    vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &n, modes.data());
+    VkPresentModeKHR mode = VK_PRESENT_MODE_FIFO_KHR;  // always there: vsync
+    if (!vsync) {
+      for (VkPresentModeKHR m : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR}) {
+        if (std::find(modes.begin(), modes.end(), m) != modes.end()) mode = m;
+      }
+    }
+    extent = caps.currentExtent;
+    if (extent.width == 0xFFFFFFFFu) {
+      int w = 0, h = 0;
+      glfwGetFramebufferSize(window, &w, &h);
+      extent.width = std::clamp(static_cast<std::uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width);
+      extent.height = std::clamp(static_cast<std::uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height);
+    }
+    if (extent.width == 0 || extent.height == 0) return;  // minimised: no swapchain until it has a size
+    std::uint32_t count = std::max(caps.minImageCount, 2u);
+    if (caps.maxImageCount) count = std::min(count, caps.maxImageCount);
+    VkSwapchainCreateInfoKHR info{};
+    info.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR;
+    info.surface = surface;
+    info.minImageCount = count;
+    info.imageFormat = chosen.format;
+    info.imageColorSpace = chosen.colorSpace;
+    info.imageExtent = extent;
+    info.imageArrayLayers = 1;
+    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.preTransform = caps.currentTransform;
+    info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+                              ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+                              : static_cast<VkCompositeAlphaFlagBitsKHR>(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+    info.presentMode = mode;
+    info.clipped = VK_TRUE;
+    info.oldSwapchain = swapchain;
+    VkSwapchainKHR created = VK_NULL_HANDLE;
+    sol::vk::check(vkCreateSwapchainKHR(device, &info, nullptr, &created), "vkCreateSwapchainKHR");
+    destroy_swapchain();
+    swapchain = created;
+    vkGetSwapchainImagesKHR(device, swapchain, &n, nullptr);
+    images.resize(n);
+    vkGetSwapchainImagesKHR(device, swapchain, &n, images.data());
+    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+    rendered.resize(n);
+    for (VkSemaphore& s : rendered) sol::vk::check(vkCreateSemaphore(device, &sem, nullptr, &s), "vkCreateSemaphore");
+  }
+
+  void destroy_swapchain() {
+    VkDevice device = context.device();
+    for (VkSemaphore s : rendered) vkDestroySemaphore(device, s, nullptr);
+    rendered.clear();
+    if (swapchain != VK_NULL_HANDLE) vkDestroySwapchainKHR(device, swapchain, nullptr);
+    swapchain = VK_NULL_HANDLE;
+    images.clear();
+  }
+
+  void recreate(GLFWwindow* window, bool vsync) {
+    vkDeviceWaitIdle(context.device());  // nothing in flight may use the old images
+    // The acquire semaphore may be left signalled by an acquire whose frame was dropped: a fresh one.
+    VkDevice device = context.device();
+    vkDestroySemaphore(device, acquired, nullptr);
+    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+    sol::vk::check(vkCreateSemaphore(device, &sem, nullptr, &acquired), "vkCreateSemaphore");
+    create_swapchain(window, vsync);
+  }
+
+  ~Presenter() {
+    VkDevice device = context.device();
+    vkDeviceWaitIdle(device);
+    destroy_swapchain();
+    if (acquired) vkDestroySemaphore(device, acquired, nullptr);
+    if (frame_done) vkDestroyFence(device, frame_done, nullptr);
+    if (pool) vkDestroyCommandPool(device, pool, nullptr);
+    if (surface) vkDestroySurfaceKHR(context.instance(), surface, nullptr);
+  }
+};
+
+void image_barrier(VkCommandBuffer cb, VkImage image, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access, VkImageLayout from, VkImageLayout to) {
+  VkImageMemoryBarrier b{};
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  b.srcAccessMask = src_access;
+  b.dstAccessMask = dst_access;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+std::string frame_name(const std::string& dir, long frame) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame-%06ld.png", frame);
+  return (std::filesystem::path(dir) / buf).string();
+}
+
+void write_frame(const std::string& path, const sol::vk::StorageImage& image, int width, int height) {
+  const std::vector<float> all = image.download();
+  std::vector<float> rgba(static_cast<std::size_t>(width) * height * 4);
+  for (int j = 0; j < height; ++j) {
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(j) * image.width() * 4, width * 4,
+                rgba.begin() + static_cast<std::ptrdiff_t>(j) * width * 4);
+  }
+  sol::viewer::write_image(path, width, height, {"R", "G", "B", "A"}, rgba, true);
+}
+
+void write_state(const std::string& path, const sol::Observer& o, long frames) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) throw std::runtime_error(path + ": cannot write the state file");
+    auto row = [&](const char* name, const glm::dvec3& v) { std::fprintf(f, "%s %.17g %.17g %.17g\n", name, v.x, v.y, v.z); };
+    row("position", o.position());
+    row("forward", o.forward());
+    row("up", o.up());
+    std::fprintf(f, "frames %ld\n", frames);
+    if (std::fclose(f) != 0) throw std::runtime_error(path + ": cannot write the state file");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+int run(App& app) {
+  Options& opt = app.options;
+  std::vector<sol::viewer::ScriptEvent> script;
+  if (!opt.script.empty()) {
+    try {
+      script = sol::viewer::load_script(opt.script);
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
+  if (!opt.screenshot.empty() && !sol::viewer::can_write(opt.screenshot)) {
+    fail("--screenshot " + opt.screenshot + ": no image format for this file name extension");
+  }
+  if (!opt.record.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(opt.record, ec);
+    if (ec || !std::filesystem::is_directory(opt.record)) fail("--record " + opt.record + ": cannot create the directory");
+  }
+
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) {
+    fail("cannot open a window: " + glfw_error + (std::getenv("DISPLAY") ? "" : " (DISPLAY is not set: run under a display or xvfb-run)"), 1);
+  }
+  struct GlfwGuard {
+    ~GlfwGuard() { glfwTerminate(); }
+  } glfw_guard;
+  if (!glfwVulkanSupported()) fail("cannot open a window: GLFW finds no Vulkan loader", 1);
+
+  sol::vk::ContextOptions context_options;
+  context_options.validation = opt.validation;
+  std::uint32_t n_ext = 0;
+  const char** ext = glfwGetRequiredInstanceExtensions(&n_ext);
+  if (!ext) fail("cannot open a window: GLFW cannot present Vulkan images here (" + glfw_error + ")", 1);
+  for (std::uint32_t i = 0; i < n_ext; ++i) context_options.instance_extensions.emplace_back(ext[i]);
+  context_options.device_extensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  sol::vk::Context context(context_options);
+  sol::vk::MarchRenderer renderer(context);
+
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  GLFWwindow* window = glfwCreateWindow(opt.width, opt.height, "solview", nullptr, nullptr);
+  if (!window) fail("cannot open a window: " + glfw_error, 1);
+  struct WindowGuard {
+    GLFWwindow* w;
+    ~WindowGuard() { glfwDestroyWindow(w); }
+  } window_guard{window};
+  app.window = window;
+  glfwSetWindowUserPointer(window, &app);
+  if (opt.fullscreen) app.toggle_fullscreen();
+  const bool replay = !opt.script.empty();
+  // During a replay live input is ignored: the script alone moves the observer.
+  if (!replay) {
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+      if (auto k = key_of(key); k && action != GLFW_REPEAT) app_of(w).key(*k, action == GLFW_PRESS);
+    });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+      if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+      App& a = app_of(w);
+      a.dragging = action == GLFW_PRESS;
+      glfwGetCursorPos(w, &a.last_x, &a.last_y);
+    });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+      App& a = app_of(w);
+      if (a.dragging) a.controls.mouse(x - a.last_x, y - a.last_y);
+      a.last_x = x;
+      a.last_y = y;
+    });
+  }
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).swapchain_dirty = true; });
+
+  Presenter present(context);
+  present.init(window, app.vsync);
+  VkDevice device = context.device();
+
+  std::optional<sol::vk::StorageImage> target;  // the kernel's output at the render scale
+  int render_w = 0, render_h = 0;  // of the rendered image (both eyes)
+  std::size_t next_event = 0;
+  long frame = 0;
+  double smoothed_ms = 0;
+  auto last = std::chrono::steady_clock::now();
+  auto title_time = last;
+  long title_frames = 0;
+  double fps = 0;
+
+  while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
+    glfwPollEvents();
+    if (app.swapchain_dirty || present.swapchain == VK_NULL_HANDLE) {
+      app.swapchain_dirty = false;
+      present.recreate(window, app.vsync);
+      if (present.swapchain == VK_NULL_HANDLE) {  // minimised
+        glfwWaitEvents();
+        continue;
+      }
+    }
+    // Input: a replay steps fixed 1/60 s per frame (deterministic), live input by the clock.
+    const auto now = std::chrono::steady_clock::now();
+    const double frame_seconds = std::chrono::duration<double>(now - last).count();
+    last = now;
+    double dt = std::min(frame_seconds, 0.1);
+    if (replay) {
+      dt = sol::viewer::kScriptStep;
+      const double t = static_cast<double>(frame) * sol::viewer::kScriptStep;
+      for (; next_event < script.size() && script[next_event].time <= t + 1e-9; ++next_event) {
+        const auto& e = script[next_event];
+        if (e.kind == sol::viewer::ScriptEvent::Kind::Mouse) {
+          app.controls.mouse(e.dx, e.dy);
+        } else {
+          app.key(e.key, e.kind == sol::viewer::ScriptEvent::Kind::Down);
+        }
+      }
+    }
+    if (app.quit) break;
+    app.controls.step(app.observer, dt);
+
+    // Adaptive scale: the frame time goes with the pixel count, scale².
+    if (frame > 0) smoothed_ms = smoothed_ms == 0 ? frame_seconds * 1e3 : 0.8 * smoothed_ms + 0.2 * frame_seconds * 1e3;
+    if (app.adaptive && opt.target_fps && frame % 8 == 0 && smoothed_ms > 0) {
+      const double wanted = app.scale * std::sqrt(1e3 / *opt.target_fps / smoothed_ms);
+      const double next = std::clamp(wanted, opt.min_scale, 1.0);
+      if (std::abs(next - app.scale) > 0.05 * app.scale) app.scale = next;
+    }
+
+    const int eyes = app.stereo ? 2 : 1;
+    const int eye_w = std::max(1, static_cast<int>(std::lround(present.extent.width * app.scale / eyes)));
+    const int eye_h = std::max(1, static_cast<int>(std::lround(present.extent.height * app.scale)));
+
+    // One frame in flight: wait until the previous frame's commands are done
+    // before touching its command buffer, the renderer's uniforms or the target.
+    sol::vk::check(vkWaitForFences(device, 1, &present.frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    if (!target || render_w != eye_w * eyes || render_h != eye_h) {
+      target.reset();
+      target.emplace(context, static_cast<std::uint32_t>(eye_w * eyes), static_cast<std::uint32_t>(eye_h));
+      render_w = eye_w * eyes;
+      render_h = eye_h;
+    }
+    std::uint32_t index = 0;
+    VkResult acquired = vkAcquireNextImageKHR(device, present.swapchain, UINT64_MAX, present.acquired, VK_NULL_HANDLE, &index);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+      app.swapchain_dirty = true;
+      continue;
+    }
+    if (acquired != VK_SUBOPTIMAL_KHR) sol::vk::check(acquired, "vkAcquireNextImageKHR");
+    sol::vk::check(vkResetFences(device, 1, &present.frame_done), "vkResetFences");
+
+    sol::Scene scene = app.scene;
+    scene.camera.position = app.observer.position();
+    scene.camera.forward = app.observer.forward();
+    scene.camera.up = app.observer.up();
+    std::vector<sol::Camera> cameras;
+    if (app.stereo) {
+      const sol::StereoEyes se = sol::stereo_eyes(scene.camera, opt.ipd);
+      cameras = {se.left, se.right};
+    } else {
+      cameras = {scene.camera};
+    }
+
+    VkCommandBuffer cb = present.commands;
+    sol::vk::check(vkResetCommandBuffer(cb, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    sol::vk::check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+    VkImage target_image = target->handle();
+    renderer.record(cb, scene, cameras, eye_w, eye_h, *target);
+    // Read after write: the blit reads what the kernel wrote; to the layout
+    // blits read best (the previous frame's last barrier already ordered this
+    // frame's kernel after that frame's blit).
+    image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    // The swapchain image: its old contents are not needed (UNDEFINED); the
+    // transition waits at the transfer stage, the stage the submit's wait on
+    // `acquired` blocks, so it happens only after the presentation engine
+    // has released the image.
+    VkImage swap_image = present.images[index];
+    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {render_w, render_h, 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {static_cast<std::int32_t>(present.extent.width), static_cast<std::int32_t>(present.extent.height), 1};
+    const bool same_size = static_cast<std::uint32_t>(render_w) == present.extent.width &&
+                           static_cast<std::uint32_t>(render_h) == present.extent.height;
+    vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                   same_size || !present.linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+    // Back to GENERAL, where Sol::vk expects its storage images between
+    // commands (the next kernel, download()); write after read: the next
+    // frame's kernel and any download's copy wait for the blit to finish reading.
+    image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_GENERAL);
+    // To the presentation layout; the present waits on `rendered`, which the
+    // submit signals after all these commands, so no later stage needs to wait here.
+    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    sol::vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+
+    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;  // the kernel may run before the image is free
+    VkSubmitInfo submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &present.acquired;
+    submit.pWaitDstStageMask = &wait_stage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cb;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &present.rendered[index];
+    sol::vk::check(vkQueueSubmit(context.queue(), 1, &submit, present.frame_done), "vkQueueSubmit");
+    VkPresentInfoKHR info{};
+    info.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
+    info.waitSemaphoreCount = 1;
+    info.pWaitSemaphores = &present.rendered[index];
+    info.swapchainCount = 1;
+    info.pSwapchains = &present.swapchain;
+    info.pImageIndices = &index;
+    const VkResult presented = vkQueuePresentKHR(context.queue(), &info);
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
+      app.swapchain_dirty = true;
+    } else {
+      sol::vk::check(presented, "vkQueuePresentKHR");
+    }
+    ++frame;
+
+    const bool last_frame = opt.frames != 0 && frame == opt.frames;
+    if (!opt.record.empty() || app.want_screenshot || (last_frame && !opt.screenshot.empty())) {
+      // The frame's commands must be done before the host reads the target.
+      sol::vk::check(vkWaitForFences(device, 1, &present.frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+      if (!opt.record.empty()) write_frame(frame_name(opt.record, frame - 1), *target, render_w, render_h);
+      if (app.want_screenshot) {
+        app.want_screenshot = false;
+        char name[32];
+        std::snprintf(name, sizeof name, "solview-%04d.png", app.screenshots++);
+        write_frame(name, *target, render_w, render_h);
+        std::printf("solview: screenshot %s\n", name);
+      }
+      if (last_frame && !opt.screenshot.empty()) write_frame(opt.screenshot, *target, render_w, render_h);
+    }
+
+    ++title_frames;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - title_time).count();
+    if (since >= 0.5) {
+      fps = static_cast<double>(title_frames) / since;
+      title_frames = 0;
+      title_time = std::chrono::steady_clock::now();
+      const glm::dvec3 p = app.observer.position();
+      char title[256];
+      std::snprintf(title, sizeof title, "solview - %s - %.1f fps - scale %.2f%s - (%.3f, %.3f, %.3f) - H: help",
+                    app.scene_name.c_str(), fps, app.scale, app.adaptive ? " (adaptive)" : "", p.x, p.y, p.z);
+      glfwSetWindowTitle(window, title);
+    }
+  }
+  vkDeviceWaitIdle(device);
+  target.reset();
+  if (!opt.state.empty()) write_state(opt.state, app.observer, frame);
+  std::fprintf(stderr, "solview: %ld frames, %.1f fps at the end, render scale %.2f (%dx%d of %ux%u)\n", frame, fps,
+               app.scale, render_w, render_h, present.extent.width, present.extent.height);
+  if (context.validation_enabled()) {
+    const std::vector<std::string> errors = context.validation_errors();
+    for (const std::string& e : errors) std::fprintf(stderr, "solview: validation: %s\n", e.c_str());
+    if (!errors.empty()) return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  App app;
+  app.options = parse_options(argc, argv);
+  try {
+    app.set_scene(app.options.scene);
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
+  app.scale = app.options.scale;
+  app.adaptive = app.options.target_fps.has_value();
+  app.stereo = app.options.stereo;
+  app.vsync = app.options.vsync;
+  try {
+    return run(app);
+  } catch (const std::exception& e) {
+    fail(e.what(), 4);
+  }
+}
