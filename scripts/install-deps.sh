@@ -16,6 +16,8 @@ packages=(
   spirv-tools           # SPIRV-Tools library: Sol::vk validates SPIR-V before a driver sees it
   vulkan-validationlayers  # VK_LAYER_KHRONOS_validation, on in the Vulkan tests
   libopenxr-dev libopenxr-loader1  # OpenXR headers and loader: solxr and its headless test runtime
+  libglfw3-dev          # solview: window and Vulkan surface
+  xvfb xauth            # solview's tests: a virtual X display (xvfb-run)
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()
