@@ -69,7 +69,7 @@ void print_usage(std::FILE* out) {
                "  --stereo              both eyes side by side (each eye half the width)\n"
                "  --ipd D               eye separation in Sol units (default 0.064)\n"
                "  --frames N            exit after N frames\n"
-               "  --screenshot FILE     write the last frame (the rendered image) to FILE (png, exr, ...)\n"
+               "  --screenshot FILE     at exit, write the last frame (as rendered, before upscaling) to FILE\n"
                "  --script FILE         replay timed inputs: lines 'TIME down KEY', 'TIME up KEY',\n"
                "                        'TIME mouse DX DY' (TIME in seconds; replays step 1/60 s per frame)\n"
                "  --record DIR          write every frame as DIR/frame-NNNNNN.png\n"
@@ -564,6 +564,7 @@ int run(App& app) {
 
   std::optional<sol::vk::StorageImage> target;  // the kernel's output at the render scale
   int render_w = 0, render_h = 0;  // of the rendered image (both eyes)
+  bool target_has_frame = false;   // the target holds the last frame shown (for --screenshot at exit)
   std::size_t next_event = 0;
   long frame = 0;
   double smoothed_ms = 0;
@@ -571,6 +572,10 @@ int run(App& app) {
   auto title_time = last;
   long title_frames = 0;
   double fps = 0;
+  constexpr long kWarmupFrames = 5;
+  auto measure_start = std::chrono::steady_clock::now();
+  double scale_sum = 0;  // over the measured frames
+  const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
 
   while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
     glfwPollEvents();
@@ -604,8 +609,13 @@ int run(App& app) {
 
     // Adaptive scale: the frame time goes with the pixel count, scale².
     if (frame > 0) smoothed_ms = smoothed_ms == 0 ? frame_seconds * 1e3 : 0.8 * smoothed_ms + 0.2 * frame_seconds * 1e3;
-    if (app.adaptive && opt.target_fps && frame % 8 == 0 && smoothed_ms > 0) {
-      const double wanted = app.scale * std::sqrt(1e3 / *opt.target_fps / smoothed_ms);
+    // Every 8 frames, or at once when a frame took over twice the target time
+    // (a slow scene must not crawl through 8 full-size frames first).
+    const bool far_too_slow = opt.target_fps && frame > 1 && frame_seconds * *opt.target_fps > 2.0;
+    if (far_too_slow) smoothed_ms = frame_seconds * 1e3;
+    if (app.adaptive && opt.target_fps && (frame % 8 == 0 || far_too_slow) && smoothed_ms > 0) {
+      // Aim 10% above the target so that the dead band below never leaves the rate under it.
+      const double wanted = app.scale * std::sqrt(1e3 / (1.1 * *opt.target_fps) / smoothed_ms);
       const double next = std::clamp(wanted, opt.min_scale, 1.0);
       if (std::abs(next - app.scale) > 0.05 * app.scale) app.scale = next;
     }
@@ -622,6 +632,7 @@ int run(App& app) {
       target.emplace(context, static_cast<std::uint32_t>(eye_w * eyes), static_cast<std::uint32_t>(eye_h));
       render_w = eye_w * eyes;
       render_h = eye_h;
+      target_has_frame = false;
     }
     std::uint32_t index = 0;
     VkResult acquired = vkAcquireNextImageKHR(device, present.swapchain, UINT64_MAX, present.acquired, VK_NULL_HANDLE, &index);
@@ -712,9 +723,12 @@ int run(App& app) {
       sol::vk::check(presented, "vkQueuePresentKHR");
     }
     ++frame;
+    target_has_frame = true;
+    // The run's mean frame rate leaves out the first frames (pipeline builds, first allocations).
+    // With --frames, the second half only: the adaptive scale has settled by then.
+    if (frame == first_measured - 1) measure_start = std::chrono::steady_clock::now();
 
-    const bool last_frame = opt.frames != 0 && frame == opt.frames;
-    if (!opt.record.empty() || app.want_screenshot || (last_frame && !opt.screenshot.empty())) {
+    if (!opt.record.empty() || app.want_screenshot) {
       // The frame's commands must be done before the host reads the target.
       sol::vk::check(vkWaitForFences(device, 1, &present.frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
       if (!opt.record.empty()) write_frame(frame_name(opt.record, frame - 1), *target, render_w, render_h);
@@ -725,9 +739,9 @@ int run(App& app) {
         write_frame(name, *target, render_w, render_h);
         std::printf("solview: screenshot %s\n", name);
       }
-      if (last_frame && !opt.screenshot.empty()) write_frame(opt.screenshot, *target, render_w, render_h);
     }
 
+    if (frame >= first_measured) scale_sum += app.scale;
     ++title_frames;
     const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - title_time).count();
     if (since >= 0.5) {
@@ -742,10 +756,22 @@ int run(App& app) {
     }
   }
   vkDeviceWaitIdle(device);
+  // --screenshot: the last frame shown, however the run ended (--frames, Esc, closing the window).
+  if (!opt.screenshot.empty()) {
+    if (!target || !target_has_frame) throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
+    write_frame(opt.screenshot, *target, render_w, render_h);
+  }
   target.reset();
   if (!opt.state.empty()) write_state(opt.state, app.observer, frame);
-  std::fprintf(stderr, "solview: %ld frames, %.1f fps at the end, render scale %.2f (%dx%d of %ux%u)\n", frame, fps,
-               app.scale, render_w, render_h, present.extent.width, present.extent.height);
+  const long measured = frame - first_measured + 1;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+  if (measured > 0) {
+    std::fprintf(stderr, "solview: %s: %.1f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
+                 app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured, frame,
+                 scale_sum / static_cast<double>(measured));
+  }
+  std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frame, app.scale,
+               render_w, render_h, present.extent.width, present.extent.height);
   if (context.validation_enabled()) {
     const std::vector<std::string> errors = context.validation_errors();
     for (const std::string& e : errors) std::fprintf(stderr, "solview: validation: %s\n", e.c_str());
