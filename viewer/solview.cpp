@@ -766,7 +766,7 @@ int run(App& app) {
   const long measured = frame - first_measured + 1;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   if (measured > 0) {
-    std::fprintf(stderr, "solview: %s: %.1f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
+    std::fprintf(stderr, "solview: %s: %.2f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
                  app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured, frame,
                  scale_sum / static_cast<double>(measured));
   }
