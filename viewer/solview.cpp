@@ -48,7 +48,7 @@ const char* kControls =
     "  Y              vsync on / off\n"
     "  + / -          render scale up / down (fixes the scale: adaptive off)\n"
     "  G              adaptive render scale on / off\n"
-    "  P              screenshot to solview-NNNN.png (the rendered frame)\n"
+    "  P              screenshot to solview-NNNN.png (the frame as shown)\n"
     "  F11            fullscreen on / off\n"
     "  H              print these controls\n"
     "  Esc            quit\n"
@@ -69,7 +69,7 @@ void print_usage(std::FILE* out) {
                "  --stereo              both eyes side by side (each eye half the width)\n"
                "  --ipd D               eye separation in Sol units (default 0.064)\n"
                "  --frames N            exit after N frames\n"
-               "  --screenshot FILE     at exit, write the last frame (as rendered, before upscaling) to FILE\n"
+               "  --screenshot FILE     at exit, write the last frame as shown (window size) to FILE\n"
                "  --script FILE         replay timed inputs: lines 'TIME down KEY', 'TIME up KEY',\n"
                "                        'TIME mouse DX DY' (TIME in seconds; replays step 1/60 s per frame)\n"
                "  --record DIR          write every frame as DIR/frame-NNNNNN.png\n"
@@ -311,6 +311,12 @@ struct Presenter {
   VkCommandPool pool = VK_NULL_HANDLE;
   VkCommandBuffer commands = VK_NULL_HANDLE;
   bool linear_blit = false;
+  bool can_capture = false;  // swapchain images may be copied out (TRANSFER_SRC)
+  // The shown frame copied to the host (screenshots, --record): a host-visible buffer.
+  VkBuffer capture = VK_NULL_HANDLE;
+  VkDeviceMemory capture_memory = VK_NULL_HANDLE;
+  void* capture_data = nullptr;
+  VkDeviceSize capture_size = 0;
 
   explicit Presenter(sol::vk::Context& c) : context(c) {}
   Presenter(const Presenter&) = delete;
@@ -392,7 +398,8 @@ struct Presenter {
     info.imageColorSpace = chosen.colorSpace;
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
-    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    can_capture = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | (can_capture ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -411,6 +418,63 @@ struct Presenter {
     VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
     rendered.resize(n);
     for (VkSemaphore& s : rendered) sol::vk::check(vkCreateSemaphore(device, &sem, nullptr, &s), "vkCreateSemaphore");
+  }
+
+  // A host-visible buffer for one swapchain image (4 bytes per pixel).
+  void ensure_capture_buffer() {
+    const VkDeviceSize size = VkDeviceSize{extent.width} * extent.height * 4;
+    if (capture != VK_NULL_HANDLE && capture_size == size) return;
+    destroy_capture_buffer();
+    VkDevice device = context.device();
+    VkBufferCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    info.size = size;
+    info.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    sol::vk::check(vkCreateBuffer(device, &info, nullptr, &capture), "vkCreateBuffer");
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(device, capture, &req);
+    VkPhysicalDeviceMemoryProperties mem{};
+    vkGetPhysicalDeviceMemoryProperties(context.physical_device(), &mem);
+    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    std::uint32_t type = mem.memoryTypeCount;
+    for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
+      if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) {
+        type = i;
+        break;
+      }
+    }
+    if (type == mem.memoryTypeCount) throw std::runtime_error("no host-visible memory for screenshots");
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
+    sol::vk::check(vkAllocateMemory(device, &alloc, nullptr, &capture_memory), "vkAllocateMemory");
+    sol::vk::check(vkBindBufferMemory(device, capture, capture_memory, 0), "vkBindBufferMemory");
+    sol::vk::check(vkMapMemory(device, capture_memory, 0, VK_WHOLE_SIZE, 0, &capture_data), "vkMapMemory");
+    capture_size = size;
+  }
+  void destroy_capture_buffer() {
+    VkDevice device = context.device();
+    if (capture_memory) vkFreeMemory(device, capture_memory, nullptr);  // unmaps
+    if (capture) vkDestroyBuffer(device, capture, nullptr);
+    capture = VK_NULL_HANDLE;
+    capture_memory = VK_NULL_HANDLE;
+    capture_data = nullptr;
+    capture_size = 0;
+  }
+  // Writes the captured frame (extent as at capture) as 8-bit sRGB like solrender's PNGs.
+  void write_capture(const std::string& path, std::uint32_t w, std::uint32_t h) const {
+    const auto* bytes = static_cast<const unsigned char*>(capture_data);
+    const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM;
+    const bool srgb = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_R8G8B8A8_SRGB;
+    std::vector<float> rgba(std::size_t{w} * h * 4);
+    for (std::size_t k = 0; k < std::size_t{w} * h; ++k) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        const std::size_t from = bgr && c < 3 ? 2 - c : c;
+        rgba[4 * k + c] = static_cast<float>(bytes[4 * k + from]) / 255.0f;
+      }
+    }
+    // sRGB swapchain: the bytes are already encoded (written as they are);
+    // a UNORM one holds linear values, encoded on the way out.
+    sol::viewer::write_image(path, static_cast<int>(w), static_cast<int>(h), {"R", "G", "B", "A"}, rgba, !srgb);
   }
 
   void destroy_swapchain() {
@@ -438,6 +502,7 @@ struct Presenter {
     destroy_swapchain();
     if (acquired) vkDestroySemaphore(device, acquired, nullptr);
     if (frame_done) vkDestroyFence(device, frame_done, nullptr);
+    destroy_capture_buffer();
     if (pool) vkDestroyCommandPool(device, pool, nullptr);
     if (surface) vkDestroySurfaceKHR(context.instance(), surface, nullptr);
   }
@@ -565,6 +630,16 @@ int run(App& app) {
   std::optional<sol::vk::StorageImage> target;  // the kernel's output at the render scale
   int render_w = 0, render_h = 0;  // of the rendered image (both eyes)
   bool target_has_frame = false;   // the target holds the last frame shown (for --screenshot at exit)
+  std::uint32_t captured_w = 0, captured_h = 0;  // of the frame in the capture buffer (0: none)
+  // Saves the last frame: as shown (the swapchain image) when the surface lets
+  // it be copied, else as rendered (before upscaling).
+  auto save = [&](const std::string& path) {
+    if (captured_w != 0) {
+      present.write_capture(path, captured_w, captured_h);
+    } else {
+      write_frame(path, *target, render_w, render_h);
+    }
+  };
   std::size_t next_event = 0;
   long frame = 0;
   double smoothed_ms = 0;
@@ -691,11 +766,39 @@ int run(App& app) {
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                   VK_IMAGE_LAYOUT_GENERAL);
+    // Screenshots and --record take the frame as shown: the swapchain image
+    // after the blit, copied to a host-visible buffer.
+    const bool capturing = present.can_capture && (!opt.record.empty() || !opt.screenshot.empty() || app.want_screenshot);
+    VkImageLayout shown_layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    VkAccessFlags shown_access = VK_ACCESS_TRANSFER_WRITE_BIT;
+    if (capturing) {
+      present.ensure_capture_buffer();
+      // Read after write: the copy reads what the blit wrote.
+      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copy.imageExtent = {present.extent.width, present.extent.height, 1};
+      vkCmdCopyImageToBuffer(cb, swap_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.capture, 1, &copy);
+      // The host reads the buffer after the fence: make the copy's writes visible to it.
+      VkBufferMemoryBarrier host{};
+      host.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+      host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      host.buffer = present.capture;
+      host.size = VK_WHOLE_SIZE;
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
+                           nullptr);
+      shown_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+      shown_access = VK_ACCESS_TRANSFER_READ_BIT;
+    }
     // To the presentation layout; the present waits on `rendered`, which the
     // submit signals after all these commands, so no later stage needs to wait here.
-    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0,
+                  shown_layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     sol::vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
 
     const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;  // the kernel may run before the image is free
@@ -728,15 +831,19 @@ int run(App& app) {
     // With --frames, the second half only: the adaptive scale has settled by then.
     if (frame == first_measured - 1) measure_start = std::chrono::steady_clock::now();
 
+    if (capturing) {
+      captured_w = present.extent.width;
+      captured_h = present.extent.height;
+    }
     if (!opt.record.empty() || app.want_screenshot) {
-      // The frame's commands must be done before the host reads the target.
+      // The frame's commands must be done before the host reads the capture or the target.
       sol::vk::check(vkWaitForFences(device, 1, &present.frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-      if (!opt.record.empty()) write_frame(frame_name(opt.record, frame - 1), *target, render_w, render_h);
+      if (!opt.record.empty()) save(frame_name(opt.record, frame - 1));
       if (app.want_screenshot) {
         app.want_screenshot = false;
         char name[32];
         std::snprintf(name, sizeof name, "solview-%04d.png", app.screenshots++);
-        write_frame(name, *target, render_w, render_h);
+        save(name);
         std::printf("solview: screenshot %s\n", name);
       }
     }
@@ -758,8 +865,10 @@ int run(App& app) {
   vkDeviceWaitIdle(device);
   // --screenshot: the last frame shown, however the run ended (--frames, Esc, closing the window).
   if (!opt.screenshot.empty()) {
-    if (!target || !target_has_frame) throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
-    write_frame(opt.screenshot, *target, render_w, render_h);
+    if (captured_w == 0 && (!target || !target_has_frame)) {
+      throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
+    }
+    save(opt.screenshot);
   }
   target.reset();
   if (!opt.state.empty()) write_state(opt.state, app.observer, frame);

@@ -62,8 +62,10 @@ if(COMPARE_SOLRENDER)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "solrender failed: ${rerr}")
   endif()
-  # Tolerance: both images come from the same kernel and camera, quantised the
-  # same way (sRGB, 8 bit), so most pixels are equal. The viewer's observer
+  # Tolerance: both images come from the same kernel and camera. solview's
+  # screenshot is the swapchain image as shown: the blit's sRGB encoding (the
+  # driver's) against solrender's (viewer/image_file.cpp), either of which may
+  # round a value to the neighbouring 8-bit step. The viewer's observer
   # re-orthonormalises its frame in double after every step and hands the
   # kernel (forward, up) from that frame; solrender rebuilds the basis from
   # the same doubles, so a float ULP may differ in the basis. That moves a
