@@ -387,7 +387,10 @@ struct Presenter {
       extent.width = std::clamp(static_cast<std::uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width);
       extent.height = std::clamp(static_cast<std::uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height);
     }
-    if (extent.width == 0 || extent.height == 0) return;  // minimised: no swapchain until it has a size
+    if (extent.width == 0 || extent.height == 0) {  // minimised: no swapchain until it has a size
+      destroy_swapchain();
+      return;
+    }
     std::uint32_t count = std::max(caps.minImageCount, 2u);
     if (caps.maxImageCount) count = std::min(count, caps.maxImageCount);
     VkSwapchainCreateInfoKHR info{};
