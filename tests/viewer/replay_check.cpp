@@ -109,6 +109,11 @@ bool check(const std::string& solview, const std::string& dir, const std::string
     std::printf("%s: the script barely moved the observer\n", scene_name.c_str());
     ok = false;
   }
+  // In the quotient the observer stays in the fundamental domain D.
+  if (scene.quotient != sol::Quotient::None && !sol::Lattice::golden().contains(got["position"])) {
+    std::printf("%s: solview's observer left D\n", scene_name.c_str());
+    ok = false;
+  }
   if (!ok) std::fprintf(stderr, "FAIL %s (frames %ld of %ld)\n", scene_name.c_str(), got_frames, frames);
   return ok;
 }
