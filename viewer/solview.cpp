@@ -77,6 +77,7 @@ void print_usage(std::FILE* out) {
                "  --validation          enable the Vulkan validation layer; its errors make the exit status 3\n"
                "  --help                this text\n\n"
                "%s\n"
+               "Script key names: %s.\n\n"
                "Exit status: 0 on success, 1 when no window can be opened (no display), 2 for bad options,\n"
                "3 for validation errors, 4 for other failures.\n",
                [] {
@@ -84,7 +85,7 @@ void print_usage(std::FILE* out) {
                  for (const std::string& n : sol::preset_names()) names += (names.empty() ? "" : ", ") + n;
                  return names.c_str();
                }(),
-               kControls);
+               kControls, sol::viewer::key_names().c_str());
 }
 
 [[noreturn]] void fail(const std::string& message, int status = 2) {
