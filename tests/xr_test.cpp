@@ -206,6 +206,32 @@ TEST(XrSolxr, OffCentreFieldsOfViewAreRenderedAsGiven) {
   EXPECT_GT(differing_pixels(l, cpu_render(centred, centred_eyes.left, 40, 32), kFloatTolerance), allowed(l));
 }
 
+// Both ways into the swapchain image give the CPU render of each eye: the
+// device path (the kernel's image blitted on the GPU, the default where the
+// formats allow it) and the host path (read back, converted, uploaded), for
+// float and 8-bit sRGB swapchains.
+TEST(XrSolxr, DeviceAndHostCopiesGiveTheSameEyes) {
+  for (const char* copy : {"device", "host"}) {
+    for (const char* format : {"rgba32f", "srgb8"}) {
+      const std::string name = std::string("copy_") + copy + "_" + format;
+      const SolxrRun r = run_solxr(name, std::string(R"({"width": 24, "height": 20, "fov": 55, "ipd": 0.15, "formats": [")") +
+                                             format + R"("], "frames": [{}]})",
+                                   std::string("--scene sandwich --copy ") + copy);
+      expect_clean(r);
+      EXPECT_TRUE(contains(r.err, std::string(copy) + " copy into the swapchain")) << r.err;
+      sol::Scene scene = sol::preset_scene("sandwich");
+      scene.camera.fov = 55;
+      const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.15);
+      const float tolerance = std::string(format) == "srgb8" ? kSrgbTolerance : kFloatTolerance;
+      const Image l = load_eye(r.dir, 0, 0), rr = load_eye(r.dir, 0, 1);
+      EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 24, 20), tolerance), allowed(l)) << name;
+      EXPECT_LE(differing_pixels(rr, cpu_render(scene, eyes.right, 24, 20), tolerance), allowed(rr)) << name;
+    }
+  }
+  // The default takes the device path on lavapipe.
+  EXPECT_TRUE(contains(run_solxr("copy_default", R"({"frames": [{}]})", "--scene plane").err, "device copy"));
+}
+
 TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {
   const SolxrRun r = run_solxr("srgb", R"({"width": 24, "height": 16, "fov": 50, "ipd": 0.1, "formats": ["srgb8"],
                                       "frames": [{}]})",
@@ -380,6 +406,7 @@ TEST(XrSolxr, BadOptionsAreClearErrors) {
       {"--frames x", "--frames expects an integer"},
       {"--position 1,2", "three comma-separated numbers"},
       {"--speed", "--speed needs a value"},
+      {"--copy gpu", "--copy expects auto, device or host, got 'gpu'"},
   };
   for (const auto& c : cases) {
     const SolxrRun r = run_solxr("badoptions", "{}", c.args);

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,7 @@
 #include <sol/sol.hpp>
 #include <sol/vk/buffer.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
 #include "eye_pose.hpp"
@@ -59,6 +61,9 @@ void print_usage(std::FILE* out) {
       "  --reference local|stage   the reference space head poses are in (default local)\n"
       "  --frames N             ask the runtime to end the session after N frames (default: run until\n"
       "                         the runtime ends it)\n"
+      "  --copy auto|device|host  how an eye reaches its swapchain image: device = the kernel's image\n"
+      "                         blitted on the GPU (no host round trip), host = read back and uploaded;\n"
+      "                         auto (default) = device when the formats allow the blit\n"
       "  --stats                print per-eye frame times at exit\n"
       "  --validation           enable the Vulkan validation layer; validation errors fail the run\n"
       "  --help                 this text\n\n"
@@ -115,6 +120,7 @@ struct Options {
   int width = 0, height = 0;  // 0: the runtime's recommendation
   long frames = 0;            // 0: until the runtime ends the session
   bool stats = false, validation = false;
+  std::string copy = "auto";  // device: kernel image blitted into the swapchain image; host: through the host
   std::optional<double> max_distance;
   std::optional<glm::dvec3> position, forward, up;
   std::optional<int> max_steps;
@@ -169,6 +175,11 @@ Options parse_options(int argc, char** argv) {
       }
     } else if (arg == "--frames") {
       o.frames = parse_int(value(), arg, 1, 1 << 30);
+    } else if (arg == "--copy") {
+      o.copy = value();
+      if (o.copy != "auto" && o.copy != "device" && o.copy != "host") {
+        fail_option("option --copy expects auto, device or host, got '" + o.copy + "'");
+      }
     } else if (arg == "--stats") {
       o.stats = true;
     } else if (arg == "--validation") {
@@ -267,7 +278,8 @@ std::size_t texel_size(std::int64_t format) {
 struct Eye {
   XrSwapchain swapchain = XR_NULL_HANDLE;
   std::vector<VkImage> images;
-  std::optional<sol::vk::Buffer> staging;
+  std::optional<sol::vk::StorageImage> rendered;  // device copy: the kernel's linear RGBA32F image
+  std::optional<sol::vk::Buffer> staging;         // host copy: the texels on their way up
   std::vector<std::byte> texels;
 };
 
@@ -478,11 +490,31 @@ std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width,
                                         reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())),
              "xrEnumerateSwapchainImages");
     for (const auto& image : images) eye.images.push_back(image.image);
-    const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(*format);
-    eye.staging.emplace(*app.context, bytes);
-    eye.texels.resize(bytes);
   }
   return *format;
+}
+
+/// Whether the GPU can blit the kernel's RGBA32F image into swapchain images
+/// of `format` (with conversion to sRGB bytes where the format asks for it).
+bool can_blit(const App& app, std::int64_t format) {
+  VkFormatProperties src{}, dst{};
+  vkGetPhysicalDeviceFormatProperties(app.context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &src);
+  vkGetPhysicalDeviceFormatProperties(app.context->physical_device(), static_cast<VkFormat>(format), &dst);
+  return (src.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT) &&
+         (dst.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT);
+}
+
+/// Per eye, what the chosen copy path needs.
+void prepare_copies(App& app, bool device, std::int64_t format, std::uint32_t width, std::uint32_t height) {
+  for (Eye& eye : app.eyes) {
+    if (device) {
+      eye.rendered.emplace(*app.context, width, height);
+    } else {
+      const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(format);
+      eye.staging.emplace(*app.context, bytes);
+      eye.texels.resize(bytes);
+    }
+  }
 }
 
 /// Thumbstick actions. Bindings are suggested for common controllers; a
@@ -567,6 +599,137 @@ void locomote(App& app, sol::Observer& base, const Options& o, double seconds, b
   }
 }
 
+/// Acquires the eye's next swapchain image, runs `record` on it in one
+/// submission (waited for) and releases it; returns the submission's device time.
+double with_swapchain_image(App& app, Eye& eye, const std::function<void(VkCommandBuffer, VkImage)>& record) {
+  std::uint32_t index = 0;
+  auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
+  xr_check(xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
+  auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
+  wait.timeout = XR_INFINITE_DURATION;
+  xr_check(xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
+  const VkImage target = eye.images.at(index);
+  const double ms = app.context->submit_and_wait([&](VkCommandBuffer cmd) { record(cmd, target); });
+  auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+  xr_check(xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
+  return ms;
+}
+
+/// The swapchain image from UNDEFINED (its old contents are discarded: the
+/// whole image is overwritten) to TRANSFER_DST, after the runtime's last read
+/// of it (its compositor, any stage).
+void begin_transfer_to(VkCommandBuffer cmd, VkImage target) {
+  VkImageMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  barrier.srcAccessMask = 0;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = target;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &barrier);
+}
+
+/// The swapchain image to COLOR_ATTACHMENT_OPTIMAL, the layout the runtime
+/// expects released colour images in (XR_KHR_vulkan_enable2), with our
+/// transfer write finished before it reads.
+void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
+  VkImageMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = target;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
+                       nullptr, 0, nullptr, 1, &barrier);
+}
+
+/// The device path: the kernel writes the eye's RGBA32F image and a blit
+/// (same size: nearest texels, converted to the swapchain's format, sRGB-
+/// encoded where it is an sRGB one) copies it into the swapchain image, all
+/// in one submission; nothing goes through the host.
+void render_on_device(App& app, Eye& eye, const sol::Scene& eye_scene, std::uint32_t width, std::uint32_t height,
+                      Timing& timing) {
+  const auto begin = std::chrono::steady_clock::now();
+  const sol::vk::StorageImage& rendered = *eye.rendered;
+  const double ms = with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
+    const sol::Camera cameras[] = {eye_scene.camera};
+    app.renderer->record(cmd, eye_scene, cameras, static_cast<int>(width), static_cast<int>(height), rendered);
+    // The kernel's writes must land before the blit reads them (the image stays GENERAL).
+    VkImageMemoryBarrier written{};
+    written.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    written.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    written.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    written.oldLayout = written.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    written.srcQueueFamilyIndex = written.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    written.image = rendered.handle();
+    written.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &written);
+    begin_transfer_to(cmd, target);
+    VkImageBlit region{};
+    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.srcOffsets[1] = region.dstOffsets[1] = {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height), 1};
+    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_GENERAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                   &region, VK_FILTER_NEAREST);
+    end_transfer_to(cmd, target);
+    // The next frame's kernel writes the image again only after this blit has read it.
+    written.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    written.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &written);
+  });
+  const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  timing.render_ms += elapsed;
+  timing.kernel_ms += ms;  // kernel and blit: one submission
+}
+
+/// The host path: render() reads the image back, the host converts it to
+/// the swapchain's format and a copy uploads it.
+void render_through_host(App& app, Eye& eye, const sol::Scene& eye_scene, std::int64_t format, std::uint32_t width,
+                         std::uint32_t height, Timing& timing) {
+  const auto begin = std::chrono::steady_clock::now();
+  double kernel_ms = 0;
+  const sol::RenderResult image =
+      app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
+  const auto rendered = std::chrono::steady_clock::now();
+
+    // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+    std::memcpy(eye.texels.data(), image.rgba.data(), pixels * 16);
+  } else {
+    const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB;
+    auto* out = reinterpret_cast<std::uint8_t*>(eye.texels.data());
+    for (std::size_t k = 0; k < pixels; ++k) {
+      const float* in = &image.rgba[4 * k];
+      out[4 * k + 0] = srgb_byte(in[bgr ? 2 : 0]);
+      out[4 * k + 1] = srgb_byte(in[1]);
+      out[4 * k + 2] = srgb_byte(in[bgr ? 0 : 2]);
+      out[4 * k + 3] = 255;
+    }
+  }
+  eye.staging->write(eye.texels);
+  const VkBuffer staging = eye.staging->handle();
+  with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
+    begin_transfer_to(cmd, target);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width, height, 1};
+    vkCmdCopyBufferToImage(cmd, staging, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    end_transfer_to(cmd, target);
+  });
+  const auto end = std::chrono::steady_clock::now();
+  timing.render_ms += std::chrono::duration<double, std::milli>(rendered - begin).count();
+  timing.kernel_ms += kernel_ms;
+  timing.upload_ms += std::chrono::duration<double, std::milli>(end - rendered).count();
+}
+
 /// Renders each view's eye into its swapchain image.
 void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, const Options& o, std::int64_t format,
                   std::uint32_t width, std::uint32_t height, const std::vector<XrView>& views, Timing& timing,
@@ -589,66 +752,11 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
     sol::Scene eye_scene = scene;
     eye_scene.camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
     eye_scene.camera.frustum = frustum;
-    double kernel_ms = 0;
-    const sol::RenderResult image =
-        app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
-    const auto rendered = std::chrono::steady_clock::now();
-
-    // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
-    const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
-      std::memcpy(eye.texels.data(), image.rgba.data(), pixels * 16);
+    if (eye.rendered) {
+      render_on_device(app, eye, eye_scene, width, height, timing);
     } else {
-      const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB;
-      auto* out = reinterpret_cast<std::uint8_t*>(eye.texels.data());
-      for (std::size_t k = 0; k < pixels; ++k) {
-        const float* in = &image.rgba[4 * k];
-        out[4 * k + 0] = srgb_byte(in[bgr ? 2 : 0]);
-        out[4 * k + 1] = srgb_byte(in[1]);
-        out[4 * k + 2] = srgb_byte(in[bgr ? 0 : 2]);
-        out[4 * k + 3] = 255;
-      }
+      render_through_host(app, eye, eye_scene, format, width, height, timing);
     }
-    eye.staging->write(eye.texels);
-
-    std::uint32_t index = 0;
-    auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
-    xr_check(xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
-    auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
-    wait.timeout = XR_INFINITE_DURATION;
-    xr_check(xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
-    const VkImage target = eye.images.at(index);
-    const VkBuffer staging = eye.staging->handle();
-    app.context->submit_and_wait([&](VkCommandBuffer cmd) {
-      // The whole image is overwritten: its old contents may be discarded.
-      VkImageMemoryBarrier barrier{};
-      barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-      barrier.srcAccessMask = 0;
-      barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.image = target;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      // The runtime's last read of this image (its compositor) precedes the write.
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                           nullptr, 1, &barrier);
-      VkBufferImageCopy region{};
-      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.imageExtent = {width, height, 1};
-      vkCmdCopyBufferToImage(cmd, staging, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-      // The runtime expects released colour images in COLOR_ATTACHMENT_OPTIMAL
-      // (XR_KHR_vulkan_enable2), with our copy finished before it reads.
-      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      barrier.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-      barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-      barrier.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
-                           nullptr, 0, nullptr, 1, &barrier);
-    });
-    auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
-    xr_check(xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
-    const auto end = std::chrono::steady_clock::now();
 
     XrCompositionLayerProjectionView& lv = layer_views[v];
     lv = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
@@ -657,12 +765,8 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
     lv.subImage.swapchain = eye.swapchain;
     lv.subImage.imageRect = {{0, 0}, {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height)}};
     lv.subImage.imageArrayIndex = 0;
-
     ++timing.eyes;
-    timing.render_ms += std::chrono::duration<double, std::milli>(rendered - begin).count();
-    timing.kernel_ms += kernel_ms;
-    timing.upload_ms += std::chrono::duration<double, std::milli>(end - rendered).count();
-    timing.total_ms += std::chrono::duration<double, std::milli>(end - begin).count();
+    timing.total_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
   }
 }
 
@@ -677,8 +781,15 @@ int run(const Options& o, const sol::Scene& scene) {
   create_session(app, o);
   std::uint32_t width = 0, height = 0;
   const std::int64_t format = create_swapchains(app, o, width, height);
+  const bool blit = can_blit(app, format);
+  if (o.copy == "device" && !blit) {
+    throw XrError("--copy device: the device cannot blit RGBA32F images into the runtime's swapchain format");
+  }
+  const bool device_copy = o.copy == "device" || (o.copy == "auto" && blit);
+  prepare_copies(app, device_copy, format, width, height);
   create_actions(app);
-  std::fprintf(stderr, "solxr: %zu views of %ux%u\n", app.eyes.size(), width, height);
+  std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain\n", app.eyes.size(), width, height,
+               device_copy ? "device" : "host");
 
   sol::Observer base(scene.camera.position, scene.camera.forward, scene.camera.up);
   if (scene.quotient != sol::Quotient::None) base.bind(sol::Lattice::golden());
