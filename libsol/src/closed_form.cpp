@@ -107,7 +107,9 @@ ClosedFormGeodesic<T>::ClosedFormGeodesic(const Vec3& direction) {
   m_regime = Regime::General;
   m_sqrt_mu = std::sqrt(m_mu);
   m_lambda = std::sqrt(T(1) + T(2) * m_mu);
-  const T m = m2 / (m_lambda * m_lambda);
+  // A direction normalised to rounding can give m2 > λ² by an ulp when μ is
+  // tiny (m ≈ 1): m <= 1 keeps the parameter valid (m + m1 = 1 to rounding).
+  const T m = std::min(T(1), m2 / (m_lambda * m_lambda));
   const T m1 = T(4) * m_mu / (m_lambda * m_lambda);
   m_k = std::sqrt(m);
   m_kc = T(2) * m_sqrt_mu / m_lambda;

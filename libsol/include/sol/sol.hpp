@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sol/closed_form.hpp"
+#include "sol/connection.hpp"
 #include "sol/distance.hpp"
 #include "sol/elliptic.hpp"
 #include "sol/error.hpp"

@@ -1,0 +1,97 @@
+// The exact Sol distance and the inverse exponential map: every geodesic
+// between two points up to a length.
+//
+// Reduction. Left translation by p⁻¹ is an isometry that keeps frame
+// components, so q' = p⁻¹q is joined from the origin. Along a geodesic from
+// the origin with direction (a, b, c), x' = a e^{2z} and y' = b e^{-2z}
+// (first integrals, DESIGN.md §3): x and y are monotone with the signs of a
+// and b. Hence a connection to q' has sign(a) = sign(x'), sign(b) = sign(y'),
+// a = 0 iff x' = 0, b = 0 iff y' = 0, and the symmetries (±x, ±y, z) (which act
+// on frame components as (±a, ±b, c)) reduce q' to x', y' >= 0:
+//   - x' = y' = 0: only the vertical line (a = b = 0) arrives; length |z'|.
+//   - y' = 0 < x': b = 0, the geodesic of the hyperbolic plane y = 0 (upper
+//     half-plane (x, e^{z})): one connection, cosh d = cosh z' + ½ x'² e^{-z'};
+//     x' = 0 < y' is the same after (x, y, z) -> (y, x, -z) (frame (b, a, -c)).
+//   - x', y' > 0: a, b > 0. Solved by Newton's method on (direction, t) with
+//     the closed-form flow (minimum-norm steps, forward-difference Jacobian,
+//     backtracking), seeded for |q'| < 2 by the Euclidean guess (direction
+//     q', length |q'|), otherwise by a homotopy from the plane solution of
+//     (x', 0, z') (or (0, y', z')), tilted off its plane, to q' linearly in
+//     (log x, log y, z), where the flow is close to linear even far away; the
+//     end point is polished in frame components. A solution is accepted when
+//     its end point is within the tolerance of q' in the frame, or when the
+//     first-order error of its length, |a Δx| + |b Δy| + |Δz| (the gradient
+//     of the distance at q' is the unit tangent there), is below 1e-12 x
+//     max(1, t): far points (y' e^{z'} ~ 1e10) cannot be met to 1e-13 in the
+//     frame but their lengths are exact.
+//   - The straight lines (t/√2, ±t/√2, 0), t <= √2π, minimise up to their
+//     period √2π, where they are conjugate: taken directly (within 1e-13).
+// Certificate. A geodesic from the origin minimises exactly up to one
+// z-period T (Coiculescu–Schwartz, DESIGN.md §3): any connection found with
+// length t <= T is a minimiser, so its length is the distance. When the
+// continuation from one plane arrives with t > T the other plane is tried, then
+// a scan (below). On the cut locus (z' = 0, t = T) the mirror direction
+// (a, b, -c) reaches the same point at the same length T (the shift of a whole
+// period depends only on a and b), so both minimisers are returned.
+//
+// Known limits: targets near the planes x = 0 or y = 0 and very far (ends
+// of geodesics with |ab| < 1e-6 at lengths above ~18, coordinates ~1e7 and
+// beyond) may throw OutOfRange: no minimiser found.
+//
+// Longer connections (geodesics_between with max_length above the distance).
+// x(t) is strictly increasing, so along each direction there is exactly one
+// length t_x with x(t_x) = x' (when x' > 0; y is used when x' = 0). The
+// connections are the zeros of the two-dimensional map
+//   F(direction) = (e^{z}(y' - y), z' - z) at t_x
+// over the open quarter sphere a, b > 0. geodesics_between scans F on a grid
+// of ConnectionOptions::scan_polar x scan_azimuth directions (uniform in the
+// polar angle and in the azimuth), takes every local minimum of |F| as a seed
+// and polishes it by Newton; solutions are merged when their directions agree
+// to 1e-7. "Every" therefore means: every connection whose basin under that
+// Newton iteration contains a grid direction of a local minimum of |F|. The
+// tests check it against a brute-force scan at four times the resolution.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace sol {
+
+/// A geodesic from p: unit direction in frame components at p, and its length.
+struct Connection {
+  glm::dvec3 direction{0.0, 0.0, 1.0};
+  double length = 0.0;
+};
+
+/// Settings of the connection solver.
+struct ConnectionOptions {
+  /// Newton stops when the end point is within this distance of q (frame
+  /// components at the end point), or at the rounding floor of the problem,
+  /// 1e-14 x max(1, |x'| e^{-z'}, |y'| e^{z'}, |z'|) for q' = p⁻¹q.
+  double tolerance = 1e-13;
+  int scan_polar = 48;    ///< grid of directions for the longer connections (>= 4)
+  int scan_azimuth = 24;  ///< (>= 2)
+};
+
+/// The Sol distance between p and q (accuracy ~1e-12 relative to the
+/// rounding floor above). Throws InvalidArgument on NaN or infinite input.
+double distance(const glm::dvec3& p, const glm::dvec3& q);
+double distance(const glm::dvec3& p, const glm::dvec3& q, const ConnectionOptions& options);
+
+/// Every geodesic from p to q no longer than max_length (see the header
+/// comment for what "every" means), shortest first: flow({p, direction},
+/// length).position == q. The first has length distance(p, q) (on the cut
+/// locus the first two, both minimisers). Empty when max_length <
+/// distance(p, q). Throws InvalidArgument on NaN or infinite input or a
+/// negative max_length.
+std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3& q, double max_length);
+std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3& q, double max_length,
+                                          const ConnectionOptions& options);
+
+/// The minimising geodesics only (one, or two on the cut locus), without the
+/// scan for longer ones: what distance() computes.
+std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dvec3& q,
+                                             const ConnectionOptions& options = {});
+
+}  // namespace sol
