@@ -11,7 +11,9 @@
 // The end points come from the 50-digit reference (tests/support), so the
 // accuracy column is against an independent computation. Prints one table
 // (set, pairs, max |distance - t|), then Google Benchmark's timings
-// (arguments are Google Benchmark's, e.g. --benchmark_min_time=0.2).
+// (arguments are Google Benchmark's, e.g. --benchmark_min_time=0.2),
+// including the CPU renderer's cost per ray with exact balls and lights
+// (counter us_per_ray).
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -104,6 +106,23 @@ void bench_lower_bound(benchmark::State& state) {
   }
 }
 
+// Cost per ray of the CPU renderer on the preset "spheres" (5 balls, one
+// point light), 32 x 24, one thread: exact balls and/or exact light against
+// the bound-based ball and the coordinate-direction light.
+void bench_render(benchmark::State& state, bool exact_balls, bool exact_light) {
+  sol::Scene scene = sol::preset_scene("spheres");
+  for (sol::SceneObject& o : scene.objects) o.exact = exact_balls;
+  scene.lights[0].exact = exact_light;
+  sol::RenderSettings settings;
+  settings.width = 32;
+  settings.height = 24;
+  settings.threads = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(sol::render_cpu(scene, settings));
+  state.counters["us_per_ray"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * settings.width * settings.height * 1e-6,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -126,6 +145,12 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMicrosecond);
   }
   benchmark::RegisterBenchmark("distance_lower_bound/near", bench_lower_bound)->Unit(benchmark::kMicrosecond);
+  for (int k = 0; k < 4; ++k) {
+    const bool balls = (k & 1) != 0, light = (k & 2) != 0;
+    const std::string name = std::string("render_cpu/spheres/balls:") + (balls ? "exact" : "bound") +
+                             "/light:" + (light ? "exact" : "coordinate");
+    benchmark::RegisterBenchmark(name.c_str(), bench_render, balls, light)->Unit(benchmark::kMillisecond);
+  }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

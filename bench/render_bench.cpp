@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
     std::string features = "scene,specialised_ms,general_ms,speedup\n";
     for (const std::string& name : sol::preset_names()) {
       const sol::Scene scene = sol::preset_scene(name);
+      if (sol::uses_exact(scene)) continue;  // CPU-only: distance_bench measures it
       double best = 1e300;
       sol::RenderResult r;
       renderer.render(scene, size, size);  // warm-up: shader compilation and caches

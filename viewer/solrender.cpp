@@ -208,7 +208,9 @@ int main(int argc, char** argv) {
     double seconds = 0;
     bool rendered = false;
 #ifdef SOL_HAVE_VULKAN
-    if (device != "cpu") {
+    if (device == "auto" && sol::uses_exact(scene)) {
+      std::fprintf(stderr, "solrender: exact balls or lights are CPU-only; rendering on the CPU\n");
+    } else if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {
         sol::vk::ContextOptions context_options;

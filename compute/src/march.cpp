@@ -266,6 +266,12 @@ struct MarchRenderer::Prepared {
 MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height,
                                                bool aovs) {
   validate(scene);
+  if (uses_exact(scene)) {
+    // The connection solver (Newton on the closed form, 50-500 µs per call)
+    // has no kernel version yet: README "Exact spheres and point lights".
+    throw NotImplemented("sol::vk::MarchRenderer: exact balls and exact point lights render on the CPU only "
+                         "(--device cpu)");
+  }
   require_size(width, "width");
   require_size(height, "height");
   if (eyes.empty() || eyes.size() > 2) {

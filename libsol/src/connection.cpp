@@ -11,6 +11,7 @@
 
 #include "check.hpp"
 #include "sol/closed_form.hpp"
+#include "sol/distance.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
 
@@ -491,6 +492,22 @@ std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3&
 
 std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3& q, double max_length) {
   return geodesics_between(p, q, max_length, ConnectionOptions{});
+}
+
+double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radius, double band) {
+  const double bound = distance_lower_bound(q, center) - radius;
+  if (bound > band) return bound;
+  try {
+    return distance(q, center) - radius;
+  } catch (const OutOfRange&) {
+    return bound;
+  }
+}
+
+glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center) {
+  const std::vector<Connection> cs = minimising_geodesics(center, q);
+  if (cs.front().length == 0.0) return {0.0, 0.0, 1.0};
+  return glm::normalize(Geodesic(cs.front().direction).direction_at(cs.front().length));
 }
 
 }  // namespace sol

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "sol/closed_form.hpp"
+#include "sol/connection.hpp"
 #include "sol/distance.hpp"
 #include "sol/error.hpp"
 #include "sol/geodesic.hpp"
@@ -30,7 +31,7 @@ double object_distance(const MarchObject& o, const glm::dvec3& q) {
     case ObjectType::PlaneZ:
       return sdf_plane_z(q, o.c);
     case ObjectType::Ball:
-      return sdf_ball(q, o.center, o.radius);
+      return o.exact ? sdf_ball_exact(q, o.center, o.radius) : sdf_ball(q, o.center, o.radius);
     case ObjectType::Tube:
       return o.axis == kAxisZ ? sdf_tube(q, o.center, kAxisZ, o.radius)
                               : sdf_tube_horizontal(q, o.center, o.heading, o.radius);
@@ -48,6 +49,12 @@ using RelativeObject = MarchObject;
 // the gradient of the distance bound by central differences along the frame
 // E1 = e^{z}∂x, E2 = e^{-z}∂y, E3 = ∂z (the same step as the kernel's).
 glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
+  if (o.type == ObjectType::Ball && o.exact) {
+    try {
+      return sdf_ball_exact_gradient(q, o.center);  // the true sphere's normal
+    } catch (const OutOfRange&) {
+    }
+  }
   if (o.type == ObjectType::Ball || o.type == ObjectType::Tube) {
     const double h = 1e-3, ez = std::exp(q.z);
     const glm::dvec3 e1(h * ez, 0.0, 0.0), e2(0.0, h / ez, 0.0), e3(0.0, 0.0, h);
@@ -117,7 +124,7 @@ namespace {
 
 // A scene object in world coordinates, as the march sees it.
 MarchObject world_object(const SceneObject& o, std::size_t owner) {
-  MarchObject r{o.type, o.c, o.center, o.radius, o.axis, owner, glm::dvec2(0.0)};
+  MarchObject r{o.type, o.c, o.center, o.radius, o.axis, owner, glm::dvec2(0.0), o.exact};
   if (o.type == ObjectType::Tube && o.axis != kAxisZ) {
     const glm::dvec3 d = tube_axis_direction(o.axis);
     r.heading = {d.x, d.y};
@@ -492,8 +499,9 @@ glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
   const glm::dvec3& p = hit.point;
   glm::dvec3 light(0.0);
   for (const Light& l : scene.lights) {
-    const LightAtPoint at = light_at(l, p);
-    light += l.color * (l.intensity * at.attenuation * std::max(0.0, glm::dot(hit.normal, at.direction)));
+    for (const LightAtPoint& at : lights_at(l, p)) {
+      light += l.color * (l.intensity * at.attenuation * std::max(0.0, glm::dot(hit.normal, at.direction)));
+    }
   }
   const glm::dvec3 surface = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) * (scene.ambient + (1.0 - scene.ambient) * light);
   const double transmittance = std::exp(-scene.fog_density * hit.distance);
@@ -574,6 +582,23 @@ LightAtPoint light_at(const Light& light, const glm::dvec3& p) {
   const double r = distance_lower_bound(p, light.position);
   const double len = glm::length(v);
   return {len > 0.0 ? v / len : glm::dvec3(0.0, 0.0, 1.0), 1.0 / (1.0 + r * r)};
+}
+
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
+  if (light.type != LightType::Point || !light.exact) return {light_at(light, p)};
+  std::vector<LightAtPoint> out;
+  try {
+    const std::vector<Connection> cs = light.reach > 0.0
+                                           ? geodesics_between(p, light.position, distance(p, light.position) + light.reach)
+                                           : minimising_geodesics(p, light.position);
+    for (const Connection& c : cs) {
+      if (c.length == 0.0) continue;
+      out.push_back({glm::normalize(c.direction), 1.0 / (1.0 + c.length * c.length)});
+    }
+  } catch (const OutOfRange&) {
+    return {light_at(light, p)};  // no connection found (extreme far points): the approximate direction
+  }
+  return out;
 }
 
 StereoEyes stereo_eyes(const Camera& camera, double ipd) {

@@ -250,6 +250,12 @@ void validate_in(const Scene& s, std::string_view source) {
       if (!(o.color[k] >= 0.0 && o.color[k] <= 1.0)) fail(source, at + ".color components must be in [0, 1]");
     }
   }
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& l = s.lights[i];
+    if (!(l.reach >= 0.0 && l.reach <= 10.0)) {
+      fail(source, "lights[" + std::to_string(i) + "].reach must be in [0, 10]");
+    }
+  }
   if (s.lights.size() > static_cast<std::size_t>(kMaxLights)) {
     fail(source, "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(s.lights.size()));
   }
@@ -354,11 +360,15 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     SceneObject obj;
     obj.type = object_type(o["type"], source, at + ".type");
     if (obj.type == ObjectType::Ball) {
-      require_known_keys(o, {"type", "center", "radius", "color", "pattern"}, source, at + " (a ball)", at);
+      require_known_keys(o, {"type", "center", "radius", "color", "pattern", "exact"}, source, at + " (a ball)", at);
       if (!o.contains("center")) fail(source, at + " (a ball) needs a 'center'");
       if (!o.contains("radius")) fail(source, at + " (a ball) needs a 'radius'");
       obj.center = vec3(o["center"], source, at + ".center");
       obj.radius = number(o["radius"], source, at + ".radius");
+      if (o.contains("exact")) {
+        if (!o["exact"].is_boolean()) fail(source, "'" + at + ".exact' must be true or false, got " + o["exact"].dump());
+        obj.exact = o["exact"].get<bool>();
+      }
     } else if (obj.type == ObjectType::Tube) {
       require_known_keys(o, {"type", "axis", "through", "radius", "color", "pattern"}, source, at + " (a tube)", at);
       for (const char* key : {"axis", "through", "radius"}) {
@@ -413,9 +423,14 @@ Scene parse_scene(std::string_view text, std::string_view source) {
         if (l.contains("direction")) light.direction = vec3(l["direction"], source, at + ".direction");
       } else if (type == "point") {
         light.type = LightType::Point;
-        require_known_keys(l, {"type", "position", "color", "intensity"}, source, at, at);
+        require_known_keys(l, {"type", "position", "color", "intensity", "exact", "reach"}, source, at, at);
         if (!l.contains("position")) fail(source, at + " (a point light) needs a 'position'");
         light.position = vec3(l["position"], source, at + ".position");
+        if (l.contains("exact")) {
+          if (!l["exact"].is_boolean()) fail(source, "'" + at + ".exact' must be true or false, got " + l["exact"].dump());
+          light.exact = l["exact"].get<bool>();
+        }
+        if (l.contains("reach")) light.reach = number(l["reach"], source, at + ".reach");
       } else {
         fail(source, "'" + at + ".type' must be directional or point, got " + type);
       }
@@ -462,6 +477,12 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   return s;
 }
 
+bool uses_exact(const Scene& scene) {
+  return std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; }) ||
+         std::any_of(scene.lights.begin(), scene.lights.end(),
+                     [](const Light& l) { return l.type == LightType::Point && l.exact; });
+}
+
 Scene load_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidArgument(path + ": cannot open scene file");
@@ -471,7 +492,9 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-std::vector<std::string> preset_names() { return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars"}; }
+std::vector<std::string> preset_names() {
+  return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars", "spheres"};
+}
 
 glm::dvec3 tube_axis_direction(int axis) {
   const double phi = 0.5 * (1.0 + std::sqrt(5.0));
@@ -540,6 +563,39 @@ Scene preset_scene(std::string_view name) {
     s.fog_density = 1.0 / 5.0;
     s.max_distance = 10.0;
     s.max_steps = 400;
+  } else if (name == "spheres") {
+    // True geodesic spheres (exact balls) of radii 0.3 to 0.6 on, above and
+    // below z = 0, seen from the origin along x + y: above z = 0 they stretch
+    // along y, below along x (where e^{∓z} makes that direction cheap). An
+    // exact point light near the observer.
+    s.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 100.0};
+    const struct {
+      glm::dvec3 center;
+      double radius;
+      glm::dvec3 color;
+    } balls[] = {{{2.0, 2.0, 0.0}, 0.6, {0.9, 0.55, 0.3}},
+                 {{1.0, 1.0, 1.0}, 0.4, {0.35, 0.6, 0.95}},
+                 {{1.0, 1.0, -1.0}, 0.4, {0.4, 0.85, 0.45}},
+                 {{2.0, 0.2, 0.0}, 0.3, {0.9, 0.85, 0.4}},
+                 {{0.2, 2.0, 0.0}, 0.3, {0.85, 0.4, 0.8}}};
+    for (const auto& b : balls) {
+      SceneObject ball;
+      ball.type = ObjectType::Ball;
+      ball.center = b.center;
+      ball.radius = b.radius;
+      ball.color = b.color;
+      ball.pattern = Pattern::Checker;
+      ball.exact = true;
+      s.objects.push_back(ball);
+    }
+    Light point;
+    point.type = LightType::Point;
+    point.position = {0.3, 0.2, 0.4};
+    point.intensity = 4.0;
+    point.exact = true;
+    s.lights = {point};
+    s.ambient = 0.2;
+    s.max_distance = 14.0;
   } else {
     std::string list;
     for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
@@ -573,7 +629,8 @@ std::string to_json(const Scene& s) {
                                  {"center", arr(o.center)},
                                  {"radius", o.radius},
                                  {"pattern", to_string(o.pattern)},
-                                 {"color", arr(o.color)}});
+                                 {"color", arr(o.color)},
+                                 {"exact", o.exact}});
     } else {
       root["objects"].push_back({{"type", to_string(o.type)},
                                  {"c", o.c},
@@ -591,6 +648,8 @@ std::string to_json(const Scene& s) {
     } else {
       j["type"] = "point";
       j["position"] = arr(l.position);
+      j["exact"] = l.exact;
+      j["reach"] = l.reach;
     }
     root["lights"].push_back(j);
   }

@@ -94,4 +94,21 @@ std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3&
 std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dvec3& q,
                                              const ConnectionOptions& options = {});
 
+/// Where exact balls switch from the bound to the exact distance: sphere
+/// tracing steps by distance_lower_bound(q, centre) - radius while that
+/// exceeds this band, by distance(q, centre) - radius within it.
+constexpr double kExactBallBand = 0.25;
+
+/// Signed distance to the geodesic ball (center, radius), exact within
+/// `band` of its bound: a sphere-tracing distance whose zero set is the true
+/// geodesic sphere (never above the true signed distance, so no tunnelling).
+/// Falls back to the bound if the solver throws (far extreme points).
+double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radius, double band = kExactBallBand);
+
+/// The exact unit normal of the geodesic sphere about `center` through q
+/// (frame components at q): the gradient of distance(center, ·), the tangent
+/// at q of the minimising geodesic from the centre (the first one on the cut
+/// locus).
+glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center);
+
 }  // namespace sol

@@ -50,6 +50,13 @@ struct LightAtPoint {
 };
 LightAtPoint light_at(const Light& light, const glm::dvec3& p);
 
+/// Every way a light reaches p. Exact point lights (Light::exact): one entry
+/// per geodesic from p to the light up to distance + reach
+/// (sol::geodesics_between; reach 0: the minimisers only, two on the cut
+/// locus), l its unit direction at p, attenuation 1 / (1 + L²) with L its
+/// length. Otherwise the single light_at.
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
+
 /// The camera's orthonormal basis of DESIGN.md §2 (frame components):
 /// right = normalize(forward × up), up' = right × forward.
 struct CameraBasis {
@@ -82,6 +89,7 @@ struct MarchObject {
   int axis = 2;              ///< tubes: 2 vertical, anything else horizontal along `heading`
   std::size_t owner = 0;     ///< index of the scene object
   glm::dvec2 heading{0.0};   ///< horizontal tubes: unit coordinate direction of the axis
+  bool exact = false;        ///< balls: the exact distance near the ball (sol::sdf_ball_exact)
 };
 MarchObject relative_object(const SceneObject& object, const glm::dvec3& origin, std::size_t owner);
 /// The same object left-translated by origin⁻¹ (from world coordinates to

@@ -53,6 +53,7 @@ struct SceneObject {
   glm::dvec3 center{0.0, 0.0, 0.0};    ///< balls: centre (Sol coordinates)
   double radius = 0.5;                 ///< balls, tubes: radius, > 0
   int axis = 2;                        ///< tubes: a TubeAxis (the line through `center`)
+  bool exact = false;                  ///< balls: draw the true geodesic sphere (sol::sdf_ball_exact), not the bound
 };
 
 enum class LightType {
@@ -66,6 +67,10 @@ struct Light {
   glm::dvec3 position{0.0, 0.0, 0.0};   ///< point: Sol coordinates
   glm::dvec3 color{1.0, 1.0, 1.0};      ///< linear RGB in [0, 1]
   double intensity = 1.0;               ///< >= 0
+  /// point: light along the true geodesics to the light (sol::geodesics_between),
+  /// each attenuated by its length, instead of the coordinate direction
+  bool exact = false;
+  double reach = 0.0;  ///< exact point lights: also the connections up to distance + reach, in [0, 10]
 };
 
 /// Most lights a scene may hold.
@@ -120,11 +125,17 @@ Scene parse_scene(std::string_view json, std::string_view source = "<scene>");
 /// Reads and parses a scene file; InvalidArgument if unreadable or invalid.
 Scene load_scene(const std::string& path);
 
+/// Whether the scene has exact balls or exact point lights: these need the
+/// connection solver (sol/connection.hpp), which only the CPU renderer runs.
+bool uses_exact(const Scene& scene);
+
 /// Built-in scenes: "plane" (z = 0 tiled with circles, seen from (0,0,1.5)
 /// looking straight down), "sandwich" (planes z = ±1, observer at the
 /// origin), "sheets" (planes x = 0 and y = 0), "lattice-balls" (Γ\Sol, one
 /// ball at the base point), "lattice-pillars" (Γ\Sol, tubes along the closed
-/// curves of γ1, γ2, γ3 through the base point). InvalidArgument if unknown.
+/// curves of γ1, γ2, γ3 through the base point), "spheres" (exact geodesic
+/// spheres of several radii above, on and below z = 0, lit by an exact point
+/// light). InvalidArgument if unknown.
 Scene preset_scene(std::string_view name);
 std::vector<std::string> preset_names();
 

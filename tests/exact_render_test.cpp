@@ -1,0 +1,142 @@
+// Exact balls and exact point lights in the CPU renderer: the drawn surface
+// is the geodesic sphere, the light arrives along true geodesics, and the
+// scene keys are validated.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "sol/connection.hpp"
+#include "sol/distance.hpp"
+#include "sol/error.hpp"
+#include "sol/geodesic.hpp"
+#include "sol/group.hpp"
+#include "sol/render.hpp"
+#include "sol/scene.hpp"
+
+namespace {
+
+sol::Scene one_ball(bool exact) {
+  sol::Scene s;
+  s.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
+  sol::SceneObject ball;
+  ball.type = sol::ObjectType::Ball;
+  ball.center = {1.3, 1.1, 0.6};  // off z = 0: the bound is far from the sphere there
+  ball.radius = 0.5;
+  ball.exact = exact;
+  s.objects = {ball};
+  return s;
+}
+
+// Largest | d(hit, centre) - r | over the hit pixels (AOV hit points, float).
+double sphere_error(const sol::RenderResult& r, const sol::SceneObject& ball, int& hits) {
+  double worst = 0.0;
+  hits = 0;
+  for (std::size_t i = 0; i < r.object.size(); ++i) {
+    if (r.object[i] != 1.0f) continue;
+    ++hits;
+    const glm::dvec3 p(r.px[i], r.py[i], r.pz[i]);
+    worst = std::max(worst, std::abs(sol::distance(p, ball.center) - ball.radius));
+  }
+  return worst;
+}
+
+TEST(ExactBall, HitPointsLieOnTheGeodesicSphere) {
+  sol::RenderSettings settings;
+  settings.width = 20;
+  settings.height = 16;
+  const sol::Scene exact = one_ball(true);
+  int hits = 0;
+  const double error = sphere_error(sol::render_cpu(exact, settings), exact.objects[0], hits);
+  EXPECT_GT(hits, 20);
+  // hit_epsilon 5e-5 plus the float rounding of the AOV coordinates.
+  EXPECT_LT(error, 1e-4);
+  // The bound-based ball draws another surface (outside the sphere, where
+  // the bound is below the distance).
+  const sol::Scene bound = one_ball(false);
+  int bound_hits = 0;
+  EXPECT_GT(sphere_error(sol::render_cpu(bound, settings), bound.objects[0], bound_hits), 1e-2);
+}
+
+TEST(ExactBall, DistanceIsTheBoundFarAndExactNear) {
+  const glm::dvec3 c(0.3, -0.2, 0.4);
+  for (const glm::dvec3& q : {glm::dvec3(3.0, 2.0, 0.1), glm::dvec3(0.9, 0.1, 0.5), glm::dvec3(0.5, -0.1, 0.9)}) {
+    const double bound = sol::distance_lower_bound(q, c) - 0.5;
+    const double d = sol::sdf_ball_exact(q, c, 0.5);
+    if (bound > sol::kExactBallBand) {
+      EXPECT_EQ(d, bound);
+    } else {
+      EXPECT_NEAR(d, sol::distance(q, c) - 0.5, 1e-12);
+    }
+    EXPECT_LE(d, sol::distance(q, c) - 0.5 + 1e-12);  // never above the true signed distance
+  }
+  // The normal is the unit tangent at q of the geodesic from the centre.
+  const glm::dvec3 q(0.9, 0.1, 0.5);
+  const glm::dvec3 n = sol::sdf_ball_exact_gradient(q, c);
+  const double h = 1e-5, ez = std::exp(q.z);
+  const glm::dvec3 fd((sol::distance(q + glm::dvec3(h * ez, 0, 0), c) - sol::distance(q - glm::dvec3(h * ez, 0, 0), c)) / (2 * h),
+                      (sol::distance(q + glm::dvec3(0, h / ez, 0), c) - sol::distance(q - glm::dvec3(0, h / ez, 0), c)) / (2 * h),
+                      (sol::distance(q + glm::dvec3(0, 0, h), c) - sol::distance(q - glm::dvec3(0, 0, h), c)) / (2 * h));
+  EXPECT_NEAR(glm::length(n - fd), 0.0, 1e-5);
+}
+
+TEST(ExactLight, DirectionsAreGeodesicsReachingTheLight) {
+  sol::Light light;
+  light.type = sol::LightType::Point;
+  light.position = {0.4, -0.3, 0.7};
+  light.exact = true;
+  const glm::dvec3 p(-0.5, 0.8, 0.1);
+  const std::vector<sol::LightAtPoint> ls = sol::lights_at(light, p);
+  ASSERT_EQ(ls.size(), 1u);
+  const std::vector<sol::Connection> cs = sol::minimising_geodesics(p, light.position);
+  const double length = cs.front().length;
+  EXPECT_NEAR(ls[0].attenuation, 1.0 / (1.0 + length * length), 1e-12);
+  const glm::dvec3 end = sol::flow({p, ls[0].direction}, length).position;
+  EXPECT_LT(glm::length(sol::multiply(sol::inverse(light.position), end)), 1e-10);
+  // On the cut locus of p two geodesics of the same length bring the light.
+  light.position = sol::multiply(p, glm::dvec3(5.0, 5.0, 0.0));
+  EXPECT_EQ(sol::lights_at(light, p).size(), 2u);
+  // With a reach, the longer connections too (the straight line, 5√2).
+  light.reach = 1.0;
+  EXPECT_GE(sol::lights_at(light, p).size(), 3u);
+  // Not exact: the single approximate direction.
+  light.exact = false;
+  EXPECT_EQ(sol::lights_at(light, p).size(), 1u);
+}
+
+void expect_rejected(const std::string& json, const std::string& words) {
+  try {
+    (void)sol::parse_scene(json, "bad.json");
+    ADD_FAILURE() << "accepted: " << json;
+  } catch (const sol::InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(words), std::string::npos) << "message '" << what << "' lacks '" << words << "'";
+  }
+}
+
+TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
+  const std::string ball = R"({"type": "ball", "center": [0, 0, 0], "radius": 0.5)";
+  expect_rejected(R"({"objects": [)" + ball + R"(, "exact": 1}]})", "'objects[0].exact' must be true or false");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "exact": true}]})", "exact");
+  expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "point", "position": [0, 0, 1], "exact": "yes"}]})",
+                  "'lights[0].exact' must be true or false");
+  expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "point", "position": [0, 0, 1], "reach": -1}]})",
+                  "lights[0].reach must be in [0, 10]");
+  expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "directional", "exact": true}]})", "exact");
+  const sol::Scene s = sol::parse_scene(
+      R"({"objects": [)" + ball + R"(, "exact": true}], "lights": [{"type": "point", "position": [0, 0, 1], "exact": true, "reach": 2}]})");
+  EXPECT_TRUE(s.objects[0].exact);
+  EXPECT_TRUE(s.lights[0].exact);
+  EXPECT_EQ(s.lights[0].reach, 2.0);
+  EXPECT_TRUE(sol::uses_exact(s));
+  const sol::Scene back = sol::parse_scene(sol::to_json(s));
+  EXPECT_TRUE(back.objects[0].exact);
+  EXPECT_TRUE(back.lights[0].exact);
+  EXPECT_EQ(back.lights[0].reach, 2.0);
+  const sol::Scene spheres = sol::preset_scene("spheres");
+  EXPECT_TRUE(sol::uses_exact(spheres));
+  EXPECT_FALSE(sol::uses_exact(sol::preset_scene("plane")));
+}
+
+}  // namespace
