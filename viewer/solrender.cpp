@@ -208,8 +208,10 @@ int main(int argc, char** argv) {
     double seconds = 0;
     bool rendered = false;
 #ifdef SOL_HAVE_VULKAN
-    if (device == "auto" && sol::uses_exact(scene)) {
-      std::fprintf(stderr, "solrender: exact balls or lights are CPU-only; rendering on the CPU\n");
+    if (device == "auto" &&
+        (sol::uses_exact_lights(scene) || (sol::uses_exact(scene) && scene.quotient != sol::Quotient::None))) {
+      std::fprintf(stderr, "solrender: exact point lights (and exact balls in the quotient) are CPU-only; "
+                           "rendering on the CPU\n");
     } else if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {

@@ -28,6 +28,8 @@ layout(constant_id = 6) const bool QUOTIENT = false;
 // Write the AOV images (bindings 2, 3); off for presenters, which take the
 // colour alone (MarchRenderer::record) and bind the colour image there too.
 layout(constant_id = 7) const bool WRITE_AOVS = true;
+// Exact balls (type 5, cover only): the table of d(0, ·) in binding 5.
+layout(constant_id = 8) const bool HAS_EXACT_BALLS = false;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
@@ -72,6 +74,12 @@ layout(std430, set = 0, binding = 4) readonly buffer Images {
   vec4 images[];
 };
 
+// sol::DistanceTable: d(0, (x, y, z)) on a 25³ grid over x, y in [0, 2.4],
+// z in [-1.2, 1.2], index (k 25 + j) 25 + i.
+layout(std430, set = 0, binding = 5) readonly buffer DistanceTable {
+  float distance_table[];
+};
+
 // The lower bound of the Sol distance (sol::distance_lower_bound, DESIGN.md §3).
 float distance_lower_bound(vec3 p, vec3 q) {
   float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
@@ -91,10 +99,30 @@ float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
   return max(asinh(across), abs(d.z)) - radius;
 }
 
+// Exact balls (mirrors sol::sdf_ball_exact with sol::DistanceTable::lookup):
+// the bound beyond the band 0.25, else the table at w = centre⁻¹·q (never
+// below the bound); outside the table's box the bound.
+float table_at(int i, int j, int k) { return distance_table[(k * 25 + j) * 25 + i]; }
+float exact_ball_distance(vec3 q, vec3 c, float radius) {
+  const float bound = distance_lower_bound(q, c) - radius;
+  if (bound > 0.25) return bound;
+  const float ecz = exp(c.z);
+  const vec3 g = vec3(abs(q.x - c.x) / ecz, abs(q.y - c.y) * ecz, q.z - c.z + 1.2) / vec3(0.1, 0.1, 0.1);
+  if (!(g.x < 24.0 && g.y < 24.0 && g.z >= 0.0 && g.z < 24.0)) return bound;
+  const ivec3 i = ivec3(g);
+  const vec3 f = g - vec3(i);
+  const float x00 = mix(table_at(i.x, i.y, i.z), table_at(i.x + 1, i.y, i.z), f.x);
+  const float x10 = mix(table_at(i.x, i.y + 1, i.z), table_at(i.x + 1, i.y + 1, i.z), f.x);
+  const float x01 = mix(table_at(i.x, i.y, i.z + 1), table_at(i.x + 1, i.y, i.z + 1), f.x);
+  const float x11 = mix(table_at(i.x, i.y + 1, i.z + 1), table_at(i.x + 1, i.y + 1, i.z + 1), f.x);
+  return max(bound, mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z) - radius);
+}
+
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
 // object given in the coordinates of q (camera-relative, or world in the quotient).
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   if (HAS_BALLS && type == 3) return distance_lower_bound(q, rel.xyz) - radius;
+  if (HAS_EXACT_BALLS && type == 5) return exact_ball_distance(q, rel.xyz, radius);
   if (HAS_BALLS && type == 4) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
   float c = rel.x;
   if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
@@ -143,7 +171,7 @@ vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   const float cells = 1.27323954;  // 4/π: 8 cells per turn
   const float ez = exp(rel.z);
   const vec3 w = vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
-  if (type == 3) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
+  if (type == 3 || type == 5) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
   if (int(rel.w) == 2) return cells * vec2(atan(w.y, w.x), w.z / radius);
   const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
   return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <sol/connection.hpp>
 #include <sol/error.hpp>
 #include <sol/group.hpp>
 #include <sol/lattice.hpp>
@@ -133,7 +134,7 @@ GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int w
   g.limits[1] = static_cast<float>(scene.hit_epsilon);
   g.limits[3] = static_cast<float>(scene.max_steps);
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    g.objects[k].plane[0] = type_code(scene.objects[k].type);
+    g.objects[k].plane[0] = scene.objects[k].exact ? 5.0f : type_code(scene.objects[k].type);  // 5: exact ball
     g.objects[k].plane[1] = static_cast<float>(scene.objects[k].radius);
     g.objects[k].plane[2] = pattern_code(scene.objects[k].pattern);
     g.objects[k].plane[3] = scene.objects[k].cutout ? 1.0f : 0.0f;
@@ -186,9 +187,10 @@ void require_size(int value, const char* name) {
 struct Features {
   bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false, quotient = false;
   bool no_aovs = false;  // colour only (MarchRenderer::record)
+  bool exact_balls = false;
   std::uint32_t key() const {
     return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u) |
-           (cutout ? 16u : 0u) | (quotient ? 32u : 0u) | (no_aovs ? 64u : 0u);
+           (cutout ? 16u : 0u) | (quotient ? 32u : 0u) | (no_aovs ? 64u : 0u) | (exact_balls ? 128u : 0u);
   }
 };
 
@@ -203,6 +205,7 @@ Features features_of(const Scene& scene) {
                                [](const Light& l) { return l.type == LightType::Point; });
   f.fog = scene.fog_density > 0.0;
   f.cutout = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.cutout; });
+  f.exact_balls = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; });
   return f;
 }
 
@@ -213,7 +216,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                                           {1, DescriptorType::StorageImage},
                                           {2, DescriptorType::StorageImage},
                                           {3, DescriptorType::StorageImage},
-                                          {4, DescriptorType::StorageBuffer}},
+                                          {4, DescriptorType::StorageBuffer},
+                                          {5, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {1, f.heights_only ? 1u : 0u},
@@ -222,7 +226,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                                                 {4, f.fog ? 1u : 0u},
                                                 {5, f.cutout ? 1u : 0u},
                                                 {6, f.quotient ? 1u : 0u},
-                                                {7, f.no_aovs ? 0u : 1u}}});
+                                                {7, f.no_aovs ? 0u : 1u},
+                                                {8, f.exact_balls ? 1u : 0u}}});
 }
 
 }  // namespace
@@ -236,6 +241,7 @@ struct MarchRenderer::Impl {
   // The quotient images (binding 4), kept until the next frame: a recorded
   // dispatch (record) still reads them after the call returns.
   std::optional<Buffer> images;
+  std::optional<Buffer> table;  // exact balls: sol::DistanceTable (binding 5)
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
   ComputePipeline& pipeline(const Features& f) {
     auto it = pipelines.find(f.key());
@@ -266,11 +272,11 @@ struct MarchRenderer::Prepared {
 MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height,
                                                bool aovs) {
   validate(scene);
-  if (uses_exact(scene)) {
+  if (uses_exact_lights(scene) || (uses_exact(scene) && scene.quotient != Quotient::None)) {
     // The connection solver (Newton on the closed form, 50-500 µs per call)
-    // has no kernel version yet: README "Exact spheres and point lights".
-    throw NotImplemented("sol::vk::MarchRenderer: exact balls and exact point lights render on the CPU only "
-                         "(--device cpu)");
+    // has no kernel version: README "Exact spheres and point lights".
+    throw NotImplemented("sol::vk::MarchRenderer: exact point lights, and exact balls in the quotient, render on "
+                         "the CPU only (--device cpu)");
   }
   require_size(width, "width");
   require_size(height, "height");
@@ -294,9 +300,18 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
   Features f = m.options.all_features ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false}
                                       : features_of(scene);
   f.no_aovs = !aovs;
+  f.exact_balls = features_of(scene).exact_balls;
   ComputePipeline& pipeline = m.pipeline(f);
   pipeline.bind(0, m.params);
   pipeline.bind(4, *m.images);
+  // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
+  // process), kept like the images; else a stub.
+  const std::size_t table_floats = f.exact_balls ? DistanceTable::shared().values.size() : 4;
+  if (!m.table || m.table->size() != table_floats * sizeof(float)) {
+    m.table.emplace(m.context, table_floats * sizeof(float));
+    m.table->write(f.exact_balls ? DistanceTable::shared().values : std::vector<float>(4, 0.0f));
+  }
+  pipeline.bind(5, *m.table);
   return {&pipeline, static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height)};
 }

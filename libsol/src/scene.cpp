@@ -477,10 +477,14 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   return s;
 }
 
+bool uses_exact_lights(const Scene& scene) {
+  return std::any_of(scene.lights.begin(), scene.lights.end(),
+                     [](const Light& l) { return l.type == LightType::Point && l.exact; });
+}
+
 bool uses_exact(const Scene& scene) {
   return std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; }) ||
-         std::any_of(scene.lights.begin(), scene.lights.end(),
-                     [](const Light& l) { return l.type == LightType::Point && l.exact; });
+         uses_exact_lights(scene);
 }
 
 Scene load_scene(const std::string& path) {

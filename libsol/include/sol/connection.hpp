@@ -111,4 +111,24 @@ double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radi
 /// locus).
 glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center);
 
+/// The distance from the origin tabulated for kernels (which have no
+/// connection solver): d(0, (x, y, z)) on a uniform grid over x, y in
+/// [0, kExtent], z in [-kHeight, kHeight] (the symmetries (±x, ±y, z) give
+/// the rest), read by trilinear interpolation. Covers the exact band of
+/// balls of radius up to ~0.7 (|Δz| <= bound <= r + 0.25); outside it a
+/// kernel keeps the bound. Accuracy of lookup against distance(): see
+/// test ExactTable.AccuracyAgainstTheSolver (README).
+struct DistanceTable {
+  static constexpr int kSize = 25;            ///< points per axis
+  static constexpr double kExtent = 2.4;      ///< x, y in [0, kExtent]
+  static constexpr double kHeight = 1.2;      ///< z in [-kHeight, kHeight]
+  std::vector<float> values;                  ///< d, index (k kSize + j) kSize + i for (x_i, y_j, z_k)
+
+  /// Computed once per process (about 2 s on 2 cores) and shared.
+  static const DistanceTable& shared();
+  /// d(0, w) by trilinear interpolation; negative when w is outside the box
+  /// (after |x|, |y|): the caller keeps its bound there.
+  double lookup(const glm::dvec3& w) const;
+};
+
 }  // namespace sol

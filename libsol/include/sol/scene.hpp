@@ -128,6 +128,9 @@ Scene load_scene(const std::string& path);
 /// Whether the scene has exact balls or exact point lights: these need the
 /// connection solver (sol/connection.hpp), which only the CPU renderer runs.
 bool uses_exact(const Scene& scene);
+/// Whether the scene has exact point lights (the kernel has exact balls, from
+/// a table, but no exact lights).
+bool uses_exact_lights(const Scene& scene);
 
 /// Built-in scenes: "plane" (z = 0 tiled with circles, seen from (0,0,1.5)
 /// looking straight down), "sandwich" (planes z = ±1, observer at the
