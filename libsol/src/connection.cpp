@@ -352,9 +352,9 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
   const bool y_first = q.y * std::exp(q.z) <= q.x * std::exp(-q.z);
   Solution best;
   bool have = false;
-  // Near points: the Euclidean guess (direction q, length |q|) is usually in
+  // Points up to |q| = 6: the Euclidean guess (direction q, length |q|) is often in
   // the basin of Newton; the certificate t <= T decides whether it is kept.
-  if (glm::length(q) < 2.0) {
+  if (glm::length(q) < 6.0) {
     Solution s;
     s.v = glm::normalize(q);
     s.t = glm::length(q);

@@ -14,7 +14,7 @@
 //     x' = 0 < y' is the same after (x, y, z) -> (y, x, -z) (frame (b, a, -c)).
 //   - x', y' > 0: a, b > 0. Solved by Newton's method on (direction, t) with
 //     the closed-form flow (minimum-norm steps, forward-difference Jacobian,
-//     backtracking), seeded for |q'| < 2 by the Euclidean guess (direction
+//     backtracking), seeded for |q'| < 6 by the Euclidean guess (direction
 //     q', length |q'|), otherwise by a homotopy from the plane solution of
 //     (x', 0, z') (or (0, y', z')), tilted off its plane, to q' linearly in
 //     (log x, log y, z), where the flow is close to linear even far away; the
