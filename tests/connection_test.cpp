@@ -235,6 +235,30 @@ TEST(Connection, EveryConnectionUpToALengthAgainstABruteForceScan) {
   EXPECT_TRUE(sol::geodesics_between({0, 0, 0}, {5, 5, 0}, 6.0).empty());
 }
 
+TEST(Connection, RandomPairsNearAndFar) {
+  // Random pairs with |x|, |y| up to 1, 5, 20, 100 and |z| <= 3: a minimiser
+  // is always found (no OutOfRange), certified by t <= T, lands on q, and is
+  // never below the lower bound. (630.73, 5.49, -0.107) is near the cut locus
+  // far away: there the first branch found arrives past its period and the
+  // minimiser is next to its mirror.
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> pairs = {{{0, 0, 0}, {630.730995, 5.494016, -0.107253}}};
+  for (double r : {1.0, 5.0, 20.0, 100.0}) {
+    for (int i = 0; i < 40; ++i) pairs.push_back({{r * u(rng), r * u(rng), 3 * u(rng)}, {r * u(rng), r * u(rng), 3 * u(rng)}});
+  }
+  for (const auto& [p, q] : pairs) {
+    const std::vector<sol::Connection> cs = sol::minimising_geodesics(p, q);
+    ASSERT_FALSE(cs.empty());
+    const sol::Connection& c = cs.front();
+    EXPECT_LE(sol::distance_lower_bound(p, q), c.length + 1e-12);
+    EXPECT_LT(landing_error(p, c, q), 1e-10) << q.x << " " << q.y << " " << q.z;
+    const bool straight = c.direction.z == 0.0 && std::abs(std::abs(c.direction.x) - std::abs(c.direction.y)) < 1e-15;
+    const double period = straight ? std::sqrt(2.0) * std::numbers::pi : sol::ClosedFormGeodesic<double>(c.direction).period();
+    EXPECT_LE(c.length, period * (1.0 + 1e-9));
+  }
+}
+
 TEST(Connection, RejectsNonFiniteInput) {
   const double nan = std::nan("");
   EXPECT_THROW(sol::distance({nan, 0, 0}, {1, 1, 1}), sol::InvalidArgument);

@@ -370,11 +370,33 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
     } catch (const OutOfRange&) {
     }
   }
+  // Near the cut locus (z' ~ 0, large x'y') a branch may arrive just past its
+  // period; the minimiser is then next to its mirror (a, b, -c), which meets
+  // it on the cut locus: try that seed.
+  auto try_mirror = [&](const Solution& s) {
+    if (have || minimising(s, tolerance)) return;
+    Solution m = s;
+    m.v.z = -m.v.z;
+    try {
+      if (polish(m.v, m.t, q, tolerance) && m.v.x > 0.0 && m.v.y > 0.0) {
+        m.period = period_of(m.v);
+        if (minimising(m, tolerance)) {
+          best = m;
+          have = true;
+        }
+      }
+    } catch (const OutOfRange&) {
+    }
+  };
   for (int side = 0; side < 2 && !have; ++side) {
     Solution s;
-    if (continuation(q, side == 0 ? y_first : !y_first, tolerance, s) && minimising(s, tolerance)) {
-      best = s;
-      have = true;
+    if (continuation(q, side == 0 ? y_first : !y_first, tolerance, s)) {
+      if (minimising(s, tolerance)) {
+        best = s;
+        have = true;
+      } else {
+        try_mirror(s);
+      }
     }
   }
   if (!have) {
@@ -382,12 +404,14 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
     // bound of the lengths of the two-plane path: (X,0,Z)-plane then y).
     const double bound = plane_solution(q.x, q.z).t + std::asinh(q.y * std::exp(q.z)) * 2.0 + 1.0;
     const int np = std::max(4, options.scan_polar), na = std::max(2, options.scan_azimuth);
-    for (const Solution& s : scan(q, bound, tolerance, np, na)) {
+    const std::vector<Solution> found = scan(q, bound, tolerance, np, na);
+    for (const Solution& s : found) {
       if (minimising(s, tolerance) && (!have || s.t < best.t)) {
         best = s;
         have = true;
       }
     }
+    for (const Solution& s : found) try_mirror(s);
   }
   if (!have) {
     throw OutOfRange("sol::distance: no minimising geodesic found to (" + std::to_string(q.x) + ", " +

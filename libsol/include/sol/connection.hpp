@@ -29,10 +29,12 @@
 // Certificate. A geodesic from the origin minimises exactly up to one
 // z-period T (Coiculescu–Schwartz, DESIGN.md §3): any connection found with
 // length t <= T is a minimiser, so its length is the distance. When the
-// continuation from one plane arrives with t > T the other plane is tried, then
-// a scan (below). On the cut locus (z' = 0, t = T) the mirror direction
-// (a, b, -c) reaches the same point at the same length T (the shift of a whole
-// period depends only on a and b), so both minimisers are returned.
+// continuation from one plane arrives with t > T its mirror (a, b, -c) is
+// polished as a seed (near the cut locus the minimiser is next to it), then
+// the other plane is tried, then a scan (below) and the mirrors of its finds.
+// On the cut locus (z' = 0, t = T) the mirror direction (a, b, -c) reaches
+// the same point at the same length T (the shift of a whole period depends
+// only on a and b), so both minimisers are returned.
 //
 // Known limits: targets near the planes x = 0 or y = 0 and very far (ends
 // of geodesics with |ab| < 1e-6 at lengths above ~18, coordinates ~1e7 and
