@@ -2,7 +2,9 @@
 // form against the double closed form (itself tested against a 50-digit
 // reference), and every preset's image and AOVs against the CPU reference
 // renderer. Runs with validation on; any validation error fails.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <random>
 
@@ -429,6 +431,82 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
   EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
     renderer.record(cb, scene, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
   }), sol::InvalidArgument);
+  expect_no_validation_errors();
+}
+
+// The C++ twin of march.comp's output_color for SOL_OUTPUT_SRGB_UNORM: the
+// standard sRGB OETF (IEC 61966-2-1) of the colour clamped to [0, 1].
+double srgb_encode(double linear) {
+  const double c = std::clamp(linear, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+// MarchRenderer::record into a caller's 8-bit image (the presenters' direct
+// path into a storage-capable swapchain image) writes render()'s colour
+// sRGB-encoded, within 1 in 255, mono and stereo, in both channel orders,
+// with the target larger than the image.
+TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
+  sol::vk::MarchRenderer renderer(context());
+  // lavapipe has the feature and both formats: there the test must run.
+  if (context().is_cpu()) {
+    ASSERT_TRUE(context().storage_write_without_format());
+  }
+  int formats_tested = 0;
+  for (VkFormat format : {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM}) {
+    if (!sol::vk::MarchRenderer::can_write_unorm(context(), format)) {
+      EXPECT_FALSE(context().is_cpu()) << "lavapipe cannot write format " << format;
+      continue;
+    }
+    ++formats_tested;
+    const bool bgr = format == VK_FORMAT_B8G8R8A8_UNORM;
+    for (const char* name : {"plane", "sandwich", "lattice-balls"}) {
+      const sol::Scene scene = sol::preset_scene(name);
+      const int w = 12, h = 8;
+      const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
+      for (int n : {1, 2}) {
+        const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
+                                                     : std::vector<sol::Camera>{eyes.left, eyes.right};
+        const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
+        const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
+        sol::vk::StorageImage target(context(), tw, th, format);
+        const sol::vk::UnormTarget unorm{target.view(), format, tw, th};
+        context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, unorm); });
+        const std::vector<std::uint8_t> got = target.download_bytes();
+        int worst = 0;
+        for (int j = 0; j < h; ++j) {
+          for (int i = 0; i < n * w; ++i) {
+            for (int c = 0; c < 4; ++c) {
+              const int from = bgr && c < 3 ? 2 - c : c;
+              const int byte = got[(static_cast<std::size_t>(j) * tw + static_cast<std::size_t>(i)) * 4 + static_cast<std::size_t>(from)];
+              const double linear = ref.rgba[(static_cast<std::size_t>(j) * static_cast<std::size_t>(n * w) + static_cast<std::size_t>(i)) * 4 + static_cast<std::size_t>(c)];
+              const auto want = static_cast<int>(std::lround(255.0 * (c < 3 ? srgb_encode(linear) : std::clamp(linear, 0.0, 1.0))));
+              worst = std::max(worst, std::abs(byte - want));
+            }
+          }
+        }
+        EXPECT_LE(worst, 1) << name << " eyes " << n << " format " << format;
+      }
+    }
+  }
+  if (context().is_cpu()) {
+    EXPECT_EQ(formats_tested, 2);
+  }
+  // Wrong format, null view, too small: refused before anything is recorded.
+  const sol::Scene scene = sol::preset_scene("plane");
+  const std::vector<sol::Camera> cams{scene.camera};
+  sol::vk::StorageImage rgba32f(context(), 8, 8);
+  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+    renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{rgba32f.view(), VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8});
+  }), sol::InvalidArgument);
+  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+    renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{VK_NULL_HANDLE, VK_FORMAT_R8G8B8A8_UNORM, 8, 8});
+  }), sol::InvalidArgument);
+  if (sol::vk::MarchRenderer::can_write_unorm(context(), VK_FORMAT_R8G8B8A8_UNORM)) {
+    sol::vk::StorageImage small(context(), 4, 4, VK_FORMAT_R8G8B8A8_UNORM);
+    EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+      renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{small.view(), VK_FORMAT_R8G8B8A8_UNORM, 4, 4});
+    }), sol::InvalidArgument);
+  }
   expect_no_validation_errors();
 }
 

@@ -64,7 +64,17 @@ layout(std140, set = 0, binding = 0) uniform Params {
   Object objects[MAX_OBJECTS];
 } params;
 
+#ifdef SOL_OUTPUT_SRGB_UNORM
+// The presenters' 8-bit output (a separate SPIR-V build, march_srgb_unorm;
+// MarchRenderer::record with a UnormTarget): the colour, sRGB-encoded, into
+// an R8G8B8A8 or B8G8R8A8 UNORM image such as a storage-capable swapchain
+// image. No format qualifier, as GLSL names no BGRA format: this needs the
+// shaderStorageImageWriteWithoutFormat feature, so it stays out of the
+// default build.
+layout(set = 0, binding = 1) uniform writeonly image2D color_image;
+#else
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
+#endif
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
 // Quotient scenes: the images of the objects around D, in world coordinates
@@ -79,6 +89,20 @@ layout(std430, set = 0, binding = 4) readonly buffer Images {
 layout(std430, set = 0, binding = 5) readonly buffer DistanceTable {
   float distance_table[];
 };
+
+// What binding 1 receives: the linear colour, or for SOL_OUTPUT_SRGB_UNORM
+// the standard sRGB OETF (IEC 61966-2-1) of it clamped to [0, 1], what an
+// sRGB swapchain's blit and solrender's 8-bit files apply (C++ twin:
+// srgb_encode in tests/kernel_test.cpp, which holds the two together).
+vec4 output_color(vec4 linear) {
+#ifdef SOL_OUTPUT_SRGB_UNORM
+  vec3 c = clamp(linear.rgb, 0.0, 1.0);
+  vec3 encoded = mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c, lessThanEqual(c, vec3(0.0031308)));
+  return vec4(encoded, clamp(linear.a, 0.0, 1.0));
+#else
+  return linear;
+#endif
+}
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, DESIGN.md §3).
 float distance_lower_bound(vec3 p, vec3 q) {
@@ -402,7 +426,7 @@ void main() {
       hit_aov.y = t;
       point_aov = vec4(q, 0.0);
     }
-    imageStore(color_image, pixel, color);
+    imageStore(color_image, pixel, output_color(color));
     if (WRITE_AOVS) {
       imageStore(aov_hit, pixel, hit_aov);
       imageStore(aov_point, pixel, point_aov);
@@ -495,7 +519,7 @@ void main() {
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }
-  imageStore(color_image, pixel, color);
+  imageStore(color_image, pixel, output_color(color));
   if (WRITE_AOVS) {
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);

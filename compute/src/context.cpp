@@ -431,8 +431,17 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   queue_info.pQueuePriorities = &priority;
   std::vector<const char*> device_extensions;
   for (const std::string& name : options.device_extensions) device_extensions.push_back(name.c_str());
+  // Optional features, enabled when the device has them: writes to storage
+  // images declared without a format qualifier (march.comp's 8-bit sRGB
+  // output for presenters, whose swapchain formats GLSL cannot name).
+  VkPhysicalDeviceFeatures supported{};
+  vkGetPhysicalDeviceFeatures(d.physical_device, &supported);
+  VkPhysicalDeviceFeatures enabled{};
+  enabled.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+  d.storage_write_without_format = supported.shaderStorageImageWriteWithoutFormat == VK_TRUE;
   VkDeviceCreateInfo device_info{};
   device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  device_info.pEnabledFeatures = &enabled;
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
   device_info.enabledExtensionCount = static_cast<std::uint32_t>(device_extensions.size());
@@ -471,6 +480,7 @@ bool Context::timestamps_supported() const { return m_device->timestamp_pool != 
 float Context::timestamp_period() const { return m_device->properties.limits.timestampPeriod; }
 const VkPhysicalDeviceLimits& Context::limits() const { return m_device->properties.limits; }
 bool Context::validation_enabled() const { return m_device->validation; }
+bool Context::storage_write_without_format() const { return m_device->storage_write_without_format; }
 
 std::vector<std::string> Context::validation_errors() const {
   const std::lock_guard lock(m_device->messages_mutex);

@@ -43,6 +43,7 @@ struct Device {
   std::string name;  // properties.deviceName
   VkPhysicalDeviceMemoryProperties memory_properties{};
   bool validation = false;
+  bool storage_write_without_format = false;  // shaderStorageImageWriteWithoutFormat, enabled
 
   mutable std::mutex messages_mutex;  // the debug messenger may call from any thread
   std::vector<std::string> validation_errors;

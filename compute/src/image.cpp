@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -157,8 +158,23 @@ std::vector<float> StorageImage::download() const {
   if (channels == 0) {
     throw std::logic_error("StorageImage::download: " + format_name(m_format) + " is not a 32-bit float format");
   }
-  const std::size_t count = std::size_t{m_width} * m_height * channels;
-  Buffer staging(m_owner, count * sizeof(float), BufferUsage::Storage);
+  std::vector<float> pixels(std::size_t{m_width} * m_height * channels);
+  copy_to_host(std::as_writable_bytes(std::span(pixels)));
+  return pixels;
+}
+
+std::vector<std::uint8_t> StorageImage::download_bytes() const {
+  if (m_owner == nullptr) throw std::logic_error("StorageImage::download_bytes: the image was moved from");
+  if (m_format != VK_FORMAT_R8G8B8A8_UNORM && m_format != VK_FORMAT_B8G8R8A8_UNORM) {
+    throw std::logic_error("StorageImage::download_bytes: " + format_name(m_format) + " is not an 8-bit RGBA/BGRA format");
+  }
+  std::vector<std::uint8_t> bytes(std::size_t{m_width} * m_height * 4);
+  copy_to_host(std::as_writable_bytes(std::span(bytes)));
+  return bytes;
+}
+
+void StorageImage::copy_to_host(std::span<std::byte> out) const {
+  Buffer staging(m_owner, out.size(), BufferUsage::Storage);
   m_owner->submit_and_wait([&](VkCommandBuffer commands) {
     // GENERAL -> TRANSFER_SRC_OPTIMAL for the copy; earlier dispatches' image
     // writes must land before the copy reads them.
@@ -207,9 +223,7 @@ std::vector<float> StorageImage::download() const {
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
                          &buffer_barrier, 0, nullptr);
   });
-  std::vector<float> pixels(count);
-  staging.read(pixels);
-  return pixels;
+  staging.read_bytes(out);
 }
 
 }  // namespace sol::vk

@@ -251,12 +251,21 @@ const Binding& ComputePipeline::find_binding(std::uint32_t binding, DescriptorTy
 }
 
 void ComputePipeline::bind(std::uint32_t binding, const StorageImage& image) {
-  const Binding& b = find_binding(binding, DescriptorType::StorageImage);
   if (image.view() == VK_NULL_HANDLE) {
+    find_binding(binding, DescriptorType::StorageImage);
     throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) +
                                 ": the image was moved from");
   }
-  const VkDescriptorImageInfo info{VK_NULL_HANDLE, image.view(), image.layout()};
+  bind(binding, image.view());
+}
+
+void ComputePipeline::bind(std::uint32_t binding, VkImageView storage_view) {
+  const Binding& b = find_binding(binding, DescriptorType::StorageImage);
+  if (storage_view == VK_NULL_HANDLE) {
+    throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) + ": a null image view");
+  }
+  // GENERAL: the layout storage images are in whenever a dispatch runs.
+  const VkDescriptorImageInfo info{VK_NULL_HANDLE, storage_view, VK_IMAGE_LAYOUT_GENERAL};
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
   write.dstSet = m_set;

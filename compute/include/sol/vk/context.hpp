@@ -91,6 +91,10 @@ class Context {
 
   /// Whether the validation layer is active (requested and installed).
   bool validation_enabled() const;
+  /// Whether shaders may write storage images declared without a format
+  /// qualifier (the shaderStorageImageWriteWithoutFormat feature, enabled
+  /// whenever the device has it).
+  bool storage_write_without_format() const;
   /// Error messages the validation layer reported so far, oldest first.
   std::vector<std::string> validation_errors() const;
 

@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <cstddef>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <vulkan/vulkan_core.h>
@@ -48,9 +50,14 @@ class StorageImage {
   /// width·height·float_channels() values. Throws std::logic_error for a
   /// format that is not 32-bit float.
   std::vector<float> download() const;
+  /// The same for an 8-bit R8G8B8A8_UNORM or B8G8R8A8_UNORM image: 4 bytes
+  /// per pixel in the format's channel order. Throws std::logic_error for
+  /// other formats.
+  std::vector<std::uint8_t> download_bytes() const;
 
  private:
   void release() noexcept;
+  void copy_to_host(std::span<std::byte> out) const;
 
   std::shared_ptr<detail::Device> m_owner;
   VkImage m_image = VK_NULL_HANDLE;

@@ -44,6 +44,16 @@ constexpr int kMaxGpuObjects = 8;
 /// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
 constexpr int kMaxGpuImages = 64;
 
+/// A presenter's 8-bit image that MarchRenderer::record writes the colour
+/// into, sRGB-encoded (standard sRGB OETF, clamped to [0, 1]): for example a
+/// swapchain image created with STORAGE usage in a UNORM format, so that the
+/// kernel writes the frame straight into it. Not owned.
+struct UnormTarget {
+  VkImageView view = VK_NULL_HANDLE;      ///< of an image with STORAGE usage, in GENERAL layout when the dispatch runs
+  VkFormat format = VK_FORMAT_UNDEFINED;  ///< R8G8B8A8_UNORM or B8G8R8A8_UNORM (the view's format)
+  std::uint32_t width = 0, height = 0;    ///< the image's extent
+};
+
 class MarchRenderer {
  public:
   /// Builds the pipeline; throws VulkanError on failure, InvalidArgument for bad options.
@@ -74,9 +84,23 @@ class MarchRenderer {
   void record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
               int height, const StorageImage& target);
 
+  /// The same into a caller's 8-bit image, sRGB-encoded: `target` must be of
+  /// at least (eyes · width) × height and its format one that
+  /// can_write_unorm() accepts (else sol::InvalidArgument). Colour as
+  /// render()'s, encoded, within 1 in 255.
+  void record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
+              int height, const UnormTarget& target);
+
+  /// Whether record() can write a UnormTarget of `format` on the context's
+  /// device: R8G8B8A8_UNORM or B8G8R8A8_UNORM, usable as a storage image
+  /// (optimal tiling), and the shaderStorageImageWriteWithoutFormat feature
+  /// (Context::storage_write_without_format).
+  static bool can_write_unorm(const Context& context, VkFormat format);
+
  private:
   struct Prepared;
-  Prepared prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height, bool aovs);
+  Prepared prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height, bool aovs,
+                   bool srgb_unorm);
   RenderResult render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
                            double* device_ms);
   struct Impl;

@@ -92,6 +92,11 @@ class ComputePipeline {
   /// resource must outlive its use by run(). Not while a dispatch is running.
   void bind(std::uint32_t binding, const StorageImage& image);
   void bind(std::uint32_t binding, const Buffer& buffer);
+  /// Binds an image view of the caller's (a swapchain image's, say) to a
+  /// StorageImage binding; the image must have STORAGE usage and be in
+  /// GENERAL layout when a dispatch runs. Throws std::invalid_argument for a
+  /// null view or a binding of another type.
+  void bind(std::uint32_t binding, VkImageView storage_view);
 
   /// Dispatches groups_x × groups_y × 1 workgroups and waits for them; returns
   /// the time the device took in milliseconds (see Context::submit_and_wait).
