@@ -1,8 +1,11 @@
 // solview: the real-time viewer. A GLFW window with a Vulkan swapchain that
 // shows the march kernel's image of a Sol scene, and controls to walk along
 // geodesics (viewer/controls.hpp). A thin presenter: the kernel
-// (sol::vk::MarchRenderer::record) writes an RGBA float image at the render
-// scale, which is blitted (scaled, sRGB-encoded) into the swapchain image.
+// (sol::vk::MarchRenderer::record) writes each frame straight into the
+// swapchain image (sRGB-encoded, into a storage-capable UNORM swapchain) when
+// it renders at the window's size, else an RGBA float image at the render
+// scale, which is blitted (scaled, sRGB-encoded) into an sRGB swapchain image.
+// See "How solview presents a frame" in viewer/README.md.
 //
 //   solview --scene sandwich
 //   solview --scene plane --size 320x180 --frames 60 --screenshot last.png
@@ -65,6 +68,9 @@ void print_usage(std::FILE* out) {
                "  --target-fps F        adapt the render scale to hold F frames per second\n"
                "  --min-scale S         lowest adaptive scale, (0, 1] (default 0.1)\n"
                "  --vsync on|off        wait for the display's refresh (default on)\n"
+               "  --present auto|blit   auto (default): the kernel writes straight into the swapchain image\n"
+               "                        at render scale 1 when the surface allows it; blit: always through\n"
+               "                        an RGBA float image and a blit\n"
                "  --fullscreen          start fullscreen\n"
                "  --stereo              both eyes side by side (each eye half the width)\n"
                "  --ipd D               eye separation in Sol units (default 0.064)\n"
@@ -118,6 +124,7 @@ struct Options {
   double scale = 1.0, min_scale = 0.1, ipd = 0.064;
   std::optional<double> target_fps;
   bool vsync = true, fullscreen = false, stereo = false, validation = false;
+  bool allow_direct = true;  // --present auto
   long frames = 0;  // 0: until the window closes
   std::string screenshot, script, record, state;
 };
@@ -154,6 +161,10 @@ Options parse_options(int argc, char** argv) {
       const std::string v = value();
       if (v != "on" && v != "off") fail("option --vsync expects on or off, got '" + v + "'");
       o.vsync = v == "on";
+    } else if (arg == "--present") {
+      const std::string v = value();
+      if (v != "auto" && v != "blit") fail("option --present expects auto or blit, got '" + v + "'");
+      o.allow_direct = v == "auto";
     } else if (arg == "--fullscreen") {
       o.fullscreen = true;
     } else if (arg == "--stereo") {
@@ -312,6 +323,16 @@ struct Presenter {
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{};
   std::vector<VkImage> images;
+  std::vector<VkImageView> views;  // direct: one per swapchain image, the kernel's storage target
+  // The direct path: the kernel writes the frame straight into the swapchain
+  // image. It needs a UNORM format (sRGB formats are never storage-capable;
+  // the kernel sRGB-encodes) with STORAGE and TRANSFER_SRC usage (screenshots
+  // then always take the frame as shown). Scaled frames need the blit, and
+  // the blit sRGB-encodes only into an sRGB swapchain: each path has its own
+  // swapchain, re-created when the path changes.
+  bool prefer_direct = false;   // the next swapchain is for the direct path when the surface allows it
+  bool direct_capable = false;  // the surface allows it (known after create_swapchain)
+  bool direct = false;          // the current swapchain is the direct path's
   std::vector<VkSemaphore> rendered;  // one per swapchain image: present waits on it
   VkSemaphore acquired = VK_NULL_HANDLE;
   VkFence frame_done = VK_NULL_HANDLE;
@@ -377,6 +398,18 @@ struct Presenter {
         break;
       }
     }
+    // The direct path's: a UNORM format the kernel can write, shown as sRGB.
+    const VkImageUsageFlags direct_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    direct_capable = false;
+    for (const VkSurfaceFormatKHR& f : formats) {
+      if ((caps.supportedUsageFlags & direct_usage) == direct_usage &&
+          f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR && sol::vk::MarchRenderer::can_write_unorm(context, f.format)) {
+        direct_capable = true;
+        if (prefer_direct) chosen = f;
+        break;
+      }
+    }
+    direct = direct_capable && prefer_direct;
     format = chosen.format;
     vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &n, nullptr);
     std::vector<VkPresentModeKHR> modes(n);
@@ -409,7 +442,9 @@ struct Presenter {
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
     can_capture = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
-    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | (can_capture ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
+    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                      (can_capture ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0}) |
+                      (direct ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0});
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -425,6 +460,18 @@ struct Presenter {
     vkGetSwapchainImagesKHR(device, swapchain, &n, nullptr);
     images.resize(n);
     vkGetSwapchainImagesKHR(device, swapchain, &n, images.data());
+    if (direct) {
+      views.resize(n, VK_NULL_HANDLE);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        VkImageViewCreateInfo view{};
+        view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+        view.image = images[i];
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view.format = format;
+        view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        sol::vk::check(vkCreateImageView(device, &view, nullptr, &views[i]), "vkCreateImageView");
+      }
+    }
     VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
     rendered.resize(n);
     for (VkSemaphore& s : rendered) sol::vk::check(vkCreateSemaphore(device, &sem, nullptr, &s), "vkCreateSemaphore");
@@ -474,7 +521,7 @@ struct Presenter {
   void write_capture(const std::string& path, std::uint32_t w, std::uint32_t h) const {
     const auto* bytes = static_cast<const unsigned char*>(capture_data);
     const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM;
-    const bool srgb = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_R8G8B8A8_SRGB;
+    const bool srgb = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_R8G8B8A8_SRGB || direct;
     std::vector<float> rgba(std::size_t{w} * h * 4);
     for (std::size_t k = 0; k < std::size_t{w} * h; ++k) {
       for (std::size_t c = 0; c < 4; ++c) {
@@ -482,8 +529,9 @@ struct Presenter {
         rgba[4 * k + c] = static_cast<float>(bytes[4 * k + from]) / 255.0f;
       }
     }
-    // sRGB swapchain: the bytes are already encoded (written as they are);
-    // a UNORM one holds linear values, encoded on the way out.
+    // sRGB swapchain, or the direct path's UNORM one that the kernel wrote
+    // sRGB-encoded: the bytes are already encoded (written as they are);
+    // another UNORM one holds linear values, encoded on the way out.
     sol::viewer::write_image(path, static_cast<int>(w), static_cast<int>(h), {"R", "G", "B", "A"}, rgba, !srgb);
   }
 
@@ -491,6 +539,8 @@ struct Presenter {
     VkDevice device = context.device();
     for (VkSemaphore s : rendered) vkDestroySemaphore(device, s, nullptr);
     rendered.clear();
+    for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
+    views.clear();
     if (swapchain != VK_NULL_HANDLE) vkDestroySwapchainKHR(device, swapchain, nullptr);
     swapchain = VK_NULL_HANDLE;
     images.clear();
@@ -634,6 +684,7 @@ int run(App& app) {
   glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).swapchain_dirty = true; });
 
   Presenter present(context);
+  present.prefer_direct = opt.allow_direct && app.scale == 1.0;
   present.init(window, app.vsync);
   VkDevice device = context.device();
 
@@ -660,6 +711,8 @@ int run(App& app) {
   constexpr long kWarmupFrames = 5;
   auto measure_start = std::chrono::steady_clock::now();
   double scale_sum = 0;  // over the measured frames
+  long direct_frames = 0, blit_frames = 0;
+  int shown_w = 0, shown_h = 0;  // of the last frame's rendered image (both eyes)
   const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
 
   while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
@@ -702,17 +755,40 @@ int run(App& app) {
       // Aim 10% above the target so that the dead band below never leaves the rate under it.
       const double wanted = app.scale * std::sqrt(1e3 / (1.1 * *opt.target_fps) / smoothed_ms);
       const double next = std::clamp(wanted, opt.min_scale, 1.0);
-      if (std::abs(next - app.scale) > 0.05 * app.scale) app.scale = next;
+      // A 5% dead band against dithering; the bounds are taken whatever the
+      // step (scale 1 is the direct path, see Presenter; at 0.97 it would
+      // never be reached).
+      const bool at_bound = next == opt.min_scale || next == 1.0;
+      if (std::abs(next - app.scale) > 0.05 * app.scale || (at_bound && next != app.scale)) app.scale = next;
     }
 
     const int eyes = app.stereo ? 2 : 1;
-    const int eye_w = std::max(1, static_cast<int>(std::lround(present.extent.width * app.scale / eyes)));
-    const int eye_h = std::max(1, static_cast<int>(std::lround(present.extent.height * app.scale)));
+    int eye_w = 0, eye_h = 0;
+    auto fits_window = [&] {  // the rendered image covers the swapchain image exactly
+      eye_w = std::max(1, static_cast<int>(std::lround(present.extent.width * app.scale / eyes)));
+      eye_h = std::max(1, static_cast<int>(std::lround(present.extent.height * app.scale)));
+      return static_cast<std::uint32_t>(eye_w * eyes) == present.extent.width &&
+             static_cast<std::uint32_t>(eye_h) == present.extent.height;
+    };
+    // The path: direct when the kernel renders at the window's size and the
+    // surface allows it; a change of path re-creates the swapchain (UNORM
+    // with STORAGE usage for the direct path, sRGB for the blit).
+    const bool fits = fits_window();  // sets eye_w, eye_h
+    present.prefer_direct = opt.allow_direct && fits;
+    if (present.direct_capable && present.direct != present.prefer_direct) {
+      present.recreate(window, app.vsync);
+      if (present.swapchain == VK_NULL_HANDLE) continue;  // minimised meanwhile: the top of the loop waits
+    }
+    if (present.direct && !fits_window()) {  // the window changed size meanwhile
+      app.swapchain_dirty = true;
+      continue;
+    }
+    const bool direct = present.direct;
 
     // One frame in flight: wait until the previous frame's commands are done
     // before touching its command buffer, the renderer's uniforms or the target.
     sol::vk::check(vkWaitForFences(device, 1, &present.frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    if (!target || render_w != eye_w * eyes || render_h != eye_h) {
+    if (!direct && (!target || render_w != eye_w * eyes || render_h != eye_h)) {
       target.reset();
       target.emplace(context, static_cast<std::uint32_t>(eye_w * eyes), static_cast<std::uint32_t>(eye_h));
       render_w = eye_w * eyes;
@@ -745,48 +821,65 @@ int run(App& app) {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                    VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
     sol::vk::check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
-    VkImage target_image = target->handle();
-    renderer.record(cb, scene, cameras, eye_w, eye_h, *target);
-    // Read after write: the blit reads what the kernel wrote; to the layout
-    // blits read best (the previous frame's last barrier already ordered this
-    // frame's kernel after that frame's blit).
-    image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    // The swapchain image: its old contents are not needed (UNDEFINED); the
-    // transition waits at the transfer stage, the stage the submit's wait on
-    // `acquired` blocks, so it happens only after the presentation engine
-    // has released the image.
     VkImage swap_image = present.images[index];
-    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    VkImageBlit blit{};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {render_w, render_h, 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {static_cast<std::int32_t>(present.extent.width), static_cast<std::int32_t>(present.extent.height), 1};
-    const bool same_size = static_cast<std::uint32_t>(render_w) == present.extent.width &&
-                           static_cast<std::uint32_t>(render_h) == present.extent.height;
-    vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
-                   same_size || !present.linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
-    // Back to GENERAL, where Sol::vk expects its storage images between
-    // commands (the next kernel, download()); write after read: the next
-    // frame's kernel and any download's copy wait for the blit to finish reading.
-    image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_GENERAL);
+    // Where the swapchain image is once the frame is in it, and the last
+    // stage and access that wrote it.
+    VkImageLayout shown_layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    VkPipelineStageFlags shown_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkAccessFlags shown_access = VK_ACCESS_TRANSFER_WRITE_BIT;
+    if (direct) {
+      // The kernel writes the swapchain image itself: its old contents are
+      // not needed (UNDEFINED) and storage writes need GENERAL. The
+      // transition waits at the compute stage, the stage the submit's wait on
+      // `acquired` blocks, so it happens only after the presentation engine
+      // has released the image, and the kernel's writes come after it.
+      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      renderer.record(cb, scene, cameras, eye_w, eye_h,
+                      sol::vk::UnormTarget{present.views[index], present.format, present.extent.width, present.extent.height});
+      shown_layout = VK_IMAGE_LAYOUT_GENERAL;
+      shown_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+      shown_access = VK_ACCESS_SHADER_WRITE_BIT;
+    } else {
+      VkImage target_image = target->handle();
+      renderer.record(cb, scene, cameras, eye_w, eye_h, *target);
+      // Read after write: the blit reads what the kernel wrote; to the layout
+      // blits read best (the previous frame's last barrier already ordered this
+      // frame's kernel after that frame's blit).
+      image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      // The swapchain image: its old contents are not needed (UNDEFINED); the
+      // transition waits at the transfer stage, the stage the submit's wait on
+      // `acquired` blocks, so it happens only after the presentation engine
+      // has released the image.
+      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+      VkImageBlit blit{};
+      blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      blit.srcOffsets[1] = {render_w, render_h, 1};
+      blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      blit.dstOffsets[1] = {static_cast<std::int32_t>(present.extent.width), static_cast<std::int32_t>(present.extent.height), 1};
+      const bool same_size = static_cast<std::uint32_t>(render_w) == present.extent.width &&
+                             static_cast<std::uint32_t>(render_h) == present.extent.height;
+      vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                     same_size || !present.linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+      // Back to GENERAL, where Sol::vk expects its storage images between
+      // commands (the next kernel, download()); write after read: the next
+      // frame's kernel and any download's copy wait for the blit to finish reading.
+      image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_IMAGE_LAYOUT_GENERAL);
+    }
     // Screenshots and --record take the frame as shown: the swapchain image
     // after the blit, copied to a host-visible buffer.
     const bool capturing = present.can_capture && (!opt.record.empty() || !opt.screenshot.empty() || app.want_screenshot);
-    VkImageLayout shown_layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    VkAccessFlags shown_access = VK_ACCESS_TRANSFER_WRITE_BIT;
     if (capturing) {
       present.ensure_capture_buffer();
-      // Read after write: the copy reads what the blit wrote.
-      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      // Read after write: the copy reads what the blit or the kernel wrote.
+      image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT, shown_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
       VkBufferImageCopy copy{};
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       copy.imageExtent = {present.extent.width, present.extent.height, 1};
@@ -803,15 +896,18 @@ int run(App& app) {
       vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
                            nullptr);
       shown_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+      shown_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
       shown_access = VK_ACCESS_TRANSFER_READ_BIT;
     }
     // To the presentation layout; the present waits on `rendered`, which the
     // submit signals after all these commands, so no later stage needs to wait here.
-    image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0,
-                  shown_layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     sol::vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
 
-    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;  // the kernel may run before the image is free
+    // The first use of the swapchain image waits for the acquire: the kernel
+    // on the direct path; the blit otherwise (the kernel may run before the image is free).
+    const VkPipelineStageFlags wait_stage = direct ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT;
     VkSubmitInfo submit{};
     submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     submit.waitSemaphoreCount = 1;
@@ -836,7 +932,10 @@ int run(App& app) {
       sol::vk::check(presented, "vkQueuePresentKHR");
     }
     ++frame;
-    target_has_frame = true;
+    target_has_frame = !direct;
+    ++(direct ? direct_frames : blit_frames);
+    shown_w = eye_w * eyes;
+    shown_h = eye_h;
     // The run's mean frame rate leaves out the first frames (pipeline builds, first allocations).
     // With --frames, the second half only: the adaptive scale has settled by then.
     if (frame == first_measured - 1) measure_start = std::chrono::steady_clock::now();
@@ -890,7 +989,10 @@ int run(App& app) {
                  scale_sum / static_cast<double>(measured));
   }
   std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frame, app.scale,
-               render_w, render_h, present.extent.width, present.extent.height);
+               shown_w, shown_h, present.extent.width, present.extent.height);
+  // Which path presented the frames (viewer/README.md: How solview presents a frame).
+  std::fprintf(stderr, "solview: present: direct %ld frames, blit %ld frames (direct path %s)\n", direct_frames,
+               blit_frames, present.direct_capable ? "available" : "unavailable on this surface");
   if (context.validation_enabled()) {
     const std::vector<std::string> errors = context.validation_errors();
     for (const std::string& e : errors) std::fprintf(stderr, "solview: validation: %s\n", e.c_str());
