@@ -2,7 +2,9 @@
 # Frame rates of solview for every preset at 640x360 on the Vulkan device the
 # loader picks (lavapipe here: VK_ICD_FILENAMES), at render scale 1 and with
 # the adaptive scale holding 30 fps; prints a Markdown table for README.md.
-#   viewer/measure_fps.sh [BUILD_DIR]    (needs xvfb-run, or a DISPLAY)
+# With `present`: plane at scale 1 on the direct path (--present auto) and
+# through the blit (--present blit), four interleaved runs of each.
+#   viewer/measure_fps.sh [BUILD_DIR] [present]    (needs xvfb-run, or a DISPLAY)
 set -euo pipefail
 build=${1:-build/ci}
 solview=$build/viewer/solview
@@ -10,6 +12,18 @@ run() {
   if [ -n "${DISPLAY:-}" ]; then "$solview" "$@"; else xvfb-run -a -s "-screen 0 1024x768x24" "$solview" "$@"; fi
 }
 field() { sed -n "s/.*: \([0-9.]*\) fps (mean over frames \([0-9]*\)\.\.\([0-9]*\)), mean render scale \([0-9.]*\)/\\$1/p"; }
+if [ "${2:-}" = present ]; then
+  echo "| run | direct (--present auto) fps | blit (--present blit) fps |"
+  echo "|---|---|---|"
+  for i in 1 2 3 4; do
+    out=$(run --scene plane --size 640x360 --vsync off --frames 120 --present auto 2>&1)
+    # The direct path must have presented every frame, else the column is not what it says.
+    direct=$(echo "$out" | grep -q "present: direct 120 frames" && echo "$out" | grep "fps (mean" | field 1 || echo "not direct")
+    blit=$(run --scene plane --size 640x360 --vsync off --frames 120 --present blit 2>&1 | grep "fps (mean" | field 1)
+    echo "| $i | $direct | $blit |"
+  done
+  exit 0
+fi
 echo "| preset | fps at scale 1 | adaptive (--target-fps 30): fps | mean scale |"
 echo "|---|---|---|---|"
 for scene in plane sandwich sheets lattice-balls; do
