@@ -475,11 +475,14 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
         int worst = 0;
         for (int j = 0; j < h; ++j) {
           for (int i = 0; i < n * w; ++i) {
+            const std::size_t at_target = static_cast<std::size_t>(j) * tw + static_cast<std::size_t>(i);
+            const std::size_t at_ref = static_cast<std::size_t>(j * n * w + i);
             for (int c = 0; c < 4; ++c) {
-              const int from = bgr && c < 3 ? 2 - c : c;
-              const int byte = got[(static_cast<std::size_t>(j) * tw + static_cast<std::size_t>(i)) * 4 + static_cast<std::size_t>(from)];
-              const double linear = ref.rgba[(static_cast<std::size_t>(j) * static_cast<std::size_t>(n * w) + static_cast<std::size_t>(i)) * 4 + static_cast<std::size_t>(c)];
-              const auto want = static_cast<int>(std::lround(255.0 * (c < 3 ? srgb_encode(linear) : std::clamp(linear, 0.0, 1.0))));
+              const std::size_t from = static_cast<std::size_t>(bgr && c < 3 ? 2 - c : c);
+              const int byte = got[at_target * 4 + from];
+              const double linear = ref.rgba[at_ref * 4 + static_cast<std::size_t>(c)];
+              const double encoded = c < 3 ? srgb_encode(linear) : std::clamp(linear, 0.0, 1.0);  // alpha: linear
+              const auto want = static_cast<int>(std::lround(255.0 * encoded));
               worst = std::max(worst, std::abs(byte - want));
             }
           }

@@ -311,6 +311,26 @@ TEST(VkPipeline, InvalidSpirvThrowsInsteadOfCrashing) {
   EXPECT_TRUE(context.validation_errors().empty());
 }
 
+// A caller's image view (a presenter's swapchain image, say) binds as a
+// StorageImage does: the dispatch writes that image.
+TEST(VkPipeline, BindsACallersImageView) {
+  Context context(validated());
+  StorageImage image(context, 5, 3);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, image.view());
+  fill.run(1u, 1u, 2.5f);
+  const std::vector<float> pixels = image.download();
+  for (std::uint32_t y = 0; y < 3; ++y) {
+    for (std::uint32_t x = 0; x < 5; ++x) {
+      const std::size_t k = (std::size_t{y} * 5 + x) * 4;
+      EXPECT_EQ(pixels[k + 0], static_cast<float>(x));
+      EXPECT_EQ(pixels[k + 1], static_cast<float>(y));
+      EXPECT_EQ(pixels[k + 2], 2.5f);
+    }
+  }
+  EXPECT_TRUE(context.validation_errors().empty());
+}
+
 TEST(VkPipeline, MisuseThrows) {
   Context context(validated());
   StorageImage image(context, 8, 8);
@@ -319,6 +339,8 @@ TEST(VkPipeline, MisuseThrows) {
   EXPECT_THROW(fill.run(1u, 1u, 1.0f), std::logic_error);  // nothing bound yet
   EXPECT_THROW(fill.bind(0, storage), std::invalid_argument);
   EXPECT_THROW(fill.bind(1, image), std::invalid_argument);
+  EXPECT_THROW(fill.bind(0, VkImageView{VK_NULL_HANDLE}), std::invalid_argument);
+  EXPECT_THROW(fill.bind(1, image.view()), std::invalid_argument);  // no binding 1
   fill.bind(0, image);
   EXPECT_THROW(fill.run(1u, 1u), std::invalid_argument);           // no push constants
   EXPECT_THROW(fill.run(1u, 1u, 1.0), std::invalid_argument);      // a double: 8 bytes
