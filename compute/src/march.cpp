@@ -304,8 +304,9 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
   if (!m.images || m.images->size() != image_bytes) m.images.emplace(m.context, image_bytes);
   m.images->write(images);
   m.params.write(std::span<const GpuParams>(&g, 1));
-  Features f = m.options.all_features ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false, false}
-                                      : features_of(scene);
+  Features f = m.options.all_features
+                   ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false, false}
+                   : features_of(scene);
   f.no_aovs = !aovs;
   f.exact_balls = features_of(scene).exact_balls;
   f.srgb_unorm = srgb_unorm;
