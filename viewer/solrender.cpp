@@ -21,6 +21,7 @@
 #include <sol/vk/march.hpp>
 #endif
 
+#include "command_line.hpp"
 #include "image_file.hpp"
 
 namespace {
@@ -52,42 +53,9 @@ void print_usage(std::FILE* out) {
                "linear ones. On failure nothing is written and the exit status is non-zero.\n");
 }
 
-[[noreturn]] void fail(const std::string& message) {
-  std::fprintf(stderr, "solrender: %s\n", message.c_str());
-  std::exit(2);
-}
+const sol::cli::Arguments kArgs("solrender");
 
-double parse_number(const std::string& text, const std::string& option) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
-    fail("option " + option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size()) fail("option " + option + " expects an integer, got '" + text + "'");
-  if (value < lo || value > hi) {
-    fail("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
-  }
-  return static_cast<int>(value);
-}
-
-glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
-  std::vector<std::string> parts(1);
-  for (char c : text) {
-    if (c == ',') {
-      parts.emplace_back();
-    } else {
-      parts.back() += c;
-    }
-  }
-  if (parts.size() != 3) fail("option " + option + " expects three comma-separated numbers like 0,0,1.5, got '" + text + "'");
-  return {parse_number(parts[0], option), parse_number(parts[1], option), parse_number(parts[2], option)};
-}
+[[noreturn]] void fail(const std::string& message) { kArgs.fail(message); }
 
 // Interleaves the AOV planes into object, distance, Px, Py, Pz, steps.
 std::vector<float> interleave_aovs(const sol::RenderResult& r) {
@@ -134,21 +102,21 @@ int main(int argc, char** argv) {
     } else if (arg == "--aov") {
       aov = value();
     } else if (arg == "--width") {
-      width = parse_int(value(), arg, 1, 16384);
+      width = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
     } else if (arg == "--height") {
-      height = parse_int(value(), arg, 1, 16384);
+      height = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
     } else if (arg == "--fov") {
-      o.fov = parse_number(value(), arg);
+      o.fov = kArgs.number(value(), arg);
     } else if (arg == "--position") {
-      o.position = parse_vec3(value(), arg);
+      o.position = kArgs.vec3(value(), arg);
     } else if (arg == "--forward") {
-      o.forward = parse_vec3(value(), arg);
+      o.forward = kArgs.vec3(value(), arg);
     } else if (arg == "--up") {
-      o.up = parse_vec3(value(), arg);
+      o.up = kArgs.vec3(value(), arg);
     } else if (arg == "--max-distance") {
-      o.max_distance = parse_number(value(), arg);
+      o.max_distance = kArgs.number(value(), arg);
     } else if (arg == "--max-steps") {
-      o.max_steps = parse_int(value(), arg, 1, 100000);
+      o.max_steps = static_cast<int>(kArgs.integer(value(), arg, 1, 100000));
     } else if (arg == "--device") {
       device = value();
       if (device != "auto" && device != "vulkan" && device != "cpu") {
@@ -160,15 +128,15 @@ int main(int argc, char** argv) {
         fail("option --integrator expects closed or rk4, got '" + integrator + "'");
       }
     } else if (arg == "--rk-step") {
-      rk_step = parse_number(value(), arg);
+      rk_step = kArgs.number(value(), arg);
       if (!(rk_step > 0.0)) fail("option --rk-step must be > 0");
     } else if (arg == "--stereo") {
       stereo = true;
     } else if (arg == "--ipd") {
-      ipd = parse_number(value(), arg);
+      ipd = kArgs.number(value(), arg);
       if (ipd < 0.0) fail("option --ipd must be >= 0");
     } else if (arg == "--threads") {
-      threads = static_cast<unsigned>(parse_int(value(), arg, 1, 1024));
+      threads = static_cast<unsigned>(kArgs.integer(value(), arg, 1, 1024));
     } else if (arg == "--print-scene") {
       print_scene = true;
     } else {
@@ -178,9 +146,7 @@ int main(int argc, char** argv) {
 
   sol::Scene scene;
   try {
-    const bool is_file = std::filesystem::exists(scene_arg) || scene_arg.find('.') != std::string::npos ||
-                         scene_arg.find('/') != std::string::npos;
-    scene = is_file ? sol::load_scene(scene_arg) : sol::preset_scene(scene_arg);
+    scene = sol::cli::scene_argument(scene_arg);
     if (o.fov) scene.camera.fov = *o.fov;
     if (o.position) scene.camera.position = *o.position;
     if (o.forward) scene.camera.forward = *o.forward;

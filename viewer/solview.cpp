@@ -30,6 +30,7 @@
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
+#include "command_line.hpp"
 #include "controls.hpp"
 #include "image_file.hpp"
 
@@ -94,28 +95,11 @@ void print_usage(std::FILE* out) {
                kControls, sol::viewer::key_names().c_str());
 }
 
+const sol::cli::Arguments kArgs("solview");
+
 [[noreturn]] void fail(const std::string& message, int status = 2) {
   std::fprintf(stderr, "solview: %s\n", message.c_str());
   std::exit(status);
-}
-
-double parse_number(const std::string& text, const std::string& option) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
-    fail("option " + option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-long parse_int(const std::string& text, const std::string& option, long lo, long hi) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size()) fail("option " + option + " expects an integer, got '" + text + "'");
-  if (value < lo || value > hi) {
-    fail("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
-  }
-  return value;
 }
 
 struct Options {
@@ -146,16 +130,16 @@ Options parse_options(int argc, char** argv) {
       const std::string v = value();
       const auto x = v.find('x');
       if (x == std::string::npos) fail("option --size expects WxH like 640x360, got '" + v + "'");
-      o.width = static_cast<int>(parse_int(v.substr(0, x), "--size (width)", 1, 16384));
-      o.height = static_cast<int>(parse_int(v.substr(x + 1), "--size (height)", 1, 16384));
+      o.width = static_cast<int>(kArgs.integer(v.substr(0, x), "--size (width)", 1, 16384));
+      o.height = static_cast<int>(kArgs.integer(v.substr(x + 1), "--size (height)", 1, 16384));
     } else if (arg == "--scale") {
-      o.scale = parse_number(value(), arg);
+      o.scale = kArgs.number(value(), arg);
       if (!(o.scale > 0.0 && o.scale <= 1.0)) fail("option --scale must be in (0, 1], got " + std::string(argv[i]));
     } else if (arg == "--min-scale") {
-      o.min_scale = parse_number(value(), arg);
+      o.min_scale = kArgs.number(value(), arg);
       if (!(o.min_scale > 0.0 && o.min_scale <= 1.0)) fail("option --min-scale must be in (0, 1], got " + std::string(argv[i]));
     } else if (arg == "--target-fps") {
-      o.target_fps = parse_number(value(), arg);
+      o.target_fps = kArgs.number(value(), arg);
       if (!(*o.target_fps > 0.0)) fail("option --target-fps must be > 0, got " + std::string(argv[i]));
     } else if (arg == "--vsync") {
       const std::string v = value();
@@ -170,10 +154,10 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--stereo") {
       o.stereo = true;
     } else if (arg == "--ipd") {
-      o.ipd = parse_number(value(), arg);
+      o.ipd = kArgs.number(value(), arg);
       if (o.ipd < 0.0) fail("option --ipd must be >= 0, got " + std::string(argv[i]));
     } else if (arg == "--frames") {
-      o.frames = parse_int(value(), arg, 1, 100000000);
+      o.frames = kArgs.integer(value(), arg, 1, 100000000);
     } else if (arg == "--screenshot") {
       o.screenshot = value();
     } else if (arg == "--script") {
@@ -192,8 +176,7 @@ Options parse_options(int argc, char** argv) {
 }
 
 sol::Scene load(const std::string& arg) {
-  const bool is_file = std::filesystem::exists(arg) || arg.find('.') != std::string::npos || arg.find('/') != std::string::npos;
-  sol::Scene scene = is_file ? sol::load_scene(arg) : sol::preset_scene(arg);
+  sol::Scene scene = sol::cli::scene_argument(arg);
   sol::validate(scene);
   return scene;
 }

@@ -34,6 +34,7 @@
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
+#include "command_line.hpp"
 #include "eye_pose.hpp"
 
 namespace {
@@ -72,47 +73,9 @@ void print_usage(std::FILE* out) {
       "bad options.\n");
 }
 
-[[noreturn]] void fail_option(const std::string& message) {
-  std::fprintf(stderr, "solxr: %s\n", message.c_str());
-  std::exit(2);
-}
+const sol::cli::Arguments kArgs("solxr");
 
-double parse_number(const std::string& text, const std::string& option) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
-    fail_option("option " + option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size()) {
-    fail_option("option " + option + " expects an integer, got '" + text + "'");
-  }
-  if (value < lo || value > hi) {
-    fail_option("option " + option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                text);
-  }
-  return static_cast<int>(value);
-}
-
-glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
-  std::vector<std::string> parts(1);
-  for (char c : text) {
-    if (c == ',') {
-      parts.emplace_back();
-    } else {
-      parts.back() += c;
-    }
-  }
-  if (parts.size() != 3) {
-    fail_option("option " + option + " expects three comma-separated numbers like 0,0,1.5, got '" + text + "'");
-  }
-  return {parse_number(parts[0], option), parse_number(parts[1], option), parse_number(parts[2], option)};
-}
+[[noreturn]] void fail_option(const std::string& message) { kArgs.fail(message); }
 
 struct Options {
   std::string scene = "plane", integrator = "closed", reference = "local";
@@ -140,41 +103,41 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--scene") {
       o.scene = value();
     } else if (arg == "--position") {
-      o.position = parse_vec3(value(), arg);
+      o.position = kArgs.vec3(value(), arg);
     } else if (arg == "--forward") {
-      o.forward = parse_vec3(value(), arg);
+      o.forward = kArgs.vec3(value(), arg);
     } else if (arg == "--up") {
-      o.up = parse_vec3(value(), arg);
+      o.up = kArgs.vec3(value(), arg);
     } else if (arg == "--max-distance") {
-      o.max_distance = parse_number(value(), arg);
+      o.max_distance = kArgs.number(value(), arg);
     } else if (arg == "--max-steps") {
-      o.max_steps = parse_int(value(), arg, 1, 100000);
+      o.max_steps = static_cast<int>(kArgs.integer(value(), arg, 1, 100000));
     } else if (arg == "--integrator") {
       o.integrator = value();
       if (o.integrator != "closed" && o.integrator != "rk4") {
         fail_option("option --integrator expects closed or rk4, got '" + o.integrator + "'");
       }
     } else if (arg == "--rk-step") {
-      o.rk_step = parse_number(value(), arg);
+      o.rk_step = kArgs.number(value(), arg);
       if (!(o.rk_step > 0.0)) fail_option("option --rk-step must be > 0");
     } else if (arg == "--width") {
-      o.width = parse_int(value(), arg, 1, 16384);
+      o.width = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
     } else if (arg == "--height") {
-      o.height = parse_int(value(), arg, 1, 16384);
+      o.height = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
     } else if (arg == "--scale") {
-      o.scale = parse_number(value(), arg);
+      o.scale = kArgs.number(value(), arg);
       if (!(o.scale > 0.0)) fail_option("option --scale must be > 0");
     } else if (arg == "--speed") {
-      o.speed = parse_number(value(), arg);
+      o.speed = kArgs.number(value(), arg);
     } else if (arg == "--turn-rate") {
-      o.turn_rate = parse_number(value(), arg);
+      o.turn_rate = kArgs.number(value(), arg);
     } else if (arg == "--reference") {
       o.reference = value();
       if (o.reference != "local" && o.reference != "stage") {
         fail_option("option --reference expects local or stage, got '" + o.reference + "'");
       }
     } else if (arg == "--frames") {
-      o.frames = parse_int(value(), arg, 1, 1 << 30);
+      o.frames = kArgs.integer(value(), arg, 1, 1 << 30);
     } else if (arg == "--copy") {
       o.copy = value();
       if (o.copy != "auto" && o.copy != "device" && o.copy != "host") {
@@ -195,9 +158,7 @@ Options parse_options(int argc, char** argv) {
 sol::Scene load_scene(const Options& o) {
   sol::Scene scene;
   try {
-    const bool is_file = std::filesystem::exists(o.scene) || o.scene.find('.') != std::string::npos ||
-                         o.scene.find('/') != std::string::npos;
-    scene = is_file ? sol::load_scene(o.scene) : sol::preset_scene(o.scene);
+    scene = sol::cli::scene_argument(o.scene);
     if (o.position) scene.camera.position = *o.position;
     if (o.forward) scene.camera.forward = *o.forward;
     if (o.up) scene.camera.up = *o.up;
