@@ -26,8 +26,8 @@ if [ "${2:-}" = present ]; then
 fi
 echo "| preset | fps at scale 1 | adaptive (--target-fps 30): fps | mean scale |"
 echo "|---|---|---|---|"
-for scene in plane sandwich sheets lattice-balls; do
-  full_frames=60; [ "$scene" = lattice-balls ] && full_frames=8
+for scene in plane sandwich sheets lattice-balls lattice-pillars; do
+  full_frames=60; case $scene in lattice-*) full_frames=8;; esac
   full=$(run --scene "$scene" --size 640x360 --vsync off --frames $full_frames 2>&1 | grep "fps (mean")
   adaptive=$(run --scene "$scene" --size 640x360 --vsync off --frames 240 --target-fps 30 2>&1 | grep "fps (mean")
   echo "| $scene | $(echo "$full" | field 1) | $(echo "$adaptive" | field 1) | $(echo "$adaptive" | field 4) |"

@@ -67,7 +67,7 @@ void print_usage(std::FILE* out) {
                "  --size WxH            window size in pixels (default 640x360)\n"
                "  --scale S             render at S times the window size, (0, 1] (default 1), then upscale\n"
                "  --target-fps F        adapt the render scale to hold F frames per second\n"
-               "  --min-scale S         lowest adaptive scale, (0, 1] (default 0.1)\n"
+               "  --min-scale S         lowest adaptive scale, (0, 1] (default 0.05)\n"
                "  --vsync on|off        wait for the display's refresh (default on)\n"
                "  --present auto|blit   auto (default): the kernel writes straight into the swapchain image\n"
                "                        at render scale 1 when the surface allows it; blit: always through\n"
@@ -105,7 +105,7 @@ const sol::cli::Arguments kArgs("solview");
 struct Options {
   std::string scene = "plane";
   int width = 640, height = 360;
-  double scale = 1.0, min_scale = 0.1, ipd = 0.064;
+  double scale = 1.0, min_scale = 0.05, ipd = 0.064;
   std::optional<double> target_fps;
   bool vsync = true, fullscreen = false, stereo = false, validation = false;
   bool allow_direct = true;  // --present auto
