@@ -551,21 +551,6 @@ struct Presenter {
   }
 };
 
-void image_barrier(VkCommandBuffer cb, VkImage image, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
-                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access, VkImageLayout from, VkImageLayout to) {
-  VkImageMemoryBarrier b{};
-  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-  b.srcAccessMask = src_access;
-  b.dstAccessMask = dst_access;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
-
 std::string frame_name(const std::string& dir, long frame) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame-%06ld.png", frame);
@@ -816,7 +801,7 @@ int run(App& app) {
       // transition waits at the compute stage, the stage the submit's wait on
       // `acquired` blocks, so it happens only after the presentation engine
       // has released the image, and the kernel's writes come after it.
-      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+      sol::vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                     VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       renderer.record(cb, scene, cameras, eye_w, eye_h,
                       sol::vk::UnormTarget{present.views[index], present.format, present.extent.width, present.extent.height});
@@ -829,14 +814,14 @@ int run(App& app) {
       // Read after write: the blit reads what the kernel wrote; to the layout
       // blits read best (the previous frame's last barrier already ordered this
       // frame's kernel after that frame's blit).
-      image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+      sol::vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
       // The swapchain image: its old contents are not needed (UNDEFINED); the
       // transition waits at the transfer stage, the stage the submit's wait on
       // `acquired` blocks, so it happens only after the presentation engine
       // has released the image.
-      image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+      sol::vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
       VkImageBlit blit{};
       blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -850,7 +835,7 @@ int run(App& app) {
       // Back to GENERAL, where Sol::vk expects its storage images between
       // commands (the next kernel, download()); write after read: the next
       // frame's kernel and any download's copy wait for the blit to finish reading.
-      image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+      sol::vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_IMAGE_LAYOUT_GENERAL);
@@ -861,7 +846,7 @@ int run(App& app) {
     if (capturing) {
       present.ensure_capture_buffer();
       // Read after write: the copy reads what the blit or the kernel wrote.
-      image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_TRANSFER_BIT,
+      sol::vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_TRANSFER_READ_BIT, shown_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
       VkBufferImageCopy copy{};
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -884,7 +869,7 @@ int run(App& app) {
     }
     // To the presentation layout; the present waits on `rendered`, which the
     // submit signals after all these commands, so no later stage needs to wait here.
-    image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
+    sol::vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     sol::vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
 

@@ -68,4 +68,10 @@ class StorageImage {
   VkFormat m_format = VK_FORMAT_UNDEFINED;
 };
 
+/// Records one image memory barrier (colour aspect, mip 0, layer 0, no queue
+/// family transfer): the presenters' and StorageImage's layout changes and
+/// hand-overs between stages, each written as (stage, access) before and after.
+void image_barrier(VkCommandBuffer commands, VkImage image, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access, VkImageLayout from, VkImageLayout to);
+
 }  // namespace sol::vk
