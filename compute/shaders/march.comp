@@ -30,6 +30,9 @@ layout(constant_id = 6) const bool QUOTIENT = false;
 layout(constant_id = 7) const bool WRITE_AOVS = true;
 // Exact balls (type 5, cover only): the table of d(0, ·) in binding 5.
 layout(constant_id = 8) const bool HAS_EXACT_BALLS = false;
+// Exact point lights (light_color.w = 2): directions along the geodesics to
+// the light from sol_connection.glsl, seeded by the table in binding 6.
+layout(constant_id = 9) const bool HAS_EXACT_LIGHTS = false;
 
 const int MAX_OBJECTS = 8;
 const int MAX_LIGHTS = 4;
@@ -89,6 +92,13 @@ layout(std430, set = 0, binding = 4) readonly buffer Images {
 layout(std430, set = 0, binding = 5) readonly buffer DistanceTable {
   float distance_table[];
 };
+
+// sol::ConnectionTable: the seeds of the connection solver (exact point lights).
+layout(std430, set = 0, binding = 6) readonly buffer ConnectionSeeds {
+  vec4 connection_seeds[];
+};
+
+#include "sol_connection.glsl"
 
 // What binding 1 receives: the linear colour, or for SOL_OUTPUT_SRGB_UNORM
 // the standard sRGB OETF (IEC 61966-2-1) of it clamped to [0, 1], what an
@@ -248,22 +258,34 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 // Colour of a hit on object k with unit normal n (frame components), plane
 // coordinates uv, arc length t; q and the eye's light positions are in the
 // same coordinates (camera-relative in Sol, world in the quotient). Lights
-// as sol::light_at: point lights by the coordinate difference in frame
-// components at the hit and 1/(1 + r²) on the distance bound.
+// as sol::lights_at: point lights by the coordinate difference in frame
+// components at the hit and 1/(1 + r²) on the distance bound; exact point
+// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
+// each geodesic from q to the light up to the shortest + reach, each with
+// 1/(1 + L²) on its length L, or as a point light where none is found.
 vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
   const float ambient = params.shading.x;
   const int light_count = min(int(params.shading.z), MAX_LIGHTS);
   vec3 light = vec3(0.0);
   for (int i = 0; i < light_count; ++i) {
     const vec4 lc = params.light_color[i];
-    const vec3 lp = params.eyes[eye].lights[i].xyz;
-    vec3 l = lp;
+    const vec4 lp = params.eyes[eye].lights[i];
+    vec3 l = lp.xyz;
     float attenuation = 1.0;
     if (HAS_POINT_LIGHTS) {
-      const vec3 diff = lp - q;
+      const vec3 diff = lp.xyz - q;
+      // q⁻¹·light: the light seen from q, in frame components at q.
       const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
-      const float r = distance_lower_bound(q, lp);
-      l = lc.w == 0.0 ? lp : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+      if (HAS_EXACT_LIGHTS && lc.w == 2.0) {
+        vec4 found[SOL_SEED_SLOTS];
+        const int paths = sol_connections(towards, lp.w, found);
+        for (int j = 0; j < paths; ++j) {
+          light += lc.rgb * (max(0.0, dot(n, found[j].xyz)) / (1.0 + found[j].w * found[j].w));
+        }
+        if (paths > 0) continue;
+      }
+      const float r = distance_lower_bound(q, lp.xyz);
+      l = lc.w == 0.0 ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
       attenuation = lc.w == 0.0 ? 1.0 : 1.0 / (1.0 + r * r);
     }
     light += lc.rgb * (attenuation * max(0.0, dot(n, l)));

@@ -1,6 +1,7 @@
 #include "sol/connection.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -557,6 +558,83 @@ double DistanceTable::lookup(const glm::dvec3& w) const {
   const double x11 = at(i, j + 1, k + 1) + fx * (at(i + 1, j + 1, k + 1) - at(i, j + 1, k + 1));
   const double y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
   return y0 + fz * (y1 - y0);
+}
+
+ConnectionTable ConnectionTable::build(bool longer, unsigned threads) {
+  constexpr int n = kCellsXY + 1, nz = kCellsZ + 1;
+  // The connections from the origin to every node.
+  std::vector<std::vector<Connection>> nodes(static_cast<std::size_t>(n * n * nz));
+  std::atomic<int> next{0}, failed{0};
+  auto work = [&] {
+    for (int node = next++; node < n * n * nz; node = next++) {
+      const int i = node % n, j = (node / n) % n, k = node / (n * n);
+      const glm::dvec3 w(std::sinh(i * kStep), std::sinh(j * kStep), -kHeight + k * kStep);
+      if (w == glm::dvec3(0.0)) continue;
+      try {
+        std::vector<Connection> cs = minimising_geodesics({0, 0, 0}, w);
+        if (longer) {
+          ConnectionOptions o;
+          // Coarser than the default scan: the kernel polishes these seeds,
+          // and a cell takes the seeds of all its corners (test
+          // vk.Kernel.ConnectionsUpToAReach measures what is found).
+          o.scan_polar = 32;
+          o.scan_azimuth = 16;
+          cs = geodesics_between({0, 0, 0}, w, cs.front().length + kReach + kMargin, o);
+        }
+        nodes[static_cast<std::size_t>(node)] = std::move(cs);
+      } catch (const OutOfRange&) {
+        ++failed;
+      }
+    }
+  };
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+
+  // Each cell's seeds: the union of its corners' connections.
+  ConnectionTable t;
+  t.failed_nodes = failed.load();
+  t.seeds.assign(static_cast<std::size_t>(kCellsXY * kCellsXY * kCellsZ * kSlots * 4), 0.0f);
+  for (int k = 0; k < kCellsZ; ++k) {
+    for (int j = 0; j < kCellsXY; ++j) {
+      for (int i = 0; i < kCellsXY; ++i) {
+        std::vector<Connection> cell;
+        for (int corner = 0; corner < 8; ++corner) {
+          const int a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + ((corner >> 2) & 1);
+          for (const Connection& con : nodes[static_cast<std::size_t>((c * n + b) * n + a)]) {
+            const glm::dvec3 v = con.length * glm::normalize(con.direction);
+            const bool seen = std::any_of(cell.begin(), cell.end(), [&](const Connection& o) {
+              return glm::length(o.length * glm::normalize(o.direction) - v) < kMerge * std::max(1.0, con.length);
+            });
+            if (!seen) cell.push_back(con);
+          }
+        }
+        std::stable_sort(cell.begin(), cell.end(), [](const Connection& x, const Connection& y) { return x.length < y.length; });
+        if (cell.size() > static_cast<std::size_t>(kSlots)) {
+          ++t.overflow_cells;
+          cell.resize(kSlots);
+        }
+        const std::size_t base = static_cast<std::size_t>(((k * kCellsXY + j) * kCellsXY + i) * kSlots) * 4;
+        for (std::size_t s = 0; s < cell.size(); ++s) {
+          const glm::dvec3 d = glm::normalize(cell[s].direction);
+          for (int c = 0; c < 3; ++c) t.seeds[base + 4 * s + static_cast<std::size_t>(c)] = static_cast<float>(d[c]);
+          t.seeds[base + 4 * s + 3] = static_cast<float>(cell[s].length);
+        }
+      }
+    }
+  }
+  return t;
+}
+
+const ConnectionTable& ConnectionTable::shared(bool longer) {
+  if (longer) {
+    static const ConnectionTable table = build(true);
+    return table;
+  }
+  static const ConnectionTable table = build(false);
+  return table;
 }
 
 double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radius, double band) {

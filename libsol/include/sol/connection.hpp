@@ -133,4 +133,42 @@ struct DistanceTable {
   double lookup(const glm::dvec3& w) const;
 };
 
+/// Seeds for the kernels' connection solver (compute/shaders/
+/// sol_connection.glsl, exact point lights), which has no scan and no
+/// homotopy: it polishes the seeds of the grid cell holding the target by
+/// Newton's method on the float closed-form flow. The grid covers w = p⁻¹q
+/// with x, y >= 0 (the symmetries (±x, ±y, z) act on directions as (±a, ±b,
+/// c)) at the nodes (sinh u_i, sinh v_j, z_k), u, v in [0, kExtent] and z in
+/// [-kHeight, kHeight], all with step kStep. The connections from the origin
+/// to each node are computed by the double solver: the minimisers
+/// (minimising_geodesics), and with `longer` also the others up to distance
+/// + kReach + kMargin (geodesics_between). A cell's seeds are the union of
+/// its eight corners' connections (so that a connection that continues
+/// across the cell from any corner is seeded, and both branches at the cut
+/// locus z = 0 are), merged when their initial vectors t·(a, b, c) agree to
+/// kMerge max(1, t), shortest first, at most kSlots, as (a, b, c, t) (unit
+/// direction, length; t = 0: empty). Accuracy of the kernel's solver: README
+/// "Exact spheres and point lights" (tests vk.Kernel.Connections*).
+struct ConnectionTable {
+  static constexpr int kSlots = 16;
+  static constexpr double kStep = 0.5;
+  static constexpr double kExtent = 5.0;  ///< u = asinh x, v = asinh y in [0, kExtent]: x, y up to 74
+  static constexpr double kHeight = 4.0;  ///< z in [-kHeight, kHeight]
+  static constexpr int kCellsXY = 10;     ///< kExtent / kStep cells along u and v
+  static constexpr int kCellsZ = 16;      ///< 2 kHeight / kStep cells along z
+  static constexpr double kReach = 3.0;   ///< longest reach a table with `longer` serves
+  static constexpr double kMargin = 0.5;  ///< connections kept beyond distance + kReach (the distance varies over a cell)
+  static constexpr double kMerge = 0.1;   ///< corners' seeds closer than kMerge max(1, t) in t·(a, b, c) are merged
+  /// (a, b, c, t) per slot, index ((k kCellsXY + j) kCellsXY + i) kSlots + s for the cell [u_i, u_i+1] x [v_j, v_j+1] x [z_k, z_k+1].
+  std::vector<float> seeds;
+  int failed_nodes = 0;     ///< nodes where the solver found no connection (left out; expected 0)
+  int overflow_cells = 0;   ///< cells whose union held more than kSlots seeds (the longest dropped)
+
+  /// Builds the table with `threads` threads (0: all cores): about 1 s of
+  /// CPU for the minimisers, 7 s with `longer`.
+  static ConnectionTable build(bool longer, unsigned threads = 0);
+  /// Built once per process for each value of `longer`, and shared.
+  static const ConnectionTable& shared(bool longer);
+};
+
 }  // namespace sol

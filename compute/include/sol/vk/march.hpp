@@ -9,6 +9,7 @@
 // what one at (0, 0, 0.3) sees in a scene invariant under that translation.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -111,5 +112,19 @@ class MarchRenderer {
 /// for queries (direction xyz, arc length w); returns (position xyz, height
 /// from the height-only path w) per query. For tests and benchmarks.
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries);
+
+/// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
+/// the exact point lights' directions) returns for one target.
+struct KernelConnections {
+  int count = 0;
+  std::array<glm::vec4, 16> found{};  // sol::ConnectionTable::kSlots  ///< (unit direction at the origin, length), shortest first
+};
+
+/// Runs the kernel's connection solver (compute/shaders/connect.comp) for
+/// queries (w xyz: the target seen from the origin, reach w) with the seeds
+/// of sol::ConnectionTable::shared(longer); the dispatch time in ms into
+/// *device_ms when given. For tests and benchmarks.
+std::vector<KernelConnections> evaluate_kernel_connections(Context& context, const std::vector<glm::vec4>& queries,
+                                                           bool longer, double* device_ms = nullptr);
 
 }  // namespace sol::vk

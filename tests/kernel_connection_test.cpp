@@ -1,0 +1,299 @@
+// The kernel's connection solver (compute/shaders/sol_connection.glsl: the
+// directions of exact point lights) against libsol's double solver
+// (sol::minimising_geodesics, sol::geodesics_between; themselves tested
+// against exact distances and 50-digit geodesics in connection_test.cpp), and
+// the exact lights in the ray-marcher against the CPU renderer.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+#include <sol/vk/context.hpp>
+#include <sol/vk/march.hpp>
+
+namespace {
+
+using glm::dvec3;
+
+sol::vk::Context& context() {
+  static sol::vk::Context ctx({.preference = sol::vk::DevicePreference::Auto, .validation = true});
+  return ctx;
+}
+
+void expect_no_validation_errors() {
+  for (const std::string& e : context().validation_errors()) ADD_FAILURE() << "validation: " << e;
+}
+
+// Targets w seen from the origin, by kind: within the seed table's box
+// (|x|, |y| <= sinh 5 = 74, |z| <= 4, uniform in asinh x, asinh y, z), near
+// the origin, on and next to the cut locus (z = 0, |xy| >= 1), and in the
+// planes x = 0 and y = 0.
+struct Target {
+  dvec3 w;
+  const char* kind;
+};
+
+std::vector<Target> targets(int box, int near, int cut, int plane, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uv(0.0, sol::ConnectionTable::kExtent), height(-sol::ConnectionTable::kHeight,
+                                                                                      sol::ConnectionTable::kHeight),
+      unit(-2.0, 2.0), coin(0.0, 1.0), wide(1.0, 4.0);
+  auto sign = [&] { return coin(rng) < 0.5 ? -1.0 : 1.0; };
+  std::vector<Target> out;
+  for (int i = 0; i < box; ++i) out.push_back({{sign() * std::sinh(uv(rng)), sign() * std::sinh(uv(rng)), height(rng)}, "box"});
+  for (int i = 0; i < near; ++i) out.push_back({{unit(rng), unit(rng), unit(rng)}, "near"});
+  for (int i = 0; i < cut; ++i) {
+    const double lift = i % 3 == 0 ? 0.0 : (i % 3 == 1 ? 1e-3 : -1e-2);
+    out.push_back({{sign() * std::sinh(wide(rng)), sign() * std::sinh(wide(rng)), lift}, "cut"});
+  }
+  for (int i = 0; i < plane; ++i) {
+    const double a = sign() * std::sinh(uv(rng)), z = height(rng);
+    out.push_back({i % 2 ? dvec3(a, 0.0, z) : dvec3(0.0, a, z), "plane"});
+  }
+  return out;
+}
+
+double angle(const dvec3& a, const dvec3& b) { return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)); }
+
+}  // namespace
+
+// Where the geodesic from the origin with direction d (normalised) lands,
+// against w: the gap in frame components at w, over the float floor of the
+// kernel's residual (sol_connection_scale in sol_connection.glsl).
+double landing(const glm::vec4& c, const dvec3& w) {
+  const dvec3 end = sol::flow({dvec3(0.0), glm::normalize(dvec3(glm::vec3(c)))}, c.w).position;
+  const double ez = std::exp(w.z);
+  const dvec3 gap((end.x - w.x) / ez, (end.y - w.y) * ez, end.z - w.z);
+  const double scale = std::max({1.0, static_cast<double>(c.w), std::abs(w.x) / ez, std::abs(w.y) * ez, std::abs(w.z)});
+  return glm::length(gap) / scale;
+}
+
+// Reach 0: the kernel returns the minimisers (and, within its float
+// tolerance of the shortest length, 1e-4 relative, any other connection:
+// next to the cut locus a third one, past its conjugate point, qualifies).
+// Checked against the double solver (lengths, the minimisers' directions)
+// and the double flow (every returned connection lands on w).
+TEST(Kernel, ConnectionsMatchTheMinimisers) {
+  const std::vector<Target> ts = targets(4000, 1000, 600, 400, 71);
+  std::vector<glm::vec4> queries;
+  for (const Target& t : ts) queries.emplace_back(glm::vec3(t.w), 0.0f);
+  double ms = 0;
+  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(context(), queries, false, &ms);
+  struct Stats {
+    int n = 0, missed = 0, extra = 0;
+    double length = 0, direction = 0, landing = 0;
+  };
+  std::map<std::string, Stats> stats;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    // The reference is the solver's for the float-rounded target.
+    const dvec3 w = dvec3(glm::vec3(ts[i].w));
+    const std::vector<sol::Connection> ref = sol::minimising_geodesics(dvec3(0.0), w);
+    Stats& s = stats[ts[i].kind];
+    ++s.n;
+    const sol::vk::KernelConnections& k = got[i];
+    const double d = ref.front().length;
+    // Every minimiser is among the kernel's connections.
+    for (const sol::Connection& c : ref) {
+      double best = 10.0;
+      for (int j = 0; j < k.count; ++j) best = std::min(best, angle(dvec3(glm::vec3(k.found[j])), c.direction));
+      if (best > 1e-2) {
+        ++s.missed;
+        {
+          std::printf("missed: w = (%.9g, %.9g, %.9g), minimiser t = %.7g (%.5f, %.5f, %.5f); kernel:", w.x, w.y, w.z, c.length, c.direction.x, c.direction.y, c.direction.z);
+          for (int j = 0; j < k.count; ++j) std::printf(" t=%.7g (%.5f %.5f %.5f)", k.found[j].w, k.found[j].x, k.found[j].y, k.found[j].z);
+          std::printf("\n");
+        }
+      } else {
+        s.direction = std::max(s.direction, best);
+      }
+    }
+    if (k.count == 0) continue;
+    s.length = std::max(s.length, std::abs(k.found[0].w - d) / std::max(1.0, d));
+    if (k.count > static_cast<int>(ref.size())) ++s.extra;
+    for (int j = 0; j < k.count; ++j) {
+      s.landing = std::max(s.landing, landing(k.found[j], w));
+      // None longer than the tolerance allows (1e-4 relative, plus the length error).
+      s.length = std::max(s.length, (k.found[j].w - d - 1e-4 * k.found[j].w) / std::max(1.0, d));
+    }
+  }
+  const sol::ConnectionTable& table = sol::ConnectionTable::shared(false);
+  std::printf("seed table: %d failed nodes, %d cells with more than %d seeds; kernel %.1f ms for %zu targets\n",
+              table.failed_nodes, table.overflow_cells, sol::ConnectionTable::kSlots, ms, queries.size());
+  for (const auto& [kind, s] : stats) {
+    std::printf("%-6s %5d targets: minimisers missed %d, more than the minimisers %d, max |t - d|/max(1, d) %.2e, "
+                "max direction error %.2e rad, max landing gap %.2e\n",
+                kind.c_str(), s.n, s.missed, s.extra, s.length, s.direction, s.landing);
+  }
+  EXPECT_EQ(table.failed_nodes, 0);
+  for (const auto& [kind, s] : stats) {
+    EXPECT_EQ(s.missed, 0) << kind;
+    // Measured (length, direction): box 6.1e-4 and 2.5e-4 rad, as a float
+    // end point near x = 74 at z = -4 is only known to ~1e-3 in frame
+    // components (the closed form is accurate relative to the coordinates);
+    // cut 4.3e-6 and 4.4e-4 rad: where the two minimisers merge (the end of
+    // the cut locus) the direction is ill-conditioned (error ~ √(float
+    // rounding)); near and plane ~1e-6. Bounds: about 3x the measurements.
+    const double length_bound = kind == "box" ? 2e-3 : (kind == "cut" ? 3e-5 : 1e-5);
+    const double direction_bound = kind == "box" || kind == "cut" ? 1.5e-3 : 1e-5;
+    EXPECT_LT(s.length, length_bound) << kind;
+    EXPECT_LT(s.direction, direction_bound) << kind;
+    EXPECT_LT(s.landing, 1e-3) << kind;
+  }
+  expect_no_validation_errors();
+}
+
+namespace {
+
+// A floor z = -1 and a bound ball lit by one exact point light off to the
+// side, where the geodesics to the light bend away from the coordinate
+// direction. With a reach the light is far along y and below the floor, so
+// that the floor sees it along several geodesics (w = p⁻¹L around (2, 6,
+// -0.5), where geodesics_between finds 3 to 5 within d + 2), and bright.
+sol::Scene exact_light_scene(double reach) {
+  sol::Scene scene;
+  scene.camera = {{0.0, 0.0, 0.0}, {1.0, 0.6, -0.35}, {0.0, 0.0, 1.0}, 80.0};
+  sol::SceneObject floor;
+  floor.type = sol::ObjectType::PlaneZ;
+  floor.c = -1.0;
+  floor.color = {0.8, 0.8, 0.8};
+  sol::SceneObject ball;
+  ball.type = sol::ObjectType::Ball;
+  ball.center = {1.6, 0.8, -0.4};
+  ball.radius = 0.45;
+  ball.color = {0.9, 0.5, 0.3};
+  scene.objects = {floor, ball};
+  sol::Light light;
+  light.type = sol::LightType::Point;
+  light.position = reach > 0.0 ? glm::dvec3(2.5, 16.0, -1.5) : glm::dvec3(3.5, 2.5, -0.8);
+  light.intensity = reach > 0.0 ? 60.0 : 6.0;
+  light.exact = true;
+  light.reach = reach;
+  scene.lights = {light};
+  scene.ambient = 0.05;
+  return scene;
+}
+
+struct ImageDifference {
+  int pixels = 0, mask_differs = 0, over = 0;
+  double worst = 0;
+};
+
+ImageDifference image_difference(const sol::RenderResult& a, const sol::RenderResult& b, double threshold) {
+  ImageDifference d;
+  d.pixels = a.width * a.height;
+  for (int k = 0; k < d.pixels; ++k) {
+    if (a.object[k] != b.object[k]) {
+      ++d.mask_differs;
+      continue;
+    }
+    double e = 0;
+    for (int ch = 0; ch < 3; ++ch) e = std::max(e, static_cast<double>(std::abs(a.rgba[4 * k + ch] - b.rgba[4 * k + ch])));
+    d.worst = std::max(d.worst, e);
+    d.over += e > threshold;
+  }
+  return d;
+}
+
+void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
+  const sol::Scene scene = exact_light_scene(reach);
+  sol::RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+  sol::vk::MarchRenderer renderer(context());
+  const sol::RenderResult gpu = renderer.render(scene, width, height);
+  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
+  // The approximate light (coordinate direction, bound attenuation): the
+  // exact one must differ from it clearly, or the comparison proves nothing.
+  sol::Scene approximate = scene;
+  approximate.lights[0].exact = false;
+  const sol::RenderResult rough = sol::render_cpu(approximate, settings);
+  // Kernel directions are within 1.5e-3 rad and lengths within 2e-3 relative
+  // (ConnectionsMatchTheMinimisers): Lambert terms move by < 2e-3 x the
+  // light's intensity / (1 + L²) (<= 6 here), so 1e-2 per channel; a grazing ray may hit
+  // either object (float against double: at most 1% of pixels).
+  const ImageDifference exact = image_difference(gpu, cpu, 1e-2);
+  const ImageDifference versus_rough = image_difference(rough, cpu, 2e-2);
+  std::printf("reach %g, %dx%d: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
+              "approximate vs exact light on the CPU: %d pixels differ by more than 2e-2 (worst %.2e)\n",
+              reach, width, height, exact.mask_differs, exact.over, exact.worst, versus_rough.over, versus_rough.worst);
+  EXPECT_LE(exact.mask_differs, exact.pixels / 100);
+  // With a reach, near a fold (a caustic of the longer connections) a pair
+  // of connections merges and vanishes: within the float resolution of the
+  // fold the kernel may see one of the two where the CPU sees both (or the
+  // reverse), and the light jumps by that pair's share (measured: 10 of 768
+  // pixels in this scene, aimed at the folds).
+  EXPECT_LE(exact.over, reach > 0.0 ? exact.pixels * 3 / 100 : exact.pixels / 100);
+  EXPECT_GT(versus_rough.over, versus_rough.pixels / 5);
+  if (reach > 0.0) {
+    // The longer connections must show: the CPU image with reach differs
+    // from the one with the minimisers alone.
+    sol::Scene minimisers = scene;
+    minimisers.lights[0].reach = 0.0;
+    const ImageDifference longer = image_difference(cpu, sol::render_cpu(minimisers, settings), 1e-3);
+    std::printf("reach %g against 0 on the CPU: %d pixels differ by more than 1e-3\n", reach, longer.over);
+    EXPECT_GT(longer.over, 0);
+  }
+  expect_no_validation_errors();
+}
+
+}  // namespace
+
+TEST(Kernel, ExactLightsMatchTheCpuRenderer) { expect_kernel_matches_cpu_lights(0.0, 64, 48); }
+
+TEST(Kernel, ExactLightsWithAReachMatchTheCpuRenderer) { expect_kernel_matches_cpu_lights(2.0, 32, 24); }
+
+// Reach 2 with the longer seeds: every connection geodesics_between finds up
+// to d + 2 is among the kernel's, and each of the kernel's lands on w.
+TEST(Kernel, ConnectionsUpToAReach) {
+  const double reach = 2.0;
+  const std::vector<Target> ts = targets(600, 100, 200, 100, 72);
+  std::vector<glm::vec4> queries;
+  for (const Target& t : ts) queries.emplace_back(glm::vec3(t.w), static_cast<float>(reach));
+  double ms = 0;
+  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(context(), queries, true, &ms);
+  int references = 0, missed = 0, more = 0, returned = 0;
+  double worst_landing = 0;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    const dvec3 w = dvec3(glm::vec3(ts[i].w));
+    const double d = sol::distance(dvec3(0.0), w);
+    const sol::vk::KernelConnections& k = got[i];
+    // Connections next to the limit may fall either side of it (the
+    // kernel's lengths are float): compare those clear of it by 1e-3 relative.
+    for (const sol::Connection& c : sol::geodesics_between(dvec3(0.0), w, d + reach - 1e-3 * std::max(1.0, d))) {
+      ++references;
+      double best = 10.0;
+      for (int j = 0; j < k.count; ++j) best = std::min(best, angle(dvec3(glm::vec3(k.found[j])), c.direction));
+      if (best > 1e-2) {
+        ++missed;
+        if (missed <= 10) {
+          std::printf("missed: w = (%.9g, %.9g, %.9g) [%s], d = %.6g, t = %.7g (%.5f, %.5f, %.5f); kernel:", w.x, w.y,
+                      w.z, ts[i].kind, d, c.length, c.direction.x, c.direction.y, c.direction.z);
+          for (int j = 0; j < k.count; ++j) std::printf(" t=%.7g (%.5f %.5f %.5f)", k.found[j].w, k.found[j].x, k.found[j].y, k.found[j].z);
+          std::printf("\n");
+        }
+      }
+    }
+    returned += k.count;
+    more += k.count > 1;
+    for (int j = 0; j < k.count; ++j) {
+      worst_landing = std::max(worst_landing, landing(k.found[j], w));
+      EXPECT_LE(k.found[j].w, d + reach + 2e-3 * std::max(1.0, d)) << i;
+    }
+  }
+  const sol::ConnectionTable& table = sol::ConnectionTable::shared(true);
+  std::printf("seed table with the longer connections: %d failed nodes, %d cells with more than %d seeds; kernel %.1f ms "
+              "for %zu targets, %d connections (%d targets with more than one); of the %d found by geodesics_between "
+              "the kernel missed %d; worst landing gap %.2e\n",
+              table.failed_nodes, table.overflow_cells, sol::ConnectionTable::kSlots, ms, queries.size(), returned, more,
+              references, missed, worst_landing);
+  EXPECT_EQ(table.failed_nodes, 0);
+  EXPECT_LT(worst_landing, 1e-3);
+  EXPECT_GT(more, 50);  // the test needs targets with longer connections
+  EXPECT_LE(missed, references / 100);
+  expect_no_validation_errors();
+}
