@@ -174,10 +174,9 @@ int main(int argc, char** argv) {
     double seconds = 0;
     bool rendered = false;
 #ifdef SOL_HAVE_VULKAN
-    if (device == "auto" &&
-        (sol::uses_exact_lights(scene) || (sol::uses_exact(scene) && scene.quotient != sol::Quotient::None))) {
-      std::fprintf(stderr, "solrender: exact point lights (and exact balls in the quotient) are CPU-only; "
-                           "rendering on the CPU\n");
+    if (device == "auto" && !sol::vk::MarchRenderer::supports(scene)) {
+      std::fprintf(stderr, "solrender: exact balls in the quotient and exact point lights with a reach above 3 are "
+                           "CPU-only; rendering on the CPU\n");
     } else if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {

@@ -226,10 +226,10 @@ void on_glfw_error(int, const char* description) { glfw_error = description ? de
 // The viewer's state that callbacks reach through the window's user pointer.
 struct App {
   Options options;
-  std::vector<std::string> presets = [] {  // the presets the kernel renders (it has no exact point lights)
+  std::vector<std::string> presets = [] {  // the presets the kernel renders (MarchRenderer::supports)
     std::vector<std::string> names;
     for (const std::string& n : sol::preset_names()) {
-      if (!sol::uses_exact_lights(sol::preset_scene(n))) names.push_back(n);
+      if (sol::vk::MarchRenderer::supports(sol::preset_scene(n))) names.push_back(n);
     }
     return names;
   }();

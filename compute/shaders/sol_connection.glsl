@@ -18,6 +18,7 @@
 //   vec4 connection_seeds[];  // sol::ConnectionTable::seeds
 // Keep the constants in step with sol::ConnectionTable (connection.hpp).
 
+
 const int SOL_SEED_SLOTS = 16;
 const int SOL_SEED_CELLS_XY = 10;
 const int SOL_SEED_CELLS_Z = 16;
@@ -50,37 +51,55 @@ float sol_connection_scale(vec3 w, float ez, float t) {
   return max(max(1.0, t), max(max(abs(w.x) / ez, abs(w.y) * ez), abs(w.z)));
 }
 
-// Newton's method from v towards w; `residual` receives the final |exp(v) - w|
-// (frame components at w) divided by sol_connection_scale.
+// Newton's method from v towards w, with the Jacobian by forward
+// differences, steps capped and halved (up to 3 times) while the residual
+// grows; `residual` receives the final |exp(v) - w| (frame components at w)
+// over sol_connection_scale. Written as one loop over flow evaluations with
+// a single call of the closed form: Mesa compiles every inlined call of it
+// separately, and one call site keeps lavapipe's compile time in seconds.
 vec3 sol_polish(vec3 v, vec3 w, out float residual) {
   const float ez = exp(w.z);
-  vec3 r = sol_connection_residual(v, w, ez);
-  float scale = sol_connection_scale(w, ez, length(v));
-  for (int it = 0; it < SOL_NEWTON_ITERATIONS; ++it) {
-    if (length(r) < 2e-6 * scale) break;  // at the float floor
-    const float h = 1e-3 * max(1.0, length(v));
-    mat3 J;
-    J[0] = (sol_connection_residual(v + vec3(h, 0.0, 0.0), w, ez) - r) / h;
-    J[1] = (sol_connection_residual(v + vec3(0.0, h, 0.0), w, ez) - r) / h;
-    J[2] = (sol_connection_residual(v + vec3(0.0, 0.0, h), w, ez) - r) / h;
-    const float det = determinant(J);
-    if (!(abs(det) > 1e-12)) break;  // a conjugate point (or NaN): give up
-    vec3 dv = -(inverse(J) * r);
-    const float cap = 0.5 * max(1.0, length(v));
-    if (length(dv) > cap) dv *= cap / length(dv);
-    vec3 next = v + dv;
-    vec3 next_r = sol_connection_residual(next, w, ez);
-    for (int b = 0; b < 3 && !(length(next_r) < length(r)); ++b) {
-      dv *= 0.5;
-      next = v + dv;
-      next_r = sol_connection_residual(next, w, ez);
+  vec3 r = vec3(0.0), dv = vec3(0.0);
+  mat3 J = mat3(1.0);
+  float h = 0.0;
+  int phase = 0;  // 0: r at v; 1-3: column phase - 1 of J; 4: a trial step v + dv
+  int iterations = 0, halvings = 0;
+  bool done = false;
+  for (int e = 0; e < SOL_NEWTON_ITERATIONS * 7 + 1 && !done; ++e) {
+    vec3 at = v;
+    if (phase >= 1 && phase <= 3) at[phase - 1] += h;
+    if (phase == 4) at += dv;
+    const vec3 f = sol_connection_residual(at, w, ez);
+    if (phase == 0 || phase == 4) {
+      if (phase == 4) {
+        if (!(length(f) < length(r))) {  // no better: halve the step, or give up
+          dv *= 0.5;
+          done = ++halvings > 3;
+          continue;
+        }
+        v = at;
+        ++iterations;
+      }
+      r = f;
+      // At the float floor, or out of iterations: done; else a new Jacobian.
+      done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
+      h = 1e-3 * max(1.0, length(v));
+      phase = 1;
+    } else {
+      J[phase - 1] = (f - r) / h;
+      if (phase < 3) {
+        ++phase;
+        continue;
+      }
+      if (!(abs(determinant(J)) > 1e-12)) break;  // a conjugate point (or NaN): give up
+      dv = -(inverse(J) * r);
+      const float cap = 0.5 * max(1.0, length(v));
+      if (length(dv) > cap) dv *= cap / length(dv);
+      halvings = 0;
+      phase = 4;
     }
-    if (!(length(next_r) < length(r))) break;
-    v = next;
-    r = next_r;
-    scale = sol_connection_scale(w, ez, length(v));
   }
-  residual = length(r) / scale;
+  residual = length(r) / sol_connection_scale(w, ez, length(v));
   return v;
 }
 
@@ -124,26 +143,33 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_SEED_SLOTS]
 // fold): with J the Jacobian of the residual F at v, n its right singular
 // vector of the smallest singular value σ (inverse iteration on JᵀJ) and
 // u = J n / σ, F(v + x n)·u ≈ σ x + κ x²/2 along n (κ by central
-// differences), whose other root x = -2σ/κ is where the partner lies.
+// differences), whose other root x = -2σ/κ is where the partner lies. One
+// call of the closed form, as in sol_polish.
 vec3 sol_fold_partner(vec3 v, vec3 w) {
   const float ez = exp(w.z);
-  const vec3 r = sol_connection_residual(v, w, ez);
   const float scale = max(1.0, length(v));
-  const float h = 1e-3 * scale;
+  const float h = 1e-3 * scale, step = 0.05 * scale;
+  vec3 r = vec3(0.0), n = vec3(0.0), Jn = vec3(0.0), curvature = vec3(0.0);
   mat3 J;
-  J[0] = (sol_connection_residual(v + vec3(h, 0.0, 0.0), w, ez) - r) / h;
-  J[1] = (sol_connection_residual(v + vec3(0.0, h, 0.0), w, ez) - r) / h;
-  J[2] = (sol_connection_residual(v + vec3(0.0, 0.0, h), w, ez) - r) / h;
-  const mat3 JtJ = transpose(J) * J;
-  if (!(abs(determinant(JtJ)) > 1e-20)) return vec3(0.0);
-  const mat3 M = inverse(JtJ);
-  vec3 n = vec3(0.6, 0.5, 0.62);
-  for (int i = 0; i < 4; ++i) n = normalize(M * n);
-  const vec3 Jn = J * n;
+  for (int e = 0; e < 6; ++e) {
+    vec3 at = v;
+    if (e >= 1 && e <= 3) at[e - 1] += h;
+    if (e >= 4) at += (e == 4 ? step : -step) * n;
+    const vec3 f = sol_connection_residual(at, w, ez);
+    if (e == 0) r = f;
+    if (e >= 1 && e <= 3) J[e - 1] = (f - r) / h;
+    if (e == 3) {
+      const mat3 JtJ = transpose(J) * J;
+      if (!(abs(determinant(JtJ)) > 1e-20)) return vec3(0.0);
+      const mat3 M = inverse(JtJ);
+      n = vec3(0.6, 0.5, 0.62);
+      for (int i = 0; i < 4; ++i) n = normalize(M * n);
+      Jn = J * n;
+    }
+    if (e >= 4) curvature += f - r;
+  }
   const float sigma = length(Jn);
-  const float step = 0.05 * scale;
-  const float kappa = dot(Jn / sigma, sol_connection_residual(v + step * n, w, ez) +
-                                          sol_connection_residual(v - step * n, w, ez) - 2.0 * r) / (step * step);
+  const float kappa = dot(Jn / sigma, curvature) / (step * step);
   const float x = -2.0 * sigma / kappa;
   // Far from a fold the partner is either no connection or a seed of its own.
   if (!(abs(x) < 0.5 * scale) || !(abs(x) > 1e-3 * scale)) return vec3(0.0);
@@ -170,32 +196,41 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_SEED_SLOTS]) {
   const int base = ((cell.z * SOL_SEED_CELLS_XY + cell.y) * SOL_SEED_CELLS_XY + cell.x) * SOL_SEED_SLOTS;
   int count = 0;
   float residuals[SOL_SEED_SLOTS];
-  for (int s = 0; s < SOL_SEED_SLOTS; ++s) {
-    const vec4 seed = connection_seeds[base + s];
-    if (seed.w == 0.0) break;  // slots are filled in order
-    // A seed next to a connection already found would only find it again.
-    const vec3 start = seed.xyz * seed.w;
-    bool known = false;
-    for (int j = 0; j < count; ++j) known = known || length(found[j].xyz * found[j].w - start) < SOL_SEED_SKIP * max(1.0, seed.w);
-    if (known) continue;
+  // Candidates: the cell's seeds, then (with a reach: the longer
+  // connections) a fold partner of each connection the seeds found. Near a
+  // fold (a caustic) connections come in pairs that merge there, and a pair
+  // born inside a table cell has seeds at none of its corners. One call of
+  // sol_polish (see there).
+  vec4 originals[SOL_SEED_SLOTS];
+  int first = -1;
+  for (int s = 0; s < 2 * SOL_SEED_SLOTS; ++s) {
+    vec3 start = vec3(0.0);
+    if (s < SOL_SEED_SLOTS) {
+      const vec4 seed = connection_seeds[base + s];
+      if (seed.w == 0.0) {  // slots are filled in order: on to the partners
+        s = SOL_SEED_SLOTS - 1;
+        continue;
+      }
+      start = seed.xyz * seed.w;
+      // A seed next to a connection already found would only find it again.
+      bool known = false;
+      for (int j = 0; j < count; ++j) known = known || length(found[j].xyz * found[j].w - start) < SOL_SEED_SKIP * max(1.0, seed.w);
+      if (known) continue;
+    } else {
+      if (!(reach > 0.0)) break;
+      if (first < 0) {
+        first = count;
+        originals = found;  // the inserts below reorder found
+      }
+      const int j = s - SOL_SEED_SLOTS;
+      if (j >= first) break;
+      if (originals[j].w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
+      start = sol_fold_partner(originals[j].xyz * originals[j].w, target);
+      if (start == vec3(0.0)) continue;
+    }
     float residual;
     const vec3 v = sol_polish(start, target, residual);
     sol_add_connection(v, residual, found, residuals, count);
-  }
-  // With a reach, the longer connections: near a fold (a caustic) they come
-  // in pairs that merge there, and a pair born inside a table cell has seeds
-  // at none of its corners; each connection found seeds its partner.
-  if (reach > 0.0) {
-    const int first = count;
-    vec4 originals[SOL_SEED_SLOTS] = found;  // the inserts below reorder found
-    for (int j = 0; j < first; ++j) {
-      if (originals[j].w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
-      const vec3 seed = sol_fold_partner(originals[j].xyz * originals[j].w, target);
-      if (seed == vec3(0.0)) continue;
-      float residual;
-      const vec3 v = sol_polish(seed, target, residual);
-      sol_add_connection(v, residual, found, residuals, count);
-    }
   }
   int kept = 0;
   for (int i = 0; i < count; ++i) {

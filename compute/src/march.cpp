@@ -287,17 +287,10 @@ struct MarchRenderer::Prepared {
 MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height,
                                                bool aovs, bool srgb_unorm) {
   validate(scene);
-  if (std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; }) &&
-      scene.quotient != Quotient::None) {
-    // The distance table covers balls in the cover only: README "Exact
-    // spheres and point lights".
-    throw NotImplemented("sol::vk::MarchRenderer: exact balls in the quotient render on the CPU only (--device cpu)");
-  }
-  if (std::any_of(scene.lights.begin(), scene.lights.end(),
-                  [](const Light& l) { return l.exact && l.reach > ConnectionTable::kReach; })) {
-    throw NotImplemented("sol::vk::MarchRenderer: exact point lights with reach above " +
-                         std::to_string(ConnectionTable::kReach).substr(0, 3) +
-                         " (the seed table's) render on the CPU only (--device cpu)");
+  if (!supports(scene)) {
+    throw NotImplemented(
+        "sol::vk::MarchRenderer: exact balls in the quotient, and exact point lights with a reach above " +
+        std::to_string(ConnectionTable::kReach).substr(0, 3) + ", render on the CPU only (--device cpu)");
   }
   require_size(width, "width");
   require_size(height, "height");
@@ -372,6 +365,15 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, s
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
   for (std::uint32_t b : {1u, 2u, 3u}) p.pipeline->bind(b, target);
   p.pipeline->record_dispatch(command_buffer, group_count(p.width, 8), group_count(p.height, 8));
+}
+
+bool MarchRenderer::supports(const Scene& scene) {
+  const bool exact_balls =
+      std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; });
+  const bool far_reach = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+    return l.type == LightType::Point && l.exact && l.reach > ConnectionTable::kReach;
+  });
+  return !(exact_balls && scene.quotient != Quotient::None) && !far_reach;
 }
 
 bool MarchRenderer::can_write_unorm(const Context& context, VkFormat format) {

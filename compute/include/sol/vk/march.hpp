@@ -98,6 +98,13 @@ class MarchRenderer {
   /// (Context::storage_write_without_format).
   static bool can_write_unorm(const Context& context, VkFormat format);
 
+  /// Whether the kernel renders the scene: all but exact balls in the
+  /// quotient (the distance table covers the cover only) and exact point
+  /// lights with a reach above sol::ConnectionTable::kReach (its seeds stop
+  /// there). render() and record() throw sol::NotImplemented for the others;
+  /// the CPU renderer takes every scene.
+  static bool supports(const Scene& scene);
+
  private:
   struct Prepared;
   Prepared prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height, bool aovs,
