@@ -13,8 +13,15 @@
 //     fraction of pixels whose hit mask differs, the worst arc-length and hit
 //     point differences where both hit, and the kernel time. Written to
 //     render_error_vs_time.csv.
+//  3. Exact against bound: the `spheres` preset on the kernel with its balls
+//     drawn by the distance bound or exactly (sol::DistanceTable) and its
+//     point light by the coordinate direction or exactly
+//     (sol_connection.glsl, reach 0 and 2), at --size x 3/4 --size: kernel
+//     time and time per ray against the all-bound variant. Written to
+//     render_exact.csv.
 //
 //   render_bench [--size N] [--error-size N] [--repeats N] [--out-dir DIR]
+//                [--only throughput|error|exact]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -75,7 +82,7 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 
 int main(int argc, char** argv) {
   int size = 512, error_size = 128, repeats = 5;
-  std::string out_dir = ".";
+  std::string out_dir = ".", only;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
@@ -93,9 +100,17 @@ int main(int argc, char** argv) {
       repeats = std::atoi(value().c_str());
     } else if (arg == "--out-dir") {
       out_dir = value();
+    } else if (arg == "--only") {
+      only = value();
+      if (only != "throughput" && only != "error" && only != "exact") {
+        std::fprintf(stderr, "render_bench: --only takes throughput, error or exact, got '%s'\n", only.c_str());
+        return 2;
+      }
     } else if (arg == "--help") {
       std::printf("usage: render_bench [--size N] [--error-size N] [--repeats N] [--out-dir DIR]\n"
-                  "Writes render_throughput.csv and render_error_vs_time.csv to DIR (default .).\n");
+                  "                    [--only throughput|error|exact]\n"
+                  "Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv and\n"
+                  "render_exact.csv to DIR (default .); --only runs one section and writes its files.\n");
       return 0;
     } else {
       std::fprintf(stderr, "render_bench: unknown option '%s'\n", arg.c_str());
@@ -111,95 +126,143 @@ int main(int argc, char** argv) {
     const std::string device = context.device_name();
     std::fprintf(stderr, "render_bench: Vulkan device '%s'\n", device.c_str());
 
+    auto runs = [&](const char* section) { return only.empty() || only == section; };
+    std::vector<std::pair<std::string, std::string>> files;  // (name, contents) written at the end
+
     // 1. Throughput.
-    std::string throughput = "scene,device,width,height,ms,mrays_per_s,mean_steps\n";
-    sol::vk::MarchRenderer renderer(context), general(context, {.all_features = true});
-    std::string features = "scene,specialised_ms,general_ms,speedup\n";
-    for (const std::string& name : sol::preset_names()) {
-      const sol::Scene scene = sol::preset_scene(name);
-      if (sol::uses_exact(scene)) continue;  // CPU-only: distance_bench measures it
-      double best = 1e300;
-      sol::RenderResult r;
-      renderer.render(scene, size, size);  // warm-up: shader compilation and caches
-      for (int k = 0; k < repeats; ++k) {
-        double ms = 0;
-        r = renderer.render(scene, size, size, &ms);
-        best = std::min(best, ms);
+    if (runs("throughput")) {
+      std::string throughput = "scene,device,width,height,ms,mrays_per_s,mean_steps\n";
+      sol::vk::MarchRenderer renderer(context), general(context, {.all_features = true});
+      std::string features = "scene,specialised_ms,general_ms,speedup\n";
+      for (const std::string& name : sol::preset_names()) {
+        const sol::Scene scene = sol::preset_scene(name);
+        if (sol::uses_exact(scene)) continue;  // section 3 and distance_bench measure it
+        double best = 1e300;
+        sol::RenderResult r;
+        renderer.render(scene, size, size);  // warm-up: shader compilation and caches
+        for (int k = 0; k < repeats; ++k) {
+          double ms = 0;
+          r = renderer.render(scene, size, size, &ms);
+          best = std::min(best, ms);
+        }
+        const double rays = static_cast<double>(size) * size;
+        general.render(scene, size, size);  // warm-up
+        double best_general = 1e300;
+        for (int k = 0; k < repeats; ++k) {
+          double ms = 0;
+          general.render(scene, size, size, &ms);
+          best_general = std::min(best_general, ms);
+        }
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
+        features += line;
+        std::fprintf(stderr, "features: %s", line);
+        std::snprintf(line, sizeof line, "%s,vulkan %s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), device.c_str(), size, size,
+                      best, rays / best * 1e-3, mean(r.steps));
+        throughput += line;
+        std::fprintf(stderr, "%s", line);
+        sol::RenderSettings settings;
+        settings.width = settings.height = size;
+        const auto begin = std::chrono::steady_clock::now();
+        const sol::RenderResult c = sol::render_cpu(scene, settings);
+        const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+        std::snprintf(line, sizeof line, "%s,cpu reference (double),%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
+                      cpu_ms, rays / cpu_ms * 1e-3, mean(c.steps));
+        throughput += line;
+        std::fprintf(stderr, "%s", line);
       }
-      const double rays = static_cast<double>(size) * size;
-      general.render(scene, size, size);  // warm-up
-      double best_general = 1e300;
-      for (int k = 0; k < repeats; ++k) {
-        double ms = 0;
-        general.render(scene, size, size, &ms);
-        best_general = std::min(best_general, ms);
-      }
-      char line[512];
-      std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
-      features += line;
-      std::fprintf(stderr, "features: %s", line);
-      std::snprintf(line, sizeof line, "%s,vulkan %s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), device.c_str(), size, size,
-                    best, rays / best * 1e-3, mean(r.steps));
-      throughput += line;
-      std::fprintf(stderr, "%s", line);
-      sol::RenderSettings settings;
-      settings.width = settings.height = size;
-      const auto begin = std::chrono::steady_clock::now();
-      const sol::RenderResult c = sol::render_cpu(scene, settings);
-      const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-      std::snprintf(line, sizeof line, "%s,cpu reference (double),%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
-                    cpu_ms, rays / cpu_ms * 1e-3, mean(c.steps));
-      throughput += line;
-      std::fprintf(stderr, "%s", line);
+      files.emplace_back("render_throughput.csv", throughput);
+      files.emplace_back("render_features.csv", features);
     }
 
     // 2. Image error against run time.
-    std::string errors = "scene,integrator,setting,mask_mismatch_fraction,max_distance_error,max_point_error,ms\n";
-    for (const char* name : {"plane", "sandwich"}) {
-      sol::Scene scene = sol::preset_scene(name);
-      // A hit epsilon near float resolution, so that the march's own stopping
-      // tolerance does not hide the flow's error.
-      scene.hit_epsilon = 2e-6;
-      sol::RenderSettings settings;
-      settings.width = settings.height = error_size;
-      const sol::RenderResult reference = sol::render_cpu(scene, settings);
-      struct Variant {
-        const char* integrator;
-        double step;
-      };
-      for (const Variant v : {Variant{"closed", 0.0}, Variant{"rk4", 0.1}, Variant{"rk4", 0.03}, Variant{"rk4", 0.01},
-                              Variant{"rk4", 0.003}}) {
-        sol::vk::MarchOptions options;
-        if (std::strcmp(v.integrator, "rk4") == 0) {
-          options.integrator = sol::vk::Integrator::RK4;
-          options.rk4_step = v.step;
+    if (runs("error")) {
+      std::string errors = "scene,integrator,setting,mask_mismatch_fraction,max_distance_error,max_point_error,ms\n";
+      for (const char* name : {"plane", "sandwich"}) {
+        sol::Scene scene = sol::preset_scene(name);
+        // A hit epsilon near float resolution, so that the march's own stopping
+        // tolerance does not hide the flow's error.
+        scene.hit_epsilon = 2e-6;
+        sol::RenderSettings settings;
+        settings.width = settings.height = error_size;
+        const sol::RenderResult reference = sol::render_cpu(scene, settings);
+        struct Variant {
+          const char* integrator;
+          double step;
+        };
+        for (const Variant v : {Variant{"closed", 0.0}, Variant{"rk4", 0.1}, Variant{"rk4", 0.03}, Variant{"rk4", 0.01},
+                                Variant{"rk4", 0.003}}) {
+          sol::vk::MarchOptions options;
+          if (std::strcmp(v.integrator, "rk4") == 0) {
+            options.integrator = sol::vk::Integrator::RK4;
+            options.rk4_step = v.step;
+          }
+          sol::vk::MarchRenderer r(context, options);
+          r.render(scene, error_size, error_size);  // warm-up
+          double best = 1e300;
+          sol::RenderResult image;
+          for (int k = 0; k < std::min(repeats, 3); ++k) {
+            double ms = 0;
+            image = r.render(scene, error_size, error_size, &ms);
+            best = std::min(best, ms);
+          }
+          const ImageError e = compare(image, reference);
+          char line[512];
+          char setting[64];
+          std::snprintf(setting, sizeof setting, v.step > 0 ? "h=%g" : "-", v.step);
+          std::snprintf(line, sizeof line, "%s,%s,%s,%.5f,%.3e,%.3e,%.2f\n", name, v.integrator, setting,
+                        e.mask_fraction, e.distance, e.point, best);
+          errors += line;
+          std::fprintf(stderr, "%s", line);
         }
-        sol::vk::MarchRenderer r(context, options);
-        r.render(scene, error_size, error_size);  // warm-up
+      }
+      files.emplace_back("render_error_vs_time.csv", errors);
+    }
+
+    // 3. Exact spheres and lights against the bound-based ones.
+    if (runs("exact")) {
+      std::string exact = "balls,light,width,height,ms,us_per_ray,ratio_to_bound\n";
+      const int w = size, h = std::max(1, size * 3 / 4);
+      sol::vk::MarchRenderer renderer(context);
+      double bound_ms = 0;
+      struct Variant {
+        bool exact_balls, exact_light;
+        double reach;
+      };
+      for (const Variant v : {Variant{false, false, 0.0}, Variant{true, false, 0.0}, Variant{false, true, 0.0},
+                              Variant{true, true, 0.0}, Variant{false, true, 2.0}}) {
+        sol::Scene scene = sol::preset_scene("spheres");
+        for (sol::SceneObject& o : scene.objects) o.exact = v.exact_balls;
+        for (sol::Light& l : scene.lights) {
+          l.exact = v.exact_light;
+          l.reach = v.reach;
+        }
+        renderer.render(scene, w, h);  // warm-up: tables, shader compilation
         double best = 1e300;
-        sol::RenderResult image;
-        for (int k = 0; k < std::min(repeats, 3); ++k) {
+        for (int k = 0; k < repeats; ++k) {
           double ms = 0;
-          image = r.render(scene, error_size, error_size, &ms);
+          renderer.render(scene, w, h, &ms);
           best = std::min(best, ms);
         }
-        const ImageError e = compare(image, reference);
-        char line[512];
-        char setting[64];
-        std::snprintf(setting, sizeof setting, v.step > 0 ? "h=%g" : "-", v.step);
-        std::snprintf(line, sizeof line, "%s,%s,%s,%.5f,%.3e,%.3e,%.2f\n", name, v.integrator, setting,
-                      e.mask_fraction, e.distance, e.point, best);
-        errors += line;
-        std::fprintf(stderr, "%s", line);
+        if (!v.exact_balls && !v.exact_light) bound_ms = best;
+        char light[32];
+        std::snprintf(light, sizeof light, v.exact_light ? "exact reach %g" : "coordinate", v.reach);
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", v.exact_balls ? "exact" : "bound", light, w, h,
+                      best, best * 1e3 / (static_cast<double>(w) * h), best / bound_ms);
+        exact += line;
+        std::fprintf(stderr, "exact: %s", line);
       }
+      files.emplace_back("render_exact.csv", exact);
     }
-    const std::string a = out_dir + "/render_throughput.csv", b = out_dir + "/render_error_vs_time.csv";
-    const std::string c = out_dir + "/render_features.csv";
-    if (!write_file(a, throughput) || !write_file(b, errors) || !write_file(c, features)) {
-      std::fprintf(stderr, "render_bench: cannot write to %s\n", out_dir.c_str());
-      return 1;
+
+    for (const auto& [name, text] : files) {
+      if (!write_file(out_dir + "/" + name, text)) {
+        std::fprintf(stderr, "render_bench: cannot write %s/%s\n", out_dir.c_str(), name.c_str());
+        return 1;
+      }
+      std::fprintf(stderr, "render_bench: wrote %s/%s\n", out_dir.c_str(), name.c_str());
     }
-    std::fprintf(stderr, "render_bench: wrote %s and %s\n", a.c_str(), b.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "render_bench: %s\n", e.what());
     return 1;

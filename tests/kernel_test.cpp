@@ -186,7 +186,7 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   sol::vk::MarchRenderer specialised(context()), general(context(), {.all_features = true});
   for (const std::string& name : sol::preset_names()) {
     const sol::Scene scene = sol::preset_scene(name);
-    if (sol::uses_exact(scene)) continue;  // CPU-only
+    if (sol::uses_exact(scene)) continue;  // exact scenes: tests ExactBalls* and ExactLights*
     const Comparison c = compare(specialised.render(scene, 40, 30), general.render(scene, 40, 30));
     EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
     EXPECT_LE(c.color_differs, c.pixels / 100) << name;

@@ -164,7 +164,7 @@ std::vector<float> pack_images(const std::vector<MarchObject>& images) {
     const bool solid = m.type == ObjectType::Ball || m.type == ObjectType::Tube;
     const glm::dvec3 geometry = solid ? m.center : glm::dvec3(m.c, 0.0, 0.0);
     for (double v : {geometry.x, geometry.y, geometry.z, m.type == ObjectType::Tube ? m.axis : 0.0,
-                     static_cast<double>(type_code(m.type)), m.radius, static_cast<double>(m.owner), 0.0,
+                     m.exact ? 5.0 : static_cast<double>(type_code(m.type)), m.radius, static_cast<double>(m.owner), 0.0,
                      m.heading.x, m.heading.y, 0.0, 0.0}) {
       out.push_back(static_cast<float>(v));
     }
@@ -289,8 +289,8 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
   validate(scene);
   if (!supports(scene)) {
     throw NotImplemented(
-        "sol::vk::MarchRenderer: exact balls in the quotient, and exact point lights with a reach above " +
-        std::to_string(ConnectionTable::kReach).substr(0, 3) + ", render on the CPU only (--device cpu)");
+        "sol::vk::MarchRenderer: exact point lights with a reach above " +
+        std::to_string(ConnectionTable::kReach).substr(0, 3) + " render on the CPU only (--device cpu)");
   }
   require_size(width, "width");
   require_size(height, "height");
@@ -368,12 +368,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, s
 }
 
 bool MarchRenderer::supports(const Scene& scene) {
-  const bool exact_balls =
-      std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; });
-  const bool far_reach = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+  return std::none_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
     return l.type == LightType::Point && l.exact && l.reach > ConnectionTable::kReach;
   });
-  return !(exact_balls && scene.quotient != Quotient::None) && !far_reach;
 }
 
 bool MarchRenderer::can_write_unorm(const Context& context, VkFormat format) {

@@ -98,11 +98,10 @@ class MarchRenderer {
   /// (Context::storage_write_without_format).
   static bool can_write_unorm(const Context& context, VkFormat format);
 
-  /// Whether the kernel renders the scene: all but exact balls in the
-  /// quotient (the distance table covers the cover only) and exact point
-  /// lights with a reach above sol::ConnectionTable::kReach (its seeds stop
-  /// there). render() and record() throw sol::NotImplemented for the others;
-  /// the CPU renderer takes every scene.
+  /// Whether the kernel renders the scene: all but those with exact point
+  /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
+  /// there). render() and record() throw sol::NotImplemented for those; the
+  /// CPU renderer takes every scene.
   static bool supports(const Scene& scene);
 
  private:
