@@ -1,6 +1,7 @@
 // Exact balls and exact point lights in the CPU renderer: the drawn surface
 // is the geodesic sphere, the light arrives along true geodesics, and the
 // scene keys are validated.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -16,6 +17,7 @@
 #include "sol/group.hpp"
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
+#include "support/directions.hpp"
 
 namespace {
 
@@ -165,6 +167,54 @@ TEST(ExactTable, AccuracyAgainstTheSolver) {
   std::printf("distance table: worst |lookup - distance| = %.2e over %d points (0.3 <= d <= 1.2)\n", worst, checked);
   EXPECT_LT(worst, 1e-2);  // measured 5.1e-3 (README)
   EXPECT_LT(table.lookup({3.0, 0.0, 0.0}), 0.0);  // outside the box
+}
+
+TEST(ConnectionTable, EverySeedIsAConnectionToACornerOfItsCell) {
+  // The kernels' seeds (sol::ConnectionTable, minimisers): in every cell,
+  // each seed is a unit direction with x, y >= 0, seeds come shortest
+  // first, and each flows (double closed form) onto one of the cell's eight
+  // corners.
+  using T = sol::ConnectionTable;
+  const T& table = T::shared(false);
+  ASSERT_EQ(table.seeds.size(), static_cast<std::size_t>(T::kCellsXY * T::kCellsXY * T::kCellsZ * T::kSlots * 4));
+  EXPECT_EQ(table.failed_nodes, 0);
+  EXPECT_EQ(table.overflow_cells, 0);
+  auto corner = [](int i, int j, int k) {
+    return glm::dvec3(std::sinh(i * T::kStep), std::sinh(j * T::kStep), -T::kHeight + k * T::kStep);
+  };
+  double worst_landing = 0.0;
+  int seeds = 0;
+  for (int k = 0; k < T::kCellsZ; ++k) {
+    for (int j = 0; j < T::kCellsXY; ++j) {
+      for (int i = 0; i < T::kCellsXY; ++i) {
+        const std::size_t base = static_cast<std::size_t>(((k * T::kCellsXY + j) * T::kCellsXY + i) * T::kSlots) * 4;
+        double previous = 0.0;
+        for (int s = 0; s < T::kSlots; ++s) {
+          const float* seed = &table.seeds[base + 4 * static_cast<std::size_t>(s)];
+          if (seed[3] == 0.0f) break;
+          ++seeds;
+          EXPECT_GE(seed[3], previous);  // shortest first
+          previous = seed[3];
+          const glm::dvec3 d(seed[0], seed[1], seed[2]);
+          EXPECT_NEAR(glm::length(d), 1.0, 1e-6);
+          EXPECT_GE(std::min(d.x, d.y), -1e-7);  // the quadrant x, y >= 0
+          const glm::dvec3 end = sol::flow({glm::dvec3(0.0), glm::normalize(d)}, seed[3]).position;
+          double nearest = 1e30;
+          for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 w = corner(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+            nearest = std::min(nearest, sol::test::scaled_error(end, w));
+          }
+          worst_landing = std::max(worst_landing, nearest);
+        }
+      }
+    }
+  }
+  std::printf("connection seeds: %d, worst landing on a corner %.2e (relative, float seeds)\n", seeds, worst_landing);
+  EXPECT_GT(seeds, T::kCellsXY * T::kCellsXY * T::kCellsZ);
+  // Float direction and length of a connection up to length ~17: ~1e-7
+  // relative each, amplified by the flow's sensitivity (measured 7.5e-7); a
+  // seed of another cell or a wrong sign lands O(1) away.
+  EXPECT_LT(worst_landing, 1e-3);
 }
 
 }  // namespace

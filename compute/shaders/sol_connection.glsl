@@ -12,12 +12,12 @@
 // grows. A polished seed is a connection when its end point lies within the
 // float tolerance of w (measured in frame components at w). What that finds
 // and how accurately: tests vk.Kernel.Connections* and README "Exact spheres
-// and point lights".
+// and point lights in the renderer".
 //
 // Needs sol_geodesic.glsl, and before this file a storage buffer
 //   vec4 connection_seeds[];  // sol::ConnectionTable::seeds
-// Keep the constants in step with sol::ConnectionTable (connection.hpp).
-
+// Keep the constants in step with sol::ConnectionTable (connection.hpp); the
+// tests vk.Kernel.Connections* fail when they are not.
 
 const int SOL_SEED_SLOTS = 16;
 const int SOL_SEED_CELLS_XY = 10;
@@ -25,9 +25,9 @@ const int SOL_SEED_CELLS_Z = 16;
 const float SOL_SEED_STEP = 0.5;
 const float SOL_SEED_HEIGHT = 4.0;
 const int SOL_NEWTON_ITERATIONS = 8;
-#ifndef SOL_SEED_SKIP
-#define SOL_SEED_SKIP 0.25
-#endif
+// A seed within SOL_SEED_SKIP max(1, t) of a connection already found (in
+// t·(a, b, c)) is not polished: it would find that connection again.
+const float SOL_SEED_SKIP = 0.25;
 
 // The exponential map at the origin: the end of the geodesic with initial vector v.
 vec3 sol_exp(vec3 v) {
