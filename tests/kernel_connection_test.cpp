@@ -148,9 +148,9 @@ TEST(Kernel, ConnectionsMatchTheMinimisers) {
 
 namespace {
 
-// A floor z = -1 and a bound ball lit by one exact point light off to the
-// side, where the geodesics to the light bend away from the coordinate
-// direction. With a reach the light is far along y and below the floor, so
+// A floor z = -1 and a bound ball lit by one exact point light above the
+// ball (so that the lit points see it at both signs of x and y), where the
+// geodesics to the light bend away from the coordinate direction. With a reach the light is far along y and below the floor, so
 // that the floor sees it along several geodesics (w = p⁻¹L around (2, 6,
 // -0.5), where geodesics_between finds 3 to 5 within d + 2), and bright.
 sol::Scene exact_light_scene(double reach) {
@@ -163,12 +163,12 @@ sol::Scene exact_light_scene(double reach) {
   sol::SceneObject ball;
   ball.type = sol::ObjectType::Ball;
   ball.center = {1.6, 0.8, -0.4};
-  ball.radius = 0.45;
+  ball.radius = 0.6;
   ball.color = {0.9, 0.5, 0.3};
   scene.objects = {floor, ball};
   sol::Light light;
   light.type = sol::LightType::Point;
-  light.position = reach > 0.0 ? glm::dvec3(2.5, 16.0, -1.5) : glm::dvec3(3.5, 2.5, -0.8);
+  light.position = reach > 0.0 ? glm::dvec3(2.5, 16.0, -1.5) : glm::dvec3(1.4, 0.9, 0.5);
   light.intensity = reach > 0.0 ? 60.0 : 6.0;
   light.exact = true;
   light.reach = reach;
@@ -227,7 +227,10 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
   // fold the kernel may see one of the two where the CPU sees both (or the
   // reverse), and the light jumps by that pair's share (measured: 10 of 768
   // pixels in this scene, aimed at the folds).
-  EXPECT_LE(exact.over, reach > 0.0 ? exact.pixels * 3 / 100 : exact.pixels / 100);
+  // Without a reach there are no folds: the worst pixel is measured at
+  // 5.4e-4, so 0.1% of pixels over 1e-2 leaves room for grazing rays only
+  // (a sign error in the directions' x or y puts 13 of 3072 over).
+  EXPECT_LE(exact.over, reach > 0.0 ? exact.pixels * 3 / 100 : exact.pixels / 1000);
   EXPECT_GT(versus_rough.over, versus_rough.pixels / 5);
   if (reach > 0.0) {
     // The longer connections must show: the CPU image with reach differs
