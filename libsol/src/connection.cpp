@@ -159,6 +159,74 @@ bool newton(glm::dvec3& v, double& t, const glm::dvec3& q, double tolerance, int
   return r <= tolerance;
 }
 
+// Newton's method for stiff directions, one of whose horizontal components
+// (index `small`: 0 for a, 1 for b) is tiny: unknowns (ψ, β, t) with the
+// small component e^β and the other two √(1 - e^{2β}) (cos ψ, sin ψ), so
+// that relative changes of the small component are steps of β (the end
+// point depends on it through log(ab)), residual in (log x, log y, z).
+bool newton_stiff(glm::dvec3& v, double& t, const glm::dvec3& q, double tolerance, int max_iterations, int small,
+                  double* error_out = nullptr) {
+  const int big = 1 - small;
+  if (!(v[small] > 0.0) || !(v[small] < 1.0)) return false;
+  auto direction = [&](double psi, double beta) {
+    const double e = std::exp(beta), r = std::sqrt(std::max(0.0, 1.0 - e * e));
+    glm::dvec3 d;
+    d[small] = e;
+    d[big] = r * std::cos(psi);
+    d[2] = r * std::sin(psi);
+    return d;
+  };
+  double u[3] = {std::atan2(v[2], v[big]), std::log(v[small]), t};
+  auto eval = [&](const double* w) {
+    if (!(w[1] < 0.0) || !(w[2] >= 0.0)) return glm::dvec3(std::numeric_limits<double>::infinity());
+    return residual(Geodesic(direction(w[0], w[1])).at(w[2]).position, q, Residual::Log);
+  };
+  glm::dvec3 e = eval(u);
+  double r = glm::length(e);
+  for (int it = 0; it < max_iterations && r > tolerance; ++it) {
+    glm::dmat3 J(0.0);  // J[col][row]
+    for (int i = 0; i < 3; ++i) {
+      double w[3] = {u[0], u[1], u[2]};
+      const double h = i == 2 ? 1e-7 * std::max(1.0, u[2]) : 1e-7 * std::max(1.0, std::abs(u[i]));
+      w[i] += h;
+      const glm::dvec3 ei = eval(w);
+      if (!std::isfinite(glm::length(ei))) return false;
+      J[i] = (ei - e) / h;
+    }
+    const double det = glm::determinant(J);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
+    const glm::dvec3 step = glm::inverse(J) * (-e);
+    double lambda = 1.0;
+    if (std::abs(step[0]) > 0.5) lambda = 0.5 / std::abs(step[0]);
+    if (std::abs(step[1]) * lambda > 3.0) lambda = 3.0 / std::abs(step[1]);
+    if (std::abs(step[2]) * lambda > std::max(1.0, 0.5 * u[2])) lambda = std::max(1.0, 0.5 * u[2]) / std::abs(step[2]);
+    bool accepted = false;
+    for (int halving = 0; halving < 40; ++halving, lambda *= 0.5) {
+      const double w[3] = {u[0] + lambda * step[0], std::min(-1e-300, u[1] + lambda * step[1]),
+                           std::max(0.0, u[2] + lambda * step[2])};
+      glm::dvec3 e1;
+      try {
+        e1 = eval(w);
+      } catch (const OutOfRange&) {
+        continue;
+      }
+      const double r1 = glm::length(e1);
+      if (std::isfinite(r1) && r1 < r) {
+        for (int k = 0; k < 3; ++k) u[k] = w[k];
+        e = e1;
+        r = r1;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) break;
+  }
+  v = direction(u[0], u[1]);
+  t = u[2];
+  if (error_out != nullptr) *error_out = r;
+  return r <= tolerance;
+}
+
 // The period of a direction. The closed form reports no period for the
 // straight lines |a| = |b|, c = 0 (z does not move), but their neighbours
 // have periods tending to 4K(0)/√2 = √2π, where the straight line stops
@@ -194,7 +262,11 @@ bool polish(glm::dvec3& v, double& t, const glm::dvec3& q, double tolerance) {
 // in (log x, log y, z), and Newton (in those) follows the solution from the
 // previous one, the step doubling on success and shrinking fourfold on
 // failure; finally Newton in frame components polishes to `tolerance`.
-bool continuation(const glm::dvec3& q, bool from_y_plane, double tolerance, Solution& out) {
+// With `stiff` the path is followed by newton_stiff in (ψ, log of the
+// tilted component, t), and polished by it before the frame polish: far
+// targets reached by directions with a tiny a or b, where the plain
+// iteration stalls on the path or at its end.
+bool continuation(const glm::dvec3& q, bool from_y_plane, double tolerance, Solution& out, bool stiff = false) {
   Solution start;
   if (from_y_plane) {
     start = plane_solution(q.x, q.z);
@@ -224,7 +296,9 @@ bool continuation(const glm::dvec3& q, bool from_y_plane, double tolerance, Solu
         v1 = glm::normalize(v + f * (v - v_prev));
         t1 = std::max(0.0, t + f * (t - t_prev));
       }
-      if (newton(v1, t1, target, 1e-6, 10, nullptr, Residual::Log)) {
+      const bool ok = stiff ? newton_stiff(v1, t1, target, 1e-6, 10, from_y_plane ? 1 : 0)
+                            : newton(v1, t1, target, 1e-6, 10, nullptr, Residual::Log);
+      if (ok) {
         s_prev = s;
         v_prev = v;
         t_prev = t;
@@ -240,6 +314,7 @@ bool continuation(const glm::dvec3& q, bool from_y_plane, double tolerance, Solu
         if (ds < 1e-4) return false;
       }
     }
+    if (stiff) newton_stiff(v, t, q, 1e-15, 20, from_y_plane ? 1 : 0);
     if (!polish(v, t, q, tolerance)) return false;
   } catch (const OutOfRange&) {
     return false;
@@ -392,6 +467,19 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
   for (int side = 0; side < 2 && !have; ++side) {
     Solution s;
     if (continuation(q, side == 0 ? y_first : !y_first, tolerance, s)) {
+      if (minimising(s, tolerance)) {
+        best = s;
+        have = true;
+      } else {
+        try_mirror(s);
+      }
+    }
+  }
+  // Stiff targets (far, near a plane): the same two paths in the stiff
+  // parametrisation; tried only after the plain ones, so other targets pay nothing.
+  for (int side = 0; side < 2 && !have; ++side) {
+    Solution s;
+    if (continuation(q, side == 0 ? y_first : !y_first, tolerance, s, true)) {
       if (minimising(s, tolerance)) {
         best = s;
         have = true;
