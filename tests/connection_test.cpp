@@ -105,6 +105,68 @@ TEST(Connection, GeodesicsShorterThanTheirPeriodHaveTheirLengthAsDistance) {
   EXPECT_GT(checked, 30);
 }
 
+TEST(Connection, StiffFarTargetsUpToThirty) {
+  // Directions with a tiny |a| or |b| (|ab| -> 0) at lengths 18 to 30: the
+  // targets are far and near a plane (y' ~ 1e9 at z' ~ -14). A minimiser is
+  // always found (no OutOfRange); its length is never above the generating
+  // length t, equals it when t <= T (Coiculescu–Schwartz: the generating
+  // geodesic then minimises; past T the minimiser may be quite another
+  // direction), it lands on q, and d(p, q) = d(q, p) and left invariance hold
+  // for some. End points by the closed-form flow.
+  struct Case {
+    glm::dvec3 d;
+    double t;
+  };
+  std::vector<Case> cases;
+  for (const glm::dvec3& d : sol::test::stiff_directions()) {
+    const double small = std::min(std::abs(d.x), std::abs(d.y));
+    if (!(small > 0.0) || small > 1e-3 || std::abs(d.z) > 0.99) continue;
+    for (double t : {18.0, 24.0, 30.0}) cases.push_back({d, t});
+  }
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 120; ++i) {
+    const double b = std::pow(10.0, -9.0 + 5.0 * u(rng)), c = 2.0 * u(rng) - 1.0;
+    const double a = std::sqrt(std::max(0.0, 1.0 - b * b - c * c));
+    const double t = 18.0 + 12.0 * u(rng);
+    if (!(a > 0.0)) continue;
+    glm::dvec3 d = glm::normalize(glm::dvec3(a, b, c));
+    if (i % 2 == 1) d = {-d.y, d.x, -d.z};  // tiny a, other signs
+    cases.push_back({d, t});
+  }
+  int equal_checked = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [d, t] = cases[i];
+    const glm::dvec3 q = sol::flow({glm::dvec3(0.0), d}, t).position;
+    ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << i;
+    std::vector<sol::Connection> cs;
+    try {
+      cs = sol::minimising_geodesics({0, 0, 0}, q);
+    } catch (const sol::OutOfRange& e) {
+      ADD_FAILURE() << "case " << i << " direction (" << d.x << ", " << d.y << ", " << d.z << ") t " << t << ": "
+                    << e.what();
+      continue;
+    }
+    ASSERT_FALSE(cs.empty()) << i;
+    const double dist = cs.front().length;
+    EXPECT_LE(dist, t * (1.0 + kTol)) << i;
+    const double period = sol::ClosedFormGeodesic<double>(d).period();
+    if (t <= period) {
+      EXPECT_NEAR(dist, t, kTol * t) << "case " << i << " period " << period;
+      ++equal_checked;
+    }
+    // Landing error relative to the scale of q in the frame (rounding floor of the problem).
+    const double scale = std::max({1.0, std::abs(q.x) * std::exp(-q.z), std::abs(q.y) * std::exp(q.z)});
+    for (const sol::Connection& c : cs) EXPECT_LT(landing_error({0, 0, 0}, c, q) / scale, 1e-10) << i;
+    if (i % 8 == 0) {
+      EXPECT_NEAR(sol::distance(q, {0, 0, 0}), dist, kTol * dist) << i;
+      const glm::dvec3 g(0.7, -1.3, 0.4);
+      EXPECT_NEAR(sol::distance(g, sol::multiply(g, q)), dist, kTol * dist) << i;
+    }
+  }
+  EXPECT_GT(equal_checked, 80);
+}
+
 TEST(Connection, FarPointsUpToThirty) {
   // Directions close to vertical have long periods: far points at lengths 20 to 30.
   int checked = 0;
