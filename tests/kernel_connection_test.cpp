@@ -15,18 +15,13 @@
 #include <sol/vk/context.hpp>
 #include <sol/vk/march.hpp>
 
+#include "support/kernel.hpp"
+
 namespace {
 
 using glm::dvec3;
-
-sol::vk::Context& context() {
-  static sol::vk::Context ctx({.preference = sol::vk::DevicePreference::Auto, .validation = true});
-  return ctx;
-}
-
-void expect_no_validation_errors() {
-  for (const std::string& e : context().validation_errors()) ADD_FAILURE() << "validation: " << e;
-}
+using sol::test::expect_no_validation_errors;
+using sol::test::vk_context;
 
 // Targets w seen from the origin, by kind: within the seed table's box
 // (|x|, |y| <= sinh 5 = 74, |z| <= 4, uniform in asinh x, asinh y, z), near
@@ -82,7 +77,7 @@ TEST(Kernel, ConnectionsMatchTheMinimisers) {
   std::vector<glm::vec4> queries;
   for (const Target& t : ts) queries.emplace_back(glm::vec3(t.w), 0.0f);
   double ms = 0;
-  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(context(), queries, false, &ms);
+  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(vk_context(), queries, false, &ms);
   struct Stats {
     int n = 0, missed = 0, extra = 0;
     double length = 0, direction = 0, landing = 0;
@@ -177,25 +172,17 @@ sol::Scene exact_light_scene(double reach) {
   return scene;
 }
 
-struct ImageDifference {
-  int pixels = 0, mask_differs = 0, over = 0;
-  double worst = 0;
+// A kernel render and the CPU renderer's of one scene at one size.
+struct Renders {
+  sol::RenderResult cpu, gpu;
 };
 
-ImageDifference image_difference(const sol::RenderResult& a, const sol::RenderResult& b, double threshold) {
-  ImageDifference d;
-  d.pixels = a.width * a.height;
-  for (int k = 0; k < d.pixels; ++k) {
-    if (a.object[k] != b.object[k]) {
-      ++d.mask_differs;
-      continue;
-    }
-    double e = 0;
-    for (int ch = 0; ch < 3; ++ch) e = std::max(e, static_cast<double>(std::abs(a.rgba[4 * k + ch] - b.rgba[4 * k + ch])));
-    d.worst = std::max(d.worst, e);
-    d.over += e > threshold;
-  }
-  return d;
+Renders render_both(const sol::Scene& scene, int width, int height) {
+  sol::RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  sol::vk::MarchRenderer renderer(vk_context());
+  return {sol::render_cpu(scene, settings), renderer.render(scene, width, height)};
 }
 
 void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
@@ -203,9 +190,8 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
   sol::RenderSettings settings;
   settings.width = width;
   settings.height = height;
-  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  sol::vk::MarchRenderer renderer(context());
-  const sol::RenderResult gpu = renderer.render(scene, width, height);
+  const Renders both = render_both(scene, width, height);
+  const sol::RenderResult &cpu = both.cpu, &gpu = both.gpu;
   for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
   // The approximate light (coordinate direction, bound attenuation): the
   // exact one must differ from it clearly, or the comparison proves nothing.
@@ -214,13 +200,14 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
   const sol::RenderResult rough = sol::render_cpu(approximate, settings);
   // Kernel directions are within 1.5e-3 rad and lengths within 2e-3 relative
   // (ConnectionsMatchTheMinimisers): Lambert terms move by < 2e-3 x the
-  // light's intensity / (1 + L²) (<= 6 here), so 1e-2 per channel; a grazing ray may hit
-  // either object (float against double: at most 1% of pixels).
-  const ImageDifference exact = image_difference(gpu, cpu, 1e-2);
-  const ImageDifference versus_rough = image_difference(rough, cpu, 2e-2);
+  // light's intensity / (1 + L²) (<= 6 here), so 1e-2 per channel; a
+  // grazing ray may hit either object (float against double: at most 1% of pixels).
+  const sol::test::ImageComparison exact = sol::test::compare_images(gpu, cpu, 1e-2f);
+  const sol::test::ImageComparison versus_rough = sol::test::compare_images(rough, cpu, 2e-2f);
   std::printf("reach %g, %dx%d: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
               "approximate vs exact light on the CPU: %d pixels differ by more than 2e-2 (worst %.2e)\n",
-              reach, width, height, exact.mask_differs, exact.over, exact.worst, versus_rough.over, versus_rough.worst);
+              reach, width, height, exact.mask_differs, exact.color_differs, exact.worst_color,
+              versus_rough.color_differs, versus_rough.worst_color);
   EXPECT_LE(exact.mask_differs, exact.pixels / 100);
   // With a reach, near a fold (a caustic of the longer connections) a pair
   // of connections merges and vanishes: within the float resolution of the
@@ -230,16 +217,17 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
   // Without a reach there are no folds: the worst pixel is measured at
   // 5.4e-4, so 0.1% of pixels over 1e-2 leaves room for grazing rays only
   // (a sign error in the directions' x or y puts 13 of 3072 over).
-  EXPECT_LE(exact.over, reach > 0.0 ? exact.pixels * 3 / 100 : exact.pixels / 1000);
-  EXPECT_GT(versus_rough.over, versus_rough.pixels / 5);
+  EXPECT_LE(exact.color_differs, reach > 0.0 ? exact.pixels * 3 / 100 : exact.pixels / 1000);
+  EXPECT_GT(versus_rough.color_differs, versus_rough.pixels / 5);
   if (reach > 0.0) {
     // The longer connections must show: the CPU image with reach differs
     // from the one with the minimisers alone.
     sol::Scene minimisers = scene;
     minimisers.lights[0].reach = 0.0;
-    const ImageDifference longer = image_difference(cpu, sol::render_cpu(minimisers, settings), 1e-3);
-    std::printf("reach %g against 0 on the CPU: %d pixels differ by more than 1e-3\n", reach, longer.over);
-    EXPECT_GT(longer.over, 0);
+    const sol::test::ImageComparison longer =
+        sol::test::compare_images(cpu, sol::render_cpu(minimisers, settings), 1e-3f);
+    std::printf("reach %g against 0 on the CPU: %d pixels differ by more than 1e-3\n", reach, longer.color_differs);
+    EXPECT_GT(longer.color_differs, 0);
   }
   expect_no_validation_errors();
 }
@@ -258,7 +246,7 @@ TEST(Kernel, ConnectionsUpToAReach) {
   std::vector<glm::vec4> queries;
   for (const Target& t : ts) queries.emplace_back(glm::vec3(t.w), static_cast<float>(reach));
   double ms = 0;
-  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(context(), queries, true, &ms);
+  const std::vector<sol::vk::KernelConnections> got = sol::vk::evaluate_kernel_connections(vk_context(), queries, true, &ms);
   int references = 0, missed = 0, more = 0, returned = 0;
   double worst_landing = 0;
   for (std::size_t i = 0; i < ts.size(); ++i) {
@@ -314,26 +302,26 @@ TEST(Kernel, ExactLightsInTheQuotientMatchTheCpuRenderer) {
   sol::RenderSettings settings;
   settings.width = 32;
   settings.height = 24;
-  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  sol::vk::MarchRenderer renderer(context());
-  const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+  const Renders both = render_both(scene, settings.width, settings.height);
+  const sol::RenderResult &cpu = both.cpu, &gpu = both.gpu;
   sol::Scene approximate = scene;
   approximate.lights.back().exact = false;
-  const ImageDifference exact = image_difference(gpu, cpu, 1e-2);
-  const ImageDifference versus_rough = image_difference(sol::render_cpu(approximate, settings), cpu, 1e-2);
+  const sol::test::ImageComparison exact = sol::test::compare_images(gpu, cpu, 1e-2f);
+  const sol::test::ImageComparison versus_rough =
+      sol::test::compare_images(sol::render_cpu(approximate, settings), cpu, 1e-2f);
   std::printf("quotient: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
               "approximate vs exact: %d pixels differ by more than 1e-2\n",
-              exact.mask_differs, exact.over, exact.worst, versus_rough.over);
+              exact.mask_differs, exact.color_differs, exact.worst_color, versus_rough.color_differs);
   // As ExactLightsMatchTheCpuRenderer; the quotient's float march adds grazing
   // hits that differ (Kernel.QuotientObserverAtPAndGpAndThinPlanesNearFaces).
   EXPECT_LE(exact.mask_differs, exact.pixels / 50);
-  EXPECT_LE(exact.over, exact.pixels / 50);
-  EXPECT_GT(versus_rough.over, versus_rough.pixels / 20);
+  EXPECT_LE(exact.color_differs, exact.pixels / 50);
+  EXPECT_GT(versus_rough.color_differs, versus_rough.pixels / 20);
   expect_no_validation_errors();
 }
 
 TEST(Kernel, RefusesLightsBeyondTheTablesReach) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   EXPECT_TRUE(sol::vk::MarchRenderer::supports(sol::preset_scene("spheres")));
   sol::Scene far = exact_light_scene(0.0);
   far.lights[0].reach = 5.0;  // beyond the seed table's sol::ConnectionTable::kReach
@@ -355,9 +343,8 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   sol::RenderSettings settings;
   settings.width = 32;
   settings.height = 24;
-  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  sol::vk::MarchRenderer renderer(context());
-  const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+  const Renders both = render_both(scene, settings.width, settings.height);
+  const sol::RenderResult &cpu = both.cpu, &gpu = both.gpu;
   // Hit points of the kernel on the geodesic spheres about the ball images:
   // the nearest image's exact distance from the hit point is the radius.
   const std::vector<sol::MarchObject> images = sol::quotient_images(scene);
@@ -374,9 +361,9 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
     }
     worst = std::max(worst, std::abs(nearest));
   }
-  const ImageDifference d = image_difference(gpu, cpu, 5e-2);
+  const sol::test::ImageComparison d = sol::test::compare_images(gpu, cpu, 5e-2f);
   std::printf("quotient exact balls: %d ball hits, worst |d - r| %.2e; mask differs at %d of %d, colour over 5e-2 at %d\n",
-              hits, worst, d.mask_differs, d.pixels, d.over);
+              hits, worst, d.mask_differs, d.pixels, d.color_differs);
   // The table's accuracy: 5.1e-3 where 0.3 <= d <= 1.2 (ExactTable test),
   // but these balls have radius 0.25, where d is nearer its cone at the
   // centre and the trilinear lookup (step 0.1) errs more (measured 1.07e-2);
@@ -384,6 +371,6 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   EXPECT_GT(hits, 20);
   EXPECT_LT(worst, 2e-2);
   EXPECT_LE(d.mask_differs, d.pixels / 20);
-  EXPECT_LE(d.over, d.pixels / 20);
+  EXPECT_LE(d.color_differs, d.pixels / 20);
   expect_no_validation_errors();
 }

@@ -15,19 +15,13 @@
 #include <sol/vk/march.hpp>
 
 #include "support/directions.hpp"
+#include "support/kernel.hpp"
 
 namespace {
 
 using glm::dvec3;
-
-sol::vk::Context& context() {
-  static sol::vk::Context ctx({.preference = sol::vk::DevicePreference::Auto, .validation = true});
-  return ctx;
-}
-
-void expect_no_validation_errors() {
-  for (const std::string& e : context().validation_errors()) ADD_FAILURE() << "validation: " << e;
-}
+using sol::test::expect_no_validation_errors;
+using sol::test::vk_context;
 
 // 10^5 (direction, arc length) pairs: random directions and the stiff set,
 // |t| <= 50; the reference is the double closed form for the float-rounded
@@ -44,7 +38,7 @@ TEST(Kernel, FlowMatchesTheDoubleClosedForm) {
       queries.emplace_back(glm::vec3(d), static_cast<float>(arc(rng)));
     }
   }
-  const std::vector<glm::vec4> results = sol::vk::evaluate_kernel_flow(context(), queries);
+  const std::vector<glm::vec4> results = sol::vk::evaluate_kernel_flow(vk_context(), queries);
   double worst = 0, worst_height = 0;
   std::size_t worst_at = 0;
   for (std::size_t i = 0; i < queries.size(); ++i) {
@@ -70,29 +64,15 @@ TEST(Kernel, FlowMatchesTheDoubleClosedForm) {
   expect_no_validation_errors();
 }
 
-struct Comparison {
-  int pixels = 0, mask_differs = 0, color_differs = 0;
-  double distance = 0;  // worst |Δ distance| where both hit
-};
-
+// The kernel against the CPU renderer (or another kernel render): colours
+// count as different beyond 2e-3 per channel.
+using Comparison = sol::test::ImageComparison;
 Comparison compare(const sol::RenderResult& gpu, const sol::RenderResult& cpu) {
-  Comparison c;
-  c.pixels = gpu.width * gpu.height;
-  for (int k = 0; k < c.pixels; ++k) {
-    if (gpu.object[k] != cpu.object[k]) {
-      ++c.mask_differs;
-      continue;
-    }
-    if (gpu.object[k] != 0) c.distance = std::max(c.distance, static_cast<double>(std::abs(gpu.distance[k] - cpu.distance[k])));
-    bool differs = false;
-    for (int ch = 0; ch < 3; ++ch) differs = differs || std::abs(gpu.rgba[4 * k + ch] - cpu.rgba[4 * k + ch]) > 2e-3f;
-    c.color_differs += differs;
-  }
-  return c;
+  return sol::test::compare_images(gpu, cpu, 2e-3f);
 }
 
 TEST(Kernel, PresetsMatchTheCpuRenderer) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   for (const std::string& name : sol::preset_names()) {
     const sol::Scene scene = sol::preset_scene(name);
     // Exact balls (the kernel's table) and lights: tests ExactBalls* and ExactLights*.
@@ -157,7 +137,7 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   settings.width = 40;
   settings.height = 30;
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
   const Comparison c = compare(gpu, cpu);
   int tubes = 0;
@@ -183,7 +163,7 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   // feature compiled in compute the same march (the general one evaluates
   // full positions where the specialised one needs heights only, so float
   // rounding differs: same tolerances as against the CPU).
-  sol::vk::MarchRenderer specialised(context()), general(context(), {.all_features = true});
+  sol::vk::MarchRenderer specialised(vk_context()), general(vk_context(), {.all_features = true});
   for (const std::string& name : sol::preset_names()) {
     const sol::Scene scene = sol::preset_scene(name);
     if (sol::uses_exact(scene)) continue;  // exact scenes: tests ExactBalls* and ExactLights*
@@ -208,7 +188,7 @@ TEST(Kernel, ExactBallsFromTheTableLieOnTheGeodesicSphere) {
   ball.radius = 0.5;
   ball.exact = true;
   scene.objects = {ball};
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult gpu = renderer.render(scene, 24, 18);
   sol::RenderSettings settings;
   settings.width = 24;
@@ -246,7 +226,7 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
   settings.width = 48;
   settings.height = 48;
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult gpu = renderer.render(scene, 48, 48);
   const Comparison c = compare(gpu, cpu);
   std::printf("cutout: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
@@ -259,7 +239,7 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
 }
 
 TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::Lattice lattice = sol::Lattice::golden();
   for (const char* name : {"lattice-balls", "lattice-pillars"}) {
     sol::Scene scene = sol::preset_scene(name);
@@ -295,7 +275,7 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
 }
 
 TEST(Kernel, PlaneAovsLieOnThePlane) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.
   const sol::RenderResult r = renderer.render(sol::preset_scene("plane"), 512, 512);
   int hits = 0, unlit = 0;
@@ -315,7 +295,7 @@ TEST(Kernel, PlaneAovsLieOnThePlane) {
 }
 
 TEST(Kernel, FarObserverSeesTheSameImage) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   const sol::RenderResult here = renderer.render(scene, 32, 32);
   scene.camera.position = dvec3(1e6, -1e6, 1.5);  // (X, Y, 0) * (0, 0, 1.5): a symmetry of `plane`
@@ -326,7 +306,7 @@ TEST(Kernel, FarObserverSeesTheSameImage) {
 }
 
 TEST(Kernel, OffAxisWindowMatchesTheCpuRenderer) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("sandwich");
   scene.camera.frustum = sol::Frustum{-1.3, 0.7, -0.9, 0.4};
   sol::RenderSettings settings;
@@ -353,7 +333,7 @@ TEST(Kernel, SwapSymmetry) {
   b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
   b.objects[0].c = -1.0;
   b.lights[0].direction = sigma(a.lights[0].direction);
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult ra = renderer.render(a, 40, 30), rb = renderer.render(b, 40, 30);
   const Comparison c = compare(ra, rb);
   // Float rounding differs between the mirrored rays (their a and b swap
@@ -369,7 +349,7 @@ TEST(Kernel, SwapSymmetry) {
 }
 
 TEST(Kernel, StereoInOneDispatchEqualsEachEyesMonoRender) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   const sol::Scene scene = sol::preset_scene("sheets");
   const sol::RenderResult both = renderer.render_stereo(scene, 20, 12, 0.4);
   ASSERT_EQ(both.width, 40);
@@ -399,7 +379,7 @@ TEST(Kernel, StereoInOneDispatchEqualsEachEyesMonoRender) {
 // colour only) writes exactly render()'s colour, mono and stereo, with the
 // target larger than the image (the rest untouched).
 TEST(Kernel, RecordedDispatchWritesRendersColour) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   for (const char* name : {"sandwich", "lattice-balls"}) {
     const sol::Scene scene = sol::preset_scene(name);
     const int w = 12, h = 8;
@@ -408,8 +388,8 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
       const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
                                                    : std::vector<sol::Camera>{eyes.left, eyes.right};
       const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
-      sol::vk::StorageImage target(context(), static_cast<std::uint32_t>(n * w + 3), h + 2);
-      context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, target); });
+      sol::vk::StorageImage target(vk_context(), static_cast<std::uint32_t>(n * w + 3), h + 2);
+      vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, target); });
       const std::vector<float> got = target.download();
       int differ = 0;
       for (int j = 0; j < h; ++j) {
@@ -425,8 +405,8 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
     }
   }
   const sol::Scene scene = sol::preset_scene("plane");
-  sol::vk::StorageImage small(context(), 4, 4);
-  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+  sol::vk::StorageImage small(vk_context(), 4, 4);
+  EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
     renderer.record(cb, scene, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
   }), sol::InvalidArgument);
   expect_no_validation_errors();
@@ -444,15 +424,15 @@ double srgb_encode(double linear) {
 // sRGB-encoded, within 1 in 255, mono and stereo, in both channel orders,
 // with the target larger than the image.
 TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   // lavapipe has the feature and both formats: there the test must run.
-  if (context().is_cpu()) {
-    ASSERT_TRUE(context().storage_write_without_format());
+  if (vk_context().is_cpu()) {
+    ASSERT_TRUE(vk_context().storage_write_without_format());
   }
   int formats_tested = 0;
   for (VkFormat format : {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM}) {
-    if (!sol::vk::MarchRenderer::can_write_unorm(context(), format)) {
-      EXPECT_FALSE(context().is_cpu()) << "lavapipe cannot write format " << format;
+    if (!sol::vk::MarchRenderer::can_write_unorm(vk_context(), format)) {
+      EXPECT_FALSE(vk_context().is_cpu()) << "lavapipe cannot write format " << format;
       continue;
     }
     ++formats_tested;
@@ -466,9 +446,9 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
                                                      : std::vector<sol::Camera>{eyes.left, eyes.right};
         const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
         const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
-        sol::vk::StorageImage target(context(), tw, th, format);
+        sol::vk::StorageImage target(vk_context(), tw, th, format);
         const sol::vk::UnormTarget unorm{target.view(), format, tw, th};
-        context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, unorm); });
+        vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, unorm); });
         const std::vector<std::uint8_t> got = target.download_bytes();
         int worst = 0;
         for (int j = 0; j < h; ++j) {
@@ -489,22 +469,22 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
       }
     }
   }
-  if (context().is_cpu()) {
+  if (vk_context().is_cpu()) {
     EXPECT_EQ(formats_tested, 2);
   }
   // Wrong format, null view, too small: refused before anything is recorded.
   const sol::Scene scene = sol::preset_scene("plane");
   const std::vector<sol::Camera> cams{scene.camera};
-  sol::vk::StorageImage rgba32f(context(), 8, 8);
-  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+  sol::vk::StorageImage rgba32f(vk_context(), 8, 8);
+  EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
     renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{rgba32f.view(), VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8});
   }), sol::InvalidArgument);
-  EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+  EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
     renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{VK_NULL_HANDLE, VK_FORMAT_R8G8B8A8_UNORM, 8, 8});
   }), sol::InvalidArgument);
-  if (sol::vk::MarchRenderer::can_write_unorm(context(), VK_FORMAT_R8G8B8A8_UNORM)) {
-    sol::vk::StorageImage small(context(), 4, 4, VK_FORMAT_R8G8B8A8_UNORM);
-    EXPECT_THROW(context().submit_and_wait([&](VkCommandBuffer cb) {
+  if (sol::vk::MarchRenderer::can_write_unorm(vk_context(), VK_FORMAT_R8G8B8A8_UNORM)) {
+    sol::vk::StorageImage small(vk_context(), 4, 4, VK_FORMAT_R8G8B8A8_UNORM);
+    EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
       renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{small.view(), VK_FORMAT_R8G8B8A8_UNORM, 4, 4});
     }), sol::InvalidArgument);
   }
@@ -512,8 +492,8 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
 }
 
 TEST(Kernel, Rk4IntegratorAgreesAtSmallSteps) {
-  sol::vk::MarchRenderer closed(context());
-  sol::vk::MarchRenderer rk4(context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.01});
+  sol::vk::MarchRenderer closed(vk_context());
+  sol::vk::MarchRenderer rk4(vk_context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.01});
   const sol::Scene scene = sol::preset_scene("sandwich");
   const sol::RenderResult a = closed.render(scene, 24, 16), b = rk4.render(scene, 24, 16);
   const Comparison c = compare(b, a);
@@ -523,12 +503,12 @@ TEST(Kernel, Rk4IntegratorAgreesAtSmallSteps) {
 }
 
 TEST(Kernel, RejectsBadInput) {
-  sol::vk::MarchRenderer renderer(context());
+  sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   EXPECT_THROW(renderer.render(scene, 0, 10), sol::InvalidArgument);
   scene.objects.resize(9, scene.objects[0]);
   EXPECT_THROW(renderer.render(scene, 8, 8), sol::InvalidArgument);
-  EXPECT_THROW(sol::vk::MarchRenderer(context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.0}),
+  EXPECT_THROW(sol::vk::MarchRenderer(vk_context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.0}),
                sol::InvalidArgument);
 }
 
