@@ -175,7 +175,8 @@ int main(int argc, char** argv) {
     bool rendered = false;
 #ifdef SOL_HAVE_VULKAN
     if (device == "auto" && !sol::vk::MarchRenderer::supports(scene)) {
-      std::fprintf(stderr, "solrender: exact point lights with a reach above 3 are CPU-only; rendering on the CPU\n");
+      std::fprintf(stderr, "solrender: exact point lights with a reach above %g are CPU-only; rendering on the CPU\n",
+                   sol::ConnectionTable::kReach);
     } else if (device != "cpu") {
       std::optional<sol::vk::Context> context;
       try {

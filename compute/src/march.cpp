@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <string>
@@ -288,9 +289,12 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
                                                bool aovs, bool srgb_unorm) {
   validate(scene);
   if (!supports(scene)) {
-    throw NotImplemented(
-        "sol::vk::MarchRenderer: exact point lights with a reach above " +
-        std::to_string(ConnectionTable::kReach).substr(0, 3) + " render on the CPU only (--device cpu)");
+    char message[160];
+    std::snprintf(message, sizeof message,
+                  "sol::vk::MarchRenderer: exact point lights with a reach above %g render on the CPU only "
+                  "(--device cpu)",
+                  ConnectionTable::kReach);
+    throw NotImplemented(message);
   }
   require_size(width, "width");
   require_size(height, "height");
@@ -311,12 +315,13 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
   if (!m.images || m.images->size() != image_bytes) m.images.emplace(m.context, image_bytes);
   m.images->write(images);
   m.params.write(std::span<const GpuParams>(&g, 1));
+  const Features used = features_of(scene);
   Features f = m.options.all_features
                    ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false, false}
-                   : features_of(scene);
+                   : used;
   f.no_aovs = !aovs;
-  f.exact_balls = features_of(scene).exact_balls;
-  f.exact_lights = features_of(scene).exact_lights;
+  f.exact_balls = used.exact_balls;  // both need their tables (bindings 5, 6), so always from the scene
+  f.exact_lights = used.exact_lights;
   f.srgb_unorm = srgb_unorm;
   ComputePipeline& pipeline = m.pipeline(f);
   pipeline.bind(0, m.params);
