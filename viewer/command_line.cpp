@@ -47,6 +47,35 @@ glm::dvec3 Arguments::vec3(const std::string& text, const std::string& option) c
   return {number(parts[0], option), number(parts[1], option), number(parts[2], option)};
 }
 
+bool SceneOverrides::read(const Arguments& args, const std::string& option, const std::function<std::string()>& value,
+                          bool with_fov) {
+  if (with_fov && option == "--fov") {
+    fov = args.number(value(), option);
+  } else if (option == "--position") {
+    position = args.vec3(value(), option);
+  } else if (option == "--forward") {
+    forward = args.vec3(value(), option);
+  } else if (option == "--up") {
+    up = args.vec3(value(), option);
+  } else if (option == "--max-distance") {
+    max_distance = args.number(value(), option);
+  } else if (option == "--max-steps") {
+    max_steps = static_cast<int>(args.integer(value(), option, 1, 100000));
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void SceneOverrides::apply(Scene& scene) const {
+  if (fov) scene.camera.fov = *fov;
+  if (position) scene.camera.position = *position;
+  if (forward) scene.camera.forward = *forward;
+  if (up) scene.camera.up = *up;
+  if (max_distance) scene.max_distance = *max_distance;
+  if (max_steps) scene.max_steps = *max_steps;
+}
+
 Scene scene_argument(const std::string& text) {
   const bool is_file = std::filesystem::exists(text) || text.find('.') != std::string::npos ||
                        text.find('/') != std::string::npos;

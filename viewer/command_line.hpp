@@ -4,6 +4,8 @@
 // status 2 (bad usage), as each program documents.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -27,6 +29,22 @@ class Arguments {
 
  private:
   std::string m_program;
+};
+
+/// The options that override a scene's camera and limits: --position,
+/// --forward, --up (frame components), --max-distance, --max-steps, and
+/// with `with_fov` --fov (solxr takes its field of view from the runtime).
+struct SceneOverrides {
+  std::optional<double> fov, max_distance;
+  std::optional<glm::dvec3> position, forward, up;
+  std::optional<int> max_steps;
+
+  /// Reads `option` when it is one of these, its value from `value()`;
+  /// false when it is not (the caller tries its own options).
+  bool read(const Arguments& args, const std::string& option, const std::function<std::string()>& value,
+            bool with_fov = true);
+  /// Sets what was given on `scene` (not validated).
+  void apply(Scene& scene) const;
 };
 
 /// The scene a --scene argument names: a JSON file when it exists or looks

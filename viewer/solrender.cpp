@@ -81,11 +81,7 @@ int main(int argc, char** argv) {
   int width = 512, height = 512;
   unsigned threads = 0;
   bool print_scene = false;
-  struct Overrides {
-    std::optional<double> fov, max_distance;
-    std::optional<glm::dvec3> position, forward, up;
-    std::optional<int> max_steps;
-  } o;
+  sol::cli::SceneOverrides o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
@@ -105,18 +101,8 @@ int main(int argc, char** argv) {
       width = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
     } else if (arg == "--height") {
       height = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
-    } else if (arg == "--fov") {
-      o.fov = kArgs.number(value(), arg);
-    } else if (arg == "--position") {
-      o.position = kArgs.vec3(value(), arg);
-    } else if (arg == "--forward") {
-      o.forward = kArgs.vec3(value(), arg);
-    } else if (arg == "--up") {
-      o.up = kArgs.vec3(value(), arg);
-    } else if (arg == "--max-distance") {
-      o.max_distance = kArgs.number(value(), arg);
-    } else if (arg == "--max-steps") {
-      o.max_steps = static_cast<int>(kArgs.integer(value(), arg, 1, 100000));
+    } else if (o.read(kArgs, arg, value)) {
+      // a camera or limit override
     } else if (arg == "--device") {
       device = value();
       if (device != "auto" && device != "vulkan" && device != "cpu") {
@@ -147,12 +133,7 @@ int main(int argc, char** argv) {
   sol::Scene scene;
   try {
     scene = sol::cli::scene_argument(scene_arg);
-    if (o.fov) scene.camera.fov = *o.fov;
-    if (o.position) scene.camera.position = *o.position;
-    if (o.forward) scene.camera.forward = *o.forward;
-    if (o.up) scene.camera.up = *o.up;
-    if (o.max_distance) scene.max_distance = *o.max_distance;
-    if (o.max_steps) scene.max_steps = *o.max_steps;
+    o.apply(scene);
     sol::validate(scene);
   } catch (const std::exception& e) {
     fail(e.what());

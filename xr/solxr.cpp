@@ -84,9 +84,7 @@ struct Options {
   long frames = 0;            // 0: until the runtime ends the session
   bool stats = false, validation = false;
   std::string copy = "auto";  // device: kernel image blitted into the swapchain image; host: through the host
-  std::optional<double> max_distance;
-  std::optional<glm::dvec3> position, forward, up;
-  std::optional<int> max_steps;
+  sol::cli::SceneOverrides overrides;  // camera and limits (no --fov: the runtime's)
 };
 
 Options parse_options(int argc, char** argv) {
@@ -102,16 +100,8 @@ Options parse_options(int argc, char** argv) {
       std::exit(0);
     } else if (arg == "--scene") {
       o.scene = value();
-    } else if (arg == "--position") {
-      o.position = kArgs.vec3(value(), arg);
-    } else if (arg == "--forward") {
-      o.forward = kArgs.vec3(value(), arg);
-    } else if (arg == "--up") {
-      o.up = kArgs.vec3(value(), arg);
-    } else if (arg == "--max-distance") {
-      o.max_distance = kArgs.number(value(), arg);
-    } else if (arg == "--max-steps") {
-      o.max_steps = static_cast<int>(kArgs.integer(value(), arg, 1, 100000));
+    } else if (o.overrides.read(kArgs, arg, value, false)) {
+      // a camera or limit override
     } else if (arg == "--integrator") {
       o.integrator = value();
       if (o.integrator != "closed" && o.integrator != "rk4") {
@@ -159,11 +149,7 @@ sol::Scene load_scene(const Options& o) {
   sol::Scene scene;
   try {
     scene = sol::cli::scene_argument(o.scene);
-    if (o.position) scene.camera.position = *o.position;
-    if (o.forward) scene.camera.forward = *o.forward;
-    if (o.up) scene.camera.up = *o.up;
-    if (o.max_distance) scene.max_distance = *o.max_distance;
-    if (o.max_steps) scene.max_steps = *o.max_steps;
+    o.overrides.apply(scene);
     sol::validate(scene);
   } catch (const std::exception& e) {
     fail_option(e.what());
