@@ -679,6 +679,7 @@ int run(App& app) {
   constexpr long kWarmupFrames = 5;
   auto measure_start = std::chrono::steady_clock::now();
   double scale_sum = 0;  // over the measured frames
+  double host_ms_sum = 0;  // host time to prepare and record a frame, over the measured frames
   long direct_frames = 0, blit_frames = 0;
   int shown_w = 0, shown_h = 0;  // of the last frame's rendered image (both eyes)
   const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
@@ -772,6 +773,7 @@ int run(App& app) {
     if (acquired != VK_SUBOPTIMAL_KHR) sol::vk::check(acquired, "vkAcquireNextImageKHR");
     sol::vk::check(vkResetFences(device, 1, &present.frame_done), "vkResetFences");
 
+    const auto host_begin = std::chrono::steady_clock::now();
     sol::Scene scene = app.scene;
     scene.camera.position = app.observer.position();
     scene.camera.forward = app.observer.forward();
@@ -872,6 +874,7 @@ int run(App& app) {
     sol::vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     sol::vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+    const double host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
 
     // The first use of the swapchain image waits for the acquire: the kernel
     // on the direct path; the blit otherwise (the kernel may run before the image is free).
@@ -925,7 +928,10 @@ int run(App& app) {
       }
     }
 
-    if (frame >= first_measured) scale_sum += app.scale;
+    if (frame >= first_measured) {
+      scale_sum += app.scale;
+      host_ms_sum += host_ms;
+    }
     ++title_frames;
     const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - title_time).count();
     if (since >= 0.5) {
@@ -955,6 +961,10 @@ int run(App& app) {
     std::fprintf(stderr, "solview: %s: %.2f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
                  app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured, frame,
                  scale_sum / static_cast<double>(measured));
+    // The host's share of a frame: the scene and cameras, the renderer's
+    // preparation and the recorded commands (no waits on the device).
+    std::fprintf(stderr, "solview: host %.3f ms per frame to prepare and record (mean over frames %ld..%ld)\n",
+                 host_ms_sum / static_cast<double>(measured), first_measured, frame);
   }
   std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frame, app.scale,
                shown_w, shown_h, present.extent.width, present.extent.height);
