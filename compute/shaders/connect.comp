@@ -12,7 +12,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: w (the target seen from the origin), w: reach
 };
 layout(std430, set = 0, binding = 1) writeonly buffer Results {
-  vec4 results[];  // per query SOL_SEED_SLOTS + 1 entries: the connections (direction, length), then (count, 0, 0, 0)
+  vec4 results[];  // per query kSeedSlots + 1 entries: the connections (direction, length), then (count, 0, 0, 0)
 };
 layout(std430, set = 0, binding = 2) readonly buffer ConnectionSeeds {
   vec4 connection_seeds[];
@@ -26,9 +26,9 @@ layout(push_constant) uniform Count {
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
-  vec4 found[SOL_SEED_SLOTS];
+  vec4 found[kSeedSlots];
   const int n = sol_connections(queries[i].xyz, queries[i].w, found);
-  const uint base = i * uint(SOL_SEED_SLOTS + 1);
-  for (int s = 0; s < SOL_SEED_SLOTS; ++s) results[base + uint(s)] = found[s];
-  results[base + uint(SOL_SEED_SLOTS)] = vec4(float(n), 0.0, 0.0, 0.0);
+  const uint base = i * uint(kSeedSlots + 1);
+  for (int s = 0; s < kSeedSlots; ++s) results[base + uint(s)] = found[s];
+  results[base + uint(kSeedSlots)] = vec4(float(n), 0.0, 0.0, 0.0);
 }

@@ -10,62 +10,37 @@
 // step's state, so its error accumulates (that is what the bench measures).
 #extension GL_GOOGLE_include_directive : require
 
+#include "sol/vk/march_interface.h"
 #include "sol_geodesic.glsl"
 
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(constant_id = 0) const int INTEGRATOR = 0;
+// Bindings, specialisation-constant ids, limits, codes and the uniform
+// layout: sol/vk/march_interface.h, shared with the host (compute/src/march.cpp).
+layout(local_size_x = kGroupSize, local_size_y = kGroupSize, local_size_z = 1) in;
+layout(constant_id = kSpecIntegrator) const int INTEGRATOR = 0;
 // Every object a plane z = c: the march needs heights only. A specialisation
 // constant, not a uniform: lavapipe evaluates both sides of every branch, so
 // only a compile-time branch saves the other side's cost.
-layout(constant_id = 1) const bool HEIGHTS_ONLY = false;
+layout(constant_id = kSpecHeightsOnly) const bool HEIGHTS_ONLY = false;
 // What else the scene uses: the compiler folds away what it does not.
-layout(constant_id = 2) const bool HAS_BALLS = true;
-layout(constant_id = 3) const bool HAS_POINT_LIGHTS = true;
-layout(constant_id = 4) const bool HAS_FOG = true;
-layout(constant_id = 5) const bool HAS_CUTOUT = true;
+layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;
+layout(constant_id = kSpecPointLights) const bool HAS_POINT_LIGHTS = true;
+layout(constant_id = kSpecFog) const bool HAS_FOG = true;
+layout(constant_id = kSpecCutout) const bool HAS_CUTOUT = true;
 // The compact quotient Γ\Sol (see march_quotient below).
-layout(constant_id = 6) const bool QUOTIENT = false;
-// Write the AOV images (bindings 2, 3); off for presenters, which take the
-// colour alone (MarchRenderer::record) and bind the colour image there too.
-layout(constant_id = 7) const bool WRITE_AOVS = true;
-// Exact balls (type 5, cover only): the table of d(0, ·) in binding 5.
-layout(constant_id = 8) const bool HAS_EXACT_BALLS = false;
-// Exact point lights (light_color.w = 2): directions along the geodesics to
-// the light from sol_connection.glsl, seeded by the table in binding 6.
-layout(constant_id = 9) const bool HAS_EXACT_LIGHTS = false;
+layout(constant_id = kSpecQuotient) const bool QUOTIENT = false;
+// Write the AOV images (bindings kBindingHit, kBindingPoint); off for
+// presenters, which take the colour alone (MarchRenderer::record) and bind
+// the colour image there too.
+layout(constant_id = kSpecWriteAovs) const bool WRITE_AOVS = true;
+// Exact balls (kObjectExactBall): the table of d(0, ·) in kBindingDistanceTable.
+layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
+// Exact point lights (kLightExactPoint): directions along the geodesics to
+// the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
+layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
 
-const int MAX_OBJECTS = 8;
-const int MAX_LIGHTS = 4;
-const int MAX_IMAGES = 64;  // quotient images (sol::vk::kMaxGpuImages)
-
-struct Object {
-  vec4 plane;  // x: type (0 plane_x, 1 plane_y, 2 plane_z, 3 ball, 4 tube), y: radius, z: pattern (0 none, 1 circles, 2 checker), w: cutout
-  vec4 color;  // rgb
+layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
+  Params params;
 };
-
-// One eye (a mono image has one; a side-by-side stereo image two, rendered in
-// one dispatch: the left eye's pixels are x < eye width).
-struct Eye {
-  vec4 right;        // xyz: camera right (frame components)
-  vec4 up;           // xyz: camera up
-  vec4 forward;      // xyz: camera forward; w: RK4 step
-  vec4 camera;       // xyz: camera world position (rounded to float); w: e^{z_camera}
-  vec4 camera_frac;  // xyz: camera position modulo 2 (pattern phase, from double); w: e^{-z_camera}
-  vec4 window;       // sol::image_window: s_x at the left and right edges, s_y at the top and bottom edges
-  vec4 relative[MAX_OBJECTS];  // relative to this eye: planes (constant, 0, 0, 0), balls (centre, 0), tubes (point, axis)
-  vec4 heading[MAX_OBJECTS];   // horizontal tubes: xy the axis's unit coordinate direction relative to this eye
-  vec4 lights[MAX_LIGHTS];     // directional: unit direction; point: position relative to this eye
-};
-
-layout(std140, set = 0, binding = 0) uniform Params {
-  Eye eyes[2];
-  vec4 shading;      // x: ambient, y: fog density, z: lights
-  vec4 fog_color;    // rgb
-  vec4 limits;       // x: max distance, y: hit epsilon, w: max steps
-  ivec4 counts;      // x: objects, y: eye width, z: height, w: eyes (1 or 2)
-  vec4 light_color[MAX_LIGHTS];  // rgb: colour * intensity; w: 0 directional, 1 point
-  Object objects[MAX_OBJECTS];
-} params;
 
 #ifdef SOL_OUTPUT_SRGB_UNORM
 // The presenters' 8-bit output (a separate SPIR-V build, march_srgb_unorm;
@@ -74,27 +49,27 @@ layout(std140, set = 0, binding = 0) uniform Params {
 // image. No format qualifier, as GLSL names no BGRA format: this needs the
 // shaderStorageImageWriteWithoutFormat feature, so it stays out of the
 // default build.
-layout(set = 0, binding = 1) uniform writeonly image2D color_image;
+layout(set = 0, binding = kBindingColor) uniform writeonly image2D color_image;
 #else
-layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D color_image;
+layout(set = 0, binding = kBindingColor, rgba32f) uniform writeonly image2D color_image;
 #endif
-layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D aov_hit;    // object, distance, steps, 0
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
+layout(set = 0, binding = kBindingHit, rgba32f) uniform writeonly image2D aov_hit;      // object, distance, steps, 0
+layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
 // Quotient scenes: the images of the objects around D, in world coordinates
-// (sol::quotient_images): triples (geometry: ball centre, (tube point, axis)
-// or (c, 0, 0, 0) for a plane z = c; (type, radius, owner, 0); (tube heading, 0, 0)).
-layout(std430, set = 0, binding = 4) readonly buffer Images {
-  vec4 images[];
+// (sol::quotient_images).
+layout(std430, set = 0, binding = kBindingImages) readonly buffer Images {
+  Image images[];
 };
 
-// sol::DistanceTable: d(0, (x, y, z)) on a 25³ grid over x, y in [0, 2.4],
-// z in [-1.2, 1.2], index (k 25 + j) 25 + i.
-layout(std430, set = 0, binding = 5) readonly buffer DistanceTable {
+// sol::DistanceTable: d(0, (x, y, z)) on a grid of kDistanceTableSize³
+// points over x, y in [0, kDistanceTableExtent], z in ±kDistanceTableHeight,
+// index (k n + j) n + i.
+layout(std430, set = 0, binding = kBindingDistanceTable) readonly buffer DistanceTable {
   float distance_table[];
 };
 
 // sol::ConnectionTable: the seeds of the connection solver (exact point lights).
-layout(std430, set = 0, binding = 6) readonly buffer ConnectionSeeds {
+layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds {
   vec4 connection_seeds[];
 };
 
@@ -107,7 +82,8 @@ layout(std430, set = 0, binding = 6) readonly buffer ConnectionSeeds {
 vec4 output_color(vec4 linear) {
 #ifdef SOL_OUTPUT_SRGB_UNORM
   vec3 c = clamp(linear.rgb, 0.0, 1.0);
-  vec3 encoded = mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c, lessThanEqual(c, vec3(0.0031308)));
+  vec3 encoded = mix(kSrgbScale * pow(c, vec3(1.0 / kSrgbGamma)) - kSrgbOffset, kSrgbLinearSlope * c,
+                     lessThanEqual(c, vec3(kSrgbLinearLimit)));
   return vec4(encoded, clamp(linear.a, 0.0, 1.0));
 #else
   return linear;
@@ -128,21 +104,25 @@ float distance_lower_bound(vec3 p, vec3 q) {
 float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
   const vec3 d = q - through;
   const float ez = exp(q.z);
-  if (axis == 2) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
+  if (axis == kTubeVertical) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
   const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
   return max(asinh(across), abs(d.z)) - radius;
 }
 
 // Exact balls (mirrors sol::sdf_ball_exact with sol::DistanceTable::lookup):
-// the bound beyond the band 0.25, else the table at w = centre⁻¹·q (never
+// the bound beyond the band kExactBallBand, else the table at w = centre⁻¹·q (never
 // below the bound); outside the table's box the bound.
-float table_at(int i, int j, int k) { return distance_table[(k * 25 + j) * 25 + i]; }
+float table_at(int i, int j, int k) {
+  return distance_table[(k * kDistanceTableSize + j) * kDistanceTableSize + i];
+}
 float exact_ball_distance(vec3 q, vec3 c, float radius) {
   const float bound = distance_lower_bound(q, c) - radius;
-  if (bound > 0.25) return bound;
+  if (bound > kExactBallBand) return bound;
   const float ecz = exp(c.z);
-  const vec3 g = vec3(abs(q.x - c.x) / ecz, abs(q.y - c.y) * ecz, q.z - c.z + 1.2) / vec3(0.1, 0.1, 0.1);
-  if (!(g.x < 24.0 && g.y < 24.0 && g.z >= 0.0 && g.z < 24.0)) return bound;
+  const float last = float(kDistanceTableSize - 1);
+  const vec3 step = vec3(kDistanceTableExtent, kDistanceTableExtent, 2.0 * kDistanceTableHeight) / last;
+  const vec3 g = vec3(abs(q.x - c.x) / ecz, abs(q.y - c.y) * ecz, q.z - c.z + kDistanceTableHeight) / step;
+  if (!(g.x < last && g.y < last && g.z >= 0.0 && g.z < last)) return bound;
   const ivec3 i = ivec3(g);
   const vec3 f = g - vec3(i);
   const float x00 = mix(table_at(i.x, i.y, i.z), table_at(i.x + 1, i.y, i.z), f.x);
@@ -155,12 +135,12 @@ float exact_ball_distance(vec3 q, vec3 c, float radius) {
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
 // object given in the coordinates of q (camera-relative, or world in the quotient).
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  if (HAS_BALLS && type == 3) return distance_lower_bound(q, rel.xyz) - radius;
-  if (HAS_EXACT_BALLS && type == 5) return exact_ball_distance(q, rel.xyz, radius);
-  if (HAS_BALLS && type == 4) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
+  if (HAS_BALLS && type == kObjectBall) return distance_lower_bound(q, rel.xyz) - radius;
+  if (HAS_EXACT_BALLS && type == kObjectExactBall) return exact_ball_distance(q, rel.xyz, radius);
+  if (HAS_BALLS && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
   float c = rel.x;
-  if (type == 0) return asinh(abs(q.x - c) * exp(-q.z));
-  if (type == 1) return asinh(abs(q.y - c) * exp(q.z));
+  if (type == kObjectPlaneX) return asinh(abs(q.x - c) * exp(-q.z));
+  if (type == kObjectPlaneY) return asinh(abs(q.y - c) * exp(q.z));
   return abs(q.z - c);
 }
 
@@ -168,8 +148,8 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
 vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radius) {
-  if (HAS_BALLS && type >= 3) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
-    float h = 1e-3, ez = exp(q.z);
+  if (HAS_BALLS && type >= kObjectBall) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
+    float h = kNormalStep, ez = exp(q.z);
     vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
     vec3 g = vec3(object_distance(type, q + e1, rel, heading, radius) - object_distance(type, q - e1, rel, heading, radius),
                   object_distance(type, q + e2, rel, heading, radius) - object_distance(type, q - e2, rel, heading, radius),
@@ -177,11 +157,11 @@ vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radiu
     return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
   }
   float side = 0.0 >= c ? 1.0 : -1.0;
-  if (type == 0) {
+  if (type == kObjectPlaneX) {
     float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
     return vec3(side * r, 0.0, -w * r);
   }
-  if (type == 1) {
+  if (type == kObjectPlaneY) {
     float w = abs(q.y - c) * exp(q.z), r = inversesqrt(1.0 + w * w);
     return vec3(0.0, side * r, w * r);
   }
@@ -189,11 +169,11 @@ vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radiu
 }
 
 float pattern_factor(int pattern, float u, float v) {
-  if (pattern == 1) {
+  if (pattern == kPatternCircles) {
     float du = fract(u) - 0.5, dv = fract(v) - 0.5;
-    return du * du + dv * dv < 0.09 ? 1.0 : 0.3;
+    return du * du + dv * dv < kCircleRadius * kCircleRadius ? 1.0 : kCircleDark;
   }
-  if (pattern == 2) return mod(floor(u) + floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
+  if (pattern == kPatternChecker) return mod(floor(u) + floor(v), 2.0) == 0.0 ? 1.0 : kCheckerDark;
   return 1.0;
 }
 
@@ -202,11 +182,11 @@ float pattern_factor(int pattern, float u, float v) {
 // w = rel⁻¹·q, balls (4/π)(longitude, latitude); tubes (4/π)(angle around
 // the axis, coordinate along it / radius).
 vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  const float cells = 1.27323954;  // 4/π: 8 cells per turn
+  const float cells = kPatternCellsPerRadian;
   const float ez = exp(rel.z);
   const vec3 w = vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
-  if (type == 3 || type == 5) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
-  if (int(rel.w) == 2) return cells * vec2(atan(w.y, w.x), w.z / radius);
+  if (type == kObjectBall || type == kObjectExactBall) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
+  if (int(rel.w) == kTubeVertical) return cells * vec2(atan(w.y, w.x), w.z / radius);
   const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
   return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
 }
@@ -216,13 +196,13 @@ vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
 // coordinates (u, v) (modulo 2) and e^{z} = ez; combined with |z - c| by max.
 float cutout_gap_bound(int pattern, vec2 uv, float ez) {
   const vec2 f = fract(uv);
-  if (pattern == 2) {
+  if (pattern == kPatternChecker) {
     if (mod(floor(uv.x) + floor(uv.y), 2.0) == 0.0) return 0.0;  // on a light square
     return asinh(min(min(f.x, 1.0 - f.x) / ez, min(f.y, 1.0 - f.y) * ez));
   }
   const vec2 d = abs(f - 0.5);
-  const float boxes = max(max(0.0, d.x - 0.3) / ez, max(0.0, d.y - 0.3) * ez);
-  const float gap = max(0.0, length(d) - 0.3);
+  const float boxes = max(max(0.0, d.x - kCircleRadius) / ez, max(0.0, d.y - kCircleRadius) * ez);
+  const float gap = max(0.0, length(d) - kCircleRadius);
   return asinh(max(boxes, min(ez, 1.0 / ez) * gap * 0.70710678));
 }
 
@@ -230,7 +210,7 @@ float cutout_gap_bound(int pattern, vec2 uv, float ez) {
 // camera * q; the pattern takes the camera position modulo 2 (exact, from double).
 vec2 plane_coordinates(int type, vec3 q, vec4 eye_camera, vec4 eye_frac) {
   const vec3 phase = eye_frac.xyz + vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
-  return type == 0 ? phase.yz : (type == 1 ? phase.xz : phase.xy);
+  return type == kObjectPlaneX ? phase.yz : (type == kObjectPlaneY ? phase.xz : phase.xy);
 }
 
 // Geodesic ODE in frame components: x' = e^{z}u1, y' = e^{-z}u2, z' = u3,
@@ -265,7 +245,7 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 // 1/(1 + L²) on its length L, or as a point light where none is found.
 vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
   const float ambient = params.shading.x;
-  const int light_count = min(int(params.shading.z), MAX_LIGHTS);
+  const int light_count = min(int(params.shading.z), kMaxLights);
   vec3 light = vec3(0.0);
   for (int i = 0; i < light_count; ++i) {
     const vec4 lc = params.light_color[i];
@@ -276,8 +256,8 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       const vec3 diff = lp.xyz - q;
       // q⁻¹·light: the light seen from q, in frame components at q.
       const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
-      if (HAS_EXACT_LIGHTS && lc.w == 2.0) {
-        vec4 found[SOL_SEED_SLOTS];
+      if (HAS_EXACT_LIGHTS && lc.w == float(kLightExactPoint)) {
+        vec4 found[kSeedSlots];
         const int paths = sol_connections(towards, lp.w, found);
         for (int j = 0; j < paths; ++j) {
           light += lc.rgb * (max(0.0, dot(n, found[j].xyz)) / (1.0 + found[j].w * found[j].w));
@@ -285,8 +265,9 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
         if (paths > 0) continue;
       }
       const float r = distance_lower_bound(q, lp.xyz);
-      l = lc.w == 0.0 ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
-      attenuation = lc.w == 0.0 ? 1.0 : 1.0 / (1.0 + r * r);
+      const bool directional = lc.w == float(kLightDirectional);
+      l = directional ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+      attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
     }
     light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
   }
@@ -299,27 +280,24 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
 // ---- The quotient Γ\Sol of the golden lattice (mirrors march_quotient in
 // libsol/src/render.cpp and sol::Lattice::golden()) ----------------------------
 
-const float PHI = 1.61803398874989;
-const float LATTICE_HEIGHT = 0.962423650119206;  // 2 ln φ
-
 bool in_domain(vec3 p) {
   // (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ).
-  const float det = PHI * PHI + 1.0;
-  const float s = (PHI * p.x - p.y) / det, r = (p.x + PHI * p.y) / det;
-  return s >= 0.0 && s < 1.0 && r >= 0.0 && r < 1.0 && p.z >= 0.0 && p.z < LATTICE_HEIGHT;
+  const float det = kPhi * kPhi + 1.0;
+  const float s = (kPhi * p.x - p.y) / det, r = (p.x + kPhi * p.y) / det;
+  return s >= 0.0 && s < 1.0 && r >= 0.0 && r < 1.0 && p.z >= 0.0 && p.z < kLatticeHeight;
 }
 
 // The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
 // y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram.
 vec3 teleport(vec3 p) {
-  const float n = -floor(p.z / LATTICE_HEIGHT);
-  const float scale = pow(PHI, 2.0 * n);
-  vec3 q = vec3(scale * p.x, p.y / scale, p.z + n * LATTICE_HEIGHT);
-  q.z = min(max(q.z, 0.0), LATTICE_HEIGHT * 0.9999999);
-  const float det = PHI * PHI + 1.0;
-  const float fs = floor((PHI * q.x - q.y) / det), fr = floor((q.x + PHI * q.y) / det);
-  q.x -= fs * PHI + fr;
-  q.y -= -fs + fr * PHI;
+  const float n = -floor(p.z / kLatticeHeight);
+  const float scale = pow(kPhi, 2.0 * n);
+  vec3 q = vec3(scale * p.x, p.y / scale, p.z + n * kLatticeHeight);
+  q.z = min(max(q.z, 0.0), kLatticeHeight * 0.9999999);
+  const float det = kPhi * kPhi + 1.0;
+  const float fs = floor((kPhi * q.x - q.y) / det), fr = floor((q.x + kPhi * q.y) / det);
+  q.x -= fs * kPhi + fr;
+  q.y -= -fs + fr * kPhi;
   return q;
 }
 
@@ -349,16 +327,16 @@ void main() {
   const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
   const vec4 eye_right = params.eyes[eye].right, eye_up = params.eyes[eye].up, eye_forward = params.eyes[eye].forward;
   const vec4 eye_camera = params.eyes[eye].camera, eye_frac = params.eyes[eye].camera_frac;
-  const int count = min(params.counts.x, MAX_OBJECTS);
+  const int count = min(params.counts.x, kMaxGpuObjects);
   const bool heights_only = HEIGHTS_ONLY;
-  int types[MAX_OBJECTS];
-  float constants[MAX_OBJECTS], radii[MAX_OBJECTS];
-  vec4 relative[MAX_OBJECTS];
-  vec2 headings[MAX_OBJECTS];
-  int cutouts[MAX_OBJECTS];  // cutout planes z = c: their pattern (1 circles, 2 checker); else 0
-  for (int k = 0; k < MAX_OBJECTS; ++k) {
+  int types[kMaxGpuObjects];
+  float constants[kMaxGpuObjects], radii[kMaxGpuObjects];
+  vec4 relative[kMaxGpuObjects];
+  vec2 headings[kMaxGpuObjects];
+  int cutouts[kMaxGpuObjects];  // cutout planes z = c: their pattern code; else kPatternNone
+  for (int k = 0; k < kMaxGpuObjects; ++k) {
     types[k] = int(params.objects[k].plane.x);
-    cutouts[k] = HAS_CUTOUT && types[k] == 2 && params.objects[k].plane.w != 0.0 ? int(params.objects[k].plane.z) : 0;
+    cutouts[k] = HAS_CUTOUT && types[k] == kObjectPlaneZ && params.objects[k].plane.w != 0.0 ? int(params.objects[k].plane.z) : 0;
     radii[k] = params.objects[k].plane.y;
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
@@ -377,13 +355,13 @@ void main() {
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a
     // step ends outside; each step bounded by the images of the objects in the
-    // cells around D (kept within 1.25 of the last filter point).
-    const int image_count = min(params.counts.x, MAX_IMAGES);  // image triples
-    const float max_step = 0.5, keep = 1.25;
+    // cells around D (kept within kQuotientKeep of the last filter point).
+    const int image_count = min(params.counts.x, kMaxGpuImages);
+    const float max_step = kQuotientMaxStep, keep = kQuotientKeep;
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     SolRay qray = sol_ray(direction);
     sol_ray_integrals(qray);
-    int kept[MAX_IMAGES];
+    int kept[kMaxGpuImages];
     int kept_count = 0;
     float since_filter = keep, t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
@@ -399,11 +377,11 @@ void main() {
         q = origin;
         since_filter = keep;
       }
-      if (keep - since_filter < 0.25) {
+      if (keep - since_filter < kQuotientRefilter) {
         kept_count = 0;
         for (int i = 0; i < image_count; ++i) {
-          const vec4 geom = images[3 * i], info = images[3 * i + 1];
-          const float d = object_distance(int(info.x), q, geom, images[3 * i + 2].xy, info.y);
+          const Image m = images[i];
+          const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
           if (d <= keep) kept[kept_count++] = i;
         }
         since_filter = 0.0;
@@ -412,8 +390,8 @@ void main() {
       int nearest_i = -1;
       for (int j = 0; j < kept_count; ++j) {
         const int i = kept[j];
-        const vec4 geom = images[3 * i], info = images[3 * i + 1];
-        const float d = object_distance(int(info.x), q, geom, images[3 * i + 2].xy, info.y);
+        const Image m = images[i];
+        const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
         if (d < nearest) {
           nearest = d;
           nearest_i = kept[j];
@@ -434,15 +412,15 @@ void main() {
     vec4 hit_aov = vec4(0.0, 0.0, float(steps), 0.0);
     vec4 point_aov = vec4(0.0);
     if (hit_image >= 0) {
-      const vec4 geom = images[3 * hit_image], info = images[3 * hit_image + 1];
-      const vec2 heading = images[3 * hit_image + 2].xy;
+      const vec4 geom = images[hit_image].geometry, info = images[hit_image].info;
+      const vec2 heading = images[hit_image].heading.xy;
       const int k = int(info.z), type = int(info.x);
       // Planes face the side of the segment's origin (the ray's side); the
       // bounds of balls and tubes are left-invariant, so their gradients
       // along the frame are taken in world coordinates.
       const vec3 n = plane_normal(type, q, geom.x - origin.z, geom, heading, info.y);
       // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
-      const vec2 uv = type >= 3 ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
+      const vec2 uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
       color = shade_hit(k, n, uv, t, q, eye);
       hit_aov.x = float(k + 1);
       hit_aov.y = t;
@@ -535,7 +513,7 @@ void main() {
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
-    const vec2 uv = (HAS_BALLS && type >= 3) ? solid_coordinates(type, q, relative[k], headings[k], radii[k])
+    const vec2 uv = (HAS_BALLS && type >= kObjectBall) ? solid_coordinates(type, q, relative[k], headings[k], radii[k])
                                              : plane_coordinates(type, q, eye_camera, eye_frac);
     color = shade_hit(k, n, uv, t, q, eye);
     hit_aov.y = t;

@@ -16,14 +16,11 @@
 //
 // Needs sol_geodesic.glsl, and before this file a storage buffer
 //   vec4 connection_seeds[];  // sol::ConnectionTable::seeds
-// Keep the constants in step with sol::ConnectionTable (connection.hpp); the
-// tests vk.Kernel.Connections* fail when they are not.
+// The table's geometry (kSeed*) is sol::ConnectionTable's, from
+// sol/kernel_constants.h.
 
-const int SOL_SEED_SLOTS = 16;
-const int SOL_SEED_CELLS_XY = 10;
-const int SOL_SEED_CELLS_Z = 16;
-const float SOL_SEED_STEP = 0.5;
-const float SOL_SEED_HEIGHT = 4.0;
+#include "sol/kernel_constants.h"
+
 const int SOL_NEWTON_ITERATIONS = 8;
 // A seed within SOL_SEED_SKIP max(1, t) of a connection already found (in
 // t·(a, b, c)) is not polished: it would find that connection again.
@@ -106,10 +103,10 @@ vec3 sol_polish(vec3 v, vec3 w, out float residual) {
 // Adds the polished vector v to the connections found (sorted by length)
 // when it converged and is new; a connection found twice keeps the better
 // polished copy.
-void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_SEED_SLOTS], inout float residuals[SOL_SEED_SLOTS],
+void sol_add_connection(vec3 v, float residual, inout vec4 found[kSeedSlots], inout float residuals[kSeedSlots],
                         inout int count) {
   const float t = length(v);
-  if (!(residual < 2e-4) || !(t > 0.0) || count == SOL_SEED_SLOTS) return;
+  if (!(residual < 2e-4) || !(t > 0.0) || count == kSeedSlots) return;
   vec4 c = vec4(v / t, t);
   float c_residual = residual;
   int same = -1;
@@ -124,7 +121,7 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_SEED_SLOTS]
     return;
   }
   // Insert in order of length.
-  for (int j = 0; j < SOL_SEED_SLOTS; ++j) {
+  for (int j = 0; j < kSeedSlots; ++j) {
     if (j < count && found[j].w > c.w) {
       const vec4 held = found[j];
       const float held_residual = residuals[j];
@@ -176,14 +173,14 @@ vec3 sol_fold_partner(vec3 v, vec3 w) {
   return v + x * n;
 }
 
-// The connections from the origin to w (at most SOL_SEED_SLOTS), shortest
+// The connections from the origin to w (at most kSeedSlots), shortest
 // first, as (unit direction, length), up to the shortest one found + reach;
 // returns how many. None when w = 0, or when no seed converges (far outside
 // the table, or at a fold where the seeds' connections vanish): the caller
 // then keeps the coordinate approximation, as sol::lights_at does when the
 // solver gives up.
-int sol_connections(vec3 w, float reach, out vec4 found[SOL_SEED_SLOTS]) {
-  for (int i = 0; i < SOL_SEED_SLOTS; ++i) found[i] = vec4(0.0);
+int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
+  for (int i = 0; i < kSeedSlots; ++i) found[i] = vec4(0.0);
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   if (target.x == 0.0 && target.y == 0.0) {  // the vertical line, the only connection
@@ -191,24 +188,24 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_SEED_SLOTS]) {
     found[0] = vec4(0.0, 0.0, sign(w.z), abs(w.z));
     return 1;
   }
-  const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + SOL_SEED_HEIGHT) / SOL_SEED_STEP;
-  const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(SOL_SEED_CELLS_XY - 1, SOL_SEED_CELLS_XY - 1, SOL_SEED_CELLS_Z - 1));
-  const int base = ((cell.z * SOL_SEED_CELLS_XY + cell.y) * SOL_SEED_CELLS_XY + cell.x) * SOL_SEED_SLOTS;
+  const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + kSeedHeight) / kSeedStep;
+  const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(kSeedCellsXY - 1, kSeedCellsXY - 1, kSeedCellsZ - 1));
+  const int base = ((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots;
   int count = 0;
-  float residuals[SOL_SEED_SLOTS];
+  float residuals[kSeedSlots];
   // Candidates: the cell's seeds, then (with a reach: the longer
   // connections) a fold partner of each connection the seeds found. Near a
   // fold (a caustic) connections come in pairs that merge there, and a pair
   // born inside a table cell has seeds at none of its corners. One call of
   // sol_polish (see there).
-  vec4 originals[SOL_SEED_SLOTS];
+  vec4 originals[kSeedSlots];
   int first = -1;
-  for (int s = 0; s < 2 * SOL_SEED_SLOTS; ++s) {
+  for (int s = 0; s < 2 * kSeedSlots; ++s) {
     vec3 start = vec3(0.0);
-    if (s < SOL_SEED_SLOTS) {
+    if (s < kSeedSlots) {
       const vec4 seed = connection_seeds[base + s];
       if (seed.w == 0.0) {  // slots are filled in order: on to the partners
-        s = SOL_SEED_SLOTS - 1;
+        s = kSeedSlots - 1;
         continue;
       }
       start = seed.xyz * seed.w;
@@ -222,7 +219,7 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_SEED_SLOTS]) {
         first = count;
         originals = found;  // the inserts below reorder found
       }
-      const int j = s - SOL_SEED_SLOTS;
+      const int j = s - kSeedSlots;
       if (j >= first) break;
       if (originals[j].w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
       start = sol_fold_partner(originals[j].xyz * originals[j].w, target);

@@ -29,146 +29,114 @@
 namespace sol::vk {
 namespace {
 
-// std140 mirror of march.comp's Params block (vec4 and ivec4 only: no padding).
-struct GpuObject {
-  float plane[4];  // type, radius (balls), pattern, 0
-  float color[4];
-};
-struct GpuEye {
-  float right[4], up[4], forward[4], camera[4], camera_frac[4], window[4];
-  float relative[kMaxGpuObjects][4];  // planes: (constant, 0, 0, 0); balls: (centre, 0); tubes (point, axis); relative to the eye
-  float heading[kMaxGpuObjects][4];   // horizontal tubes: the axis's unit coordinate direction relative to the eye
-  float lights[kMaxLights][4];        // directional: direction; point: position relative to the eye, exact: reach
-};
-struct GpuParams {
-  GpuEye eyes[2];
-  float shading[4];    // ambient, fog density, light count, 0
-  float fog_color[4];
-  float limits[4];
-  std::int32_t counts[4];
-  float light_color[kMaxLights][4];  // rgb * intensity, type (0 directional, 1 point, 2 exact point)
-  GpuObject objects[kMaxGpuObjects];
-};
-static_assert(sizeof(GpuEye) == 6 * 16 + 2 * kMaxGpuObjects * 16 + kMaxLights * 16, "std140 layout of Eye");
-static_assert(sizeof(GpuParams) == 2 * sizeof(GpuEye) + 4 * 16 + kMaxLights * 16 + kMaxGpuObjects * 32,
-              "std140 layout of Params");
+// The kernel's interface (bindings, specialisation constants, codes, the
+// uniform layout) is sol/vk/march_interface.h, which march.comp includes too.
+using kernel::Eye;
+using kernel::Params;
 
-float type_code(ObjectType type) {
+int type_code(ObjectType type) {
   switch (type) {
     case ObjectType::PlaneX:
-      return 0.0f;
+      return kernel::kObjectPlaneX;
     case ObjectType::PlaneY:
-      return 1.0f;
+      return kernel::kObjectPlaneY;
     case ObjectType::PlaneZ:
-      return 2.0f;
+      return kernel::kObjectPlaneZ;
     case ObjectType::Ball:
-      return 3.0f;
+      return kernel::kObjectBall;
     case ObjectType::Tube:
-      return 4.0f;
+      return kernel::kObjectTube;
   }
-  return 2.0f;
+  return kernel::kObjectPlaneZ;
 }
 
-float pattern_code(Pattern pattern) {
+int pattern_code(Pattern pattern) {
   switch (pattern) {
     case Pattern::None:
-      return 0.0f;
+      return kernel::kPatternNone;
     case Pattern::Circles:
-      return 1.0f;
+      return kernel::kPatternCircles;
     case Pattern::Checker:
-      return 2.0f;
+      return kernel::kPatternChecker;
   }
-  return 0.0f;
+  return kernel::kPatternNone;
 }
 
-void set4(float* dst, const glm::dvec3& v, double w) {
-  dst[0] = static_cast<float>(v.x);
-  dst[1] = static_cast<float>(v.y);
-  dst[2] = static_cast<float>(v.z);
-  dst[3] = static_cast<float>(w);
-}
+glm::vec4 vec4(const glm::dvec3& v, double w) { return glm::vec4(glm::dvec4(v, w)); }
 
 // One eye: camera basis, position terms and the plane constants relative to
 // it, all in double (see march.hpp).
-GpuEye make_eye(const Scene& scene, const Camera& cam, int width, int height, double rk4_step) {
+Eye make_eye(const Scene& scene, const Camera& cam, int width, int height, double rk4_step) {
   const CameraBasis basis = camera_basis(cam);
   const bool quotient = scene.quotient != Quotient::None;
   // In the quotient the kernel works in world coordinates inside D: the eye
   // is teleported there (in double) and point lights stay in world coordinates.
   const glm::dvec3 p = quotient ? Lattice::golden().teleport(cam.position).point : cam.position;
-  GpuEye e{};
-  set4(e.right, basis.right, 0.0);
-  set4(e.up, basis.up, 0.0);
-  const glm::dvec4 window = image_window(cam, width, height);
-  for (int i = 0; i < 4; ++i) e.window[i] = static_cast<float>(window[i]);
-  set4(e.forward, basis.forward, rk4_step);
-  set4(e.camera, p, std::exp(p.z));
+  Eye e{};
+  e.right = vec4(basis.right, 0.0);
+  e.up = vec4(basis.up, 0.0);
+  e.window = glm::vec4(image_window(cam, width, height));
+  e.forward = vec4(basis.forward, rk4_step);
+  e.camera = vec4(p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
-  set4(e.camera_frac, p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
+  e.camera_frac = vec4(p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
     // Camera-relative, as the CPU reference (sol::relative_object): planes
     // (constant, 0, 0, 0), balls (centre, 0), tubes (point of the axis, axis).
     const MarchObject r = relative_object(scene.objects[k], p, k);
     const bool solid = r.type == ObjectType::Ball || r.type == ObjectType::Tube;
-    set4(e.relative[k], solid ? r.center : glm::dvec3(r.c, 0.0, 0.0), r.type == ObjectType::Tube ? r.axis : 0.0);
-    set4(e.heading[k], glm::dvec3(r.heading, 0.0), 0.0);
+    e.relative[k] = vec4(solid ? r.center : glm::dvec3(r.c, 0.0, 0.0), r.type == ObjectType::Tube ? r.axis : 0.0);
+    e.heading[k] = vec4(glm::dvec3(r.heading, 0.0), 0.0);
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     const glm::dvec3 position = quotient ? l.position : multiply(inverse(p), l.position);
-    set4(e.lights[i], l.type == LightType::Directional ? glm::normalize(l.direction) : position,
-         l.type == LightType::Point && l.exact ? l.reach : 0.0);
+    e.lights[i] = vec4(l.type == LightType::Directional ? glm::normalize(l.direction) : position,
+                       l.type == LightType::Point && l.exact ? l.reach : 0.0);
   }
   return e;
 }
 
-GpuParams make_params(const Scene& scene, const std::vector<Camera>& eyes, int width, int height, double rk4_step) {
-  GpuParams g{};
+Params make_params(const Scene& scene, const std::vector<Camera>& eyes, int width, int height, double rk4_step) {
+  Params g{};
   for (std::size_t i = 0; i < eyes.size(); ++i) g.eyes[i] = make_eye(scene, eyes[i], width, height, rk4_step);
-  g.shading[0] = static_cast<float>(scene.ambient);
-  g.shading[1] = static_cast<float>(scene.fog_density);
-  g.shading[2] = static_cast<float>(scene.lights.size());
-  set4(g.fog_color, scene.fog_color, 0.0);
+  g.shading = glm::vec4(scene.ambient, scene.fog_density, scene.lights.size(), 0.0);
+  g.fog_color = vec4(scene.fog_color, 0.0);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    set4(g.light_color[i], l.color * l.intensity, l.type == LightType::Point ? (l.exact ? 2.0 : 1.0) : 0.0);
+    const int code = l.type == LightType::Directional ? kernel::kLightDirectional
+                                                      : (l.exact ? kernel::kLightExactPoint : kernel::kLightPoint);
+    g.light_color[i] = vec4(l.color * l.intensity, code);
   }
-  g.limits[0] = static_cast<float>(scene.max_distance);
-  g.limits[1] = static_cast<float>(scene.hit_epsilon);
-  g.limits[3] = static_cast<float>(scene.max_steps);
+  g.limits = glm::vec4(scene.max_distance, scene.hit_epsilon, 0.0, scene.max_steps);
   for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    g.objects[k].plane[0] = scene.objects[k].exact ? 5.0f : type_code(scene.objects[k].type);  // 5: exact ball
-    g.objects[k].plane[1] = static_cast<float>(scene.objects[k].radius);
-    g.objects[k].plane[2] = pattern_code(scene.objects[k].pattern);
-    g.objects[k].plane[3] = scene.objects[k].cutout ? 1.0f : 0.0f;
-    set4(g.objects[k].color, scene.objects[k].color, 1.0);
+    const SceneObject& o = scene.objects[k];
+    const int code = o.exact ? kernel::kObjectExactBall : type_code(o.type);
+    g.objects[k].plane = glm::vec4(code, o.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
+    g.objects[k].color = vec4(o.color, 1.0);
   }
-  g.counts[0] = static_cast<std::int32_t>(scene.objects.size());  // quotient: the image count (render_eyes)
-  g.counts[1] = width;
-  g.counts[2] = height;
-  g.counts[3] = static_cast<std::int32_t>(eyes.size());
+  // The object count (the quotient's: its image count, set by prepare)
+  g.counts = glm::ivec4(static_cast<int>(scene.objects.size()), width, height, static_cast<int>(eyes.size()));
   return g;
 }
 
 // The quotient images (sol::quotient_images, shared with the CPU reference)
-// packed for binding 4: triples of vec4 (geometry: centre, (axis point,
-// axis) or (c, 0, 0, 0)), (type, radius, owner, 0), (heading, 0, 0).
-std::vector<float> pack_images(const std::vector<MarchObject>& images) {
+// as the kernel's Image records (binding kBindingImages).
+std::vector<kernel::Image> pack_images(const std::vector<MarchObject>& images) {
   if (images.size() > static_cast<std::size_t>(kMaxGpuImages)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the quotient scene has " + std::to_string(images.size()) +
                           " object images around the domain; the kernel takes at most " +
                           std::to_string(kMaxGpuImages) + " (fewer or smaller objects)");
   }
-  std::vector<float> out;
+  std::vector<kernel::Image> out;
   for (const MarchObject& m : images) {
     const bool solid = m.type == ObjectType::Ball || m.type == ObjectType::Tube;
     const glm::dvec3 geometry = solid ? m.center : glm::dvec3(m.c, 0.0, 0.0);
-    for (double v : {geometry.x, geometry.y, geometry.z, m.type == ObjectType::Tube ? m.axis : 0.0,
-                     m.exact ? 5.0 : static_cast<double>(type_code(m.type)), m.radius, static_cast<double>(m.owner), 0.0,
-                     m.heading.x, m.heading.y, 0.0, 0.0}) {
-      out.push_back(static_cast<float>(v));
-    }
+    const int code = m.exact ? kernel::kObjectExactBall : type_code(m.type);
+    out.push_back({vec4(geometry, m.type == ObjectType::Tube ? m.axis : 0.0),
+                   glm::vec4(code, m.radius, static_cast<double>(m.owner), 0.0),
+                   glm::vec4(m.heading.x, m.heading.y, 0.0, 0.0)});
   }
   return out;
 }
@@ -221,24 +189,24 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
   return ComputePipeline(c, {.name = "march (features " + std::to_string(f.key()) + ")",
                              .spirv = f.srgb_unorm ? std::span<const std::uint32_t>(march_srgb_unorm_comp_spv)
                                                    : std::span<const std::uint32_t>(march_comp_spv),
-                             .bindings = {{0, DescriptorType::UniformBuffer},
-                                          {1, DescriptorType::StorageImage},
-                                          {2, DescriptorType::StorageImage},
-                                          {3, DescriptorType::StorageImage},
-                                          {4, DescriptorType::StorageBuffer},
-                                          {5, DescriptorType::StorageBuffer},
-                                          {6, DescriptorType::StorageBuffer}},
+                             .bindings = {{kernel::kBindingParams, DescriptorType::UniformBuffer},
+                                          {kernel::kBindingColor, DescriptorType::StorageImage},
+                                          {kernel::kBindingHit, DescriptorType::StorageImage},
+                                          {kernel::kBindingPoint, DescriptorType::StorageImage},
+                                          {kernel::kBindingImages, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingDistanceTable, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingSeeds, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
-                             .specialization = {{0, o.integrator == Integrator::RK4 ? 1u : 0u},
-                                                {1, f.heights_only ? 1u : 0u},
-                                                {2, f.balls ? 1u : 0u},
-                                                {3, f.point_lights ? 1u : 0u},
-                                                {4, f.fog ? 1u : 0u},
-                                                {5, f.cutout ? 1u : 0u},
-                                                {6, f.quotient ? 1u : 0u},
-                                                {7, f.no_aovs ? 0u : 1u},
-                                                {8, f.exact_balls ? 1u : 0u},
-                                                {9, f.exact_lights ? 1u : 0u}}});
+                             .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
+                                                {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
+                                                {kernel::kSpecBalls, f.balls ? 1u : 0u},
+                                                {kernel::kSpecPointLights, f.point_lights ? 1u : 0u},
+                                                {kernel::kSpecFog, f.fog ? 1u : 0u},
+                                                {kernel::kSpecCutout, f.cutout ? 1u : 0u},
+                                                {kernel::kSpecQuotient, f.quotient ? 1u : 0u},
+                                                {kernel::kSpecWriteAovs, f.no_aovs ? 0u : 1u},
+                                                {kernel::kSpecExactBalls, f.exact_balls ? 1u : 0u},
+                                                {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u}}});
 }
 
 }  // namespace
@@ -258,7 +226,7 @@ struct MarchRenderer::Impl {
   // For the AOV bindings (rgba32f, never written without AOVs) when binding 1
   // holds a caller's 8-bit image.
   std::optional<StorageImage> placeholder;
-  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(GpuParams), BufferUsage::Uniform) {}
+  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {}
   ComputePipeline& pipeline(const Features& f) {
     auto it = pipelines.find(f.key());
     if (it == pipelines.end()) it = pipelines.emplace(f.key(), make_pipeline(context, options, f)).first;
@@ -306,15 +274,15 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
                           " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
   }
   Impl& m = *m_impl;
-  GpuParams g = make_params(scene, std::vector<Camera>(eyes.begin(), eyes.end()), width, height, m.options.rk4_step);
+  Params g = make_params(scene, std::vector<Camera>(eyes.begin(), eyes.end()), width, height, m.options.rk4_step);
   // Quotient scenes: the images of the objects (binding 4); else a stub.
-  const std::vector<float> images =
-      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<float>(12, 0.0f);
-  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<std::int32_t>(images.size() / 12);
-  const VkDeviceSize image_bytes = images.size() * sizeof(float);
+  const std::vector<kernel::Image> images =
+      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<kernel::Image>(1);
+  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<int>(images.size());
+  const VkDeviceSize image_bytes = images.size() * sizeof(kernel::Image);
   if (!m.images || m.images->size() != image_bytes) m.images.emplace(m.context, image_bytes);
   m.images->write(images);
-  m.params.write(std::span<const GpuParams>(&g, 1));
+  m.params.write(std::span<const Params>(&g, 1));
   const Features used = features_of(scene);
   Features f = m.options.all_features
                    ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false, false}
@@ -324,8 +292,8 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
   f.exact_lights = used.exact_lights;
   f.srgb_unorm = srgb_unorm;
   ComputePipeline& pipeline = m.pipeline(f);
-  pipeline.bind(0, m.params);
-  pipeline.bind(4, *m.images);
+  pipeline.bind(kernel::kBindingParams, m.params);
+  pipeline.bind(kernel::kBindingImages, *m.images);
   // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
   // process), kept like the images; else a stub.
   const std::size_t table_floats = f.exact_balls ? DistanceTable::shared().values.size() : 4;
@@ -333,7 +301,7 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
     m.table.emplace(m.context, table_floats * sizeof(float));
     m.table->write(f.exact_balls ? DistanceTable::shared().values : std::vector<float>(4, 0.0f));
   }
-  pipeline.bind(5, *m.table);
+  pipeline.bind(kernel::kBindingDistanceTable, *m.table);
   // Exact point lights: the connection solver's seeds (sol::ConnectionTable,
   // with the longer connections when a light has a reach), else a stub.
   const bool longer = std::any_of(scene.lights.begin(), scene.lights.end(),
@@ -346,7 +314,7 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
     m.seeds->write(seeds);
     m.seeds_kind = seeds_kind;
   }
-  pipeline.bind(6, *m.seeds);
+  pipeline.bind(kernel::kBindingSeeds, *m.seeds);
   return {&pipeline, static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height)};
 }
@@ -368,8 +336,8 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, s
                           std::to_string(p.width) + " x " + std::to_string(p.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (std::uint32_t b : {1u, 2u, 3u}) p.pipeline->bind(b, target);
-  p.pipeline->record_dispatch(command_buffer, group_count(p.width, 8), group_count(p.height, 8));
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) p.pipeline->bind(b, target);
+  p.pipeline->record_dispatch(command_buffer, group_count(p.width, kernel::kGroupSize), group_count(p.height, kernel::kGroupSize));
 }
 
 bool MarchRenderer::supports(const Scene& scene) {
@@ -399,9 +367,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, s
                           " x " + std::to_string(p.height));
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
-  p.pipeline->bind(1, target.view);
-  for (std::uint32_t b : {2u, 3u}) p.pipeline->bind(b, *m.placeholder);
-  p.pipeline->record_dispatch(command_buffer, group_count(p.width, 8), group_count(p.height, 8));
+  p.pipeline->bind(kernel::kBindingColor, target.view);
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) p.pipeline->bind(b, *m.placeholder);
+  p.pipeline->record_dispatch(command_buffer, group_count(p.width, kernel::kGroupSize), group_count(p.height, kernel::kGroupSize));
 }
 
 RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
@@ -411,10 +379,10 @@ RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Ca
   const std::uint32_t w = p.width, h = p.height;
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
   ComputePipeline& pipeline = *p.pipeline;
-  pipeline.bind(1, color);
-  pipeline.bind(2, hit);
-  pipeline.bind(3, point);
-  const double ms = pipeline.run(group_count(w, 8), group_count(h, 8));
+  pipeline.bind(kernel::kBindingColor, color);
+  pipeline.bind(kernel::kBindingHit, hit);
+  pipeline.bind(kernel::kBindingPoint, point);
+  const double ms = pipeline.run(group_count(w, kernel::kGroupSize), group_count(h, kernel::kGroupSize));
   if (device_ms) *device_ms = ms;
 
   RenderResult r;

@@ -5,6 +5,7 @@
 
 #include "check.hpp"
 #include "sol/group.hpp"
+#include "sol/kernel_constants.h"
 
 namespace sol {
 
@@ -17,8 +18,9 @@ Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height)
 }
 
 Lattice Lattice::golden() {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  return Lattice({phi, -1.0}, {1.0, phi}, 2.0 * std::log(phi));
+  // φ and 2 ln φ as the kernels have them (sol/kernel_constants.h).
+  constexpr double phi = kernel::kPhi;
+  return Lattice({phi, -1.0}, {1.0, phi}, kernel::kLatticeHeight);
 }
 
 glm::dvec3 Lattice::element(long long n1, long long n2, long long n3) const {

@@ -56,7 +56,7 @@ glm::dvec3 object_normal(const RelativeObject& o, const glm::dvec3& q) {
     }
   }
   if (o.type == ObjectType::Ball || o.type == ObjectType::Tube) {
-    const double h = 1e-3, ez = std::exp(q.z);
+    const double h = kernel::kNormalStep, ez = std::exp(q.z);
     const glm::dvec3 e1(h * ez, 0.0, 0.0), e2(0.0, h / ez, 0.0), e3(0.0, 0.0, h);
     const glm::dvec3 g(object_distance(o, q + e1) - object_distance(o, q - e1),
                        object_distance(o, q + e2) - object_distance(o, q - e2),
@@ -82,10 +82,10 @@ double pattern_factor(Pattern pattern, double u, double v) {
       return 1.0;
     case Pattern::Circles: {
       const double du = u - std::floor(u) - 0.5, dv = v - std::floor(v) - 0.5;
-      return du * du + dv * dv < 0.3 * 0.3 ? 1.0 : 0.3;
+      return du * du + dv * dv < kernel::kCircleRadius * kernel::kCircleRadius ? 1.0 : kernel::kCircleDark;
     }
     case Pattern::Checker:
-      return std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
+      return std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : kernel::kCheckerDark;
   }
   return 1.0;
 }
@@ -173,13 +173,14 @@ double cutout_gap_bound(Pattern pattern, const glm::dvec3& w) {
   if (pattern != Pattern::Circles) return 0.0;
   // The nearest disc is this cell's (the cells are the grid's Voronoi cells).
   const double du = std::abs(fu - 0.5), dv = std::abs(fv - 0.5);
-  const double boxes = std::max(std::max(0.0, du - 0.3) / ez, std::max(0.0, dv - 0.3) * ez);
-  const double gap = std::max(0.0, std::hypot(du, dv) - 0.3);
+  const double r = kernel::kCircleRadius;
+  const double boxes = std::max(std::max(0.0, du - r) / ez, std::max(0.0, dv - r) * ez);
+  const double gap = std::max(0.0, std::hypot(du, dv) - r);
   return std::asinh(std::max(boxes, std::min(ez, 1.0 / ez) * gap / std::sqrt(2.0)));
 }
 
 glm::dvec2 pattern_coordinates(const MarchObject& o, const glm::dvec3& q) {
-  constexpr double kCells = 4.0 / 3.14159265358979323846;  // 8 cells per turn
+  constexpr double kCells = kernel::kPatternCellsPerRadian;  // 8 cells per turn
   switch (o.type) {
     case ObjectType::PlaneX:
       return {q.y, q.z};
@@ -425,7 +426,7 @@ MarchHit march_cover(const Scene& scene, const PreparedScene& prepared, const gl
 // (a dropped image's bound exceeded kKeep there, and bounds are 1-Lipschitz
 // lower bounds of the distance).
 MarchHit march_quotient(const Scene& scene, const PreparedScene& prepared, const glm::dvec3& direction) {
-  constexpr double kMaxStep = kQuotientMaxStep, kKeep = 1.25;
+  constexpr double kMaxStep = kQuotientMaxStep, kKeep = kernel::kQuotientKeep;
   const Lattice lattice = Lattice::golden();
   const std::vector<MarchObject>& images = prepared.objects;
   glm::dvec3 origin = lattice.teleport(scene.camera.position).point;
@@ -444,7 +445,7 @@ MarchHit march_quotient(const Scene& scene, const PreparedScene& prepared, const
       q = origin;
       since_filter = kKeep;
     }
-    if (kKeep - since_filter < 0.25) {
+    if (kKeep - since_filter < kernel::kQuotientRefilter) {
       kept.clear();
       for (std::size_t k = 0; k < images.size(); ++k) {
         if (object_distance(images[k], q) <= kKeep) kept.push_back(k);

@@ -501,7 +501,7 @@ std::vector<std::string> preset_names() {
 }
 
 glm::dvec3 tube_axis_direction(int axis) {
-  const double phi = 0.5 * (1.0 + std::sqrt(5.0));
+  constexpr double phi = kernel::kPhi;
   switch (axis) {
     case kAxisX:
       return {1.0, 0.0, 0.0};

@@ -70,6 +70,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "sol/kernel_constants.h"
+
 namespace sol {
 
 /// A geodesic from p: unit direction in frame components at p, and its length.
@@ -111,7 +113,7 @@ std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dve
 /// Where exact balls switch from the bound to the exact distance: sphere
 /// tracing steps by distance_lower_bound(q, centre) - radius while that
 /// exceeds this band, by distance(q, centre) - radius within it.
-constexpr double kExactBallBand = 0.25;
+inline constexpr double kExactBallBand = kernel::kExactBallBand;
 
 /// Signed distance to the geodesic ball (center, radius), exact within
 /// `band` of its bound: a sphere-tracing distance whose zero set is the true
@@ -133,9 +135,9 @@ glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center
 /// kernel keeps the bound. Accuracy of lookup against distance(): see
 /// test ExactTable.AccuracyAgainstTheSolver (README).
 struct DistanceTable {
-  static constexpr int kSize = 25;            ///< points per axis
-  static constexpr double kExtent = 2.4;      ///< x, y in [0, kExtent]
-  static constexpr double kHeight = 1.2;      ///< z in [-kHeight, kHeight]
+  static constexpr int kSize = kernel::kDistanceTableSize;          ///< points per axis
+  static constexpr double kExtent = kernel::kDistanceTableExtent;  ///< x, y in [0, kExtent]
+  static constexpr double kHeight = kernel::kDistanceTableHeight;  ///< z in [-kHeight, kHeight]
   std::vector<float> values;                  ///< d, index (k kSize + j) kSize + i for (x_i, y_j, z_k)
 
   /// Computed once per process (about 2 s on 2 cores) and shared.
@@ -162,12 +164,14 @@ struct DistanceTable {
 /// direction, length; t = 0: empty). Accuracy of the kernel's solver: README
 /// "Exact spheres and point lights" (tests vk.Kernel.Connections*).
 struct ConnectionTable {
-  static constexpr int kSlots = 16;
-  static constexpr double kStep = 0.5;
-  static constexpr double kExtent = 5.0;  ///< u = asinh x, v = asinh y in [0, kExtent]: x, y up to 74
-  static constexpr double kHeight = 4.0;  ///< z in [-kHeight, kHeight]
-  static constexpr int kCellsXY = 10;     ///< kExtent / kStep cells along u and v
-  static constexpr int kCellsZ = 16;      ///< 2 kHeight / kStep cells along z
+  // The grid's geometry, shared with the kernel (sol/kernel_constants.h).
+  static constexpr int kSlots = kernel::kSeedSlots;
+  static constexpr double kStep = kernel::kSeedStep;
+  static constexpr double kExtent = kernel::kSeedExtent;  ///< u = asinh x, v = asinh y in [0, kExtent]: x, y up to 74
+  static constexpr double kHeight = kernel::kSeedHeight;  ///< z in [-kHeight, kHeight]
+  static constexpr int kCellsXY = kernel::kSeedCellsXY;   ///< kExtent / kStep cells along u and v
+  static constexpr int kCellsZ = kernel::kSeedCellsZ;     ///< 2 kHeight / kStep cells along z
+  static_assert(kCellsXY * kStep == kExtent && kCellsZ * kStep == 2.0 * kHeight, "cells cover the grid");
   static constexpr double kReach = 3.0;   ///< longest reach a table with `longer` serves
   static constexpr double kMargin = 0.5;  ///< connections kept beyond distance + kReach (the distance varies over a cell)
   static constexpr double kMerge = 0.1;   ///< corners' seeds closer than kMerge max(1, t) in t·(a, b, c) are merged

@@ -133,7 +133,7 @@ double cutout_gap_bound(Pattern pattern, const glm::dvec3& w);
 std::vector<MarchObject> quotient_images(const Scene& scene);
 
 /// The longest march step in the quotient: no image beyond it is listed.
-constexpr double kQuotientMaxStep = 0.5;
+inline constexpr double kQuotientMaxStep = kernel::kQuotientMaxStep;
 
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.

@@ -13,6 +13,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "sol/kernel_constants.h"
+
 namespace sol {
 
 enum class ObjectType {
@@ -73,8 +75,8 @@ struct Light {
   double reach = 0.0;  ///< exact point lights: also the connections up to distance + reach, in [0, 10]
 };
 
-/// Most lights a scene may hold.
-constexpr int kMaxLights = 4;
+/// Most lights a scene may hold (a limit the kernels share).
+using kernel::kMaxLights;
 
 /// An off-axis view window (a headset eye's): the tangents of the angles
 /// from `forward` to the image's left, right, bottom and top edges, measured

@@ -20,6 +20,8 @@
 #include <sol/render.hpp>
 #include <sol/scene.hpp>
 
+#include "sol/vk/march_interface.h"
+
 namespace sol::vk {
 
 class Context;
@@ -39,11 +41,11 @@ struct MarchOptions {
   bool all_features = false;
 };
 
-/// Most objects a scene may hold on the GPU.
-constexpr int kMaxGpuObjects = 8;
-/// Most images of the objects around the domain in a quotient scene
-/// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
-constexpr int kMaxGpuImages = 64;
+/// Most objects a scene may hold on the GPU, and most images of the objects
+/// around the domain in a quotient scene (sol::quotient_images): the
+/// kernel's limits (sol/vk/march_interface.h).
+using kernel::kMaxGpuImages;
+using kernel::kMaxGpuObjects;
 
 /// A presenter's 8-bit image that MarchRenderer::record writes the colour
 /// into, sRGB-encoded (standard sRGB OETF, clamped to [0, 1]): for example a

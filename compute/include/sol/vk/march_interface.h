@@ -1,0 +1,109 @@
+// The interface between the march kernel (march.comp) and its host
+// (compute/src/march.cpp), written once: binding numbers, specialisation-
+// constant ids, limits, and the layout of the uniform block and of the
+// quotient's image buffer. Valid GLSL and C++: march.comp includes it as it
+// is; in C++ it declares the same names in namespace sol::vk::kernel, with
+// vec4 = glm::vec4 (std140 and std430 lay out arrays of vec4 without
+// padding, like C++; the static_asserts below hold the offsets). The
+// numbers shared with libsol (codes, tables, the lattice) come from
+// sol/kernel_constants.h. The shaders find it as "sol/vk/march_interface.h"
+// (cmake: compute/include is on their include path).
+#ifndef SOL_MARCH_INTERFACE_H
+#define SOL_MARCH_INTERFACE_H
+
+#include "sol/kernel_constants.h"
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <glm/vec4.hpp>
+namespace sol::vk::kernel {
+using namespace sol::kernel;
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+#endif
+
+// ---- Descriptor bindings (set 0)
+SOL_CONSTANT(int, kBindingParams, 0);       ///< uniform Params
+SOL_CONSTANT(int, kBindingColor, 1);        ///< storage image: linear RGBA (or sRGB-encoded UNORM bytes)
+SOL_CONSTANT(int, kBindingHit, 2);          ///< storage image: object, distance, steps, 0 (AOVs)
+SOL_CONSTANT(int, kBindingPoint, 3);        ///< storage image: the hit point Px, Py, Pz, 0 (AOVs)
+SOL_CONSTANT(int, kBindingImages, 4);       ///< storage buffer: the quotient's Image records
+SOL_CONSTANT(int, kBindingDistanceTable, 5);  ///< storage buffer: sol::DistanceTable::values
+SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::ConnectionTable::seeds
+
+// ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
+SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
+SOL_CONSTANT(int, kSpecHeightsOnly, 1);     ///< bool: every object a plane z = c
+SOL_CONSTANT(int, kSpecBalls, 2);           ///< bool: balls or tubes
+SOL_CONSTANT(int, kSpecPointLights, 3);     ///< bool
+SOL_CONSTANT(int, kSpecFog, 4);             ///< bool
+SOL_CONSTANT(int, kSpecCutout, 5);          ///< bool: cutout planes
+SOL_CONSTANT(int, kSpecQuotient, 6);        ///< bool: the compact quotient Γ\Sol
+SOL_CONSTANT(int, kSpecWriteAovs, 7);       ///< bool: write bindings 2 and 3
+SOL_CONSTANT(int, kSpecExactBalls, 8);      ///< bool: exact balls (binding 5)
+SOL_CONSTANT(int, kSpecExactLights, 9);     ///< bool: exact point lights (binding 6)
+
+// ---- Limits
+/// Most objects a scene may hold on the GPU.
+SOL_CONSTANT(int, kMaxGpuObjects, 8);
+/// Most images of the objects around the domain in a quotient scene
+/// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
+SOL_CONSTANT(int, kMaxGpuImages, 64);
+/// The workgroup of march.comp: kGroupSize x kGroupSize pixels.
+SOL_CONSTANT(int, kGroupSize, 8);
+
+// ---- The uniform block (std140; vec4 and ivec4 members only, so no padding)
+
+/// An object's appearance and kind.
+struct Object {
+  vec4 plane;  ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
+  vec4 color;  ///< rgb: linear colour
+};
+
+/// One eye: a mono image has one, a side-by-side stereo image two, rendered
+/// in one dispatch (the left eye's pixels are x < the eye's width).
+struct Eye {
+  vec4 right;        ///< xyz: camera right (frame components)
+  vec4 up;           ///< xyz: camera up
+  vec4 forward;      ///< xyz: camera forward; w: the RK4 step
+  vec4 camera;       ///< xyz: camera position (world; in the quotient, teleported into D); w: e^{z}
+  vec4 camera_frac;  ///< xyz: camera position modulo 2 (the patterns' phase, from double); w: e^{-z}
+  vec4 window;       ///< sol::image_window: s_x at the left and right edges, s_y at the top and bottom
+  vec4 relative[kMaxGpuObjects];  ///< relative to the eye: planes (c, 0, 0, 0), balls (centre, 0), tubes (point, axis code)
+  vec4 heading[kMaxGpuObjects];   ///< horizontal tubes: xy the axis's unit coordinate direction relative to the eye
+  vec4 lights[kMaxLights];        ///< directional: unit direction; point: position relative to the eye
+                                  ///< (world in the quotient); w: an exact light's reach
+};
+
+struct Params {
+  Eye eyes[2];
+  vec4 shading;    ///< x: ambient, y: fog density, z: light count
+  vec4 fog_color;  ///< rgb
+  vec4 limits;     ///< x: max distance, y: hit epsilon, w: max steps
+  ivec4 counts;    ///< x: objects (the quotient: images), y: eye width, z: height, w: eyes (1 or 2)
+  vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
+  Object objects[kMaxGpuObjects];
+};
+
+// ---- The quotient's images of the objects around D (binding 4, std430), world coordinates
+struct Image {
+  vec4 geometry;  ///< ball: centre; tube: (point of the axis, axis code); plane z = c: (c, 0, 0, 0)
+  vec4 info;      ///< x: object code, y: radius, z: the scene object it images (0-based)
+  vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16, "vec4 records");
+static_assert(offsetof(Eye, relative) == 6 * 16 && offsetof(Eye, heading) == (6 + kMaxGpuObjects) * 16 &&
+                  offsetof(Eye, lights) == (6 + 2 * kMaxGpuObjects) * 16 &&
+                  sizeof(Eye) == (6 + 2 * kMaxGpuObjects + kMaxLights) * 16,
+              "std140 layout of Eye");
+static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
+                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 4 * 16 &&
+                  offsetof(Params, objects) == 2 * sizeof(Eye) + (4 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (4 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+              "std140 layout of Params");
+}  // namespace sol::vk::kernel
+#endif
+
+#endif  // SOL_MARCH_INTERFACE_H

@@ -1,0 +1,103 @@
+// The numbers libsol and the GLSL kernels (compute/shaders) must agree on,
+// written once. This file is valid C++ and valid GLSL: C++ sees each as an
+// `inline constexpr` in namespace sol::kernel (reals as double), GLSL as a
+// global `const` (reals as float). libsol's own constants are defined from
+// these (Lattice::golden, DistanceTable, ConnectionTable, the patterns of
+// the CPU renderer); the kernels include this file directly or through
+// sol/vk/march_interface.h (compute/include). A number that only one side
+// uses does not belong here.
+#ifndef SOL_KERNEL_CONSTANTS_H
+#define SOL_KERNEL_CONSTANTS_H
+
+#ifdef __cplusplus
+#define SOL_CONSTANT(type, name, value) inline constexpr type name = value
+#define SOL_REAL double
+namespace sol::kernel {
+#else
+#define SOL_CONSTANT(type, name, value) const type name = value
+#define SOL_REAL float
+#endif
+
+// ---- The lattice Γ of the golden quotient (sol::Lattice::golden, docs/mathematics.md)
+/// φ, the golden ratio (1 + √5)/2: γ1 = (φ, -1, 0), γ2 = (1, φ, 0).
+SOL_CONSTANT(SOL_REAL, kPhi, 1.6180339887498948482);
+/// The height of the fundamental domain D, the z of γ3: 2 ln φ.
+SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
+
+// ---- The march in the quotient (docs/renderer.md "The quotient")
+/// The longest march step: only the objects' images a step this long can
+/// reach from D are listed (sol::quotient_images).
+SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.5);
+/// Images within this bound of the last filter point are kept for the next steps...
+SOL_CONSTANT(SOL_REAL, kQuotientKeep, 1.25);
+/// ... and the list is filtered again when less than this is left of kQuotientKeep.
+SOL_CONSTANT(SOL_REAL, kQuotientRefilter, 0.25);
+
+// ---- Object, pattern and light codes of the kernels' scene description
+SOL_CONSTANT(int, kObjectPlaneX, 0);
+SOL_CONSTANT(int, kObjectPlaneY, 1);
+SOL_CONSTANT(int, kObjectPlaneZ, 2);
+SOL_CONSTANT(int, kObjectBall, 3);       ///< a ball drawn with its distance bound
+SOL_CONSTANT(int, kObjectTube, 4);
+SOL_CONSTANT(int, kObjectExactBall, 5);  ///< a ball drawn as the true geodesic sphere
+/// The axis code of a vertical tube (any other code: horizontal, along its heading).
+SOL_CONSTANT(int, kTubeVertical, 2);
+
+SOL_CONSTANT(int, kPatternNone, 0);
+SOL_CONSTANT(int, kPatternCircles, 1);
+SOL_CONSTANT(int, kPatternChecker, 2);
+/// Circles: discs of this radius about the points of the unit grid ...
+SOL_CONSTANT(SOL_REAL, kCircleRadius, 0.3);
+/// ... and the brightness between them.
+SOL_CONSTANT(SOL_REAL, kCircleDark, 0.3);
+/// Checker: the brightness of the dark squares.
+SOL_CONSTANT(SOL_REAL, kCheckerDark, 0.45);
+/// Balls and tubes: pattern cells per radian around them, 4/π (8 cells per turn).
+SOL_CONSTANT(SOL_REAL, kPatternCellsPerRadian, 1.2732395447351626862);
+
+SOL_CONSTANT(int, kLightDirectional, 0);
+SOL_CONSTANT(int, kLightPoint, 1);
+SOL_CONSTANT(int, kLightExactPoint, 2);
+/// Most lights a scene holds.
+SOL_CONSTANT(int, kMaxLights, 4);
+
+/// Normals of balls and tubes: central differences of the distance with this
+/// step along each frame vector.
+SOL_CONSTANT(SOL_REAL, kNormalStep, 1e-3);
+
+// ---- sol::DistanceTable: d(0, (x, y, z)) for exact balls
+/// Points per axis of the grid.
+SOL_CONSTANT(int, kDistanceTableSize, 25);
+/// x, y in [0, kDistanceTableExtent].
+SOL_CONSTANT(SOL_REAL, kDistanceTableExtent, 2.4);
+/// z in [-kDistanceTableHeight, kDistanceTableHeight].
+SOL_CONSTANT(SOL_REAL, kDistanceTableHeight, 1.2);
+/// Exact balls step by the bound while it exceeds this band, by the exact
+/// distance within it (sol::sdf_ball_exact).
+SOL_CONSTANT(SOL_REAL, kExactBallBand, 0.25);
+
+// ---- sol::ConnectionTable: the seeds of the kernels' connection solver
+/// Connections kept per cell.
+SOL_CONSTANT(int, kSeedSlots, 16);
+/// Grid step in u = asinh x, v = asinh y and z.
+SOL_CONSTANT(SOL_REAL, kSeedStep, 0.5);
+/// u, v in [0, kSeedExtent]: x, y up to sinh 5 ≈ 74.
+SOL_CONSTANT(SOL_REAL, kSeedExtent, 5.0);
+/// z in [-kSeedHeight, kSeedHeight].
+SOL_CONSTANT(SOL_REAL, kSeedHeight, 4.0);
+/// Cells along u and v (kSeedExtent / kSeedStep) and along z (2 kSeedHeight / kSeedStep).
+SOL_CONSTANT(int, kSeedCellsXY, 10);
+SOL_CONSTANT(int, kSeedCellsZ, 16);
+
+// ---- The sRGB transfer function (IEC 61966-2-1), for 8-bit output
+SOL_CONSTANT(SOL_REAL, kSrgbLinearLimit, 0.0031308);  ///< below it the curve is linear ...
+SOL_CONSTANT(SOL_REAL, kSrgbLinearSlope, 12.92);      ///< ... with this slope
+SOL_CONSTANT(SOL_REAL, kSrgbScale, 1.055);            ///< above: kSrgbScale v^(1/kSrgbGamma) - kSrgbOffset
+SOL_CONSTANT(SOL_REAL, kSrgbOffset, 0.055);
+SOL_CONSTANT(SOL_REAL, kSrgbGamma, 2.4);
+
+#ifdef __cplusplus
+}  // namespace sol::kernel
+#endif
+
+#endif  // SOL_KERNEL_CONSTANTS_H
