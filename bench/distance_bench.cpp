@@ -111,7 +111,7 @@ void bench_lower_bound(benchmark::State& state) {
 // the bound-based ball and the coordinate-direction light.
 void bench_render(benchmark::State& state, bool exact_balls, bool exact_light) {
   sol::Scene scene = sol::preset_scene("spheres");
-  for (sol::SceneObject& o : scene.objects) o.exact = exact_balls;
+  for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = exact_balls;
   scene.lights[0].exact = exact_light;
   sol::RenderSettings settings;
   settings.width = 32;

@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
       for (const Variant v : {Variant{false, false, 0.0}, Variant{true, false, 0.0}, Variant{false, true, 0.0},
                               Variant{true, true, 0.0}, Variant{false, true, 2.0}}) {
         sol::Scene scene = sol::preset_scene("spheres");
-        for (sol::SceneObject& o : scene.objects) o.exact = v.exact_balls;
+        for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = v.exact_balls;
         for (sol::Light& l : scene.lights) {
           l.exact = v.exact_light;
           l.reach = v.reach;

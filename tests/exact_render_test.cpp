@@ -17,6 +17,7 @@
 #include "sol/group.hpp"
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
+#include "sol/scene_file.hpp"
 #include "support/directions.hpp"
 
 namespace {
@@ -24,17 +25,14 @@ namespace {
 sol::Scene one_ball(bool exact) {
   sol::Scene s;
   s.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {1.3, 1.1, 0.6};  // off z = 0: the bound is far from the sphere there
-  ball.radius = 0.5;
-  ball.exact = exact;
-  s.objects = {ball};
+  // Off z = 0: the bound is far from the sphere there.
+  s.objects = {{sol::Ball{{1.3, 1.1, 0.6}, 0.5, exact}}};
   return s;
 }
 
 // Largest | d(hit, centre) - r | over the hit pixels (AOV hit points, float).
-double sphere_error(const sol::RenderResult& r, const sol::SceneObject& ball, int& hits) {
+double sphere_error(const sol::RenderResult& r, const sol::SceneObject& object, int& hits) {
+  const sol::Ball& ball = std::get<sol::Ball>(object.shape);
   double worst = 0.0;
   hits = 0;
   for (std::size_t i = 0; i < r.object.size(); ++i) {
@@ -130,12 +128,12 @@ TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
   expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "directional", "exact": true}]})", "exact");
   const sol::Scene s = sol::parse_scene(
       R"({"objects": [)" + ball + R"(, "exact": true}], "lights": [{"type": "point", "position": [0, 0, 1], "exact": true, "reach": 2}]})");
-  EXPECT_TRUE(s.objects[0].exact);
+  EXPECT_TRUE(std::get<sol::Ball>(s.objects[0].shape).exact);
   EXPECT_TRUE(s.lights[0].exact);
   EXPECT_EQ(s.lights[0].reach, 2.0);
   EXPECT_TRUE(sol::uses_exact(s));
   const sol::Scene back = sol::parse_scene(sol::to_json(s));
-  EXPECT_TRUE(back.objects[0].exact);
+  EXPECT_TRUE(std::get<sol::Ball>(back.objects[0].shape).exact);
   EXPECT_TRUE(back.lights[0].exact);
   EXPECT_EQ(back.lights[0].reach, 2.0);
   const sol::Scene spheres = sol::preset_scene("spheres");

@@ -151,16 +151,7 @@ namespace {
 sol::Scene exact_light_scene(double reach) {
   sol::Scene scene;
   scene.camera = {{0.0, 0.0, 0.0}, {1.0, 0.6, -0.35}, {0.0, 0.0, 1.0}, 80.0};
-  sol::SceneObject floor;
-  floor.type = sol::ObjectType::PlaneZ;
-  floor.c = -1.0;
-  floor.color = {0.8, 0.8, 0.8};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {1.6, 0.8, -0.4};
-  ball.radius = 0.6;
-  ball.color = {0.9, 0.5, 0.3};
-  scene.objects = {floor, ball};
+  scene.objects = {{sol::PlaneZ{-1.0}, {0.8, 0.8, 0.8}}, {sol::Ball{{1.6, 0.8, -0.4}, 0.6}, {0.9, 0.5, 0.3}}};
   sol::Light light;
   light.type = sol::LightType::Point;
   light.position = reach > 0.0 ? glm::dvec3(2.5, 16.0, -1.5) : glm::dvec3(1.4, 0.9, 0.5);
@@ -336,8 +327,10 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   sol::Scene scene = sol::preset_scene("lattice-balls");
   int balls = 0;
   for (sol::SceneObject& o : scene.objects) {
-    o.exact = o.type == sol::ObjectType::Ball;
-    balls += o.exact;
+    if (auto* ball = std::get_if<sol::Ball>(&o.shape)) {
+      ball->exact = true;
+      ++balls;
+    }
   }
   ASSERT_GT(balls, 0);
   sol::RenderSettings settings;
@@ -352,12 +345,14 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   int hits = 0;
   for (std::size_t k = 0; k < gpu.object.size(); ++k) {
     const int object = static_cast<int>(gpu.object[k]) - 1;
-    if (object < 0 || scene.objects[static_cast<std::size_t>(object)].type != sol::ObjectType::Ball) continue;
+    if (object < 0 || !std::holds_alternative<sol::Ball>(scene.objects[static_cast<std::size_t>(object)].shape)) continue;
     ++hits;
     const dvec3 p(gpu.px[k], gpu.py[k], gpu.pz[k]);
     double nearest = 1e30;
     for (const sol::MarchObject& m : images) {
-      if (m.owner == static_cast<std::size_t>(object)) nearest = std::min(nearest, sol::distance(p, m.center) - m.radius);
+      if (m.owner != static_cast<std::size_t>(object)) continue;
+      const sol::Ball& image = std::get<sol::Ball>(m.shape);
+      nearest = std::min(nearest, sol::distance(p, image.center) - image.radius);
     }
     worst = std::max(worst, std::abs(nearest));
   }

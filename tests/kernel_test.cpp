@@ -100,29 +100,12 @@ TEST(Kernel, PresetsMatchTheCpuRenderer) {
 TEST(Kernel, BallsMatchTheCpuRenderer) {
   sol::Scene scene;
   scene.camera = {{0.3, -0.2, 0.1}, {1, 0.2, 0.1}, {0, 0, 1}, 70.0};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {2.0, 0.5, 0.2};
-  ball.radius = 0.6;
-  ball.color = {0.3, 0.8, 0.4};
-  sol::SceneObject floor;
-  floor.type = sol::ObjectType::PlaneZ;
-  floor.c = -0.8;
-  floor.pattern = sol::Pattern::Checker;
-  sol::SceneObject tube;
-  tube.type = sol::ObjectType::Tube;
-  tube.axis = 2;
-  tube.center = {1.5, -0.8, 0.0};
-  tube.radius = 0.2;
-  tube.color = {0.8, 0.3, 0.8};
-  tube.pattern = sol::Pattern::Checker;
-  ball.pattern = sol::Pattern::Circles;
+  const sol::SceneObject ball{sol::Ball{{2.0, 0.5, 0.2}, 0.6}, {0.3, 0.8, 0.4}, sol::Pattern::Circles};
+  const sol::SceneObject floor{sol::PlaneZ{-0.8}, {0.8, 0.8, 0.8}, sol::Pattern::Checker};
+  const sol::SceneObject tube{sol::make_tube(sol::TubeAxis::Z, {1.5, -0.8, 0.0}, 0.2), {0.8, 0.3, 0.8}, sol::Pattern::Checker};
   // A tube along γ1 (a horizontal line of irrational slope), patterned.
-  sol::SceneObject slanted = tube;
-  slanted.axis = sol::kAxisGamma1;
-  slanted.center = {2.4, 0.3, -0.35};
-  slanted.radius = 0.15;
-  slanted.color = {0.9, 0.8, 0.2};
+  const sol::SceneObject slanted{sol::make_tube(sol::TubeAxis::Gamma1, {2.4, 0.3, -0.35}, 0.15), {0.9, 0.8, 0.2},
+                                 sol::Pattern::Checker};
   scene.objects = {ball, floor, tube, slanted};
   // A point light and coloured fog: shading as sol::light_at on both sides.
   sol::Light point;
@@ -182,12 +165,8 @@ TEST(Kernel, ExactBallsFromTheTableLieOnTheGeodesicSphere) {
   // 5.7e-3), and the hit mask agrees with the CPU renderer's (the solver).
   sol::Scene scene;
   scene.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {1.3, 1.1, 0.6};
-  ball.radius = 0.5;
-  ball.exact = true;
-  scene.objects = {ball};
+  const sol::Ball ball{{1.3, 1.1, 0.6}, 0.5, true};
+  scene.objects = {{ball}};
   sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult gpu = renderer.render(scene, 24, 18);
   sol::RenderSettings settings;
@@ -218,8 +197,7 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
   sol::Scene scene = sol::preset_scene("plane");
   scene.objects[0].cutout = true;
   sol::SceneObject floor;
-  floor.type = sol::ObjectType::PlaneZ;
-  floor.c = -1.0;
+  floor.shape = sol::PlaneZ{-1.0};
   floor.pattern = sol::Pattern::Checker;
   scene.objects.push_back(floor);
   sol::RenderSettings settings;
@@ -261,9 +239,7 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
     thin.camera = {{0.7, 0.4, 0.5 * lattice.height()}, {0.3, 0.5, -0.2}, {0, 0, 1}, 100.0};
     thin.max_distance = 8.0;
     thin.max_steps = 400;
-    sol::SceneObject plane;
-    plane.c = c;
-    thin.objects = {plane};
+    thin.objects = {{sol::PlaneZ{c}}};
     sol::RenderSettings settings;
     settings.width = 24;
     settings.height = 18;
@@ -328,10 +304,10 @@ TEST(Kernel, SwapSymmetry) {
   auto sigma = [](const dvec3& v) { return dvec3(v.y, v.x, -v.z); };
   sol::Scene a;
   a.camera = {{0, 0, 2.2}, {0.1, 0.05, -1}, {0, 1, 0}, 80.0};
-  a.objects = {{sol::ObjectType::PlaneZ, 1.0, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
+  a.objects = {{sol::PlaneZ{1.0}, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
   sol::Scene b = a;
   b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
-  b.objects[0].c = -1.0;
+  b.objects[0].shape = sol::PlaneZ{-1.0};
   b.lights[0].direction = sigma(a.lights[0].direction);
   sol::vk::MarchRenderer renderer(vk_context());
   const sol::RenderResult ra = renderer.render(a, 40, 30), rb = renderer.render(b, 40, 30);
@@ -389,7 +365,7 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
                                                    : std::vector<sol::Camera>{eyes.left, eyes.right};
       const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
       sol::vk::StorageImage target(vk_context(), static_cast<std::uint32_t>(n * w + 3), h + 2);
-      vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, target); });
+      vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, cams, w, h, target); });
       const std::vector<float> got = target.download();
       int differ = 0;
       for (int j = 0; j < h; ++j) {
@@ -405,9 +381,10 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
     }
   }
   const sol::Scene scene = sol::preset_scene("plane");
+  renderer.set_world(scene);
   sol::vk::StorageImage small(vk_context(), 4, 4);
   EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
-    renderer.record(cb, scene, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
+    renderer.record(cb, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
   }), sol::InvalidArgument);
   expect_no_validation_errors();
 }
@@ -448,7 +425,7 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
         const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
         sol::vk::StorageImage target(vk_context(), tw, th, format);
         const sol::vk::UnormTarget unorm{target.view(), format, tw, th};
-        vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, scene, cams, w, h, unorm); });
+        vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, cams, w, h, unorm); });
         const std::vector<std::uint8_t> got = target.download_bytes();
         int worst = 0;
         for (int j = 0; j < h; ++j) {
@@ -474,18 +451,19 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
   }
   // Wrong format, null view, too small: refused before anything is recorded.
   const sol::Scene scene = sol::preset_scene("plane");
+  renderer.set_world(scene);
   const std::vector<sol::Camera> cams{scene.camera};
   sol::vk::StorageImage rgba32f(vk_context(), 8, 8);
   EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
-    renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{rgba32f.view(), VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8});
+    renderer.record(cb, cams, 8, 8, sol::vk::UnormTarget{rgba32f.view(), VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8});
   }), sol::InvalidArgument);
   EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
-    renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{VK_NULL_HANDLE, VK_FORMAT_R8G8B8A8_UNORM, 8, 8});
+    renderer.record(cb, cams, 8, 8, sol::vk::UnormTarget{VK_NULL_HANDLE, VK_FORMAT_R8G8B8A8_UNORM, 8, 8});
   }), sol::InvalidArgument);
   if (sol::vk::MarchRenderer::can_write_unorm(vk_context(), VK_FORMAT_R8G8B8A8_UNORM)) {
     sol::vk::StorageImage small(vk_context(), 4, 4, VK_FORMAT_R8G8B8A8_UNORM);
     EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
-      renderer.record(cb, scene, cams, 8, 8, sol::vk::UnormTarget{small.view(), VK_FORMAT_R8G8B8A8_UNORM, 4, 4});
+      renderer.record(cb, cams, 8, 8, sol::vk::UnormTarget{small.view(), VK_FORMAT_R8G8B8A8_UNORM, 4, 4});
     }), sol::InvalidArgument);
   }
   expect_no_validation_errors();

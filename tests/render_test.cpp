@@ -138,7 +138,7 @@ TEST(Render, SwapSymmetry) {
   auto sigma = [](const dvec3& v) { return dvec3(v.y, v.x, -v.z); };
   sol::Scene a;
   a.camera = {{0, 0, 2.2}, {0.1, 0.05, -1}, {0, 1, 0}, 80.0};
-  a.objects = {{sol::ObjectType::PlaneZ, 1.0, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
+  a.objects = {{sol::PlaneZ{1.0}, {0.9, 0.7, 0.2}, sol::Pattern::Circles}};
   a.lights[0].direction = {0.2, 0.4, 1.0};
   sol::Light point;  // a point light maps by σ on its position
   point.type = sol::LightType::Point;
@@ -150,7 +150,7 @@ TEST(Render, SwapSymmetry) {
   a.fog_density = 0.1;
   sol::Scene b = a;
   b.camera = {sigma(a.camera.position), sigma(a.camera.forward), sigma(a.camera.up), a.camera.fov};
-  b.objects[0].c = -1.0;
+  b.objects[0].shape = sol::PlaneZ{-1.0};
   b.lights[0].direction = sigma(a.lights[0].direction);
   b.lights[1].position = sigma(a.lights[1].position);
   sol::RenderSettings settings;
@@ -235,7 +235,7 @@ TEST(Render, HorizontalTubeBoundsNeverExceedPathLengths) {
   std::uniform_real_distribution<double> coord(-1.5, 1.5), angle(0.0, 6.283185307179586);
   const dvec3 through(0.2, -0.3, 0.4);
   std::vector<glm::dvec2> headings;
-  for (int axis : {sol::kAxisX, sol::kAxisY, sol::kAxisGamma1, sol::kAxisGamma2}) {
+  for (sol::TubeAxis axis : {sol::TubeAxis::X, sol::TubeAxis::Y, sol::TubeAxis::Gamma1, sol::TubeAxis::Gamma2}) {
     const dvec3 d = sol::tube_axis_direction(axis);
     headings.emplace_back(d.x, d.y);
   }
@@ -276,16 +276,9 @@ TEST(Render, HorizontalTubeBoundsNeverExceedPathLengths) {
 TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
   sol::Scene scene;
   scene.camera = {{0, 0, 0}, {1, 0.1, 0.05}, {0, 0, 1}, 70.0};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {2.0, 0.6, 0.2};
-  ball.radius = 0.6;
-  sol::SceneObject tube;
-  tube.type = sol::ObjectType::Tube;
-  tube.axis = sol::kAxisZ;
-  tube.center = {1.6, -0.7, 0.3};
-  tube.radius = 0.25;
-  scene.objects = {ball, tube};
+  const sol::Ball ball{{2.0, 0.6, 0.2}, 0.6};
+  const sol::Tube tube = sol::make_tube(sol::TubeAxis::Z, {1.6, -0.7, 0.3}, 0.25);
+  scene.objects = {{ball}, {tube}};
   sol::RenderSettings settings;
   settings.width = 40;
   settings.height = 30;
@@ -298,11 +291,10 @@ TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
     ASSERT_EQ(plain.object[k], checker.object[k]);
     const int object = static_cast<int>(plain.object[k]);
     if (object == 0) continue;
-    const sol::SceneObject& o = scene.objects[static_cast<std::size_t>(object - 1)];
-    const dvec3 c = o.center;
+    const dvec3 c = object == 1 ? ball.center : tube.through;
     const dvec3 w(std::exp(-c.z) * (plain.px[k] - c.x), std::exp(c.z) * (plain.py[k] - c.y), plain.pz[k] - c.z);
     const double u = 4.0 / pi * std::atan2(w.y, w.x);
-    const double v = object == 1 ? 4.0 / pi * std::atan2(w.z, std::hypot(w.x, w.y)) : 4.0 / pi * w.z / o.radius;
+    const double v = object == 1 ? 4.0 / pi * std::atan2(w.z, std::hypot(w.x, w.y)) : 4.0 / pi * w.z / tube.radius;
     const double edge = 0.03;
     if (std::abs(u - std::round(u)) < edge || std::abs(v - std::round(v)) < edge) continue;
     const double expected = std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : 0.45;
@@ -319,12 +311,8 @@ TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
 TEST(Render, BallHitsLieOnTheBoundSurface) {
   sol::Scene scene;
   scene.camera = {{0, 0, 0}, {1, 0.2, 0.1}, {0, 0, 1}, 60.0};
-  sol::SceneObject ball;
-  ball.type = sol::ObjectType::Ball;
-  ball.center = {2.0, 0.5, 0.2};
-  ball.radius = 0.6;
-  ball.color = {0.3, 0.8, 0.4};
-  scene.objects = {ball};
+  const sol::Ball ball{{2.0, 0.5, 0.2}, 0.6};
+  scene.objects = {{ball, {0.3, 0.8, 0.4}}};
   sol::RenderSettings settings;
   settings.width = 24;
   settings.height = 18;
@@ -345,8 +333,7 @@ sol::Scene cutout_scene() {
   sol::Scene scene = sol::preset_scene("plane");
   scene.objects[0].cutout = true;
   sol::SceneObject floor;
-  floor.type = sol::ObjectType::PlaneZ;
-  floor.c = -1.0;
+  floor.shape = sol::PlaneZ{-1.0};
   floor.pattern = sol::Pattern::Checker;
   scene.objects.push_back(floor);
   return scene;
@@ -535,14 +522,13 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
     quotient.max_distance = 8.0;
     quotient.max_steps = 400;
     sol::SceneObject plane;
-    plane.type = sol::ObjectType::PlaneZ;
-    plane.c = c;
+    plane.shape = sol::PlaneZ{c};
     quotient.objects = {plane};
     sol::Scene cover = quotient;
     cover.quotient = sol::Quotient::None;
     cover.objects.clear();
     for (int k = -30; k <= 30; ++k) {
-      plane.c = c + k * h;
+      plane.shape = sol::PlaneZ{c + k * h};
       cover.objects.push_back(plane);
     }
     sol::RenderSettings settings;
@@ -568,13 +554,16 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
 
 // Whether two world-coordinate images are the same set (a test-side check).
 bool same_set(const sol::MarchObject& a, const sol::MarchObject& b) {
-  if (a.type != b.type || a.owner != b.owner) return false;
-  if (a.type == sol::ObjectType::PlaneZ) return std::abs(a.c - b.c) < 1e-9;
-  if (a.type == sol::ObjectType::Ball) return glm::length(a.center - b.center) < 1e-9;
-  if (a.axis == sol::kAxisZ) return std::hypot(a.center.x - b.center.x, a.center.y - b.center.y) < 1e-9;
-  const double cross = a.heading.x * (b.center.y - a.center.y) - a.heading.y * (b.center.x - a.center.x);
-  return std::abs(a.center.z - b.center.z) < 1e-9 && std::abs(a.heading.x * b.heading.y - a.heading.y * b.heading.x) < 1e-9 &&
-         std::abs(cross) < 1e-9;
+  if (a.shape.index() != b.shape.index() || a.owner != b.owner) return false;
+  if (const auto* p = std::get_if<sol::PlaneZ>(&a.shape)) return std::abs(p->c - std::get<sol::PlaneZ>(b.shape).c) < 1e-9;
+  if (const auto* p = std::get_if<sol::Ball>(&a.shape)) {
+    return glm::length(p->center - std::get<sol::Ball>(b.shape).center) < 1e-9;
+  }
+  const sol::Tube &s = std::get<sol::Tube>(a.shape), &t = std::get<sol::Tube>(b.shape);
+  if (s.vertical()) return std::hypot(s.through.x - t.through.x, s.through.y - t.through.y) < 1e-9;
+  const dvec3 &ha = s.direction, &hb = t.direction;
+  const double cross = ha.x * (t.through.y - s.through.y) - ha.y * (t.through.x - s.through.x);
+  return std::abs(s.through.z - t.through.z) < 1e-9 && std::abs(ha.x * hb.y - ha.y * hb.x) < 1e-9 && std::abs(cross) < 1e-9;
 }
 
 // sol::quotient_images lists every image a march step (<= 0.5 from a point of
@@ -615,27 +604,13 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   mixed.quotient = sol::Quotient::Golden;
   std::uniform_real_distribution<double> coord(-3.0, 3.0);
   for (int i = 0; i < 3; ++i) {
-    sol::SceneObject ball;
-    ball.type = sol::ObjectType::Ball;
-    ball.center = {coord(rng), coord(rng), coord(rng)};
-    ball.radius = 0.45;  // the largest allowed in the quotient
-    sol::SceneObject tube;
-    tube.type = sol::ObjectType::Tube;
-    tube.axis = i == 0 ? sol::kAxisGamma1 : sol::kAxisGamma2;
-    tube.center = {coord(rng), coord(rng), coord(rng)};
-    tube.radius = 0.45;
-    mixed.objects.push_back(ball);
-    mixed.objects.push_back(tube);
+    const dvec3 centre_of_ball(coord(rng), coord(rng), coord(rng));
+    mixed.objects.push_back({sol::Ball{centre_of_ball, 0.45}});  // the largest radius allowed in the quotient
+    const dvec3 through(coord(rng), coord(rng), coord(rng));
+    mixed.objects.push_back({sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, through, 0.45)});
   }
-  sol::SceneObject plane;
-  plane.c = 0.3;
-  mixed.objects.push_back(plane);
-  sol::SceneObject vertical;
-  vertical.type = sol::ObjectType::Tube;
-  vertical.axis = sol::kAxisZ;
-  vertical.center = sol::multiply(lattice.element(2, -3, 0), dvec3(0, 0, 1.7));
-  vertical.radius = 0.3;
-  mixed.objects.push_back(vertical);
+  mixed.objects.push_back({sol::PlaneZ{0.3}});
+  mixed.objects.push_back({sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(2, -3, 0), dvec3(0, 0, 1.7)), 0.3)});
   sol::validate(mixed);
   scenes.push_back(mixed);
   for (const sol::Scene& scene : scenes) {
@@ -643,7 +618,7 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
     std::vector<bool> reached(listed.size(), false);
     int needed = 0;
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-      const sol::MarchObject world = sol::relative_object(scene.objects[i], dvec3(0.0), i);
+      const sol::MarchObject world{scene.objects[i].shape, i};
       for (int c = -3; c <= 3; ++c) {
         for (int a = -16; a <= 16; ++a) {
           for (int b = -16; b <= 16; ++b) {

@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 #include <sol/scene.hpp>
+#include <sol/scene_file.hpp>
 
 namespace sol::cli {
 

@@ -240,6 +240,7 @@ struct App {
   double scale = 1.0;
   bool adaptive = false, stereo = false, vsync = true, fullscreen = false;
   bool swapchain_dirty = false, want_screenshot = false, quit = false;
+  bool world_changed = true;  // the renderer needs set_world(scene) before the next frame
   int screenshots = 0;
   bool dragging = false;
   double last_x = 0, last_y = 0;
@@ -250,6 +251,7 @@ struct App {
     scene = load(name);
     scene_name = name;
     observer = observer_for(scene);
+    world_changed = true;
   }
 
   // Keys with an effect on press (the held ones act in Controls::step).
@@ -774,16 +776,22 @@ int run(App& app) {
     sol::vk::check(vkResetFences(device, 1, &present.frame_done), "vkResetFences");
 
     const auto host_begin = std::chrono::steady_clock::now();
-    sol::Scene scene = app.scene;
-    scene.camera.position = app.observer.position();
-    scene.camera.forward = app.observer.forward();
-    scene.camera.up = app.observer.up();
+    // The world is prepared once per scene (the previous frame is done: the fence above).
+    if (app.world_changed) {
+      renderer.set_world(app.scene);
+      app.world_changed = false;
+    }
+    // Per frame only the cameras change.
+    sol::Camera camera = app.scene.camera;
+    camera.position = app.observer.position();
+    camera.forward = app.observer.forward();
+    camera.up = app.observer.up();
     std::vector<sol::Camera> cameras;
     if (app.stereo) {
-      const sol::StereoEyes se = sol::stereo_eyes(scene.camera, opt.ipd);
+      const sol::StereoEyes se = sol::stereo_eyes(camera, opt.ipd);
       cameras = {se.left, se.right};
     } else {
-      cameras = {scene.camera};
+      cameras = {camera};
     }
 
     VkCommandBuffer cb = present.commands;
@@ -805,14 +813,14 @@ int run(App& app) {
       // has released the image, and the kernel's writes come after it.
       sol::vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                     VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-      renderer.record(cb, scene, cameras, eye_w, eye_h,
+      renderer.record(cb, cameras, eye_w, eye_h,
                       sol::vk::UnormTarget{present.views[index], present.format, present.extent.width, present.extent.height});
       shown_layout = VK_IMAGE_LAYOUT_GENERAL;
       shown_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
       shown_access = VK_ACCESS_SHADER_WRITE_BIT;
     } else {
       VkImage target_image = target->handle();
-      renderer.record(cb, scene, cameras, eye_w, eye_h, *target);
+      renderer.record(cb, cameras, eye_w, eye_h, *target);
       // Read after write: the blit reads what the kernel wrote; to the layout
       // blits read best (the previous frame's last barrier already ordered this
       // frame's kernel after that frame's blit).

@@ -584,13 +584,13 @@ void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
 /// (same size: nearest texels, converted to the swapchain's format, sRGB-
 /// encoded where it is an sRGB one) copies it into the swapchain image, all
 /// in one submission; nothing goes through the host.
-void render_on_device(App& app, Eye& eye, const sol::Scene& eye_scene, std::uint32_t width, std::uint32_t height,
+void render_on_device(App& app, Eye& eye, const sol::Camera& camera, std::uint32_t width, std::uint32_t height,
                       Timing& timing) {
   const auto begin = std::chrono::steady_clock::now();
   const sol::vk::StorageImage& rendered = *eye.rendered;
   const double ms = with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
-    const sol::Camera cameras[] = {eye_scene.camera};
-    app.renderer->record(cmd, eye_scene, cameras, static_cast<int>(width), static_cast<int>(height), rendered);
+    app.renderer->record(cmd, std::span<const sol::Camera>(&camera, 1), static_cast<int>(width), static_cast<int>(height),
+                         rendered);
     // The kernel's writes must land before the blit reads them (the image stays GENERAL).
     sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
@@ -614,12 +614,12 @@ void render_on_device(App& app, Eye& eye, const sol::Scene& eye_scene, std::uint
 
 /// The host path: render() reads the image back, the host converts it to
 /// the swapchain's format and a copy uploads it.
-void render_through_host(App& app, Eye& eye, const sol::Scene& eye_scene, std::int64_t format, std::uint32_t width,
+void render_through_host(App& app, Eye& eye, const sol::Camera& camera, std::int64_t format, std::uint32_t width,
                          std::uint32_t height, Timing& timing) {
   const auto begin = std::chrono::steady_clock::now();
   double kernel_ms = 0;
   const sol::RenderResult image =
-      app.renderer->render(eye_scene, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
+      app.renderer->render(camera, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
   const auto rendered = std::chrono::steady_clock::now();
 
     // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
@@ -672,13 +672,13 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
     pose.position = {view.pose.position.x, view.pose.position.y, view.pose.position.z};
     pose.orientation =
         glm::dquat(view.pose.orientation.w, view.pose.orientation.x, view.pose.orientation.y, view.pose.orientation.z);
-    sol::Scene eye_scene = scene;
-    eye_scene.camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
-    eye_scene.camera.frustum = frustum;
+    // Per frame only the eyes change: the world was prepared once (run).
+    sol::Camera camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
+    camera.frustum = frustum;
     if (eye.rendered) {
-      render_on_device(app, eye, eye_scene, width, height, timing);
+      render_on_device(app, eye, camera, width, height, timing);
     } else {
-      render_through_host(app, eye, eye_scene, format, width, height, timing);
+      render_through_host(app, eye, camera, format, width, height, timing);
     }
 
     XrCompositionLayerProjectionView& lv = layer_views[v];
@@ -701,6 +701,7 @@ int run(const Options& o, const sol::Scene& scene) {
   march.integrator = o.integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
   march.rk4_step = o.rk_step;
   app.renderer.emplace(*app.context, march);
+  app.renderer->set_world(scene);  // prepared once: every frame only sends its eyes
   create_session(app, o);
   std::uint32_t width = 0, height = 0;
   const std::int64_t format = create_swapchains(app, o, width, height);

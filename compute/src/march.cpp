@@ -34,21 +34,7 @@ namespace {
 using kernel::Eye;
 using kernel::Params;
 
-int type_code(ObjectType type) {
-  switch (type) {
-    case ObjectType::PlaneX:
-      return kernel::kObjectPlaneX;
-    case ObjectType::PlaneY:
-      return kernel::kObjectPlaneY;
-    case ObjectType::PlaneZ:
-      return kernel::kObjectPlaneZ;
-    case ObjectType::Ball:
-      return kernel::kObjectBall;
-    case ObjectType::Tube:
-      return kernel::kObjectTube;
-  }
-  return kernel::kObjectPlaneZ;
-}
+glm::vec4 vec4(const glm::dvec3& v, double w) { return glm::vec4(glm::dvec4(v, w)); }
 
 int pattern_code(Pattern pattern) {
   switch (pattern) {
@@ -62,13 +48,37 @@ int pattern_code(Pattern pattern) {
   return kernel::kPatternNone;
 }
 
-glm::vec4 vec4(const glm::dvec3& v, double w) { return glm::vec4(glm::dvec4(v, w)); }
+// The world's part of the uniforms (objects, lights, shading, limits),
+// filled once per world; each frame adds its eyes and image size.
+Params world_params(const MarchWorld& prepared) {
+  const World& world = prepared.world();
+  Params g{};
+  g.shading = glm::vec4(world.ambient, world.fog_density, world.lights.size(), 0.0);
+  g.fog_color = vec4(world.fog_color, 0.0);
+  for (std::size_t i = 0; i < world.lights.size(); ++i) {
+    const Light& l = world.lights[i];
+    const int code = l.type == LightType::Directional ? kernel::kLightDirectional
+                                                      : (l.exact ? kernel::kLightExactPoint : kernel::kLightPoint);
+    g.light_color[i] = vec4(l.color * l.intensity, code);
+  }
+  g.limits = glm::vec4(world.max_distance, world.hit_epsilon, 0.0, world.max_steps);
+  for (std::size_t k = 0; k < world.objects.size(); ++k) {
+    const SceneObject& o = world.objects[k];
+    const KernelShape shape = kernel_shape(o.shape);
+    g.objects[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
+    g.objects[k].color = vec4(o.color, 1.0);
+  }
+  // Objects (the quotient: the images around D).
+  g.counts.x = static_cast<int>(prepared.objects().size());
+  return g;
+}
 
-// One eye: camera basis, position terms and the plane constants relative to
-// it, all in double (see march.hpp).
-Eye make_eye(const Scene& scene, const Camera& cam, int width, int height, double rk4_step) {
+// One eye: camera basis, position terms and the objects and lights relative
+// to it, all in double (see march.hpp).
+Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int height, double rk4_step) {
+  const World& world = prepared.world();
   const CameraBasis basis = camera_basis(cam);
-  const bool quotient = scene.quotient != Quotient::None;
+  const bool quotient = prepared.features().quotient;
   // In the quotient the kernel works in world coordinates inside D: the eye
   // is teleported there (in double) and point lights stay in world coordinates.
   const glm::dvec3 p = quotient ? Lattice::golden().teleport(cam.position).point : cam.position;
@@ -81,16 +91,17 @@ Eye make_eye(const Scene& scene, const Camera& cam, int width, int height, doubl
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
   e.camera_frac = vec4(p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
-  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    // Camera-relative, as the CPU reference (sol::relative_object): planes
-    // (constant, 0, 0, 0), balls (centre, 0), tubes (point of the axis, axis).
-    const MarchObject r = relative_object(scene.objects[k], p, k);
-    const bool solid = r.type == ObjectType::Ball || r.type == ObjectType::Tube;
-    e.relative[k] = vec4(solid ? r.center : glm::dvec3(r.c, 0.0, 0.0), r.type == ObjectType::Tube ? r.axis : 0.0);
-    e.heading[k] = vec4(glm::dvec3(r.heading, 0.0), 0.0);
+  if (!quotient) {
+    // Camera-relative, as the CPU reference (sol::MarchWorld::seen_from).
+    const std::vector<MarchObject> relative = prepared.seen_from(p);
+    for (std::size_t k = 0; k < relative.size(); ++k) {
+      const KernelShape shape = kernel_shape(relative[k].shape);
+      e.relative[k] = glm::vec4(shape.geometry);
+      e.heading[k] = glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0);
+    }
   }
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
+  for (std::size_t i = 0; i < world.lights.size(); ++i) {
+    const Light& l = world.lights[i];
     const glm::dvec3 position = quotient ? l.position : multiply(inverse(p), l.position);
     e.lights[i] = vec4(l.type == LightType::Directional ? glm::normalize(l.direction) : position,
                        l.type == LightType::Point && l.exact ? l.reach : 0.0);
@@ -98,32 +109,11 @@ Eye make_eye(const Scene& scene, const Camera& cam, int width, int height, doubl
   return e;
 }
 
-Params make_params(const Scene& scene, const std::vector<Camera>& eyes, int width, int height, double rk4_step) {
-  Params g{};
-  for (std::size_t i = 0; i < eyes.size(); ++i) g.eyes[i] = make_eye(scene, eyes[i], width, height, rk4_step);
-  g.shading = glm::vec4(scene.ambient, scene.fog_density, scene.lights.size(), 0.0);
-  g.fog_color = vec4(scene.fog_color, 0.0);
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
-    const int code = l.type == LightType::Directional ? kernel::kLightDirectional
-                                                      : (l.exact ? kernel::kLightExactPoint : kernel::kLightPoint);
-    g.light_color[i] = vec4(l.color * l.intensity, code);
-  }
-  g.limits = glm::vec4(scene.max_distance, scene.hit_epsilon, 0.0, scene.max_steps);
-  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    const SceneObject& o = scene.objects[k];
-    const int code = o.exact ? kernel::kObjectExactBall : type_code(o.type);
-    g.objects[k].plane = glm::vec4(code, o.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
-    g.objects[k].color = vec4(o.color, 1.0);
-  }
-  // The object count (the quotient's: its image count, set by prepare)
-  g.counts = glm::ivec4(static_cast<int>(scene.objects.size()), width, height, static_cast<int>(eyes.size()));
-  return g;
-}
-
 // The quotient images (sol::quotient_images, shared with the CPU reference)
-// as the kernel's Image records (binding kBindingImages).
-std::vector<kernel::Image> pack_images(const std::vector<MarchObject>& images) {
+// as the kernel's Image records (binding kBindingImages); a stub otherwise.
+std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
+  if (!prepared.features().quotient) return std::vector<kernel::Image>(1);
+  const std::vector<MarchObject>& images = prepared.objects();
   if (images.size() > static_cast<std::size_t>(kMaxGpuImages)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the quotient scene has " + std::to_string(images.size()) +
                           " object images around the domain; the kernel takes at most " +
@@ -131,19 +121,11 @@ std::vector<kernel::Image> pack_images(const std::vector<MarchObject>& images) {
   }
   std::vector<kernel::Image> out;
   for (const MarchObject& m : images) {
-    const bool solid = m.type == ObjectType::Ball || m.type == ObjectType::Tube;
-    const glm::dvec3 geometry = solid ? m.center : glm::dvec3(m.c, 0.0, 0.0);
-    const int code = m.exact ? kernel::kObjectExactBall : type_code(m.type);
-    out.push_back({vec4(geometry, m.type == ObjectType::Tube ? m.axis : 0.0),
-                   glm::vec4(code, m.radius, static_cast<double>(m.owner), 0.0),
-                   glm::vec4(m.heading.x, m.heading.y, 0.0, 0.0)});
+    const KernelShape shape = kernel_shape(m.shape);
+    out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
+                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0)});
   }
   return out;
-}
-
-bool heights_only(const Scene& scene) {
-  return std::all_of(scene.objects.begin(), scene.objects.end(),
-                     [](const SceneObject& o) { return o.type == ObjectType::PlaneZ; });
 }
 
 void require_size(int value, const char* name) {
@@ -153,41 +135,44 @@ void require_size(int value, const char* name) {
   }
 }
 
-
-// The features a scene uses: each is a specialisation constant of
-// march.comp, so a scene's kernel contains only what it needs.
-struct Features {
-  bool heights_only = false, balls = false, point_lights = false, fog = false, cutout = false, quotient = false;
-  bool no_aovs = false;  // colour only (MarchRenderer::record)
-  bool exact_balls = false;
+// One build of march.comp: the world's features (each a specialisation
+// constant, so a world's kernel contains only what it needs) and the output.
+struct KernelVariant {
+  MarchFeatures features;
+  bool aovs = true;         // write the AOV images (render); off for record
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
-  bool exact_lights = false;
   std::uint32_t key() const {
-    return (heights_only ? 1u : 0u) | (balls ? 2u : 0u) | (point_lights ? 4u : 0u) | (fog ? 8u : 0u) |
-           (cutout ? 16u : 0u) | (quotient ? 32u : 0u) | (no_aovs ? 64u : 0u) | (exact_balls ? 128u : 0u) |
-           (srgb_unorm ? 256u : 0u) | (exact_lights ? 512u : 0u);
+    const MarchFeatures& f = features;
+    std::uint32_t k = 0, bit = 1;
+    for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
+                   srgb_unorm, f.exact_lights}) {
+      if (b) k |= bit;
+      bit <<= 1;
+    }
+    return k;
   }
 };
 
-Features features_of(const Scene& scene) {
-  Features f;
-  f.quotient = scene.quotient != Quotient::None;
-  f.heights_only = heights_only(scene) && !f.quotient;
-  f.balls = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) {
-    return o.type == ObjectType::Ball || o.type == ObjectType::Tube;
-  });
-  f.point_lights = std::any_of(scene.lights.begin(), scene.lights.end(),
-                               [](const Light& l) { return l.type == LightType::Point; });
-  f.fog = scene.fog_density > 0.0;
-  f.cutout = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.cutout; });
-  f.exact_balls = std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.exact; });
-  f.exact_lights = uses_exact_lights(scene);
-  return f;
+// The features the kernel is built for: the world's, or with all_features
+// everything a world of its space may use (the exact objects' tables are
+// bound only when the world has them, so those stay the world's).
+MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
+  if (!all_features) return world;
+  return {.quotient = world.quotient,
+          .heights_only = false,
+          .solids = true,
+          .point_lights = true,
+          .fog = true,
+          .cutout = true,
+          .cutout_gaps = true,
+          .exact_balls = world.exact_balls,
+          .exact_lights = world.exact_lights};
 }
 
-ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features& f) {
-  return ComputePipeline(c, {.name = "march (features " + std::to_string(f.key()) + ")",
-                             .spirv = f.srgb_unorm ? std::span<const std::uint32_t>(march_srgb_unorm_comp_spv)
+ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v) {
+  const MarchFeatures& f = v.features;
+  return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ")",
+                             .spirv = v.srgb_unorm ? std::span<const std::uint32_t>(march_srgb_unorm_comp_spv)
                                                    : std::span<const std::uint32_t>(march_comp_spv),
                              .bindings = {{kernel::kBindingParams, DescriptorType::UniformBuffer},
                                           {kernel::kBindingColor, DescriptorType::StorageImage},
@@ -199,14 +184,24 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
                              .push_constant_size = 0,
                              .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
-                                                {kernel::kSpecBalls, f.balls ? 1u : 0u},
+                                                {kernel::kSpecBalls, f.solids ? 1u : 0u},
                                                 {kernel::kSpecPointLights, f.point_lights ? 1u : 0u},
                                                 {kernel::kSpecFog, f.fog ? 1u : 0u},
                                                 {kernel::kSpecCutout, f.cutout ? 1u : 0u},
                                                 {kernel::kSpecQuotient, f.quotient ? 1u : 0u},
-                                                {kernel::kSpecWriteAovs, f.no_aovs ? 0u : 1u},
+                                                {kernel::kSpecWriteAovs, v.aovs ? 1u : 0u},
                                                 {kernel::kSpecExactBalls, f.exact_balls ? 1u : 0u},
                                                 {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u}}});
+}
+
+// Which connection table exact point lights need: none, the minimisers', or
+// with a reach the longer connections' (sol::ConnectionTable::shared).
+enum class SeedTable { None, Minimisers, Longer };
+SeedTable seed_table_of(const World& world) {
+  if (!uses_exact_lights(world)) return SeedTable::None;
+  const bool longer = std::any_of(world.lights.begin(), world.lights.end(),
+                                  [](const Light& l) { return l.exact && l.reach > 0.0; });
+  return longer ? SeedTable::Longer : SeedTable::Minimisers;
 }
 
 }  // namespace
@@ -214,23 +209,42 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const Features&
 struct MarchRenderer::Impl {
   Context& context;
   MarchOptions options;
-  // One pipeline per feature set, built when first needed.
-  std::map<std::uint32_t, ComputePipeline> pipelines;
+  struct Built {
+    ComputePipeline pipeline;
+    std::uint64_t world_bound = 0;  // the world generation whose buffers are bound (0: none)
+  };
+  // One pipeline per kernel variant, built when first needed and kept.
+  std::map<std::uint32_t, Built> pipelines;
   Buffer params;
-  // The quotient images (binding 4), kept until the next frame: a recorded
-  // dispatch (record) still reads them after the call returns.
+  // The prepared world and what set_world made of it.
+  std::optional<MarchWorld> world;
+  std::uint64_t generation = 0;  // counts set_world calls
+  Params world_uniforms{};
+  // Device copies of the world's buffers; a recorded dispatch still reads
+  // them after record() returns, so they live until the next set_world.
   std::optional<Buffer> images;
-  std::optional<Buffer> table;  // exact balls: sol::DistanceTable (binding 5)
-  std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable (binding 6)
-  int seeds_kind = -1;          // which table `seeds` holds: 0 stub, 1 minimisers, 2 longer
-  // For the AOV bindings (rgba32f, never written without AOVs) when binding 1
-  // holds a caller's 8-bit image.
+  std::optional<Buffer> table;  // exact balls: sol::DistanceTable
+  std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
+  SeedTable seeds_held = SeedTable::None;
+  // For the AOV bindings (rgba32f, never written without AOVs) when the
+  // colour binding holds a caller's 8-bit image.
   std::optional<StorageImage> placeholder;
+
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {}
-  ComputePipeline& pipeline(const Features& f) {
-    auto it = pipelines.find(f.key());
-    if (it == pipelines.end()) it = pipelines.emplace(f.key(), make_pipeline(context, options, f)).first;
-    return it->second;
+
+  // The pipeline of a variant with the current world's buffers bound.
+  ComputePipeline& pipeline(const KernelVariant& v) {
+    auto it = pipelines.find(v.key());
+    if (it == pipelines.end()) it = pipelines.emplace(v.key(), Built{make_pipeline(context, options, v)}).first;
+    Built& built = it->second;
+    if (built.world_bound != generation) {
+      built.pipeline.bind(kernel::kBindingParams, params);
+      built.pipeline.bind(kernel::kBindingImages, *images);
+      built.pipeline.bind(kernel::kBindingDistanceTable, *table);
+      built.pipeline.bind(kernel::kBindingSeeds, *seeds);
+      built.world_bound = generation;
+    }
+    return built.pipeline;
   }
 };
 
@@ -239,24 +253,17 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
   }
   m_impl = std::make_unique<Impl>(context, options);
-  m_impl->pipeline(Features{.heights_only = true});  // build one now: errors surface here, not at the first frame
+  // Build one now (the planes' z = c kernel): errors surface here, not at the first frame.
+  const KernelVariant planes{.features = {.heights_only = true}};
+  m_impl->pipelines.emplace(planes.key(), Impl::Built{make_pipeline(context, options, planes)});
 }
 
 MarchRenderer::~MarchRenderer() = default;
 MarchRenderer::MarchRenderer(MarchRenderer&&) noexcept = default;
 MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
-struct MarchRenderer::Prepared {
-  ComputePipeline* pipeline;
-  std::uint32_t width, height;  // of the whole (side-by-side) image
-};
-
-// Everything render() and record() share: checks, uniforms, the quotient
-// images and the pipeline for the scene's features, with bindings 0 and 4 set.
-MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height,
-                                               bool aovs, bool srgb_unorm) {
-  validate(scene);
-  if (!supports(scene)) {
+void MarchRenderer::set_world(const World& world) {
+  if (!supports(world)) {
     char message[160];
     std::snprintf(message, sizeof message,
                   "sol::vk::MarchRenderer: exact point lights with a reach above %g render on the CPU only "
@@ -264,84 +271,109 @@ MarchRenderer::Prepared MarchRenderer::prepare(const Scene& scene, std::span<con
                   ConnectionTable::kReach);
     throw NotImplemented(message);
   }
+  if (world.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
+    throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(world.objects.size()) +
+                          " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
+  }
+  Impl& m = *m_impl;
+  MarchWorld prepared(world);  // validates
+  const std::vector<kernel::Image> images = pack_images(prepared);
+  const MarchFeatures& f = prepared.features();
+  // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
+  // process); exact point lights: the connection solver's seeds; else stubs.
+  const std::vector<float> stub(4, 0.0f);
+  const std::vector<float>& table = f.exact_balls ? DistanceTable::shared().values : stub;
+  const SeedTable seeds = seed_table_of(world);
+  // Nothing may still read the old buffers (one frame in flight: the caller waited for it).
+  m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
+  m.images->write(images);
+  if (!m.table || m.table->size() != table.size() * sizeof(float)) {
+    m.table.emplace(m.context, table.size() * sizeof(float));
+    m.table->write(table);
+  }
+  if (!m.seeds || m.seeds_held != seeds) {
+    const std::vector<float>& values = seeds == SeedTable::None ? stub : ConnectionTable::shared(seeds == SeedTable::Longer).seeds;
+    m.seeds.emplace(m.context, values.size() * sizeof(float));
+    m.seeds->write(values);
+    m.seeds_held = seeds;
+  }
+  m.world_uniforms = world_params(prepared);
+  m.world.emplace(std::move(prepared));
+  ++m.generation;
+}
+
+const MarchWorld& MarchRenderer::world() const {
+  if (!m_impl->world) throw std::logic_error("sol::vk::MarchRenderer: no world (call set_world first)");
+  return *m_impl->world;
+}
+
+struct MarchRenderer::Frame {
+  ComputePipeline* pipeline;
+  std::uint32_t width, height;  // of the whole (side-by-side) image
+};
+
+// What render() and record() do each frame: checks, the eyes' uniforms, and
+// the pipeline of the variant with the world's buffers bound.
+MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs,
+                                                  bool srgb_unorm) {
+  Impl& m = *m_impl;
+  const MarchWorld& prepared = world();
   require_size(width, "width");
   require_size(height, "height");
   if (eyes.empty() || eyes.size() > 2) {
     throw InvalidArgument("sol::vk::MarchRenderer: 1 or 2 eyes, got " + std::to_string(eyes.size()));
   }
-  if (scene.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
-    throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(scene.objects.size()) +
-                          " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
+  Params g = m.world_uniforms;
+  for (std::size_t i = 0; i < eyes.size(); ++i) {
+    validate(eyes[i]);
+    g.eyes[i] = make_eye(prepared, eyes[i], width, height, m.options.rk4_step);
   }
-  Impl& m = *m_impl;
-  Params g = make_params(scene, std::vector<Camera>(eyes.begin(), eyes.end()), width, height, m.options.rk4_step);
-  // Quotient scenes: the images of the objects (binding 4); else a stub.
-  const std::vector<kernel::Image> images =
-      scene.quotient != Quotient::None ? pack_images(quotient_images(scene)) : std::vector<kernel::Image>(1);
-  if (scene.quotient != Quotient::None) g.counts[0] = static_cast<int>(images.size());
-  const VkDeviceSize image_bytes = images.size() * sizeof(kernel::Image);
-  if (!m.images || m.images->size() != image_bytes) m.images.emplace(m.context, image_bytes);
-  m.images->write(images);
+  g.counts.y = width;
+  g.counts.z = height;
+  g.counts.w = static_cast<int>(eyes.size());
   m.params.write(std::span<const Params>(&g, 1));
-  const Features used = features_of(scene);
-  Features f = m.options.all_features
-                   ? Features{false, true, true, true, true, scene.quotient != Quotient::None, false, false}
-                   : used;
-  f.no_aovs = !aovs;
-  f.exact_balls = used.exact_balls;  // both need their tables (bindings 5, 6), so always from the scene
-  f.exact_lights = used.exact_lights;
-  f.srgb_unorm = srgb_unorm;
-  ComputePipeline& pipeline = m.pipeline(f);
-  pipeline.bind(kernel::kBindingParams, m.params);
-  pipeline.bind(kernel::kBindingImages, *m.images);
-  // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
-  // process), kept like the images; else a stub.
-  const std::size_t table_floats = f.exact_balls ? DistanceTable::shared().values.size() : 4;
-  if (!m.table || m.table->size() != table_floats * sizeof(float)) {
-    m.table.emplace(m.context, table_floats * sizeof(float));
-    m.table->write(f.exact_balls ? DistanceTable::shared().values : std::vector<float>(4, 0.0f));
-  }
-  pipeline.bind(kernel::kBindingDistanceTable, *m.table);
-  // Exact point lights: the connection solver's seeds (sol::ConnectionTable,
-  // with the longer connections when a light has a reach), else a stub.
-  const bool longer = std::any_of(scene.lights.begin(), scene.lights.end(),
-                                  [](const Light& l) { return l.exact && l.reach > 0.0; });
-  const int seeds_kind = f.exact_lights ? (longer ? 2 : 1) : 0;
-  if (m.seeds_kind != seeds_kind) {
-    const std::vector<float> seeds =
-        seeds_kind == 0 ? std::vector<float>(4, 0.0f) : ConnectionTable::shared(seeds_kind == 2).seeds;
-    m.seeds.emplace(m.context, seeds.size() * sizeof(float));
-    m.seeds->write(seeds);
-    m.seeds_kind = seeds_kind;
-  }
-  pipeline.bind(kernel::kBindingSeeds, *m.seeds);
-  return {&pipeline, static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
+  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm};
+  return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height)};
 }
 
+RenderResult MarchRenderer::render(const Camera& camera, int width, int height, double* device_ms) {
+  return render(std::span<const Camera>(&camera, 1), width, height, device_ms);
+}
+
+RenderResult MarchRenderer::render_stereo(const Camera& camera, int width, int height, double ipd, double* device_ms) {
+  const StereoEyes eyes = stereo_eyes(camera, ipd);
+  const Camera both[] = {eyes.left, eyes.right};
+  return render(both, width, height, device_ms);
+}
+
 RenderResult MarchRenderer::render(const Scene& scene, int width, int height, double* device_ms) {
-  return render_eyes(scene, {scene.camera}, width, height, device_ms);
+  set_world(scene);
+  return render(scene.camera, width, height, device_ms);
 }
 
 RenderResult MarchRenderer::render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms) {
-  const StereoEyes eyes = stereo_eyes(scene.camera, ipd);
-  return render_eyes(scene, {eyes.left, eyes.right}, width, height, device_ms);
+  set_world(scene);
+  return render_stereo(scene.camera, width, height, ipd, device_ms);
 }
 
-void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
-                           int height, const StorageImage& target) {
-  const Prepared p = prepare(scene, eyes, width, height, false, false);
-  if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() < p.width || target.height() < p.height) {
+void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+                           const StorageImage& target) {
+  const Frame f = prepare_frame(eyes, width, height, false, false);
+  if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() < f.width || target.height() < f.height) {
     throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be R32G32B32A32_SFLOAT and at least " +
-                          std::to_string(p.width) + " x " + std::to_string(p.height));
+                          std::to_string(f.width) + " x " + std::to_string(f.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) p.pipeline->bind(b, target);
-  p.pipeline->record_dispatch(command_buffer, group_count(p.width, kernel::kGroupSize), group_count(p.height, kernel::kGroupSize));
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) {
+    f.pipeline->bind(static_cast<std::uint32_t>(b), target);
+  }
+  f.pipeline->record_dispatch(command_buffer, group_count(f.width, kernel::kGroupSize),
+                              group_count(f.height, kernel::kGroupSize));
 }
 
-bool MarchRenderer::supports(const Scene& scene) {
-  return std::none_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+bool MarchRenderer::supports(const World& world) {
+  return std::none_of(world.lights.begin(), world.lights.end(), [](const Light& l) {
     return l.type == LightType::Point && l.exact && l.reach > ConnectionTable::kReach;
   });
 }
@@ -354,31 +386,31 @@ bool MarchRenderer::can_write_unorm(const Context& context, VkFormat format) {
   return (props.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
 }
 
-void MarchRenderer::record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
-                           int height, const UnormTarget& target) {
+void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+                           const UnormTarget& target) {
   Impl& m = *m_impl;
   if (target.view == VK_NULL_HANDLE || !can_write_unorm(m.context, target.format)) {
     throw InvalidArgument("sol::vk::MarchRenderer::record: the 8-bit target needs an image view of an R8G8B8A8_UNORM or "
                           "B8G8R8A8_UNORM storage image, on a device with shaderStorageImageWriteWithoutFormat");
   }
-  const Prepared p = prepare(scene, eyes, width, height, false, true);
-  if (target.width < p.width || target.height < p.height) {
-    throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be at least " + std::to_string(p.width) +
-                          " x " + std::to_string(p.height));
+  const Frame f = prepare_frame(eyes, width, height, false, true);
+  if (target.width < f.width || target.height < f.height) {
+    throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be at least " + std::to_string(f.width) +
+                          " x " + std::to_string(f.height));
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
-  p.pipeline->bind(kernel::kBindingColor, target.view);
-  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) p.pipeline->bind(b, *m.placeholder);
-  p.pipeline->record_dispatch(command_buffer, group_count(p.width, kernel::kGroupSize), group_count(p.height, kernel::kGroupSize));
+  f.pipeline->bind(kernel::kBindingColor, target.view);
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(static_cast<std::uint32_t>(b), *m.placeholder);
+  f.pipeline->record_dispatch(command_buffer, group_count(f.width, kernel::kGroupSize),
+                              group_count(f.height, kernel::kGroupSize));
 }
 
-RenderResult MarchRenderer::render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
-                                        double* device_ms) {
+RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, double* device_ms) {
   Impl& m = *m_impl;
-  const Prepared p = prepare(scene, eyes, width, height, true, false);
-  const std::uint32_t w = p.width, h = p.height;
+  const Frame f = prepare_frame(eyes, width, height, true, false);
+  const std::uint32_t w = f.width, h = f.height;
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = *p.pipeline;
+  ComputePipeline& pipeline = *f.pipeline;
   pipeline.bind(kernel::kBindingColor, color);
   pipeline.bind(kernel::kBindingHit, hit);
   pipeline.bind(kernel::kBindingPoint, point);

@@ -1,6 +1,7 @@
 // libsol: the whole public API.
 #pragma once
 
+#include "sol/camera.hpp"
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"
@@ -9,7 +10,11 @@
 #include "sol/group.hpp"
 #include "sol/geodesic.hpp"
 #include "sol/lattice.hpp"
+#include "sol/light.hpp"
+#include "sol/march.hpp"
+#include "sol/objects.hpp"
 #include "sol/observer.hpp"
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
+#include "sol/scene_file.hpp"
 #include "sol/version.hpp"

@@ -1,8 +1,8 @@
 // The Sol ray-marcher on the GPU (or lavapipe): compute/shaders/march.comp
-// driven from a sol::Scene, producing the same RenderResult (image and AOVs)
-// as libsol's CPU reference renderer, sol::render_cpu.
+// driven from a sol::World and cameras, producing the same RenderResult
+// (image and AOVs) as libsol's CPU reference renderer, sol::CpuRenderer.
 //
-// The host does in double what must be exact: the camera basis, the scene
+// The host does in double what must be exact: the camera basis, the world
 // made relative to the camera (plane constants), the pattern phase (the
 // camera position's fractional part), e^{±z} of the camera; the kernel then
 // works near the origin in float, so an observer at (1e6, -1e6, 0.3) sees
@@ -17,6 +17,8 @@
 
 #include <glm/vec4.hpp>
 #include <vulkan/vulkan_core.h>
+#include <sol/camera.hpp>
+#include <sol/march.hpp>
 #include <sol/render.hpp>
 #include <sol/scene.hpp>
 
@@ -35,8 +37,8 @@ enum class Integrator {
 struct MarchOptions {
   Integrator integrator = Integrator::ClosedForm;
   double rk4_step = 0.01;  ///< RK4 substep in arc length, > 0
-  /// Use the kernel with every feature compiled in, whatever the scene uses
-  /// (the default specialises it to the scene: planes z = c only, balls,
+  /// Use the kernel with every feature compiled in, whatever the world uses
+  /// (the default specialises it to the world: planes z = c only, balls,
   /// point lights, fog). Same image; for benchmarks.
   bool all_features = false;
 };
@@ -57,6 +59,14 @@ struct UnormTarget {
   std::uint32_t width = 0, height = 0;    ///< the image's extent
 };
 
+/// The ray-marcher on a Vulkan device. It holds one world at a time,
+/// prepared once by set_world (checks, features, the kernel built for them,
+/// the quotient's images and the exact objects' tables uploaded); every frame
+/// then only sends its cameras:
+///
+///   sol::vk::MarchRenderer renderer(context);
+///   renderer.set_world(scene);                       // once per world
+///   renderer.record(command_buffer, cameras, w, h, target);  // per frame
 class MarchRenderer {
  public:
   /// Builds the pipeline; throws VulkanError on failure, InvalidArgument for bad options.
@@ -65,13 +75,27 @@ class MarchRenderer {
   MarchRenderer(MarchRenderer&&) noexcept;
   MarchRenderer& operator=(MarchRenderer&&) noexcept;
 
-  /// Renders `scene` at width × height (1..16384). Throws sol::InvalidArgument
-  /// for an invalid scene, sizes out of range or more than kMaxGpuObjects
-  /// objects. `device_ms` receives the kernel's time on the device.
-  RenderResult render(const Scene& scene, int width, int height, double* device_ms = nullptr);
+  /// Prepares `world` for every later frame. Throws sol::InvalidArgument for
+  /// an invalid world, more than kMaxGpuObjects objects or, in the
+  /// quotient, more than kMaxGpuImages images; sol::NotImplemented for a
+  /// world the kernel does not render (supports()). The caller must not
+  /// change the world while a recorded dispatch still runs.
+  void set_world(const World& world);
+  /// The prepared world (std::logic_error before set_world).
+  const MarchWorld& world() const;
 
-  /// Both eyes of sol::stereo_eyes(scene.camera, ipd) side by side in one
-  /// dispatch: a (2 width) × height image and AOVs, left eye on the left.
+  /// Renders the world from one or two eyes (side by side, each width ×
+  /// height in 1..16384, left eye first) with the AOVs, like
+  /// sol::CpuRenderer::render. `device_ms` receives the kernel's time on the
+  /// device. Throws sol::InvalidArgument for sizes out of range, an invalid
+  /// camera, or no world.
+  RenderResult render(std::span<const Camera> eyes, int width, int height, double* device_ms = nullptr);
+  RenderResult render(const Camera& camera, int width, int height, double* device_ms = nullptr);
+  /// Both eyes of sol::stereo_eyes(camera, ipd) side by side in one dispatch.
+  RenderResult render_stereo(const Camera& camera, int width, int height, double ipd, double* device_ms = nullptr);
+
+  /// One-shot forms for a scene: set_world(scene), then its camera.
+  RenderResult render(const Scene& scene, int width, int height, double* device_ms = nullptr);
   RenderResult render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms = nullptr);
 
   /// For presenters: records the kernel for one or two eyes (side by side,
@@ -84,15 +108,15 @@ class MarchRenderer {
   /// previous recorded dispatch to finish before calling again (one frame in
   /// flight per renderer), and keep `target` alive until this one finishes.
   /// Same checks and exceptions as render().
-  void record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
-              int height, const StorageImage& target);
+  void record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+              const StorageImage& target);
 
   /// The same into a caller's 8-bit image, sRGB-encoded: `target` must be of
   /// at least (eyes · width) × height and its format one that
   /// can_write_unorm() accepts (else sol::InvalidArgument). Colour as
   /// render()'s, encoded, within 1 in 255.
-  void record(VkCommandBuffer command_buffer, const Scene& scene, std::span<const Camera> eyes, int width,
-              int height, const UnormTarget& target);
+  void record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+              const UnormTarget& target);
 
   /// Whether record() can write a UnormTarget of `format` on the context's
   /// device: R8G8B8A8_UNORM or B8G8R8A8_UNORM, usable as a storage image
@@ -100,18 +124,15 @@ class MarchRenderer {
   /// (Context::storage_write_without_format).
   static bool can_write_unorm(const Context& context, VkFormat format);
 
-  /// Whether the kernel renders the scene: all but those with exact point
+  /// Whether the kernel renders the world: all but those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
-  /// there). render() and record() throw sol::NotImplemented for those; the
-  /// CPU renderer takes every scene.
-  static bool supports(const Scene& scene);
+  /// there). set_world throws sol::NotImplemented for those; the CPU
+  /// renderer takes every world.
+  static bool supports(const World& world);
 
  private:
-  struct Prepared;
-  Prepared prepare(const Scene& scene, std::span<const Camera> eyes, int width, int height, bool aovs,
-                   bool srgb_unorm);
-  RenderResult render_eyes(const Scene& scene, const std::vector<Camera>& eyes, int width, int height,
-                           double* device_ms);
+  struct Frame;
+  Frame prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs, bool srgb_unorm);
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };

@@ -1,0 +1,73 @@
+// The camera model: where an eye is, how its pixels map to the directions of
+// their rays, and the two eyes of a stereo pair (docs/conventions.md).
+//
+// A camera sits at `position` (Sol coordinates) and looks along `forward`
+// with `up`, both given by their frame components at the position:
+// right = normalize(forward × up), up' = right × forward. The centre of
+// pixel (i, j) (row 0 at the top) of a W × H image looks along
+// normalize(s_x right + s_y up' + forward), with s_x, s_y spanning the
+// image's window (image_window): the centred window of the vertical field
+// of view, or an off-axis Frustum (a headset eye's).
+#pragma once
+
+#include <optional>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace sol {
+
+/// An off-axis view window (a headset eye's): the tangents of the angles
+/// from `forward` to the image's left, right, bottom and top edges, measured
+/// towards right and up (so left < right, down < up; OpenXR's XrFovf gives
+/// tan(angleLeft), tan(angleRight), tan(angleDown), tan(angleUp)).
+struct Frustum {
+  double left = -1.0, right = 1.0, down = -1.0, up = 1.0;
+};
+
+struct Camera {
+  glm::dvec3 position{0.0, 0.0, 0.0};
+  glm::dvec3 forward{1.0, 0.0, 0.0};  ///< frame components at position
+  glm::dvec3 up{0.0, 0.0, 1.0};       ///< frame components; not parallel to forward
+  double fov = 60.0;                  ///< vertical field of view, degrees, in (0, 180)
+  /// When set, the image spans this window instead of the centred one of
+  /// `fov` and the image's aspect ratio (sol::image_window).
+  std::optional<Frustum> frustum;
+};
+
+/// Checks the camera (finite position within 1e15 of the origin, non-zero
+/// and non-parallel forward and up, fov in (0, 180), a frustum's order and
+/// range); throws InvalidArgument naming the field ("camera.fov ...").
+void validate(const Camera& camera);
+
+/// The camera's orthonormal basis (frame components):
+/// right = normalize(forward × up), up' = right × forward.
+struct CameraBasis {
+  glm::dvec3 right, up, forward;
+  double tan_half_fov;  ///< tan(fov / 2)
+};
+CameraBasis camera_basis(const Camera& camera);
+
+/// The image's window on the plane one unit along forward, as
+/// (s_x at the left edge, s_x at the right edge, s_y at the top edge, s_y at
+/// the bottom edge): the centre of pixel (i, j) of a width × height image
+/// looks along s_x·right + s_y·up + forward, s_x and s_y interpolated
+/// linearly at (i + 0.5)/width and (j + 0.5)/height. Without a frustum:
+/// (-t·width/height, t·width/height, t, -t), t = tan(fov/2); with one:
+/// (left, right, up, down).
+glm::dvec4 image_window(const Camera& camera, int width, int height);
+
+/// The ray through the centre of pixel (i, j) (row 0 at the top) of a
+/// width × height image: unit direction in frame components at the camera.
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height);
+
+/// The two eyes of a stereo pair: at the geodesic flow of the camera by
+/// ∓ipd/2 along its right vector, their frames (forward, up) parallel-
+/// transported along that flow; same field of view. ipd must be finite and
+/// >= 0 (InvalidArgument otherwise).
+struct StereoEyes {
+  Camera left, right;
+};
+StereoEyes stereo_eyes(const Camera& camera, double ipd);
+
+}  // namespace sol

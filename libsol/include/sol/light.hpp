@@ -1,0 +1,58 @@
+// Lights: what they are in a scene, and how each reaches a point of a surface.
+//
+// A directional light shines from a direction that is constant in the
+// left-invariant frame, so it means the same everywhere. A point light
+// shines from a position; by default along the coordinate difference in
+// frame components (an approximation), with "exact" along the true
+// geodesics from the surface point to the light (sol::geodesics_between).
+// docs/renderer.md "Lights" compares the two.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sol/kernel_constants.h"
+
+namespace sol {
+
+enum class LightType {
+  Directional,  ///< from `direction` (frame components: the same at every point)
+  Point,        ///< from `position` (see light_at and lights_at for direction and attenuation)
+};
+
+struct Light {
+  LightType type = LightType::Directional;
+  glm::dvec3 direction{0.3, 0.5, 1.0};  ///< directional: towards the light (normalised on use)
+  glm::dvec3 position{0.0, 0.0, 0.0};   ///< point: Sol coordinates
+  glm::dvec3 color{1.0, 1.0, 1.0};      ///< linear RGB in [0, 1]
+  double intensity = 1.0;               ///< >= 0
+  /// point: light along the true geodesics to the light (sol::geodesics_between),
+  /// each attenuated by its length, instead of the coordinate direction
+  bool exact = false;
+  double reach = 0.0;  ///< exact point lights: also the connections up to distance + reach, in [0, 10]
+};
+
+/// Most lights a scene may hold (a limit the kernels share).
+using kernel::kMaxLights;
+
+/// What a light contributes at a point p (world coordinates):
+///  - directional: l = normalize(direction), attenuation 1;
+///  - point: l = the coordinate difference to the light in frame components
+///    at p, normalize(e^{-z}Δx, e^{z}Δy, Δz) (left-invariant, but not the
+///    direction of the geodesic to the light: lights_at has that for exact
+///    lights), attenuation 1 / (1 + r²), r = distance_lower_bound(p, light.position).
+struct LightAtPoint {
+  glm::dvec3 direction;  ///< unit, frame components at p, towards the light
+  double attenuation;
+};
+LightAtPoint light_at(const Light& light, const glm::dvec3& p);
+
+/// Every way a light reaches p. Exact point lights (Light::exact): one entry
+/// per geodesic from p to the light up to distance + reach
+/// (sol::geodesics_between; reach 0: the minimisers only, two on the cut
+/// locus), l its unit direction at p, attenuation 1 / (1 + L²) with L its
+/// length. Otherwise the single light_at.
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
+
+}  // namespace sol

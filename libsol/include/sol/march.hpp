@@ -1,0 +1,109 @@
+// The march's description of a world, shared by the CPU renderer
+// (sol/render.hpp) and the kernels' host (sol::vk::MarchRenderer): the
+// objects as the march sees them, their images around the fundamental
+// domain in the quotient, and the bounds that let a ray step across the
+// holes of cutout planes. A MarchWorld is prepared once per world; per
+// camera only the objects' left-translation changes (MarchWorld::seen_from).
+//
+// The march itself (docs/renderer.md): every ray starts at the camera, whose
+// inverse left-translates the world so that the ray starts at the origin; its
+// closed-form geodesic is evaluated at the accumulated arc length t, and t
+// advances by the distance to the nearest object (a lower bound, exact for
+// planes) until that falls below hit_epsilon (a hit) or t passes
+// max_distance or the steps max_steps (a miss). In the quotient the ray
+// lives in D and teleports back by an element of Γ when it leaves it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sol/kernel_constants.h"
+#include "sol/objects.hpp"
+#include "sol/scene.hpp"
+
+namespace sol {
+
+/// A scene object as the march sees it: its shape in the march's
+/// coordinates (world coordinates, or relative to an origin: see
+/// shape_seen_from) and which scene object it comes from.
+struct MarchObject {
+  Shape shape;
+  std::size_t owner = 0;  ///< index of the scene object
+};
+
+/// The same object left-translated by origin⁻¹ (from world coordinates to
+/// coordinates relative to `origin`).
+MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin);
+
+/// The signed distance (exact for planes, a lower bound for balls and
+/// tubes: sol/distance.hpp) from q to an object in the same coordinates.
+double object_distance(const MarchObject& object, const glm::dvec3& q);
+
+/// A lower bound of the distance from the world point w to the solid part of
+/// a cutout plane z = c with `pattern` (its discs or light squares), to be
+/// combined with |w_z - c| by max; 0 where it cannot help (on a light square,
+/// pattern none). A point p of the plane at planar offset (Δx, Δy) from w is
+/// at distance >= asinh(|Δx| e^{-z}) and >= asinh(|Δy| e^{z}) (the planes
+/// x, y = const through p), z = w_z, so:
+///  - checker, w over a dark square: the light squares nearest in both
+///    senses share an edge with it: asinh(min(min(f_u, 1 - f_u) e^{-z}, min(f_v, 1 - f_v) e^{z}));
+///  - circles: the nearest disc is the cell's own, inside the square
+///    [0.2, 0.8]² of the cell: asinh(max(g_u e^{-z}, g_v e^{z})) with the gaps
+///    g to that square's sides; and max(|Δx|e^{-z}, |Δy|e^{z}) >=
+///    e^{-|z|}|Δ|/√2, so also asinh(e^{-|z|} g/√2), g the planar gap to the disc.
+/// With it the march steps across the holes of a cutout instead of edging
+/// through them by 2 hit_epsilon at a time.
+double cutout_gap_bound(Pattern pattern, const glm::dvec3& w);
+
+/// The longest march step in the quotient: no image beyond it is listed.
+inline constexpr double kQuotientMaxStep = kernel::kQuotientMaxStep;
+
+/// Quotient worlds: the images, in world coordinates, of the world's objects
+/// that a march step can reach from D. Each object is first moved by Γ so
+/// that its centre or axis point lies in D; its images g·object, g =
+/// γ1^a γ2^b γ3^c with |a|, |b| <= 10, |c| <= 1, are kept when a lower bound
+/// of their distance bound over all of D is at most the longest step (0.5):
+/// see the proof in march.cpp. Lines that coincide are listed once.
+std::vector<MarchObject> quotient_images(const World& world);
+
+/// What a world uses, for the march's short cuts and the kernels'
+/// specialisation constants.
+struct MarchFeatures {
+  bool quotient = false;      ///< the compact quotient Γ\Sol
+  bool heights_only = false;  ///< every object a plane z = c (not in the quotient): the march needs z alone
+  bool solids = false;        ///< balls or tubes
+  bool point_lights = false;
+  bool fog = false;
+  bool cutout = false;        ///< cutout planes
+  bool cutout_gaps = false;   ///< cutout planes z = c: their gap bounds need the full position
+  bool exact_balls = false;
+  bool exact_lights = false;
+};
+MarchFeatures features_of(const World& world);
+
+/// A world prepared for the march once: checked, its features found, its
+/// objects in world coordinates (Sol) or their images around D (the
+/// quotient, sol::quotient_images). What depends on the camera is not here.
+class MarchWorld {
+ public:
+  /// Validates the world (sol::validate) and prepares it.
+  explicit MarchWorld(const World& world);
+
+  const World& world() const { return m_world; }
+  const MarchFeatures& features() const { return m_features; }
+  /// Sol: the objects in world coordinates, one per scene object; the
+  /// quotient: their images around D in world coordinates.
+  const std::vector<MarchObject>& objects() const { return m_objects; }
+  /// Sol: the objects relative to `origin` (left-translated by origin⁻¹),
+  /// what a ray from `origin` marches through.
+  std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
+
+ private:
+  World m_world;
+  MarchFeatures m_features;
+  std::vector<MarchObject> m_objects;
+};
+
+}  // namespace sol

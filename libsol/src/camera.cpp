@@ -1,0 +1,91 @@
+#include "sol/camera.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "field_error.hpp"
+#include "sol/error.hpp"
+#include "sol/geodesic.hpp"
+
+namespace sol {
+namespace detail {
+
+// The checks behind validate(Camera), also run on the camera of a scene file.
+void check_camera(const Camera& c) {
+  if (!bounded3(c.position)) field_error("camera.position", "camera.position must be finite and within 1e15 of the origin");
+  if (!finite3(c.forward) || glm::length(c.forward) == 0.0) {
+    field_error("camera.forward", "camera.forward must be finite and non-zero");
+  }
+  if (!finite3(c.up) || glm::length(c.up) == 0.0) field_error("camera.up", "camera.up must be finite and non-zero");
+  if (glm::length(glm::cross(glm::normalize(c.forward), glm::normalize(c.up))) < 1e-9) {
+    field_error("camera.forward", "camera.forward and camera.up must not be parallel");
+  }
+  if (!(c.fov > 0.0 && c.fov < 180.0)) field_error("camera.fov", "camera.fov must be in (0, 180) degrees");
+  if (c.frustum) {
+    // Tangents up to 1e3: edges up to 89.94° from forward.
+    const Frustum& f = *c.frustum;
+    for (const double v : {f.left, f.right, f.down, f.up}) {
+      if (!(std::abs(v) <= 1e3)) {
+        field_error("camera.frustum", "camera.frustum tangents must be finite and within [-1000, 1000]");
+      }
+    }
+    if (!(f.left < f.right) || !(f.down < f.up)) {
+      field_error("camera.frustum", "camera.frustum must have left < right and down < up");
+    }
+  }
+}
+
+}  // namespace detail
+
+void validate(const Camera& camera) {
+  detail::validate_as("sol::validate(Camera)", [&] { detail::check_camera(camera); });
+}
+
+namespace {
+
+double tan_half_fov(const Camera& camera) { return std::tan(camera.fov * 0.5 * std::numbers::pi / 180.0); }
+
+}  // namespace
+
+CameraBasis camera_basis(const Camera& camera) {
+  const glm::dvec3 forward = glm::normalize(camera.forward);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
+  return {right, glm::cross(right, forward), forward, tan_half_fov(camera)};
+}
+
+glm::dvec4 image_window(const Camera& camera, int width, int height) {
+  if (camera.frustum) return {camera.frustum->left, camera.frustum->right, camera.frustum->up, camera.frustum->down};
+  const double t = tan_half_fov(camera);
+  const double aspect = static_cast<double>(width) / height;
+  return {-t * aspect, t * aspect, t, -t};
+}
+
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
+  const CameraBasis b = camera_basis(camera);
+  const glm::dvec4 window = image_window(camera, width, height);
+  const double sx = window.x + (window.y - window.x) * (i + 0.5) / width;
+  const double sy = window.z + (window.w - window.z) * (j + 0.5) / height;
+  return glm::normalize(sx * b.right + sy * b.up + b.forward);
+}
+
+StereoEyes stereo_eyes(const Camera& camera, double ipd) {
+  if (!std::isfinite(ipd) || ipd < 0.0) {
+    throw InvalidArgument("sol::stereo_eyes: ipd must be finite and >= 0, got " + std::to_string(ipd));
+  }
+  const CameraBasis basis = camera_basis(camera);
+  auto eye = [&](double t) {
+    // Flow along `right` by t; the frame vectors follow by parallel transport.
+    const FlowTransport ft = flow_with_transport({camera.position, basis.right}, t, FlowOptions{});
+    Camera c = camera;
+    c.position = ft.state.position;
+    c.forward = ft.transport * basis.forward;
+    c.up = ft.transport * basis.up;
+    return c;
+  };
+  return {eye(-0.5 * ipd), eye(0.5 * ipd)};
+}
+
+}  // namespace sol

@@ -1,0 +1,60 @@
+#include "sol/light.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "field_error.hpp"
+#include "sol/connection.hpp"
+#include "sol/distance.hpp"
+
+namespace sol {
+namespace detail {
+
+// The checks of one light, `at` its path ("lights[0]").
+void check_light(const Light& l, const std::string& at) {
+  if (!(l.reach >= 0.0 && l.reach <= 10.0)) field_error(at + ".reach", at + ".reach must be in [0, 10]");
+  if (l.type == LightType::Directional && (!finite3(l.direction) || glm::length(l.direction) == 0.0)) {
+    field_error(at + ".direction", at + ".direction must be finite and non-zero");
+  }
+  if (l.type == LightType::Point && !bounded3(l.position)) {
+    field_error(at + ".position", at + ".position must be finite and within 1e15 of the origin");
+  }
+  if (!unit_interval3(l.color)) field_error(at + ".color", at + ".color components must be in [0, 1]");
+  if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity)) {
+    field_error(at + ".intensity", at + ".intensity must be finite and >= 0");
+  }
+}
+
+}  // namespace detail
+
+LightAtPoint light_at(const Light& light, const glm::dvec3& p) {
+  if (light.type == LightType::Directional) return {glm::normalize(light.direction), 1.0};
+  const glm::dvec3 d = light.position - p;
+  // The coordinate difference in frame components at p (left-invariant, like
+  // everything here), and the inverse-square law on the distance bound.
+  const glm::dvec3 v(std::exp(-p.z) * d.x, std::exp(p.z) * d.y, d.z);
+  const double r = distance_lower_bound(p, light.position);
+  const double len = glm::length(v);
+  return {len > 0.0 ? v / len : glm::dvec3(0.0, 0.0, 1.0), 1.0 / (1.0 + r * r)};
+}
+
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
+  if (light.type != LightType::Point || !light.exact) return {light_at(light, p)};
+  std::vector<LightAtPoint> out;
+  try {
+    const std::vector<Connection> cs = light.reach > 0.0
+                                           ? geodesics_between(p, light.position, distance(p, light.position) + light.reach)
+                                           : minimising_geodesics(p, light.position);
+    for (const Connection& c : cs) {
+      if (c.length == 0.0) continue;
+      out.push_back({glm::normalize(c.direction), 1.0 / (1.0 + c.length * c.length)});
+    }
+  } catch (const OutOfRange&) {
+    return {light_at(light, p)};  // no connection found (extreme far points): the approximate direction
+  }
+  return out;
+}
+
+}  // namespace sol

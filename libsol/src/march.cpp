@@ -1,0 +1,137 @@
+#include "sol/march.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "sol/group.hpp"
+#include "sol/lattice.hpp"
+
+namespace sol {
+
+MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin) {
+  return {shape_seen_from(object.shape, origin), object.owner};
+}
+
+double object_distance(const MarchObject& object, const glm::dvec3& q) { return shape_distance(object.shape, q); }
+
+double cutout_gap_bound(Pattern pattern, const glm::dvec3& w) {
+  const double ez = std::exp(w.z);
+  const double fu = w.x - std::floor(w.x), fv = w.y - std::floor(w.y);
+  if (pattern == Pattern::Checker) {
+    if (std::fmod(std::floor(w.x) + std::floor(w.y), 2.0) == 0.0) return 0.0;  // on a light square
+    // The nearest light squares share an edge with this dark one.
+    return std::asinh(std::min(std::min(fu, 1.0 - fu) / ez, std::min(fv, 1.0 - fv) * ez));
+  }
+  if (pattern != Pattern::Circles) return 0.0;
+  // The nearest disc is this cell's (the cells are the grid's Voronoi cells).
+  const double du = std::abs(fu - 0.5), dv = std::abs(fv - 0.5);
+  const double r = kernel::kCircleRadius;
+  const double boxes = std::max(std::max(0.0, du - r) / ez, std::max(0.0, dv - r) * ez);
+  const double gap = std::max(0.0, std::hypot(du, dv) - r);
+  return std::asinh(std::max(boxes, std::min(ez, 1.0 / ez) * gap / std::sqrt(2.0)));
+}
+
+namespace {
+
+// Whether two images are the same set (tubes: the same line).
+bool same_image(const MarchObject& a, const MarchObject& b) {
+  if (a.owner != b.owner || a.shape.index() != b.shape.index()) return false;
+  return std::visit(
+      [&](const auto& kind) {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, PlaneX> || std::is_same_v<Kind, PlaneY>) {
+          return false;  // not in the quotient (sol::validate)
+        } else {
+          return kind.same_set(std::get<Kind>(b.shape));
+        }
+      },
+      a.shape);
+}
+
+}  // namespace
+
+// Why these images are all a march step can reach. A step starts at a point
+// q of D and is at most kQuotientMaxStep (0.5) long, and object_distance is
+// a lower bound of the distance to the drawn object; so an image whose bound
+// exceeds 0.5 all over D is never reached, and each kind's
+// least_distance_over_domain (objects.cpp) proves that for the images
+// dropped here. The enumeration is wide enough: (1) |c| >= 2 moves an
+// object, first moved into the cells z in [0, h), by at least h = 0.962 in z
+// from D, beyond 0.5 + radius while the radius is at most
+// kMaxQuotientRadius (0.45; validate checks it); (2) an image within reach
+// lies over x in [-3.1, φ + 4.1], y in [-2.2, φ + 1.2] (asinh(gap e^{-h}) <=
+// 0.95), whose lattice coordinates are below 3.4 in size, while γ3^{±1}
+// moves a point of D to lattice coordinates below 3 (the entries of
+// [[2,1],[1,1]] and its inverse), so |a|, |b| <= 7 suffice for balls and
+// vertical lines; a horizontal line along a lattice vector of length <= 4.3
+// has a point γ3^c o + λ within 4.3 of any of its points, which adds at most
+// 2.3 to |a|, |b| (lattice_range: 10). The test
+// Quotient.ImagesAreCompleteAndReachable checks that a wider enumeration
+// finds nothing more.
+std::vector<MarchObject> quotient_images(const World& world) {
+  const Lattice lattice = Lattice::golden();
+  std::vector<MarchObject> images;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    std::visit(
+        [&](const auto& kind) {
+          using Kind = std::decay_t<decltype(kind)>;
+          if constexpr (!std::is_same_v<Kind, PlaneX> && !std::is_same_v<Kind, PlaneY>) {
+            const MarchObject base{kind.into_domain(lattice), i};
+            const int range = kind.lattice_range();
+            for (int c = -1; c <= 1; ++c) {
+              for (int a = -range; a <= range; ++a) {
+                for (int b = -range; b <= range; ++b) {
+                  const MarchObject image = relative_to(base, inverse(lattice.element(a, b, c)));
+                  if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > kQuotientMaxStep) continue;
+                  if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
+                    images.push_back(image);
+                  }
+                }
+              }
+            }
+          }
+        },
+        world.objects[i].shape);
+  }
+  return images;
+}
+
+MarchFeatures features_of(const World& world) {
+  MarchFeatures f;
+  f.quotient = world.quotient != Quotient::None;
+  f.heights_only = !f.quotient;
+  for (const SceneObject& o : world.objects) {
+    const bool plane_z = std::holds_alternative<PlaneZ>(o.shape);
+    f.heights_only = f.heights_only && plane_z;
+    f.solids = f.solids || std::holds_alternative<Ball>(o.shape) || std::holds_alternative<Tube>(o.shape);
+    f.cutout = f.cutout || o.cutout;
+    f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);
+    const Ball* ball = std::get_if<Ball>(&o.shape);
+    f.exact_balls = f.exact_balls || (ball && ball->exact);
+  }
+  f.point_lights = std::any_of(world.lights.begin(), world.lights.end(),
+                               [](const Light& l) { return l.type == LightType::Point; });
+  f.fog = world.fog_density > 0.0;
+  f.exact_lights = uses_exact_lights(world);
+  return f;
+}
+
+MarchWorld::MarchWorld(const World& world) : m_world(world) {
+  validate(world);
+  m_features = features_of(world);
+  if (m_features.quotient) {
+    m_objects = quotient_images(world);
+  } else {
+    for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
+  }
+}
+
+std::vector<MarchObject> MarchWorld::seen_from(const glm::dvec3& origin) const {
+  std::vector<MarchObject> out;
+  out.reserve(m_objects.size());
+  for (const MarchObject& o : m_objects) out.push_back(relative_to(o, origin));
+  return out;
+}
+
+}  // namespace sol

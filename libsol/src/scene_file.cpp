@@ -1,0 +1,187 @@
+#include "sol/scene_file.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "field_error.hpp"
+#include "objects_internal.hpp"
+#include "scene_reader.hpp"
+#include "sol/error.hpp"
+
+namespace sol {
+namespace detail {
+void check_camera(const Camera& camera);  // camera.cpp
+void check_world(const World& world);     // scene.cpp
+}  // namespace detail
+
+namespace {
+
+using detail::SceneFileReader;
+using nlohmann::json;
+
+void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
+  if (!c.is_object()) r.fail("camera", "'camera' must be an object");
+  r.require_known_keys(c, {"position", "forward", "up", "fov", "frustum"}, "camera", "camera");
+  if (c.contains("position")) camera.position = r.vec3(c["position"], "camera.position");
+  if (c.contains("forward")) camera.forward = r.vec3(c["forward"], "camera.forward");
+  if (c.contains("up")) camera.up = r.vec3(c["up"], "camera.up");
+  if (c.contains("fov")) camera.fov = r.number(c["fov"], "camera.fov");
+  if (c.contains("frustum")) {
+    const json& f = c["frustum"];
+    if (!f.is_array() || f.size() != 4) {
+      r.fail("camera.frustum", "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + f.dump());
+    }
+    camera.frustum = Frustum{r.number(f[0], "camera.frustum[0]"), r.number(f[1], "camera.frustum[1]"),
+                             r.number(f[2], "camera.frustum[2]"), r.number(f[3], "camera.frustum[3]")};
+  }
+}
+
+Light read_light(const json& l, const SceneFileReader& r, const std::string& at) {
+  if (!l.is_object()) r.fail(at, at + " must be an object");
+  if (!l.contains("type")) r.fail(at, at + " needs a 'type' (directional or point)");
+  Light light;
+  const std::string type = SceneFileReader::text(l["type"]);
+  if (type == "directional") {
+    light.type = LightType::Directional;
+    r.require_known_keys(l, {"type", "direction", "color", "intensity"}, at, at);
+    if (l.contains("direction")) light.direction = r.vec3(l["direction"], at + ".direction");
+  } else if (type == "point") {
+    light.type = LightType::Point;
+    r.require_known_keys(l, {"type", "position", "color", "intensity", "exact", "reach"}, at, at);
+    r.require_key(l, "position", at + " (a point light)", "a 'position'", at);
+    light.position = r.vec3(l["position"], at + ".position");
+    if (l.contains("exact")) light.exact = r.boolean(l["exact"], at + ".exact");
+    if (l.contains("reach")) light.reach = r.number(l["reach"], at + ".reach");
+  } else {
+    r.fail(at + ".type", "'" + at + ".type' must be directional or point, got " + type);
+  }
+  if (l.contains("color")) light.color = r.vec3(l["color"], at + ".color");
+  if (l.contains("intensity")) light.intensity = r.number(l["intensity"], at + ".intensity");
+  return light;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, std::string_view source) {
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {  // syntax errors and numbers out of range
+    throw InvalidArgument(std::string(source) + ": malformed JSON: " + e.what());
+  }
+  const SceneFileReader r(text, source);
+  if (!root.is_object()) r.fail("", "the scene must be a JSON object");
+  r.require_known_keys(root,
+                       {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
+                        "max_steps", "hit_epsilon", "quotient"},
+                       "the scene", "");
+  Scene s;
+  if (root.contains("camera")) read_camera(root["camera"], r, s.camera);
+  if (!root.contains("objects") || !root["objects"].is_array()) r.fail("objects", "'objects' must be an array");
+  const json& objects = root["objects"];
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    s.objects.push_back(detail::read_object(objects[i], r, "objects[" + std::to_string(i) + "]"));
+  }
+  // "light" and "fog_distance": the first schema's single directional light and fog.
+  if (root.contains("light")) {
+    const json& l = root["light"];
+    if (!l.is_object()) r.fail("light", "'light' must be an object");
+    r.require_known_keys(l, {"direction", "ambient"}, "light", "light");
+    if (l.contains("direction")) s.lights[0].direction = r.vec3(l["direction"], "light.direction");
+    if (l.contains("ambient")) s.ambient = r.number(l["ambient"], "light.ambient");
+  }
+  if (root.contains("lights")) {
+    if (root.contains("light")) r.fail("lights", "give either 'light' or 'lights', not both");
+    const json& list = root["lights"];
+    if (!list.is_array()) r.fail("lights", "'lights' must be an array");
+    s.lights.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) s.lights.push_back(read_light(list[i], r, "lights[" + std::to_string(i) + "]"));
+  }
+  if (root.contains("ambient")) s.ambient = r.number(root["ambient"], "ambient");
+  if (root.contains("quotient")) {
+    const std::string name = SceneFileReader::text(root["quotient"]);
+    if (name == "none") {
+      s.quotient = Quotient::None;
+    } else if (name == "golden") {
+      s.quotient = Quotient::Golden;
+    } else {
+      r.fail("quotient", "'quotient' must be none or golden, got " + name);
+    }
+  }
+  if (root.contains("fog_distance")) {
+    const double d = r.number(root["fog_distance"], "fog_distance");
+    if (d < 0.0) r.fail("fog_distance", "fog_distance must be >= 0");
+    s.fog_density = d > 0.0 ? 1.0 / d : 0.0;
+  }
+  if (root.contains("fog")) {
+    if (root.contains("fog_distance")) r.fail("fog", "give either 'fog' or 'fog_distance', not both");
+    const json& f = root["fog"];
+    if (!f.is_object()) r.fail("fog", "'fog' must be an object");
+    r.require_known_keys(f, {"color", "density"}, "fog", "fog");
+    if (f.contains("color")) s.fog_color = r.vec3(f["color"], "fog.color");
+    if (f.contains("density")) s.fog_density = r.number(f["density"], "fog.density");
+  }
+  if (root.contains("max_distance")) s.max_distance = r.number(root["max_distance"], "max_distance");
+  if (root.contains("hit_epsilon")) s.hit_epsilon = r.number(root["hit_epsilon"], "hit_epsilon");
+  if (root.contains("max_steps")) {
+    const json& m = root["max_steps"];
+    if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + m.dump());
+    const auto v = m.get<long long>();
+    if (v < 1 || v > 100000) r.fail("max_steps", "max_steps must be in [1, 100000]");
+    s.max_steps = static_cast<int>(v);
+  }
+  try {
+    detail::check_camera(s.camera);
+    detail::check_world(s);
+  } catch (const detail::FieldError& e) {
+    r.fail(e.path(), e.what());
+  }
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InvalidArgument(path + ": cannot read scene file");
+  return parse_scene(text.str(), path);
+}
+
+std::string to_json(const Scene& s) {
+  auto arr = [](const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); };
+  json root;
+  root["camera"] = {{"position", arr(s.camera.position)},
+                    {"forward", arr(s.camera.forward)},
+                    {"up", arr(s.camera.up)},
+                    {"fov", s.camera.fov}};
+  if (s.camera.frustum) {
+    const Frustum& f = *s.camera.frustum;
+    root["camera"]["frustum"] = json::array({f.left, f.right, f.down, f.up});
+  }
+  root["objects"] = json::array();
+  for (const SceneObject& o : s.objects) root["objects"].push_back(detail::write_object(o));
+  root["lights"] = json::array();
+  for (const Light& l : s.lights) {
+    json j = {{"color", arr(l.color)}, {"intensity", l.intensity}};
+    if (l.type == LightType::Directional) {
+      j["type"] = "directional";
+      j["direction"] = arr(l.direction);
+    } else {
+      j["type"] = "point";
+      j["position"] = arr(l.position);
+      j["exact"] = l.exact;
+      j["reach"] = l.reach;
+    }
+    root["lights"].push_back(j);
+  }
+  root["ambient"] = s.ambient;
+  root["fog"] = {{"color", arr(s.fog_color)}, {"density", s.fog_density}};
+  root["quotient"] = s.quotient == Quotient::Golden ? "golden" : "none";
+  root["max_distance"] = s.max_distance;
+  root["max_steps"] = s.max_steps;
+  root["hit_epsilon"] = s.hit_epsilon;
+  return root.dump(2);
+}
+
+}  // namespace sol

@@ -1,0 +1,158 @@
+#include "scene_reader.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <vector>
+
+#include "sol/error.hpp"
+
+namespace sol::detail {
+namespace {
+
+// Scans JSON text (known to be valid) and records where each value starts.
+// Iterative: one frame per open object or array, however deep the text.
+class PlaceScanner {
+ public:
+  PlaceScanner(std::string_view text, std::map<std::string, FilePlace>& places)
+      : m_text(text), m_places(places) {}
+
+  void run() {
+    value("");
+    while (!m_frames.empty()) {
+      skip_space();
+      if (!more()) return;
+      Frame& f = m_frames.back();
+      const char c = m_text[m_pos];
+      if (c == (f.array ? ']' : '}')) {
+        ++m_pos;
+        m_frames.pop_back();
+      } else if (c == ',') {
+        ++m_pos;
+      } else if (f.array) {
+        const std::string path = f.path + "[" + std::to_string(f.next_index++) + "]";
+        value(path);
+      } else {
+        const std::string key = string();
+        skip_space();
+        if (more() && m_text[m_pos] == ':') ++m_pos;
+        const std::string path = f.path.empty() ? key : f.path + "." + key;
+        value(path);
+      }
+    }
+  }
+
+ private:
+  struct Frame {
+    std::string path;
+    bool array = false;
+    int next_index = 0;
+  };
+
+  bool more() const { return m_pos < m_text.size(); }
+  void skip_space() {
+    while (more() && std::isspace(static_cast<unsigned char>(m_text[m_pos]))) {
+      if (m_text[m_pos] == '\n') {
+        ++m_line;
+        m_line_start = m_pos + 1;
+      }
+      ++m_pos;
+    }
+  }
+  std::string string() {
+    std::string out;
+    ++m_pos;  // opening quote
+    while (more() && m_text[m_pos] != '"') {
+      if (m_text[m_pos] == '\\' && m_pos + 1 < m_text.size()) ++m_pos;
+      out += m_text[m_pos++];
+    }
+    ++m_pos;  // closing quote
+    return out;
+  }
+  // Records the value at m_pos under `path`, and opens a frame for an object or array.
+  void value(const std::string& path) {
+    skip_space();
+    if (!more()) return;
+    m_places.emplace(path, FilePlace{m_line, static_cast<int>(m_pos - m_line_start) + 1});
+    const char c = m_text[m_pos];
+    if (c == '{' || c == '[') {
+      ++m_pos;
+      m_frames.push_back({path, c == '[', 0});
+    } else if (c == '"') {
+      string();
+    } else {
+      while (more() && std::string_view(",}] \t\r\n").find(m_text[m_pos]) == std::string_view::npos) ++m_pos;
+    }
+  }
+
+  std::string_view m_text;
+  std::map<std::string, FilePlace>& m_places;
+  std::vector<Frame> m_frames;
+  std::size_t m_pos = 0, m_line_start = 0;
+  int m_line = 1;
+};
+
+}  // namespace
+
+SceneFileReader::SceneFileReader(std::string_view text, std::string_view source) : m_source(source) {
+  PlaceScanner(text, m_places).run();
+}
+
+void SceneFileReader::fail(const std::string& path, const std::string& what) const {
+  // The field's own place, else its nearest enclosing value's ("objects[0]"
+  // for a key it lacks).
+  std::string at = path;
+  for (;;) {
+    const auto it = m_places.find(at);
+    if (it != m_places.end()) {
+      throw InvalidArgument(std::string(m_source) + ": " + what + " (line " + std::to_string(it->second.line) +
+                            ", column " + std::to_string(it->second.column) + ")");
+    }
+    const std::size_t cut = at.find_last_of(".[");
+    if (at.empty() || cut == std::string::npos) break;
+    at.resize(cut);
+  }
+  throw InvalidArgument(std::string(m_source) + ": " + what);
+}
+
+std::string SceneFileReader::text(const json& value) {
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+double SceneFileReader::number(const json& value, const std::string& path) const {
+  if (!value.is_number()) fail(path, "'" + path + "' must be a number, got " + value.dump());
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) fail(path, "'" + path + "' must be finite");
+  return v;
+}
+
+glm::dvec3 SceneFileReader::vec3(const json& value, const std::string& path) const {
+  if (!value.is_array() || value.size() != 3) {
+    fail(path, "'" + path + "' must be an array of 3 numbers, got " + value.dump());
+  }
+  return {number(value[0], path + "[0]"), number(value[1], path + "[1]"), number(value[2], path + "[2]")};
+}
+
+bool SceneFileReader::boolean(const json& value, const std::string& path) const {
+  if (!value.is_boolean()) fail(path, "'" + path + "' must be true or false, got " + value.dump());
+  return value.get<bool>();
+}
+
+void SceneFileReader::require_known_keys(const json& object, std::initializer_list<std::string_view> keys,
+                                         const std::string& what, const std::string& path) const {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (std::string_view k : keys) known = known || k == item.key();
+    if (known) continue;
+    std::string list;
+    for (std::string_view k : keys) list += std::string(list.empty() ? "" : ", ") + std::string(k);
+    fail(path.empty() ? item.key() : path + "." + item.key(),
+         "unknown key '" + item.key() + "' in " + what + " (known: " + list + ")");
+  }
+}
+
+void SceneFileReader::require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
+                                  const std::string& path) const {
+  if (!object.contains(key)) fail(path, what + " needs " + noun);
+}
+
+}  // namespace sol::detail

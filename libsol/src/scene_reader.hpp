@@ -1,0 +1,60 @@
+// Reading a scene file's JSON with errors that say where (not installed).
+//
+// nlohmann::json keeps no positions, so the reader first indexes where each
+// value of the text starts (line and column, by its path: "camera.fov",
+// "objects[2].radius"); every error it raises names its source and the
+// place of the field concerned: "scene.json: objects[1].radius must be
+// finite and > 0 (line 6, column 6)". The reader is passed down explicitly:
+// no global state, so parses on several threads never meet.
+#pragma once
+
+#include <initializer_list>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace sol::detail {
+
+using nlohmann::json;
+
+/// Where a value starts in the text (1-based).
+struct FilePlace {
+  int line = 1, column = 1;
+};
+
+class SceneFileReader {
+ public:
+  /// Indexes `text` (which must already have parsed as JSON); `source` (a
+  /// file name) prefixes every message.
+  SceneFileReader(std::string_view text, std::string_view source);
+
+  /// Throws InvalidArgument "<source>: <what> (line L, column C)", the place
+  /// of `path`'s value (or of the nearest enclosing value the file has).
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const;
+
+  /// A finite number; `path` names it in errors.
+  double number(const json& value, const std::string& path) const;
+  /// An array of three finite numbers.
+  glm::dvec3 vec3(const json& value, const std::string& path) const;
+  /// true or false.
+  bool boolean(const json& value, const std::string& path) const;
+  /// Fails on a key of `object` that is not in `keys`; `what` names the
+  /// object in the message ("objects[0] (a ball)"), `path` is its path.
+  void require_known_keys(const json& object, std::initializer_list<std::string_view> keys, const std::string& what,
+                          const std::string& path) const;
+  /// Fails unless `object` has `key`: "<what> needs <noun>".
+  void require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
+                   const std::string& path) const;
+
+  /// A string value as it is, anything else as its JSON text (for messages and names).
+  static std::string text(const json& value);
+
+ private:
+  std::string_view m_source;
+  std::map<std::string, FilePlace> m_places;
+};
+
+}  // namespace sol::detail
