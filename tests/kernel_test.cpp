@@ -480,6 +480,30 @@ TEST(Kernel, Rk4IntegratorAgreesAtSmallSteps) {
   expect_no_validation_errors();
 }
 
+// A world prepared once (MarchRenderer::set_world) renders any camera as a
+// fresh renderer given the scene with that camera does, also after another
+// world was set in between, in Sol and in the quotient.
+TEST(Kernel, PreparedWorldRendersAnyCamera) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const char* name : {"sandwich", "lattice-balls"}) {
+    const sol::Scene scene = sol::preset_scene(name);
+    renderer.set_world(scene);
+    for (const dvec3& offset : {dvec3(0.0), dvec3(0.3, -0.2, 0.1), dvec3(-1.7, 2.2, -0.4)}) {
+      sol::Scene moved = scene;
+      moved.camera.position += offset;
+      moved.camera.forward = glm::normalize(moved.camera.forward + 0.2 * offset);
+      const sol::RenderResult prepared = renderer.render(moved.camera, 16, 12);
+      sol::vk::MarchRenderer fresh(vk_context());
+      const sol::RenderResult reference = fresh.render(moved, 16, 12);
+      EXPECT_EQ(prepared.rgba, reference.rgba) << name;
+      EXPECT_EQ(prepared.object, reference.object) << name;
+    }
+  }
+  sol::vk::MarchRenderer empty(vk_context());
+  EXPECT_THROW((void)empty.render(sol::Camera{}, 8, 8), std::logic_error);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");

@@ -460,6 +460,57 @@ TEST(Render, EveryPresetRendersWithoutNaN) {
   EXPECT_THROW(sol::render_cpu(sol::preset_scene("plane"), bad), sol::InvalidArgument);
 }
 
+// A world prepared once (CpuRenderer::set_world) renders any camera as a
+// fresh render of the scene with that camera does, in Sol and in the
+// quotient: nothing of the first camera stays in the prepared world.
+TEST(Render, PreparedWorldRendersAnyCamera) {
+  for (const char* name : {"sandwich", "sheets", "lattice-pillars"}) {
+    const sol::Scene scene = sol::preset_scene(name);
+    const sol::CpuRenderer renderer(scene);
+    sol::RenderSettings settings;
+    settings.width = 16;
+    settings.height = 12;
+    for (const dvec3& offset : {dvec3(0.0), dvec3(0.3, -0.2, 0.1), dvec3(-1.7, 2.2, -0.4)}) {
+      sol::Scene moved = scene;
+      moved.camera.position += offset;
+      moved.camera.forward = glm::normalize(moved.camera.forward + 0.2 * offset);
+      const sol::RenderResult prepared = renderer.render(moved.camera, settings);
+      const sol::RenderResult fresh = sol::render_cpu(moved, settings);
+      EXPECT_EQ(prepared.rgba, fresh.rgba) << name;
+      EXPECT_EQ(prepared.object, fresh.object) << name;
+      EXPECT_EQ(prepared.distance, fresh.distance) << name;
+    }
+  }
+  sol::CpuRenderer empty;
+  EXPECT_THROW((void)empty.render(sol::Camera{}, sol::RenderSettings{}), std::logic_error);
+  // A bad camera is refused, naming the field.
+  sol::Camera parallel;
+  parallel.up = parallel.forward;
+  try {
+    (void)sol::CpuRenderer(sol::preset_scene("plane")).render(parallel, sol::RenderSettings{});
+    ADD_FAILURE() << "accepted a camera whose up is its forward";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("camera.forward and camera.up must not be parallel"), std::string::npos) << e.what();
+  }
+}
+
+// An error inside the rows the worker threads render reaches the caller as
+// the exception it is (it once terminated the process): an observer so far
+// up that the quotient cannot teleport it in double.
+TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
+  sol::Scene far = sol::preset_scene("lattice-balls");
+  far.camera.position = {0.0, 0.0, 800.0};
+  for (unsigned threads : {1u, 2u, 4u}) {
+    sol::RenderSettings settings;
+    settings.width = 16;
+    settings.height = 16;
+    settings.threads = threads;
+    int reports = 0;
+    settings.progress = [&](double) { ++reports; };
+    EXPECT_THROW(sol::render_cpu(far, settings), sol::OutOfRange) << threads << " threads";
+  }
+}
+
 }  // namespace
 
 namespace {

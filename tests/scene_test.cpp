@@ -143,6 +143,58 @@ TEST(Scene, TubeAxesAndPatternsOnSolids) {
   }
 }
 
+// Tubes along any horizontal or vertical direction: an array for "axis"
+// (normalised), written back as an array, and in the quotient only along
+// γ1 or γ2 (their images close up).
+TEST(Scene, TubeAxesAsDirections) {
+  const sol::Scene s = sol::parse_scene(R"({"objects": [
+    {"type": "tube", "axis": [1, 1, 0], "through": [0, 0, 0], "radius": 0.1},
+    {"type": "tube", "axis": [0, 0, -2], "through": [0, 0, 0], "radius": 0.1}]})");
+  const sol::Tube& slanted = std::get<sol::Tube>(s.objects[0].shape);
+  EXPECT_NEAR(slanted.direction.x, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(slanted.direction.y, std::sqrt(0.5), 1e-15);
+  EXPECT_TRUE(std::get<sol::Tube>(s.objects[1].shape).vertical());
+  const sol::Scene back = sol::parse_scene(sol::to_json(s));
+  EXPECT_EQ(back.objects[0].shape, s.objects[0].shape);
+  EXPECT_EQ(back.objects[1].shape, s.objects[1].shape);
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": [1, 0, 1], "through": [0, 0, 0], "radius": 1}]})",
+                  "objects[0].axis must be a unit vertical or horizontal direction");
+  expect_rejected(R"({"objects": [{"type": "tube", "axis": [0, 0, 0], "through": [0, 0, 0], "radius": 1}]})",
+                  "objects[0].axis must be a unit vertical or horizontal direction");
+  const std::string golden = R"({"quotient": "golden", "objects": [)";
+  expect_rejected(golden + R"({"type": "tube", "axis": [1, 1, 0], "through": [0, 0, 0], "radius": 0.1}]})",
+                  "objects[0].axis: a horizontal tube closes up in the quotient only along gamma1 or gamma2");
+  // γ1 = (φ, -1, 0) given backwards is still the closed curve of γ1.
+  const sol::Scene along = sol::parse_scene(
+      golden + R"({"type": "tube", "axis": [-1.618033988749895, 1, 0], "through": [0, 0, 0], "radius": 0.1}]})");
+  const glm::dvec3 d = std::get<sol::Tube>(along.objects[0].shape).direction;
+  EXPECT_NEAR(glm::length(glm::cross(d, sol::tube_axis_direction(sol::TubeAxis::Gamma1))), 0.0, 1e-15);
+}
+
+// validate() of a world, a camera and a scene name the field and say which check spoke.
+TEST(Scene, ValidateNamesTheField) {
+  sol::World world = sol::preset_scene("plane");
+  world.lights[0].intensity = -1.0;
+  try {
+    sol::validate(world);
+    ADD_FAILURE() << "accepted a negative intensity";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_EQ(std::string(e.what()), "sol::validate(World): lights[0].intensity must be finite and >= 0");
+  }
+  sol::Camera camera;
+  camera.fov = 0.0;
+  try {
+    sol::validate(camera);
+    ADD_FAILURE() << "accepted fov 0";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_EQ(std::string(e.what()), "sol::validate(Camera): camera.fov must be in (0, 180) degrees");
+  }
+  sol::Scene scene = sol::preset_scene("plane");
+  scene.camera = camera;
+  EXPECT_THROW(sol::validate(scene), sol::InvalidArgument);
+  EXPECT_NO_THROW(sol::validate(static_cast<const sol::World&>(scene)));  // the world alone is fine
+}
+
 TEST(Scene, ErrorsSayWhereInTheFile) {
   // Each message names the field and the line and column its value starts on.
   const std::string text = "{\n  \"camera\": {\"fov\": 90},\n  \"objects\": [\n    {\"type\": \"plane_z\"},\n"
@@ -150,6 +202,12 @@ TEST(Scene, ErrorsSayWhereInTheFile) {
   expect_rejected(text, "objects[1].radius must be finite and > 0 (line 6, column 16)");
   expect_rejected("{\"objects\": [{\"type\": \"plane_z\",\n \"colour\": [1, 0, 0]}]}", "(line 2, column 12)");
   expect_rejected("{\"objects\": [{\"type\": \"plane_z\"}],\n\n \"max_steps\": 0}", "max_steps must be in [1, 100000] (line 3, column 15)");
+  // A check of the whole scene (after parsing) finds the light's field, on line 3.
+  expect_rejected("{\"objects\": [{\"type\": \"plane_z\"}],\n\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 1],\n"
+                  "  \"intensity\": -1}]}",
+                  "lights[0].intensity must be finite and >= 0 (line 3, column 16)");
+  // A key a ball lacks: the place of the ball.
+  expect_rejected("{\"objects\": [\n  {\"type\": \"ball\", \"center\": [0, 0, 0]}]}", "needs a 'radius' (line 2, column 3)");
 }
 
 TEST(Scene, LightsAndFog) {

@@ -441,9 +441,11 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
   for (const char* key : {"axis", "through", "radius"}) r.require_key(o, key, what, std::string("'") + key + "'", at);
   const json& axis = o["axis"];
   if (axis.is_array()) {
-    // Any coordinate direction, vertical or horizontal (normalised; check_kind checks it).
+    // Any coordinate direction, vertical or horizontal (check_kind checks it),
+    // normalised unless already unit (so that to_json's output reads back as it was).
     const glm::dvec3 d = r.vec3(axis, at + ".axis");
-    t.direction = glm::length(d) > 0.0 ? glm::normalize(d) : d;
+    const double length = glm::length(d);
+    t.direction = length > 0.0 && std::abs(length - 1.0) > 1e-15 ? d / length : d;
   } else {
     const std::string name = SceneFileReader::text(axis);
     const auto known = std::find_if(std::begin(kTubeAxes), std::end(kTubeAxes), [&](TubeAxis a) { return to_string(a) == name; });
