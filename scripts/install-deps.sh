@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   nlohmann-json3-dev    # scene files
+  libcli11-dev          # the programs' command lines
   libopenimageio-dev openimageio-tools  # image files (OIIO's CMake config also checks for its tools)
   python3-matplotlib    # bench plots
   libvulkan-dev         # Vulkan headers and loader (Sol::vk)

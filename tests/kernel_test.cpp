@@ -14,6 +14,7 @@
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
+#include "srgb.hpp"
 #include "support/directions.hpp"
 #include "support/kernel.hpp"
 
@@ -389,11 +390,19 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
   expect_no_validation_errors();
 }
 
-// The C++ twin of march.comp's output_color for SOL_OUTPUT_SRGB_UNORM: the
-// standard sRGB OETF (IEC 61966-2-1) of the colour clamped to [0, 1].
-double srgb_encode(double linear) {
-  const double c = std::clamp(linear, 0.0, 1.0);
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+// The C++ sRGB encoding the kernel's 8-bit output is held to below: the
+// IEC 61966-2-1 curve at points worked out by hand (linear below 0.0031308
+// with slope 12.92, 1.055 c^(1/2.4) - 0.055 above; 18% grey encodes to 0.4614).
+TEST(Kernel, SrgbEncodingIsTheStandardCurve) {
+  EXPECT_EQ(sol::programs::srgb_encode(0.0), 0.0);
+  EXPECT_NEAR(sol::programs::srgb_encode(0.001), 0.01292, 1e-15);
+  EXPECT_NEAR(sol::programs::srgb_encode(0.0031308), 0.040449936, 1e-9);
+  EXPECT_NEAR(sol::programs::srgb_encode(0.18), 0.46135612950044164, 1e-14);
+  EXPECT_NEAR(sol::programs::srgb_encode(0.5), 0.7353569830524495, 1e-14);
+  EXPECT_NEAR(sol::programs::srgb_encode(1.0), 1.0, 1e-15);
+  EXPECT_EQ(sol::programs::srgb_encode(-0.5), 0.0);  // clamped
+  EXPECT_NEAR(sol::programs::srgb_encode(2.0), 1.0, 1e-15);
+  EXPECT_EQ(sol::programs::srgb_byte(0.5f), 188);  // 0.7354 · 255 = 187.5...
 }
 
 // MarchRenderer::record into a caller's 8-bit image (the presenters' direct
@@ -436,7 +445,7 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
               const std::size_t from = static_cast<std::size_t>(bgr && c < 3 ? 2 - c : c);
               const int byte = got[at_target * 4 + from];
               const double linear = ref.rgba[at_ref * 4 + static_cast<std::size_t>(c)];
-              const double encoded = c < 3 ? srgb_encode(linear) : std::clamp(linear, 0.0, 1.0);  // alpha: linear
+              const double encoded = c < 3 ? sol::programs::srgb_encode(linear) : std::clamp(linear, 0.0, 1.0);  // alpha: linear
               const auto want = static_cast<int>(std::lround(255.0 * encoded));
               worst = std::max(worst, std::abs(byte - want));
             }

@@ -26,37 +26,6 @@
 
 namespace {
 
-void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: solrender [options] -o OUT\n"
-               "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol geodesic.\n\n"
-               "  --scene NAME|FILE      a preset (plane, sandwich, sheets) or a JSON scene file (default plane)\n"
-               "  -o, --output OUT       image file; the format follows the extension (png, exr, jpg, tif, ...)\n"
-               "  --aov FILE.exr         also write float channels object, distance, Px, Py, Pz, steps\n"
-               "  --width W, --height H  image size in pixels, 1..16384 (default 512 x 512)\n"
-               "  --fov DEG              vertical field of view in degrees, (0, 180)\n"
-               "  --position X,Y,Z       camera position (Sol coordinates)\n"
-               "  --forward A,B,C        view direction, frame components at the camera\n"
-               "  --up A,B,C             up direction, frame components (not parallel to forward)\n"
-               "  --max-distance D       arc length after which a ray misses\n"
-               "  --max-steps N          march steps after which a ray misses\n"
-               "  --device auto|vulkan|cpu  where to render: auto takes Vulkan (a GPU, else lavapipe) when\n"
-               "                         available and the CPU renderer otherwise (default auto)\n"
-               "  --integrator closed|rk4   the kernel's geodesic flow (default closed; vulkan only)\n"
-               "  --rk-step H            RK4 substep in arc length for --integrator rk4 (default 0.01)\n"
-               "  --stereo               both eyes side by side (image width 2 W), DESIGN.md §2\n"
-               "  --ipd D                eye separation in Sol units for --stereo (default 0.064)\n"
-               "  --threads N            CPU threads for --device cpu (default: all)\n"
-               "  --print-scene          print the effective scene as JSON and exit\n"
-               "  --help                 this text\n\n"
-               "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
-               "linear ones. On failure nothing is written and the exit status is non-zero.\n");
-}
-
-const sol::cli::Arguments kArgs("solrender");
-
-[[noreturn]] void fail(const std::string& message) { kArgs.fail(message); }
-
 // Interleaves the AOV planes into object, distance, Px, Py, Pz, steps.
 std::vector<float> interleave_aovs(const sol::RenderResult& r) {
   const std::size_t n = r.object.size();
@@ -77,58 +46,34 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
 int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
   double rk_step = 0.01, ipd = 0.064;
-  bool stereo = false;
+  bool stereo = false, print_scene = false;
   int width = 512, height = 512;
   unsigned threads = 0;
-  bool print_scene = false;
   sol::cli::SceneOverrides o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) fail("option " + arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      print_usage(stdout);
-      return 0;
-    } else if (arg == "--scene") {
-      scene_arg = value();
-    } else if (arg == "-o" || arg == "--output") {
-      output = value();
-    } else if (arg == "--aov") {
-      aov = value();
-    } else if (arg == "--width") {
-      width = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
-    } else if (arg == "--height") {
-      height = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
-    } else if (o.read(kArgs, arg, value)) {
-      // a camera or limit override
-    } else if (arg == "--device") {
-      device = value();
-      if (device != "auto" && device != "vulkan" && device != "cpu") {
-        fail("option --device expects auto, vulkan or cpu, got '" + device + "'");
-      }
-    } else if (arg == "--integrator") {
-      integrator = value();
-      if (integrator != "closed" && integrator != "rk4") {
-        fail("option --integrator expects closed or rk4, got '" + integrator + "'");
-      }
-    } else if (arg == "--rk-step") {
-      rk_step = kArgs.number(value(), arg);
-      if (!(rk_step > 0.0)) fail("option --rk-step must be > 0");
-    } else if (arg == "--stereo") {
-      stereo = true;
-    } else if (arg == "--ipd") {
-      ipd = kArgs.number(value(), arg);
-      if (ipd < 0.0) fail("option --ipd must be >= 0");
-    } else if (arg == "--threads") {
-      threads = static_cast<unsigned>(kArgs.integer(value(), arg, 1, 1024));
-    } else if (arg == "--print-scene") {
-      print_scene = true;
-    } else {
-      fail("unknown option '" + arg + "' (see solrender --help)");
-    }
-  }
+  sol::cli::CommandLine cl("solrender", "[options] -o OUT",
+                           "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol "
+                           "geodesic.");
+  cl.add_text("--scene", scene_arg, "NAME|FILE",
+              "a preset (" + sol::cli::preset_list() + ") or a JSON scene file (default plane)");
+  cl.add_text("-o,--output", output, "OUT", "image file; the format follows the extension (png, exr, jpg, tif, ...)");
+  cl.add_text("--aov", aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps");
+  cl.add_integer("--width", width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
+  cl.add_integer("--height", height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
+  o.add_to(cl, "camera");
+  cl.add_choice("--device", device, {"auto", "vulkan", "cpu"},
+                "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
+                "otherwise (default auto)");
+  cl.add_choice("--integrator", integrator, {"closed", "rk4"}, "the kernel's geodesic flow (default closed; vulkan only)");
+  cl.add_number("--rk-step", rk_step, "H", "RK4 substep in arc length for --integrator rk4 (default 0.01)",
+                sol::cli::positive());
+  cl.add_flag("--stereo", stereo, "both eyes side by side (image width 2 W)");
+  cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo (default 0.064)", sol::cli::non_negative());
+  cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
+  cl.add_flag("--print-scene", print_scene, "print the effective scene as JSON and exit");
+  cl.set_footer(
+      "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
+      "linear ones. On failure nothing is written and the exit status is non-zero (2 for bad usage).");
+  cl.parse(argc, argv);
 
   sol::Scene scene;
   try {
@@ -136,16 +81,16 @@ int main(int argc, char** argv) {
     o.apply(scene);
     sol::validate(scene);
   } catch (const std::exception& e) {
-    fail(e.what());
+    cl.fail(e.what());
   }
   if (print_scene) {
     std::printf("%s\n", sol::to_json(scene).c_str());
     return 0;
   }
-  if (output.empty()) fail("no output file: give -o OUT (see solrender --help)");
-  if (!sol::viewer::can_write(output)) fail(output + ": no image format for this file name extension");
-  if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") fail("--aov needs an .exr file name, got " + aov);
-  if (integrator == "rk4" && device == "cpu") fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
+  if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
+  if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");
+  if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") cl.fail("--aov needs an .exr file name, got " + aov);
+  if (integrator == "rk4" && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 
   const bool tty = isatty(fileno(stderr));
   bool wrote_output = false;
@@ -187,10 +132,10 @@ int main(int argc, char** argv) {
       }
     }
 #else
-    if (device == "vulkan") fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
+    if (device == "vulkan") cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
 #endif
     if (!rendered) {
-      if (integrator == "rk4") fail("--integrator rk4 needs the Vulkan kernel");
+      if (integrator == "rk4") cl.fail("--integrator rk4 needs the Vulkan kernel");
       sol::RenderSettings settings;
       settings.width = width;
       settings.height = height;
@@ -205,10 +150,10 @@ int main(int argc, char** argv) {
       if (tty) std::fprintf(stderr, "\r");
       where = "cpu (" + std::to_string(used_threads) + " threads)";
     }
-    sol::viewer::write_image(output, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+    sol::programs::write_image(output, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
     wrote_output = true;
     if (!aov.empty()) {
-      sol::viewer::write_image(aov, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+      sol::programs::write_image(aov, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
                                interleave_aovs(r), false);
     }
     std::fprintf(stderr, "solrender: %dx%d%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
@@ -218,7 +163,7 @@ int main(int argc, char** argv) {
     if (tty) std::fprintf(stderr, "\n");
     // A failed AOV must not leave the pair half-done: remove the image of this run.
     if (wrote_output) std::filesystem::remove(output);
-    fail(e.what());
+    cl.fail(e.what());
   }
   return 0;
 }

@@ -36,46 +36,9 @@
 
 #include "command_line.hpp"
 #include "eye_pose.hpp"
+#include "srgb.hpp"
 
 namespace {
-
-void print_usage(std::FILE* out) {
-  std::fprintf(
-      out,
-      "usage: solxr [options]\n"
-      "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye follows a\n"
-      "Sol geodesic. Head motion moves the eyes along geodesics from the base observer (the scene camera);\n"
-      "the left thumbstick walks, the right one turns.\n\n"
-      "  --scene NAME|FILE      a preset (plane, sandwich, sheets, ...) or a JSON scene file (default plane);\n"
-      "                         quotient and lights come from the scene, as for solrender\n"
-      "  --position X,Y,Z       base observer position (Sol coordinates)\n"
-      "  --forward A,B,C        base view direction, frame components\n"
-      "  --up A,B,C             base up direction, frame components (not parallel to forward)\n"
-      "  --max-distance D       arc length after which a ray misses\n"
-      "  --max-steps N          march steps after which a ray misses\n"
-      "  --integrator closed|rk4   the kernel's geodesic flow (default closed)\n"
-      "  --rk-step H            RK4 substep for --integrator rk4 (default 0.01)\n"
-      "  --width W, --height H  per-eye image size, 1..16384 (default: the runtime's recommendation)\n"
-      "  --scale S              Sol units per metre of head motion, > 0 (default 1)\n"
-      "  --speed V              walking speed, Sol units per second at full stick (default 1)\n"
-      "  --turn-rate DEG        turning rate, degrees per second at full stick (default 90)\n"
-      "  --reference local|stage   the reference space head poses are in (default local)\n"
-      "  --frames N             ask the runtime to end the session after N frames (default: run until\n"
-      "                         the runtime ends it)\n"
-      "  --copy auto|device|host  how an eye reaches its swapchain image: device = the kernel's image\n"
-      "                         blitted on the GPU (no host round trip), host = read back and uploaded;\n"
-      "                         auto (default) = device when the formats allow the blit\n"
-      "  --stats                print per-eye frame times at exit\n"
-      "  --validation           enable the Vulkan validation layer; validation errors fail the run\n"
-      "  --help                 this text\n\n"
-      "The field of view and the eye separation come from the runtime. Exit status: 0 when the session\n"
-      "ended normally, 1 when there is no runtime, no headset or no Vulkan support, or on an error, 2 for\n"
-      "bad options.\n");
-}
-
-const sol::cli::Arguments kArgs("solxr");
-
-[[noreturn]] void fail_option(const std::string& message) { kArgs.fail(message); }
 
 struct Options {
   std::string scene = "plane", integrator = "closed", reference = "local";
@@ -87,72 +50,42 @@ struct Options {
   sol::cli::SceneOverrides overrides;  // camera and limits (no --fov: the runtime's)
 };
 
-Options parse_options(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) fail_option("option " + arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      print_usage(stdout);
-      std::exit(0);
-    } else if (arg == "--scene") {
-      o.scene = value();
-    } else if (o.overrides.read(kArgs, arg, value, false)) {
-      // a camera or limit override
-    } else if (arg == "--integrator") {
-      o.integrator = value();
-      if (o.integrator != "closed" && o.integrator != "rk4") {
-        fail_option("option --integrator expects closed or rk4, got '" + o.integrator + "'");
-      }
-    } else if (arg == "--rk-step") {
-      o.rk_step = kArgs.number(value(), arg);
-      if (!(o.rk_step > 0.0)) fail_option("option --rk-step must be > 0");
-    } else if (arg == "--width") {
-      o.width = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
-    } else if (arg == "--height") {
-      o.height = static_cast<int>(kArgs.integer(value(), arg, 1, 16384));
-    } else if (arg == "--scale") {
-      o.scale = kArgs.number(value(), arg);
-      if (!(o.scale > 0.0)) fail_option("option --scale must be > 0");
-    } else if (arg == "--speed") {
-      o.speed = kArgs.number(value(), arg);
-    } else if (arg == "--turn-rate") {
-      o.turn_rate = kArgs.number(value(), arg);
-    } else if (arg == "--reference") {
-      o.reference = value();
-      if (o.reference != "local" && o.reference != "stage") {
-        fail_option("option --reference expects local or stage, got '" + o.reference + "'");
-      }
-    } else if (arg == "--frames") {
-      o.frames = kArgs.integer(value(), arg, 1, 1 << 30);
-    } else if (arg == "--copy") {
-      o.copy = value();
-      if (o.copy != "auto" && o.copy != "device" && o.copy != "host") {
-        fail_option("option --copy expects auto, device or host, got '" + o.copy + "'");
-      }
-    } else if (arg == "--stats") {
-      o.stats = true;
-    } else if (arg == "--validation") {
-      o.validation = true;
-    } else {
-      fail_option("unknown option '" + arg + "' (see solxr --help)");
-    }
-  }
-  if ((o.width == 0) != (o.height == 0)) fail_option("options --width and --height go together");
-  return o;
+// The command line; exits 0 after --help and 2 on bad usage.
+void add_options(sol::cli::CommandLine& cl, Options& o) {
+  cl.add_text("--scene", o.scene, "NAME|FILE",
+              "a preset (" + sol::cli::preset_list() +
+                  ") or a JSON scene file (default plane); quotient and lights come from the scene, as for solrender");
+  o.overrides.add_to(cl, "base observer", false);
+  cl.add_choice("--integrator", o.integrator, {"closed", "rk4"}, "the kernel's geodesic flow (default closed)");
+  cl.add_number("--rk-step", o.rk_step, "H", "RK4 substep for --integrator rk4 (default 0.01)", sol::cli::positive());
+  cl.add_integer("--width", o.width, 1, 16384, "W", "per-eye image width, 1..16384 (default: the runtime's recommendation)");
+  cl.add_integer("--height", o.height, 1, 16384, "H", "per-eye image height, 1..16384 (default: the runtime's recommendation)");
+  cl.add_number("--scale", o.scale, "S", "Sol units per metre of head motion, > 0 (default 1)", sol::cli::positive());
+  cl.add_number("--speed", o.speed, "V", "walking speed, Sol units per second at full stick (default 1)");
+  cl.add_number("--turn-rate", o.turn_rate, "DEG", "turning rate, degrees per second at full stick (default 90)");
+  cl.add_choice("--reference", o.reference, {"local", "stage"}, "the reference space head poses are in (default local)");
+  cl.add_integer("--frames", o.frames, 1, 1 << 30, "N",
+                 "ask the runtime to end the session after N frames (default: run until the runtime ends it)");
+  cl.add_choice("--copy", o.copy, {"auto", "device", "host"},
+                "how an eye reaches its swapchain image: device = the kernel's image blitted on the GPU (no host round "
+                "trip), host = read back and uploaded; auto (default) = device when the formats allow the blit");
+  cl.add_flag("--stats", o.stats, "print per-eye frame times at exit");
+  cl.add_flag("--validation", o.validation, "enable the Vulkan validation layer; validation errors fail the run");
+  cl.set_footer(
+      "Head motion moves the eyes along geodesics from the base observer (the scene camera); the left\n"
+      "thumbstick walks, the right one turns. The field of view and the eye separation come from the\n"
+      "runtime. Exit status: 0 when the session ended normally, 1 when there is no runtime, no headset or\n"
+      "no Vulkan support, or on an error, 2 for bad options.");
 }
 
-sol::Scene load_scene(const Options& o) {
+sol::Scene load_scene(const sol::cli::CommandLine& cl, const Options& o) {
   sol::Scene scene;
   try {
     scene = sol::cli::scene_argument(o.scene);
     o.overrides.apply(scene);
     sol::validate(scene);
   } catch (const std::exception& e) {
-    fail_option(e.what());
+    cl.fail(e.what());
   }
   return scene;
 }
@@ -200,13 +133,6 @@ T xr_struct(XrStructureType type) {
 }
 
 // ---------------------------------------------------------------------------
-
-/// sRGB encoding of a linear value, for 8-bit sRGB swapchains.
-std::uint8_t srgb_byte(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  const float s = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return static_cast<std::uint8_t>(std::lround(s * 255.0f));
-}
 
 /// Swapchain formats solxr can fill from the renderer's linear float RGBA,
 /// and the bytes per texel.
@@ -631,9 +557,9 @@ void render_through_host(App& app, Eye& eye, const sol::Camera& camera, std::int
     auto* out = reinterpret_cast<std::uint8_t*>(eye.texels.data());
     for (std::size_t k = 0; k < pixels; ++k) {
       const float* in = &image.rgba[4 * k];
-      out[4 * k + 0] = srgb_byte(in[bgr ? 2 : 0]);
-      out[4 * k + 1] = srgb_byte(in[1]);
-      out[4 * k + 2] = srgb_byte(in[bgr ? 0 : 2]);
+      out[4 * k + 0] = sol::programs::srgb_byte(in[bgr ? 2 : 0]);
+      out[4 * k + 1] = sol::programs::srgb_byte(in[1]);
+      out[4 * k + 2] = sol::programs::srgb_byte(in[bgr ? 0 : 2]);
       out[4 * k + 3] = 255;
     }
   }
@@ -837,8 +763,14 @@ int run(const Options& o, const sol::Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse_options(argc, argv);
-  const sol::Scene scene = load_scene(options);
+  sol::cli::CommandLine cl("solxr", "[options]",
+                           "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye "
+                           "follows a Sol geodesic.");
+  Options options;
+  add_options(cl, options);
+  cl.parse(argc, argv);
+  if ((options.width == 0) != (options.height == 0)) cl.fail("options --width and --height go together");
+  const sol::Scene scene = load_scene(cl, options);
   try {
     return run(options, scene);
   } catch (const std::exception& e) {

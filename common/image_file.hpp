@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace sol::viewer {
+namespace sol::programs {
 
 /// Writes a width × height image with the given channels (interleaved floats,
 /// row 0 at the top) in the format the extension names (any OpenImageIO
@@ -20,4 +20,4 @@ void write_image(const std::string& path, int width, int height, const std::vect
 /// Whether OpenImageIO can write files with this name's extension.
 bool can_write(const std::string& path);
 
-}  // namespace sol::viewer
+}  // namespace sol::programs

@@ -8,7 +8,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-namespace sol::viewer {
+#include "srgb.hpp"
+
+namespace sol::programs {
 namespace {
 
 std::string lower_extension(const std::string& path) {
@@ -20,12 +22,6 @@ std::string lower_extension(const std::string& path) {
 bool float_format(const std::string& path) {
   const std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
-}
-
-// IEC 61966-2-1 transfer function.
-float srgb_encode(float linear) {
-  const float v = std::clamp(linear, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
 }  // namespace
@@ -50,7 +46,7 @@ void write_image(const std::string& path, int width, int height, const std::vect
   std::vector<float> data = interleaved;
   if (!as_float && srgb_for_8bit) {
     for (std::size_t i = 0; i < data.size(); ++i) {
-      if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = srgb_encode(data[i]);
+      if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = programs::srgb_encode(data[i]);
     }
   }
   // Same directory (rename stays atomic); the writer was chosen from the real name.
@@ -75,4 +71,4 @@ void write_image(const std::string& path, int width, int height, const std::vect
   }
 }
 
-}  // namespace sol::viewer
+}  // namespace sol::programs

@@ -1,0 +1,402 @@
+#include "presenter.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include <sol/vk/error.hpp>
+
+#include "image_file.hpp"
+
+namespace sol::viewer {
+
+Presenter::Presenter(vk::Context& context, GLFWwindow* window, bool vsync, bool allow_direct, bool start_direct)
+    : m_context(context), m_window(window), m_allow_direct(allow_direct), m_prefer_direct(allow_direct && start_direct) {
+  VkDevice device = context.device();
+  try {
+    vk::check(glfwCreateWindowSurface(context.instance(), window, nullptr, &m_surface), "glfwCreateWindowSurface");
+    VkBool32 supported = VK_FALSE;
+    vk::check(vkGetPhysicalDeviceSurfaceSupportKHR(context.physical_device(), context.queue_family_index(), m_surface,
+                                                   &supported),
+              "vkGetPhysicalDeviceSurfaceSupportKHR");
+    if (!supported) throw std::runtime_error("the Vulkan device '" + context.device_name() + "' cannot present to this window");
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &props);
+    if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT)) {
+      throw std::runtime_error("the Vulkan device cannot blit from RGBA32F images");
+    }
+    m_linear_blit = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                                      VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, context.queue_family_index()};
+    vk::check(vkCreateCommandPool(device, &pool_info, nullptr, &m_pool), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, m_pool,
+                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    vk::check(vkAllocateCommandBuffers(device, &alloc, &m_commands), "vkAllocateCommandBuffers");
+    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+    vk::check(vkCreateSemaphore(device, &sem, nullptr, &m_acquired), "vkCreateSemaphore");
+    // Signalled: the first frame's wait returns at once.
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+    vk::check(vkCreateFence(device, &fence, nullptr, &m_frame_done), "vkCreateFence");
+    create_swapchain(vsync);
+  } catch (...) {
+    release();  // what was made so far: every handle is null or valid
+    throw;
+  }
+}
+
+Presenter::~Presenter() { release(); }
+
+void Presenter::release() noexcept {
+  VkDevice device = m_context.device();
+  vkDeviceWaitIdle(device);
+  destroy_swapchain();
+  if (m_acquired) vkDestroySemaphore(device, m_acquired, nullptr);
+  if (m_frame_done) vkDestroyFence(device, m_frame_done, nullptr);
+  m_acquired = VK_NULL_HANDLE;
+  m_frame_done = VK_NULL_HANDLE;
+  m_capture.reset();
+  m_target.reset();
+  if (m_pool) vkDestroyCommandPool(device, m_pool, nullptr);
+  m_pool = VK_NULL_HANDLE;
+  if (m_surface) vkDestroySurfaceKHR(m_context.instance(), m_surface, nullptr);
+  m_surface = VK_NULL_HANDLE;
+}
+
+void Presenter::create_swapchain(bool vsync) {
+  VkPhysicalDevice gpu = m_context.physical_device();
+  VkDevice device = m_context.device();
+  VkSurfaceCapabilitiesKHR caps{};
+  vk::check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, m_surface, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+  if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)) {
+    throw std::runtime_error("the surface's images cannot be blitted to (no TRANSFER_DST usage)");
+  }
+  std::uint32_t n = 0;
+  vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, m_surface, &n, nullptr);
+  std::vector<VkSurfaceFormatKHR> formats(n);
+  vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, m_surface, &n, formats.data());
+  if (formats.empty()) throw std::runtime_error("the surface offers no image formats");
+  // An sRGB format: the blit encodes the kernel's linear colours as solrender's PNGs do.
+  VkSurfaceFormatKHR chosen = formats[0];
+  for (const VkSurfaceFormatKHR& f : formats) {
+    if (f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) {
+      chosen = f;
+      break;
+    }
+  }
+  // The direct path's: a UNORM format the kernel can write, shown as sRGB.
+  const VkImageUsageFlags direct_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  m_direct_capable = false;
+  for (const VkSurfaceFormatKHR& f : formats) {
+    if ((caps.supportedUsageFlags & direct_usage) == direct_usage && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR &&
+        vk::MarchRenderer::can_write_unorm(m_context, f.format)) {
+      m_direct_capable = true;
+      if (m_prefer_direct) chosen = f;
+      break;
+    }
+  }
+  m_direct = m_direct_capable && m_prefer_direct;
+  m_format = chosen.format;
+  vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, m_surface, &n, nullptr);
+  std::vector<VkPresentModeKHR> modes(n);
+  vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, m_surface, &n, modes.data());
+  VkPresentModeKHR mode = VK_PRESENT_MODE_FIFO_KHR;  // always there: vsync
+  if (!vsync) {
+    for (VkPresentModeKHR m : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR}) {
+      if (std::find(modes.begin(), modes.end(), m) != modes.end()) mode = m;
+    }
+  }
+  m_extent = caps.currentExtent;
+  if (m_extent.width == 0xFFFFFFFFu) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(m_window, &w, &h);
+    m_extent.width = std::clamp(static_cast<std::uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width);
+    m_extent.height = std::clamp(static_cast<std::uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height);
+  }
+  if (m_extent.width == 0 || m_extent.height == 0) {  // minimised: no swapchain until it has a size
+    destroy_swapchain();
+    return;
+  }
+  std::uint32_t count = std::max(caps.minImageCount, 2u);
+  if (caps.maxImageCount) count = std::min(count, caps.maxImageCount);
+  VkSwapchainCreateInfoKHR info{};
+  info.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR;
+  info.surface = m_surface;
+  info.minImageCount = count;
+  info.imageFormat = chosen.format;
+  info.imageColorSpace = chosen.colorSpace;
+  info.imageExtent = m_extent;
+  info.imageArrayLayers = 1;
+  m_can_capture = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+  info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                    (m_can_capture ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0}) |
+                    (m_direct ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0});
+  info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.preTransform = caps.currentTransform;
+  info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+                            ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+                            : static_cast<VkCompositeAlphaFlagBitsKHR>(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+  info.presentMode = mode;
+  info.clipped = VK_TRUE;
+  info.oldSwapchain = m_swapchain;
+  VkSwapchainKHR created = VK_NULL_HANDLE;
+  vk::check(vkCreateSwapchainKHR(device, &info, nullptr, &created), "vkCreateSwapchainKHR");
+  destroy_swapchain();
+  m_swapchain = created;
+  vkGetSwapchainImagesKHR(device, m_swapchain, &n, nullptr);
+  m_images.resize(n);
+  vkGetSwapchainImagesKHR(device, m_swapchain, &n, m_images.data());
+  if (m_direct) {
+    m_views.resize(n, VK_NULL_HANDLE);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      VkImageViewCreateInfo view{};
+      view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+      view.image = m_images[i];
+      view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+      view.format = m_format;
+      view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vk::check(vkCreateImageView(device, &view, nullptr, &m_views[i]), "vkCreateImageView");
+    }
+  }
+  VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+  m_rendered.resize(n);
+  for (VkSemaphore& s : m_rendered) vk::check(vkCreateSemaphore(device, &sem, nullptr, &s), "vkCreateSemaphore");
+}
+
+void Presenter::destroy_swapchain() {
+  VkDevice device = m_context.device();
+  for (VkSemaphore s : m_rendered) vkDestroySemaphore(device, s, nullptr);
+  m_rendered.clear();
+  for (VkImageView v : m_views) vkDestroyImageView(device, v, nullptr);
+  m_views.clear();
+  if (m_swapchain != VK_NULL_HANDLE) vkDestroySwapchainKHR(device, m_swapchain, nullptr);
+  m_swapchain = VK_NULL_HANDLE;
+  m_images.clear();
+}
+
+void Presenter::recreate(bool vsync) {
+  VkDevice device = m_context.device();
+  vkDeviceWaitIdle(device);  // nothing in flight may use the old images
+  // The acquire semaphore may be left signalled by an acquire whose frame was dropped: a fresh one.
+  vkDestroySemaphore(device, m_acquired, nullptr);
+  m_acquired = VK_NULL_HANDLE;
+  VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+  vk::check(vkCreateSemaphore(device, &sem, nullptr, &m_acquired), "vkCreateSemaphore");
+  m_out_of_date = false;
+  create_swapchain(vsync);
+}
+
+void Presenter::wait_for_frame() {
+  vk::check(vkWaitForFences(m_context.device(), 1, &m_frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
+std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, std::span<const Camera> eyes,
+                                                   int eye_width, int eye_height, bool capture, bool vsync) {
+  VkDevice device = m_context.device();
+  const int render_w = eye_width * static_cast<int>(eyes.size()), render_h = eye_height;
+  // The path: direct when the kernel renders at the window's size and the
+  // surface allows it; a change of path re-creates the swapchain (UNORM
+  // with STORAGE usage for the direct path, sRGB for the blit).
+  auto fits_window = [&] {
+    return static_cast<std::uint32_t>(render_w) == m_extent.width && static_cast<std::uint32_t>(render_h) == m_extent.height;
+  };
+  m_prefer_direct = m_allow_direct && fits_window();
+  if (m_direct_capable && m_direct != m_prefer_direct) {
+    recreate(vsync);
+    if (!ready()) return std::nullopt;  // minimised meanwhile
+  }
+  if (m_direct && !fits_window()) {  // the window changed size meanwhile
+    m_out_of_date = true;
+    return std::nullopt;
+  }
+  const bool direct = m_direct;
+
+  // One frame in flight: wait until the previous frame's commands are done
+  // before touching its command buffer, the renderer's uniforms or the target.
+  wait_for_frame();
+  if (!direct && (!m_target || m_rendered_w != render_w || m_rendered_h != render_h)) {
+    m_target.reset();
+    m_target.emplace(m_context, static_cast<std::uint32_t>(render_w), static_cast<std::uint32_t>(render_h));
+    m_rendered_w = render_w;
+    m_rendered_h = render_h;
+    m_target_has_frame = false;
+  }
+  std::uint32_t index = 0;
+  const VkResult acquired = vkAcquireNextImageKHR(device, m_swapchain, UINT64_MAX, m_acquired, VK_NULL_HANDLE, &index);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+    m_out_of_date = true;
+    return std::nullopt;
+  }
+  if (acquired != VK_SUBOPTIMAL_KHR) vk::check(acquired, "vkAcquireNextImageKHR");
+  vk::check(vkResetFences(device, 1, &m_frame_done), "vkResetFences");
+
+  const auto record_begin = std::chrono::steady_clock::now();
+  VkCommandBuffer cb = m_commands;
+  vk::check(vkResetCommandBuffer(cb, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                 VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+  vk::check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  VkImage swap_image = m_images[index];
+  // Where the swapchain image is once the frame is in it, and the last
+  // stage and access that wrote it.
+  VkImageLayout shown_layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  VkPipelineStageFlags shown_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  VkAccessFlags shown_access = VK_ACCESS_TRANSFER_WRITE_BIT;
+  if (direct) {
+    // The kernel writes the swapchain image itself: its old contents are
+    // not needed (UNDEFINED) and storage writes need GENERAL. The
+    // transition waits at the compute stage, the stage the submit's wait on
+    // `acquired` blocks, so it happens only after the presentation engine
+    // has released the image, and the kernel's writes come after it.
+    vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    renderer.record(cb, eyes, eye_width, eye_height,
+                    vk::UnormTarget{m_views[index], m_format, m_extent.width, m_extent.height});
+    shown_layout = VK_IMAGE_LAYOUT_GENERAL;
+    shown_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    shown_access = VK_ACCESS_SHADER_WRITE_BIT;
+  } else {
+    VkImage target_image = m_target->handle();
+    renderer.record(cb, eyes, eye_width, eye_height, *m_target);
+    // Read after write: the blit reads what the kernel wrote; to the layout
+    // blits read best (the previous frame's last barrier already ordered this
+    // frame's kernel after that frame's blit).
+    vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    // The swapchain image: its old contents are not needed (UNDEFINED); the
+    // transition waits at the transfer stage, the stage the submit's wait on
+    // `acquired` blocks, so it happens only after the presentation engine
+    // has released the image.
+    vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {render_w, render_h, 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {static_cast<std::int32_t>(m_extent.width), static_cast<std::int32_t>(m_extent.height), 1};
+    vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   1, &blit, fits_window() || !m_linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+    // Back to GENERAL, where Sol::vk expects its storage images between
+    // commands (the next kernel, download()); write after read: the next
+    // frame's kernel and any download's copy wait for the blit to finish reading.
+    vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_IMAGE_LAYOUT_GENERAL);
+  }
+  // Screenshots and --record take the frame as shown: the swapchain image
+  // after the blit, copied to a host-visible buffer.
+  const bool capturing = m_can_capture && capture;
+  if (capturing) {
+    const VkDeviceSize bytes = VkDeviceSize{m_extent.width} * m_extent.height * 4;
+    if (!m_capture || m_capture->size() != bytes) m_capture.emplace(m_context, bytes);
+    // Read after write: the copy reads what the blit or the kernel wrote.
+    vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                      shown_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {m_extent.width, m_extent.height, 1};
+    vkCmdCopyImageToBuffer(cb, swap_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m_capture->handle(), 1, &copy);
+    // The host reads the buffer after the fence: make the copy's writes visible to it.
+    VkBufferMemoryBarrier host{};
+    host.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+    host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    host.buffer = m_capture->handle();
+    host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0, nullptr);
+    shown_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    shown_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    shown_access = VK_ACCESS_TRANSFER_READ_BIT;
+  }
+  // To the presentation layout; the present waits on `rendered`, which the
+  // submit signals after all these commands, so no later stage needs to wait here.
+  vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
+                    VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+  const double record_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - record_begin).count();
+
+  // The first use of the swapchain image waits for the acquire: the kernel
+  // on the direct path; the blit otherwise (the kernel may run before the image is free).
+  const VkPipelineStageFlags wait_stage = direct ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT;
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.waitSemaphoreCount = 1;
+  submit.pWaitSemaphores = &m_acquired;
+  submit.pWaitDstStageMask = &wait_stage;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cb;
+  submit.signalSemaphoreCount = 1;
+  submit.pSignalSemaphores = &m_rendered[index];
+  vk::check(vkQueueSubmit(m_context.queue(), 1, &submit, m_frame_done), "vkQueueSubmit");
+  VkPresentInfoKHR info{};
+  info.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
+  info.waitSemaphoreCount = 1;
+  info.pWaitSemaphores = &m_rendered[index];
+  info.swapchainCount = 1;
+  info.pSwapchains = &m_swapchain;
+  info.pImageIndices = &index;
+  const VkResult presented = vkQueuePresentKHR(m_context.queue(), &info);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
+    m_out_of_date = true;
+  } else {
+    vk::check(presented, "vkQueuePresentKHR");
+  }
+  m_target_has_frame = !direct;
+  if (capturing) {
+    m_captured_w = m_extent.width;
+    m_captured_h = m_extent.height;
+    m_captured_format = m_format;
+    m_captured_direct = direct;
+  }
+  return Shown{direct, record_ms};
+}
+
+void Presenter::save(const std::string& path) {
+  // The frame's commands must be done before the host reads the capture or the target.
+  wait_for_frame();
+  if (m_captured_w != 0) {
+    write_capture(path);
+  } else if (m_target && m_target_has_frame) {
+    write_rendered(path);
+  } else {
+    throw std::runtime_error(path + ": no frame was rendered");
+  }
+}
+
+// The captured frame as 8-bit sRGB, like solrender's PNGs.
+void Presenter::write_capture(const std::string& path) const {
+  const std::uint32_t w = m_captured_w, h = m_captured_h;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(m_capture->bytes().data());
+  const VkFormat format = m_captured_format;
+  const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM;
+  const bool srgb = format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_R8G8B8A8_SRGB || m_captured_direct;
+  std::vector<float> rgba(std::size_t{w} * h * 4);
+  for (std::size_t k = 0; k < std::size_t{w} * h; ++k) {
+    for (std::size_t c = 0; c < 4; ++c) {
+      const std::size_t from = bgr && c < 3 ? 2 - c : c;
+      rgba[4 * k + c] = static_cast<float>(bytes[4 * k + from]) / 255.0f;
+    }
+  }
+  // sRGB swapchain, or the direct path's UNORM one that the kernel wrote
+  // sRGB-encoded: the bytes are already encoded (written as they are);
+  // another UNORM one holds linear values, encoded on the way out.
+  programs::write_image(path, static_cast<int>(w), static_cast<int>(h), {"R", "G", "B", "A"}, rgba, !srgb);
+}
+
+// The rendered image (before scaling) as 8-bit sRGB.
+void Presenter::write_rendered(const std::string& path) const {
+  const std::vector<float> all = m_target->download();
+  const int width = m_rendered_w, height = m_rendered_h;
+  std::vector<float> rgba(static_cast<std::size_t>(width) * height * 4);
+  for (int j = 0; j < height; ++j) {
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(j) * m_target->width() * 4, width * 4,
+                rgba.begin() + static_cast<std::ptrdiff_t>(j) * width * 4);
+  }
+  programs::write_image(path, width, height, {"R", "G", "B", "A"}, rgba, true);
+}
+
+}  // namespace sol::viewer
