@@ -3,7 +3,7 @@
 //
 // Pairs are end points of geodesics from the origin (then left-translated by
 // a random g, so both points are generic) at a known length t below the
-// period T, where the distance is t (Coiculescu–Schwartz, DESIGN.md §3):
+// period T, where the distance is t (Coiculescu–Schwartz, docs/mathematics.md):
 //   near:      random directions, t in [0.2, 2]
 //   mid:       random directions, t in [2, 8]
 //   far:       directions with c near ±1 (long periods), t in [18, 28]

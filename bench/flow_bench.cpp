@@ -1,7 +1,7 @@
 // flow_bench: error against run time for every geodesic method.
 //
 // For a fixed set of directions (random ones and the stiff ones of
-// DESIGN.md §4) and arc lengths 1, 10 and 50, each method setting gets
+// docs/mathematics.md) and arc lengths 1, 10 and 50, each method setting gets
 //   - its maximum endpoint error against the 50-digit coordinate-form
 //     reference (tests/support/reference_geodesic.hpp), scaled as in the
 //     accuracy goals: |Δposition|_∞ / max(1, |position|_∞);

@@ -1,5 +1,5 @@
 // The exact distance and the connections between two points, checked against
-// facts (DESIGN.md §3) and the independent 50-digit reference geodesics, not
+// facts (docs/mathematics.md) and the independent 50-digit reference geodesics, not
 // against the solver itself.
 #include <algorithm>
 #include <cmath>
@@ -37,7 +37,7 @@ double landing_error(const glm::dvec3& p, const sol::Connection& c, const glm::d
   return glm::length(e);
 }
 
-// cosh d = cosh Δz + ½ Δ² e^{±(z1+z2)} (DESIGN.md §3), solved for d without cancellation.
+// cosh d = cosh Δz + ½ Δ² e^{±(z1+z2)} (docs/mathematics.md), solved for d without cancellation.
 double plane_distance(double delta, double z1, double z2, double sign) {
   const double sh = std::sinh(0.5 * (z2 - z1));
   return 2.0 * std::asinh(std::sqrt(sh * sh + 0.25 * delta * delta * std::exp(sign * (z1 + z2))));
@@ -83,7 +83,7 @@ TEST(Connection, StraightSegmentsUpToTheirPeriodAreMinimising) {
 TEST(Connection, GeodesicsShorterThanTheirPeriodHaveTheirLengthAsDistance) {
   // Coiculescu–Schwartz: a geodesic from the origin minimises up to its
   // period T. End points from the 50-digit reference, lengths up to 0.95 T
-  // (capped at 16), directions random and stiff (DESIGN.md §4). The straight
+  // (capped at 16), directions random and stiff (docs/mathematics.md). The straight
   // lines |a| = |b|, c = 0 have T = 4K(0)/√2 = √2π.
   std::vector<glm::dvec3> dirs = sol::test::random_directions(14, 99);
   for (const glm::dvec3& d : sol::test::stiff_directions()) dirs.push_back(d);

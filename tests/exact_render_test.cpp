@@ -163,7 +163,7 @@ TEST(ExactTable, AccuracyAgainstTheSolver) {
     worst = std::max(worst, std::abs(table.lookup(w) - d));
   }
   std::printf("distance table: worst |lookup - distance| = %.2e over %d points (0.3 <= d <= 1.2)\n", worst, checked);
-  EXPECT_LT(worst, 1e-2);  // measured 5.1e-3 (README)
+  EXPECT_LT(worst, 1e-2);  // measured 5.1e-3 (docs/exact.md)
   EXPECT_LT(table.lookup({3.0, 0.0, 0.0}), 0.0);  // outside the box
 }
 

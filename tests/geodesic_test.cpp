@@ -30,7 +30,7 @@ sol::FlowOptions dopri(double tolerance) {
   return o;
 }
 
-// The first integrals of DESIGN.md §3 for a geodesic from the origin with
+// The first integrals of docs/mathematics.md for a geodesic from the origin with
 // unit direction d = (a,b,c): e^{-z}u1 = a, e^{z}u2 = b, |u| = 1, u3 + a x - b y = c.
 struct IntegralDrift {
   double i1, i2, norm, i3;

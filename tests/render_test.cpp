@@ -267,8 +267,8 @@ TEST(Render, HorizontalTubeBoundsNeverExceedPathLengths) {
                    std::max(std::asinh(std::abs(p.x - through.x) * std::exp(-p.z)), std::abs(p.z - through.z)) - 0.1);
 }
 
-// Patterns on balls and tubes: with w = centre⁻¹·hit (left-translation, DESIGN
-// §2 group law written out here), the checker's cell comes from the
+// Patterns on balls and tubes: with w = centre⁻¹·hit (left-translation, the
+// group law of docs/conventions.md written out here), the checker's cell comes from the
 // documented coordinates (4/π)(longitude, latitude) and, on a vertical tube,
 // (4/π)(angle, z / radius). Each hit pixel's colour over the plain object's
 // is 1 or 0.45 as that cell says (pixels within 0.03 of a cell edge skipped:

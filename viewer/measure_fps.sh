@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Frame rates of solview for every preset at 640x360 on the Vulkan device the
 # loader picks (lavapipe here: VK_ICD_FILENAMES), at render scale 1 and with
-# the adaptive scale holding 30 fps; prints a Markdown table for README.md.
+# the adaptive scale holding 30 fps; prints a Markdown table for docs/solview.md.
 # With `present`: plane at scale 1 on the direct path (--present auto) and
 # through the blit (--present blit), four interleaved runs of each.
 #   viewer/measure_fps.sh [BUILD_DIR] [present]    (needs xvfb-run, or a DISPLAY)

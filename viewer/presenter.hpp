@@ -2,7 +2,7 @@
 // commands that put one frame of the march kernel on the screen. It knows
 // nothing of scenes, input or the render scale's policy (solview.cpp).
 //
-// Two paths (viewer/README.md "How solview presents a frame"):
+// Two paths (docs/solview.md "How solview presents a frame"):
 //  - direct: at render scale 1 the kernel writes straight into the swapchain
 //    image (a storage-capable UNORM image, sRGB-encoded by the kernel);
 //  - blit: a scaled frame goes to an RGBA32F image, then a blit scales it

@@ -3,7 +3,7 @@
 // controls to walk along geodesics (controls.hpp). This file is the
 // application: options, the scene and its world (prepared once per scene by
 // the renderer), input, the adaptive render scale, screenshots and the
-// frame loop. See viewer/README.md.
+// frame loop. See docs/solview.md.
 //
 //   solview --scene sandwich
 //   solview --scene plane --size 320x180 --frames 60 --screenshot last.png
@@ -483,7 +483,7 @@ int run(App& app) {
   }
   std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frame, app.scale, shown_w,
                shown_h, presenter.extent().width, presenter.extent().height);
-  // Which path presented the frames (viewer/README.md: How solview presents a frame).
+  // Which path presented the frames (docs/solview.md: How solview presents a frame).
   std::fprintf(stderr, "solview: present: direct %ld frames, blit %ld frames (direct path %s)\n", direct_frames,
                blit_frames, presenter.direct_capable() ? "available" : "unavailable on this surface");
   if (context.validation_enabled()) {

@@ -14,7 +14,7 @@
 // included); the eye is at Sol distance exactly |d| from the base, along the
 // direction the head moved (the exponential map is a radial isometry), so
 // small head motions look Euclidean to first order; and eyes at (∓ipd/2, 0, 0)
-// with q = identity are exactly sol::stereo_eyes (DESIGN.md §2), so the
+// with q = identity are exactly sol::stereo_eyes (docs/conventions.md), so the
 // runtime's eye separation is the stereo baseline.
 #pragma once
 

@@ -90,7 +90,7 @@ vec4 output_color(vec4 linear) {
 #endif
 }
 
-// The lower bound of the Sol distance (sol::distance_lower_bound, DESIGN.md §3).
+// The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
 float distance_lower_bound(vec3 p, vec3 q) {
   float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
   float a = max(0.5 * dx * dx * exp(-sum), 0.5 * dy * dy * exp(sum));
@@ -177,7 +177,7 @@ float pattern_factor(int pattern, float u, float v) {
   return 1.0;
 }
 
-// Pattern coordinates on a ball or tube (sol::pattern_coordinates) of a point
+// Pattern coordinates on a ball or tube (sol::Ball::pattern_uv, sol::Tube::pattern_uv) of a point
 // q given in the coordinates of the centre (axis point) `rel`: with
 // w = rel⁻¹·q, balls (4/π)(longitude, latitude); tubes (4/π)(angle around
 // the axis, coordinate along it / radius).
@@ -346,7 +346,7 @@ void main() {
   const int max_steps = int(params.limits.w);
   const float rk4_step = eye_forward.w;
 
-  // The camera convention of DESIGN.md §2 (or the eye's off-axis window), per eye.
+  // The camera convention of docs/conventions.md (or the eye's off-axis window), per eye.
   const vec4 window = params.eyes[eye].window;
   const float sx = window.x + (window.y - window.x) * (float(local.x) + 0.5) / float(width);
   const float sy = window.z + (window.w - window.z) * (float(local.y) + 0.5) / float(height);

@@ -11,7 +11,7 @@
 // forward-difference Jacobian, steps capped and halved while the residual
 // grows. A polished seed is a connection when its end point lies within the
 // float tolerance of w (measured in frame components at w). What that finds
-// and how accurately: tests vk.Kernel.Connections* and README "Exact spheres
+// and how accurately: tests vk.Kernel.Connections* and docs/exact.md "Exact spheres
 // and point lights in the renderer".
 //
 // Needs sol_geodesic.glsl, and before this file a storage buffer

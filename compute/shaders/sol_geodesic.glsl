@@ -387,7 +387,7 @@ vec3 sol_plane_position(SolRay g, float t) {
 }
 
 // e^{w} = (dn u + k cn u)/k' by Jacobi theta series, the cheap path for
-// heights (one exp or cos per call; DESIGN.md §4). e^{w} is even in u and
+// heights (one exp or cos per call; docs/mathematics.md). e^{w} is even in u and
 // e^{w(u + 2K)} = e^{-w(u)}, so u is reduced to r ∈ [0, K]. With the nome
 // q <= e^{-π} the series below are truncated below 4e-9 relative (checked
 // against mpmath for m from 1e-6 to 1 - 1e-20).

@@ -65,7 +65,7 @@ glm::dvec3 residual(const glm::dvec3& end, const glm::dvec3& q, Residual kind) {
 }
 
 // What the end point can be trusted to: the closed form is exact to ~1e-15 of
-// each coordinate (README, Numerics), seen in the frame at q.
+// each coordinate (docs/numerics.md), seen in the frame at q.
 double rounding_floor(const glm::dvec3& q) {
   return 1e-14 * std::max({1.0, q.x * std::exp(-q.z), q.y * std::exp(q.z), std::abs(q.z)});
 }
@@ -74,7 +74,7 @@ double rounding_floor(const glm::dvec3& q) {
 // X > 0. In the upper half-plane (x, w = e^{z}) it is the circle through
 // (0, 1) and (X, e^{Z}) centred on the axis at x0 = (X² + e^{2Z} - 1)/(2X);
 // its tangent at (0, 1) is (1, x0), and there ∂x = E1, ∂w = E3. The length
-// from cosh d = cosh Z + ½X² e^{-Z} (DESIGN.md §3), written without
+// from cosh d = cosh Z + ½X² e^{-Z} (docs/mathematics.md), written without
 // cancellation as d = 2 asinh √(sinh²(Z/2) + X² e^{-Z}/4).
 Solution plane_solution(double X, double Z) {
   Solution s;
@@ -230,7 +230,7 @@ bool newton_stiff(glm::dvec3& v, double& t, const glm::dvec3& q, double toleranc
 // The period of a direction. The closed form reports no period for the
 // straight lines |a| = |b|, c = 0 (z does not move), but their neighbours
 // have periods tending to 4K(0)/√2 = √2π, where the straight line stops
-// minimising (DESIGN.md §3).
+// minimising (docs/mathematics.md).
 double period_of(const glm::dvec3& v) {
   const Geodesic g(v);
   if (std::isinf(g.period()) && v.x != 0.0 && v.y != 0.0) return std::numbers::sqrt2 * std::numbers::pi;

@@ -27,7 +27,7 @@ Observer::Observer(const glm::dvec3& position, const glm::dvec3& forward, const 
 }
 
 void Observer::orthonormalise() {
-  // The camera convention of DESIGN.md §2: forward first, right = forward × up, up = right × forward.
+  // The camera convention of docs/conventions.md: forward first, right = forward × up, up = right × forward.
   const glm::dvec3 f = glm::normalize(m_frame[2]);
   const glm::dvec3 r = glm::normalize(glm::cross(f, m_frame[1]));
   m_frame[0] = r;

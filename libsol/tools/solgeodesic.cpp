@@ -1,5 +1,5 @@
 // solgeodesic: prints Sol geodesics as tables of arc length, position and
-// direction, with the first integrals of DESIGN.md §3 as a check.
+// direction, with the first integrals of docs/mathematics.md as a check.
 //
 //   solgeodesic                          a few representative geodesics
 //   solgeodesic --direction 1 0.5 0.2 --length 10 --samples 11 --method rk4

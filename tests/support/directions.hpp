@@ -1,5 +1,5 @@
 // Direction sets shared by the tests and the bench: random unit directions
-// (fixed seed) and the stiff and extreme ones of DESIGN.md §4.
+// (fixed seed) and the stiff and extreme ones of docs/mathematics.md.
 #pragma once
 
 #include <cmath>
@@ -58,7 +58,7 @@ inline std::vector<glm::dvec3> stiff_directions() {
   return d;
 }
 
-/// max(1, |v|) component-wise maximum: the scale of DESIGN.md's error goals.
+/// max(1, |v|) component-wise maximum: the scale error goals are stated in (docs/numerics.md).
 inline double error_scale(const glm::dvec3& v) {
   return std::max({1.0, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }

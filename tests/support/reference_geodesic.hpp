@@ -2,7 +2,7 @@
 //
 // Integrates the Euler–Lagrange equations of the metric in *coordinates*
 //   x'' = 2x'z',  y'' = -2y'z',  z'' = -e^{-2z}x'^2 + e^{2z}y'^2
-// (DESIGN.md §3) with Boost.Odeint's Bulirsch–Stoer stepper in 50-digit
+// (docs/mathematics.md) with Boost.Odeint's Bulirsch–Stoer stepper in 50-digit
 // arithmetic (Boost.Multiprecision cpp_bin_float_50). It shares no code with
 // libsol: a different formulation (coordinates, not frame components), a
 // different integrator and a different number type.

@@ -5,7 +5,7 @@
 // height oscillates in the potential 2μ cosh 2w (w'^2 + 2μ cosh 2w = 1) and
 //   x' = B e^{2w},  y' = A e^{-2w},  u = (√μ e^{w}, √μ e^{-w}, w')
 // in the reduced frame. Jacobi functions of u = λt + u0 with
-// λ = √(1+2μ), m = ((A-B)^2 + c^2)/λ^2, m1 = 4μ/λ^2 (both exact, DESIGN.md §3) give
+// λ = √(1+2μ), m = ((A-B)^2 + c^2)/λ^2, m1 = 4μ/λ^2 (both exact, docs/mathematics.md) give
 //   e^{w} = (dn + k cn)/k' = k'/(dn - k cn),  w' = -kλ sn,
 // the top of the oscillation at u = 0. The positions are the time integrals
 // of s = e^{2w} and 1/s. These are never formed as differences of elliptic

@@ -4,7 +4,7 @@
 // Reduction. Left translation by p⁻¹ is an isometry that keeps frame
 // components, so q' = p⁻¹q is joined from the origin. Along a geodesic from
 // the origin with direction (a, b, c), x' = a e^{2z} and y' = b e^{-2z}
-// (first integrals, DESIGN.md §3): x and y are monotone with the signs of a
+// (first integrals, docs/mathematics.md): x and y are monotone with the signs of a
 // and b. Hence a connection to q' has sign(a) = sign(x'), sign(b) = sign(y'),
 // a = 0 iff x' = 0, b = 0 iff y' = 0, and the symmetries (±x, ±y, z) (which act
 // on frame components as (±a, ±b, c)) reduce q' to x', y' >= 0:
@@ -27,7 +27,7 @@
 //   - The straight lines (t/√2, ±t/√2, 0), t <= √2π, minimise up to their
 //     period √2π, where they are conjugate: taken directly (within 1e-13).
 // Certificate. A geodesic from the origin minimises exactly up to one
-// z-period T (Coiculescu–Schwartz, DESIGN.md §3): any connection found with
+// z-period T (Coiculescu–Schwartz, docs/mathematics.md): any connection found with
 // length t <= T is a minimiser, so its length is the distance. When the
 // continuation from one plane arrives with t > T its mirror (a, b, -c) is
 // polished as a seed (near the cut locus the minimiser is next to it), then
@@ -133,7 +133,7 @@ glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center
 /// the rest), read by trilinear interpolation. Covers the exact band of
 /// balls of radius up to ~0.7 (|Δz| <= bound <= r + 0.25); outside it a
 /// kernel keeps the bound. Accuracy of lookup against distance(): see
-/// test ExactTable.AccuracyAgainstTheSolver (README).
+/// test ExactTable.AccuracyAgainstTheSolver (docs/exact.md).
 struct DistanceTable {
   static constexpr int kSize = kernel::kDistanceTableSize;          ///< points per axis
   static constexpr double kExtent = kernel::kDistanceTableExtent;  ///< x, y in [0, kExtent]
@@ -161,7 +161,7 @@ struct DistanceTable {
 /// across the cell from any corner is seeded, and both branches at the cut
 /// locus z = 0 are), merged when their initial vectors t·(a, b, c) agree to
 /// kMerge max(1, t), shortest first, at most kSlots, as (a, b, c, t) (unit
-/// direction, length; t = 0: empty). Accuracy of the kernel's solver: README
+/// direction, length; t = 0: empty). Accuracy of the kernel's solver: docs/exact.md
 /// "Exact spheres and point lights" (tests vk.Kernel.Connections*).
 struct ConnectionTable {
   // The grid's geometry, shared with the kernel (sol/kernel_constants.h).

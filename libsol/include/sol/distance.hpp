@@ -1,4 +1,4 @@
-// Exact Sol distances to the coordinate planes (DESIGN.md §3), usable as
+// Exact Sol distances to the coordinate planes (docs/mathematics.md), usable as
 // signed distance functions for sphere tracing, and their gradients.
 //
 //   plane z = c:  |z - c|                      (the vertical segment is a geodesic)
@@ -38,7 +38,7 @@ inline glm::dvec3 sdf_plane_y_gradient(const glm::dvec3& p, double c) {
   return {0.0, (p.y >= c ? 1.0 : -1.0) * r, w * r};
 }
 
-/// A lower bound of the Sol distance between p and q (DESIGN.md §3): the
+/// A lower bound of the Sol distance between p and q (docs/mathematics.md): the
 /// projections (x, y, z) -> (x, z) and -> (y, z) onto the hyperbolic planes
 /// e^{-2z}dx² + dz² and e^{2z}dy² + dz² do not increase lengths, and there
 ///   cosh d = cosh Δz + ½ Δx² e^{-(z1+z2)},   cosh d = cosh Δz + ½ Δy² e^{z1+z2}.
@@ -54,7 +54,7 @@ inline double distance_lower_bound(const glm::dvec3& p, const glm::dvec3& q) {
 
 /// Signed distance bound of the ball (center, radius): never more than the
 /// true distance to the geodesic ball, so sphere tracing never tunnels; its
-/// zero set is the surface drawn (README: how it differs from the sphere).
+/// zero set is the surface drawn (docs/scene-format.md: how it differs from the sphere).
 inline double sdf_ball(const glm::dvec3& p, const glm::dvec3& center, double radius) {
   return distance_lower_bound(p, center) - radius;
 }

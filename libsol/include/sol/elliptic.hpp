@@ -2,7 +2,7 @@
 //
 // Every function takes the parameter m = k² together with its complement
 // m1 = 1 - m, both computed exactly by the caller (for Sol geodesics
-// m1 = 4|ab|/(1+2|ab|), DESIGN.md §3): near m = 1 everything is driven by m1
+// m1 = 4|ab|/(1+2|ab|), docs/mathematics.md): near m = 1 everything is driven by m1
 // and k' = √m1, so precision survives m1 down to the smallest normal numbers.
 // m and m1 must lie in [0, 1] and add up to 1 within a few ulp; otherwise, or
 // for NaN/inf arguments, sol::InvalidArgument is thrown.

@@ -1,7 +1,7 @@
 // Geodesic flow and parallel transport in Sol.
 //
 // A geodesic state is a point and a unit tangent given by its frame
-// components (DESIGN.md §2). Geodesics are left-invariant: the geodesic from
+// components (docs/conventions.md). Geodesics are left-invariant: the geodesic from
 // p with direction v is p * γ_v(t), with γ_v the geodesic from the origin, and
 // the frame components of the tangent are the same along both. libsol
 // therefore integrates from the origin (small coordinates) and left-translates.

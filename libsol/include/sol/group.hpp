@@ -5,7 +5,7 @@
 // whose left translations are isometries. The left-invariant orthonormal
 // frame is E1 = e^{z}∂x, E2 = e^{-z}∂y, E3 = ∂z; libsol stores tangent vectors
 // by their frame components (a,b,c), whose coordinate velocity is
-// (e^{z}a, e^{-z}b, c). See DESIGN.md §2.
+// (e^{z}a, e^{-z}b, c). See docs/conventions.md.
 #pragma once
 
 #include <glm/vec3.hpp>

@@ -5,7 +5,7 @@
 // M = Γ\Sol is a torus bundle over the circle with Anosov monodromy. The
 // fundamental domain is D = {sγ1 + rγ2 : s,r ∈ [0,1)} × [0, 2 ln φ). Elements
 // (x,y,0) act by plain translation of (x,y); γ3^n scales x by φ^{2n} and y by
-// φ^{-2n} and adds 2n ln φ to z. DESIGN.md §3.
+// φ^{-2n} and adds 2n ln φ to z. docs/mathematics.md.
 #pragma once
 
 #include <array>
@@ -24,7 +24,7 @@ struct Teleport {
 
 class Lattice {
  public:
-  /// The lattice Γ of DESIGN.md §3.
+  /// The lattice Γ of docs/mathematics.md.
   static Lattice golden();
 
   /// Generators γ1, γ2, γ3 as points of Sol.

@@ -1,7 +1,7 @@
 // An observer walking along Sol geodesics: a position and an orthonormal frame.
 //
 // The frame (right, up, forward) is stored by its frame components at the
-// observer's position, following the camera convention of DESIGN.md §2:
+// observer's position, following the camera convention of docs/conventions.md:
 // right = normalize(forward × up), up = right × forward. Moving flows along a
 // geodesic and parallel-transports the frame; rotations turn the frame in
 // place. After every change the frame is re-orthonormalised (Gram–Schmidt on
