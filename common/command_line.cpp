@@ -89,22 +89,11 @@ void CommandLine::add_choice(const std::string& names, std::string& target, cons
   });
 }
 
-void CommandLine::add_number(const std::string& names, double& target, const std::string& value_name,
-                             const std::string& help, const std::optional<Condition>& condition) {
-  add_value(names, value_name, help, [this, &target, condition, name = long_name(names)](const std::string& text) {
-    const double v = number(text, name);
-    if (condition && !condition->holds(v)) fail("option " + name + " must be " + condition->words + ", got " + text);
-    target = v;
-  });
-}
-
-void CommandLine::add_number(const std::string& names, std::optional<double>& target, const std::string& value_name,
-                             const std::string& help, const std::optional<Condition>& condition) {
-  add_value(names, value_name, help, [this, &target, condition, name = long_name(names)](const std::string& text) {
-    const double v = number(text, name);
-    if (condition && !condition->holds(v)) fail("option " + name + " must be " + condition->words + ", got " + text);
-    target = v;
-  });
+double CommandLine::checked_number(const std::string& text, const std::string& option,
+                                   const std::optional<Condition>& condition) const {
+  const double v = number(text, option);
+  if (condition && !condition->holds(v)) fail("option " + option + " must be " + condition->words + ", got " + text);
+  return v;
 }
 
 void CommandLine::add_vec3(const std::string& names, std::optional<glm::dvec3>& target, const std::string& value_name,

@@ -61,10 +61,14 @@ class CommandLine {
     std::function<bool(double)> holds;
     std::string words;
   };
-  void add_number(const std::string& names, double& target, const std::string& value_name, const std::string& help,
-                  const std::optional<Condition>& condition = std::nullopt);
-  void add_number(const std::string& names, std::optional<double>& target, const std::string& value_name,
-                  const std::string& help, const std::optional<Condition>& condition = std::nullopt);
+  /// `target`: a double or a std::optional<double>.
+  template <class Target>
+  void add_number(const std::string& names, Target& target, const std::string& value_name, const std::string& help,
+                  const std::optional<Condition>& condition = std::nullopt) {
+    add_value(names, value_name, help, [this, &target, condition, name = long_name(names)](const std::string& text) {
+      target = checked_number(text, name, condition);
+    });
+  }
   /// Three finite numbers "x,y,z".
   void add_vec3(const std::string& names, std::optional<glm::dvec3>& target, const std::string& value_name,
                 const std::string& help);
@@ -89,6 +93,9 @@ class CommandLine {
   // Reading values by hand (the same messages), failing with status 2.
   /// A finite number.
   double number(const std::string& text, const std::string& option) const;
+  /// A finite number meeting `condition` when given.
+  double checked_number(const std::string& text, const std::string& option,
+                        const std::optional<Condition>& condition) const;
   /// An integer in [lo, hi].
   long integer(const std::string& text, const std::string& option, long lo, long hi) const;
   /// Three comma-separated finite numbers, "x,y,z".
