@@ -68,6 +68,12 @@ layout(std430, set = 0, binding = kBindingDistanceTable) readonly buffer Distanc
   float distance_table[];
 };
 
+// sol::QuotientField: the quotient world's distance field over D and each
+// cell's candidate images (layout in sol/quotient_field.hpp).
+layout(std430, set = 0, binding = kBindingField) readonly buffer QuotientField {
+  uint field_words[];
+};
+
 // sol::ConnectionTable: the seeds of the connection solver (exact point lights).
 layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds {
   vec4 connection_seeds[];
@@ -314,6 +320,49 @@ vec3 sol_direction(SolRay g, float t) {
   return vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
 }
 
+// The field's cell of a point of D: (cell index, layer) and the fractions
+// within the cell (sol::QuotientField::cell_of).
+struct FieldCell {
+  int i, j, k;
+  vec3 f;
+};
+
+FieldCell field_cell(vec3 p) {
+  const float det = kPhi * kPhi + 1.0;
+  const vec3 unit = clamp(vec3((kPhi * p.x - p.y) / det, (p.x + kPhi * p.y) / det, p.z / kLatticeHeight), 0.0, 1.0);
+  const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
+  FieldCell c;
+  c.i = min(int(g.x), kFieldCells - 1);
+  c.j = min(int(g.y), kFieldCells - 1);
+  c.k = min(int(g.z), kFieldLayers - 1);
+  c.f = g - vec3(c.i, c.j, c.k);
+  return c;
+}
+
+float field_node(int i, int j, int k) {
+  return uintBitsToFloat(field_words[2 * kFieldLayers + (k * (kFieldCells + 1) + j) * (kFieldCells + 1) + i]);
+}
+
+// F(q): a lower bound of the step the march may take from q, never above
+// the least distance bound of the images (sol::QuotientField::lower_bound).
+float field_lower_bound(FieldCell c) {
+  const float x00 = mix(field_node(c.i, c.j, c.k), field_node(c.i + 1, c.j, c.k), c.f.x);
+  const float x10 = mix(field_node(c.i, c.j + 1, c.k), field_node(c.i + 1, c.j + 1, c.k), c.f.x);
+  const float x01 = mix(field_node(c.i, c.j, c.k + 1), field_node(c.i + 1, c.j, c.k + 1), c.f.x);
+  const float x11 = mix(field_node(c.i, c.j + 1, c.k + 1), field_node(c.i + 1, c.j + 1, c.k + 1), c.f.x);
+  const float value = mix(mix(x00, x10, c.f.y), mix(x01, x11, c.f.y), c.f.z);
+  const vec3 spread = c.f * (1.0 - c.f);
+  const float edge_s = uintBitsToFloat(field_words[2 * c.k]), edge_r = uintBitsToFloat(field_words[2 * c.k + 1]);
+  return value - 2.0 * (spread.x * edge_s + spread.y * edge_r + spread.z * (kLatticeHeight / float(kFieldLayers))) -
+         kFieldRounding;
+}
+
+// The cell's candidate images (8 bits each), or kFieldAllImages.
+uint field_candidates(FieldCell c) {
+  const int nodes = (kFieldLayers + 1) * (kFieldCells + 1) * (kFieldCells + 1);
+  return field_words[2 * kFieldLayers + nodes + (c.k * kFieldCells + c.j) * kFieldCells + c.i];
+}
+
 vec3 world_from(vec3 origin, vec3 local) {
   return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
 }
@@ -354,16 +403,18 @@ void main() {
 
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a
-    // step ends outside; each step bounded by the images of the objects in the
-    // cells around D (kept within kQuotientKeep of the last filter point).
+    // step ends outside. Each step is the distance field's lower bound
+    // (sol::QuotientField: one read instead of every image's bound); where
+    // that is below kFieldNear, the step is also the least bound of the
+    // cell's candidate images (every image that can be nearer than
+    // kFieldNear there), whichever is larger, and the candidate that comes
+    // within hit_epsilon is the object hit. Steps stay below
+    // kQuotientMaxStep, the reach of the listed images.
     const int image_count = min(params.counts.x, kMaxGpuImages);
-    const float max_step = kQuotientMaxStep, keep = kQuotientKeep;
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     SolRay qray = sol_ray(direction);
     sol_ray_integrals(qray);
-    int kept[kMaxGpuImages];
-    int kept_count = 0;
-    float since_filter = keep, t = 0.0, local_t = 0.0;
+    float t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
     vec3 q = origin;
     for (int step = 0; step < max_steps; ++step) {
@@ -375,37 +426,34 @@ void main() {
         sol_ray_integrals(qray);
         local_t = 0.0;
         q = origin;
-        since_filter = keep;
       }
-      if (keep - since_filter < kQuotientRefilter) {
-        kept_count = 0;
-        for (int i = 0; i < image_count; ++i) {
+      const FieldCell cell = field_cell(q);
+      const float field = field_lower_bound(cell);
+      float step_length = field;
+      steps = step + 1;
+      if (field < kFieldNear) {
+        const uint word = field_candidates(cell);
+        const bool all = word == kFieldAllImages;
+        float nearest = 1e30;
+        int nearest_i = -1;
+        for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+          const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+          if (i == kFieldEmpty) continue;
           const Image m = images[i];
           const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
-          if (d <= keep) kept[kept_count++] = i;
+          if (d < nearest) {
+            nearest = d;
+            nearest_i = i;
+          }
         }
-        since_filter = 0.0;
-      }
-      float nearest = 1e30;
-      int nearest_i = -1;
-      for (int j = 0; j < kept_count; ++j) {
-        const int i = kept[j];
-        const Image m = images[i];
-        const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
-        if (d < nearest) {
-          nearest = d;
-          nearest_i = kept[j];
+        if (nearest < hit_epsilon) {
+          hit_image = nearest_i;
+          break;
         }
+        step_length = max(field, min(nearest, kFieldNear));
       }
-      steps = step + 1;
-      if (nearest < hit_epsilon) {
-        hit_image = nearest_i;
-        break;
-      }
-      const float step_length = min(min(nearest, max_step), keep - since_filter);
       t += step_length;
       local_t += step_length;
-      since_filter += step_length;
       if (t > max_distance) break;
     }
     vec4 color = vec4(0.0, 0.0, 0.0, 1.0);

@@ -15,6 +15,7 @@
 #include <sol/error.hpp>
 #include <sol/group.hpp>
 #include <sol/lattice.hpp>
+#include <sol/quotient_field.hpp>
 
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
@@ -180,7 +181,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingPoint, DescriptorType::StorageImage},
                                           {kernel::kBindingImages, DescriptorType::StorageBuffer},
                                           {kernel::kBindingDistanceTable, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingSeeds, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingSeeds, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingField, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
@@ -225,6 +227,7 @@ struct MarchRenderer::Impl {
   std::optional<Buffer> images;
   std::optional<Buffer> table;  // exact balls: sol::DistanceTable
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
+  std::optional<Buffer> field;  // the quotient: sol::QuotientField
   SeedTable seeds_held = SeedTable::None;
   // For the AOV bindings (rgba32f, never written without AOVs) when the
   // colour binding holds a caller's 8-bit image.
@@ -242,6 +245,7 @@ struct MarchRenderer::Impl {
       built.pipeline.bind(kernel::kBindingImages, *images);
       built.pipeline.bind(kernel::kBindingDistanceTable, *table);
       built.pipeline.bind(kernel::kBindingSeeds, *seeds);
+      built.pipeline.bind(kernel::kBindingField, *field);
       built.world_bound = generation;
     }
     return built.pipeline;
@@ -297,6 +301,11 @@ void MarchRenderer::set_world(const World& world) {
     m.seeds->write(values);
     m.seeds_held = seeds;
   }
+  // The quotient: its distance field over D (sol::MarchWorld built it; a stub otherwise).
+  const std::vector<std::uint32_t> stub_field(4, 0u);
+  const std::vector<std::uint32_t>& field = f.quotient ? prepared.field()->words() : stub_field;
+  m.field.emplace(m.context, field.size() * sizeof(std::uint32_t));
+  m.field->write(field);
   m.world_uniforms = world_params(prepared);
   m.world.emplace(std::move(prepared));
   ++m.generation;

@@ -6,6 +6,7 @@
 
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
+#include "sol/quotient_field.hpp"
 
 namespace sol {
 
@@ -122,6 +123,7 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   m_features = features_of(world);
   if (m_features.quotient) {
     m_objects = quotient_images(world);
+    m_field = std::make_shared<const QuotientField>(m_objects);
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
   }

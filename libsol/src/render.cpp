@@ -19,6 +19,7 @@
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
 #include "sol/light.hpp"
+#include "sol/quotient_field.hpp"
 
 namespace sol {
 namespace {
@@ -104,23 +105,22 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // The march in Γ\Sol: the ray lives in D. Every step starts in D (a ray
 // found outside is first teleported back by an element of Γ; its direction,
 // in frame components, is unchanged by the left-translation, and its
-// closed-form geodesic restarts there) and is at most kMaxStep long. The
-// distance bounds of all images of the objects in the cells around D are in
-// the step, so a step may cross a face of D but never passes through an
-// object beyond it. For speed only the images within kKeep of the last
-// filter point are evaluated, and the step is also kept below kKeep minus
-// the arc length since that filter, so that no dropped image can be reached
-// (a dropped image's bound exceeded kKeep there, and bounds are 1-Lipschitz
-// lower bounds of the distance).
+// closed-form geodesic restarts there). A step is the world's distance field
+// F (sol::QuotientField: a lower bound of the least distance bound of the
+// images around D, capped at kQuotientMaxStep); where F < kFieldNear it is
+// also the least bound of the cell's candidate images (every image whose
+// bound can be below kFieldNear in the cell), capped at kFieldNear,
+// whichever is larger: both never exceed the distance to the nearest image,
+// so a step may cross a face of D but never passes through an object. The
+// candidate that comes within hit_epsilon is the object hit. The kernel
+// (march.comp) marches the same way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction) {
-  constexpr double kMaxStep = kQuotientMaxStep, kKeep = kernel::kQuotientKeep;
   const World& world = prepared.world();
+  const QuotientField& field = *prepared.field();
   const Lattice lattice = Lattice::golden();
   const std::vector<MarchObject>& images = prepared.objects();
   glm::dvec3 origin = lattice.teleport(camera).point;
   auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
-  std::vector<std::size_t> kept;
-  double since_filter = kKeep;  // forces a filter at the start
   MarchHit hit;
   double t = 0.0, local = 0.0;  // total arc length; arc length since the last teleport
   for (int step = 0; step < world.max_steps; ++step) {
@@ -131,39 +131,35 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       ray = std::make_unique<ClosedFormGeodesic<double>>(u);
       local = 0.0;
       q = origin;
-      since_filter = kKeep;
-    }
-    if (kKeep - since_filter < kernel::kQuotientRefilter) {
-      kept.clear();
-      for (std::size_t k = 0; k < images.size(); ++k) {
-        if (object_distance(images[k], q) <= kKeep) kept.push_back(k);
-      }
-      since_filter = 0.0;
-    }
-    double nearest = std::numeric_limits<double>::infinity();
-    std::size_t nearest_k = 0;
-    for (std::size_t k : kept) {
-      const double d = object_distance(images[k], q);
-      if (d < nearest) {
-        nearest = d;
-        nearest_k = k;
-      }
     }
     hit.steps = step + 1;
-    if (nearest < world.hit_epsilon) {
-      hit.object = static_cast<int>(images[nearest_k].owner) + 1;
-      hit.distance = t;
-      hit.point = q;
-      // Normals are left-invariant: evaluate relative to the segment's origin
-      // (a plane then faces the side the ray comes from, as in the cover).
-      hit.normal = shape_normal(shape_seen_from(images[nearest_k].shape, origin), multiply(inverse(origin), q));
-      hit.pattern_uv = shape_pattern_uv(images[nearest_k].shape, q, q);  // world coordinates, the image's own
-      return hit;
+    const double bound = field.lower_bound(q);
+    double step_length = bound;
+    if (bound < QuotientField::kNear) {
+      double nearest = std::numeric_limits<double>::infinity();
+      int nearest_k = -1;
+      for (int k : field.candidates(q)) {
+        const double d = object_distance(images[static_cast<std::size_t>(k)], q);
+        if (d < nearest) {
+          nearest = d;
+          nearest_k = k;
+        }
+      }
+      if (nearest < world.hit_epsilon) {
+        const MarchObject& image = images[static_cast<std::size_t>(nearest_k)];
+        hit.object = static_cast<int>(image.owner) + 1;
+        hit.distance = t;
+        hit.point = q;
+        // Normals are left-invariant: evaluate relative to the segment's origin
+        // (a plane then faces the side the ray comes from, as in the cover).
+        hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
+        hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
+        return hit;
+      }
+      step_length = std::max(bound, std::min(nearest, QuotientField::kNear));
     }
-    const double step_length = std::min({nearest, kMaxStep, kKeep - since_filter});
     t += step_length;
     local += step_length;
-    since_filter += step_length;
     if (t > world.max_distance) break;
   }
   hit.distance = std::min(t, world.max_distance);

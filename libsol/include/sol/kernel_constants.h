@@ -13,6 +13,7 @@
 #define SOL_CONSTANT(type, name, value) inline constexpr type name = value
 #define SOL_REAL double
 namespace sol::kernel {
+using uint = unsigned int;
 #else
 #define SOL_CONSTANT(type, name, value) const type name = value
 #define SOL_REAL float
@@ -28,10 +29,23 @@ SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
 /// The longest march step: only the objects' images a step this long can
 /// reach from D are listed (sol::quotient_images).
 SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.5);
-/// Images within this bound of the last filter point are kept for the next steps...
-SOL_CONSTANT(SOL_REAL, kQuotientKeep, 1.25);
-/// ... and the list is filtered again when less than this is left of kQuotientKeep.
-SOL_CONSTANT(SOL_REAL, kQuotientRefilter, 0.25);
+
+// ---- sol::QuotientField: a distance field of a quotient world over D
+/// Cells along the lattice coordinates s and r (x, y = s γ1 + r γ2) ...
+SOL_CONSTANT(int, kFieldCells, 64);
+/// ... and along z in [0, kLatticeHeight).
+SOL_CONSTANT(int, kFieldLayers, 32);
+/// Where the field is below this, the march evaluates the cell's candidate
+/// images instead: every image whose bound can be below it in the cell.
+SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
+/// Candidate images per cell, 8 bits each in one word; kFieldEmpty marks an
+/// unused slot, kFieldAllImages a cell with more candidates (every image is evaluated there).
+SOL_CONSTANT(int, kFieldCandidates, 4);
+SOL_CONSTANT(int, kFieldEmpty, 255);
+SOL_CONSTANT(uint, kFieldAllImages, 0xFFFFFFFEu);
+/// Taken off the field for the float rounding of the position, the lattice
+/// coordinates and the interpolation (all below 1e-5).
+SOL_CONSTANT(SOL_REAL, kFieldRounding, 1e-4);
 
 // ---- Object, pattern and light codes of the kernels' scene description
 SOL_CONSTANT(int, kObjectPlaneX, 0);

@@ -11,10 +11,12 @@
 // advances by the distance to the nearest object (a lower bound, exact for
 // planes) until that falls below hit_epsilon (a hit) or t passes
 // max_distance or the steps max_steps (a miss). In the quotient the ray
-// lives in D and teleports back by an element of Γ when it leaves it.
+// lives in D, teleports back by an element of Γ when it leaves it, and
+// steps by the world's distance field (sol/quotient_field.hpp).
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -83,9 +85,12 @@ struct MarchFeatures {
 };
 MarchFeatures features_of(const World& world);
 
+class QuotientField;
+
 /// A world prepared for the march once: checked, its features found, its
-/// objects in world coordinates (Sol) or their images around D (the
-/// quotient, sol::quotient_images). What depends on the camera is not here.
+/// objects in world coordinates (Sol) or their images around D and their
+/// distance field (the quotient: sol::quotient_images, sol::QuotientField).
+/// What depends on the camera is not here.
 class MarchWorld {
  public:
   /// Validates the world (sol::validate) and prepares it.
@@ -99,11 +104,14 @@ class MarchWorld {
   /// Sol: the objects relative to `origin` (left-translated by origin⁻¹),
   /// what a ray from `origin` marches through.
   std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
+  /// The quotient: the distance field of objects() over D (null in Sol).
+  const QuotientField* field() const { return m_field.get(); }
 
  private:
   World m_world;
   MarchFeatures m_features;
   std::vector<MarchObject> m_objects;
+  std::shared_ptr<const QuotientField> m_field;
 };
 
 }  // namespace sol

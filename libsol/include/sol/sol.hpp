@@ -14,6 +14,7 @@
 #include "sol/march.hpp"
 #include "sol/objects.hpp"
 #include "sol/observer.hpp"
+#include "sol/quotient_field.hpp"
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"

@@ -30,6 +30,7 @@ SOL_CONSTANT(int, kBindingPoint, 3);        ///< storage image: the hit point Px
 SOL_CONSTANT(int, kBindingImages, 4);       ///< storage buffer: the quotient's Image records
 SOL_CONSTANT(int, kBindingDistanceTable, 5);  ///< storage buffer: sol::DistanceTable::values
 SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::ConnectionTable::seeds
+SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientField::words
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4

@@ -1,0 +1,80 @@
+// A distance field of a quotient world over the fundamental domain D, built
+// once per world for the kernels: one read per march step instead of the
+// distance bounds of every image around D.
+//
+// B(q) = min(kQuotientMaxStep, min_i b_i(q)) is what a step of the quotient
+// march may be (b_i the distance bound of the i-th image of
+// sol::quotient_images, which lists every image a step of at most
+// kQuotientMaxStep can reach from D). The field samples B at the nodes of a
+// grid over D in the coordinates (s, r, z/h), (x, y) = s γ1 + r γ2, and
+// reads it back in a cell, with fractions f_s, f_r, f_z and trilinear
+// weights w_n of its corners n, as
+//   F(q) = Σ_n w_n B(n) - 2 (f_s (1 - f_s) L_s + f_r (1 - f_r) L_r + f_z (1 - f_z) L_z) - ε,
+// where L_s, L_r, L_z bound the Sol lengths of the cell's edges (per layer:
+// along s the coordinates move by γ1/kCells at heights in [z0, z1], so
+// L_s = sqrt(e^{-2 z0} γ1x² + e^{2 z1} γ1y²)/kCells; likewise L_r with γ2;
+// L_z = h/kLayers) and ε covers the kernel's float rounding. Why it never
+// overestimates: b_i, hence B, is 1-Lipschitz in the Sol distance (a
+// distance to a set, or a maximum of distances in hyperbolic planes onto
+// which Sol projects without stretching), so B(q) >= B(n) - d(q, n) for
+// every corner; d(q, n) is at most the length of the path from q to n along
+// s, then r, then z, |f_s - n_s| L_s + |f_r - n_r| L_r + |f_z - n_z| L_z;
+// the weights sum to 1 and Σ_n w_n |f_s - n_s| = 2 f_s (1 - f_s).
+//
+// Near surfaces, where F < kFieldNear, the march needs the exact bounds; each
+// cell lists its candidate images, every image whose bound can fall below
+// kFieldNear somewhere in the cell (b_i(centre) - the cell's circumradius <=
+// kFieldNear). For q in the cell every other image has b_i(q) > kFieldNear,
+// so min(min over the candidates, kFieldNear) <= B(q): a safe step, and the
+// candidate that reaches hit_epsilon is the object hit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sol/kernel_constants.h"
+#include "sol/march.hpp"
+
+namespace sol {
+
+class QuotientField {
+ public:
+  static constexpr int kCells = kernel::kFieldCells;
+  static constexpr int kLayers = kernel::kFieldLayers;
+  static constexpr double kNear = kernel::kFieldNear;
+  static constexpr int kCandidates = kernel::kFieldCandidates;
+
+  /// Samples B over D for `images` (sol::quotient_images of a quotient
+  /// world, at most 254 of them; std::invalid_argument beyond). About
+  /// 150 000 nodes times the images' bounds.
+  explicit QuotientField(const std::vector<MarchObject>& images);
+
+  /// F(q) for q in D (clamped into it), as the kernel computes it, in double.
+  double lower_bound(const glm::dvec3& q) const;
+  /// The candidate images of q's cell (indices into the images), or every
+  /// image when the cell has more than kCandidates.
+  std::vector<int> candidates(const glm::dvec3& q) const;
+
+  /// The kernel's buffer: per layer L_s and L_r (2 kLayers floats), the node
+  /// values ((kLayers + 1)(kCells + 1)² floats, index (k (kCells + 1) + j)(kCells + 1) + i
+  /// for s_i, r_j, z_k) and the cells' candidates (kLayers kCells² words,
+  /// 8 bits a candidate), all as 32-bit words (floats by their bits).
+  const std::vector<std::uint32_t>& words() const { return m_words; }
+
+ private:
+  struct Cell {
+    int i, j, k;
+    glm::dvec3 f;  // fractions within the cell
+  };
+  Cell cell_of(const glm::dvec3& q) const;
+  float edge(int layer, int axis) const;
+  float node(int i, int j, int k) const;
+  std::uint32_t cell_candidates(int i, int j, int k) const;
+
+  std::vector<std::uint32_t> m_words;
+  std::size_t m_image_count = 0;
+};
+
+}  // namespace sol

@@ -1,0 +1,177 @@
+#include "sol/quotient_field.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "sol/distance.hpp"
+#include "sol/lattice.hpp"
+
+namespace sol {
+namespace {
+
+constexpr int kN = QuotientField::kCells, kNz = QuotientField::kLayers;
+constexpr std::size_t kNodes = static_cast<std::size_t>(kNz + 1) * (kN + 1) * (kN + 1);
+constexpr std::size_t kCellCount = static_cast<std::size_t>(kNz) * kN * kN;
+// The buffer's header: per layer the edge lengths along s and r.
+constexpr std::size_t kHeader = 2 * static_cast<std::size_t>(kNz);
+// Float rounding of the position, the lattice coordinates and the
+// interpolation in the kernel, far below this.
+constexpr double kRounding = kernel::kFieldRounding;
+// The Sol length of a cell's edge along z.
+constexpr double kEdgeZ = kernel::kLatticeHeight / kNz;
+
+std::size_t node_index(int i, int j, int k) {
+  return (static_cast<std::size_t>(k) * (kN + 1) + static_cast<std::size_t>(j)) * (kN + 1) + static_cast<std::size_t>(i);
+}
+std::size_t cell_index(int i, int j, int k) {
+  return (static_cast<std::size_t>(k) * kN + static_cast<std::size_t>(j)) * kN + static_cast<std::size_t>(i);
+}
+
+// The point of D's closure at lattice coordinates (s, r) and height z.
+glm::dvec3 point_at(const Lattice& lattice, double s, double r, double z) {
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  return {s * g1.x + r * g2.x, s * g1.y + r * g2.y, z};
+}
+
+// The bound b_i the march steps by (balls, exact or not, by their bound:
+// the sphere drawn lies within it).
+double bound(const MarchObject& image, const glm::dvec3& q) {
+  if (const Ball* ball = std::get_if<Ball>(&image.shape)) return sdf_ball(q, ball->center, ball->radius);
+  return object_distance(image, q);
+}
+
+// Runs f(k) for k in [0, count) on the hardware's threads.
+template <class F>
+void parallel_for(int count, F&& f) {
+  const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 8u));
+  std::vector<std::jthread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back([&, t] {
+      for (int k = static_cast<int>(t); k < count; k += static_cast<int>(threads)) f(k);
+    });
+  }
+}
+
+}  // namespace
+
+QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_count(images.size()) {
+  if (images.size() > 254) {
+    throw std::invalid_argument("sol::QuotientField: at most 254 images, got " + std::to_string(images.size()));
+  }
+  const Lattice lattice = Lattice::golden();
+  const double h = lattice.height();
+  m_words.assign(kHeader + kNodes + kCellCount, 0u);
+  // Per layer, the Sol length of a cell's edges along s and r (at most, over
+  // the layer's heights) and the cells' diameter; the edge along z is h / kNz.
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  const double dz = h / kNz;
+  std::vector<double> diameter(kNz);
+  for (int k = 0; k < kNz; ++k) {
+    const double lo = std::exp(-2.0 * k * dz), hi = std::exp(2.0 * (k + 1) * dz);  // e^{-2 z0}, e^{2 z1}
+    const double along_s = std::sqrt(lo * g1.x * g1.x + hi * g1.y * g1.y) / kN;
+    const double along_r = std::sqrt(lo * g2.x * g2.x + hi * g2.y * g2.y) / kN;
+    const double dx = (std::abs(g1.x) + std::abs(g2.x)) / kN, dy = (std::abs(g1.y) + std::abs(g2.y)) / kN;
+    diameter[static_cast<std::size_t>(k)] = std::sqrt(lo * dx * dx + hi * dy * dy + dz * dz);
+    // Rounded up to float: never below the length.
+    auto up = [](double v) {
+      float f = static_cast<float>(v);
+      if (static_cast<double>(f) < v) f = std::nextafter(f, 2.0f * f + 1.0f);
+      return std::bit_cast<std::uint32_t>(f);
+    };
+    m_words[2 * static_cast<std::size_t>(k)] = up(along_s);
+    m_words[2 * static_cast<std::size_t>(k) + 1] = up(along_r);
+  }
+  auto nearest = [&](const glm::dvec3& q) {
+    double b = kQuotientMaxStep;
+    for (const MarchObject& image : images) b = std::min(b, bound(image, q));
+    return b;
+  };
+  parallel_for(kNz + 1, [&](int k) {
+    for (int j = 0; j <= kN; ++j) {
+      for (int i = 0; i <= kN; ++i) {
+        const double b = nearest(point_at(lattice, static_cast<double>(i) / kN, static_cast<double>(j) / kN, k * dz));
+        // Rounded down to float: never above B.
+        float f = static_cast<float>(b);
+        if (static_cast<double>(f) > b) f = std::nextafter(f, -1.0f);
+        m_words[kHeader + node_index(i, j, k)] = std::bit_cast<std::uint32_t>(f);
+      }
+    }
+  });
+  parallel_for(kNz, [&](int k) {
+    const double radius = 0.5 * diameter[static_cast<std::size_t>(k)];
+    for (int j = 0; j < kN; ++j) {
+      for (int i = 0; i < kN; ++i) {
+        const glm::dvec3 centre = point_at(lattice, (i + 0.5) / kN, (j + 0.5) / kN, (k + 0.5) * dz);
+        std::uint32_t word = 0xFFFFFFFFu;  // every slot empty (kFieldEmpty)
+        int count = 0;
+        for (std::size_t m = 0; m < images.size(); ++m) {
+          if (bound(images[m], centre) - radius > kNear) continue;
+          if (count == kCandidates) {
+            word = kernel::kFieldAllImages;
+            break;
+          }
+          word &= ~(0xFFu << (8 * count));
+          word |= static_cast<std::uint32_t>(m) << (8 * count);
+          ++count;
+        }
+        m_words[kHeader + kNodes + cell_index(i, j, k)] = word;
+      }
+    }
+  });
+}
+
+QuotientField::Cell QuotientField::cell_of(const glm::dvec3& q) const {
+  const Lattice lattice = Lattice::golden();
+  const glm::dvec2 sr = lattice.lattice_coordinates(q.x, q.y);
+  const glm::dvec3 g(std::clamp(sr.x, 0.0, 1.0) * kN, std::clamp(sr.y, 0.0, 1.0) * kN,
+                     std::clamp(q.z / lattice.height(), 0.0, 1.0) * kNz);
+  const int i = std::min(static_cast<int>(g.x), kN - 1), j = std::min(static_cast<int>(g.y), kN - 1),
+            k = std::min(static_cast<int>(g.z), kNz - 1);
+  return {i, j, k, g - glm::dvec3(i, j, k)};
+}
+
+float QuotientField::edge(int layer, int axis) const {
+  return std::bit_cast<float>(m_words[2 * static_cast<std::size_t>(layer) + static_cast<std::size_t>(axis)]);
+}
+
+float QuotientField::node(int i, int j, int k) const {
+  return std::bit_cast<float>(m_words[kHeader + node_index(i, j, k)]);
+}
+
+std::uint32_t QuotientField::cell_candidates(int i, int j, int k) const {
+  return m_words[kHeader + kNodes + cell_index(i, j, k)];
+}
+
+double QuotientField::lower_bound(const glm::dvec3& q) const {
+  const Cell c = cell_of(q);
+  auto along_x = [&](int dj, int dk) {
+    return node(c.i, c.j + dj, c.k + dk) * (1.0 - c.f.x) + node(c.i + 1, c.j + dj, c.k + dk) * c.f.x;
+  };
+  const double y0 = along_x(0, 0) * (1.0 - c.f.y) + along_x(1, 0) * c.f.y;
+  const double y1 = along_x(0, 1) * (1.0 - c.f.y) + along_x(1, 1) * c.f.y;
+  // Σ_n w_n d(q, n) <= 2 (f_s (1 - f_s) L_s + f_r (1 - f_r) L_r + f_z (1 - f_z) L_z) (see the header).
+  const double spread = 2.0 * (c.f.x * (1.0 - c.f.x) * edge(c.k, 0) + c.f.y * (1.0 - c.f.y) * edge(c.k, 1) +
+                               c.f.z * (1.0 - c.f.z) * kEdgeZ);
+  return y0 * (1.0 - c.f.z) + y1 * c.f.z - spread - kRounding;
+}
+
+std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {
+  const Cell c = cell_of(q);
+  const std::uint32_t word = cell_candidates(c.i, c.j, c.k);
+  std::vector<int> out;
+  if (word == kernel::kFieldAllImages) {
+    for (std::size_t m = 0; m < m_image_count; ++m) out.push_back(static_cast<int>(m));
+    return out;
+  }
+  for (int s = 0; s < kCandidates; ++s) {
+    const int m = static_cast<int>((word >> (8 * s)) & 0xFFu);
+    if (m != kernel::kFieldEmpty) out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace sol
