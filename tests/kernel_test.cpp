@@ -65,6 +65,33 @@ TEST(Kernel, FlowMatchesTheDoubleClosedForm) {
   expect_no_validation_errors();
 }
 
+// The quotient march restarts its ray at every teleport by advancing it
+// along the same geodesic (sol_ray_advanced): walked in 2, 5 and 20
+// segments, the composed positions stay on the double closed form's
+// geodesic as the direct evaluation does (|t| <= 12, the quotient presets'
+// max_distance; random and stiff directions).
+TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
+  std::vector<dvec3> dirs = sol::test::stiff_directions();
+  for (const dvec3& d : sol::test::random_directions(1000, 33)) dirs.push_back(d);
+  std::mt19937_64 rng(34);
+  std::uniform_real_distribution<double> arc(-12.0, 12.0);
+  std::vector<glm::vec4> queries;
+  for (const dvec3& d : dirs) queries.emplace_back(glm::vec3(d), static_cast<float>(arc(rng)));
+  for (int segments : {2, 5, 20}) {
+    const std::vector<glm::vec4> results = sol::vk::evaluate_kernel_flow(vk_context(), queries, segments);
+    double worst = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const dvec3 d(queries[i].x, queries[i].y, queries[i].z);
+      const dvec3 ref = sol::ClosedFormGeodesic<double>(d).at(queries[i].w).position;
+      worst = std::max(worst, sol::test::scaled_error(dvec3(results[i].x, results[i].y, results[i].z), ref));
+    }
+    std::printf("kernel flow in %d segments (sol_ray_advanced), %zu queries, |t| <= 12: worst %.3e\n", segments,
+                queries.size(), worst);
+    EXPECT_LT(worst, 5e-5) << segments << " segments";
+  }
+  expect_no_validation_errors();
+}
+
 // The kernel against the CPU renderer (or another kernel render): colours
 // count as different beyond 2e-3 per channel.
 using Comparison = sol::test::ImageComparison;

@@ -1,12 +1,17 @@
 #version 450
 // Evaluates the kernel's closed-form geodesic for a list of (direction, arc
 // length) pairs: the test that holds sol_geodesic.glsl to libsol's double
-// closed form (tests/kernel_test.cpp).
+// closed form (tests/kernel_test.cpp), also walked in segments
+// (sol_ray_advanced).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sol_geodesic.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+// More than 1: the arc length is walked in this many equal segments, the ray
+// restarted at the end of each by sol_ray_advanced and the positions composed
+// by the group law, as the quotient march does at its teleports.
+layout(constant_id = 0) const int SEGMENTS = 1;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: direction (frame components), w: arc length
@@ -24,5 +29,15 @@ void main() {
   const vec4 query = queries[i];
   SolRay ray = sol_ray(query.xyz);
   sol_ray_integrals(ray);
-  results[i] = vec4(sol_position(ray, query.w), sol_height(ray, query.w));
+  if (SEGMENTS == 1) {
+    results[i] = vec4(sol_position(ray, query.w), sol_height(ray, query.w));
+    return;
+  }
+  const float segment = query.w / float(SEGMENTS);
+  vec3 origin = vec3(0.0);
+  for (int k = 0; k < SEGMENTS; ++k) {
+    origin = sol_translate(origin, sol_position(ray, segment));
+    ray = sol_ray_advanced(ray, segment);
+  }
+  results[i] = vec4(origin, origin.z);
 }

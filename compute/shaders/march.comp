@@ -307,19 +307,6 @@ vec3 teleport(vec3 p) {
   return q;
 }
 
-// The unit tangent (frame components) of the closed-form ray at arc length t.
-vec3 sol_direction(SolRay g, float t) {
-  if (g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT) return g.direction;
-  if (g.regime == REGIME_PLANE) {
-    const float v = t + g.s0;
-    vec3 d = vec3(1.0 / cosh(v), 0.0, -tanh(v));
-    if (g.swapped) d = vec3(d.y, d.x, -d.z);
-    return vec3(g.sign_x * d.x, g.sign_y * d.y, d.z);
-  }
-  const SolPoint p = sol_point(g, g.lambda * t + g.u0);
-  return vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
-}
-
 // The field's cell of a point of D: (cell index, layer) and the fractions
 // within the cell (sol::QuotientField::cell_of).
 struct FieldCell {
@@ -363,9 +350,6 @@ uint field_candidates(FieldCell c) {
   return field_words[2 * kFieldLayers + nodes + (c.k * kFieldCells + c.j) * kFieldCells + c.i];
 }
 
-vec3 world_from(vec3 origin, vec3 local) {
-  return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
-}
 
 void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
@@ -418,12 +402,11 @@ void main() {
     int hit_image = -1, steps = 0;
     vec3 q = origin;
     for (int step = 0; step < max_steps; ++step) {
-      q = world_from(origin, sol_position(qray, local_t));
+      q = sol_translate(origin, sol_position(qray, local_t));
       if (!in_domain(q)) {
-        const vec3 u = sol_direction(qray, local_t);
+        // The same geodesic goes on from the teleported point (sol_ray_advanced).
         origin = teleport(q);
-        qray = sol_ray(u);
-        sol_ray_integrals(qray);
+        qray = sol_ray_advanced(qray, local_t);
         local_t = 0.0;
         q = origin;
       }

@@ -475,3 +475,44 @@ vec3 sol_position(SolRay g, float t) {
   vec2 integral = same ? (t < 0.0 ? -near : near) : (forward ? far + middle + near : -(far + middle + near));
   return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
 }
+
+// The same geodesic, restarted at arc length t0: a ray from its point there
+// (the origin of the new coordinates, the left translation by that point's
+// inverse) with its tangent there. Left translations keep frame components,
+// so the new ray's direction is the old tangent (a e^{z0}, b e^{-z0}, z'(t0))
+// = (√μ e^{w}, √μ e^{-w}, w') (signs aside) on the same orbit: μ = |ab|, hence m, K, the AGM, the nome and the quarter
+// integrals, are unchanged, and so is the oscillation w(u) of the reduced
+// height; only the phase (u0 + λ t0), the height offset (w0 + z0) and the
+// start move. A teleport of the quotient march restarts its ray this way
+// instead of building it from scratch (sol_ray, sol_ray_integrals), and
+// stays on the exact geodesic instead of one through a rounded tangent.
+// In the plane regime the hyperbolic parameter moves: s0 + t0.
+SolRay sol_ray_advanced(SolRay g, float t0) {
+  if (g.regime == REGIME_PLANE) {
+    g.s0 += t0;
+    g.log_cosh_s0 = sol_log_cosh(g.s0);
+    return g;
+  }
+  if (g.regime != REGIME_GENERAL) return g;  // vertical and straight lines keep their direction
+  // The phase, reduced by whole periods of sn, cn, dn (4K) to keep its float rounding small.
+  float u = g.lambda * t0 + g.u0;
+  u -= 4.0 * g.K * round(u / (4.0 * g.K));
+  const SolPoint p = sol_point(g, u);
+  // The new direction's |a|, |b| are √μ e^{±w} there (no rounding piles up
+  // over many restarts), and w0 = ½ ln(|a|/|b|) = w.
+  g.a = g.sqrt_mu * p.ew;
+  g.b = g.sqrt_mu / p.ew;
+  g.w0 = log(p.ew);
+  g.u0 = u;
+  g.start = p;
+  g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
+  g.c = -g.k * g.lambda * p.jac.x;
+  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  return g;
+}
+
+// The point `local` given relative to `origin`, in the coordinates `origin`
+// is given in: origin · local (the group law).
+vec3 sol_translate(vec3 origin, vec3 local) {
+  return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
+}

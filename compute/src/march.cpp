@@ -449,7 +449,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
   return r;
 }
 
-std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries) {
+std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
+  if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow: segments must be >= 1");
   if (queries.empty()) return {};
   const VkDeviceSize bytes = queries.size() * sizeof(glm::vec4);
   Buffer in(context, bytes), out(context, bytes);
@@ -457,7 +458,8 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
   ComputePipeline pipeline(context, {.name = "flow",
                                      .spirv = std::span<const std::uint32_t>(flow_comp_spv),
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
-                                     .push_constant_size = sizeof(std::uint32_t)});
+                                     .push_constant_size = sizeof(std::uint32_t),
+                                     .specialization = {{0, static_cast<std::uint32_t>(segments)}}});
   pipeline.bind(0, in);
   pipeline.bind(1, out);
   const auto count = static_cast<std::uint32_t>(queries.size());

@@ -139,8 +139,11 @@ class MarchRenderer {
 
 /// Evaluates the kernel's closed-form geodesic (compute/shaders/flow.comp)
 /// for queries (direction xyz, arc length w); returns (position xyz, height
-/// from the height-only path w) per query. For tests and benchmarks.
-std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries);
+/// from the height-only path w) per query. With `segments` > 1 the arc
+/// length is walked in that many equal segments, the ray restarted at each
+/// end (sol_ray_advanced, as the quotient march's teleports) and the
+/// positions composed: then w is the position's z. For tests and benchmarks.
+std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
 
 /// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
 /// the exact point lights' directions) returns for one target.
