@@ -30,13 +30,15 @@ void main() {
   SolRay ray = sol_ray(query.xyz);
   sol_ray_integrals(ray);
   if (SEGMENTS == 1) {
-    results[i] = vec4(sol_position(ray, query.w), sol_height(ray, query.w));
+    // Forward arc lengths through the march's path (sol_position_forward).
+    const vec3 position = query.w >= 0.0 ? sol_position_forward(ray, query.w) : sol_position(ray, query.w);
+    results[i] = vec4(position, sol_height(ray, query.w));
     return;
   }
   const float segment = query.w / float(SEGMENTS);
   vec3 origin = vec3(0.0);
   for (int k = 0; k < SEGMENTS; ++k) {
-    origin = sol_translate(origin, sol_position(ray, segment));
+    origin = sol_translate(origin, segment >= 0.0 ? sol_position_forward(ray, segment) : sol_position(ray, segment));
     ray = sol_ray_advanced(ray, segment);
   }
   results[i] = vec4(origin, origin.z);

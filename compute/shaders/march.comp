@@ -402,7 +402,7 @@ void main() {
     int hit_image = -1, steps = 0;
     vec3 q = origin;
     for (int step = 0; step < max_steps; ++step) {
-      q = sol_translate(origin, sol_position(qray, local_t));
+      q = sol_translate(origin, sol_position_forward(qray, local_t));
       if (!in_domain(q)) {
         // The same geodesic goes on from the teleported point (sol_ray_advanced).
         origin = teleport(q);
@@ -488,7 +488,7 @@ void main() {
   for (int step = 0; step < max_steps && reachable; ++step) {
     if (INTEGRATOR == 0) {
       // Cutout planes need the full position for their gap bounds.
-      q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position(ray, t);
+      q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
     } else {
       rk4_advance(rk_p, rk_u, t - rk_t, rk4_step);
       rk_t = t;
@@ -536,7 +536,7 @@ void main() {
   if (hit != 0) {
     if (INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
       sol_ray_integrals(ray);
-      q = sol_position(ray, t);
+      q = sol_position_forward(ray, t);
     }
     const int k = hit - 1;
     const int type = types[k];

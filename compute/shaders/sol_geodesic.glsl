@@ -154,6 +154,7 @@ struct SolRay {
   float mu, sqrt_mu, lambda, k, kc, w0, m, m1, K, u0;
   float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
   float quarter_lo, quarter_hi;
+  vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_position_forward)
   SolAgm agm;
   // Heights by Jacobi theta series (sol_height): nome q <= e^{-π} of k'
   // (hyperbolic form, m > 1/2) or of k (m <= 1/2), K' = K(m1).
@@ -267,6 +268,14 @@ vec2 sol_quarters(SolRay g, int first, int last) {
 int sol_start_anchor(int q) { return q == 0 ? 0 : (q == 2 ? 2 : 1); }
 int sol_end_anchor(int q) { return q == 1 ? 2 : (q == 3 ? 0 : 1); }
 
+// The integrals from the ray's start to the end of its quarter: the part of
+// every forward position past that quarter that does not depend on the point.
+void sol_ray_far_forward(inout SolRay g) {
+  float gap;
+  const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
+  g.far_forward = sol_piece(g, sol_factors(g.start), f_far, gap);
+}
+
 SolRay sol_ray(vec3 direction) {
   SolRay g;
   g.direction = normalize(direction);
@@ -367,6 +376,7 @@ void sol_ray_integrals(inout SolRay g) {
   vec3 top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
   g.quarter_lo = carlson_piece(bottom, middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
   g.quarter_hi = carlson_piece(middle, top, g.sp_minus_one) / (2.0 * g.sqrt_mu);
+  sol_ray_far_forward(g);
 }
 
 
@@ -449,6 +459,26 @@ vec2 sol_height_range(SolRay g) {
   return g.regime == REGIME_STRAIGHT ? vec2(0.0) : r;
 }
 
+// Position (relative to the start) at arc length t >= 0 (a march's): as
+// sol_position, with the piece from the start to the end of its quarter
+// precomputed (SolRay::far_forward), so one Carlson pair per call instead of two.
+vec3 sol_position_forward(SolRay g, float t) {
+  if (g.regime == REGIME_VERTICAL) return vec3(0.0, 0.0, g.c * t);
+  if (g.regime == REGIME_STRAIGHT) return vec3(g.direction.x * t, g.direction.y * t, 0.0);
+  if (g.regime == REGIME_PLANE) return sol_plane_position(g, t);
+  const float u = g.lambda * t + g.u0;
+  const SolPoint p = sol_point(g, u);
+  const int q = sol_absolute_quarter(g, u, p.quarter);
+  const bool same = q <= g.start_quarter;
+  float gap_near;
+  vec3 f_near = sol_anchor(g, p, sol_start_anchor(p.quarter), gap_near);
+  f_near = same ? sol_factors(g.start) : f_near;
+  gap_near = same ? sol_two_point_gap(g.start, p) : gap_near;
+  const vec2 near = sol_piece(g, f_near, sol_factors(p), gap_near);
+  const vec2 integral = same ? near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + near;
+  return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+}
+
 // Position (relative to the start) at arc length t; needs sol_ray_integrals(g) first.
 vec3 sol_position(SolRay g, float t) {
   if (g.regime == REGIME_VERTICAL) return vec3(0.0, 0.0, g.c * t);
@@ -508,6 +538,7 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
   g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
   g.c = -g.k * g.lambda * p.jac.x;
   g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  sol_ray_far_forward(g);
   return g;
 }
 
