@@ -22,7 +22,10 @@ layout(constant_id = kSpecIntegrator) const int INTEGRATOR = 0;
 // only a compile-time branch saves the other side's cost.
 layout(constant_id = kSpecHeightsOnly) const bool HEIGHTS_ONLY = false;
 // What else the scene uses: the compiler folds away what it does not.
-layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;
+layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;  // balls or tubes
+layout(constant_id = kSpecBoundBalls) const bool HAS_BOUND_BALLS = true;
+layout(constant_id = kSpecTubes) const bool HAS_TUBES = true;
+layout(constant_id = kSpecPlanesXY) const bool HAS_PLANES_XY = true;
 layout(constant_id = kSpecPointLights) const bool HAS_POINT_LIGHTS = true;
 layout(constant_id = kSpecFog) const bool HAS_FOG = true;
 layout(constant_id = kSpecCutout) const bool HAS_CUTOUT = true;
@@ -141,12 +144,13 @@ float exact_ball_distance(vec3 q, vec3 c, float radius) {
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
 // object given in the coordinates of q (camera-relative, or world in the quotient).
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  if (HAS_BALLS && type == kObjectBall) return distance_lower_bound(q, rel.xyz) - radius;
+  // Each kind only when the world has it: lavapipe evaluates every branch.
+  if (HAS_BOUND_BALLS && type == kObjectBall) return distance_lower_bound(q, rel.xyz) - radius;
   if (HAS_EXACT_BALLS && type == kObjectExactBall) return exact_ball_distance(q, rel.xyz, radius);
-  if (HAS_BALLS && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
+  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
   float c = rel.x;
-  if (type == kObjectPlaneX) return asinh(abs(q.x - c) * exp(-q.z));
-  if (type == kObjectPlaneY) return asinh(abs(q.y - c) * exp(q.z));
+  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) * exp(-q.z));
+  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * exp(q.z));
   return abs(q.z - c);
 }
 

@@ -146,7 +146,7 @@ struct KernelVariant {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights}) {
+                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -162,6 +162,9 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
   return {.quotient = world.quotient,
           .heights_only = false,
           .solids = true,
+          .bound_balls = true,
+          .tubes = true,
+          .planes_xy = !world.quotient,
           .point_lights = true,
           .fog = true,
           .cutout = true,
@@ -193,7 +196,10 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecQuotient, f.quotient ? 1u : 0u},
                                                 {kernel::kSpecWriteAovs, v.aovs ? 1u : 0u},
                                                 {kernel::kSpecExactBalls, f.exact_balls ? 1u : 0u},
-                                                {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u}}});
+                                                {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u},
+                                                {kernel::kSpecBoundBalls, f.bound_balls ? 1u : 0u},
+                                                {kernel::kSpecTubes, f.tubes ? 1u : 0u},
+                                                {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u}}});
 }
 
 // Which connection table exact point lights need: none, the minimisers', or

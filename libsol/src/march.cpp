@@ -106,10 +106,13 @@ MarchFeatures features_of(const World& world) {
     const bool plane_z = std::holds_alternative<PlaneZ>(o.shape);
     f.heights_only = f.heights_only && plane_z;
     f.solids = f.solids || std::holds_alternative<Ball>(o.shape) || std::holds_alternative<Tube>(o.shape);
+    f.tubes = f.tubes || std::holds_alternative<Tube>(o.shape);
+    f.planes_xy = f.planes_xy || std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape);
     f.cutout = f.cutout || o.cutout;
     f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);
     const Ball* ball = std::get_if<Ball>(&o.shape);
     f.exact_balls = f.exact_balls || (ball && ball->exact);
+    f.bound_balls = f.bound_balls || (ball && !ball->exact);
   }
   f.point_lights = std::any_of(world.lights.begin(), world.lights.end(),
                                [](const Light& l) { return l.type == LightType::Point; });

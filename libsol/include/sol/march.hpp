@@ -76,6 +76,9 @@ struct MarchFeatures {
   bool quotient = false;      ///< the compact quotient Γ\Sol
   bool heights_only = false;  ///< every object a plane z = c (not in the quotient): the march needs z alone
   bool solids = false;        ///< balls or tubes
+  bool bound_balls = false;   ///< balls drawn with their bound (not exact)
+  bool tubes = false;
+  bool planes_xy = false;     ///< planes x = c or y = c
   bool point_lights = false;
   bool fog = false;
   bool cutout = false;        ///< cutout planes

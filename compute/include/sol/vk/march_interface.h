@@ -35,7 +35,7 @@ SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientFi
 // ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
 SOL_CONSTANT(int, kSpecHeightsOnly, 1);     ///< bool: every object a plane z = c
-SOL_CONSTANT(int, kSpecBalls, 2);           ///< bool: balls or tubes
+SOL_CONSTANT(int, kSpecBalls, 2);           ///< bool: balls or tubes (the solids' shading)
 SOL_CONSTANT(int, kSpecPointLights, 3);     ///< bool
 SOL_CONSTANT(int, kSpecFog, 4);             ///< bool
 SOL_CONSTANT(int, kSpecCutout, 5);          ///< bool: cutout planes
@@ -43,6 +43,9 @@ SOL_CONSTANT(int, kSpecQuotient, 6);        ///< bool: the compact quotient Γ\S
 SOL_CONSTANT(int, kSpecWriteAovs, 7);       ///< bool: write bindings 2 and 3
 SOL_CONSTANT(int, kSpecExactBalls, 8);      ///< bool: exact balls (binding 5)
 SOL_CONSTANT(int, kSpecExactLights, 9);     ///< bool: exact point lights (binding 6)
+SOL_CONSTANT(int, kSpecBoundBalls, 10);     ///< bool: balls drawn with their bound
+SOL_CONSTANT(int, kSpecTubes, 11);          ///< bool: tubes
+SOL_CONSTANT(int, kSpecPlanesXY, 12);       ///< bool: planes x = c or y = c
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
