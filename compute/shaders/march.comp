@@ -335,16 +335,14 @@ float field_node(int i, int j, int k) {
 }
 
 // F(q): a lower bound of the step the march may take from q, never above
-// the least distance bound of the images (sol::QuotientField::lower_bound).
+// the least distance bound of the images: the nearest node's value less the
+// length of a path to it (sol::QuotientField::lower_bound).
 float field_lower_bound(FieldCell c) {
-  const float x00 = mix(field_node(c.i, c.j, c.k), field_node(c.i + 1, c.j, c.k), c.f.x);
-  const float x10 = mix(field_node(c.i, c.j + 1, c.k), field_node(c.i + 1, c.j + 1, c.k), c.f.x);
-  const float x01 = mix(field_node(c.i, c.j, c.k + 1), field_node(c.i + 1, c.j, c.k + 1), c.f.x);
-  const float x11 = mix(field_node(c.i, c.j + 1, c.k + 1), field_node(c.i + 1, c.j + 1, c.k + 1), c.f.x);
-  const float value = mix(mix(x00, x10, c.f.y), mix(x01, x11, c.f.y), c.f.z);
-  const vec3 spread = c.f * (1.0 - c.f);
+  const vec3 away = round(c.f);
+  const vec3 d = abs(c.f - away);
+  const ivec3 n = ivec3(c.i, c.j, c.k) + ivec3(away);
   const float edge_s = uintBitsToFloat(field_words[2 * c.k]), edge_r = uintBitsToFloat(field_words[2 * c.k + 1]);
-  return value - 2.0 * (spread.x * edge_s + spread.y * edge_r + spread.z * (kLatticeHeight / float(kFieldLayers))) -
+  return field_node(n.x, n.y, n.z) - (d.x * edge_s + d.y * edge_r + d.z * (kLatticeHeight / float(kFieldLayers))) -
          kFieldRounding;
 }
 

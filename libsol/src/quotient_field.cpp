@@ -7,6 +7,8 @@
 #include <string>
 #include <thread>
 
+#include <glm/common.hpp>
+
 #include "sol/distance.hpp"
 #include "sol/lattice.hpp"
 
@@ -148,15 +150,13 @@ std::uint32_t QuotientField::cell_candidates(int i, int j, int k) const {
 
 double QuotientField::lower_bound(const glm::dvec3& q) const {
   const Cell c = cell_of(q);
-  auto along_x = [&](int dj, int dk) {
-    return node(c.i, c.j + dj, c.k + dk) * (1.0 - c.f.x) + node(c.i + 1, c.j + dj, c.k + dk) * c.f.x;
-  };
-  const double y0 = along_x(0, 0) * (1.0 - c.f.y) + along_x(1, 0) * c.f.y;
-  const double y1 = along_x(0, 1) * (1.0 - c.f.y) + along_x(1, 1) * c.f.y;
-  // Σ_n w_n d(q, n) <= 2 (f_s (1 - f_s) L_s + f_r (1 - f_r) L_r + f_z (1 - f_z) L_z) (see the header).
-  const double spread = 2.0 * (c.f.x * (1.0 - c.f.x) * edge(c.k, 0) + c.f.y * (1.0 - c.f.y) * edge(c.k, 1) +
-                               c.f.z * (1.0 - c.f.z) * kEdgeZ);
-  return y0 * (1.0 - c.f.z) + y1 * c.f.z - spread - kRounding;
+  // The nearest node n, and the path from q to it along s, r (at q's height:
+  // the edge lengths of q's layer) and then z.
+  const glm::dvec3 away = glm::round(c.f);
+  const glm::dvec3 d = glm::abs(c.f - away);
+  const double path = d.x * edge(c.k, 0) + d.y * edge(c.k, 1) + d.z * kEdgeZ;
+  return node(c.i + static_cast<int>(away.x), c.j + static_cast<int>(away.y), c.k + static_cast<int>(away.z)) - path -
+         kRounding;
 }
 
 std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {

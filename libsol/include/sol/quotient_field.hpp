@@ -7,19 +7,19 @@
 // sol::quotient_images, which lists every image a step of at most
 // kQuotientMaxStep can reach from D). The field samples B at the nodes of a
 // grid over D in the coordinates (s, r, z/h), (x, y) = s γ1 + r γ2, and
-// reads it back in a cell, with fractions f_s, f_r, f_z and trilinear
-// weights w_n of its corners n, as
-//   F(q) = Σ_n w_n B(n) - 2 (f_s (1 - f_s) L_s + f_r (1 - f_r) L_r + f_z (1 - f_z) L_z) - ε,
-// where L_s, L_r, L_z bound the Sol lengths of the cell's edges (per layer:
-// along s the coordinates move by γ1/kCells at heights in [z0, z1], so
-// L_s = sqrt(e^{-2 z0} γ1x² + e^{2 z1} γ1y²)/kCells; likewise L_r with γ2;
-// L_z = h/kLayers) and ε covers the kernel's float rounding. Why it never
+// reads it back at the node n nearest to q, at fractional offsets
+// (δ_s, δ_r, δ_z) <= 1/2 of a cell from q, as
+//   F(q) = B(n) - (δ_s L_s + δ_r L_r + δ_z L_z) - ε,
+// where L_s, L_r bound the Sol lengths of the cell edges of q's layer (along
+// s the coordinates move by γ1/kCells at heights in [z0, z1], so
+// L_s = sqrt(e^{-2 z0} γ1x² + e^{2 z1} γ1y²)/kCells; likewise L_r with γ2),
+// L_z = h/kLayers, and ε covers the kernel's float rounding. Why it never
 // overestimates: b_i, hence B, is 1-Lipschitz in the Sol distance (a
 // distance to a set, or a maximum of distances in hyperbolic planes onto
-// which Sol projects without stretching), so B(q) >= B(n) - d(q, n) for
-// every corner; d(q, n) is at most the length of the path from q to n along
-// s, then r, then z, |f_s - n_s| L_s + |f_r - n_r| L_r + |f_z - n_z| L_z;
-// the weights sum to 1 and Σ_n w_n |f_s - n_s| = 2 f_s (1 - f_s).
+// which Sol projects without stretching), so B(q) >= B(n) - d(q, n), and
+// d(q, n) is at most the length of the path from q along s, then r (both at
+// q's height), then z to n. One read per step; on average 0.027 below B
+// (trilinear interpolation with the matching bound is 0.036 below, for 8 reads).
 //
 // Near surfaces, where F < kFieldNear, the march needs the exact bounds; each
 // cell lists its candidate images, every image whose bound can fall below
