@@ -3,7 +3,8 @@
 //  1. Throughput: rays per second and mean march steps per ray for every
 //     preset at 512×512 (--size), on the Vulkan kernel (the device Sol::vk
 //     picks: a GPU, else lavapipe; kernel time from timestamps, best of
-//     --repeats runs) and on the CPU reference renderer (wall time, all
+//     --repeats runs) and, but for the exact presets (spheres: distance_bench
+//     has its CPU cost), on the CPU reference renderer (wall time, all
 //     threads). Written to render_throughput.csv.
 //     The same presets with the kernel compiled with every feature against
 //     the one specialised to the scene: render_features.csv.
@@ -20,8 +21,17 @@
 //     time and time per ray against the all-bound variant. Written to
 //     render_exact.csv.
 //
-//   render_bench [--size N] [--error-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact]
+//  4. Headset sizes: every preset on the kernel at --gpu-size² (default
+//     2048², one eye of a current headset) and as a stereo frame of two such
+//     eyes in one dispatch: kernel time, M rays/s and the stereo frame's time
+//     (the goal on one H100-class GPU: 11 ms, 90 Hz), with the device's name.
+//     Written to render_gpu.csv. On lavapipe this takes minutes; pass a
+//     smaller --gpu-size there.
+//
+// CSV fields holding a device name are quoted (names contain commas).
+//
+//   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
+//                [--only throughput|error|exact|gpu]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -81,7 +91,7 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 }  // namespace
 
 int main(int argc, char** argv) {
-  int size = 512, error_size = 128, repeats = 5;
+  int size = 512, error_size = 128, gpu_size = 2048, repeats = 5;
   std::string out_dir = ".", only;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -96,34 +106,38 @@ int main(int argc, char** argv) {
       size = std::atoi(value().c_str());
     } else if (arg == "--error-size") {
       error_size = std::atoi(value().c_str());
+    } else if (arg == "--gpu-size") {
+      gpu_size = std::atoi(value().c_str());
     } else if (arg == "--repeats") {
       repeats = std::atoi(value().c_str());
     } else if (arg == "--out-dir") {
       out_dir = value();
     } else if (arg == "--only") {
       only = value();
-      if (only != "throughput" && only != "error" && only != "exact") {
-        std::fprintf(stderr, "render_bench: --only takes throughput, error or exact, got '%s'\n", only.c_str());
+      if (only != "throughput" && only != "error" && only != "exact" && only != "gpu") {
+        std::fprintf(stderr, "render_bench: --only takes throughput, error, exact or gpu, got '%s'\n", only.c_str());
         return 2;
       }
     } else if (arg == "--help") {
-      std::printf("usage: render_bench [--size N] [--error-size N] [--repeats N] [--out-dir DIR]\n"
-                  "                    [--only throughput|error|exact]\n"
-                  "Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv and\n"
-                  "render_exact.csv to DIR (default .); --only runs one section and writes its files.\n");
+      std::printf("usage: render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]\n"
+                  "                    [--only throughput|error|exact|gpu]\n"
+                  "Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
+                  "render_exact.csv and render_gpu.csv to DIR (default .); --only runs one section and\n"
+                  "writes its files.\n");
       return 0;
     } else {
       std::fprintf(stderr, "render_bench: unknown option '%s'\n", arg.c_str());
       return 2;
     }
   }
-  if (size < 1 || size > 8192 || error_size < 1 || error_size > 4096 || repeats < 1) {
+  if (size < 1 || size > 8192 || error_size < 1 || error_size > 4096 || gpu_size < 1 || gpu_size > 8192 || repeats < 1) {
     std::fprintf(stderr, "render_bench: sizes must be in [1, 8192], repeats >= 1\n");
     return 2;
   }
   try {
     sol::vk::Context context;
     const std::string device = context.device_name();
+    const std::string quoted_device = "\"vulkan " + device + "\"";
     std::fprintf(stderr, "render_bench: Vulkan device '%s'\n", device.c_str());
 
     auto runs = [&](const char* section) { return only.empty() || only == section; };
@@ -136,7 +150,6 @@ int main(int argc, char** argv) {
       std::string features = "scene,specialised_ms,general_ms,speedup\n";
       for (const std::string& name : sol::preset_names()) {
         const sol::Scene scene = sol::preset_scene(name);
-        if (sol::uses_exact(scene)) continue;  // section 3 and distance_bench measure it
         double best = 1e300;
         sol::RenderResult r;
         renderer.render(scene, size, size);  // warm-up: shader compilation and caches
@@ -157,16 +170,17 @@ int main(int argc, char** argv) {
         std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
         features += line;
         std::fprintf(stderr, "features: %s", line);
-        std::snprintf(line, sizeof line, "%s,vulkan %s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), device.c_str(), size, size,
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), quoted_device.c_str(), size, size,
                       best, rays / best * 1e-3, mean(r.steps));
         throughput += line;
         std::fprintf(stderr, "%s", line);
+        if (sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
         sol::RenderSettings settings;
         settings.width = settings.height = size;
         const auto begin = std::chrono::steady_clock::now();
         const sol::RenderResult c = sol::render_cpu(scene, settings);
         const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-        std::snprintf(line, sizeof line, "%s,cpu reference (double),%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
+        std::snprintf(line, sizeof line, "%s,\"cpu reference (double)\",%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
                       cpu_ms, rays / cpu_ms * 1e-3, mean(c.steps));
         throughput += line;
         std::fprintf(stderr, "%s", line);
@@ -254,6 +268,32 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "exact: %s", line);
       }
       files.emplace_back("render_exact.csv", exact);
+    }
+
+    // 4. Headset sizes: one eye at gpu_size², and a stereo frame of two in one dispatch.
+    if (runs("gpu")) {
+      std::string gpu = "scene,device,width,height,mono_ms,mrays_per_s,stereo_ms,stereo_hz\n";
+      sol::vk::MarchRenderer renderer(context);
+      const int frames = std::min(repeats, 3);
+      for (const std::string& name : sol::preset_names()) {
+        const sol::Scene scene = sol::preset_scene(name);
+        renderer.set_world(scene);
+        double mono = 1e300, stereo = 1e300, ms = 0;
+        renderer.render(scene.camera, gpu_size, gpu_size);  // warm-up
+        for (int k = 0; k < frames; ++k) {
+          renderer.render(scene.camera, gpu_size, gpu_size, &ms);
+          mono = std::min(mono, ms);
+          renderer.render_stereo(scene.camera, gpu_size, gpu_size, 0.064, &ms);
+          stereo = std::min(stereo, ms);
+        }
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(),
+                      gpu_size, gpu_size, mono, static_cast<double>(gpu_size) * gpu_size / mono * 1e-3, stereo,
+                      1e3 / stereo);
+        gpu += line;
+        std::fprintf(stderr, "gpu: %s", line);
+      }
+      files.emplace_back("render_gpu.csv", gpu);
     }
 
     for (const auto& [name, text] : files) {
