@@ -359,13 +359,12 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   const sol::test::ImageComparison d = sol::test::compare_images(gpu, cpu, 5e-2f);
   std::printf("quotient exact balls: %d ball hits, worst |d - r| %.2e; mask differs at %d of %d, colour over 5e-2 at %d\n",
               hits, worst, d.mask_differs, d.pixels, d.color_differs);
-  // The table's accuracy: 5.1e-3 where 0.3 <= d <= 1.2 (ExactTable test),
-  // but these balls have radius 0.25, where d is nearer its cone at the
-  // centre and the trilinear lookup (step 0.1) errs more (measured 1.07e-2);
-  // masks and colours as ExactBallsFromTheTableLieOnTheGeodesicSphere (5%).
+  // As Kernel.ExactBallsLieOnTheGeodesicSphere: exact near the sphere, so
+  // hit points within hit_epsilon (5e-5) plus float rounding (measured
+  // 5.0e-5), and a silhouette pixel or two may go either way in float.
   EXPECT_GT(hits, 20);
-  EXPECT_LT(worst, 2e-2);
-  EXPECT_LE(d.mask_differs, d.pixels / 20);
-  EXPECT_LE(d.color_differs, d.pixels / 20);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_LE(d.mask_differs, 2);
+  EXPECT_LE(d.color_differs, 2);
   expect_no_validation_errors();
 }

@@ -186,38 +186,53 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   expect_no_validation_errors();
 }
 
-TEST(Kernel, ExactBallsFromTheTableLieOnTheGeodesicSphere) {
-  // The kernel draws exact balls from sol::DistanceTable (trilinear, float):
-  // its hit points lie on the geodesic sphere to the table's accuracy
-  // (measured 5.1e-3, ExactTable test) plus float rounding (measured
-  // 5.7e-3), and the hit mask agrees with the CPU renderer's (the solver).
-  sol::Scene scene;
-  scene.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
-  const sol::Ball ball{{1.3, 1.1, 0.6}, 0.5, true};
-  scene.objects = {{ball}};
+TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
+  // The kernel approaches exact balls by sol::DistanceTable less its error
+  // (or the bound), then takes the exact distance from the shortest
+  // geodesic (sol_shortest) within kExactShell: hit points lie on the
+  // geodesic sphere to hit_epsilon (5e-5) plus float rounding, for a ball
+  // the table covers (r = 0.5) and one it does not (r = 1.4 > 1.2, where
+  // the march comes by the bound), and hit masks and arc lengths agree with
+  // the CPU renderer (the double solver).
+  struct Case {
+    sol::Ball ball;
+    sol::Camera camera;
+  };
+  const Case cases[] = {
+      {{{1.3, 1.1, 0.6}, 0.5, true}, {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 60.0}},
+      {{{2.2, 1.9, -0.4}, 1.4, true}, {{0.0, 0.0, 0.2}, {1.0, 1.0, -0.2}, {0.0, 0.0, 1.0}, 70.0}},
+  };
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::RenderResult gpu = renderer.render(scene, 24, 18);
-  sol::RenderSettings settings;
-  settings.width = 24;
-  settings.height = 18;
-  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-  double worst = 0.0;
-  int hits = 0;
-  for (std::size_t i = 0; i < gpu.object.size(); ++i) {
-    if (gpu.object[i] != 1.0f) continue;
-    ++hits;
-    const glm::dvec3 p(gpu.px[i], gpu.py[i], gpu.pz[i]);
-    worst = std::max(worst, std::abs(sol::distance(p, ball.center) - ball.radius));
+  for (const Case& c : cases) {
+    sol::Scene scene;
+    scene.camera = c.camera;
+    scene.objects = {{c.ball}};
+    const sol::RenderResult gpu = renderer.render(scene, 24, 18);
+    sol::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+    double worst = 0.0;
+    int hits = 0;
+    for (std::size_t i = 0; i < gpu.object.size(); ++i) {
+      if (gpu.object[i] != 1.0f) continue;
+      ++hits;
+      const glm::dvec3 p(gpu.px[i], gpu.py[i], gpu.pz[i]);
+      worst = std::max(worst, std::abs(sol::distance(p, c.ball.center) - c.ball.radius));
+    }
+    const Comparison d = compare(gpu, cpu);
+    std::printf("exact ball r = %.1f in the kernel: %d hits, worst |d - r| = %.2e, mask differs at %d, "
+                "worst distance difference %.2e\n",
+                c.ball.radius, hits, worst, d.mask_differs, d.distance);
+    EXPECT_GT(hits, 30) << c.ball.radius;
+    // hit_epsilon 5e-5 and float positions (measured 5.0e-5 for r = 0.5).
+    EXPECT_LT(worst, 1e-4) << c.ball.radius;
+    // A silhouette pixel may go either way in float.
+    EXPECT_LE(d.mask_differs, 2) << c.ball.radius;
+    // Both march to within hit_epsilon of the same surface; a grazing ray
+    // moves along itself by more than the surface gap (measured 4.8e-5).
+    EXPECT_LT(d.distance, 5e-3) << c.ball.radius;
   }
-  const Comparison c = compare(gpu, cpu);
-  std::printf("exact ball in the kernel: %d hits, worst |d - r| = %.2e, mask differs at %d, worst distance difference %.2e\n",
-              hits, worst, c.mask_differs, c.distance);
-  EXPECT_GT(hits, 30);
-  EXPECT_LT(worst, 1e-2);
-  EXPECT_LE(c.mask_differs, c.pixels / 20);
-  // Arc lengths: a surface offset of 5e-3 moves a grazing ray's hit much
-  // further along the ray (measured 7.2e-2 at the silhouette).
-  EXPECT_LT(c.distance, 0.15);
   expect_no_validation_errors();
 }
 

@@ -84,21 +84,6 @@ layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds
 
 #include "sol_connection.glsl"
 
-// What binding 1 receives: the linear colour, or for SOL_OUTPUT_SRGB_UNORM
-// the standard sRGB OETF (IEC 61966-2-1) of it clamped to [0, 1], what an
-// sRGB swapchain's blit and solrender's 8-bit files apply (C++ twin:
-// srgb_encode in tests/kernel_test.cpp, which holds the two together).
-vec4 output_color(vec4 linear) {
-#ifdef SOL_OUTPUT_SRGB_UNORM
-  vec3 c = clamp(linear.rgb, 0.0, 1.0);
-  vec3 encoded = mix(kSrgbScale * pow(c, vec3(1.0 / kSrgbGamma)) - kSrgbOffset, kSrgbLinearSlope * c,
-                     lessThanEqual(c, vec3(kSrgbLinearLimit)));
-  return vec4(encoded, clamp(linear.a, 0.0, 1.0));
-#else
-  return linear;
-#endif
-}
-
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
 float distance_lower_bound(vec3 p, vec3 q) {
   float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
@@ -107,20 +92,12 @@ float distance_lower_bound(vec3 p, vec3 q) {
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
 
-// Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
-// containing it) and sol::sdf_tube_horizontal (a horizontal line along the
-// unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
-float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
-  const vec3 d = q - through;
-  const float ez = exp(q.z);
-  if (axis == kTubeVertical) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
-  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
-  return max(asinh(across), abs(d.z)) - radius;
-}
-
-// Exact balls (mirrors sol::sdf_ball_exact with sol::DistanceTable::lookup):
-// the bound beyond the band kExactBallBand, else the table at w = centre⁻¹·q (never
-// below the bound); outside the table's box the bound.
+// Exact balls, approached: the bound beyond the band kExactBallBand; within
+// it, where the table (sol::DistanceTable, at w = centre⁻¹·q) is known to
+// kDistanceTableError (kDistanceTableMin <= d <= kDistanceTableMax), the table
+// less that error (never below the bound); elsewhere the bound. Never above
+// the distance to the true sphere, so the approach never passes it; within
+// kExactShell of it the march takes the exact distance (exact_ball_sdf).
 float table_at(int i, int j, int k) {
   return distance_table[(k * kDistanceTableSize + j) * kDistanceTableSize + i];
 }
@@ -138,7 +115,59 @@ float exact_ball_distance(vec3 q, vec3 c, float radius) {
   const float x10 = mix(table_at(i.x, i.y + 1, i.z), table_at(i.x + 1, i.y + 1, i.z), f.x);
   const float x01 = mix(table_at(i.x, i.y, i.z + 1), table_at(i.x + 1, i.y, i.z + 1), f.x);
   const float x11 = mix(table_at(i.x, i.y + 1, i.z + 1), table_at(i.x + 1, i.y + 1, i.z + 1), f.x);
-  return max(bound, mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z) - radius);
+  const float d = mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+  const bool known = d >= kDistanceTableMin && d <= kDistanceTableMax;
+  return known ? max(bound, d - radius - kDistanceTableError) : bound;
+}
+
+// Exact balls near their sphere: the exact distance from the centre c to q
+// less the radius, from the shortest geodesic from c to q (sol_shortest,
+// started from `v`, its end point `end` and its Jacobian `J` when `known`,
+// the last solution, and left holding this one); where Newton does not land, the approach
+// distance (safe, but the hit then lies on the approach's surface) and the
+// next solve starts afresh.
+float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout vec3 end, inout mat3 J, inout bool known) {
+  const vec3 w = vec3((q.x - c.x) * exp(-c.z), (q.y - c.y) * exp(c.z), q.z - c.z);
+  const float residual = sol_shortest(w, v, end, J, known);
+  if (residual < 2e-4) return length(v) - radius;
+  known = false;
+  return exact_ball_distance(q, c, radius);
+}
+
+// The true sphere's outward normal at the end of the geodesic from its
+// centre with initial vector v: that geodesic's tangent there (frame
+// components), as sol::sdf_ball_exact_gradient.
+vec3 exact_ball_normal(vec3 v) {
+  const float d = length(v);
+  if (!(d > 0.0)) return vec3(0.0, 0.0, 1.0);
+  const SolRay g = sol_ray(v / d);
+  return normalize(sol_direction(g, d));
+}
+
+// What binding 1 receives: the linear colour, or for SOL_OUTPUT_SRGB_UNORM
+// the standard sRGB OETF (IEC 61966-2-1) of it clamped to [0, 1], what an
+// sRGB swapchain's blit and solrender's 8-bit files apply (C++ twin:
+// srgb_encode in tests/kernel_test.cpp, which holds the two together).
+vec4 output_color(vec4 linear) {
+#ifdef SOL_OUTPUT_SRGB_UNORM
+  vec3 c = clamp(linear.rgb, 0.0, 1.0);
+  vec3 encoded = mix(kSrgbScale * pow(c, vec3(1.0 / kSrgbGamma)) - kSrgbOffset, kSrgbLinearSlope * c,
+                     lessThanEqual(c, vec3(kSrgbLinearLimit)));
+  return vec4(encoded, clamp(linear.a, 0.0, 1.0));
+#else
+  return linear;
+#endif
+}
+
+// Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
+// containing it) and sol::sdf_tube_horizontal (a horizontal line along the
+// unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
+float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
+  const vec3 d = q - through;
+  const float ez = exp(q.z);
+  if (axis == kTubeVertical) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
+  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
+  return max(asinh(across), abs(d.z)) - radius;
 }
 
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
@@ -403,6 +432,10 @@ void main() {
     float t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
     vec3 q = origin;
+    int exact_i = -1;           // the exact ball image whose geodesic from the centre exact_v holds
+    vec3 exact_v = vec3(0.0), exact_end = vec3(0.0);
+    mat3 exact_J = mat3(1.0);
+    bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
     for (int step = 0; step < max_steps; ++step) {
       q = sol_translate(origin, sol_position_forward(qray, local_t));
       if (!in_domain(q)) {
@@ -421,15 +454,30 @@ void main() {
         const bool all = word == kFieldAllImages;
         float nearest = 1e30;
         int nearest_i = -1;
+        float second = 1e30;  // the least distance but the nearest's, and its image
+        int second_i = -1;
         for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
           const int i = all ? s : int((word >> uint(8 * s)) & 255u);
           if (i == kFieldEmpty) continue;
           const Image m = images[i];
           const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
           if (d < nearest) {
+            second = nearest;
+            second_i = nearest_i;
             nearest = d;
             nearest_i = i;
+          } else if (d < second) {
+            second = d;
+            second_i = i;
           }
+        }
+        if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
+          // Near an exact ball's image: its exact distance (as in Sol).
+          if (exact_i != nearest_i) exact_known = false;
+          exact_i = nearest_i;
+          const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_J, exact_known);
+          nearest_i = exact <= second ? nearest_i : second_i;
+          nearest = min(exact, second);
         }
         if (nearest < hit_epsilon) {
           hit_image = nearest_i;
@@ -451,7 +499,9 @@ void main() {
       // Planes face the side of the segment's origin (the ray's side); the
       // bounds of balls and tubes are left-invariant, so their gradients
       // along the frame are taken in world coordinates.
-      const vec3 n = plane_normal(type, q, geom.x - origin.z, geom, heading, info.y);
+      const vec3 n = HAS_EXACT_BALLS && type == kObjectExactBall && exact_i == hit_image
+                         ? exact_ball_normal(exact_v)
+                         : plane_normal(type, q, geom.x - origin.z, geom, heading, info.y);
       // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
       const vec2 uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
       color = shade_hit(k, n, uv, t, q, eye);
@@ -477,6 +527,10 @@ void main() {
 
   int hit = 0, steps = 0;
   uint passing = 0u;
+  int exact_k = -1;           // the exact ball whose geodesic from the centre exact_v holds
+  vec3 exact_v = vec3(0.0), exact_end = vec3(0.0);
+  mat3 exact_J = mat3(1.0);
+  bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
   float t = 0.0;
   vec3 q = vec3(0.0);
   // Exact culling for planes z = c (as the CPU reference): a ray whose whole
@@ -513,6 +567,24 @@ void main() {
         nearest_k = k;
       }
     }
+    if (HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell) {
+      // Near an exact ball: its exact distance (steps, and hits on the true
+      // sphere), with the least distance to every other object for the step.
+      if (exact_k != nearest_k) exact_known = false;
+      exact_k = nearest_k;
+      const float exact = exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
+      float others = 1e30;
+      for (int k = 0; k < count; ++k) {
+        if (k == nearest_k) continue;
+        float d = object_distance(types[k], q, relative[k], headings[k], radii[k]);
+        if (HAS_CUTOUT && cutouts[k] != 0) {
+          d = max(d, cutout_gap_bound(cutouts[k], plane_coordinates(2, q, eye_camera, eye_frac), eye_camera.w * exp(q.z)));
+        }
+        others = min(others, d);
+      }
+      nearest = min(others, exact);
+      nearest_hit = exact;
+    }
     steps = step + 1;
     if (nearest_hit < hit_epsilon) {
       if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
@@ -542,7 +614,9 @@ void main() {
     }
     const int k = hit - 1;
     const int type = types[k];
-    const vec3 n = plane_normal(type, q, constants[k], relative[k], headings[k], radii[k]);
+    const vec3 n = HAS_EXACT_BALLS && type == kObjectExactBall && exact_k == k
+                       ? exact_ball_normal(exact_v)
+                       : plane_normal(type, q, constants[k], relative[k], headings[k], radii[k]);
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);

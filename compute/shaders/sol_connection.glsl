@@ -48,56 +48,96 @@ float sol_connection_scale(vec3 w, float ez, float t) {
   return max(max(1.0, t), max(max(abs(w.x) / ez, abs(w.y) * ez), abs(w.z)));
 }
 
-// Newton's method from v towards w, with the Jacobian by forward
-// differences, steps capped and halved (up to 3 times) while the residual
-// grows; `residual` receives the final |exp(v) - w| (frame components at w)
-// over sol_connection_scale. Written as one loop over flow evaluations with
-// a single call of the closed form: Mesa compiles every inlined call of it
-// separately, and one call site keeps lavapipe's compile time in seconds.
-vec3 sol_polish(vec3 v, vec3 w, out float residual) {
+// Newton's method from v towards w, steps capped and halved (up to 3
+// times) while the residual grows; `residual` receives the final
+// |exp(v) - w| (frame components at w) over sol_connection_scale. When
+// `known`, `end` = exp(v) and `J` is a Jacobian carried from a solve at a
+// nearby w, so the first residual costs no flow evaluation; else the
+// Jacobian comes by forward differences at v. With `secant`, each accepted
+// step updates it by Broyden's rule (the secant through the step: one flow
+// evaluation per iteration instead of four) and a step it does not improve
+// takes a fresh one by differences; without, every iteration takes a fresh
+// one. v, end, J and known leave holding the last solution. Written as one
+// loop over flow evaluations with a single call of the closed form: Mesa
+// compiles every inlined call of it separately, and one call site keeps
+// lavapipe's compile time in seconds.
+vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout vec3 end, inout mat3 J, inout bool known,
+                out float residual) {
   const float ez = exp(w.z);
-  vec3 r = vec3(0.0), dv = vec3(0.0);
-  mat3 J = mat3(1.0);
-  float h = 0.0;
-  int phase = 0;  // 0: r at v; 1-3: column phase - 1 of J; 4: a trial step v + dv
+  const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
+  vec3 r = known ? (end - w) * to_frame : vec3(0.0), dv = vec3(0.0);
+  float h = 1e-3 * max(1.0, length(v));
+  // 0: r at v; 1-3: column phase - 1 of J; 4: a trial step v + dv; 5: a step from r and J
+  int phase = known ? 5 : 0;
   int iterations = 0, halvings = 0;
-  bool done = false;
+  bool fresh = false;  // J by differences at the current v
+  bool done = known && length(r) < 2e-6 * sol_connection_scale(w, ez, length(v));
   for (int e = 0; e < SOL_NEWTON_ITERATIONS * 7 + 1 && !done; ++e) {
-    vec3 at = v;
-    if (phase >= 1 && phase <= 3) at[phase - 1] += h;
-    if (phase == 4) at += dv;
-    const vec3 f = sol_connection_residual(at, w, ez);
-    if (phase == 0 || phase == 4) {
-      if (phase == 4) {
-        if (!(length(f) < length(r))) {  // no better: halve the step, or give up
-          dv *= 0.5;
-          done = ++halvings > 3;
+    if (phase != 5) {
+      vec3 at = v;
+      if (phase >= 1 && phase <= 3) at[phase - 1] += h;
+      if (phase == 4) at += dv;
+      const vec3 at_end = sol_exp(at);
+      const vec3 f = (at_end - w) * to_frame;
+      if (phase >= 1 && phase <= 3) {
+        J[phase - 1] = (f - r) / h;
+        if (phase < 3) {
+          ++phase;
           continue;
         }
-        v = at;
-        ++iterations;
+        known = true;
+        fresh = true;
+      } else {
+        if (phase == 4) {
+          if (!(length(f) < length(r))) {
+            if (!fresh) {  // a carried or updated Jacobian misled: one by differences at v
+              phase = 1;
+              continue;
+            }
+            dv *= 0.5;  // no better with a fresh one: halve the step, or give up
+            done = ++halvings > 3;
+            continue;
+          }
+          if (secant) J += outerProduct(f - r - J * dv, dv) / dot(dv, dv);
+          fresh = false;
+          known = secant;
+          v = at;
+          ++iterations;
+        }
+        r = f;
+        end = at_end;
+        h = 1e-3 * max(1.0, length(v));
+        // At the float floor, or out of iterations: done; else a step.
+        done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
+        if (done) break;
+        if (!known) {
+          phase = 1;
+          continue;
+        }
       }
-      r = f;
-      // At the float floor, or out of iterations: done; else a new Jacobian.
-      done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
-      h = 1e-3 * max(1.0, length(v));
-      phase = 1;
-    } else {
-      J[phase - 1] = (f - r) / h;
-      if (phase < 3) {
-        ++phase;
-        continue;
-      }
-      if (!(abs(determinant(J)) > 1e-12)) break;  // a conjugate point (or NaN): give up
-      dv = -(inverse(J) * r);
-      const float cap = 0.5 * max(1.0, length(v));
-      if (length(dv) > cap) dv *= cap / length(dv);
-      halvings = 0;
-      phase = 4;
     }
+    // A step from r and J.
+    if (!(abs(determinant(J)) > 1e-12)) {  // singular: a conjugate point (or NaN)
+      if (fresh) break;                     // give up
+      phase = 1;                            // or a fresh Jacobian
+      continue;
+    }
+    dv = -(inverse(J) * r);
+    const float cap = 0.5 * max(1.0, length(v));
+    if (length(dv) > cap) dv *= cap / length(dv);
+    halvings = 0;
+    phase = 4;
   }
   residual = length(r) / sol_connection_scale(w, ez, length(v));
   return v;
+}
+
+// sol_newton with a fresh Jacobian by differences at every iteration.
+vec3 sol_polish(vec3 v, vec3 w, out float residual) {
+  vec3 end = vec3(0.0);
+  mat3 J = mat3(1.0);
+  bool known = false;
+  return sol_newton(v, w, false, end, J, known, residual);
 }
 
 // Adds the polished vector v to the connections found (sorted by length)
@@ -240,4 +280,26 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
     }
   }
   return kept;
+}
+
+// The shortest geodesic from the origin to w, as its initial vector v (|v|
+// the distance; for exact balls, march.comp): Newton with secant updates
+// (sol_newton) from `v` and its Jacobian `J` when they are given (`known`:
+// the solution at a nearby point, the march's last, with `end` its end
+// point), else from the shortest
+// seed of w's cell of the table (a minimiser at one of its corners), else
+// from the Euclidean guess in the frame at the middle height. Returns the
+// residual over its float floor; below 2e-4 the solution lands on w.
+float sol_shortest(vec3 w, inout vec3 v, inout vec3 end, inout mat3 J, inout bool known) {
+  if (!known) {
+    const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
+    const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + kSeedHeight) / kSeedStep;
+    const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(kSeedCellsXY - 1, kSeedCellsXY - 1, kSeedCellsZ - 1));
+    const vec4 seed = connection_seeds[((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots];
+    const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
+    v = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
+  }
+  float residual;
+  v = sol_newton(v, w, true, end, J, known, residual);
+  return residual;
 }

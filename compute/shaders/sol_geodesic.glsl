@@ -547,3 +547,16 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
 vec3 sol_translate(vec3 origin, vec3 local) {
   return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
 }
+
+// The unit tangent (frame components) of the closed-form ray at arc length t.
+vec3 sol_direction(SolRay g, float t) {
+  if (g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT) return g.direction;
+  if (g.regime == REGIME_PLANE) {
+    const float v = t + g.s0;
+    vec3 d = vec3(1.0 / cosh(v), 0.0, -tanh(v));
+    if (g.swapped) d = vec3(d.y, d.x, -d.z);
+    return vec3(g.sign_x * d.x, g.sign_y * d.y, d.z);
+  }
+  const SolPoint p = sol_point(g, g.lambda * t + g.u0);
+  return vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
+}

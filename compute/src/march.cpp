@@ -202,11 +202,12 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u}}});
 }
 
-// Which connection table exact point lights need: none, the minimisers', or
-// with a reach the longer connections' (sol::ConnectionTable::shared).
+// Which connection table exact balls and point lights need: none, the
+// minimisers', or with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
 SeedTable seed_table_of(const World& world) {
-  if (!uses_exact_lights(world)) return SeedTable::None;
+  // Exact balls take their minimisers' seeds from it too (sol_shortest).
+  if (!uses_exact(world)) return SeedTable::None;
   const bool longer = std::any_of(world.lights.begin(), world.lights.end(),
                                   [](const Light& l) { return l.exact && l.reach > 0.0; });
   return longer ? SeedTable::Longer : SeedTable::Minimisers;

@@ -89,6 +89,16 @@ SOL_CONSTANT(SOL_REAL, kDistanceTableHeight, 1.2);
 /// Exact balls step by the bound while it exceeds this band, by the exact
 /// distance within it (sol::sdf_ball_exact).
 SOL_CONSTANT(SOL_REAL, kExactBallBand, 0.25);
+/// What the table's distances may be off by where they lie in
+/// [kDistanceTableMin, kDistanceTableMax] (measured at most 6.4e-3: test
+/// ExactTable.AccuracyAgainstTheSolver): the kernels approach exact balls by
+/// the table less this, never past the true sphere (elsewhere by the bound) ...
+SOL_CONSTANT(SOL_REAL, kDistanceTableError, 1e-2);
+SOL_CONSTANT(SOL_REAL, kDistanceTableMin, 0.3);
+SOL_CONSTANT(SOL_REAL, kDistanceTableMax, 1.2);
+/// ... and within this of that approach they step by the exact distance
+/// (Newton on the geodesic from the centre), so hits lie on the true sphere.
+SOL_CONSTANT(SOL_REAL, kExactShell, 0.025);
 
 // ---- sol::ConnectionTable: the seeds of the kernels' connection solver
 /// Connections kept per cell.
