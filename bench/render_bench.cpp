@@ -25,8 +25,9 @@
 //     2048², one eye of a current headset) and as a stereo frame of two such
 //     eyes in one dispatch: kernel time, M rays/s and the stereo frame's time
 //     (the goal on one H100-class GPU: 11 ms, 90 Hz), with the device's name.
-//     Written to render_gpu.csv. On lavapipe this takes minutes; pass a
-//     smaller --gpu-size there.
+//     Written to render_gpu.csv. On a CPU device (lavapipe) it runs only
+//     with --only gpu (it takes many minutes there; pass a smaller
+//     --gpu-size).
 //
 // CSV fields holding a device name are quoted (names contain commas).
 //
@@ -122,8 +123,8 @@ int main(int argc, char** argv) {
       std::printf("usage: render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]\n"
                   "                    [--only throughput|error|exact|gpu]\n"
                   "Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
-                  "render_exact.csv and render_gpu.csv to DIR (default .); --only runs one section and\n"
-                  "writes its files.\n");
+                  "render_exact.csv and render_gpu.csv (on a CPU device only with --only gpu) to DIR\n"
+                  "(default .); --only runs one section and writes its files.\n");
       return 0;
     } else {
       std::fprintf(stderr, "render_bench: unknown option '%s'\n", arg.c_str());
@@ -271,7 +272,12 @@ int main(int argc, char** argv) {
     }
 
     // 4. Headset sizes: one eye at gpu_size², and a stereo frame of two in one dispatch.
-    if (runs("gpu")) {
+    const bool gpu_section = only == "gpu" || (only.empty() && !context.is_cpu());
+    if (only.empty() && context.is_cpu()) {
+      std::fprintf(stderr, "render_bench: '%s' is a CPU device: section 4 (headset sizes) only with --only gpu\n",
+                   device.c_str());
+    }
+    if (gpu_section) {
       std::string gpu = "scene,device,width,height,mono_ms,mrays_per_s,stereo_ms,stereo_hz\n";
       sol::vk::MarchRenderer renderer(context);
       const int frames = std::min(repeats, 3);

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Frame rates of solview for every preset at 640x360 on the Vulkan device the
 # loader picks (lavapipe here: VK_ICD_FILENAMES), at render scale 1 and with
-# the adaptive scale holding 30 fps; prints a Markdown table for docs/solview.md.
+# the adaptive scale holding TARGET fps (default 20); prints a Markdown table
+# for docs/solview.md.
 # With `present`: plane at scale 1 on the direct path (--present auto) and
 # through the blit (--present blit), four interleaved runs of each.
-#   viewer/measure_fps.sh [BUILD_DIR] [present]    (needs xvfb-run, or a DISPLAY)
+#   [TARGET=20] viewer/measure_fps.sh [BUILD_DIR] [present]    (needs xvfb-run, or a DISPLAY)
 set -euo pipefail
 build=${1:-build/ci}
 solview=$build/viewer/solview
@@ -24,11 +25,12 @@ if [ "${2:-}" = present ]; then
   done
   exit 0
 fi
-echo "| preset | fps at scale 1 | adaptive (--target-fps 30): fps | mean scale |"
+target=${TARGET:-20}
+echo "| preset | fps at scale 1 | adaptive (--target-fps $target): fps | mean scale |"
 echo "|---|---|---|---|"
-for scene in plane sandwich sheets lattice-balls lattice-pillars; do
-  full_frames=60; case $scene in lattice-*) full_frames=8;; esac
+for scene in plane sandwich sheets lattice-balls lattice-pillars spheres; do
+  full_frames=60; case $scene in lattice-* | spheres) full_frames=8;; esac
   full=$(run --scene "$scene" --size 640x360 --vsync off --frames $full_frames 2>&1 | grep "fps (mean")
-  adaptive=$(run --scene "$scene" --size 640x360 --vsync off --frames 240 --target-fps 30 2>&1 | grep "fps (mean")
+  adaptive=$(run --scene "$scene" --size 640x360 --vsync off --frames 240 --target-fps "$target" 2>&1 | grep "fps (mean")
   echo "| $scene | $(echo "$full" | field 1) | $(echo "$adaptive" | field 1) | $(echo "$adaptive" | field 4) |"
 done
