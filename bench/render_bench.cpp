@@ -47,25 +47,14 @@
 #include <sol/vk/context.hpp>
 #include <sol/vk/march.hpp>
 
+#include "output_file.hpp"
+
 namespace {
 
 double mean(const std::vector<float>& v) {
   double s = 0;
   for (float x : v) s += x;
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-}
-
-// Writes `text` to `path` atomically (temporary file, then rename).
-bool write_file(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".partial";
-  std::FILE* f = std::fopen(tmp.c_str(), "w");
-  if (!f) return false;
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) {
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return std::rename(tmp.c_str(), path.c_str()) == 0;
 }
 
 struct ImageError {
@@ -303,10 +292,7 @@ int main(int argc, char** argv) {
     }
 
     for (const auto& [name, text] : files) {
-      if (!write_file(out_dir + "/" + name, text)) {
-        std::fprintf(stderr, "render_bench: cannot write %s/%s\n", out_dir.c_str(), name.c_str());
-        return 1;
-      }
+      sol::programs::write_text_file(out_dir + "/" + name, text);  // complete or absent
       std::fprintf(stderr, "render_bench: wrote %s/%s\n", out_dir.c_str(), name.c_str());
     }
   } catch (const std::exception& e) {

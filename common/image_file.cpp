@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -31,12 +30,14 @@ bool can_write(const std::string& path) {
   return out != nullptr;
 }
 
-void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+void write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
                  const std::vector<float>& interleaved, bool srgb_for_8bit) {
+  const std::string& path = file.target();
   const int channels = static_cast<int>(channel_names.size());
   if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
     throw std::runtime_error(path + ": internal error: pixel data size does not match the image");
   }
+  // The writer is chosen from the target's name; it writes the temporary.
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error(path + ": no image format for this file name (" + OIIO::geterror() + ")");
   const bool as_float = float_format(path);
@@ -49,26 +50,18 @@ void write_image(const std::string& path, int width, int height, const std::vect
       if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = programs::srgb_encode(data[i]);
     }
   }
-  // Same directory (rename stays atomic); the writer was chosen from the real name.
-  const std::string temporary = path + ".partial";
-  if (!out->open(temporary, spec)) {
-    std::string reason = out->geterror();
-    std::remove(temporary.c_str());
-    throw std::runtime_error(path + ": cannot write: " + reason);
-  }
+  if (!out->open(file.path(), spec)) throw std::runtime_error(path + ": cannot write: " + out->geterror());
   const bool written = out->write_image(OIIO::TypeDesc::FLOAT, data.data());
   const std::string reason = written ? std::string() : out->geterror();
   const bool closed = out->close();
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error(path + ": cannot move the finished image into place: " + ec.message());
-  }
+  if (!written || !closed) throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
+}
+
+void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
+  OutputFile file(path);
+  write_image(file, width, height, channel_names, interleaved, srgb_for_8bit);
+  file.commit();
 }
 
 }  // namespace sol::programs

@@ -1,10 +1,12 @@
-// Writing images and AOVs with OpenImageIO, atomically: the data go to a
-// temporary file beside the target, renamed into place only when complete,
-// so a failure never leaves a partial output file.
+// Writing images and AOVs with OpenImageIO, atomically (output_file.hpp):
+// the data go to a temporary file beside the target, moved into place only
+// when complete, so a failure never leaves a partial output file.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "output_file.hpp"
 
 namespace sol::programs {
 
@@ -15,6 +17,12 @@ namespace sol::programs {
 /// `srgb_for_8bit` is set. Throws std::runtime_error naming the file and the
 /// reason on failure.
 void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+                 const std::vector<float>& interleaved, bool srgb_for_8bit);
+
+/// The same into `file`'s temporary (in the format its target's name
+/// names), left for the caller to commit: several files of one run are
+/// written first and committed together, so a failure leaves none.
+void write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
                  const std::vector<float>& interleaved, bool srgb_for_8bit);
 
 /// Whether OpenImageIO can write files with this name's extension.

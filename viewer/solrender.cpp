@@ -90,10 +90,16 @@ int main(int argc, char** argv) {
   if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");
   if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") cl.fail("--aov needs an .exr file name, got " + aov);
+  if (!aov.empty()) {
+    std::error_code ec_output, ec_aov;
+    const auto a = std::filesystem::weakly_canonical(output, ec_output), b = std::filesystem::weakly_canonical(aov, ec_aov);
+    if (!ec_output && !ec_aov && a == b) cl.fail("--aov " + aov + " is the same file as -o " + output + ": give two files");
+  }
   if (integrator == "rk4" && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 
   const bool tty = isatty(fileno(stderr));
-  bool wrote_output = false;
+  // A signal in any phase leaves no temporary behind (and no output).
+  sol::programs::install_signal_cleanup();
   try {
     sol::RenderResult r;
     std::string where;
@@ -150,19 +156,23 @@ int main(int argc, char** argv) {
       if (tty) std::fprintf(stderr, "\r");
       where = "cpu (" + std::to_string(used_threads) + " threads)";
     }
-    sol::programs::write_image(output, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
-    wrote_output = true;
+    // Both files complete before either replaces what was there: a failure
+    // leaves the previous files as they were.
+    sol::programs::OutputFile image(output);
+    sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+    std::optional<sol::programs::OutputFile> aovs;
     if (!aov.empty()) {
-      sol::programs::write_image(aov, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
-                               interleave_aovs(r), false);
+      aovs.emplace(aov);
+      sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+                                 interleave_aovs(r), false);
     }
+    image.commit();
+    if (aovs) aovs->commit();
     std::fprintf(stderr, "solrender: %dx%d%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
                  stereo ? " (stereo)" : "", where.c_str(), seconds, r.width * static_cast<double>(r.height) / seconds * 1e-6,
                  output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
-    // A failed AOV must not leave the pair half-done: remove the image of this run.
-    if (wrote_output) std::filesystem::remove(output);
     cl.fail(e.what());
   }
   return 0;

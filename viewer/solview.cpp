@@ -243,18 +243,18 @@ std::string frame_name(const std::string& dir, long frame) {
 }
 
 void write_state(const std::string& path, const sol::Observer& o, long frames) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error(path + ": cannot write the state file");
-    auto row = [&](const char* name, const glm::dvec3& v) { std::fprintf(f, "%s %.17g %.17g %.17g\n", name, v.x, v.y, v.z); };
-    row("position", o.position());
-    row("forward", o.forward());
-    row("up", o.up());
-    std::fprintf(f, "frames %ld\n", frames);
-    if (std::fclose(f) != 0) throw std::runtime_error(path + ": cannot write the state file");
-  }
-  std::filesystem::rename(tmp, path);
+  std::string text;
+  char line[256];
+  auto row = [&](const char* name, const glm::dvec3& v) {
+    std::snprintf(line, sizeof line, "%s %.17g %.17g %.17g\n", name, v.x, v.y, v.z);
+    text += line;
+  };
+  row("position", o.position());
+  row("forward", o.forward());
+  row("up", o.up());
+  std::snprintf(line, sizeof line, "frames %ld\n", frames);
+  text += line;
+  sol::programs::write_text_file(path, text);
 }
 
 // The render scale that holds the target frame rate: the frame time goes
@@ -297,6 +297,10 @@ int run(App& app) {
   }
   if (!opt.screenshot.empty() && !sol::programs::can_write(opt.screenshot)) {
     cl.fail("--screenshot " + opt.screenshot + ": no image format for this file name extension");
+  }
+  // Files written at exit: refused now rather than after the session.
+  for (const auto& [option, path] : {std::pair{"--screenshot", opt.screenshot}, std::pair{"--state", opt.state}}) {
+    if (!path.empty() && std::filesystem::is_directory(path)) cl.fail(std::string(option) + " " + path + ": it is a directory, not a file");
   }
   if (!opt.record.empty()) {
     std::error_code ec;
@@ -500,6 +504,7 @@ int main(int argc, char** argv) {
   App app;
   add_options(app.command_line, app.options);
   app.command_line.parse(argc, argv);
+  sol::programs::install_signal_cleanup();  // screenshots, frames and the state: complete or absent
   try {
     app.set_scene(app.options.scene);
   } catch (const std::exception& e) {

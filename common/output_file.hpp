@@ -1,0 +1,46 @@
+// Output files that are either complete or absent. Data go to a temporary
+// file beside the target, created under an unpredictable name with O_EXCL
+// (mkstemp: never an existing file, never through a link), and are moved
+// onto the target only when complete; a temporary never committed is
+// removed, by the destructor or, after install_signal_cleanup(), when
+// SIGINT, SIGTERM or SIGHUP ends the program.
+#pragma once
+
+#include <string>
+
+namespace sol::programs {
+
+class OutputFile {
+ public:
+  /// Creates the temporary beside `target`. Throws std::runtime_error naming
+  /// the target when the target is a directory or its directory cannot take
+  /// a new file.
+  explicit OutputFile(std::string target);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const std::string& target() const { return m_target; }
+  /// The temporary to write to (until commit()).
+  const std::string& path() const { return m_temporary; }
+  /// Moves the temporary onto the target (atomic within a directory).
+  /// Throws std::runtime_error naming the target on failure, removing the
+  /// temporary.
+  void commit();
+
+ private:
+  std::string m_target, m_temporary;
+  int m_slot = -1;  // in the signal handler's list of temporaries
+  bool m_committed = false;
+};
+
+/// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove every live
+/// OutputFile's temporary and then end the program as the signal would
+/// have (default action, re-raised).
+void install_signal_cleanup();
+
+/// Writes `text` to `path` through an OutputFile. Throws std::runtime_error
+/// naming the file on failure.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace sol::programs
