@@ -90,6 +90,9 @@ int main(int argc, char** argv) {
   if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");
   if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") cl.fail("--aov needs an .exr file name, got " + aov);
+  for (const std::string& path : {output, aov}) {
+    if (!path.empty() && std::filesystem::is_directory(path)) cl.fail(path + ": cannot write: it is a directory");
+  }
   if (!aov.empty()) {
     std::error_code ec_output, ec_aov;
     const auto a = std::filesystem::weakly_canonical(output, ec_output), b = std::filesystem::weakly_canonical(aov, ec_aov);
