@@ -210,6 +210,61 @@ TEST(Scene, ErrorsSayWhereInTheFile) {
   expect_rejected("{\"objects\": [\n  {\"type\": \"ball\", \"center\": [0, 0, 0]}]}", "needs a 'radius' (line 2, column 3)");
 }
 
+// The message for `text` (which must be rejected), "" if it was accepted.
+std::string rejection(const std::string& text) {
+  try {
+    (void)sol::parse_scene(text, "bad.json");
+  } catch (const sol::InvalidArgument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, HostileTextIsRefusedBriefly) {
+  // Nesting 100000 deep (a parser recursing per level would overflow the
+  // stack): refused at the level past kSceneFileMaxDepth = 32. The scene
+  // object is level 1, the objects array 2, so the 31st '[' after it (column
+  // 13 + 31) opens level 33.
+  const std::string deep = "{\"objects\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_EQ(rejection(deep), "bad.json: nesting deeper than 32 levels of objects and arrays (line 1, column 44)");
+  // Exactly 32 levels pass that check (and fail on the schema), and brackets
+  // inside strings do not count.
+  const std::string level32 = "{\"objects\": " + std::string(31, '[') + std::string(31, ']') + "}";
+  EXPECT_EQ(rejection(level32).find("nesting"), std::string::npos) << rejection(level32);
+  const std::string in_string = R"({"objects": [{"type": "plane_z", ")" + std::string(100, '[') + R"(": 1}]})";
+  EXPECT_NE(rejection(in_string).find("unknown key '[[["), std::string::npos) << rejection(in_string);
+  // A NUL byte, after the JSON value or inside a string: nothing is ignored.
+  const std::string valid = R"({"objects": [{"type": "plane_z"}]})";
+  EXPECT_NO_THROW((void)sol::parse_scene(valid));
+  EXPECT_EQ(rejection(valid + std::string(1, '\0') + "garbage"), "bad.json: malformed JSON: a NUL byte (line 1, column 35)");
+  EXPECT_NE(rejection(std::string(R"({"objects": [{"type": "plane_z)") + '\0' + R"("}]})").find("NUL byte"), std::string::npos);
+  // Values and keys of megabytes are shown cut, with their length.
+  const std::string long_key = rejection(R"({"objects": [], ")" + std::string(5000000, 'k') + R"(": 1})");
+  EXPECT_NE(long_key.find("unknown key 'kkkk"), std::string::npos) << long_key.substr(0, 200);
+  EXPECT_NE(long_key.find("... (5000000 bytes)"), std::string::npos) << long_key.substr(0, 200);
+  EXPECT_LT(long_key.size(), 400u);
+  const std::string long_value = rejection(R"({"objects": [{"type": ")" + std::string(5000000, 'b') + R"("}]})");
+  EXPECT_NE(long_value.find("got bbbb"), std::string::npos) << long_value.substr(0, 200);
+  EXPECT_LT(long_value.size(), 400u);
+  std::string many = "1";
+  for (int i = 0; i < 200000; ++i) many += ", 1";
+  const std::string long_array = rejection(R"({"objects": [{"type": "plane_z", "color": [)" + many + R"(]}]})");
+  EXPECT_NE(long_array.find("array of 3 numbers, got [1,1,1"), std::string::npos) << long_array.substr(0, 200);
+  EXPECT_LT(long_array.size(), 400u);
+  // The parser's own messages too (it quotes a number that overflows whole).
+  const std::string long_number = rejection(R"({"objects": [{"type": "plane_z", "c": )" + std::string(1000000, '1') + "}]}");
+  EXPECT_NE(long_number.find("malformed JSON"), std::string::npos) << long_number.substr(0, 200);
+  EXPECT_LT(long_number.size(), 500u);
+  // Cut at a character, not inside a UTF-8 sequence (é is two bytes).
+  std::string accents;
+  for (int i = 0; i < 100; ++i) accents += "\xc3\xa9";
+  const std::string cut = rejection(R"({"objects": [{"type": "x)" + accents + R"("}]})");
+  const std::size_t got = cut.find("got x");
+  ASSERT_NE(got, std::string::npos) << cut;
+  const std::string shown = cut.substr(got + 4, cut.find("...", got) - got - 4);
+  EXPECT_EQ(shown.size() % 2, 1u) << shown;  // "x" and whole "é"s
+}
+
 TEST(Scene, LightsAndFog) {
   const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}],
     "lights": [{"type": "directional", "direction": [0, 0, 1], "color": [1, 0.5, 0.5], "intensity": 0.7},

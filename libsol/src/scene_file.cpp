@@ -29,7 +29,7 @@ void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (c.contains("frustum")) {
     const json& f = c["frustum"];
     if (!f.is_array() || f.size() != 4) {
-      r.fail("camera.frustum", "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + f.dump());
+      r.fail("camera.frustum", "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + SceneFileReader::text(f));
     }
     camera.frustum = Frustum{r.number(f[0], "camera.frustum[0]"), r.number(f[1], "camera.frustum[1]"),
                              r.number(f[2], "camera.frustum[2]"), r.number(f[3], "camera.frustum[3]")};
@@ -60,14 +60,54 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   return light;
 }
 
+// What the JSON parser is not asked to bear: nesting deeper than
+// kSceneFileMaxDepth (it recurses per level) and NUL bytes (it would stop
+// at one and ignore what follows). One pass, strings skipped.
+void check_structure(std::string_view text, std::string_view source) {
+  int depth = 0, line = 1;
+  std::size_t line_start = 0;
+  bool in_string = false, escaped = false;
+  auto fail = [&](std::size_t i, const std::string& what) {
+    throw InvalidArgument(std::string(source) + ": " + what + " (line " + std::to_string(line) + ", column " +
+                          std::to_string(i - line_start + 1) + ")");
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\0') fail(i, "malformed JSON: a NUL byte");
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kSceneFileMaxDepth) {
+        fail(i, "nesting deeper than " + std::to_string(kSceneFileMaxDepth) + " levels of objects and arrays");
+      }
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, std::string_view source) {
+  check_structure(text, source);
   json root;
   try {
     root = json::parse(text.begin(), text.end());
   } catch (const json::exception& e) {  // syntax errors and numbers out of range
-    throw InvalidArgument(std::string(source) + ": malformed JSON: " + e.what());
+    // The parser's message quotes the offending token whole: cut.
+    throw InvalidArgument(std::string(source) + ": malformed JSON: " + SceneFileReader::shown(e.what(), 300));
   }
   const SceneFileReader r(text, source);
   if (!root.is_object()) r.fail("", "the scene must be a JSON object");
@@ -125,7 +165,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("hit_epsilon")) s.hit_epsilon = r.number(root["hit_epsilon"], "hit_epsilon");
   if (root.contains("max_steps")) {
     const json& m = root["max_steps"];
-    if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + m.dump());
+    if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + SceneFileReader::text(m));
     const auto v = m.get<long long>();
     if (v < 1 || v > 100000) r.fail("max_steps", "max_steps must be in [1, 100000]");
     s.max_steps = static_cast<int>(v);

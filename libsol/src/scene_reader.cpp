@@ -114,12 +114,22 @@ void SceneFileReader::fail(const std::string& path, const std::string& what) con
   throw InvalidArgument(std::string(m_source) + ": " + what);
 }
 
+std::string SceneFileReader::shown(std::string s, std::size_t limit) {
+  if (s.size() <= limit) return s;
+  const std::size_t total = s.size();
+  s.resize(limit);
+  // Not half a UTF-8 character: drop a cut sequence's bytes.
+  while (!s.empty() && (static_cast<unsigned char>(s.back()) & 0xC0) == 0x80) s.pop_back();
+  if (!s.empty() && static_cast<unsigned char>(s.back()) >= 0xC0) s.pop_back();
+  return s + "... (" + std::to_string(total) + " bytes)";
+}
+
 std::string SceneFileReader::text(const json& value) {
-  return value.is_string() ? value.get<std::string>() : value.dump();
+  return shown(value.is_string() ? value.get<std::string>() : value.dump());
 }
 
 double SceneFileReader::number(const json& value, const std::string& path) const {
-  if (!value.is_number()) fail(path, "'" + path + "' must be a number, got " + value.dump());
+  if (!value.is_number()) fail(path, "'" + path + "' must be a number, got " + text(value));
   const double v = value.get<double>();
   if (!std::isfinite(v)) fail(path, "'" + path + "' must be finite");
   return v;
@@ -127,13 +137,13 @@ double SceneFileReader::number(const json& value, const std::string& path) const
 
 glm::dvec3 SceneFileReader::vec3(const json& value, const std::string& path) const {
   if (!value.is_array() || value.size() != 3) {
-    fail(path, "'" + path + "' must be an array of 3 numbers, got " + value.dump());
+    fail(path, "'" + path + "' must be an array of 3 numbers, got " + text(value));
   }
   return {number(value[0], path + "[0]"), number(value[1], path + "[1]"), number(value[2], path + "[2]")};
 }
 
 bool SceneFileReader::boolean(const json& value, const std::string& path) const {
-  if (!value.is_boolean()) fail(path, "'" + path + "' must be true or false, got " + value.dump());
+  if (!value.is_boolean()) fail(path, "'" + path + "' must be true or false, got " + text(value));
   return value.get<bool>();
 }
 
@@ -146,7 +156,7 @@ void SceneFileReader::require_known_keys(const json& object, std::initializer_li
     std::string list;
     for (std::string_view k : keys) list += std::string(list.empty() ? "" : ", ") + std::string(k);
     fail(path.empty() ? item.key() : path + "." + item.key(),
-         "unknown key '" + item.key() + "' in " + what + " (known: " + list + ")");
+         "unknown key '" + shown(item.key()) + "' in " + what + " (known: " + list + ")");
   }
 }
 

@@ -27,6 +27,9 @@ struct FilePlace {
 
 class SceneFileReader {
  public:
+  /// The most of a value that a message quotes.
+  static constexpr std::size_t kShownBytes = 64;
+
   /// Indexes `text` (which must already have parsed as JSON); `source` (a
   /// file name) prefixes every message.
   SceneFileReader(std::string_view text, std::string_view source);
@@ -49,8 +52,13 @@ class SceneFileReader {
   void require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
                    const std::string& path) const;
 
-  /// A string value as it is, anything else as its JSON text (for messages and names).
+  /// A string value as it is, anything else as its JSON text (for messages
+  /// and names), shortened as shown().
   static std::string text(const json& value);
+  /// `s` for a message: beyond `limit` bytes cut (at a UTF-8 character),
+  /// with its length ("abc... (5000000 bytes)"), so a huge value does not
+  /// flood the terminal.
+  static std::string shown(std::string s, std::size_t limit = kShownBytes);
 
  private:
   std::string_view m_source;

@@ -13,9 +13,15 @@
 
 namespace sol {
 
+/// How deeply a scene file's objects and arrays may nest (the schema needs 4).
+/// Deeper text is refused before it is parsed: parsers recurse per level.
+inline constexpr int kSceneFileMaxDepth = 32;
+
 /// Parses a scene from JSON text; `source` (a file name) prefixes every error
-/// message. Unknown keys are errors (a typo must not pass silently). Throws
-/// InvalidArgument on malformed or inconsistent input (sol::validate's checks).
+/// message. Unknown keys are errors (a typo must not pass silently), as are
+/// nesting deeper than kSceneFileMaxDepth and NUL bytes (nothing after the
+/// JSON value is ignored). Throws InvalidArgument on malformed or
+/// inconsistent input (sol::validate's checks).
 Scene parse_scene(std::string_view json, std::string_view source = "<scene>");
 
 /// Reads and parses a scene file; InvalidArgument if unreadable or invalid.
