@@ -15,6 +15,10 @@
 
 namespace {
 
+// Arc lengths solgeodesic follows: beyond |z| ~ 700 e^{±z} leaves double
+// anyway; the integrators' fixed steps make 1e8 a matter of minutes.
+constexpr double kLongest = 1e6, kLongestIntegrated = 1e3;
+
 void print_usage(std::FILE* out) {
   std::fprintf(out,
                "usage: solgeodesic [options]\n"
@@ -22,12 +26,14 @@ void print_usage(std::FILE* out) {
                "  --from X Y Z        start point (default 0 0 0)\n"
                "  --direction A B C   initial direction in frame components (normalised);\n"
                "                      without it a few representative directions are printed\n"
-               "  --length L          arc length to follow (default 5; negative goes backwards)\n"
+               "  --length L          arc length to follow (default 5; negative goes backwards;\n"
+               "                      |L| <= 1e6, 1e3 with rk4 or dopri)\n"
                "  --samples N         rows per geodesic, N >= 2 (default 6)\n"
                "  --method M          auto | rk4 | dopri | closed (default auto)\n"
                "  --help              this text\n\n"
                "Columns: t, position x y z, direction (frame components) u1 u2 u3, and the drift of\n"
-               "the first integrals e^{-z}u1 - a, e^{z}u2 - b, z' + a x - b y - c (relative to the start).\n");
+               "the first integrals e^{-z}u1 - a, e^{z}u2 - b, z' + a x - b y - c (relative to the start;\n"
+               "beyond |z| ~ 700 a component u1 or u2 below double's range reads 0, and the drift shows it).\n");
 }
 
 [[noreturn]] void fail(const std::string& message) {
@@ -44,6 +50,13 @@ double parse_number(const char* text, const char* option) {
   return value;
 }
 
+// u e^{w} without 0 · inf: u = 0 exactly (vertical and plane geodesics far
+// out) gives 0, and a tiny u meets a huge e^{w} in logarithms.
+double scaled(double u, double w) {
+  if (u == 0.0) return 0.0;
+  return std::copysign(std::exp(std::log(std::abs(u)) + w), u);
+}
+
 void print_geodesic(const sol::GeodesicState& start, double length, int samples, sol::Method method) {
   const glm::dvec3 d = glm::normalize(start.direction);
   std::printf("# geodesic from (%g, %g, %g) with direction (%.6f, %.6f, %.6f)\n", start.position.x,
@@ -56,8 +69,8 @@ void print_geodesic(const sol::GeodesicState& start, double length, int samples,
     // First integrals are stated for geodesics from the origin: translate back.
     const glm::dvec3 q = sol::multiply(sol::inverse(start.position), s.position);
     const glm::dvec3 u = s.direction;
-    const double i1 = std::exp(-q.z) * u.x - d.x;
-    const double i2 = std::exp(q.z) * u.y - d.y;
+    const double i1 = scaled(u.x, -q.z) - d.x;
+    const double i2 = scaled(u.y, q.z) - d.y;
     const double i3 = u.z + d.x * q.x - d.y * q.y - d.z;
     std::printf("  %9.4f %14.8f %14.8f %14.8f %10.6f %10.6f %10.6f %10.1e %10.1e %10.1e\n", t, s.position.x,
                 s.position.y, s.position.z, u.x, u.y, u.z, i1, i2, i3);
@@ -113,6 +126,14 @@ int main(int argc, char** argv) {
   if (directions.empty()) {
     const double s = 1.0 / std::sqrt(2.0);
     directions = {{1, 0, 0}, {0, 0, 1}, {s, s, 0}, {0.6, 0.0, 0.8}, {0.48, 0.6, 0.64}, {0.01, 0.3, -0.95}};
+  }
+  // The integrators take fixed steps: their time grows with the length.
+  const bool integrated = method == sol::Method::RK4 || method == sol::Method::DormandPrince;
+  const double longest = integrated ? kLongestIntegrated : kLongest;
+  if (!(std::abs(length) <= longest)) {
+    char limit[64];
+    std::snprintf(limit, sizeof limit, "[-%g, %g]", longest, longest);
+    fail("--length must be in " + std::string(limit) + (integrated ? " with --method rk4 or dopri" : ""));
   }
   std::printf("# libsol %s: Sol geodesics\n\n", SOL_VERSION_STRING);
   try {
