@@ -164,6 +164,24 @@ CommandLine::Condition positive() {
 CommandLine::Condition non_negative() {
   return {[](double v) { return v >= 0.0; }, ">= 0"};
 }
+namespace {
+// %g without exponent padding: 1e-06 -> 1e-6, 1e+06 -> 1e6.
+std::string compact(double v) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%g", v);
+  std::string s = text;
+  const std::size_t e = s.find('e');
+  if (e == std::string::npos) return s;
+  std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+}  // namespace
+
+CommandLine::Condition in_range(double lo, double hi) {
+  return {[lo, hi](double v) { return v >= lo && v <= hi; }, "in [" + compact(lo) + ", " + compact(hi) + "]"};
+}
 CommandLine::Condition in_unit_interval() {
   return {[](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]"};
 }

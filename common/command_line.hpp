@@ -111,6 +111,8 @@ class CommandLine {
 CommandLine::Condition positive();
 CommandLine::Condition non_negative();
 CommandLine::Condition in_unit_interval();
+/// "in [lo, hi]" (bounds printed with %g).
+CommandLine::Condition in_range(double lo, double hi);
 
 /// The options that override a scene's camera and limits: --position,
 /// --forward, --up (frame components), --max-distance, --max-steps, and

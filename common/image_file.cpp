@@ -30,7 +30,7 @@ bool can_write(const std::string& path) {
   return out != nullptr;
 }
 
-void write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
+std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
                  const std::vector<float>& interleaved, bool srgb_for_8bit) {
   const std::string& path = file.target();
   const int channels = static_cast<int>(channel_names.size());
@@ -45,6 +45,13 @@ void write_image(const OutputFile& file, int width, int height, const std::vecto
   spec.channelnames = channel_names;
   if (channels == 4 && channel_names[3] == "A") spec.alpha_channel = 3;
   std::vector<float> data = interleaved;
+  std::size_t non_finite = 0;
+  for (float& v : data) {
+    if (!std::isfinite(v)) {
+      v = 0.0f;
+      ++non_finite;
+    }
+  }
   if (!as_float && srgb_for_8bit) {
     for (std::size_t i = 0; i < data.size(); ++i) {
       if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = programs::srgb_encode(data[i]);
@@ -55,13 +62,15 @@ void write_image(const OutputFile& file, int width, int height, const std::vecto
   const std::string reason = written ? std::string() : out->geterror();
   const bool closed = out->close();
   if (!written || !closed) throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
+  return non_finite;
 }
 
-void write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+std::size_t write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
                  const std::vector<float>& interleaved, bool srgb_for_8bit) {
   OutputFile file(path);
-  write_image(file, width, height, channel_names, interleaved, srgb_for_8bit);
+  const std::size_t non_finite = write_image(file, width, height, channel_names, interleaved, srgb_for_8bit);
   file.commit();
+  return non_finite;
 }
 
 }  // namespace sol::programs

@@ -5,13 +5,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <OpenImageIO/imageio.h>
+
+#include "image_file.hpp"
 #include "output_file.hpp"
 
 namespace fs = std::filesystem;
@@ -146,4 +151,20 @@ TEST(OutputFile, SignalsRemoveTheTemporaries) {
     EXPECT_EQ(entries(d), 1);
     fs::remove_all(d);
   }
+}
+
+// No NaN or infinity reaches a file: written as 0 and counted.
+TEST(ImageFile, NonFiniteValuesAreWrittenAsZeroAndCounted) {
+  const fs::path d = fresh_directory("finite");
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> pixels = {0.5f, nan, 0.25f, 1.0f, -inf, 0.125f, inf, 1.0f};  // 2x1 RGBA
+  const std::string path = (d / "a.exr").string();
+  EXPECT_EQ(sol::programs::write_image(path, 2, 1, {"R", "G", "B", "A"}, pixels, false), 3u);
+  auto in = OIIO::ImageInput::open(path);
+  ASSERT_TRUE(in);
+  std::vector<float> back(8);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, back.data()));
+  const std::vector<float> expected = {0.5f, 0.0f, 0.25f, 1.0f, 0.0f, 0.125f, 0.0f, 1.0f};
+  EXPECT_EQ(back, expected);
+  fs::remove_all(d);
 }

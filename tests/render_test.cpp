@@ -2,13 +2,18 @@
 // (independent of the closed form the march uses), exact distances, the
 // camera convention, invariance under translations and the (y, x, -z)
 // symmetry, and no NaN.
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 
+#include "row_pool.hpp"  // libsol/src: the CPU renderer's thread pool
 #include "support/directions.hpp"
 
 namespace {
@@ -498,16 +503,44 @@ TEST(Render, PreparedWorldRendersAnyCamera) {
 // the exception it is (it once terminated the process): an observer so far
 // up that the quotient cannot teleport it in double.
 TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
+  // A row that throws on a worker thread (here row 7 of 40, whichever thread
+  // takes it): the exception reaches the caller once every thread has
+  // joined, and the hand-out stops (no crash: the threads are joined on
+  // unwinding).
+  for (unsigned threads : {1u, 2u, 4u}) {
+    std::atomic<int> rows_run{0};
+    try {
+      sol::detail::for_each_row(40, threads, nullptr, [&](int j) {
+        ++rows_run;
+        if (j == 7) throw sol::OutOfRange("row 7 failed");
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      });
+      ADD_FAILURE() << "no exception with " << threads << " threads";
+    } catch (const sol::OutOfRange& e) {
+      EXPECT_STREQ(e.what(), "row 7 failed");
+    }
+    EXPECT_LT(rows_run.load(), 40) << threads << " threads";  // stopped early
+  }
+  // A progress callback that throws (on the calling thread, while workers
+  // run) also reaches the caller after they join.
+  sol::RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  settings.threads = 2;
+  settings.progress = [](double fraction) {
+    if (fraction < 1.0) throw std::runtime_error("cancelled");
+  };
+  EXPECT_THROW(sol::render_cpu(sol::preset_scene("lattice-balls"), settings), std::runtime_error);
+  // What used to fail inside the workers (a camera at z = 800: the flows and
+  // teleports leave double) is now refused up front, naming the field.
   sol::Scene far = sol::preset_scene("lattice-balls");
   far.camera.position = {0.0, 0.0, 800.0};
-  for (unsigned threads : {1u, 2u, 4u}) {
-    sol::RenderSettings settings;
-    settings.width = 16;
-    settings.height = 16;
-    settings.threads = threads;
-    int reports = 0;
-    settings.progress = [&](double) { ++reports; };
-    EXPECT_THROW(sol::render_cpu(far, settings), sol::OutOfRange) << threads << " threads";
+  try {
+    (void)sol::render_cpu(far, settings);
+    ADD_FAILURE() << "a camera at z = 800 was accepted";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("camera.position must have its height z within [-80, 80]"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -265,6 +265,37 @@ TEST(Scene, HostileTextIsRefusedBriefly) {
   EXPECT_EQ(shown.size() % 2, 1u) << shown;  // "x" and whole "é"s
 }
 
+TEST(Scene, RefusesWhatTheRenderersCannotRepresent) {
+  // Heights beyond [-80, 80] (e^{±z} leaves float in the kernel; far beyond,
+  // double in the flows and teleports), for every position, named by field.
+  const std::string plane = R"({"type": "plane_z"})";
+  expect_rejected(R"({"camera": {"position": [0, 0, 800]}, "objects": [)" + plane + "]}",
+                  "camera.position must have its height z within [-80, 80]");
+  expect_rejected(R"({"camera": {"position": [0, 0, -80.5]}, "objects": [)" + plane + "]}", "camera.position");
+  expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 800], "radius": 0.3}], "quotient": "golden"})",
+                  "objects[0].center must have its height z within [-80, 80]");
+  expect_rejected(R"({"objects": [{"type": "tube", "through": [0, 0, -800], "axis": "x", "radius": 0.1}]})",
+                  "objects[0].through must have its height z within [-80, 80]");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "c": 100}]})", "objects[0].c is a height: it must be within [-80, 80]");
+  expect_rejected(R"({"objects": [)" + plane + R"(], "lights": [{"type": "point", "position": [0, 0, 710]}]})",
+                  "lights[0].position must have its height z within [-80, 80]");
+  EXPECT_NO_THROW((void)sol::parse_scene(R"({"camera": {"position": [1e15, -1e15, 80]}, "objects": [{"type": "plane_z", "c": -80}]})"));
+  // Planes x, y = c may lie anywhere within 1e15.
+  EXPECT_NO_THROW((void)sol::parse_scene(R"({"objects": [{"type": "plane_x", "c": 1e12}]})"));
+  // Colours stay finite: intensities up to 1e9 (1e39 gave +Inf pixels).
+  expect_rejected(R"({"objects": [)" + plane + R"(], "lights": [{"type": "point", "position": [0, 0, 1], "intensity": 1e39}]})",
+                  "lights[0].intensity must be at most 1e9");
+  // The right cause: a fog distance whose inverse overflows, directions
+  // whose length overflows or underflows (not "parallel").
+  expect_rejected(R"({"objects": [)" + plane + R"(], "fog_distance": 1e-320})", "fog_distance must be 0 (no fog) or at least 1e-6");
+  expect_rejected(R"({"objects": [)" + plane + R"(], "fog": {"density": 1e300}})", "fog.density must be at most 1e6");
+  expect_rejected(R"({"camera": {"forward": [1e308, 1e308, 0]}, "objects": [)" + plane + "]}",
+                  "camera.forward must have components of at most 1e100");
+  expect_rejected(R"({"camera": {"up": [0, 0, 1e-320]}, "objects": [)" + plane + "]}", "camera.up must have components");
+  expect_rejected(R"({"objects": [)" + plane + R"(], "lights": [{"type": "directional", "direction": [1e200, 0, 0]}]})",
+                  "lights[0].direction must have components");
+}
+
 TEST(Scene, LightsAndFog) {
   const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}],
     "lights": [{"type": "directional", "direction": [0, 0, 1], "color": [1, 0.5, 0.5], "intensity": 0.7},

@@ -399,7 +399,8 @@ TEST(XrSolxr, BadOptionsAreClearErrors) {
   } cases[] = {
       {"--frobnicate", "solxr: unknown option '--frobnicate'"},
       {"--scene tube", "unknown preset 'tube'"},
-      {"--scale 0", "--scale must be > 0"},
+      {"--scale 0", "--scale must be in [1e-6, 1e6], got 0"},
+      {"--scale 1e300", "--scale must be in [1e-6, 1e6], got 1e300"},
       {"--width 0 --height 4", "--width must be in [1, 16384]"},
       {"--width 4", "--width and --height go together"},
       {"--reference floor", "--reference expects local or stage"},

@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
   cl.add_number("--rk-step", rk_step, "H", "RK4 substep in arc length for --integrator rk4 (default 0.01)",
                 sol::cli::positive());
   cl.add_flag("--stereo", stereo, "both eyes side by side (image width 2 W)");
-  cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo (default 0.064)", sol::cli::non_negative());
+  cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
+                sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
   cl.add_flag("--print-scene", print_scene, "print the effective scene as JSON and exit");
   cl.set_footer(
@@ -162,15 +163,19 @@ int main(int argc, char** argv) {
     // Both files complete before either replaces what was there: a failure
     // leaves the previous files as they were.
     sol::programs::OutputFile image(output);
-    sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+    std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
     std::optional<sol::programs::OutputFile> aovs;
     if (!aov.empty()) {
       aovs.emplace(aov);
-      sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
-                                 interleave_aovs(r), false);
+      non_finite += sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+                                               interleave_aovs(r), false);
     }
     image.commit();
     if (aovs) aovs->commit();
+    if (non_finite > 0) {
+      std::fprintf(stderr, "solrender: warning: %zu values were not finite and were written as 0 (a defect: please report "
+                   "the scene and options)\n", non_finite);
+    }
     std::fprintf(stderr, "solrender: %dx%d%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
                  stereo ? " (stereo)" : "", where.c_str(), seconds, r.width * static_cast<double>(r.height) / seconds * 1e-6,
                  output.c_str());

@@ -85,7 +85,7 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
                 "allows it; blit: always through an RGBA float image and a blit");
   cl.add_flag("--fullscreen", o.fullscreen, "start fullscreen");
   cl.add_flag("--stereo", o.stereo, "both eyes side by side (each eye half the width)");
-  cl.add_number("--ipd", o.ipd, "D", "eye separation in Sol units (default 0.064)", sol::cli::non_negative());
+  cl.add_number("--ipd", o.ipd, "D", "eye separation in Sol units, [0, 10] (default 0.064)", sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--frames", o.frames, 1, 100000000, "N", "exit after N frames");
   cl.add_text("--screenshot", o.screenshot, "FILE", "at exit, write the last frame as shown (window size) to FILE");
   cl.add_text("--script", o.script, "FILE",

@@ -60,9 +60,12 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
   cl.add_number("--rk-step", o.rk_step, "H", "RK4 substep for --integrator rk4 (default 0.01)", sol::cli::positive());
   cl.add_integer("--width", o.width, 1, 16384, "W", "per-eye image width, 1..16384 (default: the runtime's recommendation)");
   cl.add_integer("--height", o.height, 1, 16384, "H", "per-eye image height, 1..16384 (default: the runtime's recommendation)");
-  cl.add_number("--scale", o.scale, "S", "Sol units per metre of head motion, > 0 (default 1)", sol::cli::positive());
-  cl.add_number("--speed", o.speed, "V", "walking speed, Sol units per second at full stick (default 1)");
-  cl.add_number("--turn-rate", o.turn_rate, "DEG", "turning rate, degrees per second at full stick (default 90)");
+  cl.add_number("--scale", o.scale, "S", "Sol units per metre of head motion, [1e-6, 1e6] (default 1)",
+                sol::cli::in_range(1e-6, 1e6));
+  cl.add_number("--speed", o.speed, "V", "walking speed, Sol units per second at full stick, [-1e6, 1e6] (default 1)",
+                sol::cli::in_range(-1e6, 1e6));
+  cl.add_number("--turn-rate", o.turn_rate, "DEG", "turning rate, degrees per second at full stick, [-1e6, 1e6] (default 90)",
+                sol::cli::in_range(-1e6, 1e6));
   cl.add_choice("--reference", o.reference, {"local", "stage"}, "the reference space head poses are in (default local)");
   cl.add_integer("--frames", o.frames, 1, 1 << 30, "N",
                  "ask the runtime to end the session after N frames (default: run until the runtime ends it)");

@@ -15,11 +15,9 @@ namespace detail {
 
 // The checks behind validate(Camera), also run on the camera of a scene file.
 void check_camera(const Camera& c) {
-  if (!bounded3(c.position)) field_error("camera.position", "camera.position must be finite and within 1e15 of the origin");
-  if (!finite3(c.forward) || glm::length(c.forward) == 0.0) {
-    field_error("camera.forward", "camera.forward must be finite and non-zero");
-  }
-  if (!finite3(c.up) || glm::length(c.up) == 0.0) field_error("camera.up", "camera.up must be finite and non-zero");
+  check_position(c.position, "camera.position");
+  check_direction(c.forward, "camera.forward");
+  check_direction(c.up, "camera.up");
   if (glm::length(glm::cross(glm::normalize(c.forward), glm::normalize(c.up))) < 1e-9) {
     field_error("camera.forward", "camera.forward and camera.up must not be parallel");
   }

@@ -15,16 +15,14 @@ namespace detail {
 // The checks of one light, `at` its path ("lights[0]").
 void check_light(const Light& l, const std::string& at) {
   if (!(l.reach >= 0.0 && l.reach <= 10.0)) field_error(at + ".reach", at + ".reach must be in [0, 10]");
-  if (l.type == LightType::Directional && (!finite3(l.direction) || glm::length(l.direction) == 0.0)) {
-    field_error(at + ".direction", at + ".direction must be finite and non-zero");
-  }
-  if (l.type == LightType::Point && !bounded3(l.position)) {
-    field_error(at + ".position", at + ".position must be finite and within 1e15 of the origin");
-  }
+  if (l.type == LightType::Directional) check_direction(l.direction, at + ".direction");
+  if (l.type == LightType::Point) check_position(l.position, at + ".position");
   if (!unit_interval3(l.color)) field_error(at + ".color", at + ".color components must be in [0, 1]");
+  // Up to 1e9: colours stay far inside float (3.4e38) whatever the scene sums.
   if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity)) {
     field_error(at + ".intensity", at + ".intensity must be finite and >= 0");
   }
+  if (!(l.intensity <= 1e9)) field_error(at + ".intensity", at + ".intensity must be at most 1e9");
 }
 
 }  // namespace detail

@@ -368,6 +368,9 @@ void check_radius(double radius, const std::string& at, bool quotient) {
 template <class Plane>
 void check_plane(const Plane& p, const std::string& at, bool quotient) {
   if (!std::isfinite(p.c) || std::abs(p.c) > kMaxCoordinate) field_error(at + ".c", at + ".c must be finite and within 1e15");
+  if (std::is_same_v<Plane, PlaneZ> && !(std::abs(p.c) <= kMaxHeight)) {
+    field_error(at + ".c", at + ".c is a height: it must be within [-80, 80] (e^{±z} must stay finite in float)");
+  }
   if (quotient && !std::is_same_v<Plane, PlaneZ>) {
     field_error(at + ".type", at + ".type: planes x, y = c are not supported in the quotient (Γ maps them to planes of "
                                    "every slope, dense in M)");
@@ -379,14 +382,14 @@ void check_kind(const PlaneY& p, const std::string& at, bool quotient) { check_p
 void check_kind(const PlaneZ& p, const std::string& at, bool quotient) { check_plane(p, at, quotient); }
 
 void check_kind(const Ball& b, const std::string& at, bool quotient) {
-  if (!bounded3(b.center)) field_error(at + ".center", at + ".center must be finite and within 1e15 of the origin");
+  check_position(b.center, at + ".center");
   check_radius(b.radius, at, quotient);
 }
 
 bool parallel(const glm::dvec3& a, const glm::dvec3& b) { return glm::length(glm::cross(a, b)) < 1e-12; }
 
 void check_kind(const Tube& t, const std::string& at, bool quotient) {
-  if (!bounded3(t.through)) field_error(at + ".through", at + ".through must be finite and within 1e15 of the origin");
+  check_position(t.through, at + ".through");
   const glm::dvec3& d = t.direction;
   if (!finite3(d) || std::abs(glm::length(d) - 1.0) > 1e-12 || (d.z != 0.0 && !t.vertical())) {
     field_error(at + ".axis", at + ".axis must be a unit vertical or horizontal direction");

@@ -20,6 +20,7 @@
 #include "sol/lattice.hpp"
 #include "sol/light.hpp"
 #include "sol/quotient_field.hpp"
+#include "row_pool.hpp"
 
 namespace sol {
 namespace {
@@ -198,44 +199,6 @@ glm::dvec3 shade_hit(const World& world, const MarchHit& hit) {
   return world.fog_color + (surface - world.fog_color) * transmittance;
 }
 
-// Runs row(j) for every j in [0, rows) on `threads` threads, the calling
-// thread among them, handing out rows one at a time; with `progress` the
-// calling thread first reports the finished fraction every 200 ms while the
-// others work. The first exception a row throws stops the hand-out and is
-// rethrown here once every thread has joined.
-void for_each_row(int rows, unsigned threads, const std::function<void(double)>& progress,
-                  const std::function<void(int)>& row) {
-  std::atomic<int> next{0}, done{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    try {
-      for (int j = next++; j < rows && !failed; j = next++) {
-        row(j);
-        ++done;
-      }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      failed = true;
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
-    if (progress && !pool.empty()) {
-      while (done.load() < rows && next.load() < rows && !failed) {
-        progress(static_cast<double>(done.load()) / rows);
-        std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      }
-    }
-    worker();  // the calling thread takes the rows left
-  }  // joins the pool
-  if (error) std::rethrow_exception(error);
-  if (progress) progress(1.0);
-}
-
 // Both halves side by side: x on the left, y on the right, `channels` floats per pixel.
 std::vector<float> side_by_side(const std::vector<float>& x, const std::vector<float>& y, int w, int h, int channels) {
   std::vector<float> out(static_cast<std::size_t>(2 * w) * h * channels);
@@ -290,7 +253,7 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   const CameraView view = view_from(prepared, camera);  // shared by every ray
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
-  for_each_row(h, threads, settings.progress, [&](int j) {
+  detail::for_each_row(h, threads, settings.progress, [&](int j) {
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       const MarchHit hit = march_view(prepared, view, camera_ray(camera, i, j, w, h));
@@ -344,3 +307,40 @@ RenderResult render_cpu_stereo(const Scene& scene, const RenderSettings& setting
 }
 
 }  // namespace sol
+
+namespace sol::detail {
+
+void for_each_row(int rows, unsigned threads, const std::function<void(double)>& progress,
+                  const std::function<void(int)>& row) {
+  std::atomic<int> next{0}, done{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    try {
+      for (int j = next++; j < rows && !failed; j = next++) {
+        row(j);
+        ++done;
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      failed = true;
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
+    if (progress && !pool.empty()) {
+      while (done.load() < rows && next.load() < rows && !failed) {
+        progress(static_cast<double>(done.load()) / rows);
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      }
+    }
+    worker();  // the calling thread takes the rows left
+  }  // joins the pool
+  if (error) std::rethrow_exception(error);
+  if (progress) progress(1.0);
+}
+
+}  // namespace sol::detail

@@ -32,6 +32,7 @@ void check_world(const World& s) {
   if (!(s.fog_density >= 0.0) || !std::isfinite(s.fog_density)) {
     field_error("fog.density", "fog.density must be finite and >= 0");
   }
+  if (!(s.fog_density <= 1e6)) field_error("fog.density", "fog.density must be at most 1e6 (fog within 1e-6)");
   if (!(s.max_distance > 0.0 && s.max_distance <= 1e4)) field_error("max_distance", "max_distance must be in (0, 10000]");
   if (!(s.max_steps >= 1 && s.max_steps <= 100000)) field_error("max_steps", "max_steps must be in [1, 100000]");
   if (!(s.hit_epsilon > 0.0 && s.hit_epsilon <= 0.1)) field_error("hit_epsilon", "hit_epsilon must be in (0, 0.1]");

@@ -150,7 +150,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   }
   if (root.contains("fog_distance")) {
     const double d = r.number(root["fog_distance"], "fog_distance");
-    if (d < 0.0) r.fail("fog_distance", "fog_distance must be >= 0");
+    if (!(d == 0.0 || (d >= 1e-6))) r.fail("fog_distance", "fog_distance must be 0 (no fog) or at least 1e-6");
     s.fog_density = d > 0.0 ? 1.0 / d : 0.0;
   }
   if (root.contains("fog")) {
