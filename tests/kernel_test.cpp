@@ -16,6 +16,7 @@
 
 #include "srgb.hpp"
 #include "support/directions.hpp"
+#include "support/extremes.hpp"
 #include "support/kernel.hpp"
 
 namespace {
@@ -232,6 +233,21 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
     // Both march to within hit_epsilon of the same surface; a grazing ray
     // moves along itself by more than the surface gap (measured 4.8e-5).
     EXPECT_LT(d.distance, 5e-3) << c.ball.radius;
+  }
+  expect_no_validation_errors();
+}
+
+TEST(Kernel, NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges) {
+  // As Render.NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges, in float: the
+  // camera's e^{±80} and coordinates of 1e15 meet the kernel's arithmetic.
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const std::string& name : sol::preset_names()) {
+    for (const glm::dvec3& p : sol::test::extreme_positions()) {
+      sol::Scene scene = sol::preset_scene(name);
+      scene.camera.position = p;
+      EXPECT_EQ(sol::test::non_finite_values(renderer.render(scene, 12, 8)), 0)
+          << name << " from (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
   }
   expect_no_validation_errors();
 }

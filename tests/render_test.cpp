@@ -15,6 +15,7 @@
 
 #include "row_pool.hpp"  // libsol/src: the CPU renderer's thread pool
 #include "support/directions.hpp"
+#include "support/extremes.hpp"
 
 namespace {
 
@@ -502,6 +503,22 @@ TEST(Render, PreparedWorldRendersAnyCamera) {
 // An error inside the rows the worker threads render reaches the caller as
 // the exception it is (it once terminated the process): an observer so far
 // up that the quotient cannot teleport it in double.
+TEST(Render, NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges) {
+  // Every preset seen from the corners of the accepted coordinates and
+  // heights: colours and AOVs stay finite (validation refuses what would not).
+  sol::RenderSettings settings;
+  settings.width = 12;
+  settings.height = 8;
+  for (const std::string& name : sol::preset_names()) {
+    for (const glm::dvec3& p : sol::test::extreme_positions()) {
+      sol::Scene scene = sol::preset_scene(name);
+      scene.camera.position = p;
+      EXPECT_EQ(sol::test::non_finite_values(sol::render_cpu(scene, settings)), 0)
+          << name << " from (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
+  }
+}
+
 TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
   // A row that throws on a worker thread (here row 7 of 40, whichever thread
   // takes it): the exception reaches the caller once every thread has
