@@ -552,6 +552,11 @@ void main() {
     }
     float nearest = 1e30, nearest_hit = 1e30;
     int nearest_k = 0;
+    // With exact balls, the runners-up too: the least distance to the other
+    // objects (`others`, any object: for the step) and the next candidate hit
+    // (`second_hit`, `second_k`), for when the nearest is an exact ball.
+    float others = 1e30, second_hit = 1e30;
+    int nearest_any = 0, second_k = 0;
     for (int k = 0; k < count; ++k) {
       float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
       if (HAS_CUTOUT && cutouts[k] != 0) {
@@ -561,29 +566,40 @@ void main() {
       // until the ray is 2 hit_epsilon away again (as the CPU reference).
       const uint bit = 1u << uint(k);
       if (HAS_CUTOUT && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
+      if (HAS_EXACT_BALLS) {
+        if (d < nearest) {
+          others = nearest;
+          nearest_any = k;
+        } else {
+          others = min(others, d);
+        }
+      }
       nearest = min(nearest, d);
       if ((!HAS_CUTOUT || (passing & bit) == 0u) && d < nearest_hit) {
+        if (HAS_EXACT_BALLS) {
+          second_hit = nearest_hit;
+          second_k = nearest_k;
+        }
         nearest_hit = d;
         nearest_k = k;
+      } else if (HAS_EXACT_BALLS && (!HAS_CUTOUT || (passing & bit) == 0u) && d < second_hit) {
+        second_hit = d;
+        second_k = k;
       }
     }
     if (HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell) {
       // Near an exact ball: its exact distance (steps, and hits on the true
-      // sphere), with the least distance to every other object for the step.
+      // sphere), against the least distance to every other object.
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
       const float exact = exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
-      float others = 1e30;
-      for (int k = 0; k < count; ++k) {
-        if (k == nearest_k) continue;
-        float d = object_distance(types[k], q, relative[k], headings[k], radii[k]);
-        if (HAS_CUTOUT && cutouts[k] != 0) {
-          d = max(d, cutout_gap_bound(cutouts[k], plane_coordinates(2, q, eye_camera, eye_frac), eye_camera.w * exp(q.z)));
-        }
-        others = min(others, d);
+      nearest = min(nearest_any == nearest_k ? others : nearest, exact);
+      if (exact <= second_hit) {
+        nearest_hit = exact;
+      } else {
+        nearest_hit = second_hit;
+        nearest_k = second_k;
       }
-      nearest = min(others, exact);
-      nearest_hit = exact;
     }
     steps = step + 1;
     if (nearest_hit < hit_epsilon) {

@@ -140,6 +140,15 @@ vec3 sol_polish(vec3 v, vec3 w, out float residual) {
   return sol_newton(v, w, false, end, J, known, residual);
 }
 
+// The index of the first seed of the table's cell holding `target` (w with
+// |x|, |y|: the symmetries give the other signs); targets outside the grid
+// take the nearest cell's.
+int sol_seed_base(vec3 target) {
+  const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + kSeedHeight) / kSeedStep;
+  const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(kSeedCellsXY - 1, kSeedCellsXY - 1, kSeedCellsZ - 1));
+  return ((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots;
+}
+
 // Adds the polished vector v to the connections found (sorted by length)
 // when it converged and is new; a connection found twice keeps the better
 // polished copy.
@@ -228,9 +237,7 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
     found[0] = vec4(0.0, 0.0, sign(w.z), abs(w.z));
     return 1;
   }
-  const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + kSeedHeight) / kSeedStep;
-  const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(kSeedCellsXY - 1, kSeedCellsXY - 1, kSeedCellsZ - 1));
-  const int base = ((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots;
+  const int base = sol_seed_base(target);
   int count = 0;
   float residuals[kSeedSlots];
   // Candidates: the cell's seeds, then (with a reach: the longer
@@ -293,9 +300,7 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
 float sol_shortest(vec3 w, inout vec3 v, inout vec3 end, inout mat3 J, inout bool known) {
   if (!known) {
     const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
-    const vec3 g = vec3(asinh(target.x), asinh(target.y), target.z + kSeedHeight) / kSeedStep;
-    const ivec3 cell = clamp(ivec3(floor(g)), ivec3(0), ivec3(kSeedCellsXY - 1, kSeedCellsXY - 1, kSeedCellsZ - 1));
-    const vec4 seed = connection_seeds[((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots];
+    const vec4 seed = connection_seeds[sol_seed_base(target)];
     const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
     v = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
   }
