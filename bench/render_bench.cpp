@@ -47,6 +47,7 @@
 #include <sol/vk/context.hpp>
 #include <sol/vk/march.hpp>
 
+#include "command_line.hpp"
 #include "output_file.hpp"
 
 namespace {
@@ -83,47 +84,19 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 int main(int argc, char** argv) {
   int size = 512, error_size = 128, gpu_size = 2048, repeats = 5;
   std::string out_dir = ".", only;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "render_bench: %s needs a value\n", arg.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (arg == "--size") {
-      size = std::atoi(value().c_str());
-    } else if (arg == "--error-size") {
-      error_size = std::atoi(value().c_str());
-    } else if (arg == "--gpu-size") {
-      gpu_size = std::atoi(value().c_str());
-    } else if (arg == "--repeats") {
-      repeats = std::atoi(value().c_str());
-    } else if (arg == "--out-dir") {
-      out_dir = value();
-    } else if (arg == "--only") {
-      only = value();
-      if (only != "throughput" && only != "error" && only != "exact" && only != "gpu") {
-        std::fprintf(stderr, "render_bench: --only takes throughput, error, exact or gpu, got '%s'\n", only.c_str());
-        return 2;
-      }
-    } else if (arg == "--help") {
-      std::printf("usage: render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]\n"
-                  "                    [--only throughput|error|exact|gpu]\n"
-                  "Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
-                  "render_exact.csv and render_gpu.csv (on a CPU device only with --only gpu) to DIR\n"
-                  "(default .); --only runs one section and writes its files.\n");
-      return 0;
-    } else {
-      std::fprintf(stderr, "render_bench: unknown option '%s'\n", arg.c_str());
-      return 2;
-    }
-  }
-  if (size < 1 || size > 8192 || error_size < 1 || error_size > 4096 || gpu_size < 1 || gpu_size > 8192 || repeats < 1) {
-    std::fprintf(stderr, "render_bench: sizes must be in [1, 8192], repeats >= 1\n");
-    return 2;
-  }
+  sol::cli::CommandLine cl("render_bench", "[options]",
+                          "Measures rays per second, image error against run time and the exact objects' cost.");
+  cl.add_integer("--size", size, 1, 8192, "N", "image side for throughput and the exact section (default 512)");
+  cl.add_integer("--error-size", error_size, 1, 4096, "N", "image side for error against run time (default 128)");
+  cl.add_integer("--gpu-size", gpu_size, 1, 8192, "N", "one eye's side for the headset section (default 2048)");
+  cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
+  cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu"}, "run one section and write its files");
+  cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
+                "render_exact.csv and render_gpu.csv (on a CPU device only with --only gpu) to DIR.");
+  cl.parse(argc, argv);
+  // Refused now, not after minutes of measuring.
+  if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
   try {
     sol::vk::Context context;
     const std::string device = context.device_name();

@@ -26,6 +26,10 @@ if [ "${2:-}" = present ]; then
   exit 0
 fi
 target=${TARGET:-20}
+if ! [[ $target =~ ^[0-9]+([.][0-9]+)?$ ]] || [ "$target" = 0 ]; then
+  echo "measure_fps.sh: TARGET must be a positive number of frames per second, got '$target'" >&2
+  exit 2
+fi
 echo "| preset | fps at scale 1 | adaptive (--target-fps $target): fps | mean scale |"
 echo "|---|---|---|---|"
 for scene in plane sandwich sheets lattice-balls lattice-pillars spheres; do
