@@ -32,7 +32,10 @@
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu]
+//                [--only throughput|error|exact|gpu] [--scene PRESET] [--kernel-only]
+//
+// For quick before/after figures of one change: --only throughput --scene
+// lattice-balls --kernel-only (the specialised kernel alone, one preset).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -83,7 +86,8 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 
 int main(int argc, char** argv) {
   int size = 512, error_size = 128, gpu_size = 2048, repeats = 5;
-  std::string out_dir = ".", only;
+  std::string out_dir = ".", only, scene_name;
+  bool kernel_only = false;
   sol::cli::CommandLine cl("render_bench", "[options]",
                           "Measures rays per second, image error against run time and the exact objects' cost.");
   cl.add_integer("--size", size, 1, 8192, "N", "image side for throughput and the exact section (default 512)");
@@ -92,6 +96,9 @@ int main(int argc, char** argv) {
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
   cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu"}, "run one section and write its files");
+  cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput and headset sections: this preset only");
+  cl.add_flag("--kernel-only", kernel_only,
+              "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
                 "render_exact.csv and render_gpu.csv (on a CPU device only with --only gpu) to DIR.");
   cl.parse(argc, argv);
@@ -112,6 +119,7 @@ int main(int argc, char** argv) {
       sol::vk::MarchRenderer renderer(context), general(context, {.all_features = true});
       std::string features = "scene,specialised_ms,general_ms,speedup\n";
       for (const std::string& name : sol::preset_names()) {
+        if (!scene_name.empty() && name != scene_name) continue;
         const sol::Scene scene = sol::preset_scene(name);
         double best = 1e300;
         sol::RenderResult r;
@@ -122,22 +130,24 @@ int main(int argc, char** argv) {
           best = std::min(best, ms);
         }
         const double rays = static_cast<double>(size) * size;
-        general.render(scene, size, size);  // warm-up
         double best_general = 1e300;
-        for (int k = 0; k < repeats; ++k) {
+        if (!kernel_only) general.render(scene, size, size);  // warm-up
+        for (int k = 0; k < (kernel_only ? 0 : repeats); ++k) {
           double ms = 0;
           general.render(scene, size, size, &ms);
           best_general = std::min(best_general, ms);
         }
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
-        features += line;
-        std::fprintf(stderr, "features: %s", line);
+        if (!kernel_only) {
+          std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
+          features += line;
+          std::fprintf(stderr, "features: %s", line);
+        }
         std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), quoted_device.c_str(), size, size,
                       best, rays / best * 1e-3, mean(r.steps));
         throughput += line;
         std::fprintf(stderr, "%s", line);
-        if (sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
+        if (kernel_only || sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
         sol::RenderSettings settings;
         settings.width = settings.height = size;
         const auto begin = std::chrono::steady_clock::now();
@@ -149,7 +159,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s", line);
       }
       files.emplace_back("render_throughput.csv", throughput);
-      files.emplace_back("render_features.csv", features);
+      if (!kernel_only) files.emplace_back("render_features.csv", features);
     }
 
     // 2. Image error against run time.
@@ -244,6 +254,7 @@ int main(int argc, char** argv) {
       sol::vk::MarchRenderer renderer(context);
       const int frames = std::min(repeats, 3);
       for (const std::string& name : sol::preset_names()) {
+        if (!scene_name.empty() && name != scene_name) continue;
         const sol::Scene scene = sol::preset_scene(name);
         renderer.set_world(scene);
         double mono = 1e300, stereo = 1e300, ms = 0;
