@@ -43,6 +43,32 @@ TEST(Lattice, ConjugationByGamma3IsTheAnosovMap) {
   EXPECT_LT(diff(e, by_hand), 1e-14);
 }
 
+// Words against the group law in double: compose is the product of the
+// elements, inverse the inverse, word_of recovers a word from its point.
+TEST(Lattice, WordsComposeAsTheElementsMultiply) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> ab(-4, 4), c(-2, 2);
+  for (int i = 0; i < 300; ++i) {
+    const sol::LatticeWord u{ab(rng), ab(rng), c(rng)}, v{ab(rng), ab(rng), c(rng)};
+    const dvec3 product = sol::multiply(lattice.element(u), lattice.element(v));
+    const sol::LatticeWord uv = u * v;
+    // The elements' coordinates are at most about φ^{2·4}·40 here: 1e-11 is many ulps of them.
+    EXPECT_LT(diff(lattice.element(uv), product), 1e-11) << i;
+    EXPECT_EQ(lattice.word_of(product), uv) << i;
+    EXPECT_EQ(u * u.inverse(), sol::LatticeWord{}) << i;
+    EXPECT_EQ(u.inverse() * u, sol::LatticeWord{}) << i;
+    EXPECT_LT(diff(lattice.element(u.inverse()), sol::inverse(lattice.element(u))), 1e-11) << i;
+  }
+  // Associativity with the integers alone.
+  const sol::LatticeWord a{1, -2, 3}, b{-5, 1, -1}, e{2, 2, 2};
+  EXPECT_EQ((a * b) * e, a * (b * e));
+  EXPECT_EQ(sol::LatticeWord{}.str(), "e");
+  EXPECT_EQ((sol::LatticeWord{1, -2, 0}.str()), "γ1 γ2^-2");
+  EXPECT_EQ((sol::LatticeWord{0, 0, 3}.str()), "γ3^3");
+  EXPECT_THROW((sol::LatticeWord{0, 0, 200} * sol::LatticeWord{1, 0, 0}), sol::OutOfRange);  // M^200 leaves 2^62
+}
+
 TEST(Lattice, ContainsIsTheHalfOpenDomain) {
   const sol::Lattice lattice = sol::Lattice::golden();
   const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];

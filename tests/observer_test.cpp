@@ -120,11 +120,16 @@ TEST(Observer, BoundToTheLatticeStaysInTheDomain) {
     d -= std::round(sr.x) * lattice.generators()[0] + std::round(sr.y) * lattice.generators()[1];
     EXPECT_LT(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), 1e-8) << i;
     EXPECT_LT(diff(bound.forward(), free_walker.forward()), 1e-8);
+    // The copy of D it is in: the free walker's position is copy() · position().
+    EXPECT_LT(diff(sol::multiply(lattice.element(bound.copy()), bound.position()), free_walker.position()), 1e-8) << i;
   }
+  EXPECT_NE(bound.copy(), sol::LatticeWord{});  // the walk left the first copy
   // Binding teleports at once; unbinding leaves the position alone.
   sol::Observer far({100, -50, 7}, {1, 0, 0}, {0, 0, 1});
   far.bind(lattice);
   EXPECT_TRUE(lattice.contains(far.position()));
+  // Intermediates reach φ^14·100 ≈ 8e4 in the teleport (Lattice::teleport): 1e-8 is about 50 ulps of them.
+  EXPECT_LT(diff(sol::multiply(lattice.element(far.copy()), far.position()), {100, -50, 7}), 1e-8);
   far.bind(std::nullopt);
   EXPECT_FALSE(far.lattice().has_value());
 }

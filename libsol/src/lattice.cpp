@@ -1,9 +1,13 @@
 #include "sol/lattice.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "check.hpp"
+#include "sol/error.hpp"
 #include "sol/group.hpp"
 #include "sol/kernel_constants.h"
 
@@ -37,6 +41,63 @@ bool Lattice::contains(const glm::dvec3& p) const {
   if (!(p.z >= 0.0 && p.z < height())) return false;
   const glm::dvec2 sr = lattice_coordinates(p.x, p.y);
   return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0;
+}
+
+namespace {
+
+// a·b + c·d within ±2^62, else OutOfRange.
+long long checked_sum(long long a, long long b, long long c, long long d) {
+  constexpr long long limit = 1LL << 62;
+  long long ab = 0, cd = 0, sum = 0;
+  if (__builtin_mul_overflow(a, b, &ab) || __builtin_mul_overflow(c, d, &cd) || __builtin_add_overflow(ab, cd, &sum) ||
+      sum > limit || sum < -limit) {
+    throw OutOfRange("sol::LatticeWord: the lattice word's coefficients leave 2^62");
+  }
+  return sum;
+}
+
+}  // namespace
+
+LatticeWord LatticeWord::operator*(const LatticeWord& v) const {
+  const LatticeWord& u = *this;
+  // u v = γ1^{a1} γ2^{b1} (γ3^{c1} γ1^{a2} γ2^{b2} γ3^{-c1}) γ3^{c1 + c2}; conjugation by
+  // γ3 maps (a, b) to M (a, b) = (2a + b, a + b), by γ3⁻¹ to M⁻¹ (a, b) = (a - b, 2b - a).
+  long long va = v.a, vb = v.b;
+  for (long long k = 0; k < std::abs(u.c); ++k) {
+    const long long next_a = u.c > 0 ? checked_sum(2, va, 1, vb) : checked_sum(1, va, -1, vb);
+    const long long next_b = u.c > 0 ? checked_sum(1, va, 1, vb) : checked_sum(-1, va, 2, vb);
+    va = next_a;
+    vb = next_b;
+  }
+  return {checked_sum(1, u.a, 1, va), checked_sum(1, u.b, 1, vb), checked_sum(1, u.c, 1, v.c)};
+}
+
+LatticeWord LatticeWord::inverse() const {
+  // (γ1^a γ2^b γ3^c)⁻¹ = γ3^{-c} γ1^{-a} γ2^{-b} = (γ3^{-c} γ1^{-a} γ2^{-b} γ3^{c}) γ3^{-c}.
+  return LatticeWord{0, 0, -c} * LatticeWord{-a, -b, 0};
+}
+
+std::string LatticeWord::str() const {
+  const LatticeWord& u = *this;
+  std::string out;
+  const std::pair<const char*, long long> factors[] = {{"γ1", u.a}, {"γ2", u.b}, {"γ3", u.c}};
+  for (const auto& [name, power] : factors) {
+    if (power == 0) continue;
+    char factor[40];
+    if (power == 1) {
+      std::snprintf(factor, sizeof factor, "%s%s", out.empty() ? "" : " ", name);
+    } else {
+      std::snprintf(factor, sizeof factor, "%s%s^%lld", out.empty() ? "" : " ", name, power);
+    }
+    out.append(factor);
+  }
+  return out.empty() ? std::string("e") : out;
+}
+
+LatticeWord Lattice::word_of(const glm::dvec3& element) const {
+  // element = (a γ1 + b γ2, c h): γ1^a γ2^b lies in z = 0 and γ3^c adds c h to z only.
+  const glm::dvec2 ab = lattice_coordinates(element.x, element.y);
+  return {std::llround(ab.x), std::llround(ab.y), std::llround(element.z / height())};
 }
 
 namespace {

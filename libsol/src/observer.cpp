@@ -36,7 +36,12 @@ void Observer::orthonormalise() {
 }
 
 void Observer::keep_in_domain() {
-  if (m_lattice) m_position = m_lattice->teleport(m_position).point;
+  if (!m_lattice) return;
+  // point = e · p: the cover position w · p is (w e⁻¹) · point.
+  const Teleport t = m_lattice->teleport(m_position);
+  m_position = t.point;
+  const LatticeWord e = m_lattice->word_of(t.element);
+  if (e != LatticeWord{}) m_copy = m_copy * e.inverse();
 }
 
 void Observer::move(const glm::dvec3& local_direction, double distance) {
@@ -87,6 +92,7 @@ void Observer::roll(double angle) {
 
 void Observer::bind(std::optional<Lattice> lattice) {
   m_lattice = std::move(lattice);
+  m_copy = {};
   keep_in_domain();
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -20,6 +21,23 @@ namespace sol {
 struct Teleport {
   glm::dvec3 point{0.0};
   glm::dvec3 element{0.0};
+};
+
+/// An element of Γ as the word γ1^a γ2^b γ3^c (every element has exactly
+/// one such form: γ3 normalises the abelian ⟨γ1, γ2⟩). Exact integers, so
+/// a walk's element does not drift; Lattice::element(a, b, c) is the point.
+struct LatticeWord {
+  long long a = 0, b = 0, c = 0;
+  bool operator==(const LatticeWord&) const = default;
+
+  /// The product (*this)·v in normal form: γ3^{c} γ1^{a} γ2^{b} γ3^{-c} is
+  /// γ1^{a'} γ2^{b'} with (a', b') = M^c (a, b), M = [[2, 1], [1, 1]] (its
+  /// columns: γ3 γ1 γ3⁻¹ = γ1² γ2, γ3 γ2 γ3⁻¹ = γ1 γ2). Throws OutOfRange
+  /// when a coefficient would leave ±2^62.
+  LatticeWord operator*(const LatticeWord& v) const;
+  LatticeWord inverse() const;
+  /// "γ1^a γ2^b γ3^c" with the factors whose power is 0 left out; "e" for the identity.
+  std::string str() const;
 };
 
 class Lattice {
@@ -35,6 +53,10 @@ class Lattice {
 
   /// The group element γ1^n1 γ2^n2 γ3^n3.
   glm::dvec3 element(long long n1, long long n2, long long n3) const;
+  glm::dvec3 element(const LatticeWord& w) const { return element(w.a, w.b, w.c); }
+  /// The word of an element of Γ given as a point (such as Teleport::element),
+  /// rounded to the nearest lattice word.
+  LatticeWord word_of(const glm::dvec3& element) const;
 
   /// Lattice coordinates (s, r) with (x, y) = s γ1 + r γ2 (in the plane z = 0).
   glm::dvec2 lattice_coordinates(double x, double y) const;

@@ -54,6 +54,11 @@ class Observer {
   /// so its components do not change under teleport). std::nullopt unbinds.
   void bind(std::optional<Lattice> lattice);
   const std::optional<Lattice>& lattice() const { return m_lattice; }
+  /// Bound: the copy of D the observer is in, in the cover: the element w
+  /// of Γ with (position in the cover) = w · position(), accumulated from
+  /// every teleport since bind() (which starts it at the identity, then
+  /// teleports). The identity when unbound.
+  const LatticeWord& copy() const { return m_copy; }
 
   /// Options used by move (method, tolerance).
   void set_flow_options(const FlowOptions& options);
@@ -66,6 +71,7 @@ class Observer {
   glm::dvec3 m_position{0.0};
   glm::dmat3 m_frame{1.0};
   std::optional<Lattice> m_lattice;
+  LatticeWord m_copy;
   FlowOptions m_options;
 };
 
