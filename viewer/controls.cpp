@@ -20,7 +20,13 @@ const std::pair<const char*, Key> kNames[] = {
     {"UP", Key::Up},     {"DOWN", Key::Down},   {"LEFT", Key::Left},   {"RIGHT", Key::Right},
     {"SHIFT", Key::Shift}, {"TAB", Key::Tab},   {"HOME", Key::Home},   {"T", Key::T},
     {"Y", Key::Y},       {"P", Key::P},         {"H", Key::H},         {"G", Key::G},
-    {"PLUS", Key::Plus}, {"MINUS", Key::Minus}, {"F11", Key::F11},     {"ESCAPE", Key::Escape},
+    {"PLUS", Key::Plus}, {"MINUS", Key::Minus}, {"F1", Key::F1},       {"F11", Key::F11},
+    {"ESCAPE", Key::Escape},
+};
+
+const std::pair<const char*, Setting> kSettings[] = {
+    {"fov", Setting::Fov},     {"max-distance", Setting::MaxDistance}, {"max-steps", Setting::MaxSteps},
+    {"hit-epsilon", Setting::HitEpsilon}, {"scale", Setting::Scale},   {"ipd", Setting::Ipd},
 };
 
 bool parse_double(const std::string& text, double& out) {
@@ -38,6 +44,19 @@ std::optional<Key> key_from_name(const std::string& name) {
     if (upper == n) return k;
   }
   return std::nullopt;
+}
+
+std::optional<Setting> setting_from_name(const std::string& name) {
+  for (const auto& [n, s] : kSettings) {
+    if (name == n) return s;
+  }
+  return std::nullopt;
+}
+
+std::string setting_names() {
+  std::string out;
+  for (const auto& [n, s] : kSettings) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
 }
 
 std::string key_names() {
@@ -77,8 +96,15 @@ std::vector<ScriptEvent> load_script(const std::string& path) {
         throw std::runtime_error(where + "mouse expects two numbers DX DY, got '" + w[2] + " " + w[3] + "'");
       }
       e.kind = ScriptEvent::Kind::Mouse;
+    } else if (w.size() == 4 && w[1] == "set") {
+      const auto setting = setting_from_name(w[2]);
+      if (!setting) throw std::runtime_error(where + "unknown setting '" + w[2] + "' (settings: " + setting_names() + ")");
+      if (!parse_double(w[3], e.value)) throw std::runtime_error(where + "set " + w[2] + " expects a number, got '" + w[3] + "'");
+      e.kind = ScriptEvent::Kind::Set;
+      e.setting = *setting;
     } else {
-      throw std::runtime_error(where + "expected 'TIME down KEY', 'TIME up KEY' or 'TIME mouse DX DY', got '" + line + "'");
+      throw std::runtime_error(where + "expected 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY' or 'TIME set NAME VALUE', got '" +
+                               line + "'");
     }
     events.push_back(e);
   }

@@ -28,24 +28,34 @@ constexpr double kMouseTurn = 0.0025;  ///< radians per pixel of mouse motion
 constexpr double kScriptStep = 1.0 / 60.0;  ///< seconds of simulated time per frame in a replay
 
 /// The keys the viewer knows, by the names scripts use.
-enum class Key { W, S, A, D, R, F, Q, E, Up, Down, Left, Right, Shift, Tab, Home, T, Y, P, H, G, Plus, Minus, F11, Escape };
+enum class Key { W, S, A, D, R, F, Q, E, Up, Down, Left, Right, Shift, Tab, Home, T, Y, P, H, G, Plus, Minus, F1, F11, Escape };
 
 /// "W", "LEFT", "SHIFT", ... (case-insensitive); std::nullopt for others.
 std::optional<Key> key_from_name(const std::string& name);
 /// Every name key_from_name accepts, for error messages.
 std::string key_names();
 
+/// The settings a script may set (`TIME set NAME VALUE`): what the overlay
+/// panel's controls of the same name change.
+enum class Setting { Fov, MaxDistance, MaxSteps, HitEpsilon, Scale, Ipd };
+/// "fov", "max-distance", "max-steps", "hit-epsilon", "scale", "ipd"; std::nullopt for others.
+std::optional<Setting> setting_from_name(const std::string& name);
+std::string setting_names();
+
 /// One timed input of a script.
 struct ScriptEvent {
-  enum class Kind { Down, Up, Mouse } kind = Kind::Down;
+  enum class Kind { Down, Up, Mouse, Set } kind = Kind::Down;
   double time = 0;  ///< seconds of simulated time from the start
   Key key = Key::W;
   double dx = 0, dy = 0;  ///< mouse motion in pixels (Mouse)
+  Setting setting = Setting::Fov;  ///< Set: which, to `value`
+  double value = 0;
 };
 
-/// Parses a script: one event per line, `TIME down KEY`, `TIME up KEY` or
-/// `TIME mouse DX DY`, times in seconds, non-decreasing; `#` starts a
-/// comment. Throws std::runtime_error naming the file and line.
+/// Parses a script: one event per line, `TIME down KEY`, `TIME up KEY`,
+/// `TIME mouse DX DY` or `TIME set NAME VALUE`, times in seconds,
+/// non-decreasing; `#` starts a comment. Throws std::runtime_error naming
+/// the file and line. (Set values are checked when applied, as the panel's.)
 std::vector<ScriptEvent> load_script(const std::string& path);
 
 /// Held keys and pending mouse motion, applied to an observer step by step.

@@ -127,8 +127,10 @@ void Presenter::create_swapchain(bool vsync) {
   info.imageExtent = m_extent;
   info.imageArrayLayers = 1;
   m_can_capture = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+  m_overlay_capable = (caps.supportedUsageFlags & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) != 0;
   info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                     (m_can_capture ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0}) |
+                    (m_overlay_capable ? VkImageUsageFlags{VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT} : VkImageUsageFlags{0}) |
                     (m_direct ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0});
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.preTransform = caps.currentTransform;
@@ -145,7 +147,7 @@ void Presenter::create_swapchain(bool vsync) {
   vkGetSwapchainImagesKHR(device, m_swapchain, &n, nullptr);
   m_images.resize(n);
   vkGetSwapchainImagesKHR(device, m_swapchain, &n, m_images.data());
-  if (m_direct) {
+  if (m_direct || m_overlay_capable) {
     m_views.resize(n, VK_NULL_HANDLE);
     for (std::uint32_t i = 0; i < n; ++i) {
       VkImageViewCreateInfo view{};
@@ -190,7 +192,8 @@ void Presenter::wait_for_frame() {
 }
 
 std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, std::span<const Camera> eyes,
-                                                   int eye_width, int eye_height, bool capture, bool vsync) {
+                                                   int eye_width, int eye_height, bool capture, bool vsync,
+                                                   const OverlayDraw* overlay) {
   VkDevice device = m_context.device();
   const int render_w = eye_width * static_cast<int>(eyes.size()), render_h = eye_height;
   // The path: direct when the kernel renders at the window's size and the
@@ -284,6 +287,19 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_IMAGE_LAYOUT_GENERAL);
   }
+  // The overlay, drawn into the image as a colour attachment; before the
+  // capture when screenshots take it, else after.
+  const bool drawing_overlay = overlay && overlay->record && m_overlay_capable;
+  auto draw_overlay = [&] {
+    vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, shown_layout,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    overlay->record(cb, m_views[index], m_format, m_extent.width, m_extent.height);
+    shown_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    shown_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    shown_access = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  };
+  if (drawing_overlay && overlay->in_capture) draw_overlay();
   // Screenshots and --record take the frame as shown: the swapchain image
   // after the blit, copied to a host-visible buffer.
   const bool capturing = m_can_capture && capture;
@@ -311,6 +327,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     shown_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
     shown_access = VK_ACCESS_TRANSFER_READ_BIT;
   }
+  if (drawing_overlay && !overlay->in_capture) draw_overlay();
   // To the presentation layout; the present waits on `rendered`, which the
   // submit signals after all these commands, so no later stage needs to wait here.
   vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,

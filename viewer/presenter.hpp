@@ -14,6 +14,7 @@
 #include <GLFW/glfw3.h>  // after vulkan_core.h (GLFW_INCLUDE_VULKAN is defined by CMake)
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -26,6 +27,14 @@
 #include <sol/vk/march.hpp>
 
 namespace sol::viewer {
+
+/// What draws over a frame (solview's overlay panel): records its commands
+/// on the swapchain image's view, which is in COLOR_ATTACHMENT_OPTIMAL, of
+/// the given format and size, and leaves it there.
+struct OverlayDraw {
+  std::function<void(VkCommandBuffer, VkImageView, VkFormat, std::uint32_t width, std::uint32_t height)> record;
+  bool in_capture = false;  ///< screenshots and --record take the frame with it (else without)
+};
 
 class Presenter {
  public:
@@ -46,6 +55,10 @@ class Presenter {
   /// The last present found the swapchain out of date or suboptimal: recreate() it.
   bool out_of_date() const { return m_out_of_date; }
   VkExtent2D extent() const { return m_extent; }
+  /// The swapchain's format (it changes with the path).
+  VkFormat format() const { return m_format; }
+  /// Whether the swapchain images can be drawn to (present's overlay).
+  bool overlay_capable() const { return m_overlay_capable; }
 
   /// Waits until the previous frame's commands are done (before changing
   /// what they read, such as the renderer's world).
@@ -61,8 +74,9 @@ class Presenter {
   /// window. With `capture` the frame as shown is also kept for save().
   /// nullopt when no frame was presented (the swapchain went out of date or
   /// the window was minimised meanwhile): try again after recreate().
+  /// `overlay`, when given and overlay_capable(), draws over the frame.
   std::optional<Shown> present(vk::MarchRenderer& renderer, std::span<const Camera> eyes, int eye_width,
-                               int eye_height, bool capture, bool vsync);
+                               int eye_height, bool capture, bool vsync, const OverlayDraw* overlay = nullptr);
 
   /// Writes the last frame presented: as shown (the swapchain image, when
   /// the surface lets it be copied and it was captured), else as rendered
@@ -88,7 +102,9 @@ class Presenter {
   VkFormat m_format = VK_FORMAT_UNDEFINED;
   VkExtent2D m_extent{};
   std::vector<VkImage> m_images;
-  std::vector<VkImageView> m_views;  // direct: one per swapchain image, the kernel's storage target
+  // One per swapchain image: the direct path's storage target, the overlay's colour attachment.
+  std::vector<VkImageView> m_views;
+  bool m_overlay_capable = false;  // the images have COLOR_ATTACHMENT usage
   // The direct path needs a UNORM format (sRGB formats are never storage-
   // capable; the kernel sRGB-encodes) with STORAGE and TRANSFER_SRC usage
   // (screenshots then always take the frame as shown).

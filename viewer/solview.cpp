@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>  // after vulkan_core.h (GLFW_INCLUDE_VULKAN is defined by CMake)
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +29,9 @@
 #include "command_line.hpp"
 #include "controls.hpp"
 #include "image_file.hpp"
+#include "output_file.hpp"
+#include "overlay.hpp"
+#include "panel.hpp"
 #include "presenter.hpp"
 
 namespace {
@@ -49,6 +53,11 @@ const char* kControls =
     "  + / -          render scale up / down (fixes the scale: adaptive off)\n"
     "  G              adaptive render scale on / off\n"
     "  P              screenshot to solview-NNNN.png (the frame as shown)\n"
+    "  F1             the overlay panel on / off: scene, camera and render settings\n"
+    "                 as live controls, fps and frame times, rays/s, mean steps, the\n"
+    "                 observer's position and frame (in the quotient the copy of D it\n"
+    "                 is in), screenshot, record, copy the camera as solrender options\n"
+    "                 or the scene as JSON, save the scene, reset\n"
     "  F11            fullscreen on / off\n"
     "  H              print these controls\n"
     "  Esc            quit\n"
@@ -60,7 +69,7 @@ struct Options {
   int width = 640, height = 360;
   double scale = 1.0, min_scale = 0.05, ipd = 0.064;
   std::optional<double> target_fps;
-  std::string vsync = "on", present = "auto";
+  std::string vsync = "on", present = "auto", overlay = "off";
   bool fullscreen = false, stereo = false, validation = false;
   long frames = 0;  // 0: until the window closes
   std::string screenshot, script, record, state;
@@ -84,14 +93,19 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
                 "auto (default): the kernel writes straight into the swapchain image at render scale 1 when the surface "
                 "allows it; blit: always through an RGBA float image and a blit");
   cl.add_flag("--fullscreen", o.fullscreen, "start fullscreen");
+  cl.add_choice("--overlay", o.overlay, {"on", "off"},
+                "the overlay panel (F1) at the start; on: also in screenshots and recorded frames, which "
+                "otherwise leave it out (default off)");
   cl.add_flag("--stereo", o.stereo, "both eyes side by side (each eye half the width)");
   cl.add_number("--ipd", o.ipd, "D", "eye separation in Sol units, [0, 10] (default 0.064)", sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--frames", o.frames, 1, 100000000, "N", "exit after N frames");
   cl.add_text("--screenshot", o.screenshot, "FILE", "at exit, write the last frame as shown (window size) to FILE");
   cl.add_text("--script", o.script, "FILE",
-              "replay timed inputs: lines 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY' (TIME in seconds; "
-              "replays step 1/60 s per frame)");
-  cl.add_text("--record", o.record, "DIR", "write every frame as DIR/frame-NNNNNN.png");
+              "replay timed inputs: lines 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY', 'TIME set NAME VALUE' "
+              "(a panel setting: " + sol::viewer::setting_names() + "; TIME in seconds; replays step 1/60 s per frame)");
+  cl.add_text("--record", o.record, "DIR",
+              "write every frame as DIR/frame-NNNNNN.png (the panel's record button starts and stops it; "
+              "without --record it writes to solview-recording/)");
   cl.add_text("--state", o.state, "FILE", "at exit, write the observer's position and frame to FILE");
   cl.add_flag("--validation", o.validation, "enable the Vulkan validation layer; its errors make the exit status 3");
   cl.set_footer(std::string(kControls) + "\nScript key names: " + sol::viewer::key_names() +
@@ -138,6 +152,7 @@ std::optional<Key> key_of(int glfw_key) {
     case GLFW_KEY_KP_ADD: return Key::Plus;
     case GLFW_KEY_MINUS:
     case GLFW_KEY_KP_SUBTRACT: return Key::Minus;
+    case GLFW_KEY_F1: return Key::F1;
     case GLFW_KEY_F11: return Key::F11;
     case GLFW_KEY_ESCAPE: return Key::Escape;
     default: return std::nullopt;
@@ -161,8 +176,19 @@ struct App {
     return names;
   }();
   sol::Scene scene;
+  sol::World good_world;  // the last world that validated: the panel's edits fall back to it
   std::string scene_name;
   bool world_changed = true;  // the renderer needs set_world(scene) before the next frame
+  // The overlay panel (F1): shown, taken into screenshots (--overlay on), its text fields, its message line.
+  sol::viewer::Overlay* overlay = nullptr;
+  bool overlay_visible = false, overlay_in_capture = false;
+  sol::viewer::PanelText panel_text;
+  std::string message;
+  double target_fps = 20.0;
+  bool recording = false;
+  std::string record_dir = "solview-recording";
+  double fps = 0.0;
+  std::vector<float> frame_ms;  // the last frames' times for the panel's graph
   sol::Observer observer;
   sol::viewer::Controls controls;
   double scale = 1.0;
@@ -176,19 +202,140 @@ struct App {
 
   void set_scene(const std::string& name) {
     scene = load(name);
+    good_world = scene;
     scene_name = name;
     observer = observer_for(scene);
     world_changed = true;
   }
 
+  // After an edit of the world (the panel, a script's set): prepared again
+  // when it validates, else the last good world comes back and the message says why.
+  void world_edited() {
+    try {
+      sol::validate(scene);
+      if (!sol::vk::MarchRenderer::supports(scene)) throw std::runtime_error("the kernel cannot render this world");
+      good_world = scene;
+      world_changed = true;
+      message.clear();
+    } catch (const std::exception& e) {
+      static_cast<sol::World&>(scene) = good_world;
+      message = e.what();
+      std::fprintf(stderr, "solview: %s\n", e.what());
+    }
+    // The observer follows a change of quotient (bound to the lattice or not).
+    const bool bound = observer.lattice().has_value();
+    if (bound != (scene.quotient != sol::Quotient::None)) {
+      observer.bind(scene.quotient != sol::Quotient::None ? std::optional(sol::Lattice::golden()) : std::nullopt);
+    }
+  }
+
+  // What the panel asked for besides its edits in place.
+  void act(const sol::viewer::PanelActions& a, int render_width, int render_height) {
+    if (a.world_changed) world_edited();
+    if (a.load) {
+      try {
+        set_scene(*a.load);
+        message.clear();
+      } catch (const std::exception& e) {
+        message = e.what();
+        std::fprintf(stderr, "solview: %s\n", e.what());
+      }
+    }
+    if (a.reset) observer = observer_for(scene);
+    if (a.screenshot) want_screenshot = true;
+    if (a.toggle_recording) {
+      if (!recording) {
+        std::error_code ec;
+        std::filesystem::create_directories(record_dir, ec);
+        if (ec || !std::filesystem::is_directory(record_dir)) {
+          message = record_dir + ": cannot create the directory";
+          return;
+        }
+      }
+      recording = !recording;
+      message = recording ? "recording to " + record_dir + "/" : "recording stopped";
+    }
+    if (a.copy_options || a.copy_json) {
+      const int eyes = stereo ? 2 : 1;
+      const std::string text = a.copy_options ? solrender_command(render_width / eyes, render_height) : scene_json();
+      if (window) glfwSetClipboardString(window, text.c_str());
+      std::printf("%s\n", text.c_str());
+      std::fflush(stdout);
+      message = a.copy_options ? "solrender options copied (and printed)" : "scene JSON copied (and printed)";
+    }
+    if (a.save) {
+      try {
+        if (std::filesystem::is_directory(*a.save)) throw std::runtime_error(*a.save + ": it is a directory, not a file");
+        sol::programs::write_text_file(*a.save, scene_json());
+        message = "saved " + *a.save;
+      } catch (const std::exception& e) {
+        message = e.what();
+      }
+    }
+  }
+
+  // A script's `set NAME VALUE`: what the panel's control of that name does.
+  void set(sol::viewer::Setting setting, double value) {
+    using sol::viewer::Setting;
+    switch (setting) {
+      case Setting::Fov:
+        if (!(value > 0.0 && value < 180.0)) return refuse("set fov: must be in (0, 180)", value);
+        scene.camera.fov = value;
+        return;
+      case Setting::Scale:
+        if (!(value > 0.0 && value <= 1.0)) return refuse("set scale: must be in (0, 1]", value);
+        scale = value;
+        adaptive = false;
+        return;
+      case Setting::Ipd:
+        if (!(value >= 0.0 && value <= 10.0)) return refuse("set ipd: must be in [0, 10]", value);
+        options.ipd = value;
+        return;
+      case Setting::MaxDistance: scene.max_distance = value; break;
+      case Setting::MaxSteps:
+        if (value != std::floor(value) || value < 1 || value > 1e6) return refuse("set max-steps: must be an integer in [1, 1000000]", value);
+        scene.max_steps = static_cast<int>(value);
+        break;
+      case Setting::HitEpsilon: scene.hit_epsilon = value; break;
+    }
+    world_edited();
+  }
+  void refuse(const std::string& what, double value) {
+    message = what + ", got " + std::to_string(value);
+    std::fprintf(stderr, "solview: %s\n", message.c_str());
+  }
+
+  // The current camera (the observer's, the scene's fov).
+  sol::Camera camera() const {
+    sol::Camera c = scene.camera;
+    c.position = observer.position();
+    c.forward = observer.forward();
+    c.up = observer.up();
+    return c;
+  }
+  // The current camera as solrender options, and the scene seen from it as JSON.
+  std::string solrender_command(int width, int height) const {
+    const sol::Camera c = camera();
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  "solrender --scene %s --width %d --height %d --fov %.17g --position %.17g,%.17g,%.17g "
+                  "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s -o solview.png",
+                  scene_name.c_str(), width, height, c.fov, c.position.x, c.position.y, c.position.z, c.forward.x,
+                  c.forward.y, c.forward.z, c.up.x, c.up.y, c.up.z, scene.max_distance, scene.max_steps,
+                  stereo ? (" --stereo --ipd " + std::to_string(options.ipd)).c_str() : "");
+    return text;
+  }
+  std::string scene_json() const {
+    sol::Scene s = scene;
+    s.camera = camera();
+    return sol::to_json(s);
+  }
+
   // The cameras of this frame: the observer's (both eyes in stereo).
   std::vector<sol::Camera> cameras() const {
-    sol::Camera camera = scene.camera;
-    camera.position = observer.position();
-    camera.forward = observer.forward();
-    camera.up = observer.up();
-    if (!stereo) return {camera};
-    const sol::StereoEyes eyes = sol::stereo_eyes(camera, options.ipd);
+    const sol::Camera c = camera();
+    if (!stereo) return {c};
+    const sol::StereoEyes eyes = sol::stereo_eyes(c, options.ipd);
     return {eyes.left, eyes.right};
   }
 
@@ -209,6 +356,13 @@ struct App {
       case Key::Minus: adaptive = false; scale = std::max(options.min_scale, scale / 1.25); break;
       case Key::P: want_screenshot = true; break;
       case Key::H: std::printf("%s", kControls); std::fflush(stdout); break;
+      case Key::F1:
+        if (overlay) {
+          overlay_visible = !overlay_visible;
+        } else {
+          std::fprintf(stderr, "solview: the overlay cannot be drawn on this window's surface\n");
+        }
+        break;
       case Key::F11: toggle_fullscreen(); break;
       case Key::Escape: quit = true; break;
       default: break;
@@ -264,6 +418,7 @@ void write_state(const std::string& path, const sol::Observer& o, long frames) {
 class AdaptiveScale {
  public:
   AdaptiveScale(double target_fps, double min_scale) : m_target_fps(target_fps), m_min_scale(min_scale) {}
+  double target() const { return m_target_fps; }
   double next(double scale, long frame, double frame_seconds) {
     if (frame > 0) m_smoothed_ms = m_smoothed_ms == 0 ? frame_seconds * 1e3 : 0.8 * m_smoothed_ms + 0.2 * frame_seconds * 1e3;
     const bool far_too_slow = frame > 1 && frame_seconds * m_target_fps > 2.0;
@@ -306,6 +461,8 @@ int run(App& app) {
     std::error_code ec;
     std::filesystem::create_directories(opt.record, ec);
     if (ec || !std::filesystem::is_directory(opt.record)) cl.fail("--record " + opt.record + ": cannot create the directory");
+    app.record_dir = opt.record;
+    app.recording = true;
   }
 
   glfwSetErrorCallback(on_glfw_error);
@@ -343,11 +500,17 @@ int run(App& app) {
   // During a replay live input is ignored: the script alone moves the observer.
   if (!replay) {
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-      if (auto k = key_of(key); k && action != GLFW_REPEAT) app_of(w).key(*k, action == GLFW_PRESS);
+      App& a = app_of(w);
+      // Typing into the panel's fields is not walking.
+      const bool panel_typing = a.overlay && a.overlay_visible && a.overlay->wants_keyboard();
+      if (auto k = key_of(key); k && action != GLFW_REPEAT && (!panel_typing || action == GLFW_RELEASE)) {
+        a.key(*k, action == GLFW_PRESS);
+      }
     });
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
       if (button != GLFW_MOUSE_BUTTON_LEFT) return;
       App& a = app_of(w);
+      if (action == GLFW_PRESS && a.overlay && a.overlay_visible && a.overlay->wants_mouse()) return;  // the panel's
       a.dragging = action == GLFW_PRESS;
       glfwGetCursorPos(w, &a.last_x, &a.last_y);
     });
@@ -361,6 +524,19 @@ int run(App& app) {
   glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).swapchain_dirty = true; });
 
   sol::viewer::Presenter presenter(context, window, app.vsync, opt.present == "auto", app.scale == 1.0);
+  // The overlay, after the viewer's own callbacks (ImGui's GLFW backend chains to them).
+  std::optional<sol::viewer::Overlay> overlay;
+  if (presenter.overlay_capable()) {
+    overlay.emplace(context, window);
+    app.overlay = &*overlay;
+  } else if (opt.overlay == "on") {
+    std::fprintf(stderr, "solview: the overlay cannot be drawn on this window's surface (no colour-attachment use)\n");
+  }
+  app.overlay_visible = app.overlay && opt.overlay == "on";
+  app.overlay_in_capture = opt.overlay == "on";
+  if (opt.target_fps) app.target_fps = *opt.target_fps;
+  auto last_steps = std::chrono::steady_clock::now() - std::chrono::seconds(10);
+  double mean_steps = -1.0;
   std::optional<AdaptiveScale> adaptive;
   if (opt.target_fps) adaptive.emplace(*opt.target_fps, opt.min_scale);
   std::size_t next_event = 0;
@@ -375,7 +551,6 @@ int run(App& app) {
   long direct_frames = 0, blit_frames = 0;
   int shown_w = 0, shown_h = 0;  // of the last frame's rendered image (both eyes)
   const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
-  const bool capture_every_frame = !opt.record.empty() || !opt.screenshot.empty();
 
   while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
     glfwPollEvents();
@@ -399,6 +574,8 @@ int run(App& app) {
         const auto& e = script[next_event];
         if (e.kind == sol::viewer::ScriptEvent::Kind::Mouse) {
           app.controls.mouse(e.dx, e.dy);
+        } else if (e.kind == sol::viewer::ScriptEvent::Kind::Set) {
+          app.set(e.setting, e.value);
         } else {
           app.key(e.key, e.kind == sol::viewer::ScriptEvent::Kind::Down);
         }
@@ -406,10 +583,37 @@ int run(App& app) {
     }
     if (app.quit) break;
     app.controls.step(app.observer, dt);
+    if (app.adaptive && (!adaptive || adaptive->target() != app.target_fps)) adaptive.emplace(app.target_fps, opt.min_scale);
     if (adaptive) {
       const double next = adaptive->next(app.scale, frame, frame_seconds);
       if (app.adaptive) app.scale = next;
     }
+    if (frame > 0) {
+      app.frame_ms.push_back(static_cast<float>(frame_seconds * 1e3));
+      if (app.frame_ms.size() > 120) app.frame_ms.erase(app.frame_ms.begin());
+    }
+
+    // The overlay panel: built now, drawn over the frame by present().
+    std::optional<sol::viewer::OverlayDraw> overlay_draw;
+    if (app.overlay && app.overlay_visible) {
+      const int eyes_now = app.stereo ? 2 : 1;
+      const VkExtent2D window_extent = presenter.extent();
+      const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * app.scale / eyes_now))) * eyes_now;
+      const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * app.scale)));
+      app.overlay->begin_frame(presenter.format());
+      sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.options.ipd, app.scale,
+                                    app.adaptive, app.target_fps, opt.min_scale, app.recording, app.observer,
+                                    app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, app.message};
+      const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
+      app.overlay->end_frame();
+      app.act(actions, rw, rh);
+      overlay_draw = sol::viewer::OverlayDraw{
+          [&app](VkCommandBuffer cb, VkImageView view, VkFormat format, std::uint32_t w, std::uint32_t h) {
+            app.overlay->record(cb, view, format, w, h);
+          },
+          app.overlay_in_capture};
+    }
+    if (app.quit) break;
 
     const int eyes = app.stereo ? 2 : 1;
     const VkExtent2D extent = presenter.extent();
@@ -424,11 +628,20 @@ int run(App& app) {
       app.world_changed = false;
     }
     const std::vector<sol::Camera> cameras = app.cameras();
+    // The panel's mean march steps: a small render with its AOVs once a second.
+    if (app.overlay_visible && std::chrono::steady_clock::now() - last_steps > std::chrono::seconds(1)) {
+      presenter.wait_for_frame();  // the frame in flight reads the renderer's uniforms
+      const sol::RenderResult probe = renderer.render(cameras[0], 64, std::max(1, 64 * eye_h / std::max(1, eye_w)));
+      double sum = 0;
+      for (float v : probe.steps) sum += v;
+      mean_steps = probe.steps.empty() ? -1.0 : sum / static_cast<double>(probe.steps.size());
+      last_steps = std::chrono::steady_clock::now();
+    }
     const double prepare_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
-    const bool capture = capture_every_frame || app.want_screenshot;
+    const bool capture = app.recording || !opt.screenshot.empty() || app.want_screenshot;
     const std::optional<sol::viewer::Presenter::Shown> shown =
-        presenter.present(renderer, cameras, eye_w, eye_h, capture, app.vsync);
+        presenter.present(renderer, cameras, eye_w, eye_h, capture, app.vsync, overlay_draw ? &*overlay_draw : nullptr);
     if (!shown) continue;  // the swapchain went out of date: re-created at the top
     ++frame;
     ++(shown->direct ? direct_frames : blit_frames);
@@ -438,7 +651,7 @@ int run(App& app) {
     // With --frames, the second half only: the adaptive scale has settled by then.
     if (frame == first_measured - 1) measure_start = std::chrono::steady_clock::now();
 
-    if (!opt.record.empty()) presenter.save(frame_name(opt.record, frame - 1));
+    if (app.recording) presenter.save(frame_name(app.record_dir, frame - 1));
     if (app.want_screenshot) {
       app.want_screenshot = false;
       char name[32];
@@ -455,6 +668,7 @@ int run(App& app) {
     const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - title_time).count();
     if (since >= 0.5) {
       const double fps = static_cast<double>(title_frames) / since;
+      app.fps = fps;
       title_frames = 0;
       title_time = std::chrono::steady_clock::now();
       const glm::dvec3 p = app.observer.position();
@@ -474,6 +688,10 @@ int run(App& app) {
     }
   }
   if (!opt.state.empty()) write_state(opt.state, app.observer, frame);
+  if (app.overlay_visible) {  // where the panel was (tests compare the frame around it)
+    const std::array<float, 4>& r = app.panel_text.rect;
+    std::fprintf(stderr, "solview: overlay panel at %.0f,%.0f size %.0fx%.0f\n", r[0], r[1], r[2], r[3]);
+  }
   const long measured = frame - first_measured + 1;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   if (measured > 0) {

@@ -6,6 +6,7 @@
 #   -DEXPECT_FAIL=ON|OFF -DEXPECT_STDERR=regex -DFORBID_STDERR=regex
 #   -DMUST_EXIST="f1;f2" -DMUST_NOT_EXIST="f1;f2"
 #   -DCOMPARE_SOLRENDER=path -DSCREENSHOT=png -DSTATE=file -DSCENE=name -DSIZE=WxH -DIDIFF=path
+#   -DRENDER_ARGS="a;b": more solrender options for the comparison (what a script set in solview)
 file(MAKE_DIRECTORY ${WORK_DIR})
 foreach(f IN LISTS MUST_NOT_EXIST MUST_EXIST SCREENSHOT STATE)
   file(REMOVE ${f})
@@ -57,7 +58,7 @@ if(COMPARE_SOLRENDER)
   set(reference ${WORK_DIR}/solrender-reference.png)
   file(REMOVE ${reference})
   execute_process(COMMAND ${COMPARE_SOLRENDER} --scene ${SCENE} --width ${w} --height ${h} --device vulkan
-      --position ${position} --forward ${forward} --up ${up} -o ${reference}
+      --position ${position} --forward ${forward} --up ${up} ${RENDER_ARGS} -o ${reference}
     RESULT_VARIABLE status ERROR_VARIABLE rerr)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "solrender failed: ${rerr}")

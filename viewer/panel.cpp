@@ -1,0 +1,227 @@
+#include "panel.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <variant>
+
+#include <imgui.h>
+
+#include <sol/lattice.hpp>
+#include <sol/objects.hpp>
+
+namespace sol::viewer {
+namespace {
+
+// Edits on doubles through ImGui's scalar widgets (ImGuiDataType_Double): no float rounding of the scene.
+bool drag_double(const char* label, double& v, double speed, double lo, double hi, const char* format = "%.4g") {
+  return ImGui::DragScalar(label, ImGuiDataType_Double, &v, static_cast<float>(speed), &lo, &hi, format,
+                           ImGuiSliderFlags_AlwaysClamp);
+}
+bool input_vec3(const char* label, glm::dvec3& v) {
+  return ImGui::InputScalarN(label, ImGuiDataType_Double, &v.x, 3, nullptr, nullptr, "%.4g",
+                             ImGuiInputTextFlags_EnterReturnsTrue);
+}
+bool color_edit(const char* label, glm::dvec3& c) {
+  float f[3] = {static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z)};
+  if (!ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float)) return false;
+  c = glm::dvec3(std::clamp(f[0], 0.0f, 1.0f), std::clamp(f[1], 0.0f, 1.0f), std::clamp(f[2], 0.0f, 1.0f));
+  return true;
+}
+
+const char* const kPatterns[] = {"none", "circles", "checker"};
+
+bool object_controls(SceneObject& o) {
+  bool changed = color_edit("colour", o.color);
+  int pattern = static_cast<int>(o.pattern);
+  if (ImGui::Combo("pattern", &pattern, kPatterns, 3)) {
+    o.pattern = static_cast<Pattern>(pattern);
+    changed = true;
+  }
+  std::visit(
+      [&](auto& kind) {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, Ball>) {
+          changed |= input_vec3("centre", kind.center);
+          changed |= drag_double("radius", kind.radius, 0.005, 0.01, 5.0);
+          changed |= ImGui::Checkbox("exact (the true geodesic sphere)", &kind.exact);
+        } else if constexpr (std::is_same_v<Kind, Tube>) {
+          changed |= input_vec3("through", kind.through);
+          changed |= drag_double("radius", kind.radius, 0.005, 0.01, 5.0);
+        } else {
+          changed |= drag_double("c", kind.c, 0.01, -80.0, 80.0);
+          if constexpr (std::is_same_v<Kind, PlaneZ>) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
+        }
+      },
+      o.shape);
+  return changed;
+}
+
+bool light_controls(Light& l) {
+  bool changed = false;
+  int type = l.type == LightType::Directional ? 0 : 1;
+  const char* const types[] = {"directional", "point"};
+  if (ImGui::Combo("type", &type, types, 2)) {
+    l.type = type == 0 ? LightType::Directional : LightType::Point;
+    changed = true;
+  }
+  if (l.type == LightType::Directional) {
+    changed |= input_vec3("towards the light", l.direction);
+  } else {
+    changed |= input_vec3("position", l.position);
+    changed |= ImGui::Checkbox("exact (along the true geodesics)", &l.exact);
+  }
+  changed |= color_edit("colour", l.color);
+  changed |= drag_double("intensity", l.intensity, 0.01, 0.0, 1e3);
+  return changed;
+}
+
+std::string format_vec(const char* name, const glm::dvec3& v) {
+  char line[160];
+  std::snprintf(line, sizeof line, "%s (%.4f, %.4f, %.4f)", name, v.x, v.y, v.z);
+  return line;
+}
+
+}  // namespace
+
+std::string quotient_refusal(const World& world) {
+  World q = world;
+  q.quotient = Quotient::Golden;
+  try {
+    validate(q);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+PanelActions draw_panel(PanelModel& m, PanelText& text) {
+  PanelActions out;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (!ImGui::Begin("solview (F1)", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    return out;
+  }
+  ImGui::PushItemWidth(180);
+
+  // ---- Readouts
+  char line[256];
+  std::snprintf(line, sizeof line, "%.1f fps  %.2f M rays/s  %dx%d (scale %.2f%s)", m.fps, m.rays_per_second * 1e-6,
+                m.render_width, m.render_height, m.scale, m.adaptive ? ", adaptive" : "");
+  ImGui::TextUnformatted(line);
+  if (!m.frame_ms.empty()) {
+    const float worst = *std::max_element(m.frame_ms.begin(), m.frame_ms.end());
+    std::snprintf(line, sizeof line, "frame %.1f ms (worst %.1f)", m.frame_ms.back(), worst);
+    ImGui::PlotLines("##frames", m.frame_ms.data(), static_cast<int>(m.frame_ms.size()), 0, line, 0.0f,
+                     std::max(worst, 1.0f) * 1.1f, ImVec2(340, 48));
+  }
+  if (m.mean_steps >= 0) {
+    std::snprintf(line, sizeof line, "mean march steps %.1f", m.mean_steps);
+    ImGui::TextUnformatted(line);
+  }
+  ImGui::TextUnformatted(format_vec("position", m.observer.position()).c_str());
+  ImGui::TextUnformatted(format_vec("forward ", m.observer.forward()).c_str());
+  ImGui::TextUnformatted(format_vec("up      ", m.observer.up()).c_str());
+  if (m.observer.lattice()) {
+    // The default font has ASCII only: γ1 is written g1.
+    const LatticeWord& w = m.observer.copy();
+    std::snprintf(line, sizeof line, "in the copy g1^%lld g2^%lld g3^%lld D of the domain D", w.a, w.b, w.c);
+    const std::string copy = line;
+    ImGui::TextUnformatted(copy.c_str());
+  }
+  if (!m.message.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.55f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", m.message.c_str());
+    ImGui::PopStyleColor();
+  }
+
+  // ---- Actions
+  if (ImGui::Button("screenshot")) out.screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button(m.recording ? "stop recording" : "record")) out.toggle_recording = true;
+  ImGui::SameLine();
+  if (ImGui::Button("reset camera")) out.reset = true;
+  if (ImGui::Button("copy solrender options")) out.copy_options = true;
+  ImGui::SameLine();
+  if (ImGui::Button("copy scene JSON")) out.copy_json = true;
+  ImGui::InputText("##save", text.save.data(), text.save.size());
+  ImGui::SameLine();
+  if (ImGui::Button("save scene") && text.save[0] != '\0') out.save = std::string(text.save.data());
+
+  // ---- Camera and rendering
+  if (ImGui::CollapsingHeader("camera and rendering", ImGuiTreeNodeFlags_DefaultOpen)) {
+    drag_double("fov (degrees)", m.scene.camera.fov, 0.2, 1.0, 179.0, "%.1f");
+    out.world_changed |= drag_double("max distance", m.scene.max_distance, 0.1, 0.1, 1e3, "%.2f");
+    int steps = m.scene.max_steps;
+    if (ImGui::DragInt("max steps", &steps, 1.0f, 1, 10000, "%d", ImGuiSliderFlags_AlwaysClamp)) {
+      m.scene.max_steps = steps;
+      out.world_changed = true;
+    }
+    out.world_changed |= drag_double("hit epsilon", m.scene.hit_epsilon, 1e-6, 1e-7, 0.1, "%.2e");
+    ImGui::Checkbox("stereo", &m.stereo);
+    drag_double("ipd", m.ipd, 0.001, 0.0, 10.0, "%.3f");
+    if (drag_double("render scale", m.scale, 0.005, m.min_scale, 1.0, "%.2f")) m.adaptive = false;
+    ImGui::Checkbox("adaptive scale, target fps", &m.adaptive);
+    drag_double("##target", m.target_fps, 0.2, 1.0, 240.0, "%.0f fps");
+  }
+
+  // ---- Scene
+  if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int current = -1;
+    for (std::size_t i = 0; i < m.presets.size(); ++i) {
+      if (m.presets[i] == m.scene_name) current = static_cast<int>(i);
+    }
+    if (ImGui::BeginCombo("preset", current >= 0 ? m.presets[static_cast<std::size_t>(current)].c_str() : "(file)")) {
+      for (const std::string& p : m.presets) {
+        if (ImGui::Selectable(p.c_str(), p == m.scene_name)) out.load = p;
+      }
+      ImGui::EndCombo();
+    }
+    ImGui::InputText("##file", text.file.data(), text.file.size());
+    ImGui::SameLine();
+    if (ImGui::Button("load file") && text.file[0] != '\0') out.load = std::string(text.file.data());
+
+    int quotient = m.scene.quotient == Quotient::Golden ? 1 : 0;
+    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)"};
+    if (ImGui::Combo("quotient", &quotient, quotients, 2)) {
+      m.scene.quotient = quotient == 1 ? Quotient::Golden : Quotient::None;
+      out.world_changed = true;
+    }
+    if (m.scene.quotient == Quotient::None) {
+      const std::string why = quotient_refusal(m.scene);
+      if (!why.empty()) ImGui::TextWrapped("golden quotient not possible: %s", why.c_str());
+    }
+    out.world_changed |= drag_double("ambient", m.scene.ambient, 0.005, 0.0, 1.0, "%.3f");
+    out.world_changed |= drag_double("fog density", m.scene.fog_density, 0.001, 0.0, 10.0, "%.3f");
+    out.world_changed |= color_edit("fog colour", m.scene.fog_color);
+    for (std::size_t i = 0; i < m.scene.objects.size(); ++i) {
+      ImGui::PushID(static_cast<int>(i));
+      SceneObject& o = m.scene.objects[i];
+      std::snprintf(line, sizeof line, "object %zu: %s", i + 1, std::string(kind_name(o.shape)).c_str());
+      if (ImGui::TreeNode(line)) {
+        out.world_changed |= object_controls(o);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+    for (std::size_t i = 0; i < m.scene.lights.size(); ++i) {
+      ImGui::PushID(1000 + static_cast<int>(i));
+      std::snprintf(line, sizeof line, "light %zu", i + 1);
+      if (ImGui::TreeNode(line)) {
+        out.world_changed |= light_controls(m.scene.lights[i]);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+  }
+  ImGui::PopItemWidth();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  text.rect = {at.x, at.y, size.x, size.y};
+  ImGui::End();
+  return out;
+}
+
+}  // namespace sol::viewer

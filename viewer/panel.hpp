@@ -1,0 +1,67 @@
+// solview's overlay panel (F1): the scene, the camera and the render
+// settings as live controls, readouts of the frame, and actions. Immediate
+// mode: draw_panel() builds the panel for this frame from the viewer's state
+// (PanelModel, edited in place) and says what else the user asked for
+// (PanelActions), which the viewer carries out. See docs/solview.md.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <sol/observer.hpp>
+#include <sol/scene.hpp>
+
+namespace sol::viewer {
+
+/// The viewer's state the panel shows and edits.
+struct PanelModel {
+  Scene& scene;  ///< the world (objects, lights, fog, limits) and the camera's fov
+  const std::string& scene_name;
+  const std::vector<std::string>& presets;
+  bool& stereo;
+  double& ipd;
+  double& scale;       ///< render scale, (0, 1]
+  bool& adaptive;      ///< the scale follows target_fps
+  double& target_fps;  ///< > 0
+  double min_scale;
+  bool recording;  ///< frames are being written (the record button's state)
+  // Readouts.
+  const Observer& observer;
+  std::span<const float> frame_ms;  ///< the last frames' times, oldest first
+  double fps = 0;
+  double rays_per_second = 0;
+  double mean_steps = -1;  ///< < 0: not measured yet
+  int render_width = 0, render_height = 0;
+  const std::string& message;  ///< the last error or notice (empty: none)
+};
+
+/// What the user asked for in this frame besides the edits made in place.
+struct PanelActions {
+  bool world_changed = false;  ///< the world was edited: prepare it again
+  std::optional<std::string> load;  ///< a preset's name or a scene file's path
+  std::optional<std::string> save;  ///< write the scene (world and current camera) as JSON to this path
+  bool screenshot = false;
+  bool toggle_recording = false;
+  bool copy_options = false;  ///< the current camera as solrender options, to the clipboard and stdout
+  bool copy_json = false;     ///< the scene with the current camera as JSON, to the clipboard and stdout
+  bool reset = false;         ///< back to the scene's camera
+};
+
+/// Text typed into the panel's fields, kept between frames.
+struct PanelText {
+  std::array<char, 1024> file{};
+  std::array<char, 1024> save{};
+  std::array<float, 4> rect{};  ///< where the panel was last drawn: x, y, width, height in window pixels
+};
+
+/// Builds the panel in the current ImGui frame.
+PanelActions draw_panel(PanelModel& model, PanelText& text);
+
+/// Why the world cannot be the golden quotient (sol::validate's message), or
+/// empty when it can.
+std::string quotient_refusal(const World& world);
+
+}  // namespace sol::viewer
