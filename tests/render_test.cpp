@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -54,6 +55,77 @@ TEST(Render, CameraConvention) {
   // A symmetric frustum is the fov camera.
   off.frustum = sol::Frustum{-2.0, 2.0, -1.0, 1.0};
   EXPECT_NEAR(glm::length(sol::camera_ray(off, 3, 1, 4, 2) - d), 0.0, 1e-15);
+}
+
+// sol::pixel_sample: the R2 sequence from the plastic number, found here
+// from its equation g³ = g + 1 by Newton's method (independent of the
+// constant in camera.cpp); sample 0 the centre; every prefix spread evenly.
+TEST(Render, PixelSamplesAreTheR2Sequence) {
+  long double g = 1.3L;
+  for (int i = 0; i < 20; ++i) g -= (g * g * g - g - 1) / (3 * g * g - 1);
+  for (int k = 0; k < 1000; ++k) {
+    const glm::dvec2 p = sol::pixel_sample(k);
+    const long double x = 0.5L + k / g, y = 0.5L + k / (g * g);
+    EXPECT_NEAR(p.x, static_cast<double>(x - std::floor(x)), 1e-12) << k;
+    EXPECT_NEAR(p.y, static_cast<double>(y - std::floor(y)), 1e-12) << k;
+    ASSERT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1) << k;
+  }
+  EXPECT_EQ(sol::pixel_sample(0), glm::dvec2(0.5, 0.5));
+  // Spread: the first 16 fall at most 2 to a cell of the 4 x 4 grid and leave at most 3 cells empty.
+  int cells[16] = {};
+  for (int k = 0; k < 16; ++k) {
+    const glm::dvec2 p = sol::pixel_sample(k);
+    ++cells[static_cast<int>(p.y * 4) * 4 + static_cast<int>(p.x * 4)];
+  }
+  EXPECT_LE(*std::max_element(cells, cells + 16), 2);
+  EXPECT_LE(std::count(cells, cells + 16, 0), 3);
+  // The centre's sample is the pixel-centre ray.
+  const sol::Camera cam{{0, 0, 0}, {1, 0.3, 0.1}, {0, 0, 1}, 70.0};
+  EXPECT_EQ(sol::camera_ray(cam, 3, 2, 9, 7, sol::pixel_sample(0)), sol::camera_ray(cam, 3, 2, 9, 7));
+  EXPECT_THROW(sol::pixel_sample(-1), sol::InvalidArgument);
+}
+
+// Supersampling on the plane preset: the plane's shading is one constant per
+// pattern level (a flat plane, one directional light, no fog), so without
+// anti-aliasing the image holds only those levels and black; with it the
+// pixels on a disc's edge get values in between; the mean converges (each
+// step from 1 to 4 to 16 samples comes nearer a 64-sample image); 1 sample
+// is the image of today, and the AOVs stay the centre's.
+TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
+  const sol::Scene scene = sol::preset_scene("plane");
+  sol::CpuRenderer renderer(scene);
+  auto render = [&](int samples) {
+    sol::RenderSettings s;
+    s.width = 48;
+    s.height = 32;
+    s.samples = samples;
+    return renderer.render(scene.camera, s);
+  };
+  const sol::RenderResult plain = render(1), one = renderer.render(scene.camera, {48, 32});
+  EXPECT_EQ(plain.rgba, one.rgba);
+  auto levels = [](const sol::RenderResult& r) {
+    std::set<float> red;
+    for (std::size_t k = 0; k < r.rgba.size(); k += 4) red.insert(r.rgba[k]);
+    return red.size();
+  };
+  EXPECT_LE(levels(plain), 3u);
+  const sol::RenderResult s4 = render(4), s16 = render(16), s64 = render(64);
+  EXPECT_GT(levels(s16), 10u);
+  auto mean_difference = [](const sol::RenderResult& a, const sol::RenderResult& b) {
+    double sum = 0;
+    for (std::size_t k = 0; k < a.rgba.size(); ++k) sum += std::abs(a.rgba[k] - b.rgba[k]);
+    return sum / static_cast<double>(a.rgba.size());
+  };
+  const double d1 = mean_difference(plain, s64), d4 = mean_difference(s4, s64), d16 = mean_difference(s16, s64);
+  std::printf("mean |image - 64 samples|: 1 sample %.4f, 4 samples %.4f, 16 samples %.4f\n", d1, d4, d16);
+  EXPECT_LT(d4, d1);
+  EXPECT_LT(d16, d4);
+  EXPECT_EQ(s16.object, plain.object);
+  EXPECT_EQ(s16.distance, plain.distance);
+  EXPECT_EQ(s16.steps, plain.steps);
+  sol::RenderSettings bad;
+  bad.samples = 0;
+  EXPECT_THROW(renderer.render(scene.camera, bad), sol::InvalidArgument);
 }
 
 TEST(Render, ExactDistancesAreDistances) {

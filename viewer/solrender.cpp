@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
   double rk_step = 0.01, ipd = 0.064;
   bool stereo = false, print_scene = false;
-  int width = 512, height = 512;
+  int width = 512, height = 512, spp = 1;
   unsigned threads = 0;
   sol::cli::SceneOverrides o;
   sol::cli::CommandLine cl("solrender", "[options] -o OUT",
@@ -60,6 +60,9 @@ int main(int argc, char** argv) {
   cl.add_integer("--width", width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
   cl.add_integer("--height", height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
   o.add_to(cl, "camera");
+  cl.add_integer("--spp", spp, 1, 4096, "N",
+                 "samples per pixel, 1..4096 (default 1): anti-aliasing, the colour the mean of N rays through the "
+                 "pixel (an evenly spread sequence; sample 1 is the centre); the AOVs stay the centre's");
   cl.add_choice("--device", device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
@@ -132,8 +135,13 @@ int main(int argc, char** argv) {
         sol::vk::MarchRenderer renderer(*context, options);
         const auto begin = std::chrono::steady_clock::now();
         double device_ms = 0;
-        r = stereo ? renderer.render_stereo(scene, width, height, ipd, &device_ms)
-                   : renderer.render(scene, width, height, &device_ms);
+        renderer.set_world(scene);
+        std::vector<sol::Camera> eyes{scene.camera};
+        if (stereo) {
+          const sol::StereoEyes pair = sol::stereo_eyes(scene.camera, ipd);
+          eyes = {pair.left, pair.right};
+        }
+        r = renderer.render(eyes, width, height, &device_ms, spp);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
         char buf[256];
         std::snprintf(buf, sizeof buf, "vulkan '%s' (kernel %.1f ms)", context->device_name().c_str(), device_ms);
@@ -150,6 +158,7 @@ int main(int argc, char** argv) {
       settings.width = width;
       settings.height = height;
       settings.threads = threads;
+      settings.samples = spp;
       if (tty) {
         settings.progress = [](double fraction) { std::fprintf(stderr, "\rsolrender: %3.0f%%", 100.0 * fraction); };
       }
@@ -176,9 +185,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "solrender: warning: %zu values were not finite and were written as 0 (a defect: please report "
                    "the scene and options)\n", non_finite);
     }
-    std::fprintf(stderr, "solrender: %dx%d%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
-                 stereo ? " (stereo)" : "", where.c_str(), seconds, r.width * static_cast<double>(r.height) / seconds * 1e-6,
-                 output.c_str());
+    const std::string samples = spp > 1 ? ", " + std::to_string(spp) + " samples per pixel" : "";
+    std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
+                 stereo ? " (stereo)" : "", samples.c_str(), where.c_str(), seconds,
+                 r.width * static_cast<double>(r.height) * spp / seconds * 1e-6, output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
     cl.fail(e.what());

@@ -54,7 +54,8 @@ layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
 // default build.
 layout(set = 0, binding = kBindingColor) uniform writeonly image2D color_image;
 #else
-layout(set = 0, binding = kBindingColor, rgba32f) uniform writeonly image2D color_image;
+// Read as well as written: anti-aliasing accumulates its samples here (accumulate()).
+layout(set = 0, binding = kBindingColor, rgba32f) uniform image2D color_image;
 #endif
 layout(set = 0, binding = kBindingHit, rgba32f) uniform writeonly image2D aov_hit;      // object, distance, steps, 0
 layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
@@ -157,6 +158,16 @@ vec4 output_color(vec4 linear) {
 #else
   return linear;
 #endif
+}
+
+// This dispatch's sample of the pixel: its colour, blended into the mean of
+// the samples already in the image with the sample's weight (params.pixel_sample.z;
+// 1 overwrites). The 8-bit output takes one sample (weight 1): nothing to read.
+vec4 accumulate(ivec2 pixel, vec4 color, float weight) {
+#ifndef SOL_OUTPUT_SRGB_UNORM
+  if (weight < 1.0) color = mix(imageLoad(color_image, pixel), color, weight);
+#endif
+  return color;
 }
 
 // Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
@@ -412,8 +423,11 @@ void main() {
 
   // The camera convention of docs/conventions.md (or the eye's off-axis window), per eye.
   const vec4 window = params.eyes[eye].window;
-  const float sx = window.x + (window.y - window.x) * (float(local.x) + 0.5) / float(width);
-  const float sy = window.z + (window.w - window.z) * (float(local.y) + 0.5) / float(height);
+  // The point of the pixel this dispatch samples (the centre without anti-aliasing).
+  const vec4 sample_at = params.pixel_sample;
+  const bool write_aovs = WRITE_AOVS && sample_at.w != 0.0;
+  const float sx = window.x + (window.y - window.x) * (float(local.x) + sample_at.x) / float(width);
+  const float sy = window.z + (window.w - window.z) * (float(local.y) + sample_at.y) / float(height);
   const vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
 
   if (QUOTIENT) {
@@ -509,8 +523,8 @@ void main() {
       hit_aov.y = t;
       point_aov = vec4(q, 0.0);
     }
-    imageStore(color_image, pixel, output_color(color));
-    if (WRITE_AOVS) {
+    imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
+    if (write_aovs) {
       imageStore(aov_hit, pixel, hit_aov);
       imageStore(aov_point, pixel, point_aov);
     }
@@ -642,8 +656,8 @@ void main() {
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }
-  imageStore(color_image, pixel, output_color(color));
-  if (WRITE_AOVS) {
+  imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
+  if (write_aovs) {
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);
   }

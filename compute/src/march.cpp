@@ -331,7 +331,7 @@ struct MarchRenderer::Frame {
 // What render() and record() do each frame: checks, the eyes' uniforms, and
 // the pipeline of the variant with the world's buffers bound.
 MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs,
-                                                  bool srgb_unorm) {
+                                                  bool srgb_unorm, const PixelSample& sample, bool sample_aovs) {
   Impl& m = *m_impl;
   const MarchWorld& prepared = world();
   require_size(width, "width");
@@ -347,6 +347,11 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.counts.y = width;
   g.counts.z = height;
   g.counts.w = static_cast<int>(eyes.size());
+  const bool inside = sample.offset.x >= 0.0 && sample.offset.x < 1.0 && sample.offset.y >= 0.0 && sample.offset.y < 1.0;
+  if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0)) {
+    throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
+  }
+  g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
   m.params.write(std::span<const Params>(&g, 1));
   const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm};
   return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
@@ -374,8 +379,8 @@ RenderResult MarchRenderer::render_stereo(const Scene& scene, int width, int hei
 }
 
 void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
-                           const StorageImage& target) {
-  const Frame f = prepare_frame(eyes, width, height, false, false);
+                           const StorageImage& target, const PixelSample& sample) {
+  const Frame f = prepare_frame(eyes, width, height, false, false, sample);
   if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() < f.width || target.height() < f.height) {
     throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be R32G32B32A32_SFLOAT and at least " +
                           std::to_string(f.width) + " x " + std::to_string(f.height));
@@ -421,16 +426,22 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                               group_count(f.height, kernel::kGroupSize));
 }
 
-RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, double* device_ms) {
+RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, double* device_ms, int samples) {
   Impl& m = *m_impl;
-  const Frame f = prepare_frame(eyes, width, height, true, false);
+  if (samples < 1) throw InvalidArgument("sol::vk::MarchRenderer::render: samples must be >= 1, got " + std::to_string(samples));
+  Frame f = prepare_frame(eyes, width, height, true, false);
   const std::uint32_t w = f.width, h = f.height;
   StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  ComputePipeline& pipeline = *f.pipeline;
-  pipeline.bind(kernel::kBindingColor, color);
-  pipeline.bind(kernel::kBindingHit, hit);
-  pipeline.bind(kernel::kBindingPoint, point);
-  const double ms = pipeline.run(group_count(w, kernel::kGroupSize), group_count(h, kernel::kGroupSize));
+  double ms = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
+    if (k > 0) f = prepare_frame(eyes, width, height, true, false, {pixel_sample(k), 1.0 / (k + 1)}, false);
+    ComputePipeline& pipeline = *f.pipeline;
+    pipeline.bind(kernel::kBindingColor, color);
+    pipeline.bind(kernel::kBindingHit, hit);
+    pipeline.bind(kernel::kBindingPoint, point);
+    ms += pipeline.run(group_count(w, kernel::kGroupSize), group_count(h, kernel::kGroupSize));
+  }
   if (device_ms) *device_ms = ms;
 
   RenderResult r;

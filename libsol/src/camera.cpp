@@ -62,11 +62,23 @@ glm::dvec4 image_window(const Camera& camera, int width, int height) {
 }
 
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height) {
+  return camera_ray(camera, i, j, width, height, {0.5, 0.5});
+}
+
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset) {
   const CameraBasis b = camera_basis(camera);
   const glm::dvec4 window = image_window(camera, width, height);
-  const double sx = window.x + (window.y - window.x) * (i + 0.5) / width;
-  const double sy = window.z + (window.w - window.z) * (j + 0.5) / height;
+  const double sx = window.x + (window.y - window.x) * (i + offset.x) / width;
+  const double sy = window.z + (window.w - window.z) * (j + offset.y) / height;
   return glm::normalize(sx * b.right + sy * b.up + b.forward);
+}
+
+glm::dvec2 pixel_sample(int k) {
+  if (k < 0) throw InvalidArgument("sol::pixel_sample: k must be >= 0, got " + std::to_string(k));
+  constexpr double g = 1.32471795724474602596;  // the plastic number: g³ = g + 1
+  // k/g and k/g² reduced modulo 1 in long double: k up to 2^31 keeps 1e-9 of the fraction.
+  const long double x = 0.5L + static_cast<long double>(k) / g, y = 0.5L + static_cast<long double>(k) / (static_cast<long double>(g) * g);
+  return {static_cast<double>(x - std::floor(x)), static_cast<double>(y - std::floor(y))};
 }
 
 StereoEyes stereo_eyes(const Camera& camera, double ipd) {

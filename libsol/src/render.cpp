@@ -237,6 +237,9 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   validate(camera);
   require_size(settings.width, "width");
   require_size(settings.height, "height");
+  if (settings.samples < 1 || settings.samples > 4096) {
+    throw InvalidArgument("sol::CpuRenderer::render: samples must be in [1, 4096], got " + std::to_string(settings.samples));
+  }
   const int w = settings.width, h = settings.height;
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   RenderResult r;
@@ -257,7 +260,12 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       const MarchHit hit = march_view(prepared, view, camera_ray(camera, i, j, w, h));
-      const glm::dvec3 c = shade_hit(prepared.world(), hit);
+      glm::dvec3 c = shade_hit(prepared.world(), hit);
+      for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
+        const MarchHit other = march_view(prepared, view, camera_ray(camera, i, j, w, h, pixel_sample(s)));
+        c += shade_hit(prepared.world(), other);
+      }
+      c /= static_cast<double>(settings.samples);
       r.rgba[4 * k + 0] = static_cast<float>(c.r);
       r.rgba[4 * k + 1] = static_cast<float>(c.g);
       r.rgba[4 * k + 2] = static_cast<float>(c.b);

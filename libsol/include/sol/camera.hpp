@@ -12,6 +12,7 @@
 
 #include <optional>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -60,6 +61,18 @@ glm::dvec4 image_window(const Camera& camera, int width, int height);
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height);
+/// The ray through the point `offset` of pixel (i, j), offset in [0, 1)²
+/// from the pixel's top-left corner ((0.5, 0.5): the centre, as above).
+glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset);
+
+/// The k-th sample point inside a pixel (k >= 0) for anti-aliasing, as an
+/// offset in [0, 1)² from its top-left corner: the R2 sequence (Roberts
+/// 2018), (frac(1/2 + k/g), frac(1/2 + k/g²)) with g the plastic number
+/// (g³ = g + 1), a low-discrepancy sequence whose every prefix is spread
+/// evenly over the pixel (so a progressive render can stop after any
+/// sample). Sample 0 is the centre: one sample is the image without
+/// anti-aliasing. Every pixel takes the same point for sample k.
+glm::dvec2 pixel_sample(int k);
 
 /// The two eyes of a stereo pair: at the geodesic flow of the camera by
 /// ∓ipd/2 along its right vector, their frames (forward, up) parallel-

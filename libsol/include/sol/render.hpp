@@ -55,6 +55,10 @@ struct RenderSettings {
   int width = 512;
   int height = 512;
   unsigned threads = 0;  ///< 0: all hardware threads
+  /// Samples per pixel, >= 1: the colour is their mean (anti-aliasing, at
+  /// sol::pixel_sample 0, 1, ...; a box filter over the pixel); the AOVs
+  /// are the pixel centre's (sample 0).
+  int samples = 1;
   /// Called now and then from the calling thread with the finished fraction in [0, 1].
   std::function<void(double)> progress;
 };

@@ -59,6 +59,15 @@ struct UnormTarget {
   std::uint32_t width = 0, height = 0;    ///< the image's extent
 };
 
+/// One sample of every pixel in an anti-aliased image: where in the pixel
+/// (sol::pixel_sample), and its weight in the colour already in the target:
+/// 1 overwrites it, 1/(k + 1) makes the k-th sample (k from 0) part of the
+/// running mean of k + 1 samples.
+struct PixelSample {
+  glm::dvec2 offset{0.5, 0.5};
+  double weight = 1.0;
+};
+
 /// The ray-marcher on a Vulkan device. It holds one world at a time,
 /// prepared once by set_world (checks, features, the kernel built for them,
 /// the quotient's images and the exact objects' tables uploaded); every frame
@@ -88,8 +97,12 @@ class MarchRenderer {
   /// height in 1..16384, left eye first) with the AOVs, like
   /// sol::CpuRenderer::render. `device_ms` receives the kernel's time on the
   /// device. Throws sol::InvalidArgument for sizes out of range, an invalid
-  /// camera, or no world.
-  RenderResult render(std::span<const Camera> eyes, int width, int height, double* device_ms = nullptr);
+  /// camera, or no world. With `samples` > 1 the colour is the mean of that
+  /// many samples per pixel (sol::pixel_sample 0, 1, ...: anti-aliasing, one
+  /// dispatch each, `device_ms` their sum); the AOVs are the pixel centre's
+  /// (sample 0).
+  RenderResult render(std::span<const Camera> eyes, int width, int height, double* device_ms = nullptr,
+                      int samples = 1);
   RenderResult render(const Camera& camera, int width, int height, double* device_ms = nullptr);
   /// Both eyes of sol::stereo_eyes(camera, ipd) side by side in one dispatch.
   RenderResult render_stereo(const Camera& camera, int width, int height, double ipd, double* device_ms = nullptr);
@@ -107,9 +120,11 @@ class MarchRenderer {
   /// renderer's uniforms are written now, so the caller must wait for its
   /// previous recorded dispatch to finish before calling again (one frame in
   /// flight per renderer), and keep `target` alive until this one finishes.
-  /// Same checks and exceptions as render().
+  /// Same checks and exceptions as render(). `sample` takes one sample of
+  /// every pixel into the running mean already in `target` (progressive
+  /// anti-aliasing: the caller orders the dispatch after the previous one).
   void record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
-              const StorageImage& target);
+              const StorageImage& target, const PixelSample& sample = {});
 
   /// The same into a caller's 8-bit image, sRGB-encoded: `target` must be of
   /// at least (eyes · width) × height and its format one that
@@ -132,7 +147,8 @@ class MarchRenderer {
 
  private:
   struct Frame;
-  Frame prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs, bool srgb_unorm);
+  Frame prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs, bool srgb_unorm,
+                      const PixelSample& sample = {}, bool sample_aovs = true);
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };

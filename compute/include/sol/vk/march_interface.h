@@ -85,6 +85,11 @@ struct Params {
   vec4 fog_color;  ///< rgb
   vec4 limits;     ///< x: max distance, y: hit epsilon, w: max steps
   ivec4 counts;    ///< x: objects (the quotient: images), y: eye width, z: height, w: eyes (1 or 2)
+  /// This dispatch's sample of every pixel: xy its point in the pixel (from
+  /// the top-left corner; 0.5, 0.5 the centre), z its weight in the colour
+  /// already in the image (1: overwrite; 1/(k + 1) for a running mean of
+  /// k + 1 samples), w 1 when the AOVs are written (the centre's sample).
+  vec4 pixel_sample;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
   Object objects[kMaxGpuObjects];
 };
@@ -103,9 +108,10 @@ static_assert(offsetof(Eye, relative) == 6 * 16 && offsetof(Eye, heading) == (6 
                   sizeof(Eye) == (6 + 2 * kMaxGpuObjects + kMaxLights) * 16,
               "std140 layout of Eye");
 static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
-                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 4 * 16 &&
-                  offsetof(Params, objects) == 2 * sizeof(Eye) + (4 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (4 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+                  offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
+                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 5 * 16 &&
+                  offsetof(Params, objects) == 2 * sizeof(Eye) + (5 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (5 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
