@@ -192,8 +192,9 @@ void Presenter::wait_for_frame() {
 }
 
 std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, std::span<const Camera> eyes,
-                                                   int eye_width, int eye_height, bool capture, bool vsync,
-                                                   const OverlayDraw* overlay) {
+                                                   int eye_width, int eye_height, const FrameOptions& options) {
+  const bool capture = options.capture, vsync = options.vsync;
+  const OverlayDraw* overlay = options.overlay;
   VkDevice device = m_context.device();
   const int render_w = eye_width * static_cast<int>(eyes.size()), render_h = eye_height;
   // The path: direct when the kernel renders at the window's size and the
@@ -202,7 +203,9 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   auto fits_window = [&] {
     return static_cast<std::uint32_t>(render_w) == m_extent.width && static_cast<std::uint32_t>(render_h) == m_extent.height;
   };
-  m_prefer_direct = m_allow_direct && fits_window();
+  // Accumulating (or showing an accumulation) needs the float image: the blit path.
+  const bool accumulating = options.sample.has_value() || options.reuse;
+  m_prefer_direct = m_allow_direct && fits_window() && !accumulating;
   if (m_direct_capable && m_direct != m_prefer_direct) {
     recreate(vsync);
     if (!ready()) return std::nullopt;  // minimised meanwhile
@@ -223,6 +226,8 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     m_rendered_h = render_h;
     m_target_has_frame = false;
   }
+  // Reuse only what the image holds at this size; else render (sample 0).
+  const bool reuse = options.reuse && !direct && m_target_has_frame;
   std::uint32_t index = 0;
   const VkResult acquired = vkAcquireNextImageKHR(device, m_swapchain, UINT64_MAX, m_acquired, VK_NULL_HANDLE, &index);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
@@ -259,7 +264,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     shown_access = VK_ACCESS_SHADER_WRITE_BIT;
   } else {
     VkImage target_image = m_target->handle();
-    renderer.record(cb, eyes, eye_width, eye_height, *m_target);
+    if (!reuse) renderer.record(cb, eyes, eye_width, eye_height, *m_target, options.sample.value_or(vk::PixelSample{}));
     // Read after write: the blit reads what the kernel wrote; to the layout
     // blits read best (the previous frame's last barrier already ordered this
     // frame's kernel after that frame's blit).
@@ -281,11 +286,12 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
                    1, &blit, fits_window() || !m_linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
     // Back to GENERAL, where Sol::vk expects its storage images between
     // commands (the next kernel, download()); write after read: the next
-    // frame's kernel and any download's copy wait for the blit to finish reading.
+    // frame's kernel (which reads the image too when it accumulates) and any
+    // download's copy wait for the blit to finish reading.
     vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_IMAGE_LAYOUT_GENERAL);
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
   }
   // The overlay, drawn into the image as a colour attachment; before the
   // capture when screenshots take it, else after.

@@ -69,14 +69,26 @@ class Presenter {
     bool direct = false;         ///< the kernel wrote the swapchain image itself
     double record_ms = 0.0;      ///< host time to record the frame (renderer.record and the commands)
   };
+  /// How present() makes its frame.
+  struct FrameOptions {
+    bool capture = false;  ///< keep the frame as shown for save()
+    bool vsync = true;
+    const OverlayDraw* overlay = nullptr;  ///< drawn over the frame when given and overlay_capable()
+    /// Accumulate: the kernel takes this sample of every pixel into the
+    /// running mean in the blit path's image (progressive anti-aliasing;
+    /// forces the blit path). None: one sample at the centres, overwriting.
+    std::optional<vk::PixelSample> sample;
+    /// Show the blit path's image as it is (a finished accumulation): no
+    /// kernel; falls back to rendering when that image is not of this size.
+    bool reuse = false;
+  };
   /// Renders `eyes` side by side, each eye_width × eye_height, with
   /// `renderer` (its world set) and presents the frame, scaled to the
   /// window. With `capture` the frame as shown is also kept for save().
   /// nullopt when no frame was presented (the swapchain went out of date or
   /// the window was minimised meanwhile): try again after recreate().
-  /// `overlay`, when given and overlay_capable(), draws over the frame.
   std::optional<Shown> present(vk::MarchRenderer& renderer, std::span<const Camera> eyes, int eye_width,
-                               int eye_height, bool capture, bool vsync, const OverlayDraw* overlay = nullptr);
+                               int eye_height, const FrameOptions& options);
 
   /// Writes the last frame presented: as shown (the swapchain image, when
   /// the surface lets it be copied and it was captured), else as rendered

@@ -72,6 +72,7 @@ struct Options {
   std::string vsync = "on", present = "auto", overlay = "off";
   bool fullscreen = false, stereo = false, validation = false;
   long frames = 0;  // 0: until the window closes
+  int refine = 16;  // samples per pixel a still view accumulates (0: off)
   std::string screenshot, script, record, state;
 };
 
@@ -88,6 +89,10 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
                 sol::cli::in_unit_interval());
   cl.add_number("--target-fps", o.target_fps, "F", "adapt the render scale to hold F frames per second", sol::cli::positive());
   cl.add_number("--min-scale", o.min_scale, "S", "lowest adaptive scale, (0, 1] (default 0.05)", sol::cli::in_unit_interval());
+  cl.add_integer("--refine", o.refine, 0, 4096, "N",
+                 "when the view has not changed for 0.25 s: render at full resolution, then accumulate up to N "
+                 "jittered samples per pixel (anti-aliasing, as solrender --spp N); any change starts again at the "
+                 "moving scale; 0: off (default 16)");
   cl.add_choice("--vsync", o.vsync, {"on", "off"}, "wait for the display's refresh (default on)");
   cl.add_choice("--present", o.present, {"auto", "blit"},
                 "auto (default): the kernel writes straight into the swapchain image at render scale 1 when the surface "
@@ -179,6 +184,7 @@ struct App {
   sol::World good_world;  // the last world that validated: the panel's edits fall back to it
   std::string scene_name;
   bool world_changed = true;  // the renderer needs set_world(scene) before the next frame
+  long world_version = 0;     // counts the worlds shown (a change restarts refinement)
   // The overlay panel (F1): shown, taken into screenshots (--overlay on), its text fields, its message line.
   sol::viewer::Overlay* overlay = nullptr;
   bool overlay_visible = false, overlay_in_capture = false;
@@ -206,6 +212,7 @@ struct App {
     scene_name = name;
     observer = observer_for(scene);
     world_changed = true;
+    ++world_version;
   }
 
   // After an edit of the world (the panel, a script's set): prepared again
@@ -216,6 +223,7 @@ struct App {
       if (!sol::vk::MarchRenderer::supports(scene)) throw std::runtime_error("the kernel cannot render this world");
       good_world = scene;
       world_changed = true;
+      ++world_version;
       message.clear();
     } catch (const std::exception& e) {
       static_cast<sol::World&>(scene) = good_world;
@@ -303,6 +311,15 @@ struct App {
   void refuse(const std::string& what, double value) {
     message = what + ", got " + std::to_string(value);
     std::fprintf(stderr, "solview: %s\n", message.c_str());
+  }
+
+  // What the frame shows, for progressive refinement: any change restarts it.
+  // (Not the render scale: a refined frame is at full resolution whatever it is.)
+  std::array<double, 16> view_key(VkExtent2D extent) const {
+    const glm::dvec3 p = observer.position(), f = observer.forward(), u = observer.up();
+    return {p.x, p.y, p.z, f.x, f.y, f.z, u.x, u.y, u.z, scene.camera.fov, stereo ? options.ipd : -1.0,
+            static_cast<double>(world_version), static_cast<double>(extent.width), static_cast<double>(extent.height),
+            0.0, 0.0};
   }
 
   // The current camera (the observer's, the scene's fov).
@@ -536,6 +553,12 @@ int run(App& app) {
   app.overlay_in_capture = opt.overlay == "on";
   if (opt.target_fps) app.target_fps = *opt.target_fps;
   auto last_steps = std::chrono::steady_clock::now() - std::chrono::seconds(10);
+  // Progressive refinement: the view last seen, for how long, and the samples accumulated (-1: not refining).
+  constexpr double kRefineDelay = 0.25;
+  std::array<double, 16> last_key{};
+  double still_for = 0.0, refine_full_s = 0.0;
+  int refined = -1;
+  auto refine_began = std::chrono::steady_clock::now();
   double mean_steps = -1.0;
   std::optional<AdaptiveScale> adaptive;
   if (opt.target_fps) adaptive.emplace(*opt.target_fps, opt.min_scale);
@@ -584,7 +607,8 @@ int run(App& app) {
     if (app.quit) break;
     app.controls.step(app.observer, dt);
     if (app.adaptive && (!adaptive || adaptive->target() != app.target_fps)) adaptive.emplace(app.target_fps, opt.min_scale);
-    if (adaptive) {
+    // Refinement frames are full-size on purpose: they do not steer the adaptive scale.
+    if (adaptive && refined < 0) {
       const double next = adaptive->next(app.scale, frame, frame_seconds);
       if (app.adaptive) app.scale = next;
     }
@@ -617,8 +641,26 @@ int run(App& app) {
 
     const int eyes = app.stereo ? 2 : 1;
     const VkExtent2D extent = presenter.extent();
-    const int eye_w = std::max(1, static_cast<int>(std::lround(extent.width * app.scale / eyes)));
-    const int eye_h = std::max(1, static_cast<int>(std::lround(extent.height * app.scale)));
+    // Progressive refinement: a view unchanged for kRefineDelay (in the
+    // replay's time when replaying) is rendered at full resolution, then
+    // sample by sample into a running mean, up to --refine samples; then
+    // that image is shown as it is. Any change starts again.
+    const std::array<double, 16> key = app.view_key(extent);
+    if (key != last_key) {
+      last_key = key;
+      still_for = 0.0;
+      if (refined >= 0 && adaptive) adaptive.emplace(app.target_fps, opt.min_scale);  // forget the full-size frames
+      refined = -1;
+    } else {
+      still_for += dt;
+    }
+    if (refined < 0 && opt.refine > 0 && still_for >= kRefineDelay && (app.scale < 1.0 || opt.refine > 1)) {
+      refined = 0;
+      refine_began = std::chrono::steady_clock::now();
+    }
+    const double render_scale = refined >= 0 ? 1.0 : app.scale;
+    const int eye_w = std::max(1, static_cast<int>(std::lround(extent.width * render_scale / eyes)));
+    const int eye_h = std::max(1, static_cast<int>(std::lround(extent.height * render_scale)));
 
     const auto host_begin = std::chrono::steady_clock::now();
     // The world is prepared once per scene; per frame only the cameras change.
@@ -639,10 +681,30 @@ int run(App& app) {
     }
     const double prepare_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
-    const bool capture = app.recording || !opt.screenshot.empty() || app.want_screenshot;
+    sol::viewer::Presenter::FrameOptions frame_options;
+    frame_options.capture = app.recording || !opt.screenshot.empty() || app.want_screenshot;
+    frame_options.vsync = app.vsync;
+    frame_options.overlay = overlay_draw ? &*overlay_draw : nullptr;
+    if (refined >= 0 && refined < opt.refine) {
+      frame_options.sample = sol::vk::PixelSample{sol::pixel_sample(refined), 1.0 / (refined + 1)};
+    } else if (refined >= opt.refine) {
+      frame_options.reuse = true;
+    }
     const std::optional<sol::viewer::Presenter::Shown> shown =
-        presenter.present(renderer, cameras, eye_w, eye_h, capture, app.vsync, overlay_draw ? &*overlay_draw : nullptr);
+        presenter.present(renderer, cameras, eye_w, eye_h, frame_options);
     if (!shown) continue;  // the swapchain went out of date: re-created at the top
+    if (refined >= 0 && refined < opt.refine) {
+      ++refined;
+      const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_began).count();
+      if (refined == 1) refine_full_s = since;
+      if (refined == opt.refine) {
+        // Wall-clock time from the end of the pause (the view still for
+        // kRefineDelay) to the frames shown, for docs/solview.md's table.
+        std::fprintf(stderr,
+                     "solview: refined: full resolution %.3f s and %d samples %.3f s after the %.2f s pause\n",
+                     refine_full_s, opt.refine, since, kRefineDelay);
+      }
+    }
     ++frame;
     ++(shown->direct ? direct_frames : blit_frames);
     shown_w = eye_w * eyes;
