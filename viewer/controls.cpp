@@ -29,6 +29,11 @@ const std::pair<const char*, Setting> kSettings[] = {
     {"hit-epsilon", Setting::HitEpsilon}, {"scale", Setting::Scale},   {"ipd", Setting::Ipd},
 };
 
+const std::pair<const char*, Button> kButtons[] = {
+    {"screenshot", Button::Screenshot}, {"record", Button::Record},         {"reset", Button::Reset},
+    {"copy-options", Button::CopyOptions}, {"copy-json", Button::CopyJson},
+};
+
 bool parse_double(const std::string& text, double& out) {
   char* end = nullptr;
   out = std::strtod(text.c_str(), &end);
@@ -44,6 +49,19 @@ std::optional<Key> key_from_name(const std::string& name) {
     if (upper == n) return k;
   }
   return std::nullopt;
+}
+
+std::optional<Button> button_from_name(const std::string& name) {
+  for (const auto& [n, b] : kButtons) {
+    if (name == n) return b;
+  }
+  return std::nullopt;
+}
+
+std::string button_names() {
+  std::string out;
+  for (const auto& [n, b] : kButtons) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
 }
 
 std::optional<Setting> setting_from_name(const std::string& name) {
@@ -96,6 +114,11 @@ std::vector<ScriptEvent> load_script(const std::string& path) {
         throw std::runtime_error(where + "mouse expects two numbers DX DY, got '" + w[2] + " " + w[3] + "'");
       }
       e.kind = ScriptEvent::Kind::Mouse;
+    } else if (w.size() == 3 && w[1] == "button") {
+      const auto button = button_from_name(w[2]);
+      if (!button) throw std::runtime_error(where + "unknown button '" + w[2] + "' (buttons: " + button_names() + ")");
+      e.kind = ScriptEvent::Kind::Button;
+      e.button = *button;
     } else if (w.size() == 4 && w[1] == "set") {
       const auto setting = setting_from_name(w[2]);
       if (!setting) throw std::runtime_error(where + "unknown setting '" + w[2] + "' (settings: " + setting_names() + ")");
@@ -103,7 +126,7 @@ std::vector<ScriptEvent> load_script(const std::string& path) {
       e.kind = ScriptEvent::Kind::Set;
       e.setting = *setting;
     } else {
-      throw std::runtime_error(where + "expected 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY' or 'TIME set NAME VALUE', got '" +
+      throw std::runtime_error(where + "expected 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY', 'TIME set NAME VALUE' or 'TIME button NAME', got '" +
                                line + "'");
     }
     events.push_back(e);

@@ -42,18 +42,25 @@ enum class Setting { Fov, MaxDistance, MaxSteps, HitEpsilon, Scale, Ipd };
 std::optional<Setting> setting_from_name(const std::string& name);
 std::string setting_names();
 
+/// The panel's buttons a script may press (`TIME button NAME`): "screenshot",
+/// "record", "reset", "copy-options", "copy-json".
+enum class Button { Screenshot, Record, Reset, CopyOptions, CopyJson };
+std::optional<Button> button_from_name(const std::string& name);
+std::string button_names();
+
 /// One timed input of a script.
 struct ScriptEvent {
-  enum class Kind { Down, Up, Mouse, Set } kind = Kind::Down;
+  enum class Kind { Down, Up, Mouse, Set, Button } kind = Kind::Down;
   double time = 0;  ///< seconds of simulated time from the start
   Key key = Key::W;
   double dx = 0, dy = 0;  ///< mouse motion in pixels (Mouse)
   Setting setting = Setting::Fov;  ///< Set: which, to `value`
   double value = 0;
+  Button button = Button::Screenshot;  ///< Button: which
 };
 
 /// Parses a script: one event per line, `TIME down KEY`, `TIME up KEY`,
-/// `TIME mouse DX DY` or `TIME set NAME VALUE`, times in seconds,
+/// `TIME mouse DX DY`, `TIME set NAME VALUE` or `TIME button NAME`, times in seconds,
 /// non-decreasing; `#` starts a comment. Throws std::runtime_error naming
 /// the file and line. (Set values are checked when applied, as the panel's.)
 std::vector<ScriptEvent> load_script(const std::string& path);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -107,7 +108,8 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
   cl.add_text("--screenshot", o.screenshot, "FILE", "at exit, write the last frame as shown (window size) to FILE");
   cl.add_text("--script", o.script, "FILE",
               "replay timed inputs: lines 'TIME down KEY', 'TIME up KEY', 'TIME mouse DX DY', 'TIME set NAME VALUE' "
-              "(a panel setting: " + sol::viewer::setting_names() + "; TIME in seconds; replays step 1/60 s per frame)");
+              "(a panel setting: " + sol::viewer::setting_names() + "), 'TIME button NAME' (a panel button: " +
+                  sol::viewer::button_names() + "); TIME in seconds; replays step 1/60 s per frame");
   cl.add_text("--record", o.record, "DIR",
               "write every frame as DIR/frame-NNNNNN.png (the panel's record button starts and stops it; "
               "without --record it writes to solview-recording/)");
@@ -213,6 +215,52 @@ struct App {
     observer = observer_for(scene);
     world_changed = true;
     ++world_version;
+    watch(name);
+  }
+
+  // Hot reload: a scene given as a file is read again when it changes on disk.
+  std::optional<std::filesystem::file_time_type> watched;  // the file's time when last read (none: a preset)
+  std::chrono::steady_clock::time_point next_poll{};
+  void watch(const std::string& name) {
+    watched.reset();
+    std::error_code ec;
+    const bool preset = std::find(presets.begin(), presets.end(), name) != presets.end();
+    if (!preset && std::filesystem::is_regular_file(name, ec)) {
+      const auto time = std::filesystem::last_write_time(name, ec);
+      if (!ec) watched = time;
+    }
+  }
+  // Every 0.2 s: a new modification time re-reads the file. A good file
+  // replaces the world (the observer stays where it is unless the file's
+  // camera changed); a bad one leaves the last good scene on screen and
+  // says why (field, line and column) on stderr and in the panel. A file
+  // missing for a moment (an editor saving by rename) is waited for.
+  void poll_reload() {
+    if (!watched) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_poll) return;
+    next_poll = now + std::chrono::milliseconds(200);
+    std::error_code ec;
+    const auto time = std::filesystem::last_write_time(scene_name, ec);
+    if (ec || time == *watched) return;
+    watched = time;
+    try {
+      const sol::Scene fresh = load(scene_name);
+      if (!sol::vk::MarchRenderer::supports(fresh)) throw std::runtime_error("the kernel cannot render this world");
+      const bool camera_moved = fresh.camera.position != scene.camera.position ||
+                                fresh.camera.forward != scene.camera.forward || fresh.camera.up != scene.camera.up;
+      const bool quotient_changed = fresh.quotient != scene.quotient;
+      scene = fresh;
+      good_world = scene;
+      world_changed = true;
+      ++world_version;
+      if (camera_moved || quotient_changed) observer = observer_for(scene);
+      message = "reloaded " + scene_name;
+      std::fprintf(stderr, "solview: reloaded %s\n", scene_name.c_str());
+    } catch (const std::exception& e) {
+      message = std::string(e.what()) + " (the last good scene stays)";
+      std::fprintf(stderr, "solview: %s\n", message.c_str());
+    }
   }
 
   // After an edit of the world (the panel, a script's set): prepared again
@@ -407,6 +455,35 @@ struct App {
 
 App& app_of(GLFWwindow* w) { return *static_cast<App*>(glfwGetWindowUserPointer(w)); }
 
+// SIGINT, SIGTERM, SIGHUP end the session as Esc does (the screenshot, the
+// state and the validation report are written); a second one ends it at
+// once, through the handler install_signal_cleanup() set (no partial files).
+volatile std::sig_atomic_t g_stop_signal = 0;
+struct sigaction g_cleanup_action[3];
+constexpr int kStopSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+
+void stop_on_signal(int signal) {
+  for (int i = 0; i < 3; ++i) {
+    if (kStopSignals[i] != signal) continue;
+    if (g_stop_signal != 0) {
+      sigaction(signal, &g_cleanup_action[i], nullptr);
+      std::raise(signal);
+    }
+  }
+  g_stop_signal = signal;
+}
+
+void install_stop_on_signal() {
+  for (int i = 0; i < 3; ++i) {
+    sigaction(kStopSignals[i], nullptr, &g_cleanup_action[i]);
+    if (g_cleanup_action[i].sa_handler == SIG_IGN) continue;  // ignored by whoever started us: stays so
+    struct sigaction action {};
+    action.sa_handler = stop_on_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(kStopSignals[i], &action, nullptr);
+  }
+}
+
 std::string frame_name(const std::string& dir, long frame) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame-%06ld.png", frame);
@@ -576,12 +653,17 @@ int run(App& app) {
   const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
 
   while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
+    if (g_stop_signal != 0) {
+      std::fprintf(stderr, "solview: signal %d: ending the session\n", static_cast<int>(g_stop_signal));
+      break;
+    }
     glfwPollEvents();
+    app.poll_reload();
     if (app.swapchain_dirty || presenter.out_of_date() || !presenter.ready()) {
       app.swapchain_dirty = false;
       presenter.recreate(app.vsync);
       if (!presenter.ready()) {  // minimised
-        glfwWaitEvents();
+        glfwWaitEventsTimeout(0.1);  // (and look at signals and the scene file now and then)
         continue;
       }
     }
@@ -599,6 +681,17 @@ int run(App& app) {
           app.controls.mouse(e.dx, e.dy);
         } else if (e.kind == sol::viewer::ScriptEvent::Kind::Set) {
           app.set(e.setting, e.value);
+        } else if (e.kind == sol::viewer::ScriptEvent::Kind::Button) {
+          // What the panel's button of that name does.
+          using sol::viewer::Button;
+          sol::viewer::PanelActions pressed;
+          pressed.screenshot = e.button == Button::Screenshot;
+          pressed.toggle_recording = e.button == Button::Record;
+          pressed.reset = e.button == Button::Reset;
+          pressed.copy_options = e.button == Button::CopyOptions;
+          pressed.copy_json = e.button == Button::CopyJson;
+          const VkExtent2D size = presenter.extent();
+          app.act(pressed, static_cast<int>(size.width), static_cast<int>(size.height));
         } else {
           app.key(e.key, e.kind == sol::viewer::ScriptEvent::Kind::Down);
         }
@@ -785,6 +878,7 @@ int main(int argc, char** argv) {
   add_options(app.command_line, app.options);
   app.command_line.parse(argc, argv);
   sol::programs::install_signal_cleanup();  // screenshots, frames and the state: complete or absent
+  install_stop_on_signal();
   try {
     app.set_scene(app.options.scene);
   } catch (const std::exception& e) {
