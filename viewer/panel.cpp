@@ -118,6 +118,16 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::PlotLines("##frames", m.frame_ms.data(), static_cast<int>(m.frame_ms.size()), 0, line, 0.0f,
                      std::max(worst, 1.0f) * 1.1f, ImVec2(340, 48));
   }
+  if (m.refine_target > 0) {
+    if (m.refined < 0) {
+      std::snprintf(line, sizeof line, "moving: rendering at scale %.2f", m.scale);
+    } else if (m.refined < m.refine_target) {
+      std::snprintf(line, sizeof line, "still: refining, %d of %d samples per pixel", m.refined, m.refine_target);
+    } else {
+      std::snprintf(line, sizeof line, "still: refined, %d samples per pixel", m.refine_target);
+    }
+    ImGui::TextUnformatted(line);
+  }
   if (m.mean_steps >= 0) {
     std::snprintf(line, sizeof line, "mean march steps %.1f", m.mean_steps);
     ImGui::TextUnformatted(line);
@@ -127,9 +137,16 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
   ImGui::TextUnformatted(format_vec("up      ", m.observer.up()).c_str());
   if (m.observer.lattice()) {
     // The default font has ASCII only: γ1 is written g1.
+    // The copy w·D of the fundamental domain the observer is in (the default font is ASCII: γ1 is g1).
     const LatticeWord& w = m.observer.copy();
-    std::snprintf(line, sizeof line, "in the copy g1^%lld g2^%lld g3^%lld D of the domain D", w.a, w.b, w.c);
-    const std::string copy = line;
+    std::string word;
+    const std::pair<const char*, long long> factors[] = {{"g1", w.a}, {"g2", w.b}, {"g3", w.c}};
+    for (const auto& [name, power] : factors) {
+      if (power == 0) continue;
+      std::snprintf(line, sizeof line, "%s%s^%lld", word.empty() ? "" : " ", name, power);
+      word += line;
+    }
+    const std::string copy = "copy of the domain D: " + (word.empty() ? std::string("e") : word) + " D";
     ImGui::TextUnformatted(copy.c_str());
   }
   if (!m.message.empty()) {

@@ -35,6 +35,8 @@ struct PanelModel {
   double rays_per_second = 0;
   double mean_steps = -1;  ///< < 0: not measured yet
   int render_width = 0, render_height = 0;
+  int refined = -1;       ///< samples accumulated by progressive refinement (-1: moving)
+  int refine_target = 0;  ///< --refine
   const std::string& message;  ///< the last error or notice (empty: none)
 };
 

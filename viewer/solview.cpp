@@ -715,12 +715,14 @@ int run(App& app) {
     if (app.overlay && app.overlay_visible) {
       const int eyes_now = app.stereo ? 2 : 1;
       const VkExtent2D window_extent = presenter.extent();
-      const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * app.scale / eyes_now))) * eyes_now;
-      const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * app.scale)));
+      const double shown_scale = refined >= 0 ? 1.0 : app.scale;  // refinement renders at full resolution
+      const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * shown_scale / eyes_now))) * eyes_now;
+      const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * shown_scale)));
       app.overlay->begin_frame(presenter.format());
       sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.options.ipd, app.scale,
                                     app.adaptive, app.target_fps, opt.min_scale, app.recording, app.observer,
-                                    app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, app.message};
+                                    app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
+                                    opt.refine, app.message};
       const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
       app.overlay->end_frame();
       app.act(actions, rw, rh);
