@@ -9,8 +9,9 @@
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // More than 1: the arc length is walked in this many equal segments, the ray
-// restarted at the end of each by sol_ray_advanced and the positions composed
-// by the group law, as the quotient march does at its teleports.
+// restarted at the end of each (forward: sol_ray_restarted, as the quotient
+// march does at its teleports; backward: sol_ray_advanced) and the positions
+// composed by the group law.
 layout(constant_id = 0) const int SEGMENTS = 1;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
@@ -38,8 +39,14 @@ void main() {
   const float segment = query.w / float(SEGMENTS);
   vec3 origin = vec3(0.0);
   for (int k = 0; k < SEGMENTS; ++k) {
-    origin = sol_translate(origin, segment >= 0.0 ? sol_position_forward(ray, segment) : sol_position(ray, segment));
-    ray = sol_ray_advanced(ray, segment);
+    if (segment >= 0.0) {  // as the quotient march restarts its rays (sol_ray_restarted)
+      const SolForward f = sol_forward(ray, segment);
+      origin = sol_translate(origin, f.position);
+      ray = sol_ray_restarted(ray, segment, f);
+    } else {
+      origin = sol_translate(origin, sol_position(ray, segment));
+      ray = sol_ray_advanced(ray, segment);
+    }
   }
   results[i] = vec4(origin, origin.z);
 }

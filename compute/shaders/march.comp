@@ -451,11 +451,13 @@ void main() {
     mat3 exact_J = mat3(1.0);
     bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
     for (int step = 0; step < max_steps; ++step) {
-      q = sol_translate(origin, sol_position_forward(qray, local_t));
+      const SolForward forward = sol_forward(qray, local_t);
+      q = sol_translate(origin, forward.position);
       if (!in_domain(q)) {
-        // The same geodesic goes on from the teleported point (sol_ray_advanced).
+        // The same geodesic goes on from the teleported point, restarted
+        // from what sol_forward found there (sol_ray_restarted).
         origin = teleport(q);
-        qray = sol_ray_advanced(qray, local_t);
+        qray = sol_ray_restarted(qray, local_t, forward);
         local_t = 0.0;
         q = origin;
       }

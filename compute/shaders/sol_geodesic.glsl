@@ -459,24 +459,45 @@ vec2 sol_height_range(SolRay g) {
   return g.regime == REGIME_STRAIGHT ? vec2(0.0) : r;
 }
 
+// What sol_forward found on its way to a position: enough to restart the
+// ray there without another Jacobi or Carlson evaluation (sol_ray_restarted).
+struct SolForward {
+  vec3 position;  // relative to the start
+  SolPoint point;  // the path's values there (general regime)
+  vec2 near;       // the integrals from the start of the point's quarter (or the ray's start, `same`) to it
+  bool same;       // the point lies in the start's quarter
+};
+
 // Position (relative to the start) at arc length t >= 0 (a march's): as
 // sol_position, with the piece from the start to the end of its quarter
 // precomputed (SolRay::far_forward), so one Carlson pair per call instead of two.
+SolForward sol_forward(SolRay g, float t) {
+  SolForward f;
+  f.same = true;
+  f.near = vec2(0.0);
+  const float u = g.lambda * t + g.u0;
+  const SolPoint p = sol_point(g, u);
+  f.point = p;
+  const int q = sol_absolute_quarter(g, u, p.quarter);
+  f.same = q <= g.start_quarter;
+  float gap_near;
+  vec3 f_near = sol_anchor(g, p, sol_start_anchor(p.quarter), gap_near);
+  f_near = f.same ? sol_factors(g.start) : f_near;
+  gap_near = f.same ? sol_two_point_gap(g.start, p) : gap_near;
+  f.near = sol_piece(g, f_near, sol_factors(p), gap_near);
+  const vec2 integral = f.same ? f.near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + f.near;
+  f.position = vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+  if (g.regime == REGIME_VERTICAL) f.position = vec3(0.0, 0.0, g.c * t);
+  if (g.regime == REGIME_STRAIGHT) f.position = vec3(g.direction.x * t, g.direction.y * t, 0.0);
+  if (g.regime == REGIME_PLANE) f.position = sol_plane_position(g, t);
+  return f;
+}
+
 vec3 sol_position_forward(SolRay g, float t) {
   if (g.regime == REGIME_VERTICAL) return vec3(0.0, 0.0, g.c * t);
   if (g.regime == REGIME_STRAIGHT) return vec3(g.direction.x * t, g.direction.y * t, 0.0);
   if (g.regime == REGIME_PLANE) return sol_plane_position(g, t);
-  const float u = g.lambda * t + g.u0;
-  const SolPoint p = sol_point(g, u);
-  const int q = sol_absolute_quarter(g, u, p.quarter);
-  const bool same = q <= g.start_quarter;
-  float gap_near;
-  vec3 f_near = sol_anchor(g, p, sol_start_anchor(p.quarter), gap_near);
-  f_near = same ? sol_factors(g.start) : f_near;
-  gap_near = same ? sol_two_point_gap(g.start, p) : gap_near;
-  const vec2 near = sol_piece(g, f_near, sol_factors(p), gap_near);
-  const vec2 integral = same ? near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + near;
-  return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+  return sol_forward(g, t).position;
 }
 
 // Position (relative to the start) at arc length t; needs sol_ray_integrals(g) first.
@@ -539,6 +560,33 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
   g.c = -g.k * g.lambda * p.jac.x;
   g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
   sol_ray_far_forward(g);
+  return g;
+}
+
+// sol_ray_advanced(g, t0) for t0 >= 0 from what sol_forward(g, t0) found
+// there: its point instead of a new Jacobi evaluation, and the piece from it
+// to the end of its quarter as what is left of the quarter's integrals
+// (the whole quarter, or the start's piece to that end, less the piece up to
+// the point: one subtraction instead of a Carlson pair). The difference
+// loses at most float rounding of the quarter's integrals, which the
+// positions carry anyway; tests/kernel_test.cpp walks rays in segments
+// through it against the double closed form.
+SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
+  if (g.regime != REGIME_GENERAL) return sol_ray_advanced(g, t0);  // cheap there: no Jacobi, no Carlson
+  float u = g.lambda * t0 + g.u0;
+  u -= 4.0 * g.K * round(u / (4.0 * g.K));
+  const SolPoint p = f.point;
+  const bool lower = p.quarter == 0 || p.quarter == 3;
+  const vec2 quarter = lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
+  g.far_forward = max((f.same ? g.far_forward : quarter) - f.near, vec2(0.0));
+  g.a = g.sqrt_mu * p.ew;
+  g.b = g.sqrt_mu / p.ew;
+  g.w0 = log(p.ew);
+  g.u0 = u;
+  g.start = p;
+  g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
+  g.c = -g.k * g.lambda * p.jac.x;
+  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
   return g;
 }
 
