@@ -3,6 +3,7 @@
 // reference), and every preset's image and AOVs against the CPU reference
 // renderer. Runs with validation on; any validation error fails.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -612,6 +613,46 @@ TEST(Kernel, SupersamplingMatchesTheCpuRenderer) {
   }
   const sol::Camera camera = sol::preset_scene("plane").camera;
   EXPECT_THROW(renderer.render(std::span(&camera, 1), 8, 8, nullptr, 0), sol::InvalidArgument);
+  expect_no_validation_errors();
+}
+
+// Long renders in tiles: with a tiny dispatch limit the image is made of
+// many small tiles (each sample of each tile one dispatch), and every value
+// of it, colour and AOVs, is the one-dispatch image's bit for bit; progress
+// rises to 1; a cancel stops the render with sol::Cancelled.
+TEST(Kernel, TiledRenderEqualsOneDispatch) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Scene scene = sol::preset_scene("lattice-balls");
+  renderer.set_world(scene);
+  const sol::Camera eyes[] = {scene.camera, sol::stereo_eyes(scene.camera, 0.1).right};
+  for (int samples : {1, 3}) {
+    const sol::RenderResult whole = renderer.render(std::span(eyes, 2), 40, 28, nullptr, samples);
+    sol::vk::RenderOptions options;
+    options.samples = samples;
+    options.max_dispatch_ms = 1e-6;  // tiles of 8 x 8 pixels (the smallest)
+    std::vector<double> seen;
+    options.progress = [&](double f) { seen.push_back(f); };
+    const sol::RenderResult tiled = renderer.render(std::span(eyes, 2), 40, 28, options);
+    EXPECT_EQ(tiled.rgba, whole.rgba) << samples;
+    EXPECT_EQ(tiled.object, whole.object) << samples;
+    EXPECT_EQ(tiled.distance, whole.distance) << samples;
+    EXPECT_EQ(tiled.steps, whole.steps) << samples;
+    EXPECT_EQ(tiled.px, whole.px) << samples;
+    ASSERT_EQ(seen.size(), 4u) << "rows of 8-pixel tiles over 28 rows";
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_EQ(seen.back(), 1.0);
+  }
+  std::atomic<bool> stop{false};
+  sol::vk::RenderOptions options;
+  options.max_dispatch_ms = 1e-6;
+  options.cancel = &stop;
+  int rows_done = 0;
+  options.progress = [&](double) {
+    ++rows_done;
+    stop = true;  // asked to stop after the first row of tiles
+  };
+  EXPECT_THROW(renderer.render(std::span(eyes, 1), 40, 28, options), sol::Cancelled);
+  EXPECT_EQ(rows_done, 1);
   expect_no_validation_errors();
 }
 

@@ -128,6 +128,20 @@ TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
   EXPECT_THROW(renderer.render(scene.camera, bad), sol::InvalidArgument);
 }
 
+// A cancelled CPU render stops with sol::Cancelled (the flag is read per row).
+TEST(Render, CancelStopsTheRender) {
+  const sol::Scene scene = sol::preset_scene("lattice-balls");
+  sol::CpuRenderer renderer(scene);
+  std::atomic<bool> stop{true};
+  sol::RenderSettings s;
+  s.width = 16;
+  s.height = 12;
+  s.cancel = &stop;
+  EXPECT_THROW(renderer.render(scene.camera, s), sol::Cancelled);
+  stop = false;
+  EXPECT_NO_THROW(renderer.render(scene.camera, s));
+}
+
 TEST(Render, ExactDistancesAreDistances) {
   // The vertical segment and the hyperbolic-plane formula: flowing from a
   // point along the distance gradient's reverse by the distance reaches the plane.

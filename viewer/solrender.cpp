@@ -46,7 +46,7 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
 int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
   double rk_step = 0.01, ipd = 0.064;
-  bool stereo = false, print_scene = false;
+  bool stereo = false, print_scene = false, progress = false;
   int width = 512, height = 512, spp = 1;
   unsigned threads = 0;
   sol::cli::SceneOverrides o;
@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
                 sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
   cl.add_flag("--print-scene", print_scene, "print the effective scene as JSON and exit");
+  cl.add_flag("--progress", progress,
+              "a progress line on stderr (percent, rays/s, time left; the default when stderr is a terminal)");
   cl.set_footer(
       "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
       "linear ones. On failure nothing is written and the exit status is non-zero (2 for bad usage).");
@@ -105,6 +107,24 @@ int main(int argc, char** argv) {
   if (integrator == "rk4" && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 
   const bool tty = isatty(fileno(stderr));
+  const bool show_progress = tty || progress;
+  // The progress line: finished fraction, rays per second so far, time left
+  // at that rate; rewritten in place on a terminal, one line per 10% otherwise.
+  const double total_rays = static_cast<double>(width) * (stereo ? 2 : 1) * height * spp;
+  const auto started = std::chrono::steady_clock::now();
+  int last_tenth = -1;
+  auto report = [&](double fraction) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double rate = seconds > 0 ? fraction * total_rays / seconds : 0.0;
+    const double left = fraction > 0 ? seconds * (1.0 - fraction) / fraction : 0.0;
+    if (!tty) {
+      const int tenth = static_cast<int>(fraction * 10.0 + 1e-9);
+      if (tenth == last_tenth) return;
+      last_tenth = tenth;
+    }
+    std::fprintf(stderr, "%ssolrender: %3.0f%%  %.2f M rays/s  %.1f s left%s", tty ? "\r" : "", 100.0 * fraction,
+                 rate * 1e-6, left, tty ? "   " : "\n");
+  };
   // A signal in any phase leaves no temporary behind (and no output).
   sol::programs::install_signal_cleanup();
   try {
@@ -141,7 +161,12 @@ int main(int argc, char** argv) {
           const sol::StereoEyes pair = sol::stereo_eyes(scene.camera, ipd);
           eyes = {pair.left, pair.right};
         }
-        r = renderer.render(eyes, width, height, &device_ms, spp);
+        // In tiles of at most about 100 ms on the device (a display's watchdog; progress).
+        sol::vk::RenderOptions render_options;
+        render_options.samples = spp;
+        if (show_progress) render_options.progress = report;
+        r = renderer.render(eyes, width, height, render_options, &device_ms);
+        if (tty) std::fprintf(stderr, "\r");
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
         char buf[256];
         std::snprintf(buf, sizeof buf, "vulkan '%s' (kernel %.1f ms)", context->device_name().c_str(), device_ms);
@@ -159,9 +184,7 @@ int main(int argc, char** argv) {
       settings.height = height;
       settings.threads = threads;
       settings.samples = spp;
-      if (tty) {
-        settings.progress = [](double fraction) { std::fprintf(stderr, "\rsolrender: %3.0f%%", 100.0 * fraction); };
-      }
+      if (show_progress) settings.progress = report;
       const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
       const auto begin = std::chrono::steady_clock::now();
       r = stereo ? sol::render_cpu_stereo(scene, settings, ipd) : sol::render_cpu(scene, settings);

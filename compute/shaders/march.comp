@@ -395,7 +395,10 @@ uint field_candidates(FieldCell c) {
 
 void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
-  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  // This dispatch's tile of the image (the whole image unless rendered in tiles).
+  const ivec4 tile = params.tile;
+  if (any(greaterThanEqual(ivec2(gl_GlobalInvocationID.xy), tile.zw))) return;
+  const ivec2 pixel = tile.xy + ivec2(gl_GlobalInvocationID.xy);
   const int width = params.counts.y, height = params.counts.z;
   if (pixel.x >= width * params.counts.w || pixel.y >= height) return;
   const int eye = pixel.x >= width ? 1 : 0;

@@ -229,6 +229,7 @@ struct MarchRenderer::Impl {
   std::optional<MarchWorld> world;
   std::uint64_t generation = 0;  // counts set_world calls
   Params world_uniforms{};
+  Params frame_params{};  // what prepare_frame last wrote (render() rewrites its tile and sample)
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns, so they live until the next set_world.
   std::optional<Buffer> images;
@@ -352,7 +353,9 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
     throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
   }
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
+  g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   m.params.write(std::span<const Params>(&g, 1));
+  m.frame_params = g;
   const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm};
   return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height)};
@@ -427,20 +430,64 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
 }
 
 RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, double* device_ms, int samples) {
+  RenderOptions options;
+  options.samples = samples;
+  options.max_dispatch_ms = 1e300;  // one dispatch per sample, as before tiles
+  return render(eyes, width, height, options, device_ms);
+}
+
+RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, const RenderOptions& options,
+                                   double* device_ms) {
   Impl& m = *m_impl;
+  const int samples = options.samples;
   if (samples < 1) throw InvalidArgument("sol::vk::MarchRenderer::render: samples must be >= 1, got " + std::to_string(samples));
-  Frame f = prepare_frame(eyes, width, height, true, false);
-  const std::uint32_t w = f.width, h = f.height;
-  StorageImage color(m.context, w, h), hit(m.context, w, h), point(m.context, w, h);
-  double ms = 0.0;
-  for (int k = 0; k < samples; ++k) {
-    // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
-    if (k > 0) f = prepare_frame(eyes, width, height, true, false, {pixel_sample(k), 1.0 / (k + 1)}, false);
-    ComputePipeline& pipeline = *f.pipeline;
-    pipeline.bind(kernel::kBindingColor, color);
-    pipeline.bind(kernel::kBindingHit, hit);
-    pipeline.bind(kernel::kBindingPoint, point);
-    ms += pipeline.run(group_count(w, kernel::kGroupSize), group_count(h, kernel::kGroupSize));
+  if (!(options.max_dispatch_ms > 0.0)) throw InvalidArgument("sol::vk::MarchRenderer::render: max_dispatch_ms must be > 0");
+  const Frame f = prepare_frame(eyes, width, height, true, false);
+  const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
+  StorageImage color(m.context, f.width, f.height), hit(m.context, f.width, f.height), point(m.context, f.width, f.height);
+  ComputePipeline& pipeline = *f.pipeline;
+  pipeline.bind(kernel::kBindingColor, color);
+  pipeline.bind(kernel::kBindingHit, hit);
+  pipeline.bind(kernel::kBindingPoint, point);
+  Params g = m.frame_params;
+  // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
+  // row sized from the time per pixel so far to take half the limit per
+  // dispatch (whole bands of the image's width while those fit, else
+  // narrower tiles of kGroupSize rows).
+  const int step = kernel::kGroupSize;
+  const bool whole = options.max_dispatch_ms >= 1e300;
+  int tile_w = w, tile_h = whole ? h : std::min(h, step);
+  double ms = 0.0, pixels_timed = 0.0;
+  for (int y = 0; y < h;) {
+    const int rows = std::min(tile_h, h - y);
+    for (int x = 0; x < w; x += tile_w) {
+      const int cols = std::min(tile_w, w - x);
+      g.tile = glm::ivec4(x, y, cols, rows);
+      for (int k = 0; k < samples; ++k) {
+        // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
+        const PixelSample sample = k == 0 ? PixelSample{} : PixelSample{pixel_sample(k), 1.0 / (k + 1)};
+        g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, k == 0 ? 1.0 : 0.0));
+        m.params.write(std::span<const Params>(&g, 1));
+        ms += pipeline.run(group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
+                           group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize));
+        pixels_timed += static_cast<double>(cols) * rows;
+      }
+    }
+    y += rows;
+    if (options.progress) options.progress(static_cast<double>(y) / h);
+    if (options.cancel && options.cancel->load() && y < h) throw Cancelled("sol::vk::MarchRenderer::render: cancelled");
+    if (!whole && ms > 0.0) {
+      const double budget = 0.5 * options.max_dispatch_ms / (ms / pixels_timed);  // pixels per dispatch
+      if (budget >= static_cast<double>(w) * step) {
+        tile_w = w;
+        tile_h = std::max(step, static_cast<int>(budget / w) / step * step);
+      } else {
+        tile_h = step;
+        tile_w = std::clamp(static_cast<int>(budget / step) / step * step, step, w);
+      }
+    } else if (!whole) {
+      tile_h = std::min(h, 4 * tile_h);  // no timing (too fast to measure): grow
+    }
   }
   if (device_ms) *device_ms = ms;
 

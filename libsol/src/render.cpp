@@ -257,6 +257,7 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
   detail::for_each_row(h, threads, settings.progress, [&](int j) {
+    if (settings.cancel && settings.cancel->load()) throw Cancelled("sol::CpuRenderer::render: cancelled");
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       const MarchHit hit = march_view(prepared, view, camera_ray(camera, i, j, w, h));

@@ -28,6 +28,7 @@
 // then exponential fog: mix(fog colour, colour, e^{-density t}). Misses are black.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -61,6 +62,8 @@ struct RenderSettings {
   int samples = 1;
   /// Called now and then from the calling thread with the finished fraction in [0, 1].
   std::function<void(double)> progress;
+  /// When set and true, the render stops within a row and throws sol::Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// An image and its arbitrary output variables, row-major, row 0 at the top.

@@ -11,6 +11,8 @@
 
 #include <array>
 #include <cstdint>
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -68,6 +70,22 @@ struct PixelSample {
   double weight = 1.0;
 };
 
+/// How MarchRenderer::render makes an image beyond its size.
+struct RenderOptions {
+  /// Samples per pixel (sol::pixel_sample 0, 1, ...): the colour is their
+  /// mean; the AOVs are the centre's (sample 0).
+  int samples = 1;
+  /// The image is dispatched in tiles, each (one sample of it) sized from the
+  /// previous ones' times to take about half of this on the device, never
+  /// more than the whole image: long renders then never hold the device in
+  /// one dispatch (a display's watchdog), report progress and can stop.
+  double max_dispatch_ms = 100.0;
+  /// Called after each row of tiles with the finished fraction in (0, 1].
+  std::function<void(double)> progress;
+  /// When set and true, the render stops after the current tile and throws sol::Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
 /// The ray-marcher on a Vulkan device. It holds one world at a time,
 /// prepared once by set_world (checks, features, the kernel built for them,
 /// the quotient's images and the exact objects' tables uploaded); every frame
@@ -103,6 +121,10 @@ class MarchRenderer {
   /// (sample 0).
   RenderResult render(std::span<const Camera> eyes, int width, int height, double* device_ms = nullptr,
                       int samples = 1);
+  /// The same with every option (tiles, progress, cancel); `device_ms` the
+  /// dispatches' sum. Tiles change no pixel: each is computed as in one dispatch.
+  RenderResult render(std::span<const Camera> eyes, int width, int height, const RenderOptions& options,
+                      double* device_ms = nullptr);
   RenderResult render(const Camera& camera, int width, int height, double* device_ms = nullptr);
   /// Both eyes of sol::stereo_eyes(camera, ipd) side by side in one dispatch.
   RenderResult render_stereo(const Camera& camera, int width, int height, double ipd, double* device_ms = nullptr);

@@ -90,6 +90,9 @@ struct Params {
   /// already in the image (1: overwrite; 1/(k + 1) for a running mean of
   /// k + 1 samples), w 1 when the AOVs are written (the centre's sample).
   vec4 pixel_sample;
+  /// This dispatch's tile of the (side-by-side) image: xy its first pixel,
+  /// zw its size; the dispatch covers it, pixels outside it are left alone.
+  ivec4 tile;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
   Object objects[kMaxGpuObjects];
 };
@@ -109,9 +112,10 @@ static_assert(offsetof(Eye, relative) == 6 * 16 && offsetof(Eye, heading) == (6 
               "std140 layout of Eye");
 static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
                   offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
-                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 5 * 16 &&
-                  offsetof(Params, objects) == 2 * sizeof(Eye) + (5 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (5 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+                  offsetof(Params, tile) == 2 * sizeof(Eye) + 5 * 16 &&
+                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 6 * 16 &&
+                  offsetof(Params, objects) == 2 * sizeof(Eye) + (6 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (6 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
