@@ -116,6 +116,26 @@ TEST(Scene, CameraFrustumRoundTrips) {
   EXPECT_FALSE(sol::parse_scene(sol::to_json(sol::preset_scene("plane"))).camera.frustum.has_value());
 }
 
+TEST(Scene, SamplesRoundTripAndAreChecked) {
+  const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}], "samples": 16})");
+  EXPECT_EQ(s.samples, 16);
+  EXPECT_EQ(sol::parse_scene(sol::to_json(s)).samples, 16);
+  EXPECT_EQ(sol::parse_scene(R"({"objects": [{"type": "plane_z"}]})").samples, 1);
+  for (const char* bad : {R"({"objects": [{"type": "plane_z"}], "samples": 0})",
+                          R"({"objects": [{"type": "plane_z"}], "samples": 4097})",
+                          R"({"objects": [{"type": "plane_z"}], "samples": 2.5})"}) {
+    try {
+      sol::parse_scene(bad);
+      ADD_FAILURE() << bad;
+    } catch (const sol::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("samples"), std::string::npos) << e.what();
+    }
+  }
+  sol::Scene v = s;
+  v.samples = 0;
+  EXPECT_THROW(sol::validate(v), sol::InvalidArgument);
+}
+
 TEST(Scene, TubeAxesAndPatternsOnSolids) {
   const sol::Scene s = sol::parse_scene(R"({"quotient": "golden", "objects": [
     {"type": "tube", "axis": "gamma1", "through": [0, 0, 0.2], "radius": 0.1, "pattern": "checker"},

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
   double rk_step = 0.01, ipd = 0.064;
   bool stereo = false, print_scene = false, progress = false;
-  int width = 512, height = 512, spp = 1;
+  int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
   unsigned threads = 0;
   sol::cli::SceneOverrides o;
   sol::cli::CommandLine cl("solrender", "[options] -o OUT",
@@ -61,8 +61,9 @@ int main(int argc, char** argv) {
   cl.add_integer("--height", height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
   o.add_to(cl, "camera");
   cl.add_integer("--spp", spp, 1, 4096, "N",
-                 "samples per pixel, 1..4096 (default 1): anti-aliasing, the colour the mean of N rays through the "
-                 "pixel (an evenly spread sequence; sample 1 is the centre); the AOVs stay the centre's");
+                 "samples per pixel, 1..4096 (default: the scene's \"samples\", 1 unless it says): anti-aliasing, "
+                 "the colour the mean of N rays through the pixel (an evenly spread sequence; sample 1 is the "
+                 "centre); the AOVs stay the centre's");
   cl.add_choice("--device", device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
@@ -89,6 +90,8 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     cl.fail(e.what());
   }
+  if (spp == 0) spp = scene.samples;
+  scene.samples = spp;  // what --print-scene shows
   if (print_scene) {
     std::printf("%s\n", sol::to_json(scene).c_str());
     return 0;

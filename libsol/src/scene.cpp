@@ -48,6 +48,7 @@ void validate(const Scene& scene) {
   detail::validate_as("sol::validate(Scene)", [&] {
     detail::check_camera(scene.camera);
     detail::check_world(scene);
+    if (!(scene.samples >= 1 && scene.samples <= 4096)) detail::field_error("samples", "samples must be in [1, 4096]");
   });
 }
 

@@ -113,7 +113,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (!root.is_object()) r.fail("", "the scene must be a JSON object");
   r.require_known_keys(root,
                        {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
-                        "max_steps", "hit_epsilon", "quotient"},
+                        "max_steps", "hit_epsilon", "quotient", "samples"},
                        "the scene", "");
   Scene s;
   if (root.contains("camera")) read_camera(root["camera"], r, s.camera);
@@ -170,6 +170,13 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (v < 1 || v > 100000) r.fail("max_steps", "max_steps must be in [1, 100000]");
     s.max_steps = static_cast<int>(v);
   }
+  if (root.contains("samples")) {
+    const json& m = root["samples"];
+    if (!m.is_number_integer()) r.fail("samples", "'samples' must be an integer, got " + SceneFileReader::text(m));
+    const auto v = m.get<long long>();
+    if (v < 1 || v > 4096) r.fail("samples", "samples must be in [1, 4096]");
+    s.samples = static_cast<int>(v);
+  }
   try {
     detail::check_camera(s.camera);
     detail::check_world(s);
@@ -221,6 +228,7 @@ std::string to_json(const Scene& s) {
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
   root["hit_epsilon"] = s.hit_epsilon;
+  root["samples"] = s.samples;
   return root.dump(2);
 }
 

@@ -42,6 +42,9 @@ struct World {
 /// preset holds. A Scene is a World (renderers take the world part).
 struct Scene : World {
   Camera camera;
+  /// Anti-aliasing samples per pixel a render of the scene takes (in [1,
+  /// 4096]; RenderSettings::samples, solrender --spp overrides it).
+  int samples = 1;
 };
 
 /// Checks every field of the world (finite numbers, positive limits,
