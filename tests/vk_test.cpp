@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -269,6 +273,73 @@ TEST(VkPipeline, FillWritesEveryPixelExactly) {
 
   const std::vector<std::string> errors = context.validation_errors();
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
+// The pipeline cache kept between runs (ContextOptions::pipeline_cache_dir):
+// written when the Context ends with this device's header; read back by the
+// next Context (pipeline_cache_loaded_bytes() is how a second run is seen to
+// use it: on lavapipe the driver's data is the 32-byte header alone, so that
+// is all it holds there); a garbage, truncated or foreign file is ignored
+// with a warning and rewritten; an unwritable place is a warning, not an error.
+TEST(VkContext, PipelineCacheIsKeptAndBadFilesAreIgnored) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "sol-pipeline-cache";
+  fs::remove_all(dir);
+  ContextOptions options;
+  options.pipeline_cache_dir = dir.string();
+  std::string path;
+  std::array<std::uint8_t, 16 + VK_UUID_SIZE> header{};
+  {
+    Context context(options);
+    path = context.pipeline_cache_path();
+    EXPECT_EQ(fs::path(path).parent_path(), dir);
+    EXPECT_EQ(context.pipeline_cache_loaded_bytes(), 0u);  // nothing there yet
+    ComputePipeline fill(context, fill_desc());            // created through the cache
+    const VkPhysicalDeviceProperties& p = context.properties();
+    const std::uint32_t words[4] = {16 + VK_UUID_SIZE, VK_PIPELINE_CACHE_HEADER_VERSION_ONE, p.vendorID, p.deviceID};
+    std::memcpy(header.data(), words, sizeof words);
+    std::memcpy(header.data() + 16, p.pipelineCacheUUID, VK_UUID_SIZE);
+  }
+  auto read = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::vector<std::uint8_t> written = read(path);
+  ASSERT_GE(written.size(), header.size());
+  EXPECT_TRUE(std::equal(header.begin(), header.end(), written.begin())) << "the file's header is this device's";
+  {
+    Context again(options);
+    EXPECT_EQ(again.pipeline_cache_loaded_bytes(), written.size()) << "the second run reads what the first wrote";
+  }
+  auto loads_with_warning = [&](const std::vector<std::uint8_t>& contents, const std::string& why) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(contents.data()), static_cast<std::streamsize>(contents.size()));
+    testing::internal::CaptureStderr();
+    std::size_t loaded = 1;
+    {
+      Context context(options);
+      loaded = context.pipeline_cache_loaded_bytes();
+    }
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(loaded, 0u) << why;
+    EXPECT_NE(err.find("ignoring the pipeline cache"), std::string::npos) << why << ": " << err;
+    EXPECT_NE(err.find(why), std::string::npos) << err;
+    const std::vector<std::uint8_t> rewritten = read(path);
+    EXPECT_TRUE(rewritten.size() >= header.size() && std::equal(header.begin(), header.end(), rewritten.begin()))
+        << why << ": rewritten for this device";
+  };
+  loads_with_warning(std::vector<std::uint8_t>(100, 0x5a), "truncated or not a pipeline cache");
+  loads_with_warning(std::vector<std::uint8_t>(written.begin(), written.begin() + 20), "truncated or not a pipeline cache");
+  std::vector<std::uint8_t> foreign = written;
+  foreign[8] ^= 0xff;  // another vendor
+  loads_with_warning(foreign, "written by another device or driver");
+  // A cache directory under a regular file cannot be made: a warning at the end, no exception.
+  std::ofstream(dir / "file") << "x";
+  ContextOptions blocked;
+  blocked.pipeline_cache_dir = (dir / "file" / "sub").string();
+  testing::internal::CaptureStderr();
+  EXPECT_NO_THROW({ Context context(blocked); });
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("cannot write the pipeline cache"), std::string::npos);
 }
 
 // The empty validation_errors() elsewhere mean something only if the layer

@@ -143,6 +143,7 @@ int main(int argc, char** argv) {
       std::optional<sol::vk::Context> context;
       try {
         sol::vk::ContextOptions context_options;
+        context_options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
 #ifndef NDEBUG
         context_options.validation = true;  // validation layers in debug builds
 #endif

@@ -571,6 +571,7 @@ int run(App& app) {
   if (!glfwVulkanSupported()) cl.fail("cannot open a window: GLFW finds no Vulkan loader", 1);
 
   sol::vk::ContextOptions context_options;
+  context_options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
   context_options.validation = opt.validation;
   std::uint32_t n_ext = 0;
   const char** ext = glfwGetRequiredInstanceExtensions(&n_ext);

@@ -272,6 +272,7 @@ void create_context(App& app, bool validation) {
   }
 
   sol::vk::ContextOptions options;
+  options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
   options.validation = validation;
   options.create_instance = [=](const VkInstanceCreateInfo& info, VkInstance* out) {
     auto xr_info = xr_struct<XrVulkanInstanceCreateInfoKHR>(XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR);

@@ -5,8 +5,14 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
+
+#include <unistd.h>
 
 #include "device.hpp"
 #include "sol/vk/error.hpp"
@@ -206,9 +212,45 @@ std::string_view to_string(DevicePreference preference) {
 
 namespace detail {
 
+void Device::save_pipeline_cache() const {
+  if (pipeline_cache == VK_NULL_HANDLE || pipeline_cache_path.empty()) return;
+  std::size_t size = 0;
+  if (vkGetPipelineCacheData(device, pipeline_cache, &size, nullptr) != VK_SUCCESS) return;
+  std::vector<char> data(size);
+  if (vkGetPipelineCacheData(device, pipeline_cache, &size, data.data()) != VK_SUCCESS) return;
+  data.resize(size);
+  namespace fs = std::filesystem;
+  const fs::path path(pipeline_cache_path);
+  std::error_code ec;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
+  // Complete or absent: a temporary beside it (this process's), then renamed over it.
+  const fs::path temporary = path.string() + ".tmp" + std::to_string(static_cast<long>(getpid()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(data.data(), static_cast<std::streamsize>(data.size()));
+    out.close();
+    if (!out) {
+      fs::remove(temporary, ec);
+      std::fprintf(stderr, "sol::vk: warning: cannot write the pipeline cache %s (the next start compiles again)\n",
+                   pipeline_cache_path.c_str());
+      return;
+    }
+  }
+  fs::rename(temporary, path, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    std::fprintf(stderr, "sol::vk: warning: cannot write the pipeline cache %s (the next start compiles again)\n",
+                 pipeline_cache_path.c_str());
+  }
+}
+
 Device::~Device() {
   if (device != VK_NULL_HANDLE) {
     vkDeviceWaitIdle(device);  // nothing may still run; the result does not matter here
+    if (pipeline_cache != VK_NULL_HANDLE) {
+      save_pipeline_cache();
+      vkDestroyPipelineCache(device, pipeline_cache, nullptr);
+    }
     if (timestamp_pool != VK_NULL_HANDLE) vkDestroyQueryPool(device, timestamp_pool, nullptr);
     if (command_pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, command_pool, nullptr);
     vkDestroyDevice(device, nullptr);
@@ -458,6 +500,51 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   pool_info.queueFamilyIndex = d.queue_family;
   check(vkCreateCommandPool(d.device, &pool_info, nullptr, &d.command_pool), "vkCreateCommandPool");
 
+  // The pipeline cache: the file's contents when this device and driver wrote it.
+  {
+    std::vector<char> initial;
+    if (!options.pipeline_cache_dir.empty()) {
+      char name[96];
+      std::snprintf(name, sizeof name, "pipelines-%04x-%04x-%08x.bin", d.properties.vendorID, d.properties.deviceID,
+                    d.properties.driverVersion);
+      d.pipeline_cache_path = (std::filesystem::path(options.pipeline_cache_dir) / name).string();
+      std::ifstream in(d.pipeline_cache_path, std::ios::binary);
+      if (in) {
+        initial.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        // VkPipelineCacheHeaderVersionOne: header size, version, vendor, device, cache UUID (32 bytes).
+        std::uint32_t header[4] = {};
+        const bool sized = initial.size() >= 16 + VK_UUID_SIZE;
+        if (sized) std::memcpy(header, initial.data(), sizeof header);
+        const bool ours = sized && header[0] >= 16 + VK_UUID_SIZE && header[0] <= initial.size() &&
+                          header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[2] == d.properties.vendorID &&
+                          header[3] == d.properties.deviceID &&
+                          std::memcmp(initial.data() + 16, d.properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+        if (!ours) {
+          std::fprintf(stderr,
+                       "sol::vk: warning: ignoring the pipeline cache %s: %s (it is rewritten for this device)\n",
+                       d.pipeline_cache_path.c_str(),
+                       sized && header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[0] >= 16 + VK_UUID_SIZE &&
+                               header[0] <= initial.size()
+                           ? "written by another device or driver"
+                           : "truncated or not a pipeline cache");
+          initial.clear();
+        }
+      }
+    }
+    VkPipelineCacheCreateInfo cache_info{};
+    cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+    cache_info.initialDataSize = initial.size();
+    cache_info.pInitialData = initial.empty() ? nullptr : initial.data();
+    if (vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache) != VK_SUCCESS) {
+      // A cache the driver refuses: start empty rather than fail.
+      cache_info.initialDataSize = 0;
+      cache_info.pInitialData = nullptr;
+      initial.clear();
+      check(vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache), "vkCreatePipelineCache");
+    }
+    d.pipeline_cache_loaded = initial.size();
+  }
+
   if (chosen.timestamp_valid_bits > 0 && d.properties.limits.timestampPeriod > 0.0f) {
     VkQueryPoolCreateInfo query_info{};
     query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
@@ -469,6 +556,22 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
 }
 
 Context::~Context() = default;
+
+VkPipelineCache Context::pipeline_cache() const { return m_device->pipeline_cache; }
+const VkPhysicalDeviceProperties& Context::properties() const { return m_device->properties; }
+const std::string& Context::pipeline_cache_path() const { return m_device->pipeline_cache_path; }
+std::size_t Context::pipeline_cache_loaded_bytes() const { return m_device->pipeline_cache_loaded; }
+void Context::save_pipeline_cache() const { m_device->save_pipeline_cache(); }
+
+std::string default_pipeline_cache_dir() {
+  const char* off = std::getenv("SOL_PIPELINE_CACHE");
+  if (off && std::string(off) == "off") return {};
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (std::filesystem::path(xdg) / "sol").string();
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return (std::filesystem::path(home) / ".cache" / "sol").string();
+  }
+  return {};
+}
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 

@@ -45,6 +45,13 @@ struct Device {
   bool validation = false;
   bool storage_write_without_format = false;  // shaderStorageImageWriteWithoutFormat, enabled
 
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
+  std::string pipeline_cache_path;  // where the cache is written back (empty: not kept)
+  std::size_t pipeline_cache_loaded = 0;
+  /// Writes the cache to pipeline_cache_path (a temporary, then renamed);
+  /// a failure is a warning on stderr.
+  void save_pipeline_cache() const;
+
   mutable std::mutex messages_mutex;  // the debug messenger may call from any thread
   std::vector<std::string> validation_errors;
 };

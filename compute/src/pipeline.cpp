@@ -165,7 +165,7 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     pipeline_info.stage.pName = "main";
     pipeline_info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
     pipeline_info.layout = m_layout;
-    check(vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &m_pipeline),
+    check(vkCreateComputePipelines(d.device, d.pipeline_cache, 1, &pipeline_info, nullptr, &m_pipeline),
           "vkCreateComputePipelines");
     vkDestroyShaderModule(d.device, module, nullptr);  // the pipeline keeps what it needs
     module = VK_NULL_HANDLE;

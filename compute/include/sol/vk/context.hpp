@@ -36,6 +36,12 @@ enum class DevicePreference { Auto, Gpu, Cpu };
 std::optional<DevicePreference> parse_device_preference(std::string_view text);
 std::string_view to_string(DevicePreference preference);
 
+class Context;
+/// Where the programs keep their pipeline caches: $XDG_CACHE_HOME/sol, else
+/// ~/.cache/sol; empty when neither variable is set, or when
+/// SOL_PIPELINE_CACHE=off.
+std::string default_pipeline_cache_dir();
+
 struct ContextOptions {
   DevicePreference preference = DevicePreference::Auto;
   /// Enables VK_LAYER_KHRONOS_validation (with synchronisation validation)
@@ -47,6 +53,17 @@ struct ContextOptions {
   /// swapchain extensions. Devices lacking a device extension are not chosen.
   std::vector<std::string> instance_extensions{};
   std::vector<std::string> device_extensions{};
+  /// A directory for the pipeline cache kept between runs (empty: none,
+  /// the default; default_pipeline_cache_dir() is the programs'). The file
+  /// in it, pipelines-VENDOR-DEVICE-DRIVER.bin, is one per device and driver
+  /// version (the driver keys each pipeline inside by the kernel's SPIR-V and
+  /// specialisation). It is read at construction when this device and driver
+  /// wrote it (VkPipelineCacheHeaderVersionOne: vendor, device, cache UUID);
+  /// a truncated, garbage or foreign file is ignored with a warning on
+  /// stderr. Every pipeline is created through the cache, and the cache is
+  /// written back (a temporary, then renamed) when the Context ends; a
+  /// directory that cannot be written gives a warning, never an error.
+  std::string pipeline_cache_dir;
 
   /// Hooks for a caller that must put the Context on objects someone else
   /// creates, such as an OpenXR runtime (XR_KHR_vulkan_enable2:
@@ -88,6 +105,8 @@ class Context {
   /// Nanoseconds per timestamp tick (VkPhysicalDeviceLimits::timestampPeriod).
   float timestamp_period() const;
   const VkPhysicalDeviceLimits& limits() const;
+  /// The device's properties (vendor, device and driver ids, pipeline cache UUID, ...).
+  const VkPhysicalDeviceProperties& properties() const;
 
   /// Whether the validation layer is active (requested and installed).
   bool validation_enabled() const;
@@ -112,6 +131,14 @@ class Context {
   VkDevice device() const;
   VkQueue queue() const;
   std::uint32_t queue_family_index() const;
+  /// The pipeline cache every pipeline is created through (VK_NULL_HANDLE: none).
+  VkPipelineCache pipeline_cache() const;
+  /// The cache's file (empty: none kept) and the bytes read from it at
+  /// construction (0: none, or ignored).
+  const std::string& pipeline_cache_path() const;
+  std::size_t pipeline_cache_loaded_bytes() const;
+  /// Writes the cache to its file now (also done when the Context ends).
+  void save_pipeline_cache() const;
 
   /// Library internals; not part of the API.
   const std::shared_ptr<detail::Device>& internals() const { return m_device; }
