@@ -60,48 +60,10 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   return light;
 }
 
-// What the JSON parser is not asked to bear: nesting deeper than
-// kSceneFileMaxDepth (it recurses per level) and NUL bytes (it would stop
-// at one and ignore what follows). One pass, strings skipped.
-void check_structure(std::string_view text, std::string_view source) {
-  int depth = 0, line = 1;
-  std::size_t line_start = 0;
-  bool in_string = false, escaped = false;
-  auto fail = [&](std::size_t i, const std::string& what) {
-    throw InvalidArgument(std::string(source) + ": " + what + " (line " + std::to_string(line) + ", column " +
-                          std::to_string(i - line_start + 1) + ")");
-  };
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\0') fail(i, "malformed JSON: a NUL byte");
-    if (c == '\n') {
-      ++line;
-      line_start = i + 1;
-    }
-    if (in_string) {
-      if (escaped) {
-        escaped = false;
-      } else if (c == '\\') {
-        escaped = true;
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '{' || c == '[') {
-      if (++depth > kSceneFileMaxDepth) {
-        fail(i, "nesting deeper than " + std::to_string(kSceneFileMaxDepth) + " levels of objects and arrays");
-      }
-    } else if (c == '}' || c == ']') {
-      --depth;
-    }
-  }
-}
-
 }  // namespace
 
 Scene parse_scene(std::string_view text, std::string_view source) {
-  check_structure(text, source);
+  detail::check_json_text(text, source);
   json root;
   try {
     root = json::parse(text.begin(), text.end());

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sol/error.hpp"
+#include "sol/scene_file.hpp"  // kSceneFileMaxDepth
 
 namespace sol::detail {
 namespace {
@@ -163,6 +164,44 @@ void SceneFileReader::require_known_keys(const json& object, std::initializer_li
 void SceneFileReader::require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
                                   const std::string& path) const {
   if (!object.contains(key)) fail(path, what + " needs " + noun);
+}
+
+// What the JSON parser is not asked to bear: nesting deeper than
+// kSceneFileMaxDepth (it recurses per level) and NUL bytes (it would stop
+// at one and ignore what follows). One pass, strings skipped.
+void check_json_text(std::string_view text, std::string_view source) {
+  int depth = 0, line = 1;
+  std::size_t line_start = 0;
+  bool in_string = false, escaped = false;
+  auto fail = [&](std::size_t i, const std::string& what) {
+    throw InvalidArgument(std::string(source) + ": " + what + " (line " + std::to_string(line) + ", column " +
+                          std::to_string(i - line_start + 1) + ")");
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\0') fail(i, "malformed JSON: a NUL byte");
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kSceneFileMaxDepth) {
+        fail(i, "nesting deeper than " + std::to_string(kSceneFileMaxDepth) + " levels of objects and arrays");
+      }
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
 }
 
 }  // namespace sol::detail

@@ -25,6 +25,11 @@ struct FilePlace {
   int line = 1, column = 1;
 };
 
+/// Refuses what the JSON parser is not asked to bear: nesting deeper than
+/// kSceneFileMaxDepth (it recurses per level) and NUL bytes (it would stop at
+/// one and ignore what follows); InvalidArgument "<source>: ... (line L, column C)".
+void check_json_text(std::string_view text, std::string_view source);
+
 class SceneFileReader {
  public:
   /// The most of a value that a message quotes.

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sol/camera.hpp"
+#include "sol/camera_path.hpp"
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"

@@ -1,0 +1,190 @@
+#include "sol/camera_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "scene_reader.hpp"
+#include "sol/error.hpp"
+#include "sol/lattice.hpp"
+#include "sol/observer.hpp"
+
+namespace sol {
+namespace {
+
+using detail::json;
+using detail::SceneFileReader;
+
+// The longest path and the largest single moves it takes: beyond them a
+// film is not what was meant (and a walk of 1e300 never ends).
+constexpr std::size_t kMaxSegments = 100000;
+constexpr double kMaxDuration = 1e6;  // seconds, per segment
+constexpr double kMaxDistance = 1e4;  // Sol units, per walk
+constexpr double kMaxDegrees = 1e6;   // per turn
+
+PathSegment read_segment(const json& j, const SceneFileReader& r, const std::string& at) {
+  if (!j.is_object()) r.fail(at, at + " must be an object");
+  PathSegment s;
+  auto duration = [&](const char* key) {
+    const double d = r.number(j[key], at + "." + key);
+    if (!(d > 0.0 && d <= kMaxDuration)) r.fail(at + "." + key, at + "." + key + " must be in (0, 1e6] seconds");
+    return d;
+  };
+  if (j.contains("walk")) {
+    r.require_known_keys(j, {"walk", "distance", "duration"}, at + " (a walk)", at);
+    const std::string way = SceneFileReader::text(j["walk"]);
+    const std::pair<const char*, glm::dvec3> ways[] = {{"forward", {0, 0, 1}}, {"back", {0, 0, -1}},
+                                                       {"right", {1, 0, 0}},   {"left", {-1, 0, 0}},
+                                                       {"up", {0, 1, 0}},      {"down", {0, -1, 0}}};
+    auto it = std::find_if(std::begin(ways), std::end(ways), [&](const auto& w) { return way == w.first; });
+    if (it == std::end(ways)) {
+      r.fail(at + ".walk", at + ".walk must be forward, back, left, right, up or down, got '" + SceneFileReader::shown(way) + "'");
+    }
+    r.require_key(j, "distance", at + " (a walk)", "a 'distance'", at);
+    r.require_key(j, "duration", at + " (a walk)", "a 'duration'", at);
+    s.kind = PathSegment::Kind::Walk;
+    s.direction = it->second;
+    s.distance = r.number(j["distance"], at + ".distance");
+    if (!(std::abs(s.distance) <= kMaxDistance)) r.fail(at + ".distance", at + ".distance must be within ±1e4");
+    s.duration = duration("duration");
+  } else if (j.contains("turn")) {
+    r.require_known_keys(j, {"turn", "degrees", "duration"}, at + " (a turn)", at);
+    const std::string axis = SceneFileReader::text(j["turn"]);
+    if (axis == "yaw") {
+      s.axis = PathSegment::Axis::Yaw;
+    } else if (axis == "pitch") {
+      s.axis = PathSegment::Axis::Pitch;
+    } else if (axis == "roll") {
+      s.axis = PathSegment::Axis::Roll;
+    } else {
+      r.fail(at + ".turn", at + ".turn must be yaw, pitch or roll, got '" + SceneFileReader::shown(axis) + "'");
+    }
+    r.require_key(j, "degrees", at + " (a turn)", "'degrees'", at);
+    r.require_key(j, "duration", at + " (a turn)", "a 'duration'", at);
+    s.kind = PathSegment::Kind::Turn;
+    const double degrees = r.number(j["degrees"], at + ".degrees");
+    if (!(std::abs(degrees) <= kMaxDegrees)) r.fail(at + ".degrees", at + ".degrees must be within ±1e6");
+    s.angle = degrees * std::numbers::pi / 180.0;
+    s.duration = duration("duration");
+  } else if (j.contains("hold")) {
+    r.require_known_keys(j, {"hold"}, at + " (a hold)", at);
+    s.kind = PathSegment::Kind::Hold;
+    s.duration = duration("hold");
+  } else {
+    r.fail(at, at + " must be a walk, a turn or a hold ({\"walk\": ...}, {\"turn\": ...} or {\"hold\": seconds})");
+  }
+  return s;
+}
+
+// One segment applied to the observer, a fraction f of it.
+void apply(const PathSegment& s, double f, Observer& o) {
+  if (f <= 0.0) return;
+  switch (s.kind) {
+    case PathSegment::Kind::Walk:
+      if (s.distance != 0.0) o.move(s.direction, s.distance * f);
+      break;
+    case PathSegment::Kind::Turn:
+      if (s.axis == PathSegment::Axis::Yaw) o.yaw(s.angle * f);
+      if (s.axis == PathSegment::Axis::Pitch) o.pitch(s.angle * f);
+      if (s.axis == PathSegment::Axis::Roll) o.roll(s.angle * f);
+      break;
+    case PathSegment::Kind::Hold:
+      break;
+  }
+}
+
+}  // namespace
+
+double CameraPath::duration() const {
+  double total = 0.0;
+  for (const PathSegment& s : segments) total += s.duration;
+  return total;
+}
+
+long CameraPath::frame_count(double fps) const {
+  if (!(fps > 0.0 && fps <= 1000.0)) throw InvalidArgument("sol::CameraPath::frame_count: fps must be in (0, 1000]");
+  // The last frame at the end of the path, however the duration rounds.
+  return static_cast<long>(std::floor(duration() * fps + 1e-9)) + 1;
+}
+
+Camera CameraPath::at(double t, const Camera& scene_camera, bool quotient) const {
+  Camera c = scene_camera;
+  if (position) c.position = *position;
+  if (forward) c.forward = *forward;
+  if (up) c.up = *up;
+  if (fov) c.fov = *fov;
+  validate(c);
+  Observer o(c.position, c.forward, c.up);
+  if (quotient) o.bind(Lattice::golden());
+  double begin = 0.0;
+  for (const PathSegment& s : segments) {
+    if (t <= begin) break;
+    const double end = begin + s.duration;
+    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o);
+    begin = end;
+  }
+  c.position = o.position();
+  c.forward = o.forward();
+  c.up = o.up();
+  return c;
+}
+
+CameraPath parse_camera_path(std::string_view text, std::string_view source) {
+  detail::check_json_text(text, source);
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    throw InvalidArgument(std::string(source) + ": malformed JSON: " + SceneFileReader::shown(e.what(), 300));
+  }
+  const SceneFileReader r(text, source);
+  if (!root.is_object()) r.fail("", "the path must be a JSON object");
+  r.require_known_keys(root, {"start", "segments"}, "the path", "");
+  CameraPath path;
+  if (root.contains("start")) {
+    const json& s = root["start"];
+    if (!s.is_object()) r.fail("start", "'start' must be an object");
+    r.require_known_keys(s, {"position", "forward", "up", "fov"}, "start", "start");
+    if (s.contains("position")) path.position = r.vec3(s["position"], "start.position");
+    if (s.contains("forward")) path.forward = r.vec3(s["forward"], "start.forward");
+    if (s.contains("up")) path.up = r.vec3(s["up"], "start.up");
+    if (s.contains("fov")) path.fov = r.number(s["fov"], "start.fov");
+  }
+  if (!root.contains("segments") || !root["segments"].is_array() || root["segments"].empty()) {
+    r.fail("segments", "'segments' must be a non-empty array of walks, turns and holds");
+  }
+  const json& segments = root["segments"];
+  if (segments.size() > kMaxSegments) r.fail("segments", "at most 100000 segments");
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    path.segments.push_back(read_segment(segments[i], r, "segments[" + std::to_string(i) + "]"));
+  }
+  // The start as a camera (the scene's defaults for what is missing).
+  Camera c;
+  if (path.position) c.position = *path.position;
+  if (path.forward) c.forward = *path.forward;
+  if (path.up) c.up = *path.up;
+  if (path.fov) c.fov = *path.fov;
+  try {
+    validate(c);
+  } catch (const InvalidArgument& e) {
+    std::string what = e.what();
+    // "sol::validate(Camera): camera.fov ..." -> the path's field.
+    const std::size_t at = what.find("camera.");
+    const std::string field = at == std::string::npos ? std::string("start") : "start." + what.substr(at + 7, what.find(' ', at) - at - 7);
+    r.fail(field, at == std::string::npos ? what : "start." + what.substr(at + 7));
+  }
+  return path;
+}
+
+CameraPath load_camera_path(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InvalidArgument(file + ": cannot open path file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InvalidArgument(file + ": cannot read path file");
+  return parse_camera_path(text.str(), file);
+}
+
+}  // namespace sol
