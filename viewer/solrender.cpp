@@ -3,6 +3,7 @@
 //
 //   solrender --scene plane -o plane.png
 //   solrender --scene my.json -o out.exr --aov aov.exr --width 256 --height 256
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,9 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <functional>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
@@ -23,6 +27,7 @@
 
 #include "command_line.hpp"
 #include "image_file.hpp"
+#include "output_file.hpp"
 
 namespace {
 
@@ -41,10 +46,99 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
   return out;
 }
 
+// -o for a film: one printf frame number (%d, %06d, ...) and no other
+// conversion (%% is a percent sign).
+bool frame_pattern_ok(const std::string& pattern) {
+  int numbers = 0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
+    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2) return false;
+    ++numbers;
+    i = j;
+  }
+  return numbers == 1;
+}
+
+// The pattern with frame number k (frame_pattern_ok holds: one %..d).
+std::string frame_name(const std::string& pattern, long k) {
+  std::string format = pattern;
+  const std::size_t d = [&] {
+    for (std::size_t i = 0; i < format.size(); ++i) {
+      if (format[i] != '%') continue;
+      if (format[i + 1] == '%') {
+        ++i;
+        continue;
+      }
+      return format.find('d', i);
+    }
+    return std::string::npos;
+  }();
+  std::vector<char> with_long(format.begin(), format.end());
+  with_long.insert(with_long.begin() + static_cast<std::ptrdiff_t>(d), 'l');  // %06d -> %06ld
+  with_long.push_back('\0');
+  std::vector<char> out(with_long.size() + 32);
+  std::snprintf(out.data(), out.size(), with_long.data(), k);
+  return out.data();
+}
+
+// An executable on PATH, or empty.
+std::string find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const std::filesystem::path candidate = std::filesystem::path(dirs.substr(start, end - start)) / name;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(candidate, ec) && access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    start = end + 1;
+  }
+  return {};
+}
+
+// Encodes the film's frames (from first_frame on, the -o pattern) into
+// `video` with ffmpeg: H.264 in yuv420p (sizes padded to even numbers),
+// written to a temporary and moved onto `video` when ffmpeg succeeds.
+void encode_video(const std::string& ffmpeg, const std::string& pattern, long first_frame, double fps,
+                  const std::string& video) {
+  std::string ext = std::filesystem::path(video).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::pair<const char*, const char*> formats[] = {{".mp4", "mp4"}, {".mkv", "matroska"}, {".mov", "mov"}};
+  const char* format = nullptr;
+  for (const auto& [e, f] : formats) {
+    if (ext == e) format = f;
+  }
+  if (!format) throw std::runtime_error("--video " + video + ": give a .mp4, .mkv or .mov file");
+  sol::programs::OutputFile out(video);
+  const std::string rate = std::to_string(fps), start = std::to_string(first_frame);
+  std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", rate, "-start_number", start,
+                                   "-i", pattern, "-c:v", "libx264", "-pix_fmt", "yuv420p",
+                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", format, out.path()};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+    throw std::runtime_error("--video: cannot run " + ffmpeg);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("--video: ffmpeg failed to encode " + video);
+  out.commit();
+  std::fprintf(stderr, "solrender: encoded %s with ffmpeg\n", video.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed";
+  std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed", path_file, frames, video;
+  double fps = 24.0;
   double rk_step = 0.01, ipd = 0.064;
   bool stereo = false, print_scene = false, progress = false;
   int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
@@ -75,6 +169,13 @@ int main(int argc, char** argv) {
                 sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
   cl.add_flag("--print-scene", print_scene, "print the effective scene as JSON and exit");
+  cl.add_text("--path", path_file, "FILE",
+              "render a film along a camera path (JSON: a start and walk/turn/hold segments, docs/films.md): one "
+              "image per frame, -o a pattern with a frame number (out/frame-%06d.png); frames already written are "
+              "skipped, so a stopped run goes on where it was");
+  cl.add_number("--fps", fps, "F", "frames per second of --path, (0, 1000] (default 24)", sol::cli::in_range(1e-3, 1000.0));
+  cl.add_text("--frames", frames, "A:B", "with --path: frames A to B-1 only (either may be left out; default all)");
+  cl.add_text("--video", video, "FILE.mp4", "with --path: encode the frames with ffmpeg into FILE (.mp4, .mkv, .mov)");
   cl.add_flag("--progress", progress,
               "a progress line on stderr (percent, rays/s, time left; the default when stderr is a terminal)");
   cl.set_footer(
@@ -111,11 +212,54 @@ int main(int argc, char** argv) {
 
   const bool tty = isatty(fileno(stderr));
   const bool show_progress = tty || progress;
+  const double eyes_count = stereo ? 2.0 : 1.0;
+
+  // Films: --path, its frames and their files.
+  std::optional<sol::CameraPath> camera_path;
+  long first_frame = 0, end_frame = 0;
+  if (!path_file.empty()) {
+    try {
+      camera_path = sol::load_camera_path(path_file);
+    } catch (const std::exception& e) {
+      cl.fail(e.what());
+    }
+    if (!aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
+    if (!frame_pattern_ok(output)) {
+      cl.fail("-o " + output + ": with --path the name needs one frame number such as %06d (frame-%06d.png)");
+    }
+    const long count = camera_path->frame_count(fps);
+    first_frame = 0;
+    end_frame = count;
+    if (!frames.empty()) {
+      const auto colon = frames.find(':');
+      if (colon == std::string::npos) cl.fail("--frames expects A:B (frames A to B-1; either may be left out), got '" + frames + "'");
+      const std::string a = frames.substr(0, colon), b = frames.substr(colon + 1);
+      if (!a.empty()) first_frame = cl.integer(a, "--frames (first)", 0, count);
+      if (!b.empty()) end_frame = std::min(count, static_cast<long>(cl.integer(b, "--frames (end)", 0, 100000000)));
+      if (first_frame >= end_frame) {
+        cl.fail("--frames " + frames + ": no frames (the path has " + std::to_string(count) + " at " +
+                std::to_string(fps) + " fps: 0.." + std::to_string(count - 1) + ")");
+      }
+    }
+  } else if (!frames.empty() || !video.empty()) {
+    cl.fail(!frames.empty() ? "--frames needs --path FILE" : "--video needs --path FILE");
+  }
+  std::string ffmpeg;
+  if (!video.empty()) {
+    ffmpeg = find_program("ffmpeg");
+    if (ffmpeg.empty()) {
+      cl.fail("--video needs ffmpeg, which is not installed (Debian: apt install ffmpeg); without --video the frames "
+              "are written and 'ffmpeg -framerate F -i PATTERN -pix_fmt yuv420p out.mp4' encodes them");
+    }
+    if (std::filesystem::is_directory(video)) cl.fail("--video " + video + ": it is a directory");
+  }
+
   // The progress line: finished fraction, rays per second so far, time left
   // at that rate; rewritten in place on a terminal, one line per 10% otherwise.
-  const double total_rays = static_cast<double>(width) * (stereo ? 2 : 1) * height * spp;
-  const auto started = std::chrono::steady_clock::now();
+  const double total_rays = static_cast<double>(width) * eyes_count * height * spp;
+  auto started = std::chrono::steady_clock::now();
   int last_tenth = -1;
+  std::string progress_prefix;
   auto report = [&](double fraction) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const double rate = seconds > 0 ? fraction * total_rays / seconds : 0.0;
@@ -125,22 +269,22 @@ int main(int argc, char** argv) {
       if (tenth == last_tenth) return;
       last_tenth = tenth;
     }
-    std::fprintf(stderr, "%ssolrender: %3.0f%%  %.2f M rays/s  %.1f s left%s", tty ? "\r" : "", 100.0 * fraction,
-                 rate * 1e-6, left, tty ? "   " : "\n");
+    std::fprintf(stderr, "%ssolrender: %s%3.0f%%  %.2f M rays/s  %.1f s left%s", tty ? "\r" : "", progress_prefix.c_str(),
+                 100.0 * fraction, rate * 1e-6, left, tty ? "   " : "\n");
   };
   // A signal in any phase leaves no temporary behind (and no output).
   sol::programs::install_signal_cleanup();
   try {
-    sol::RenderResult r;
+    // The renderer, made once (a film's frames share it): the kernel, or the CPU.
     std::string where;
-    double seconds = 0;
-    bool rendered = false;
+    std::function<sol::RenderResult(const sol::Camera&, double*)> render_camera;
 #ifdef SOL_HAVE_VULKAN
+    std::optional<sol::vk::Context> context;
+    std::optional<sol::vk::MarchRenderer> renderer;
     if (device == "auto" && !sol::vk::MarchRenderer::supports(scene)) {
       std::fprintf(stderr, "solrender: exact point lights with a reach above %g are CPU-only; rendering on the CPU\n",
                    sol::ConnectionTable::kReach);
     } else if (device != "cpu") {
-      std::optional<sol::vk::Context> context;
       try {
         sol::vk::ContextOptions context_options;
         context_options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
@@ -156,45 +300,87 @@ int main(int argc, char** argv) {
         sol::vk::MarchOptions options;
         options.integrator = integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
         options.rk4_step = rk_step;
-        sol::vk::MarchRenderer renderer(*context, options);
-        const auto begin = std::chrono::steady_clock::now();
-        double device_ms = 0;
-        renderer.set_world(scene);
-        std::vector<sol::Camera> eyes{scene.camera};
-        if (stereo) {
-          const sol::StereoEyes pair = sol::stereo_eyes(scene.camera, ipd);
-          eyes = {pair.left, pair.right};
-        }
-        // In tiles of at most about 100 ms on the device (a display's watchdog; progress).
-        sol::vk::RenderOptions render_options;
-        render_options.samples = spp;
-        if (show_progress) render_options.progress = report;
-        r = renderer.render(eyes, width, height, render_options, &device_ms);
-        if (tty) std::fprintf(stderr, "\r");
-        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-        char buf[256];
-        std::snprintf(buf, sizeof buf, "vulkan '%s' (kernel %.1f ms)", context->device_name().c_str(), device_ms);
-        where = buf;
-        rendered = true;
+        renderer.emplace(*context, options);
+        renderer->set_world(scene);
+        where = "vulkan '" + context->device_name() + "'";
+        render_camera = [&](const sol::Camera& camera, double* device_ms) {
+          std::vector<sol::Camera> eyes{camera};
+          if (stereo) {
+            const sol::StereoEyes pair = sol::stereo_eyes(camera, ipd);
+            eyes = {pair.left, pair.right};
+          }
+          // In tiles of at most about 100 ms on the device (a display's watchdog; progress).
+          sol::vk::RenderOptions render_options;
+          render_options.samples = spp;
+          if (show_progress) render_options.progress = report;
+          return renderer->render(eyes, width, height, render_options, device_ms);
+        };
       }
     }
 #else
     if (device == "vulkan") cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
 #endif
-    if (!rendered) {
+    std::optional<sol::CpuRenderer> cpu;
+    if (!render_camera) {
       if (integrator == "rk4") cl.fail("--integrator rk4 needs the Vulkan kernel");
-      sol::RenderSettings settings;
-      settings.width = width;
-      settings.height = height;
-      settings.threads = threads;
-      settings.samples = spp;
-      if (show_progress) settings.progress = report;
+      cpu.emplace(scene);
       const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-      const auto begin = std::chrono::steady_clock::now();
-      r = stereo ? sol::render_cpu_stereo(scene, settings, ipd) : sol::render_cpu(scene, settings);
-      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-      if (tty) std::fprintf(stderr, "\r");
       where = "cpu (" + std::to_string(used_threads) + " threads)";
+      render_camera = [&](const sol::Camera& camera, double*) {
+        sol::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.threads = threads;
+        settings.samples = spp;
+        if (show_progress) settings.progress = report;
+        return stereo ? cpu->render_stereo(camera, settings, ipd) : cpu->render(camera, settings);
+      };
+    }
+
+    if (camera_path) {
+      // A film: frames first_frame..end_frame-1, each its own complete file;
+      // frames already there (complete: files appear only whole) are skipped,
+      // so a stopped run goes on where it was.
+      long rendered = 0, skipped = 0;
+      const auto film_started = std::chrono::steady_clock::now();
+      const bool quotient = scene.quotient != sol::Quotient::None;
+      for (long k = first_frame; k < end_frame; ++k) {
+        const std::string name = frame_name(output, k);
+        if (std::filesystem::exists(name)) {
+          ++skipped;
+          continue;
+        }
+        const sol::Camera camera = camera_path->at(static_cast<double>(k) / fps, scene.camera, quotient);
+        char prefix[96];
+        std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld): ", k, k - first_frame + 1, end_frame - first_frame);
+        progress_prefix = prefix;
+        started = std::chrono::steady_clock::now();
+        last_tenth = -1;
+        const sol::RenderResult r = render_camera(camera, nullptr);
+        if (tty) std::fprintf(stderr, "\r");
+        sol::programs::OutputFile image(name);
+        const std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+        image.commit();
+        if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, name.c_str());
+        ++rendered;
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
+      std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
+                   path_file.c_str(), first_frame, end_frame - 1, fps, where.c_str(), rendered, seconds, skipped,
+                   output.c_str());
+      if (!video.empty()) encode_video(ffmpeg, output, first_frame, fps, video);
+      return 0;
+    }
+
+    const auto begin = std::chrono::steady_clock::now();
+    double device_ms = 0;
+    sol::RenderResult r = render_camera(scene.camera, &device_ms);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    if (tty) std::fprintf(stderr, "\r");
+    if (!cpu) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", device_ms);
+      where += buf;
     }
     // Both files complete before either replaces what was there: a failure
     // leaves the previous files as they were.
