@@ -4,6 +4,9 @@
 # The path walks straight down from (0, 0, 1.5) looking down (-z): that
 # geodesic is the vertical line, so frame k at t = k/4 s is at z = 1.5 - k/4.
 #   -DSOLRENDER=path -DIDIFF=path -DWORK_DIR=dir
+if(NOT IDIFF)
+  message(FATAL_ERROR "idiff not found (Debian: openimageio-tools)")
+endif()
 set(dir ${WORK_DIR}/film)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
