@@ -2,10 +2,12 @@
 // (independent of the closed form the march uses), exact distances, the
 // camera convention, invariance under translations and the (y, x, -z)
 // symmetry, and no NaN.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -126,6 +128,60 @@ TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
   sol::RenderSettings bad;
   bad.samples = 0;
   EXPECT_THROW(renderer.render(scene.camera, bad), sol::InvalidArgument);
+}
+
+// Projections (sol::camera_ray): equirectangular longitude/latitude with the
+// seam between the first and last columns; the fisheye's equidistant angle,
+// its centre forward (as the perspective centre) and its rim; no ray and a
+// black pixel outside the image circle.
+TEST(Render, ProjectionsMapPixelsToDirections) {
+  sol::Camera cam{{0.1, 0.2, 0.3}, {1, 0.3, -0.2}, {0, 0, 1}, 70.0};
+  const sol::CameraBasis b = sol::camera_basis(cam);
+  auto angle = [](const dvec3& a, const dvec3& c) { return std::acos(std::clamp(glm::dot(a, c), -1.0, 1.0)); };
+  const double pi = std::numbers::pi;
+  cam.projection = sol::Projection::Equirectangular;
+  constexpr int W = 64, H = 32;
+  EXPECT_LT(glm::length(sol::camera_ray(cam, W / 2, H / 2, W, H, {0.0, 0.0}) - b.forward), 1e-15);  // λ = φ = 0
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 3 * W / 4, H / 2, W, H, {0.0, 0.0}) - b.right), 1e-15);  // λ = π/2
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 0, 0, W, H, {0.0, 0.0}) - b.up), 1e-15);  // the top edge: φ = π/2
+  for (int j : {1, 9, 16, 30}) {
+    // Across the seam: the last column's centre and the first's are as far apart as any two neighbours.
+    const double seam = angle(sol::camera_ray(cam, W - 1, j, W, H), sol::camera_ray(cam, 0, j, W, H));
+    const double next = angle(sol::camera_ray(cam, 0, j, W, H), sol::camera_ray(cam, 1, j, W, H));
+    EXPECT_NEAR(seam, next, 1e-12) << j;
+    const double latitude = (0.5 - (j + 0.5) / H) * pi;
+    EXPECT_NEAR(next, 2.0 * std::asin(std::cos(latitude) * std::sin(pi / W)), 1e-12) << j;  // chord on a circle of latitude
+  }
+  cam.projection = sol::Projection::Fisheye;
+  cam.fisheye_fov = 180.0;
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 32, 32, 64, 64, {0.0, 0.0}) - b.forward), 1e-15);  // the centre
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 63, 32, 64, 64, {1.0, 0.0}) - b.right), 1e-15);      // the rim: 90°
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 32, 0, 64, 64, {0.0, 0.0}) - b.up), 1e-15);
+  // Equidistant: the angle from forward grows linearly with the distance from the centre.
+  EXPECT_NEAR(angle(sol::camera_ray(cam, 48, 32, 64, 64, {0.0, 0.0}), b.forward), pi / 4, 1e-12);
+  EXPECT_TRUE(sol::camera_sees(cam, 32, 32, 64, 64));
+  EXPECT_FALSE(sol::camera_sees(cam, 0, 0, 64, 64));  // a corner
+  cam.fisheye_fov = 360.0;
+  EXPECT_LT(glm::length(sol::camera_ray(cam, 63, 32, 64, 64, {1.0, 0.0}) + b.forward), 1e-15);  // the rim looks back
+  // A rendered fisheye: black with no hit outside the circle, the perspective camera's centre at its centre.
+  sol::Scene scene = sol::preset_scene("sandwich");
+  sol::CpuRenderer renderer(scene);
+  sol::Camera fish = scene.camera;
+  fish.projection = sol::Projection::Fisheye;
+  const sol::RenderResult f = renderer.render(fish, {33, 33});
+  const sol::RenderResult p = renderer.render(scene.camera, {33, 33});
+  EXPECT_EQ(f.object[0], 0.0f);
+  EXPECT_EQ(f.rgba[0], 0.0f);
+  const std::size_t centre = 16 * 33 + 16;
+  EXPECT_EQ(f.object[centre], p.object[centre]);
+  EXPECT_NEAR(f.distance[centre], p.distance[centre], 1e-9);
+  sol::Camera equirect = scene.camera;
+  equirect.projection = sol::Projection::Equirectangular;
+  EXPECT_THROW(renderer.render(equirect, {30, 30}), sol::InvalidArgument);  // width must be 2 x height
+  EXPECT_NO_THROW(renderer.render(equirect, {30, 15}));
+  sol::Camera bad = fish;
+  bad.fisheye_fov = 400;
+  EXPECT_THROW(sol::validate(bad), sol::InvalidArgument);
 }
 
 // A cancelled CPU render stops with sol::Cancelled (the flag is read per row).

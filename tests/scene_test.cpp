@@ -136,6 +136,28 @@ TEST(Scene, SamplesRoundTripAndAreChecked) {
   EXPECT_THROW(sol::validate(v), sol::InvalidArgument);
 }
 
+TEST(Scene, ProjectionsRoundTripAndAreChecked) {
+  const sol::Scene s = sol::parse_scene(
+      R"({"camera": {"projection": "fisheye", "fisheye_fov": 220}, "objects": [{"type": "plane_z"}]})");
+  EXPECT_EQ(s.camera.projection, sol::Projection::Fisheye);
+  EXPECT_EQ(s.camera.fisheye_fov, 220.0);
+  const sol::Scene back = sol::parse_scene(sol::to_json(s));
+  EXPECT_EQ(back.camera.projection, sol::Projection::Fisheye);
+  EXPECT_EQ(back.camera.fisheye_fov, 220.0);
+  EXPECT_EQ(sol::parse_scene(R"({"camera": {"projection": "equirectangular"}, "objects": [{"type": "plane_z"}]})").camera.projection,
+            sol::Projection::Equirectangular);
+  for (const auto& [text, field] : {std::pair{R"({"camera": {"projection": "cylinder"}, "objects": [{"type": "plane_z"}]})", "camera.projection"},
+                                    std::pair{R"({"camera": {"projection": "fisheye", "fisheye_fov": 0}, "objects": [{"type": "plane_z"}]})", "camera.fisheye_fov"},
+                                    std::pair{R"({"camera": {"projection": "fisheye", "frustum": [-1, 1, -1, 1]}, "objects": [{"type": "plane_z"}]})", "camera.frustum"}}) {
+    try {
+      sol::parse_scene(text);
+      ADD_FAILURE() << text;
+    } catch (const sol::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Scene, TubeAxesAndPatternsOnSolids) {
   const sol::Scene s = sol::parse_scene(R"({"quotient": "golden", "objects": [
     {"type": "tube", "axis": "gamma1", "through": [0, 0, 0.2], "radius": 0.1, "pattern": "checker"},

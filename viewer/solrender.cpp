@@ -139,6 +139,8 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
 int main(int argc, char** argv) {
   std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed", path_file, frames, video;
   double fps = 24.0;
+  std::string projection;
+  std::optional<double> fisheye_fov;
   double rk_step = 0.01, ipd = 0.064;
   bool stereo = false, print_scene = false, progress = false;
   int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
@@ -154,6 +156,11 @@ int main(int argc, char** argv) {
   cl.add_integer("--width", width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
   cl.add_integer("--height", height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
   o.add_to(cl, "camera");
+  cl.add_choice("--projection", projection, {"perspective", "equirectangular", "fisheye"},
+                "how pixels map to directions: perspective (the scene's fov), equirectangular (360 x 180 degrees, "
+                "width = 2 x height) or fisheye (equidistant, --fisheye-fov across the image circle)");
+  cl.add_number("--fisheye-fov", fisheye_fov, "DEG", "a fisheye's angle across its image circle, (0, 360] (default 180: a dome)",
+                sol::cli::in_range(1e-3, 360.0));
   cl.add_integer("--spp", spp, 1, 4096, "N",
                  "samples per pixel, 1..4096 (default: the scene's \"samples\", 1 unless it says): anti-aliasing, "
                  "the colour the mean of N rays through the pixel (an evenly spread sequence; sample 1 is the "
@@ -187,6 +194,11 @@ int main(int argc, char** argv) {
   try {
     scene = sol::cli::scene_argument(scene_arg);
     o.apply(scene);
+    if (projection == "perspective") scene.camera.projection = sol::Projection::Perspective;
+    if (projection == "equirectangular") scene.camera.projection = sol::Projection::Equirectangular;
+    if (projection == "fisheye") scene.camera.projection = sol::Projection::Fisheye;
+    if (fisheye_fov) scene.camera.fisheye_fov = *fisheye_fov;
+    if (scene.camera.projection != sol::Projection::Perspective) scene.camera.frustum.reset();
     sol::validate(scene);
   } catch (const std::exception& e) {
     cl.fail(e.what());
@@ -196,6 +208,13 @@ int main(int argc, char** argv) {
   if (print_scene) {
     std::printf("%s\n", sol::to_json(scene).c_str());
     return 0;
+  }
+  if (scene.camera.projection == sol::Projection::Equirectangular && width != 2 * height) {
+    cl.fail("an equirectangular image needs --width = 2 x --height (360 x 180 degrees), got " + std::to_string(width) +
+            " x " + std::to_string(height));
+  }
+  if (stereo && scene.camera.projection != sol::Projection::Perspective) {
+    cl.fail("--stereo needs the perspective projection (omnidirectional stereo is not available yet)");
   }
   if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");

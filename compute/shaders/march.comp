@@ -431,7 +431,30 @@ void main() {
   const bool write_aovs = WRITE_AOVS && sample_at.w != 0.0;
   const float sx = window.x + (window.y - window.x) * (float(local.x) + sample_at.x) / float(width);
   const float sy = window.z + (window.w - window.z) * (float(local.y) + sample_at.y) / float(height);
-  const vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
+  vec3 direction = normalize(sx * eye_right.xyz + sy * eye_up.xyz + eye_forward.xyz);
+  // The other projections (sol::camera_ray): equirectangular and fisheye.
+  const vec4 projection = params.eyes[eye].projection;
+  const vec2 at = vec2(float(local.x) + sample_at.x, float(local.y) + sample_at.y);
+  if (projection.x == float(kProjectionEquirectangular)) {
+    const float longitude = (at.x / float(width) - 0.5) * 6.28318530717958648;
+    const float latitude = (0.5 - at.y / float(height)) * 3.14159265358979324;
+    direction = normalize(cos(latitude) * sin(longitude) * eye_right.xyz + sin(latitude) * eye_up.xyz +
+                          cos(latitude) * cos(longitude) * eye_forward.xyz);
+  } else if (projection.x == float(kProjectionFisheye)) {
+    const vec2 p = vec2(at.x - 0.5 * float(width), 0.5 * float(height) - at.y) / (0.5 * float(min(width, height)));
+    const float r = length(p);
+    if (r > 1.0) {  // outside the image circle: no ray
+      imageStore(color_image, pixel, output_color(accumulate(pixel, vec4(0.0, 0.0, 0.0, 1.0), sample_at.z)));
+      if (write_aovs) {
+        imageStore(aov_hit, pixel, vec4(0.0));
+        imageStore(aov_point, pixel, vec4(0.0));
+      }
+      return;
+    }
+    const float theta = r * projection.y;
+    direction = r > 0.0 ? normalize(sin(theta) * (p.x / r * eye_right.xyz + p.y / r * eye_up.xyz) + cos(theta) * eye_forward.xyz)
+                        : eye_forward.xyz;
+  }
 
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <cstdio>
 #include <map>
@@ -87,6 +88,11 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   e.right = vec4(basis.right, 0.0);
   e.up = vec4(basis.up, 0.0);
   e.window = glm::vec4(image_window(cam, width, height));
+  const int code = cam.projection == Projection::Equirectangular ? kernel::kProjectionEquirectangular
+                   : cam.projection == Projection::Fisheye      ? kernel::kProjectionFisheye
+                                                                : kernel::kProjectionPerspective;
+  e.projection = glm::vec4(static_cast<float>(code), static_cast<float>(cam.fisheye_fov * 0.5 * std::numbers::pi / 180.0),
+                           0.0f, 0.0f);
   e.forward = vec4(basis.forward, rk4_step);
   e.camera = vec4(p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the
@@ -343,6 +349,10 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   Params g = m.world_uniforms;
   for (std::size_t i = 0; i < eyes.size(); ++i) {
     validate(eyes[i]);
+    if (eyes[i].projection == Projection::Equirectangular && width != 2 * height) {
+      throw InvalidArgument("sol::vk::MarchRenderer: an equirectangular image needs width = 2 x height, got " +
+                            std::to_string(width) + " x " + std::to_string(height));
+    }
     g.eyes[i] = make_eye(prepared, eyes[i], width, height, m.options.rk4_step);
   }
   g.counts.y = width;

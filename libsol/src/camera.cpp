@@ -1,5 +1,6 @@
 #include "sol/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -22,6 +23,12 @@ void check_camera(const Camera& c) {
     field_error("camera.forward", "camera.forward and camera.up must not be parallel");
   }
   if (!(c.fov > 0.0 && c.fov < 180.0)) field_error("camera.fov", "camera.fov must be in (0, 180) degrees");
+  if (c.projection == Projection::Fisheye && !(c.fisheye_fov > 0.0 && c.fisheye_fov <= 360.0)) {
+    field_error("camera.fisheye_fov", "camera.fisheye_fov must be in (0, 360] degrees");
+  }
+  if (c.frustum && c.projection != Projection::Perspective) {
+    field_error("camera.frustum", "camera.frustum is for the perspective projection only");
+  }
   if (c.frustum) {
     // Tangents up to 1e3: edges up to 89.94° from forward.
     const Frustum& f = *c.frustum;
@@ -65,8 +72,36 @@ glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height)
   return camera_ray(camera, i, j, width, height, {0.5, 0.5});
 }
 
+namespace {
+
+// The fisheye's point p of a pixel point: centred, in units of the image circle's radius.
+glm::dvec2 fisheye_point(int i, int j, int width, int height, const glm::dvec2& offset) {
+  const double radius = 0.5 * std::min(width, height);
+  return {(i + offset.x - 0.5 * width) / radius, (0.5 * height - (j + offset.y)) / radius};
+}
+
+}  // namespace
+
+bool camera_sees(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset) {
+  if (camera.projection != Projection::Fisheye) return true;
+  return glm::length(fisheye_point(i, j, width, height, offset)) <= 1.0;
+}
+
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset) {
   const CameraBasis b = camera_basis(camera);
+  if (camera.projection == Projection::Equirectangular) {
+    const double longitude = ((i + offset.x) / width - 0.5) * 2.0 * std::numbers::pi;
+    const double latitude = (0.5 - (j + offset.y) / height) * std::numbers::pi;
+    return glm::normalize(std::cos(latitude) * std::sin(longitude) * b.right + std::sin(latitude) * b.up +
+                          std::cos(latitude) * std::cos(longitude) * b.forward);
+  }
+  if (camera.projection == Projection::Fisheye) {
+    const glm::dvec2 p = fisheye_point(i, j, width, height, offset);
+    const double r = glm::length(p);
+    if (r == 0.0) return b.forward;
+    const double theta = r * camera.fisheye_fov * 0.5 * std::numbers::pi / 180.0;
+    return glm::normalize(std::sin(theta) * (p.x / r * b.right + p.y / r * b.up) + std::cos(theta) * b.forward);
+  }
   const glm::dvec4 window = image_window(camera, width, height);
   const double sx = window.x + (window.y - window.x) * (i + offset.x) / width;
   const double sy = window.z + (window.w - window.z) * (j + offset.y) / height;

@@ -237,6 +237,10 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   validate(camera);
   require_size(settings.width, "width");
   require_size(settings.height, "height");
+  if (camera.projection == Projection::Equirectangular && settings.width != 2 * settings.height) {
+    throw InvalidArgument("sol::CpuRenderer::render: an equirectangular image needs width = 2 x height, got " +
+                          std::to_string(settings.width) + " x " + std::to_string(settings.height));
+  }
   if (settings.samples < 1 || settings.samples > 4096) {
     throw InvalidArgument("sol::CpuRenderer::render: samples must be in [1, 4096], got " + std::to_string(settings.samples));
   }
@@ -260,10 +264,14 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
     if (settings.cancel && settings.cancel->load()) throw Cancelled("sol::CpuRenderer::render: cancelled");
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
-      const MarchHit hit = march_view(prepared, view, camera_ray(camera, i, j, w, h));
-      glm::dvec3 c = shade_hit(prepared.world(), hit);
+      // Outside a fisheye's image circle there is no ray: black, no hit.
+      const bool sees = camera_sees(camera, i, j, w, h);
+      const MarchHit hit = sees ? march_view(prepared, view, camera_ray(camera, i, j, w, h)) : MarchHit{};
+      glm::dvec3 c = sees ? shade_hit(prepared.world(), hit) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
-        const MarchHit other = march_view(prepared, view, camera_ray(camera, i, j, w, h, pixel_sample(s)));
+        const glm::dvec2 offset = pixel_sample(s);
+        if (!camera_sees(camera, i, j, w, h, offset)) continue;
+        const MarchHit other = march_view(prepared, view, camera_ray(camera, i, j, w, h, offset));
         c += shade_hit(prepared.world(), other);
       }
       c /= static_cast<double>(settings.samples);

@@ -21,7 +21,21 @@ using nlohmann::json;
 
 void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (!c.is_object()) r.fail("camera", "'camera' must be an object");
-  r.require_known_keys(c, {"position", "forward", "up", "fov", "frustum"}, "camera", "camera");
+  r.require_known_keys(c, {"position", "forward", "up", "fov", "frustum", "projection", "fisheye_fov"}, "camera", "camera");
+  if (c.contains("projection")) {
+    const std::string p = SceneFileReader::text(c["projection"]);
+    if (p == "perspective") {
+      camera.projection = Projection::Perspective;
+    } else if (p == "equirectangular") {
+      camera.projection = Projection::Equirectangular;
+    } else if (p == "fisheye") {
+      camera.projection = Projection::Fisheye;
+    } else {
+      r.fail("camera.projection", "'camera.projection' must be perspective, equirectangular or fisheye, got '" +
+                                      SceneFileReader::shown(p) + "'");
+    }
+  }
+  if (c.contains("fisheye_fov")) camera.fisheye_fov = r.number(c["fisheye_fov"], "camera.fisheye_fov");
   if (c.contains("position")) camera.position = r.vec3(c["position"], "camera.position");
   if (c.contains("forward")) camera.forward = r.vec3(c["forward"], "camera.forward");
   if (c.contains("up")) camera.up = r.vec3(c["up"], "camera.up");
@@ -164,6 +178,10 @@ std::string to_json(const Scene& s) {
                     {"forward", arr(s.camera.forward)},
                     {"up", arr(s.camera.up)},
                     {"fov", s.camera.fov}};
+  if (s.camera.projection != Projection::Perspective) {
+    root["camera"]["projection"] = s.camera.projection == Projection::Equirectangular ? "equirectangular" : "fisheye";
+    root["camera"]["fisheye_fov"] = s.camera.fisheye_fov;
+  }
   if (s.camera.frustum) {
     const Frustum& f = *s.camera.frustum;
     root["camera"]["frustum"] = json::array({f.left, f.right, f.down, f.up});

@@ -26,6 +26,13 @@ struct Frustum {
   double left = -1.0, right = 1.0, down = -1.0, up = 1.0;
 };
 
+/// How pixels map to directions (docs/conventions.md "Projections").
+enum class Projection {
+  Perspective,      ///< the pinhole camera of `fov` (or a frustum)
+  Equirectangular,  ///< 360° × 180°: column → longitude, row → latitude (width = 2 × height)
+  Fisheye,          ///< equidistant: the angle from forward grows linearly to fisheye_fov/2 at the image circle's rim
+};
+
 struct Camera {
   glm::dvec3 position{0.0, 0.0, 0.0};
   glm::dvec3 forward{1.0, 0.0, 0.0};  ///< frame components at position
@@ -34,6 +41,10 @@ struct Camera {
   /// When set, the image spans this window instead of the centred one of
   /// `fov` and the image's aspect ratio (sol::image_window).
   std::optional<Frustum> frustum;
+  Projection projection = Projection::Perspective;
+  /// Fisheye: the angle across the image circle (the largest circle centred
+  /// in the image), degrees in (0, 360]; 180 is a dome.
+  double fisheye_fov = 180.0;
 };
 
 /// Checks the camera (finite position within 1e15 of the origin, non-zero
@@ -60,6 +71,14 @@ glm::dvec4 image_window(const Camera& camera, int width, int height);
 
 /// The ray through the centre of pixel (i, j) (row 0 at the top) of a
 /// width × height image: unit direction in frame components at the camera.
+/// Perspective: as image_window says. Equirectangular: longitude
+/// λ = (u − 1/2)·2π, latitude φ = (1/2 − v)·π with u = (i + ½)/width,
+/// v = (j + ½)/height; direction cos φ sin λ right + sin φ up + cos φ cos λ
+/// forward (column 0 and the last column are neighbours across λ = ±π).
+/// Fisheye: p = ((i + ½) − width/2, height/2 − (j + ½)) / (min(width,
+/// height)/2), θ = |p|·fisheye_fov/2, direction sin θ (p/|p|)·(right, up) +
+/// cos θ forward; outside the image circle (|p| > 1) there is no ray
+/// (camera_sees is false; renderers show black there).
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height);
 /// The ray through the point `offset` of pixel (i, j), offset in [0, 1)²
 /// from the pixel's top-left corner ((0.5, 0.5): the centre, as above).
@@ -73,6 +92,9 @@ glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height,
 /// sample). Sample 0 is the centre: one sample is the image without
 /// anti-aliasing. Every pixel takes the same point for sample k.
 glm::dvec2 pixel_sample(int k);
+
+/// Whether the point `offset` of pixel (i, j) has a ray: false only outside a fisheye's image circle.
+bool camera_sees(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset = {0.5, 0.5});
 
 /// The two eyes of a stereo pair: at the geodesic flow of the camera by
 /// ∓ipd/2 along its right vector, their frames (forward, up) parallel-

@@ -69,6 +69,10 @@ SOL_CONSTANT(SOL_REAL, kCheckerDark, 0.45);
 /// Balls and tubes: pattern cells per radian around them, 4/π (8 cells per turn).
 SOL_CONSTANT(SOL_REAL, kPatternCellsPerRadian, 1.2732395447351626862);
 
+SOL_CONSTANT(int, kProjectionPerspective, 0);      ///< sol::Projection, in the kernels' eyes
+SOL_CONSTANT(int, kProjectionEquirectangular, 1);
+SOL_CONSTANT(int, kProjectionFisheye, 2);
+
 SOL_CONSTANT(int, kLightDirectional, 0);
 SOL_CONSTANT(int, kLightPoint, 1);
 SOL_CONSTANT(int, kLightExactPoint, 2);

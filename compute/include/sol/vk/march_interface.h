@@ -73,6 +73,7 @@ struct Eye {
   vec4 camera;       ///< xyz: camera position (world; in the quotient, teleported into D); w: e^{z}
   vec4 camera_frac;  ///< xyz: camera position modulo 2 (the patterns' phase, from double); w: e^{-z}
   vec4 window;       ///< sol::image_window: s_x at the left and right edges, s_y at the top and bottom
+  vec4 projection;   ///< x: kProjection* code, y: a fisheye's half angle across its image circle (radians)
   vec4 relative[kMaxGpuObjects];  ///< relative to the eye: planes (c, 0, 0, 0), balls (centre, 0), tubes (point, axis code)
   vec4 heading[kMaxGpuObjects];   ///< horizontal tubes: xy the axis's unit coordinate direction relative to the eye
   vec4 lights[kMaxLights];        ///< directional: unit direction; point: position relative to the eye
@@ -106,9 +107,10 @@ struct Image {
 
 #ifdef __cplusplus
 static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16, "vec4 records");
-static_assert(offsetof(Eye, relative) == 6 * 16 && offsetof(Eye, heading) == (6 + kMaxGpuObjects) * 16 &&
-                  offsetof(Eye, lights) == (6 + 2 * kMaxGpuObjects) * 16 &&
-                  sizeof(Eye) == (6 + 2 * kMaxGpuObjects + kMaxLights) * 16,
+static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
+                  offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
+                  offsetof(Eye, lights) == (7 + 2 * kMaxGpuObjects) * 16 &&
+                  sizeof(Eye) == (7 + 2 * kMaxGpuObjects + kMaxLights) * 16,
               "std140 layout of Eye");
 static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
                   offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
