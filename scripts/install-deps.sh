@@ -20,6 +20,7 @@ packages=(
   libglfw3-dev          # solview: window and Vulkan surface
   libimgui-dev          # solview: its overlay panel (Dear ImGui; the GLFW and Vulkan backends are compiled in)
   xvfb xauth            # solview's tests: a virtual X display (xvfb-run)
+  parallel              # the film test: frames shard over GNU parallel jobs (docs/films.md)
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()
