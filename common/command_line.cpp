@@ -65,6 +65,30 @@ void CommandLine::add_value(const std::string& names, const std::string& value_n
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
+void CommandLine::add_optional_choice(const std::string& names, std::string& target,
+                                      const std::vector<std::string>& choices, const std::string& implicit,
+                                      const std::string& help) {
+  std::string shown;
+  for (const std::string& c : choices) shown += (shown.empty() ? "" : "|") + c;
+  m_app
+      ->add_option_function<std::string>(
+          names,
+          [this, &target, choices, name = long_name(names)](const std::string& text) {
+            for (const std::string& c : choices) {
+              if (c == text) {
+                target = text;
+                return;
+              }
+            }
+            fail("option " + name + " expects " + join_choices(choices) + ", got '" + text + "'");
+          },
+          help)
+      ->type_name("[" + shown + "]")
+      ->expected(0, 1)
+      ->default_str(implicit)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
 void CommandLine::add_flag(const std::string& names, bool& target, const std::string& help) {
   m_app->add_flag(names, target, help);
 }

@@ -46,6 +46,10 @@ class CommandLine {
   /// One of `choices`: "option --device expects auto, vulkan or cpu, got 'x'".
   void add_choice(const std::string& names, std::string& target, const std::vector<std::string>& choices,
                   const std::string& help);
+  /// The same with the value optional: the option alone sets `implicit`
+  /// ("--stereo" is "--stereo side-by-side").
+  void add_optional_choice(const std::string& names, std::string& target, const std::vector<std::string>& choices,
+                           const std::string& implicit, const std::string& help);
   /// An integer in [lo, hi]: "option --width expects an integer, got 'x'",
   /// "option --width must be in [1, 16384], got 0".
   template <class Int>

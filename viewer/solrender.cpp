@@ -46,6 +46,35 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
   return out;
 }
 
+// A red/cyan anaglyph from a side-by-side stereo render: red from the left
+// eye, green and blue from the right (linear colour); the AOVs the left eye's.
+sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
+  const int w = both.width / 2, h = both.height;
+  sol::RenderResult r;
+  r.width = w;
+  r.height = h;
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  r.rgba.resize(4 * n);
+  for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->resize(n);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      const std::size_t left = static_cast<std::size_t>(j) * 2 * w + i, right = left + w;
+      r.rgba[4 * k + 0] = both.rgba[4 * left + 0];
+      r.rgba[4 * k + 1] = both.rgba[4 * right + 1];
+      r.rgba[4 * k + 2] = both.rgba[4 * right + 2];
+      r.rgba[4 * k + 3] = 1.0f;
+      r.object[k] = both.object[left];
+      r.distance[k] = both.distance[left];
+      r.px[k] = both.px[left];
+      r.py[k] = both.py[left];
+      r.pz[k] = both.pz[left];
+      r.steps[k] = both.steps[left];
+    }
+  }
+  return r;
+}
+
 // -o for a film: one printf frame number (%d, %06d, ...) and no other
 // conversion (%% is a percent sign).
 bool frame_pattern_ok(const std::string& pattern) {
@@ -142,7 +171,8 @@ int main(int argc, char** argv) {
   std::string projection;
   std::optional<double> fisheye_fov;
   double rk_step = 0.01, ipd = 0.064;
-  bool stereo = false, print_scene = false, progress = false;
+  bool print_scene = false, progress = false;
+  std::string stereo_mode;  // empty: mono
   int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
   unsigned threads = 0;
   sol::cli::SceneOverrides o;
@@ -171,7 +201,9 @@ int main(int argc, char** argv) {
   cl.add_choice("--integrator", integrator, {"closed", "rk4"}, "the kernel's geodesic flow (default closed; vulkan only)");
   cl.add_number("--rk-step", rk_step, "H", "RK4 substep in arc length for --integrator rk4 (default 0.01)",
                 sol::cli::positive());
-  cl.add_flag("--stereo", stereo, "both eyes side by side (image width 2 W)");
+  cl.add_optional_choice("--stereo", stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
+                         "both eyes: side by side (the default; image width 2 W) or as a red/cyan anaglyph (width W: "
+                         "red from the left eye, green and blue from the right; the AOVs the left eye's)");
   cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
                 sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
@@ -189,6 +221,7 @@ int main(int argc, char** argv) {
       "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
       "linear ones. On failure nothing is written and the exit status is non-zero (2 for bad usage).");
   cl.parse(argc, argv);
+  const bool stereo = !stereo_mode.empty(), anaglyph = stereo_mode == "anaglyph";
 
   sol::Scene scene;
   try {
@@ -332,7 +365,8 @@ int main(int argc, char** argv) {
           sol::vk::RenderOptions render_options;
           render_options.samples = spp;
           if (show_progress) render_options.progress = report;
-          return renderer->render(eyes, width, height, render_options, device_ms);
+          const sol::RenderResult both = renderer->render(eyes, width, height, render_options, device_ms);
+          return anaglyph ? to_anaglyph(both) : both;
         };
       }
     }
@@ -352,7 +386,9 @@ int main(int argc, char** argv) {
         settings.threads = threads;
         settings.samples = spp;
         if (show_progress) settings.progress = report;
-        return stereo ? cpu->render_stereo(camera, settings, ipd) : cpu->render(camera, settings);
+        if (!stereo) return cpu->render(camera, settings);
+        const sol::RenderResult both = cpu->render_stereo(camera, settings, ipd);
+        return anaglyph ? to_anaglyph(both) : both;
       };
     }
 
@@ -419,8 +455,8 @@ int main(int argc, char** argv) {
     }
     const std::string samples = spp > 1 ? ", " + std::to_string(spp) + " samples per pixel" : "";
     std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
-                 stereo ? " (stereo)" : "", samples.c_str(), where.c_str(), seconds,
-                 r.width * static_cast<double>(r.height) * spp / seconds * 1e-6, output.c_str());
+                 anaglyph ? " (anaglyph)" : (stereo ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,
+                 r.width * static_cast<double>(r.height) * (anaglyph ? 2 : 1) * spp / seconds * 1e-6, output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
     cl.fail(e.what());
