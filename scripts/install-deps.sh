@@ -21,6 +21,7 @@ packages=(
   libimgui-dev          # solview: its overlay panel (Dear ImGui; the GLFW and Vulkan backends are compiled in)
   xvfb xauth            # solview's tests: a virtual X display (xvfb-run)
   parallel              # the film test: frames shard over GNU parallel jobs (docs/films.md)
+  ffmpeg                # solrender --video (films) and its test
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()
