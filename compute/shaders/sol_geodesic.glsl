@@ -527,6 +527,28 @@ vec3 sol_position(SolRay g, float t) {
   return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
 }
 
+// The phase of arc length t0 for a restart there, reduced by whole periods
+// of sn, cn, dn (4K) to keep its float rounding small.
+float sol_restart_phase(SolRay g, float t0) {
+  const float u = g.lambda * t0 + g.u0;
+  return u - 4.0 * g.K * round(u / (4.0 * g.K));
+}
+
+// The general-regime ray restarted at phase u, whose point p is given: the
+// new direction's |a|, |b| are √μ e^{±w} there (no rounding piles up over
+// many restarts), w0 = ½ ln(|a|/|b|) = w; far_forward is the caller's.
+SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
+  g.a = g.sqrt_mu * p.ew;
+  g.b = g.sqrt_mu / p.ew;
+  g.w0 = log(p.ew);
+  g.u0 = u;
+  g.start = p;
+  g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
+  g.c = -g.k * g.lambda * p.jac.x;
+  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  return g;
+}
+
 // The same geodesic, restarted at arc length t0: a ray from its point there
 // (the origin of the new coordinates, the left translation by that point's
 // inverse) with its tangent there. Left translations keep frame components,
@@ -545,20 +567,8 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
     return g;
   }
   if (g.regime != REGIME_GENERAL) return g;  // vertical and straight lines keep their direction
-  // The phase, reduced by whole periods of sn, cn, dn (4K) to keep its float rounding small.
-  float u = g.lambda * t0 + g.u0;
-  u -= 4.0 * g.K * round(u / (4.0 * g.K));
-  const SolPoint p = sol_point(g, u);
-  // The new direction's |a|, |b| are √μ e^{±w} there (no rounding piles up
-  // over many restarts), and w0 = ½ ln(|a|/|b|) = w.
-  g.a = g.sqrt_mu * p.ew;
-  g.b = g.sqrt_mu / p.ew;
-  g.w0 = log(p.ew);
-  g.u0 = u;
-  g.start = p;
-  g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
-  g.c = -g.k * g.lambda * p.jac.x;
-  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  const float u = sol_restart_phase(g, t0);
+  g = sol_ray_started_at(g, u, sol_point(g, u));
   sol_ray_far_forward(g);
   return g;
 }
@@ -573,20 +583,11 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
 // through it against the double closed form.
 SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
   if (g.regime != REGIME_GENERAL) return sol_ray_advanced(g, t0);  // cheap there: no Jacobi, no Carlson
-  float u = g.lambda * t0 + g.u0;
-  u -= 4.0 * g.K * round(u / (4.0 * g.K));
-  const SolPoint p = f.point;
-  const bool lower = p.quarter == 0 || p.quarter == 3;
+  const bool lower = f.point.quarter == 0 || f.point.quarter == 3;
   const vec2 quarter = lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
-  g.far_forward = max((f.same ? g.far_forward : quarter) - f.near, vec2(0.0));
-  g.a = g.sqrt_mu * p.ew;
-  g.b = g.sqrt_mu / p.ew;
-  g.w0 = log(p.ew);
-  g.u0 = u;
-  g.start = p;
-  g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
-  g.c = -g.k * g.lambda * p.jac.x;
-  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  const vec2 far_forward = max((f.same ? g.far_forward : quarter) - f.near, vec2(0.0));
+  g = sol_ray_started_at(g, sol_restart_phase(g, t0), f.point);
+  g.far_forward = far_forward;
   return g;
 }
 

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 
 #include "scene_reader.hpp"
 #include "sol/error.hpp"
@@ -179,12 +177,7 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
 }
 
 CameraPath load_camera_path(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InvalidArgument(file + ": cannot open path file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InvalidArgument(file + ": cannot read path file");
-  return parse_camera_path(text.str(), file);
+  return parse_camera_path(detail::read_text_file(file, "path"), file);
 }
 
 }  // namespace sol

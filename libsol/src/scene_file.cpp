@@ -162,14 +162,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   return s;
 }
 
-Scene load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidArgument(path + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InvalidArgument(path + ": cannot read scene file");
-  return parse_scene(text.str(), path);
-}
+Scene load_scene(const std::string& path) { return parse_scene(detail::read_text_file(path, "scene"), path); }
 
 std::string to_json(const Scene& s) {
   auto arr = [](const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); };

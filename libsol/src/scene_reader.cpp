@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "sol/error.hpp"
@@ -202,6 +204,15 @@ void check_json_text(std::string_view text, std::string_view source) {
       --depth;
     }
   }
+}
+
+std::string read_text_file(const std::string& path, const char* kind) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(path + ": cannot open " + kind + " file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InvalidArgument(path + ": cannot read " + kind + " file");
+  return text.str();
 }
 
 }  // namespace sol::detail

@@ -30,6 +30,9 @@ struct FilePlace {
 /// one and ignore what follows); InvalidArgument "<source>: ... (line L, column C)".
 void check_json_text(std::string_view text, std::string_view source);
 
+/// A file's whole text; InvalidArgument "<path>: cannot open <kind> file" or "cannot read".
+std::string read_text_file(const std::string& path, const char* kind);
+
 class SceneFileReader {
  public:
   /// The most of a value that a message quotes.
