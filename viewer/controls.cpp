@@ -42,46 +42,36 @@ bool parse_double(const std::string& text, double& out) {
 
 }  // namespace
 
+namespace {
+
+// A name's entry in one of the tables above, and the table's names for messages.
+template <class T, std::size_t N>
+std::optional<T> find_name(const std::pair<const char*, T> (&table)[N], const std::string& name) {
+  for (const auto& [n, value] : table) {
+    if (name == n) return value;
+  }
+  return std::nullopt;
+}
+
+template <class T, std::size_t N>
+std::string list_names(const std::pair<const char*, T> (&table)[N]) {
+  std::string out;
+  for (const auto& [n, value] : table) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
+}
+
+}  // namespace
+
 std::optional<Key> key_from_name(const std::string& name) {
   std::string upper = name;
   std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
-  for (const auto& [n, k] : kNames) {
-    if (upper == n) return k;
-  }
-  return std::nullopt;
+  return find_name(kNames, upper);
 }
-
-std::optional<Button> button_from_name(const std::string& name) {
-  for (const auto& [n, b] : kButtons) {
-    if (name == n) return b;
-  }
-  return std::nullopt;
-}
-
-std::string button_names() {
-  std::string out;
-  for (const auto& [n, b] : kButtons) out += (out.empty() ? "" : ", ") + std::string(n);
-  return out;
-}
-
-std::optional<Setting> setting_from_name(const std::string& name) {
-  for (const auto& [n, s] : kSettings) {
-    if (name == n) return s;
-  }
-  return std::nullopt;
-}
-
-std::string setting_names() {
-  std::string out;
-  for (const auto& [n, s] : kSettings) out += (out.empty() ? "" : ", ") + std::string(n);
-  return out;
-}
-
-std::string key_names() {
-  std::string out;
-  for (const auto& [n, k] : kNames) out += (out.empty() ? "" : ", ") + std::string(n);
-  return out;
-}
+std::string key_names() { return list_names(kNames); }
+std::optional<Button> button_from_name(const std::string& name) { return find_name(kButtons, name); }
+std::string button_names() { return list_names(kButtons); }
+std::optional<Setting> setting_from_name(const std::string& name) { return find_name(kSettings, name); }
+std::string setting_names() { return list_names(kSettings); }
 
 std::vector<ScriptEvent> load_script(const std::string& path) {
   std::ifstream in(path);

@@ -75,10 +75,11 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   return r;
 }
 
-// -o for a film: one printf frame number (%d, %06d, ...) and no other
-// conversion (%% is a percent sign).
-bool frame_pattern_ok(const std::string& pattern) {
-  int numbers = 0;
+// -o for a film: where its one printf frame number (%d, %06d: at most two
+// width digits) ends, the 'd'; none when there is not exactly one such
+// conversion or there is another (%% is a percent sign).
+std::optional<std::size_t> frame_number_end(const std::string& pattern) {
+  std::optional<std::size_t> found;
   for (std::size_t i = 0; i < pattern.size(); ++i) {
     if (pattern[i] != '%') continue;
     if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
@@ -87,32 +88,20 @@ bool frame_pattern_ok(const std::string& pattern) {
     }
     std::size_t j = i + 1;
     while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
-    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2) return false;
-    ++numbers;
+    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2 || found) return std::nullopt;
+    found = j;
     i = j;
   }
-  return numbers == 1;
+  return found;
 }
 
-// The pattern with frame number k (frame_pattern_ok holds: one %..d).
+// The pattern with frame number k (frame_number_end found its conversion).
 std::string frame_name(const std::string& pattern, long k) {
-  std::string format = pattern;
-  const std::size_t d = [&] {
-    for (std::size_t i = 0; i < format.size(); ++i) {
-      if (format[i] != '%') continue;
-      if (format[i + 1] == '%') {
-        ++i;
-        continue;
-      }
-      return format.find('d', i);
-    }
-    return std::string::npos;
-  }();
-  std::vector<char> with_long(format.begin(), format.end());
-  with_long.insert(with_long.begin() + static_cast<std::ptrdiff_t>(d), 'l');  // %06d -> %06ld
-  with_long.push_back('\0');
-  std::vector<char> out(with_long.size() + 32);
-  std::snprintf(out.data(), out.size(), with_long.data(), k);
+  std::vector<char> format(pattern.begin(), pattern.end());
+  format.insert(format.begin() + static_cast<std::ptrdiff_t>(*frame_number_end(pattern)), 'l');  // %06d -> %06ld
+  format.push_back('\0');
+  std::vector<char> out(format.size() + 32);
+  std::snprintf(out.data(), out.size(), format.data(), k);
   return out.data();
 }
 
@@ -276,7 +265,7 @@ int main(int argc, char** argv) {
       cl.fail(e.what());
     }
     if (!aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
-    if (!frame_pattern_ok(output)) {
+    if (!frame_number_end(output)) {
       cl.fail("-o " + output + ": with --path the name needs one frame number such as %06d (frame-%06d.png)");
     }
     const long count = camera_path->frame_count(fps);

@@ -40,6 +40,9 @@ layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
 // Exact point lights (kLightExactPoint): directions along the geodesics to
 // the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
 layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
+// Equirectangular or fisheye eyes (a uniform says which): compiled in only
+// for them, so the perspective kernels keep their cost.
+layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -435,12 +438,12 @@ void main() {
   // The other projections (sol::camera_ray): equirectangular and fisheye.
   const vec4 projection = params.eyes[eye].projection;
   const vec2 at = vec2(float(local.x) + sample_at.x, float(local.y) + sample_at.y);
-  if (projection.x == float(kProjectionEquirectangular)) {
+  if (HAS_PROJECTIONS && projection.x == float(kProjectionEquirectangular)) {
     const float longitude = (at.x / float(width) - 0.5) * 6.28318530717958648;
     const float latitude = (0.5 - at.y / float(height)) * 3.14159265358979324;
     direction = normalize(cos(latitude) * sin(longitude) * eye_right.xyz + sin(latitude) * eye_up.xyz +
                           cos(latitude) * cos(longitude) * eye_forward.xyz);
-  } else if (projection.x == float(kProjectionFisheye)) {
+  } else if (HAS_PROJECTIONS && projection.x == float(kProjectionFisheye)) {
     const vec2 p = vec2(at.x - 0.5 * float(width), 0.5 * float(height) - at.y) / (0.5 * float(min(width, height)));
     const float r = length(p);
     if (r > 1.0) {  // outside the image circle: no ray

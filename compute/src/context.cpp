@@ -561,7 +561,6 @@ VkPipelineCache Context::pipeline_cache() const { return m_device->pipeline_cach
 const VkPhysicalDeviceProperties& Context::properties() const { return m_device->properties; }
 const std::string& Context::pipeline_cache_path() const { return m_device->pipeline_cache_path; }
 std::size_t Context::pipeline_cache_loaded_bytes() const { return m_device->pipeline_cache_loaded; }
-void Context::save_pipeline_cache() const { m_device->save_pipeline_cache(); }
 
 std::string default_pipeline_cache_dir() {
   const char* off = std::getenv("SOL_PIPELINE_CACHE");

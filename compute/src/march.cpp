@@ -148,11 +148,12 @@ struct KernelVariant {
   MarchFeatures features;
   bool aovs = true;         // write the AOV images (render); off for record
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
+  bool projections = false;  // an eye is not perspective (a camera's property: the frame's eyes decide)
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy}) {
+                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -205,7 +206,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u},
                                                 {kernel::kSpecBoundBalls, f.bound_balls ? 1u : 0u},
                                                 {kernel::kSpecTubes, f.tubes ? 1u : 0u},
-                                                {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u}}});
+                                                {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
+                                                {kernel::kSpecProjections, v.projections ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -235,7 +237,6 @@ struct MarchRenderer::Impl {
   std::optional<MarchWorld> world;
   std::uint64_t generation = 0;  // counts set_world calls
   Params world_uniforms{};
-  Params frame_params{};  // what prepare_frame last wrote (render() rewrites its tile and sample)
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns, so they live until the next set_world.
   std::optional<Buffer> images;
@@ -333,6 +334,7 @@ const MarchWorld& MarchRenderer::world() const {
 struct MarchRenderer::Frame {
   ComputePipeline* pipeline;
   std::uint32_t width, height;  // of the whole (side-by-side) image
+  Params params;                // the uniforms written (render() rewrites their tile and sample per dispatch)
 };
 
 // What render() and record() do each frame: checks, the eyes' uniforms, and
@@ -365,10 +367,10 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   m.params.write(std::span<const Params>(&g, 1));
-  m.frame_params = g;
-  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm};
+  const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
+  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections};
   return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
-          static_cast<std::uint32_t>(height)};
+          static_cast<std::uint32_t>(height), g};
 }
 
 RenderResult MarchRenderer::render(const Camera& camera, int width, int height, double* device_ms) {
@@ -459,7 +461,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
   pipeline.bind(kernel::kBindingColor, color);
   pipeline.bind(kernel::kBindingHit, hit);
   pipeline.bind(kernel::kBindingPoint, point);
-  Params g = m.frame_params;
+  Params g = f.params;
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
   // dispatch (whole bands of the image's width while those fit, else

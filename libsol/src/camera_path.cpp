@@ -4,6 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include <glm/geometric.hpp>
+
+#include "field_error.hpp"
 #include "scene_reader.hpp"
 #include "sol/error.hpp"
 #include "sol/lattice.hpp"
@@ -158,20 +161,18 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
   for (std::size_t i = 0; i < segments.size(); ++i) {
     path.segments.push_back(read_segment(segments[i], r, "segments[" + std::to_string(i) + "]"));
   }
-  // The start as a camera (the scene's defaults for what is missing).
-  Camera c;
-  if (path.position) c.position = *path.position;
-  if (path.forward) c.forward = *path.forward;
-  if (path.up) c.up = *path.up;
-  if (path.fov) c.fov = *path.fov;
+  // The start's fields as far as they go alone (the scene's camera fills
+  // in the rest; CameraPath::at checks the whole camera).
   try {
-    validate(c);
-  } catch (const InvalidArgument& e) {
-    std::string what = e.what();
-    // "sol::validate(Camera): camera.fov ..." -> the path's field.
-    const std::size_t at = what.find("camera.");
-    const std::string field = at == std::string::npos ? std::string("start") : "start." + what.substr(at + 7, what.find(' ', at) - at - 7);
-    r.fail(field, at == std::string::npos ? what : "start." + what.substr(at + 7));
+    if (path.position) detail::check_position(*path.position, "start.position");
+    if (path.forward) detail::check_direction(*path.forward, "start.forward");
+    if (path.up) detail::check_direction(*path.up, "start.up");
+    if (path.forward && path.up && glm::length(glm::cross(glm::normalize(*path.forward), glm::normalize(*path.up))) < 1e-9) {
+      detail::field_error("start.forward", "start.forward and start.up must not be parallel");
+    }
+    if (path.fov && !(*path.fov > 0.0 && *path.fov < 180.0)) detail::field_error("start.fov", "start.fov must be in (0, 180) degrees");
+  } catch (const detail::FieldError& e) {
+    r.fail(e.path(), e.what());
   }
   return path;
 }

@@ -137,8 +137,6 @@ class Context {
   /// construction (0: none, or ignored).
   const std::string& pipeline_cache_path() const;
   std::size_t pipeline_cache_loaded_bytes() const;
-  /// Writes the cache to its file now (also done when the Context ends).
-  void save_pipeline_cache() const;
 
   /// Library internals; not part of the API.
   const std::shared_ptr<detail::Device>& internals() const { return m_device; }

@@ -46,6 +46,7 @@ SOL_CONSTANT(int, kSpecExactLights, 9);     ///< bool: exact point lights (bindi
 SOL_CONSTANT(int, kSpecBoundBalls, 10);     ///< bool: balls drawn with their bound
 SOL_CONSTANT(int, kSpecTubes, 11);          ///< bool: tubes
 SOL_CONSTANT(int, kSpecPlanesXY, 12);       ///< bool: planes x = c or y = c
+SOL_CONSTANT(int, kSpecProjections, 13);    ///< bool: an eye's projection is equirectangular or fisheye
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
