@@ -649,6 +649,43 @@ TEST(Kernel, ProjectionsMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+// Omnidirectional stereo (Camera::eye_offset, each column its own eye from
+// the kBindingColumns records) against the CPU renderer's: in Sol planes
+// z = c (plane, sandwich: the heights-only march, its culling shifted to the
+// column's eye) and x = c, y = c (sheets: each faces the column's eye), and
+// in the quotient (lattice-balls: the eye teleported into D), with the
+// tolerances of the projections above; and the eyes differ.
+TEST(Kernel, OmnidirectionalStereoMatchesTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const char* name : {"plane", "sandwich", "sheets", "lattice-balls"}) {
+    sol::Scene scene = sol::preset_scene(name);
+    scene.camera.projection = sol::Projection::Equirectangular;
+    const int w = 48, h = 24;
+    const double ipd = 0.3;
+    sol::RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    const sol::RenderResult cpu = sol::render_cpu_stereo(scene, settings, ipd);
+    const sol::RenderResult gpu = renderer.render_stereo(scene, w, h, ipd);
+    ASSERT_EQ(gpu.width, 2 * w);
+    const Comparison c = compare(gpu, cpu);
+    std::printf("%s ODS: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", name,
+                c.mask_differs, c.pixels, c.color_differs, c.distance);
+    EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+    EXPECT_LE(c.color_differs, c.pixels / 100) << name;
+    EXPECT_LT(c.distance, scene.quotient == sol::Quotient::None ? 1e-3 : 2e-3) << name;
+    int differ = 0;
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j * 2 * w + i);
+        differ += std::abs(gpu.distance[k] - gpu.distance[k + static_cast<std::size_t>(w)]) > 1e-3f;
+      }
+    }
+    EXPECT_GT(differ, w * h / 10) << name;
+  }
+  expect_no_validation_errors();
+}
+
 // Long renders in tiles: with a tiny dispatch limit the image is made of
 // many small tiles (each sample of each tile one dispatch), and every value
 // of it, colour and AOVs, is the one-dispatch image's bit for bit; progress

@@ -192,7 +192,9 @@ int main(int argc, char** argv) {
                 sol::cli::positive());
   cl.add_optional_choice("--stereo", stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
                          "both eyes: side by side (the default; image width 2 W) or as a red/cyan anaglyph (width W: "
-                         "red from the left eye, green and blue from the right; the AOVs the left eye's)");
+                         "red from the left eye, green and blue from the right; the AOVs the left eye's); with "
+                         "--projection equirectangular an omnidirectional stereo panorama (each column's eyes "
+                         "on its own right vector)");
   cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
                 sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
@@ -234,9 +236,6 @@ int main(int argc, char** argv) {
   if (scene.camera.projection == sol::Projection::Equirectangular && width != 2 * height) {
     cl.fail("an equirectangular image needs --width = 2 x --height (360 x 180 degrees), got " + std::to_string(width) +
             " x " + std::to_string(height));
-  }
-  if (stereo && scene.camera.projection != sol::Projection::Perspective) {
-    cl.fail("--stereo needs the perspective projection (omnidirectional stereo is not available yet)");
   }
   if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");

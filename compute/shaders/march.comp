@@ -43,6 +43,9 @@ layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
 // Equirectangular or fisheye eyes (a uniform says which): compiled in only
 // for them, so the perspective kernels keep their cost.
 layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
+// Omnidirectional stereo eyes: each column's rays start at its own eye
+// (kBindingColumns); compiled in only for them.
+layout(constant_id = kSpecOds) const bool HAS_ODS = false;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -79,6 +82,12 @@ layout(std430, set = 0, binding = kBindingDistanceTable) readonly buffer Distanc
 // cell's candidate images (layout in sol/quotient_field.hpp).
 layout(std430, set = 0, binding = kBindingField) readonly buffer QuotientField {
   uint field_words[];
+};
+
+// Omnidirectional stereo: each eye's columns (sol::column_eye), eye e's
+// column i at e × width + i.
+layout(std430, set = 0, binding = kBindingColumns) readonly buffer Columns {
+  Column columns[];
 };
 
 // sol::ConnectionTable: the seeds of the connection solver (exact point lights).
@@ -200,7 +209,8 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
-vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radius) {
+// The surface normal at q (frame components); planes face the side of `from`, the ray's origin.
+vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radius, vec3 from) {
   if (HAS_BALLS && type >= kObjectBall) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
     float h = kNormalStep, ez = exp(q.z);
     vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
@@ -209,7 +219,8 @@ vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radiu
                   object_distance(type, q + e3, rel, heading, radius) - object_distance(type, q - e3, rel, heading, radius));
     return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
   }
-  float side = 0.0 >= c ? 1.0 : -1.0;
+  const float own = type == kObjectPlaneX ? from.x : (type == kObjectPlaneY ? from.y : from.z);
+  float side = own >= c ? 1.0 : -1.0;
   if (type == kObjectPlaneX) {
     float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
     return vec3(side * r, 0.0, -w * r);
@@ -458,6 +469,15 @@ void main() {
     direction = r > 0.0 ? normalize(sin(theta) * (p.x / r * eye_right.xyz + p.y / r * eye_up.xyz) + cos(theta) * eye_forward.xyz)
                         : eye_forward.xyz;
   }
+  // Where the ray starts relative to the eye's camera: there, except for an
+  // omnidirectional stereo eye, whose column has its own eye (sol::column_eye:
+  // the start `offset`, the direction transported there).
+  vec3 start = vec3(0.0);
+  if (HAS_ODS) {
+    const Column column = columns[eye * width + local.x];
+    start = column.offset.xyz;
+    direction = normalize(mat3(column.transport[0].xyz, column.transport[1].xyz, column.transport[2].xyz) * direction);
+  }
 
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a
@@ -470,6 +490,10 @@ void main() {
     // kQuotientMaxStep, the reach of the listed images.
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
+    if (HAS_ODS) {  // the column's eye, teleported into D
+      origin = sol_translate(origin, start);
+      if (!in_domain(origin)) origin = teleport(origin);
+    }
     SolRay qray = sol_ray(direction);
     sol_ray_integrals(qray);
     float t = 0.0, local_t = 0.0;
@@ -546,7 +570,7 @@ void main() {
       // along the frame are taken in world coordinates.
       const vec3 n = HAS_EXACT_BALLS && type == kObjectExactBall && exact_i == hit_image
                          ? exact_ball_normal(exact_v)
-                         : plane_normal(type, q, geom.x - origin.z, geom, heading, info.y);
+                         : plane_normal(type, q, geom.x, geom, heading, info.y, origin);
       // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
       const vec2 uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
       color = shade_hit(k, n, uv, t, q, eye);
@@ -582,7 +606,7 @@ void main() {
   // z-range misses every plane by more than the hit epsilon never hits.
   bool reachable = true;
   if (HEIGHTS_ONLY && INTEGRATOR == 0) {
-    vec2 range = sol_height_range(ray) + vec2(-hit_epsilon, hit_epsilon);
+    vec2 range = sol_height_range(ray) + start.z + vec2(-hit_epsilon, hit_epsilon);
     reachable = false;
     for (int k = 0; k < count; ++k) reachable = reachable || (constants[k] >= range.x && constants[k] <= range.y);
   }
@@ -595,6 +619,7 @@ void main() {
       rk_t = t;
       q = rk_p;
     }
+    if (HAS_ODS) q = sol_translate(start, q);  // from the column's eye
     float nearest = 1e30, nearest_hit = 1e30;
     int nearest_k = 0;
     // With exact balls, the runners-up too: the least distance to the other
@@ -672,12 +697,13 @@ void main() {
     if (INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
       sol_ray_integrals(ray);
       q = sol_position_forward(ray, t);
+      if (HAS_ODS) q = sol_translate(start, q);
     }
     const int k = hit - 1;
     const int type = types[k];
     const vec3 n = HAS_EXACT_BALLS && type == kObjectExactBall && exact_k == k
                        ? exact_ball_normal(exact_v)
-                       : plane_normal(type, q, constants[k], relative[k], headings[k], radii[k]);
+                       : plane_normal(type, q, constants[k], relative[k], headings[k], radii[k], start);
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z);
     // the pattern takes the camera position modulo 2 (exact, from double).
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);

@@ -149,11 +149,12 @@ struct KernelVariant {
   bool aovs = true;         // write the AOV images (render); off for record
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
   bool projections = false;  // an eye is not perspective (a camera's property: the frame's eyes decide)
+  bool ods = false;          // an eye is omnidirectional stereo (Camera::eye_offset)
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections}) {
+                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -192,7 +193,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingImages, DescriptorType::StorageBuffer},
                                           {kernel::kBindingDistanceTable, DescriptorType::StorageBuffer},
                                           {kernel::kBindingSeeds, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingField, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingField, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingColumns, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
@@ -207,7 +209,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecBoundBalls, f.bound_balls ? 1u : 0u},
                                                 {kernel::kSpecTubes, f.tubes ? 1u : 0u},
                                                 {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
-                                                {kernel::kSpecProjections, v.projections ? 1u : 0u}}});
+                                                {kernel::kSpecProjections, v.projections ? 1u : 0u},
+                                                {kernel::kSpecOds, v.ods ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -228,7 +231,8 @@ struct MarchRenderer::Impl {
   MarchOptions options;
   struct Built {
     ComputePipeline pipeline;
-    std::uint64_t world_bound = 0;  // the world generation whose buffers are bound (0: none)
+    std::uint64_t world_bound = 0;    // the world generation whose buffers are bound (0: none)
+    std::uint64_t columns_bound = 0;  // the columns buffer's generation bound (0: none)
   };
   // One pipeline per kernel variant, built when first needed and kept.
   std::map<std::uint32_t, Built> pipelines;
@@ -243,12 +247,28 @@ struct MarchRenderer::Impl {
   std::optional<Buffer> table;  // exact balls: sol::DistanceTable
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
+  // Omnidirectional stereo: the eyes' columns (sol::column_eye), rewritten
+  // each frame that has such eyes, reallocated when they outgrow it.
+  std::optional<Buffer> columns;
+  std::uint64_t columns_generation = 0;
   SeedTable seeds_held = SeedTable::None;
   // For the AOV bindings (rgba32f, never written without AOVs) when the
   // colour binding holds a caller's 8-bit image.
   std::optional<StorageImage> placeholder;
 
-  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {}
+  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {
+    write_columns(std::vector<kernel::Column>(1));  // a stub until an ODS frame
+  }
+
+  // The ODS eyes' columns into the device buffer (a larger one when needed).
+  void write_columns(const std::vector<kernel::Column>& records) {
+    const VkDeviceSize bytes = records.size() * sizeof(kernel::Column);
+    if (!columns || columns->size() < bytes) {
+      columns.emplace(context, bytes);
+      ++columns_generation;
+    }
+    columns->write(records);
+  }
 
   // The pipeline of a variant with the current world's buffers bound.
   ComputePipeline& pipeline(const KernelVariant& v) {
@@ -262,6 +282,10 @@ struct MarchRenderer::Impl {
       built.pipeline.bind(kernel::kBindingSeeds, *seeds);
       built.pipeline.bind(kernel::kBindingField, *field);
       built.world_bound = generation;
+    }
+    if (built.columns_bound != columns_generation) {
+      built.pipeline.bind(kernel::kBindingColumns, *columns);
+      built.columns_bound = columns_generation;
     }
     return built.pipeline;
   }
@@ -360,6 +384,19 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.counts.y = width;
   g.counts.z = height;
   g.counts.w = static_cast<int>(eyes.size());
+  // Omnidirectional stereo: every column's eye, in double (eye e's column i at e × width + i).
+  const bool ods = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.eye_offset != 0.0; });
+  if (ods) {
+    std::vector<kernel::Column> records(eyes.size() * static_cast<std::size_t>(width));
+    for (std::size_t e = 0; e < eyes.size(); ++e) {
+      for (int i = 0; i < width; ++i) {
+        const ColumnEye c = column_eye(eyes[e], i, width);
+        records[e * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] = {
+            vec4(c.offset, 0.0), {vec4(c.transport[0], 0.0), vec4(c.transport[1], 0.0), vec4(c.transport[2], 0.0)}};
+      }
+    }
+    m.write_columns(records);
+  }
   const bool inside = sample.offset.x >= 0.0 && sample.offset.x < 1.0 && sample.offset.y >= 0.0 && sample.offset.y < 1.0;
   if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0)) {
     throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
@@ -368,7 +405,8 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   m.params.write(std::span<const Params>(&g, 1));
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
-  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections};
+  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections,
+                              ods};
   return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height), g};
 }

@@ -26,6 +26,12 @@ void check_camera(const Camera& c) {
   if (c.projection == Projection::Fisheye && !(c.fisheye_fov > 0.0 && c.fisheye_fov <= 360.0)) {
     field_error("camera.fisheye_fov", "camera.fisheye_fov must be in (0, 360] degrees");
   }
+  if (!(std::abs(c.eye_offset) <= 10.0)) {
+    field_error("camera.eye_offset", "camera.eye_offset must be finite and within [-10, 10]");
+  }
+  if (c.eye_offset != 0.0 && c.projection != Projection::Equirectangular) {
+    field_error("camera.eye_offset", "camera.eye_offset (omnidirectional stereo) is for the equirectangular projection only");
+  }
   if (c.frustum && c.projection != Projection::Perspective) {
     field_error("camera.frustum", "camera.frustum is for the perspective projection only");
   }
@@ -87,13 +93,32 @@ bool camera_sees(const Camera& camera, int i, int j, int width, int height, cons
   return glm::length(fisheye_point(i, j, width, height, offset)) <= 1.0;
 }
 
+namespace {
+
+// The longitude of a point of column i (offset x in [0, 1) across it).
+double longitude_of(double x, int width) { return (x / width - 0.5) * 2.0 * std::numbers::pi; }
+
+}  // namespace
+
+ColumnEye column_eye(const Camera& camera, int i, int width) {
+  if (camera.projection != Projection::Equirectangular || camera.eye_offset == 0.0) return {};
+  const CameraBasis b = camera_basis(camera);
+  const double longitude = longitude_of(i + 0.5, width);
+  const glm::dvec3 right = std::cos(longitude) * b.right - std::sin(longitude) * b.forward;
+  // From the origin: left translations carry the flow and its transport to any position.
+  const FlowTransport ft = flow_with_transport({glm::dvec3(0.0), right}, camera.eye_offset, FlowOptions{});
+  return {ft.state.position, ft.transport};
+}
+
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset) {
   const CameraBasis b = camera_basis(camera);
   if (camera.projection == Projection::Equirectangular) {
-    const double longitude = ((i + offset.x) / width - 0.5) * 2.0 * std::numbers::pi;
+    const double longitude = longitude_of(i + offset.x, width);
     const double latitude = (0.5 - (j + offset.y) / height) * std::numbers::pi;
-    return glm::normalize(std::cos(latitude) * std::sin(longitude) * b.right + std::sin(latitude) * b.up +
-                          std::cos(latitude) * std::cos(longitude) * b.forward);
+    const glm::dvec3 mono = std::cos(latitude) * std::sin(longitude) * b.right + std::sin(latitude) * b.up +
+                            std::cos(latitude) * std::cos(longitude) * b.forward;
+    if (camera.eye_offset == 0.0) return glm::normalize(mono);
+    return glm::normalize(column_eye(camera, i, width).transport * mono);
   }
   if (camera.projection == Projection::Fisheye) {
     const glm::dvec2 p = fisheye_point(i, j, width, height, offset);
@@ -119,6 +144,13 @@ glm::dvec2 pixel_sample(int k) {
 StereoEyes stereo_eyes(const Camera& camera, double ipd) {
   if (!std::isfinite(ipd) || ipd < 0.0) {
     throw InvalidArgument("sol::stereo_eyes: ipd must be finite and >= 0, got " + std::to_string(ipd));
+  }
+  if (camera.projection == Projection::Equirectangular) {
+    // Omnidirectional stereo: each column flows along its own right vector.
+    Camera left = camera, right = camera;
+    left.eye_offset = -0.5 * ipd;
+    right.eye_offset = 0.5 * ipd;
+    return {left, right};
   }
   const CameraBasis basis = camera_basis(camera);
   auto eye = [&](double t) {

@@ -257,7 +257,26 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   r.pz.assign(pixels, 0.0f);
   r.steps.assign(pixels, 0.0f);
 
-  const CameraView view = view_from(prepared, camera);  // shared by every ray
+  // Every ray starts at the camera, except an ODS eye's: each column at its
+  // own eye (sol::column_eye), prepared once per column.
+  const bool ods = camera.projection == Projection::Equirectangular && camera.eye_offset != 0.0;
+  std::vector<CameraView> views;
+  std::vector<glm::dmat3> transports;
+  Camera mono = camera;
+  mono.eye_offset = 0.0;
+  for (int i = 0; i < (ods ? w : 1); ++i) {
+    const ColumnEye column = column_eye(camera, i, w);
+    Camera at = camera;
+    at.position = multiply(camera.position, column.offset);
+    views.push_back(view_from(prepared, at));
+    transports.push_back(column.transport);
+  }
+  // The ray of a point of pixel (i, j): from its column's eye.
+  auto march_at = [&](int i, int j, const glm::dvec2& offset) {
+    if (!ods) return march_view(prepared, views[0], camera_ray(camera, i, j, w, h, offset));
+    const std::size_t c = static_cast<std::size_t>(i);
+    return march_view(prepared, views[c], glm::normalize(transports[c] * camera_ray(mono, i, j, w, h, offset)));
+  };
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
   detail::for_each_row(h, threads, settings.progress, [&](int j) {
@@ -266,12 +285,12 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
-      const MarchHit hit = sees ? march_view(prepared, view, camera_ray(camera, i, j, w, h)) : MarchHit{};
+      const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
       glm::dvec3 c = sees ? shade_hit(prepared.world(), hit) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
-        const MarchHit other = march_view(prepared, view, camera_ray(camera, i, j, w, h, offset));
+        const MarchHit other = march_at(i, j, offset);
         c += shade_hit(prepared.world(), other);
       }
       c /= static_cast<double>(settings.samples);

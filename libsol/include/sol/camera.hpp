@@ -12,6 +12,7 @@
 
 #include <optional>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -45,6 +46,13 @@ struct Camera {
   /// Fisheye: the angle across the image circle (the largest circle centred
   /// in the image), degrees in (0, 360]; 180 is a dome.
   double fisheye_fov = 180.0;
+  /// Equirectangular only: one eye of an omnidirectional stereo (ODS) pair
+  /// (sol::stereo_eyes makes them). Each column's rays start at the geodesic
+  /// flow of `position` by this signed arc length along that column's own
+  /// right vector (-ipd/2 for the left eye, +ipd/2 for the right), their
+  /// directions parallel-transported along that flow (sol::column_eye).
+  /// 0: a mono panorama, every ray from `position`.
+  double eye_offset = 0.0;
 };
 
 /// Checks the camera (finite position within 1e15 of the origin, non-zero
@@ -78,7 +86,8 @@ glm::dvec4 image_window(const Camera& camera, int width, int height);
 /// Fisheye: p = ((i + ½) − width/2, height/2 − (j + ½)) / (min(width,
 /// height)/2), θ = |p|·fisheye_fov/2, direction sin θ (p/|p|)·(right, up) +
 /// cos θ forward; outside the image circle (|p| > 1) there is no ray
-/// (camera_sees is false; renderers show black there).
+/// (camera_sees is false; renderers show black there). An ODS eye's
+/// directions are those at its column's eye (sol::column_eye).
 glm::dvec3 camera_ray(const Camera& camera, int i, int j, int width, int height);
 /// The ray through the point `offset` of pixel (i, j), offset in [0, 1)²
 /// from the pixel's top-left corner ((0.5, 0.5): the centre, as above).
@@ -96,10 +105,31 @@ glm::dvec2 pixel_sample(int k);
 /// Whether the point `offset` of pixel (i, j) has a ray: false only outside a fisheye's image circle.
 bool camera_sees(const Camera& camera, int i, int j, int width, int height, const glm::dvec2& offset = {0.5, 0.5});
 
-/// The two eyes of a stereo pair: at the geodesic flow of the camera by
-/// ∓ipd/2 along its right vector, their frames (forward, up) parallel-
-/// transported along that flow; same field of view. ipd must be finite and
-/// >= 0 (InvalidArgument otherwise).
+/// Where the rays of column i of a width-wide image start, relative to the
+/// camera. For an ODS eye (equirectangular with eye_offset ≠ 0): the camera
+/// turned to face the column centre's longitude λ_i = ((i + ½)/width − ½)·2π
+/// has the right vector r_i = cos λ_i right − sin λ_i forward; the column's
+/// eye is the geodesic flow from the camera along r_i by eye_offset, i.e.
+/// the eye of sol::stereo_eyes of that turned camera. `offset` is that eye
+/// in the camera's own coordinates (the eye is multiply(position, offset):
+/// Sol's left translations carry geodesics and the frame, so offset and
+/// transport do not depend on the position) and `transport` maps frame
+/// components at the camera to those at the eye (parallel transport along
+/// the flow). Every sample of the column shares them; its direction is
+/// transport · (the mono panorama's direction of that sample). For every
+/// other camera: offset 0 and the identity.
+struct ColumnEye {
+  glm::dvec3 offset{0.0};
+  glm::dmat3 transport{1.0};
+};
+ColumnEye column_eye(const Camera& camera, int i, int width);
+
+/// The two eyes of a stereo pair, with the same field of view and
+/// projection. Perspective and fisheye: at the geodesic flow of the camera
+/// by ∓ipd/2 along its right vector, their frames (forward, up) parallel-
+/// transported along that flow. Equirectangular: omnidirectional stereo,
+/// the camera twice with eye_offset = ∓ipd/2 (each column its own eye,
+/// sol::column_eye). ipd must be finite and >= 0 (InvalidArgument otherwise).
 struct StereoEyes {
   Camera left, right;
 };

@@ -31,6 +31,7 @@ SOL_CONSTANT(int, kBindingImages, 4);       ///< storage buffer: the quotient's 
 SOL_CONSTANT(int, kBindingDistanceTable, 5);  ///< storage buffer: sol::DistanceTable::values
 SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::ConnectionTable::seeds
 SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientField::words
+SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' Column records
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
@@ -47,6 +48,7 @@ SOL_CONSTANT(int, kSpecBoundBalls, 10);     ///< bool: balls drawn with their bo
 SOL_CONSTANT(int, kSpecTubes, 11);          ///< bool: tubes
 SOL_CONSTANT(int, kSpecPlanesXY, 12);       ///< bool: planes x = c or y = c
 SOL_CONSTANT(int, kSpecProjections, 13);    ///< bool: an eye's projection is equirectangular or fisheye
+SOL_CONSTANT(int, kSpecOds, 14);            ///< bool: omnidirectional stereo eyes (binding 8)
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
@@ -106,8 +108,14 @@ struct Image {
   vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction
 };
 
+// ---- An omnidirectional stereo eye's column (binding 8, std430): sol::column_eye
+struct Column {
+  vec4 offset;        ///< xyz: where the column's rays start, relative to the eye's camera
+  vec4 transport[3];  ///< xyz: the columns of the frame transport to there
+};
+
 #ifdef __cplusplus
-static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16, "vec4 records");
+static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16 && sizeof(Column) == 4 * 16, "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
                   offsetof(Eye, lights) == (7 + 2 * kMaxGpuObjects) * 16 &&
