@@ -97,6 +97,33 @@ TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
   expect_no_validation_errors();
 }
 
+// The kernel's J (sol_spreading.glsl) against libsol's double
+// sphere_area_density for random and stiff directions, t in (0, 6]: the
+// float method's tolerance (relative 1e-4 of max(J, t²),
+// Spreading.FloatMethodAgreesWithDouble), doubled for the device's own
+// float rounding (fused multiply-adds, reassociation).
+TEST(Kernel, SpreadingMatchesTheDoubleReference) {
+  std::vector<dvec3> dirs = sol::test::stiff_directions();
+  for (const dvec3& d : sol::test::random_directions(300, 41)) dirs.push_back(d);
+  std::vector<glm::vec4> queries;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    queries.emplace_back(glm::vec3(dirs[i]), static_cast<float>(0.01 + 6.0 * static_cast<double>(i % 97) / 97.0));
+  }
+  const std::vector<float> results = sol::vk::evaluate_kernel_spreading(vk_context(), queries);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const dvec3 d(queries[i].x, queries[i].y, queries[i].z);
+    const double t = queries[i].w;
+    const double j = sol::sphere_area_density(d, t);
+    const double error = std::abs(results[i] - j) / std::max(j, t * t);
+    worst = std::max(worst, error);
+    EXPECT_LT(error, 2e-4) << "(" << d.x << ", " << d.y << ", " << d.z << "), t = " << t << ": kernel " << results[i]
+                           << ", libsol " << j;
+  }
+  std::printf("kernel J (float) against double, %zu queries, t <= 6: worst relative error %.2e\n", queries.size(), worst);
+  expect_no_validation_errors();
+}
+
 // The kernel against the CPU renderer (or another kernel render): colours
 // count as different beyond 2e-3 per channel.
 using Comparison = sol::test::ImageComparison;

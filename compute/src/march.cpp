@@ -27,6 +27,7 @@
 #include "shaders/flow_comp_spv.hpp"
 #include "shaders/march_comp_spv.hpp"
 #include "shaders/march_srgb_unorm_comp_spv.hpp"
+#include "shaders/spread_comp_spv.hpp"
 
 namespace sol::vk {
 namespace {
@@ -580,6 +581,23 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
   const auto count = static_cast<std::uint32_t>(queries.size());
   pipeline.run(group_count(count, 64), 1, count);
   std::vector<glm::vec4> results(queries.size());
+  out.read(results);
+  return results;
+}
+
+std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {
+  if (queries.empty()) return {};
+  Buffer in(context, queries.size() * sizeof(glm::vec4)), out(context, queries.size() * sizeof(float));
+  in.write(queries);
+  ComputePipeline pipeline(context, {.name = "spread",
+                                     .spirv = std::span<const std::uint32_t>(spread_comp_spv),
+                                     .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
+                                     .push_constant_size = sizeof(std::uint32_t)});
+  pipeline.bind(0, in);
+  pipeline.bind(1, out);
+  const auto count = static_cast<std::uint32_t>(queries.size());
+  pipeline.run(group_count(count, 64), 1, count);
+  std::vector<float> results(queries.size());
   out.read(results);
   return results;
 }

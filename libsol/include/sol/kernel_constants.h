@@ -117,6 +117,13 @@ SOL_CONSTANT(SOL_REAL, kSeedHeight, 4.0);
 SOL_CONSTANT(int, kSeedCellsXY, 10);
 SOL_CONSTANT(int, kSeedCellsZ, 16);
 
+// ---- How light spreads along geodesics (sol/spreading.hpp, docs/lighting.md)
+/// The float method's (and the kernel's) longest RK4 step in arc length.
+SOL_CONSTANT(SOL_REAL, kSpreadingStep, 0.1);
+/// The least area density J a light's irradiance I cos θ / J is divided by:
+/// at a caustic (J = 0) the irradiance is at most I / kMinSpreading.
+SOL_CONSTANT(SOL_REAL, kMinSpreading, 0.01);
+
 // ---- The sRGB transfer function (IEC 61966-2-1), for 8-bit output
 SOL_CONSTANT(SOL_REAL, kSrgbLinearLimit, 0.0031308);  ///< below it the curve is linear ...
 SOL_CONSTANT(SOL_REAL, kSrgbLinearSlope, 12.92);      ///< ... with this slope

@@ -19,4 +19,5 @@
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"
+#include "sol/spreading.hpp"
 #include "sol/version.hpp"

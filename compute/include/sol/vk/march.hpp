@@ -183,6 +183,12 @@ class MarchRenderer {
 /// positions composed: then w is the position's z. For tests and benchmarks.
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
 
+/// Evaluates the kernel's J (compute/shaders/sol_spreading.glsl, the
+/// spreading of light along a geodesic) for queries (direction xyz, arc
+/// length w); the float counterpart of sol::sphere_area_density. For tests
+/// and benchmarks.
+std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries);
+
 /// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
 /// the exact point lights' directions) returns for one target.
 struct KernelConnections {
