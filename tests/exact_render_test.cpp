@@ -18,6 +18,7 @@
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"
+#include "sol/spreading.hpp"
 #include "support/directions.hpp"
 
 namespace {
@@ -93,9 +94,15 @@ TEST(ExactLight, DirectionsAreGeodesicsReachingTheLight) {
   ASSERT_EQ(ls.size(), 1u);
   const std::vector<sol::Connection> cs = sol::minimising_geodesics(p, light.position);
   const double length = cs.front().length;
-  EXPECT_NEAR(ls[0].attenuation, 1.0 / (1.0 + length * length), 1e-12);
-  const glm::dvec3 end = sol::flow({p, ls[0].direction}, length).position;
-  EXPECT_LT(glm::length(sol::multiply(sol::inverse(light.position), end)), 1e-10);
+  const sol::GeodesicState end = sol::flow({p, ls[0].direction}, length);
+  EXPECT_LT(glm::length(sol::multiply(sol::inverse(light.position), end.position)), 1e-10);
+  // The geodesic falloff (the default of exact lights): 1 / J of the
+  // geodesic as the light sends it out (from the light along −u at the
+  // end), which reciprocity makes J as seen from p.
+  EXPECT_EQ(sol::falloff_of(light), sol::Falloff::Geodesic);
+  EXPECT_NEAR(ls[0].attenuation * sol::sphere_area_density(-end.direction, length), 1.0, 1e-8);
+  light.falloff = sol::Falloff::InverseSquare;
+  EXPECT_NEAR(sol::lights_at(light, p)[0].attenuation, 1.0 / (1.0 + length * length), 1e-12);
   // On the cut locus of p two geodesics of the same length bring the light.
   light.position = sol::multiply(p, glm::dvec3(5.0, 5.0, 0.0));
   EXPECT_EQ(sol::lights_at(light, p).size(), 2u);
@@ -136,6 +143,21 @@ TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
   EXPECT_TRUE(std::get<sol::Ball>(back.objects[0].shape).exact);
   EXPECT_TRUE(back.lights[0].exact);
   EXPECT_EQ(back.lights[0].reach, 2.0);
+  // Falloff and power: checked, named, round-tripped.
+  const std::string light = R"(}], "lights": [{"type": "point", "position": [0, 0, 1])";
+  expect_rejected(R"({"objects": [)" + ball + light + R"(, "falloff": "geodesic"}]})",
+                  "lights[0].falloff geodesic needs \"exact\": true");
+  expect_rejected(R"({"objects": [)" + ball + light + R"(, "exact": true, "falloff": "cubic"}]})",
+                  "'lights[0].falloff' must be geodesic or inverse-square, got cubic");
+  expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": 1, "intensity": 2}]})", "takes 'power' or 'intensity', not both");
+  expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": -1}]})", "lights[0].power must be in");
+  expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "directional", "falloff": "geodesic"}]})", "falloff");
+  const sol::Scene lit = sol::parse_scene(R"({"objects": [)" + ball + light +
+                                          R"(, "exact": true, "falloff": "inverse-square", "power": 12.566370614359172}]})");
+  EXPECT_EQ(lit.lights[0].falloff, sol::Falloff::InverseSquare);
+  EXPECT_NEAR(lit.lights[0].intensity, 1.0, 1e-15);  // Φ / 4π
+  EXPECT_EQ(sol::parse_scene(sol::to_json(lit)).lights[0].falloff, sol::Falloff::InverseSquare);
+  EXPECT_EQ(sol::falloff_of(back.lights[0]), sol::Falloff::Geodesic);  // exact lights' default
   const sol::Scene spheres = sol::preset_scene("spheres");
   EXPECT_TRUE(sol::uses_exact(spheres));
   EXPECT_FALSE(sol::uses_exact(sol::preset_scene("plane")));

@@ -176,8 +176,10 @@ Renders render_both(const sol::Scene& scene, int width, int height) {
   return {sol::render_cpu(scene, settings), renderer.render(scene, width, height)};
 }
 
-void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
-  const sol::Scene scene = exact_light_scene(reach);
+void expect_kernel_matches_cpu_lights(double reach, int width, int height, sol::Falloff falloff) {
+  sol::Scene scene = exact_light_scene(reach);
+  scene.lights[0].falloff = falloff;
+  const char* law = falloff == sol::Falloff::Geodesic ? "geodesic" : "inverse-square";
   sol::RenderSettings settings;
   settings.width = width;
   settings.height = height;
@@ -188,16 +190,21 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
   // exact one must differ from it clearly, or the comparison proves nothing.
   sol::Scene approximate = scene;
   approximate.lights[0].exact = false;
+  approximate.lights[0].falloff = sol::Falloff::Auto;
   const sol::RenderResult rough = sol::render_cpu(approximate, settings);
   // Kernel directions are within 1.5e-3 rad and lengths within 2e-3 relative
   // (ConnectionsMatchTheMinimisers): Lambert terms move by < 2e-3 x the
-  // light's intensity / (1 + L²) (<= 6 here), so 1e-2 per channel; a
-  // grazing ray may hit either object (float against double: at most 1% of pixels).
+  // light's intensity / (1 + L²) (<= 6 here), so 1e-2 per channel; with
+  // the geodesic falloff J moves by its float method's 2e-4
+  // (Kernel.SpreadingMatchesTheDoubleReference) plus 2 dJ/dL · 2e-3 L / J,
+  // about 1e-2 relative of the light's I / J (at most 1 where the floor is
+  // lit here). A grazing ray may hit either object (float against double:
+  // at most 1% of pixels).
   const sol::test::ImageComparison exact = sol::test::compare_images(gpu, cpu, 1e-2f);
   const sol::test::ImageComparison versus_rough = sol::test::compare_images(rough, cpu, 2e-2f);
-  std::printf("reach %g, %dx%d: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
-              "approximate vs exact light on the CPU: %d pixels differ by more than 2e-2 (worst %.2e)\n",
-              reach, width, height, exact.mask_differs, exact.color_differs, exact.worst_color,
+  std::printf("reach %g, %dx%d, %s falloff: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, "
+              "worst %.2e; approximate vs exact light on the CPU: %d pixels differ by more than 2e-2 (worst %.2e)\n",
+              reach, width, height, law, exact.mask_differs, exact.color_differs, exact.worst_color,
               versus_rough.color_differs, versus_rough.worst_color);
   EXPECT_LE(exact.mask_differs, exact.pixels / 100);
   // With a reach, near a fold (a caustic of the longer connections) a pair
@@ -225,9 +232,15 @@ void expect_kernel_matches_cpu_lights(double reach, int width, int height) {
 
 }  // namespace
 
-TEST(Kernel, ExactLightsMatchTheCpuRenderer) { expect_kernel_matches_cpu_lights(0.0, 64, 48); }
+TEST(Kernel, ExactLightsMatchTheCpuRenderer) {
+  expect_kernel_matches_cpu_lights(0.0, 64, 48, sol::Falloff::Geodesic);
+  expect_kernel_matches_cpu_lights(0.0, 64, 48, sol::Falloff::InverseSquare);
+}
 
-TEST(Kernel, ExactLightsWithAReachMatchTheCpuRenderer) { expect_kernel_matches_cpu_lights(2.0, 32, 24); }
+TEST(Kernel, ExactLightsWithAReachMatchTheCpuRenderer) {
+  expect_kernel_matches_cpu_lights(2.0, 32, 24, sol::Falloff::Geodesic);
+  expect_kernel_matches_cpu_lights(2.0, 32, 24, sol::Falloff::InverseSquare);
+}
 
 // Reach 2 with the longer seeds: every connection geodesics_between finds up
 // to d + 2 is among the kernel's, and each of the kernel's lands on w.
@@ -283,12 +296,14 @@ TEST(Kernel, ConnectionsUpToAReach) {
 // In the quotient the kernel shades in world coordinates inside D, as the
 // CPU renderer: exact lights there too.
 TEST(Kernel, ExactLightsInTheQuotientMatchTheCpuRenderer) {
+ for (const sol::Falloff falloff : {sol::Falloff::Geodesic, sol::Falloff::InverseSquare}) {
   sol::Scene scene = sol::preset_scene("lattice-balls");
   sol::Light light;
   light.type = sol::LightType::Point;
   light.position = {0.9, 0.4, 0.7};
   light.intensity = 3.0;
   light.exact = true;
+  light.falloff = falloff;
   scene.lights.push_back(light);
   sol::RenderSettings settings;
   settings.width = 32;
@@ -297,17 +312,20 @@ TEST(Kernel, ExactLightsInTheQuotientMatchTheCpuRenderer) {
   const sol::RenderResult &cpu = both.cpu, &gpu = both.gpu;
   sol::Scene approximate = scene;
   approximate.lights.back().exact = false;
+  approximate.lights.back().falloff = sol::Falloff::Auto;
   const sol::test::ImageComparison exact = sol::test::compare_images(gpu, cpu, 1e-2f);
   const sol::test::ImageComparison versus_rough =
       sol::test::compare_images(sol::render_cpu(approximate, settings), cpu, 1e-2f);
-  std::printf("quotient: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
+  std::printf("quotient, %s falloff: kernel vs CPU exact lights: mask differs at %d, colour over 1e-2 at %d, worst %.2e; "
               "approximate vs exact: %d pixels differ by more than 1e-2\n",
-              exact.mask_differs, exact.color_differs, exact.worst_color, versus_rough.color_differs);
+              falloff == sol::Falloff::Geodesic ? "geodesic" : "inverse-square", exact.mask_differs, exact.color_differs,
+              exact.worst_color, versus_rough.color_differs);
   // As ExactLightsMatchTheCpuRenderer; the quotient's float march adds grazing
   // hits that differ (Kernel.QuotientObserverAtPAndGpAndThinPlanesNearFaces).
   EXPECT_LE(exact.mask_differs, exact.pixels / 50);
   EXPECT_LE(exact.color_differs, exact.pixels / 50);
   EXPECT_GT(versus_rough.color_differs, versus_rough.pixels / 20);
+ }
   expect_no_validation_errors();
 }
 

@@ -96,6 +96,7 @@ layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds
 };
 
 #include "sol_connection.glsl"
+#include "sol_spreading.glsl"
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
 float distance_lower_bound(vec3 p, vec3 q) {
@@ -320,11 +321,18 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       const vec3 diff = lp.xyz - q;
       // q⁻¹·light: the light seen from q, in frame components at q.
       const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
-      if (HAS_EXACT_LIGHTS && lc.w == float(kLightExactPoint)) {
+      if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
         vec4 found[kSeedSlots];
         const int paths = sol_connections(towards, lp.w, found);
         for (int j = 0; j < paths; ++j) {
-          light += lc.rgb * (max(0.0, dot(n, found[j].xyz)) / (1.0 + found[j].w * found[j].w));
+          // found[j]: the geodesic's direction at q and its length; its J seen
+          // from q is its J seen from the light (reciprocity).
+          const float cosine = max(0.0, dot(n, found[j].xyz));
+          if (cosine == 0.0) continue;
+          const float spread = lc.w == float(kLightExactGeodesic)
+                                   ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
+                                   : 1.0 + found[j].w * found[j].w;
+          light += lc.rgb * (cosine / spread);
         }
         if (paths > 0) continue;
       }

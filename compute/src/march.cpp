@@ -61,7 +61,9 @@ Params world_params(const MarchWorld& prepared) {
   for (std::size_t i = 0; i < world.lights.size(); ++i) {
     const Light& l = world.lights[i];
     const int code = l.type == LightType::Directional ? kernel::kLightDirectional
-                                                      : (l.exact ? kernel::kLightExactPoint : kernel::kLightPoint);
+                     : !l.exact                         ? kernel::kLightPoint
+                     : falloff_of(l) == Falloff::Geodesic ? kernel::kLightExactGeodesic
+                                                          : kernel::kLightExactPoint;
     g.light_color[i] = vec4(l.color * l.intensity, code);
   }
   g.limits = glm::vec4(world.max_distance, world.hit_epsilon, 0.0, world.max_steps);

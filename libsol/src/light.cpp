@@ -8,6 +8,7 @@
 #include "field_error.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"
+#include "sol/spreading.hpp"
 
 namespace sol {
 namespace detail {
@@ -23,9 +24,20 @@ void check_light(const Light& l, const std::string& at) {
     field_error(at + ".intensity", at + ".intensity must be finite and >= 0");
   }
   if (!(l.intensity <= 1e9)) field_error(at + ".intensity", at + ".intensity must be at most 1e9");
+  if (l.falloff != Falloff::Auto && l.type != LightType::Point) {
+    field_error(at + ".falloff", at + ".falloff is for point lights");
+  }
+  if (l.falloff == Falloff::Geodesic && !l.exact) {
+    field_error(at + ".falloff", at + ".falloff geodesic needs \"exact\": true (the light's geodesics)");
+  }
 }
 
 }  // namespace detail
+
+Falloff falloff_of(const Light& light) {
+  if (light.falloff != Falloff::Auto) return light.falloff;
+  return light.type == LightType::Point && light.exact ? Falloff::Geodesic : Falloff::InverseSquare;
+}
 
 LightAtPoint light_at(const Light& light, const glm::dvec3& p) {
   if (light.type == LightType::Directional) return {glm::normalize(light.direction), 1.0};
@@ -45,9 +57,12 @@ std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
     const std::vector<Connection> cs = light.reach > 0.0
                                            ? geodesics_between(p, light.position, distance(p, light.position) + light.reach)
                                            : minimising_geodesics(p, light.position);
+    const bool geodesic = falloff_of(light) == Falloff::Geodesic;
     for (const Connection& c : cs) {
       if (c.length == 0.0) continue;
-      out.push_back({glm::normalize(c.direction), 1.0 / (1.0 + c.length * c.length)});
+      const glm::dvec3 l = glm::normalize(c.direction);
+      out.push_back({l, geodesic ? 1.0 / clamped_spreading(sphere_area_density(l, c.length))
+                                 : 1.0 / (1.0 + c.length * c.length)});
     }
   } catch (const OutOfRange&) {
     return {light_at(light, p)};  // no connection found (extreme far points): the approximate direction

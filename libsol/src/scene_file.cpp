@@ -1,6 +1,7 @@
 #include "sol/scene_file.hpp"
 
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "field_error.hpp"
@@ -61,11 +62,30 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
     if (l.contains("direction")) light.direction = r.vec3(l["direction"], at + ".direction");
   } else if (type == "point") {
     light.type = LightType::Point;
-    r.require_known_keys(l, {"type", "position", "color", "intensity", "exact", "reach"}, at, at);
+    r.require_known_keys(l, {"type", "position", "color", "intensity", "power", "exact", "reach", "falloff"}, at, at);
     r.require_key(l, "position", at + " (a point light)", "a 'position'", at);
     light.position = r.vec3(l["position"], at + ".position");
     if (l.contains("exact")) light.exact = r.boolean(l["exact"], at + ".exact");
     if (l.contains("reach")) light.reach = r.number(l["reach"], at + ".reach");
+    if (l.contains("falloff")) {
+      const std::string falloff = SceneFileReader::text(l["falloff"]);
+      if (falloff == "geodesic") {
+        light.falloff = Falloff::Geodesic;
+      } else if (falloff == "inverse-square") {
+        light.falloff = Falloff::InverseSquare;
+      } else {
+        r.fail(at + ".falloff", "'" + at + ".falloff' must be geodesic or inverse-square, got " + falloff);
+      }
+    }
+    if (l.contains("power")) {
+      // The radiant power Φ, spread over the sphere of directions: I = Φ / 4π.
+      if (l.contains("intensity")) r.fail(at + ".power", at + " takes 'power' or 'intensity', not both");
+      const double power = r.number(l["power"], at + ".power");
+      if (!(power >= 0.0) || !(power <= 4e9 * std::numbers::pi)) {
+        r.fail(at + ".power", at + ".power must be in [0, 4pi x 1e9] (watts; intensity = power / 4pi)");
+      }
+      light.intensity = power / (4.0 * std::numbers::pi);
+    }
   } else {
     r.fail(at + ".type", "'" + at + ".type' must be directional or point, got " + type);
   }
@@ -192,6 +212,7 @@ std::string to_json(const Scene& s) {
       j["position"] = arr(l.position);
       j["exact"] = l.exact;
       j["reach"] = l.reach;
+      j["falloff"] = falloff_of(l) == Falloff::Geodesic ? "geodesic" : "inverse-square";
     }
     root["lights"].push_back(j);
   }

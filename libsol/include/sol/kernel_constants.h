@@ -75,7 +75,8 @@ SOL_CONSTANT(int, kProjectionFisheye, 2);
 
 SOL_CONSTANT(int, kLightDirectional, 0);
 SOL_CONSTANT(int, kLightPoint, 1);
-SOL_CONSTANT(int, kLightExactPoint, 2);
+SOL_CONSTANT(int, kLightExactPoint, 2);          ///< exact, inverse-square falloff
+SOL_CONSTANT(int, kLightExactGeodesic, 3);       ///< exact, geodesic falloff (sol::sphere_area_density)
 /// Most lights a scene holds.
 SOL_CONSTANT(int, kMaxLights, 4);
 

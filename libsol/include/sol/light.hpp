@@ -21,17 +21,32 @@ enum class LightType {
   Point,        ///< from `position` (see light_at and lights_at for direction and attenuation)
 };
 
+/// How a point light's irradiance falls off along the way (docs/lighting.md).
+enum class Falloff {
+  Auto,           ///< Geodesic for exact lights, InverseSquare otherwise
+  Geodesic,       ///< I / J(v, L): the true spreading of the geodesics (sol::sphere_area_density); exact lights only
+  InverseSquare,  ///< I / (1 + L²) with L the geodesic's length (or the distance bound): a made-up law, for comparison
+};
+
 struct Light {
   LightType type = LightType::Directional;
   glm::dvec3 direction{0.3, 0.5, 1.0};  ///< directional: towards the light (normalised on use)
   glm::dvec3 position{0.0, 0.0, 0.0};   ///< point: Sol coordinates
   glm::dvec3 color{1.0, 1.0, 1.0};      ///< linear RGB in [0, 1]
-  double intensity = 1.0;               ///< >= 0
+  /// >= 0. Directional: the irradiance on a surface facing the light.
+  /// Point: the radiant intensity I = Φ / 4π (power per steradian); with
+  /// the geodesic falloff a surface facing the light receives I / J, which
+  /// is I at unit area density (J = 1, about arc length 1).
+  double intensity = 1.0;
   /// point: light along the true geodesics to the light (sol::geodesics_between),
   /// each attenuated by its length, instead of the coordinate direction
   bool exact = false;
   double reach = 0.0;  ///< exact point lights: also the connections up to distance + reach, in [0, 10]
+  Falloff falloff = Falloff::Auto;  ///< point lights; Geodesic needs `exact`
 };
+
+/// The falloff a light uses: its own, Auto resolved (Geodesic for exact point lights).
+Falloff falloff_of(const Light& light);
 
 /// Most lights a scene may hold (a limit the kernels share).
 using kernel::kMaxLights;
@@ -51,8 +66,10 @@ LightAtPoint light_at(const Light& light, const glm::dvec3& p);
 /// Every way a light reaches p. Exact point lights (Light::exact): one entry
 /// per geodesic from p to the light up to distance + reach
 /// (sol::geodesics_between; reach 0: the minimisers only, two on the cut
-/// locus), l its unit direction at p, attenuation 1 / (1 + L²) with L its
-/// length. Otherwise the single light_at.
+/// locus), l its unit direction at p, attenuation 1 / clamped_spreading(J)
+/// with J = sphere_area_density(l, L) (the geodesic falloff: J seen from p
+/// equals J seen from the light, reciprocity) or 1 / (1 + L²) (inverse
+/// square), L its length. Otherwise the single light_at.
 std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
 
 }  // namespace sol
