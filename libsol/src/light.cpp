@@ -27,6 +27,9 @@ void check_light(const Light& l, const std::string& at) {
   if (l.falloff != Falloff::Auto && l.type != LightType::Point) {
     field_error(at + ".falloff", at + ".falloff is for point lights");
   }
+  if (l.shadows && (l.type != LightType::Point || !l.exact)) {
+    field_error(at + ".shadows", at + ".shadows needs an exact point light (\"exact\": true: the geodesics to the light)");
+  }
   if (l.falloff == Falloff::Geodesic && !l.exact) {
     field_error(at + ".falloff", at + ".falloff geodesic needs \"exact\": true (the light's geodesics)");
   }
@@ -61,8 +64,9 @@ std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
     for (const Connection& c : cs) {
       if (c.length == 0.0) continue;
       const glm::dvec3 l = glm::normalize(c.direction);
-      out.push_back({l, geodesic ? 1.0 / clamped_spreading(sphere_area_density(l, c.length))
-                                 : 1.0 / (1.0 + c.length * c.length)});
+      out.push_back({l,
+                     geodesic ? 1.0 / clamped_spreading(sphere_area_density(l, c.length)) : 1.0 / (1.0 + c.length * c.length),
+                     c.length});
     }
   } catch (const OutOfRange&) {
     return {light_at(light, p)};  // no connection found (extreme far points): the approximate direction

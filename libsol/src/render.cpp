@@ -32,10 +32,20 @@ void require_size(int value, const char* name) {
   }
 }
 
-// The march in Sol: `objects` relative to the camera, so the ray starts at
-// the origin.
+// How far a march goes, and whether it starts on a surface it leaves: a
+// shadow ray from a hit point towards a light passes the objects within
+// 2 hit_epsilon of its start (the surface it was found on) until it is
+// 2 hit_epsilon away from them, as rays pass through cutout planes, so the
+// surface does not shadow itself where it faces the light.
+struct MarchLimits {
+  double length = std::numeric_limits<double>::infinity();  ///< with the world's max_distance, the shorter
+  bool leave_start = false;
+};
+
+// The march in Sol: `objects` relative to `origin`, so the ray starts at
+// the origin of their coordinates.
 MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const std::vector<MarchObject>& objects,
-                     const glm::dvec3& direction) {
+                     const glm::dvec3& direction, const MarchLimits& limits = {}) {
   const World& world = prepared.world();
   const std::size_t n = objects.size();
   const bool heights_only = prepared.features().heights_only;
@@ -54,10 +64,17 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     if (!reachable) return hit;
   }
   double t = 0.0;
+  const double max_length = std::min(world.max_distance, limits.length);
   // Cutout planes the ray is passing through (between their discs): not hits
   // until the ray is 2 hit_epsilon away from them again; meanwhile the step
-  // is at least 2 hit_epsilon, so the ray leaves the plane.
+  // is at least 2 hit_epsilon, so the ray leaves the plane. The surfaces a
+  // shadow ray leaves likewise.
   std::uint64_t passing = 0;
+  if (limits.leave_start) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (object_distance(objects[k], glm::dvec3(0.0)) < 2.0 * world.hit_epsilon) passing |= std::uint64_t{1} << k;
+    }
+  }
   const bool full = !heights_only || prepared.features().cutout_gaps;
   for (int step = 0; step < world.max_steps; ++step) {
     const glm::dvec3 q = full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
@@ -86,7 +103,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (o.cutout && pattern_factor(o.pattern, uv.x, uv.y) != 1.0) {
         passing |= std::uint64_t{1} << hit_k;  // between the discs: go through
         t += std::max(nearest, 2.0 * world.hit_epsilon);
-        if (t > world.max_distance) break;
+        if (t > max_length) break;
         continue;
       }
       hit.object = static_cast<int>(hit_k) + 1;
@@ -97,9 +114,9 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
-    if (t > world.max_distance) break;
+    if (t > max_length) break;
   }
-  hit.distance = std::min(t, world.max_distance);
+  hit.distance = std::min(t, max_length);
   return hit;
 }
 
@@ -115,7 +132,8 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // so a step may cross a face of D but never passes through an object. The
 // candidate that comes within hit_epsilon is the object hit. The kernel
 // (march.comp) marches the same way in float.
-MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction) {
+MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
+                        const MarchLimits& limits = {}) {
   const World& world = prepared.world();
   const QuotientField& field = *prepared.field();
   const Lattice lattice = Lattice::golden();
@@ -124,6 +142,14 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
   auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
   MarchHit hit;
   double t = 0.0, local = 0.0;  // total arc length; arc length since the last teleport
+  const double max_length = std::min(world.max_distance, limits.length);
+  // The images a shadow ray leaves (as march_cover's `passing`).
+  std::vector<int> passing;
+  if (limits.leave_start) {
+    for (int k : field.candidates(origin)) {
+      if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
+    }
+  }
   for (int step = 0; step < world.max_steps; ++step) {
     glm::dvec3 q = multiply(origin, ray->at(local).position);
     if (!lattice.contains(q)) {
@@ -137,16 +163,19 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     const double bound = field.lower_bound(q);
     double step_length = bound;
     if (bound < QuotientField::kNear) {
-      double nearest = std::numeric_limits<double>::infinity();
+      double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
       int nearest_k = -1;
       for (int k : field.candidates(q)) {
         const double d = object_distance(images[static_cast<std::size_t>(k)], q);
-        if (d < nearest) {
-          nearest = d;
+        auto left = std::find(passing.begin(), passing.end(), k);
+        if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
+        nearest = std::min(nearest, d);
+        if (left == passing.end() && d < nearest_hit) {
+          nearest_hit = d;
           nearest_k = k;
         }
       }
-      if (nearest < world.hit_epsilon) {
+      if (nearest_hit < world.hit_epsilon) {
         const MarchObject& image = images[static_cast<std::size_t>(nearest_k)];
         hit.object = static_cast<int>(image.owner) + 1;
         hit.distance = t;
@@ -159,11 +188,12 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       }
       step_length = std::max(bound, std::min(nearest, QuotientField::kNear));
     }
+    if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;
     local += step_length;
-    if (t > world.max_distance) break;
+    if (t > max_length) break;
   }
-  hit.distance = std::min(t, world.max_distance);
+  hit.distance = std::min(t, max_length);
   return hit;
 }
 
@@ -183,14 +213,29 @@ MarchHit march_view(const MarchWorld& world, const CameraView& view, const glm::
                                    : march_cover(world, view.position, view.objects, direction);
 }
 
-glm::dvec3 shade_hit(const World& world, const MarchHit& hit) {
+// Whether the geodesic from a hit point along `direction` meets an object
+// within `length` (a shadow ray: it leaves the hit's surface first).
+bool blocked(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction, double length) {
+  const MarchLimits limits{length, true};
+  const MarchHit h = prepared.features().quotient
+                         ? march_quotient(prepared, from, direction, limits)
+                         : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
+  return h.object != 0;
+}
+
+glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   if (hit.object == 0) return glm::dvec3(0.0);
+  const World& world = prepared.world();
   const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
   glm::dvec3 light(0.0);
   for (const Light& l : world.lights) {
     for (const LightAtPoint& at : lights_at(l, p)) {
-      light += l.color * (l.intensity * at.attenuation * std::max(0.0, glm::dot(hit.normal, at.direction)));
+      const double cosine = glm::dot(hit.normal, at.direction);
+      if (cosine <= 0.0) continue;
+      // Shadows: the geodesic the light arrives along, marched to the light.
+      if (l.shadows && blocked(prepared, p, at.direction, at.length)) continue;
+      light += l.color * (l.intensity * at.attenuation * cosine);
     }
   }
   const glm::dvec3 surface = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) *
@@ -230,7 +275,7 @@ MarchHit CpuRenderer::march(const Camera& camera, const glm::dvec3& direction) c
   return march_view(world(), view_from(world(), camera), direction);
 }
 
-glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return shade_hit(world().world(), hit); }
+glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return shade_hit(world(), hit); }
 
 RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& settings) const {
   const MarchWorld& prepared = world();
@@ -286,12 +331,12 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
-      glm::dvec3 c = sees ? shade_hit(prepared.world(), hit) : glm::dvec3(0.0);
+      glm::dvec3 c = sees ? shade_hit(prepared, hit) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
         const MarchHit other = march_at(i, j, offset);
-        c += shade_hit(prepared.world(), other);
+        c += shade_hit(prepared, other);
       }
       c /= static_cast<double>(settings.samples);
       r.rgba[4 * k + 0] = static_cast<float>(c.r);
@@ -332,7 +377,7 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   return CpuRenderer(scene).march(scene.camera, direction);
 }
 
-glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return shade_hit(scene, hit); }
+glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return shade_hit(MarchWorld(scene), hit); }
 
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
   return CpuRenderer(scene).render(scene.camera, settings);

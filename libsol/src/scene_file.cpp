@@ -62,7 +62,8 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
     if (l.contains("direction")) light.direction = r.vec3(l["direction"], at + ".direction");
   } else if (type == "point") {
     light.type = LightType::Point;
-    r.require_known_keys(l, {"type", "position", "color", "intensity", "power", "exact", "reach", "falloff"}, at, at);
+    r.require_known_keys(l, {"type", "position", "color", "intensity", "power", "exact", "reach", "falloff", "shadows"},
+                         at, at);
     r.require_key(l, "position", at + " (a point light)", "a 'position'", at);
     light.position = r.vec3(l["position"], at + ".position");
     if (l.contains("exact")) light.exact = r.boolean(l["exact"], at + ".exact");
@@ -89,6 +90,7 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   } else {
     r.fail(at + ".type", "'" + at + ".type' must be directional or point, got " + type);
   }
+  if (l.contains("shadows")) light.shadows = r.boolean(l["shadows"], at + ".shadows");
   if (l.contains("color")) light.color = r.vec3(l["color"], at + ".color");
   if (l.contains("intensity")) light.intensity = r.number(l["intensity"], at + ".intensity");
   return light;
@@ -213,6 +215,7 @@ std::string to_json(const Scene& s) {
       j["exact"] = l.exact;
       j["reach"] = l.reach;
       j["falloff"] = falloff_of(l) == Falloff::Geodesic ? "geodesic" : "inverse-square";
+      j["shadows"] = l.shadows;
     }
     root["lights"].push_back(j);
   }

@@ -8,6 +8,7 @@
 // docs/renderer.md "Lights" compares the two.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -43,6 +44,12 @@ struct Light {
   bool exact = false;
   double reach = 0.0;  ///< exact point lights: also the connections up to distance + reach, in [0, 10]
   Falloff falloff = Falloff::Auto;  ///< point lights; Geodesic needs `exact`
+  /// Exact point lights: objects between a hit point and the light block
+  /// it. Each geodesic the light arrives along is marched from the hit point
+  /// to the light against the scene (docs/lighting.md "Shadows"). Not for
+  /// directional lights: their direction is a field, not the geodesics
+  /// from a source (the geodesic along it comes back down: z oscillates).
+  bool shadows = false;
 };
 
 /// The falloff a light uses: its own, Auto resolved (Geodesic for exact point lights).
@@ -60,6 +67,10 @@ using kernel::kMaxLights;
 struct LightAtPoint {
   glm::dvec3 direction;  ///< unit, frame components at p, towards the light
   double attenuation;
+  /// The arc length to the light along the geodesic leaving p along
+  /// `direction` (an exact point light's connection); infinity for
+  /// directional lights and approximate point lights (no such geodesic).
+  double length = std::numeric_limits<double>::infinity();
 };
 LightAtPoint light_at(const Light& light, const glm::dvec3& p);
 
