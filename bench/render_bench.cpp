@@ -208,21 +208,29 @@ int main(int argc, char** argv) {
 
     // 3. Exact spheres and lights against the bound-based ones.
     if (runs("exact")) {
-      std::string exact = "balls,light,width,height,ms,us_per_ray,ratio_to_bound\n";
+      std::string exact = "balls,light,falloff,shadows,width,height,ms,us_per_ray,ratio_to_bound\n";
       const int w = size, h = std::max(1, size * 3 / 4);
       sol::vk::MarchRenderer renderer(context);
       double bound_ms = 0;
       struct Variant {
         bool exact_balls, exact_light;
         double reach;
+        sol::Falloff falloff;
+        bool shadows;
       };
-      for (const Variant v : {Variant{false, false, 0.0}, Variant{true, false, 0.0}, Variant{false, true, 0.0},
-                              Variant{true, true, 0.0}, Variant{false, true, 2.0}}) {
+      using F = sol::Falloff;
+      for (const Variant v : {Variant{false, false, 0.0, F::Auto, false}, Variant{true, false, 0.0, F::Auto, false},
+                              Variant{false, true, 0.0, F::InverseSquare, false}, Variant{false, true, 0.0, F::Geodesic, false},
+                              Variant{false, true, 0.0, F::Geodesic, true}, Variant{true, true, 0.0, F::Geodesic, false},
+                              Variant{true, true, 0.0, F::Geodesic, true}, Variant{false, true, 2.0, F::Geodesic, false},
+                              Variant{false, true, 2.0, F::Geodesic, true}}) {
         sol::Scene scene = sol::preset_scene("spheres");
         for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = v.exact_balls;
         for (sol::Light& l : scene.lights) {
           l.exact = v.exact_light;
           l.reach = v.reach;
+          l.falloff = v.falloff;
+          l.shadows = v.shadows;
         }
         renderer.render(scene, w, h);  // warm-up: tables, shader compilation
         double best = 1e300;
@@ -234,9 +242,11 @@ int main(int argc, char** argv) {
         if (!v.exact_balls && !v.exact_light) bound_ms = best;
         char light[32];
         std::snprintf(light, sizeof light, v.exact_light ? "exact reach %g" : "coordinate", v.reach);
+        const char* falloff = sol::falloff_of(scene.lights[0]) == F::Geodesic ? "geodesic" : "inverse-square";
         char line[256];
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", v.exact_balls ? "exact" : "bound", light, w, h,
-                      best, best * 1e3 / (static_cast<double>(w) * h), best / bound_ms);
+        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%d,%.2f,%.3f,%.2f\n", v.exact_balls ? "exact" : "bound", light,
+                      falloff, v.shadows ? "yes" : "no", w, h, best, best * 1e3 / (static_cast<double>(w) * h),
+                      best / bound_ms);
         exact += line;
         std::fprintf(stderr, "exact: %s", line);
       }

@@ -386,3 +386,66 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
   EXPECT_LE(d.color_differs, 2);
   expect_no_validation_errors();
 }
+
+namespace {
+
+// Shadows (Light::shadows): the kernel's shadow march against the CPU
+// reference's, for a floor under a ball drawn with its bound, the same with
+// the ball exact, and in the quotient (the lattice's balls shadowing each
+// other under an exact light). Each scene's shadows must show (the
+// shadowed CPU image differs from the unshadowed one in over 5% of pixels),
+// and the kernel follows the CPU within the exact lights' tolerances: a
+// shadow's edge is where a geodesic grazes the ball, and there float and
+// double may decide either way (at most 2% of pixels).
+TEST(Kernel, ShadowsMatchTheCpuRenderer) {
+  sol::Scene floor;
+  floor.camera = {{0.0, 0.0, 0.3}, {1.0, 1.0, -0.9}, {0.0, 0.0, 1.0}, 80.0};
+  floor.objects = {{sol::PlaneZ{-1.0}, {0.8, 0.8, 0.8}, sol::Pattern::Checker},
+                   {sol::Ball{{1.2, 1.2, -0.55}, 0.25}, {0.9, 0.5, 0.3}}};
+  sol::Light light;
+  light.type = sol::LightType::Point;
+  light.position = {1.3, 1.3, 0.1};
+  light.exact = true;
+  light.shadows = true;
+  floor.lights = {light};
+  floor.ambient = 0.1;
+  sol::Scene exact = floor;
+  std::get<sol::Ball>(exact.objects[1].shape).exact = true;
+  // The quotient: a floor z = 0.05 and a ball inside D under the light, seen from above.
+  sol::Scene lattice = floor;
+  lattice.quotient = sol::Quotient::Golden;
+  lattice.camera = {{0.9, 0.3, 0.45}, {0.3, 0.2, -1.0}, {0.0, 1.0, 0.0}, 90.0};
+  lattice.objects = {{sol::PlaneZ{0.05}, {0.8, 0.8, 0.8}, sol::Pattern::Checker},
+                     {sol::Ball{{1.3, 0.6, 0.3}, 0.15}, {0.9, 0.5, 0.3}}};
+  light.position = {1.3, 0.6, 0.75};
+  light.intensity = 1.0;
+  lattice.lights = {light};
+  lattice.ambient = 0.1;
+  lattice.max_distance = 6.0;
+  std::vector<std::string> names = {"floor and ball", "floor and exact ball", "quotient"};
+  std::vector<sol::Scene> scenes;
+  scenes.push_back(floor);
+  scenes.push_back(exact);
+  scenes.push_back(lattice);
+  for (std::size_t n = 0; n < scenes.size(); ++n) {
+    const sol::Scene& scene = scenes[n];
+    const char* name = names[n].c_str();
+    sol::RenderSettings settings;
+    settings.width = 40;
+    settings.height = 30;
+    const Renders both = render_both(scene, settings.width, settings.height);
+    sol::Scene unshadowed = scene;
+    for (sol::Light& l : unshadowed.lights) l.shadows = false;
+    const sol::test::ImageComparison versus = sol::test::compare_images(both.cpu, sol::render_cpu(unshadowed, settings), 1e-3f);
+    const sol::test::ImageComparison c = sol::test::compare_images(both.gpu, both.cpu, 1e-2f);
+    std::printf("%s: shadows change %d of %d pixels on the CPU; kernel against CPU: mask differs at %d, colour over "
+                "1e-2 at %d (worst %.2e)\n", name, versus.color_differs, versus.pixels, c.mask_differs, c.color_differs,
+                c.worst_color);
+    EXPECT_GT(versus.color_differs, versus.pixels / 20) << name;
+    EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+    EXPECT_LE(c.color_differs, c.pixels / 50) << name;
+  }
+  expect_no_validation_errors();
+}
+
+}  // namespace

@@ -46,6 +46,8 @@ layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
 // Omnidirectional stereo eyes: each column's rays start at its own eye
 // (kBindingColumns); compiled in only for them.
 layout(constant_id = kSpecOds) const bool HAS_ODS = false;
+// Shadows of exact point lights (params.light_shadows): compiled in only for them.
+layout(constant_id = kSpecShadows) const bool HAS_SHADOWS = false;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -300,55 +302,6 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
   }
 }
 
-// Colour of a hit on object k with unit normal n (frame components), plane
-// coordinates uv, arc length t; q and the eye's light positions are in the
-// same coordinates (camera-relative in Sol, world in the quotient). Lights
-// as sol::lights_at: point lights by the coordinate difference in frame
-// components at the hit and 1/(1 + r²) on the distance bound; exact point
-// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
-// each geodesic from q to the light up to the shortest + reach, each with
-// 1/(1 + L²) on its length L, or as a point light where none is found.
-vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
-  const float ambient = params.shading.x;
-  const int light_count = min(int(params.shading.z), kMaxLights);
-  vec3 light = vec3(0.0);
-  for (int i = 0; i < light_count; ++i) {
-    const vec4 lc = params.light_color[i];
-    const vec4 lp = params.eyes[eye].lights[i];
-    vec3 l = lp.xyz;
-    float attenuation = 1.0;
-    if (HAS_POINT_LIGHTS) {
-      const vec3 diff = lp.xyz - q;
-      // q⁻¹·light: the light seen from q, in frame components at q.
-      const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
-      if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
-        vec4 found[kSeedSlots];
-        const int paths = sol_connections(towards, lp.w, found);
-        for (int j = 0; j < paths; ++j) {
-          // found[j]: the geodesic's direction at q and its length; its J seen
-          // from q is its J seen from the light (reciprocity).
-          const float cosine = max(0.0, dot(n, found[j].xyz));
-          if (cosine == 0.0) continue;
-          const float spread = lc.w == float(kLightExactGeodesic)
-                                   ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
-                                   : 1.0 + found[j].w * found[j].w;
-          light += lc.rgb * (cosine / spread);
-        }
-        if (paths > 0) continue;
-      }
-      const float r = distance_lower_bound(q, lp.xyz);
-      const bool directional = lc.w == float(kLightDirectional);
-      l = directional ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
-      attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
-    }
-    light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
-  }
-  const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
-                       (ambient + (1.0 - ambient) * light);
-  const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
-  return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
-}
-
 // ---- The quotient Γ\Sol of the golden lattice (mirrors march_quotient in
 // libsol/src/render.cpp and sol::Lattice::golden()) ----------------------------
 
@@ -415,6 +368,198 @@ uint field_candidates(FieldCell c) {
 }
 
 
+// ---- Shadows (sol::Light::shadows; the CPU's `blocked` in libsol/src/render.cpp)
+
+// The objects of a scene in Sol as main() copied them from the uniforms
+// (relative to the eye), for the shadow march.
+int g_count;
+int g_types[kMaxGpuObjects];
+float g_radii[kMaxGpuObjects];
+vec4 g_relative[kMaxGpuObjects];
+vec2 g_headings[kMaxGpuObjects];
+int g_cutouts[kMaxGpuObjects];
+vec4 g_eye_camera, g_eye_frac;
+
+// Whether the geodesic from q (a hit point, in the march's coordinates)
+// along `direction` meets an object within `len`: the scene marched as the
+// CPU reference does, every object by its own distance (exact balls within
+// kExactShell of their approach by their exact distance), passing the
+// objects within 2 hit_epsilon of q (the surface it leaves) until it is
+// 2 hit_epsilon away from them, and the holes of cutout planes.
+bool shadow_blocked(vec3 q, vec3 direction, float len) {
+  const float eps = params.limits.y;
+  const int max_steps = int(params.limits.w);
+  const float limit = min(len, params.limits.x);
+  vec3 exact_v = vec3(0.0), exact_end = vec3(0.0);
+  mat3 exact_J = mat3(1.0);
+  bool exact_known = false;
+  if (QUOTIENT) {
+    const int image_count = min(params.counts.x, kMaxGpuImages);
+    vec3 origin = q;
+    SolRay ray = sol_ray(direction);
+    sol_ray_integrals(ray);
+    float t = 0.0, local_t = 0.0;
+    int exact_i = -1;
+    // The images it leaves: up to four, by index.
+    ivec4 passing = ivec4(-1);
+    {
+      const uint word = field_candidates(field_cell(q));
+      const bool all = word == kFieldAllImages;
+      int held = 0;
+      for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+        const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+        if (i == kFieldEmpty || held == 4) continue;
+        const Image m = images[i];
+        if (object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y) < 2.0 * eps) passing[held++] = i;
+      }
+    }
+    for (int step = 0; step < max_steps; ++step) {
+      const SolForward forward = sol_forward(ray, local_t);
+      vec3 p = sol_translate(origin, forward.position);
+      if (!in_domain(p)) {
+        origin = teleport(p);
+        ray = sol_ray_restarted(ray, local_t, forward);
+        local_t = 0.0;
+        p = origin;
+      }
+      const FieldCell cell = field_cell(p);
+      const float field = field_lower_bound(cell);
+      float step_length = field;
+      if (field < kFieldNear) {
+        const uint word = field_candidates(cell);
+        const bool all = word == kFieldAllImages;
+        float nearest = 1e30, nearest_hit = 1e30;
+        for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+          const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+          if (i == kFieldEmpty) continue;
+          const Image m = images[i];
+          float d = object_distance(int(m.info.x), p, m.geometry, m.heading.xy, m.info.y);
+          if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
+            if (exact_i != i) exact_known = false;
+            exact_i = i;
+            d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_J, exact_known);
+          }
+          bool leaving = false;
+          for (int h = 0; h < 4; ++h) {
+            if (passing[h] == i) {
+              if (d > 2.0 * eps) passing[h] = -1;
+              else leaving = true;
+            }
+          }
+          nearest = min(nearest, d);
+          if (!leaving) nearest_hit = min(nearest_hit, d);
+        }
+        if (nearest_hit < eps) return true;
+        step_length = max(field, min(nearest, kFieldNear));
+      }
+      if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
+      t += step_length;
+      local_t += step_length;
+      if (t > limit) return false;
+    }
+    return false;
+  }
+  SolRay ray = sol_ray(direction);
+  sol_ray_integrals(ray);
+  uint passing = 0u;
+  for (int k = 0; k < g_count; ++k) {
+    if (object_distance(g_types[k], q, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * eps) passing |= 1u << uint(k);
+  }
+  int exact_k = -1;
+  float t = 0.0;
+  for (int step = 0; step < max_steps; ++step) {
+    const vec3 p = sol_translate(q, sol_position_forward(ray, t));
+    float nearest = 1e30, nearest_hit = 1e30;
+    int nearest_k = 0;
+    for (int k = 0; k < g_count; ++k) {
+      float d = object_distance(g_types[k], p, g_relative[k], g_headings[k], g_radii[k]);
+      if (HAS_EXACT_BALLS && g_types[k] == kObjectExactBall && d < kExactShell) {
+        if (exact_k != k) exact_known = false;
+        exact_k = k;
+        d = exact_ball_sdf(p, g_relative[k].xyz, g_radii[k], exact_v, exact_end, exact_J, exact_known);
+      }
+      if (HAS_CUTOUT && g_cutouts[k] != 0) {
+        d = max(d, cutout_gap_bound(g_cutouts[k], plane_coordinates(2, p, g_eye_camera, g_eye_frac),
+                                    g_eye_camera.w * exp(p.z)));
+      }
+      const uint bit = 1u << uint(k);
+      if ((passing & bit) != 0u && d > 2.0 * eps) passing &= ~bit;
+      nearest = min(nearest, d);
+      if ((passing & bit) == 0u && d < nearest_hit) {
+        nearest_hit = d;
+        nearest_k = k;
+      }
+    }
+    if (nearest_hit < eps) {
+      if (HAS_CUTOUT && g_cutouts[nearest_k] != 0) {
+        const vec2 uv = plane_coordinates(g_types[nearest_k], p, g_eye_camera, g_eye_frac);
+        if (pattern_factor(g_cutouts[nearest_k], uv.x, uv.y) != 1.0) {
+          passing |= 1u << uint(nearest_k);  // between the discs: go through
+          t += max(nearest, 2.0 * eps);
+          if (t > limit) return false;
+          continue;
+        }
+      }
+      return true;
+    }
+    t += passing != 0u ? max(nearest, 2.0 * eps) : nearest;
+    if (t > limit) return false;
+  }
+  return false;
+}
+
+// Colour of a hit on object k with unit normal n (frame components), plane
+// coordinates uv, arc length t; q and the eye's light positions are in the
+// same coordinates (camera-relative in Sol, world in the quotient). Lights
+// as sol::lights_at: point lights by the coordinate difference in frame
+// components at the hit and 1/(1 + r²) on the distance bound; exact point
+// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
+// each geodesic from q to the light up to the shortest + reach, each with
+// 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
+// light where none is found; with shadows, each geodesic marched to the
+// light first (shadow_blocked).
+vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
+  const float ambient = params.shading.x;
+  const int light_count = min(int(params.shading.z), kMaxLights);
+  vec3 light = vec3(0.0);
+  for (int i = 0; i < light_count; ++i) {
+    const vec4 lc = params.light_color[i];
+    const vec4 lp = params.eyes[eye].lights[i];
+    vec3 l = lp.xyz;
+    float attenuation = 1.0;
+    if (HAS_POINT_LIGHTS) {
+      const vec3 diff = lp.xyz - q;
+      // q⁻¹·light: the light seen from q, in frame components at q.
+      const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
+      if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
+        vec4 found[kSeedSlots];
+        const int paths = sol_connections(towards, lp.w, found);
+        for (int j = 0; j < paths; ++j) {
+          // found[j]: the geodesic's direction at q and its length; its J seen
+          // from q is its J seen from the light (reciprocity).
+          const float cosine = max(0.0, dot(n, found[j].xyz));
+          if (cosine == 0.0) continue;
+          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w)) continue;
+          const float spread = lc.w == float(kLightExactGeodesic)
+                                   ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
+                                   : 1.0 + found[j].w * found[j].w;
+          light += lc.rgb * (cosine / spread);
+        }
+        if (paths > 0) continue;
+      }
+      const float r = distance_lower_bound(q, lp.xyz);
+      const bool directional = lc.w == float(kLightDirectional);
+      l = directional ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+      attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
+    }
+    light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
+  }
+  const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
+                       (ambient + (1.0 - ambient) * light);
+  const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
+  return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
+}
+
 void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
   // This dispatch's tile of the image (the whole image unless rendered in tiles).
@@ -441,6 +586,18 @@ void main() {
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
     constants[k] = relative[k].x;
+    if (HAS_SHADOWS) {
+      g_types[k] = types[k];
+      g_radii[k] = radii[k];
+      g_relative[k] = relative[k];
+      g_headings[k] = headings[k];
+      g_cutouts[k] = cutouts[k];
+    }
+  }
+  if (HAS_SHADOWS) {
+    g_count = count;
+    g_eye_camera = eye_camera;
+    g_eye_frac = eye_frac;
   }
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
   const int max_steps = int(params.limits.w);

@@ -65,6 +65,7 @@ Params world_params(const MarchWorld& prepared) {
                      : falloff_of(l) == Falloff::Geodesic ? kernel::kLightExactGeodesic
                                                           : kernel::kLightExactPoint;
     g.light_color[i] = vec4(l.color * l.intensity, code);
+    g.light_shadows[static_cast<glm::length_t>(i)] = l.shadows ? 1 : 0;
   }
   g.limits = glm::vec4(world.max_distance, world.hit_epsilon, 0.0, world.max_steps);
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
@@ -157,7 +158,7 @@ struct KernelVariant {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods}) {
+                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -181,7 +182,8 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
           .cutout = true,
           .cutout_gaps = true,
           .exact_balls = world.exact_balls,
-          .exact_lights = world.exact_lights};
+          .exact_lights = world.exact_lights,
+          .shadows = world.shadows};
 }
 
 ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v) {
@@ -213,7 +215,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecTubes, f.tubes ? 1u : 0u},
                                                 {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
                                                 {kernel::kSpecProjections, v.projections ? 1u : 0u},
-                                                {kernel::kSpecOds, v.ods ? 1u : 0u}}});
+                                                {kernel::kSpecOds, v.ods ? 1u : 0u},
+                                                {kernel::kSpecShadows, f.shadows ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the

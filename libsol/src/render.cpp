@@ -234,7 +234,7 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
       const double cosine = glm::dot(hit.normal, at.direction);
       if (cosine <= 0.0) continue;
       // Shadows: the geodesic the light arrives along, marched to the light.
-      if (l.shadows && blocked(prepared, p, at.direction, at.length)) continue;
+      if (l.shadows && std::isfinite(at.length) && blocked(prepared, p, at.direction, at.length)) continue;
       light += l.color * (l.intensity * at.attenuation * cosine);
     }
   }

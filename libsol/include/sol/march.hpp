@@ -85,6 +85,7 @@ struct MarchFeatures {
   bool cutout_gaps = false;   ///< cutout planes z = c: their gap bounds need the full position
   bool exact_balls = false;
   bool exact_lights = false;
+  bool shadows = false;       ///< exact point lights with shadows
 };
 MarchFeatures features_of(const World& world);
 

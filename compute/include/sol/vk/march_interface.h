@@ -49,6 +49,7 @@ SOL_CONSTANT(int, kSpecTubes, 11);          ///< bool: tubes
 SOL_CONSTANT(int, kSpecPlanesXY, 12);       ///< bool: planes x = c or y = c
 SOL_CONSTANT(int, kSpecProjections, 13);    ///< bool: an eye's projection is equirectangular or fisheye
 SOL_CONSTANT(int, kSpecOds, 14);            ///< bool: omnidirectional stereo eyes (binding 8)
+SOL_CONSTANT(int, kSpecShadows, 15);        ///< bool: exact point lights with shadows (Params::light_shadows)
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
@@ -97,6 +98,8 @@ struct Params {
   /// This dispatch's tile of the (side-by-side) image: xy its first pixel,
   /// zw its size; the dispatch covers it, pixels outside it are left alone.
   ivec4 tile;
+  /// Light i casts shadows where component i is 1 (kMaxLights = 4 components).
+  ivec4 light_shadows;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
   Object objects[kMaxGpuObjects];
 };
@@ -115,6 +118,7 @@ struct Column {
 };
 
 #ifdef __cplusplus
+static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
 static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16 && sizeof(Column) == 4 * 16, "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
@@ -124,9 +128,10 @@ static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 
 static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
                   offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
                   offsetof(Params, tile) == 2 * sizeof(Eye) + 5 * 16 &&
-                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 6 * 16 &&
-                  offsetof(Params, objects) == 2 * sizeof(Eye) + (6 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (6 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+                  offsetof(Params, light_shadows) == 2 * sizeof(Eye) + 6 * 16 &&
+                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 7 * 16 &&
+                  offsetof(Params, objects) == 2 * sizeof(Eye) + (7 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (7 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
