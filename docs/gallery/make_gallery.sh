@@ -33,4 +33,14 @@ jpeg --scene lattice-pillars --forward 1,0,0 --up 0,0,1 "${a[@]}" -o $g/lattice-
 jpeg --scene lattice-pillars "${a[@]}" -o $g/lattice-pillars-xy.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg
 $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 576 --spp 16 -o $g/sandwich-dome.png
+# Light (docs/lighting.md): the geodesic falloff beside the inverse-square law, and their ratio
+# (1 + L²)/J as a map (inferno, 0 to 4: dark where the geodesics spread, bright where they focus).
+for name in light-sandwich light-spheres; do
+  $r --scene $g/$name.json "${a[@]}" -o $tmp/geodesic.exr
+  $r --scene $g/$name-inverse-square.json "${a[@]}" -o $tmp/inverse-square.exr
+  oiiotool $tmp/geodesic.exr --ch R,G,B -o $g/$name.png
+  oiiotool $tmp/inverse-square.exr --ch R,G,B -o $g/$name-inverse-square.png
+  oiiotool $tmp/geodesic.exr $tmp/inverse-square.exr --div --ch R --clamp:min=0:max=4 --mulc 0.25 --colormap inferno \
+    -o $g/$name-ratio.png
+done
 ls -l $g | awk '$5 > 300000 {print "make_gallery: " $9 " is over 300 KB: " $5 " bytes"; bad = 1} END {exit bad}'
