@@ -33,14 +33,18 @@ jpeg --scene lattice-pillars --forward 1,0,0 --up 0,0,1 "${a[@]}" -o $g/lattice-
 jpeg --scene lattice-pillars "${a[@]}" -o $g/lattice-pillars-xy.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg
 $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 576 --spp 16 -o $g/sandwich-dome.png
-# Light (docs/lighting.md): the geodesic falloff beside the inverse-square law, and their ratio
-# (1 + L²)/J as a map (inferno, 0 to 4: dark where the geodesics spread, bright where they focus).
+# Light (docs/lighting.md): the geodesic falloff beside the inverse-square law. For the sandwich lit
+# from the eye (no ambient light, one light: the images' ratio is (1 + L²)/J), the map of L²/J from that
+# ratio and the AOV distance L, at 384x288 (inferno, 0 to 2: 1, the Euclidean spreading, is red;
+# brighter where the geodesics focus, darker where they spread).
 for name in light-sandwich light-spheres; do
-  $r --scene $g/$name.json "${a[@]}" -o $tmp/geodesic.exr
-  $r --scene $g/$name-inverse-square.json "${a[@]}" -o $tmp/inverse-square.exr
-  oiiotool $tmp/geodesic.exr --ch R,G,B -o $g/$name.png
-  oiiotool $tmp/inverse-square.exr --ch R,G,B -o $g/$name-inverse-square.png
-  oiiotool $tmp/geodesic.exr $tmp/inverse-square.exr --div --ch R --clamp:min=0:max=4 --mulc 0.25 --colormap inferno \
-    -o $g/$name-ratio.png
+  $r --scene $g/$name.json "${a[@]}" -o $g/$name.png
+  $r --scene $g/$name-inverse-square.json "${a[@]}" -o $g/$name-inverse-square.png
 done
+$r --scene $g/light-sandwich.json --width 384 --height 288 -o $tmp/geodesic.exr --aov $tmp/aov.exr
+$r --scene $g/light-sandwich-inverse-square.json --width 384 --height 288 -o $tmp/inverse-square.exr
+oiiotool $tmp/aov.exr --ch distance --dup --mul -o $tmp/l2.exr
+oiiotool $tmp/l2.exr --addc 1 -o $tmp/l2p1.exr
+oiiotool $tmp/geodesic.exr --ch R $tmp/inverse-square.exr --ch R --div $tmp/l2.exr --mul $tmp/l2p1.exr --div \
+  --mulc 0.5 --clamp:min=0:max=1 --colormap inferno -o $g/light-sandwich-focus.png
 ls -l $g | awk '$5 > 300000 {print "make_gallery: " $9 " is over 300 KB: " $5 " bytes"; bad = 1} END {exit bad}'
