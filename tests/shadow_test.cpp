@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <variant>
 #include <vector>
 
@@ -212,6 +213,83 @@ TEST(Shadows, KeysAreCheckedAndRoundTrip) {
   const sol::Scene s = sol::parse_scene(std::string(ball) + R"([{"type": "point", "position": [0, 0, 1], "exact": true, "shadows": true}]})");
   EXPECT_TRUE(s.lights[0].shadows);
   EXPECT_TRUE(sol::parse_scene(sol::to_json(s)).lights[0].shadows);
+}
+
+}  // namespace
+
+namespace {
+
+// The quotient: an exact light is seen along the geodesics to every image
+// γ·L within d + reach. Against brute force over a larger box of images
+// (|a|, |b| <= 6, |c| <= 3, exact distances): sol::quotient_light_images
+// holds every image that matters for random points of D, and lights_at
+// finds the same ways (directions and lengths); the light moved by an
+// element of Γ lights every point the same.
+TEST(QuotientLight, EveryImageWithinReachAndNoOther) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  auto point_in_domain = [&] {
+    const double s = unit(rng), r = unit(rng);
+    return dvec3(s * g1.x + r * g2.x, s * g1.y + r * g2.y, lattice.height() * unit(rng));
+  };
+  for (const double reach : {0.0, 0.5}) {
+    sol::Light light;
+    light.type = sol::LightType::Point;
+    light.exact = true;
+    light.reach = reach;
+    light.position = point_in_domain();
+    const std::vector<dvec3> images = sol::quotient_light_images(light);
+    sol::Light moved = light;
+    moved.position = sol::multiply(lattice.element(2, -1, 1), light.position);
+    const std::vector<dvec3> moved_images = sol::quotient_light_images(moved);
+    int ways = 0;
+    for (int k = 0; k < 12; ++k) {
+      const dvec3 p = point_in_domain();
+      // Brute force: every image in the big box, exact distances.
+      std::vector<std::pair<double, dvec3>> all;
+      for (int a = -6; a <= 6; ++a) {
+        for (int b = -6; b <= 6; ++b) {
+          for (int c = -3; c <= 3; ++c) {
+            const dvec3 q = sol::multiply(lattice.element(a, b, c), lattice.teleport(light.position).point);
+            if (sol::distance_lower_bound(p, q) <= 4.0) all.emplace_back(sol::distance(p, q), q);
+          }
+        }
+      }
+      double best = std::numeric_limits<double>::infinity();
+      for (const auto& [d, q] : all) best = std::min(best, d);
+      std::vector<sol::Connection> expected;
+      for (const auto& [d, q] : all) {
+        if (d > best + reach + 1e-9) continue;
+        // Every image within reach is in the list.
+        EXPECT_TRUE(std::any_of(images.begin(), images.end(), [&, q = q](const dvec3& m) { return glm::length(m - q) < 1e-9; }))
+            << "missing image at distance " << d;
+        for (const sol::Connection& c : reach > 0.0 ? sol::geodesics_between(p, q, best + reach) : sol::minimising_geodesics(p, q)) {
+          expected.push_back(c);
+        }
+      }
+      std::vector<sol::LightAtPoint> got = sol::lights_at(light, p, images);
+      ASSERT_EQ(got.size(), expected.size()) << "point " << k;
+      auto by_length = [](const auto& x, const auto& y) { return x.length < y.length; };
+      std::sort(expected.begin(), expected.end(), by_length);
+      std::sort(got.begin(), got.end(), by_length);
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        EXPECT_NEAR(got[i].length, expected[i].length, 1e-9);
+        EXPECT_LT(glm::length(got[i].direction - glm::normalize(expected[i].direction)), 1e-8);
+      }
+      ways += static_cast<int>(got.size());
+      // Moved by Γ, the light reaches p the same ways.
+      std::vector<sol::LightAtPoint> same = sol::lights_at(moved, p, moved_images);
+      ASSERT_EQ(same.size(), got.size());
+      std::sort(same.begin(), same.end(), by_length);
+      for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(same[i].attenuation, got[i].attenuation, 1e-9 * got[i].attenuation);
+    }
+    std::printf("quotient light, reach %g: %zu images listed, %d ways to 12 points\n", reach, images.size(), ways);
+    if (reach > 0.0) {
+      EXPECT_GT(ways, 12);  // the reach adds ways
+    }
+  }
 }
 
 }  // namespace

@@ -322,7 +322,9 @@ int main(int argc, char** argv) {
     std::optional<sol::vk::Context> context;
     std::optional<sol::vk::MarchRenderer> renderer;
     if (device == "auto" && !sol::vk::MarchRenderer::supports(scene)) {
-      std::fprintf(stderr, "solrender: exact point lights with a reach above %g are CPU-only; rendering on the CPU\n",
+      std::fprintf(stderr,
+                   "solrender: exact point lights with a reach above %g (1 in the quotient) are CPU-only; rendering "
+                   "on the CPU\n",
                    sol::ConnectionTable::kReach);
     } else if (device != "cpu") {
       try {

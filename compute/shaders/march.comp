@@ -92,6 +92,11 @@ layout(std430, set = 0, binding = kBindingColumns) readonly buffer Columns {
   Column columns[];
 };
 
+// The quotient: the images of its exact point lights (sol::quotient_light_images).
+layout(std430, set = 0, binding = kBindingLightImages) readonly buffer LightImages {
+  vec4 light_images[];
+};
+
 // sol::ConnectionTable: the seeds of the connection solver (exact point lights).
 layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds {
   vec4 connection_seeds[];
@@ -508,6 +513,53 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   return false;
 }
 
+// The quotient (sol::lights_at with the light's images): the connections
+// from q (world, in D) to light i's images of length up to d + reach, d the
+// least distance to any image. Images are taken in order of their distance
+// lower bound from q while that is within the least length found + reach
+// (at most kMaxLightImageSolves of them), their connections solved and
+// kept (the shortest kSeedSlots), then those longer than the least + reach
+// dropped (with 2e-3 of it for the float lengths).
+int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[kSeedSlots]) {
+  const int first = params.light_image_first[light], count = params.light_image_count[light];
+  float best = 1e30, last = -1.0;
+  int last_k = -1, n = 0;
+  for (int round = 0; round < kMaxLightImageSolves; ++round) {
+    // The next image by (lower bound, index) after the last one solved.
+    float lo = 1e30;
+    int lo_k = -1;
+    for (int k = 0; k < count; ++k) {
+      const float b = distance_lower_bound(q, light_images[first + k].xyz);
+      const bool after = b > last || (b == last && k > last_k);
+      if (after && b < lo) {
+        lo = b;
+        lo_k = k;
+      }
+    }
+    if (lo_k < 0 || lo > best + reach) break;
+    last = lo;
+    last_k = lo_k;
+    const vec3 d = light_images[first + lo_k].xyz - q;
+    vec4 found[kSeedSlots];
+    const int paths = sol_connections(vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z), reach, found);
+    for (int j = 0; j < paths; ++j) {
+      best = min(best, found[j].w);
+      if (n < kSeedSlots) {
+        kept[n++] = found[j];
+      } else {  // full: replace the longest if this one is shorter
+        int longest = 0;
+        for (int m = 1; m < kSeedSlots; ++m) longest = kept[m].w > kept[longest].w ? m : longest;
+        if (found[j].w < kept[longest].w) kept[longest] = found[j];
+      }
+    }
+  }
+  int m = 0;
+  for (int j = 0; j < n; ++j) {
+    if (kept[j].w <= best + reach + 2e-3 * max(1.0, best)) kept[m++] = kept[j];
+  }
+  return m;
+}
+
 // Colour of a hit on object k with unit normal n (frame components), plane
 // coordinates uv, arc length t; q and the eye's light positions are in the
 // same coordinates (camera-relative in Sol, world in the quotient). Lights
@@ -533,7 +585,7 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
       if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
         vec4 found[kSeedSlots];
-        const int paths = sol_connections(towards, lp.w, found);
+        const int paths = QUOTIENT ? quotient_light_connections(i, q, lp.w, found) : sol_connections(towards, lp.w, found);
         for (int j = 0; j < paths; ++j) {
           // found[j]: the geodesic's direction at q and its length; its J seen
           // from q is its J seen from the light (reciprocity).

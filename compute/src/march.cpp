@@ -67,6 +67,14 @@ Params world_params(const MarchWorld& prepared) {
     g.light_color[i] = vec4(l.color * l.intensity, code);
     g.light_shadows[static_cast<glm::length_t>(i)] = l.shadows ? 1 : 0;
   }
+  // The quotient's light images (binding kBindingLightImages, packed by pack_light_images).
+  int first = 0;
+  for (std::size_t i = 0; i < prepared.light_images().size(); ++i) {
+    const int count = static_cast<int>(prepared.light_images()[i].size());
+    g.light_image_first[static_cast<glm::length_t>(i)] = first;
+    g.light_image_count[static_cast<glm::length_t>(i)] = count;
+    first += count;
+  }
   g.limits = glm::vec4(world.max_distance, world.hit_epsilon, 0.0, world.max_steps);
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
     const SceneObject& o = world.objects[k];
@@ -139,6 +147,22 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   return out;
 }
 
+// Every light's images in the quotient, one after the other (world_params
+// has where each begins); a stub otherwise.
+std::vector<glm::vec4> pack_light_images(const MarchWorld& prepared) {
+  std::vector<glm::vec4> out;
+  for (const std::vector<glm::dvec3>& images : prepared.light_images()) {
+    for (const glm::dvec3& q : images) out.push_back(vec4(q, 0.0));
+  }
+  if (out.size() > static_cast<std::size_t>(kernel::kMaxGpuLightImages)) {
+    throw NotImplemented("sol::vk::MarchRenderer: the quotient's exact lights have " + std::to_string(out.size()) +
+                         " images within their reach of the domain; the kernel takes at most " +
+                         std::to_string(kernel::kMaxGpuLightImages) + " (a shorter reach, or the CPU renderer)");
+  }
+  if (out.empty()) out.emplace_back(0.0f);
+  return out;
+}
+
 void require_size(int value, const char* name) {
   if (value < 1 || value > 16384) {
     throw InvalidArgument(std::string("sol::vk::MarchRenderer: ") + name + " must be in [1, 16384], got " +
@@ -199,7 +223,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingDistanceTable, DescriptorType::StorageBuffer},
                                           {kernel::kBindingSeeds, DescriptorType::StorageBuffer},
                                           {kernel::kBindingField, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingColumns, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingColumns, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingLightImages, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
@@ -253,6 +278,7 @@ struct MarchRenderer::Impl {
   std::optional<Buffer> table;  // exact balls: sol::DistanceTable
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
+  std::optional<Buffer> light_images;  // the quotient: its lights' images
   // Omnidirectional stereo: the eyes' columns (sol::column_eye), rewritten
   // each frame that has such eyes, reallocated when they outgrow it.
   std::optional<Buffer> columns;
@@ -287,6 +313,7 @@ struct MarchRenderer::Impl {
       built.pipeline.bind(kernel::kBindingDistanceTable, *table);
       built.pipeline.bind(kernel::kBindingSeeds, *seeds);
       built.pipeline.bind(kernel::kBindingField, *field);
+      built.pipeline.bind(kernel::kBindingLightImages, *light_images);
       built.world_bound = generation;
     }
     if (built.columns_bound != columns_generation) {
@@ -313,10 +340,10 @@ MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
 void MarchRenderer::set_world(const World& world) {
   if (!supports(world)) {
-    char message[160];
+    char message[200];
     std::snprintf(message, sizeof message,
-                  "sol::vk::MarchRenderer: exact point lights with a reach above %g render on the CPU only "
-                  "(--device cpu)",
+                  "sol::vk::MarchRenderer: exact point lights with a reach above %g (1 in the quotient) render on "
+                  "the CPU only (--device cpu)",
                   ConnectionTable::kReach);
     throw NotImplemented(message);
   }
@@ -327,6 +354,7 @@ void MarchRenderer::set_world(const World& world) {
   Impl& m = *m_impl;
   MarchWorld prepared(world);  // validates
   const std::vector<kernel::Image> images = pack_images(prepared);
+  const std::vector<glm::vec4> light_images = pack_light_images(prepared);
   const MarchFeatures& f = prepared.features();
   // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
   // process); exact point lights: the connection solver's seeds; else stubs.
@@ -351,6 +379,8 @@ void MarchRenderer::set_world(const World& world) {
   const std::vector<std::uint32_t>& field = f.quotient ? prepared.field()->words() : stub_field;
   m.field.emplace(m.context, field.size() * sizeof(std::uint32_t));
   m.field->write(field);
+  m.light_images.emplace(m.context, light_images.size() * sizeof(glm::vec4));
+  m.light_images->write(light_images);
   m.world_uniforms = world_params(prepared);
   m.world.emplace(std::move(prepared));
   ++m.generation;
@@ -453,8 +483,12 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
 }
 
 bool MarchRenderer::supports(const World& world) {
-  return std::none_of(world.lights.begin(), world.lights.end(), [](const Light& l) {
-    return l.type == LightType::Point && l.exact && l.reach > ConnectionTable::kReach;
+  // In the quotient a light's images within reach of D grow fast with the
+  // reach (about 300 at 0, 2000 at 1): beyond reach 1 they outgrow
+  // kMaxGpuLightImages.
+  const double most = world.quotient == Quotient::None ? ConnectionTable::kReach : 1.0;
+  return std::none_of(world.lights.begin(), world.lights.end(), [most](const Light& l) {
+    return l.type == LightType::Point && l.exact && l.reach > most;
   });
 }
 

@@ -1,6 +1,9 @@
 #include "sol/light.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -8,6 +11,9 @@
 #include "field_error.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"
+#include "sol/group.hpp"
+#include "sol/lattice.hpp"
+#include "sol/objects.hpp"
 #include "sol/spreading.hpp"
 
 namespace sol {
@@ -53,24 +59,114 @@ LightAtPoint light_at(const Light& light, const glm::dvec3& p) {
   return {len > 0.0 ? v / len : glm::dvec3(0.0, 0.0, 1.0), 1.0 / (1.0 + r * r)};
 }
 
+namespace {
+
+// The light's terms along connections from p.
+void append_connections(const Light& light, const std::vector<Connection>& cs, std::vector<LightAtPoint>& out) {
+  const bool geodesic = falloff_of(light) == Falloff::Geodesic;
+  for (const Connection& c : cs) {
+    if (c.length == 0.0) continue;
+    const glm::dvec3 l = glm::normalize(c.direction);
+    out.push_back({l,
+                   geodesic ? 1.0 / clamped_spreading(sphere_area_density(l, c.length)) : 1.0 / (1.0 + c.length * c.length),
+                   c.length});
+  }
+}
+
+}  // namespace
+
 std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
   if (light.type != LightType::Point || !light.exact) return {light_at(light, p)};
   std::vector<LightAtPoint> out;
   try {
-    const std::vector<Connection> cs = light.reach > 0.0
-                                           ? geodesics_between(p, light.position, distance(p, light.position) + light.reach)
-                                           : minimising_geodesics(p, light.position);
-    const bool geodesic = falloff_of(light) == Falloff::Geodesic;
-    for (const Connection& c : cs) {
-      if (c.length == 0.0) continue;
-      const glm::dvec3 l = glm::normalize(c.direction);
-      out.push_back({l,
-                     geodesic ? 1.0 / clamped_spreading(sphere_area_density(l, c.length)) : 1.0 / (1.0 + c.length * c.length),
-                     c.length});
-    }
+    append_connections(light,
+                       light.reach > 0.0 ? geodesics_between(p, light.position, distance(p, light.position) + light.reach)
+                                         : minimising_geodesics(p, light.position),
+                       out);
   } catch (const OutOfRange&) {
     return {light_at(light, p)};  // no connection found (extreme far points): the approximate direction
   }
+  return out;
+}
+
+std::vector<glm::dvec3> quotient_light_images(const Light& light) {
+  if (light.type != LightType::Point || !light.exact) return {};
+  const Lattice lattice = Lattice::golden();
+  const glm::dvec3 l0 = lattice.teleport(light.position).point;
+  // C: the largest over a 7³ grid of D of the least distance to the nearby
+  // images (an upper bound of the least distance to all of them), plus the
+  // longest path from a point of D to its nearest grid node: offsets up to
+  // 1/12 of γ1 + γ2 (|Δx|, |Δy| <= (φ + 1)/12) at a height in [0, h]
+  // (e^{-z}|Δx| + e^{z}|Δy| <= 0.218 (1 + φ²)) and h/12 vertically: 0.87.
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  std::vector<glm::dvec3> nearby;
+  for (int a = -2; a <= 2; ++a) {
+    for (int b = -2; b <= 2; ++b) {
+      for (int c = -1; c <= 1; ++c) nearby.push_back(multiply(lattice.element(a, b, c), l0));
+    }
+  }
+  constexpr int n = 6;
+  double cover = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      for (int k = 0; k <= n; ++k) {
+        const double s = static_cast<double>(i) / n, r = static_cast<double>(j) / n;
+        const glm::dvec3 p(s * g1.x + r * g2.x, s * g1.y + r * g2.y, lattice.height() * k / n);
+        double least = std::numeric_limits<double>::infinity();
+        for (const glm::dvec3& q : nearby) {
+          if (distance_lower_bound(p, q) >= least) continue;
+          try {
+            least = std::min(least, distance(p, q));
+          } catch (const OutOfRange&) {
+          }
+        }
+        cover = std::max(cover, least);
+      }
+    }
+  }
+  const double radius = cover + 0.87 + light.reach;
+  std::vector<glm::dvec3> images;
+  const int layers = static_cast<int>(std::ceil(radius / lattice.height())) + 1;
+  for (int c = -layers; c <= layers; ++c) {
+    const int range = Ball{}.lattice_range();  // as the objects' images (sol::quotient_images)
+    for (int a = -range; a <= range; ++a) {
+      for (int b = -range; b <= range; ++b) {
+        const glm::dvec3 q = multiply(lattice.element(a, b, c), l0);
+        if (Ball{q, 0.0}.least_distance_over_domain(lattice) <= radius) images.push_back(q);
+      }
+    }
+  }
+  return images;
+}
+
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p, const std::vector<glm::dvec3>& images) {
+  if (light.type != LightType::Point || !light.exact || images.empty()) return lights_at(light, p);
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t i = 0; i < images.size(); ++i) order.emplace_back(distance_lower_bound(p, images[i]), i);
+  std::sort(order.begin(), order.end());
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<std::size_t, double>> near;  // (image, its distance)
+  for (const auto& [bound, i] : order) {
+    if (bound > best + light.reach) break;
+    try {
+      const double d = distance(p, images[i]);
+      best = std::min(best, d);
+      near.emplace_back(i, d);
+    } catch (const OutOfRange&) {
+    }
+  }
+  std::vector<LightAtPoint> out;
+  for (const auto& [i, d] : near) {
+    if (d > best + light.reach + 1e-9) continue;
+    try {
+      append_connections(light,
+                         light.reach > 0.0 ? geodesics_between(p, images[i], best + light.reach)
+                                           : minimising_geodesics(p, images[i]),
+                         out);
+    } catch (const OutOfRange&) {
+    }
+  }
+  if (out.empty()) return {light_at(light, p)};
   return out;
 }
 

@@ -128,6 +128,7 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   if (m_features.quotient) {
     m_objects = quotient_images(world);
     m_field = std::make_shared<const QuotientField>(m_objects);
+    for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l));
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
   }

@@ -229,8 +229,12 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
   glm::dvec3 light(0.0);
-  for (const Light& l : world.lights) {
-    for (const LightAtPoint& at : lights_at(l, p)) {
+  for (std::size_t i = 0; i < world.lights.size(); ++i) {
+    const Light& l = world.lights[i];
+    // In the quotient: along the geodesics to each of the light's images.
+    const std::vector<LightAtPoint> ways =
+        prepared.features().quotient ? lights_at(l, p, prepared.light_images()[i]) : lights_at(l, p);
+    for (const LightAtPoint& at : ways) {
       const double cosine = glm::dot(hit.normal, at.direction);
       if (cosine <= 0.0) continue;
       // Shadows: the geodesic the light arrives along, marched to the light.

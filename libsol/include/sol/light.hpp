@@ -83,4 +83,23 @@ LightAtPoint light_at(const Light& light, const glm::dvec3& p);
 /// square), L its length. Otherwise the single light_at.
 std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
 
+/// The compact quotient Γ\Sol: an exact point light at L is seen from p
+/// along the geodesics to every image γ·L (γ ∈ Γ) of length up to
+/// d + reach, d = min over γ of d(p, γ·L) (the distance in the quotient).
+/// quotient_light_images lists the images that can matter from some point
+/// of the fundamental domain D: L moved into D (L0), then every γ·L0 whose
+/// distance from D can be at most R = C + reach, C an upper bound of the
+/// distance from any point of D to its nearest image (computed: the
+/// largest over a 7³ grid of D of the least distance to the images with
+/// |a|, |b| <= 2, |c| <= 1, plus 0.87, the longest path from a point of D
+/// to its nearest grid node; docs/lighting.md).
+std::vector<glm::dvec3> quotient_light_images(const Light& light);
+
+/// lights_at in the quotient, p in D, `images` from quotient_light_images:
+/// the images in order of their distance lower bound from p, their exact
+/// distances while the bound is within the least so far + reach, then each
+/// near image's connections as lights_at takes them (reach 0: the
+/// minimisers of the images at the least distance).
+std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p, const std::vector<glm::dvec3>& images);
+
 }  // namespace sol

@@ -110,12 +110,16 @@ class MarchWorld {
   std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
   /// The quotient: the distance field of objects() over D (null in Sol).
   const QuotientField* field() const { return m_field.get(); }
+  /// The quotient: each light's images (sol::quotient_light_images; empty
+  /// for all but exact point lights, and in Sol).
+  const std::vector<std::vector<glm::dvec3>>& light_images() const { return m_light_images; }
 
  private:
   World m_world;
   MarchFeatures m_features;
   std::vector<MarchObject> m_objects;
   std::shared_ptr<const QuotientField> m_field;
+  std::vector<std::vector<glm::dvec3>> m_light_images;
 };
 
 }  // namespace sol

@@ -163,8 +163,10 @@ class MarchRenderer {
 
   /// Whether the kernel renders the world: all but those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
-  /// there). set_world throws sol::NotImplemented for those; the CPU
-  /// renderer takes every world.
+  /// there), or in the quotient above 1 (the light's images within reach
+  /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages).
+  /// set_world throws sol::NotImplemented for those; the CPU renderer takes
+  /// every world.
   static bool supports(const World& world);
 
  private:

@@ -32,6 +32,7 @@ SOL_CONSTANT(int, kBindingDistanceTable, 5);  ///< storage buffer: sol::Distance
 SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::ConnectionTable::seeds
 SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientField::words
 SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' Column records
+SOL_CONSTANT(int, kBindingLightImages, 9);  ///< storage buffer: the quotient's light images (vec4, xyz world)
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
@@ -57,6 +58,12 @@ SOL_CONSTANT(int, kMaxGpuObjects, 8);
 /// Most images of the objects around the domain in a quotient scene
 /// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
 SOL_CONSTANT(int, kMaxGpuImages, 64);
+/// Most images of the lights in a quotient scene (sol::quotient_light_images,
+/// all lights together; about 300 for a light with reach 0, 2000 with reach 1).
+SOL_CONSTANT(int, kMaxGpuLightImages, 4096);
+/// Most images a pixel solves connections to, per light, nearest (by the
+/// distance lower bound) first.
+SOL_CONSTANT(int, kMaxLightImageSolves, 16);
 /// The workgroup of march.comp: kGroupSize x kGroupSize pixels.
 SOL_CONSTANT(int, kGroupSize, 8);
 
@@ -100,6 +107,9 @@ struct Params {
   ivec4 tile;
   /// Light i casts shadows where component i is 1 (kMaxLights = 4 components).
   ivec4 light_shadows;
+  /// The quotient: light i's images are light_images[first_i .. first_i + count_i) (binding 9).
+  ivec4 light_image_first;
+  ivec4 light_image_count;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
   Object objects[kMaxGpuObjects];
 };
@@ -129,9 +139,10 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
                   offsetof(Params, tile) == 2 * sizeof(Eye) + 5 * 16 &&
                   offsetof(Params, light_shadows) == 2 * sizeof(Eye) + 6 * 16 &&
-                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 7 * 16 &&
-                  offsetof(Params, objects) == 2 * sizeof(Eye) + (7 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (7 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+                  offsetof(Params, light_image_count) == 2 * sizeof(Eye) + 8 * 16 &&
+                  offsetof(Params, light_color) == 2 * sizeof(Eye) + 9 * 16 &&
+                  offsetof(Params, objects) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
