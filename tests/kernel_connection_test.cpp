@@ -16,6 +16,7 @@
 #include <sol/vk/march.hpp>
 
 #include "support/kernel.hpp"
+#include "support/shadow_scene.hpp"
 
 namespace {
 
@@ -398,17 +399,8 @@ namespace {
 // shadow's edge is where a geodesic grazes the ball, and there float and
 // double may decide either way (at most 2% of pixels).
 TEST(Kernel, ShadowsMatchTheCpuRenderer) {
-  sol::Scene floor;
-  floor.camera = {{0.0, 0.0, 0.3}, {1.0, 1.0, -0.9}, {0.0, 0.0, 1.0}, 80.0};
-  floor.objects = {{sol::PlaneZ{-1.0}, {0.8, 0.8, 0.8}, sol::Pattern::Checker},
-                   {sol::Ball{{1.2, 1.2, -0.55}, 0.25}, {0.9, 0.5, 0.3}}};
-  sol::Light light;
-  light.type = sol::LightType::Point;
-  light.position = {1.3, 1.3, 0.1};
-  light.exact = true;
-  light.shadows = true;
-  floor.lights = {light};
-  floor.ambient = 0.1;
+  const sol::Scene floor = sol::test::shadow_scene();
+  sol::Light light = floor.lights[0];
   sol::Scene exact = floor;
   std::get<sol::Ball>(exact.objects[1].shape).exact = true;
   // The quotient: a floor z = 0.05 and a ball inside D under the light, seen from above.

@@ -13,24 +13,16 @@
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 
+#include "support/shadow_scene.hpp"
+
 namespace {
 
 using glm::dvec3;
 
-// A floor z = -1, a ball (drawn with its bound) between it and an exact
-// point light with shadows.
+// The floor, the ball and the light (support/shadow_scene.hpp), the march
+// limited to arc length 6.
 sol::Scene shadow_scene() {
-  sol::Scene scene;
-  scene.camera = {{0.0, 0.0, 0.3}, {1.0, 1.0, -0.9}, {0.0, 0.0, 1.0}, 80.0};
-  scene.objects = {{sol::PlaneZ{-1.0}, {0.8, 0.8, 0.8}, sol::Pattern::Checker},
-                   {sol::Ball{{1.2, 1.2, -0.55}, 0.25}, {0.9, 0.5, 0.3}}};
-  sol::Light light;
-  light.type = sol::LightType::Point;
-  light.position = {1.3, 1.3, 0.1};
-  light.exact = true;
-  light.shadows = true;
-  scene.lights = {light};
-  scene.ambient = 0.1;
+  sol::Scene scene = sol::test::shadow_scene();
   scene.max_distance = 6.0;
   return scene;
 }
