@@ -22,6 +22,7 @@ packages=(
   xvfb xauth            # solview's tests: a virtual X display (xvfb-run)
   parallel              # the film test: frames shard over GNU parallel jobs (docs/films.md)
   ffmpeg                # solrender --video (films) and its test
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module sol and its tests
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()

@@ -1,0 +1,233 @@
+// The Python module `sol`: libsol from Python (pybind11). Points and
+// directions are sequences of three floats (or NumPy arrays) in, NumPy
+// float64 arrays out; the vectorised entry points take arrays of shape
+// (N, 3) and return (N, 3) or (N,) arrays, looping in C++. libsol's
+// exceptions arrive as Python exceptions with the C++ message:
+// InvalidArgument and OutOfRange as ValueError, NotImplemented as
+// NotImplementedError. docs/python.md has the reference and an example.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <sol/sol.hpp>
+
+namespace py = pybind11;
+
+namespace {
+
+using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+glm::dvec3 vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+py::array_t<double> array(const glm::dvec3& v) {
+  py::array_t<double> out(3);
+  auto o = out.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < 3; ++i) o(i) = v[static_cast<glm::length_t>(i)];
+  return out;
+}
+
+// An (N, 3) array's rows (a single point is one row).
+std::vector<glm::dvec3> rows(const Points& points, const char* name) {
+  const py::buffer_info b = points.request();
+  if (!((b.ndim == 1 && b.shape[0] == 3) || (b.ndim == 2 && b.shape[1] == 3))) {
+    throw sol::InvalidArgument(std::string("sol: ") + name + " must have shape (3,) or (N, 3)");
+  }
+  const auto n = b.ndim == 1 ? 1 : static_cast<std::size_t>(b.shape[0]);
+  const auto* d = static_cast<const double*>(b.ptr);
+  std::vector<glm::dvec3> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = {d[3 * i], d[3 * i + 1], d[3 * i + 2]};
+  return out;
+}
+
+py::array_t<double> rows_array(const std::vector<glm::dvec3>& v) {
+  py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  auto o = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (py::ssize_t c = 0; c < 3; ++c) o(static_cast<py::ssize_t>(i), c) = v[i][static_cast<glm::length_t>(c)];
+  }
+  return out;
+}
+
+py::list connections(const std::vector<sol::Connection>& cs) {
+  py::list out;
+  for (const sol::Connection& c : cs) out.append(py::make_tuple(array(c.direction), c.length));
+  return out;
+}
+
+// A per-pixel channel of a render as an (H, W) or (H, W, C) float32 array.
+py::array_t<float> image(const std::vector<float>& values, int height, int width, int channels) {
+  std::vector<py::ssize_t> shape{height, width};
+  if (channels > 1) shape.push_back(channels);
+  py::array_t<float> out(shape);
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(sol, m) {
+  m.doc() = "libsol: Thurston's Sol geometry (group law, geodesics, distances, the lattice, scenes, the CPU renderer)";
+  py::register_exception<sol::NotImplemented>(m, "NotImplemented", PyExc_NotImplementedError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const sol::InvalidArgument& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const sol::OutOfRange& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const sol::Cancelled& e) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    }
+  });
+  m.attr("__version__") = SOL_VERSION_STRING;
+
+  // ---- The group
+  m.def("multiply", [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return array(sol::multiply(vec3(p), vec3(q))); },
+        py::arg("p"), py::arg("q"), "The group law p * q.");
+  m.def("inverse", [](const std::array<double, 3>& p) { return array(sol::inverse(vec3(p))); }, py::arg("p"),
+        "The group inverse of p.");
+
+  // ---- Geodesics
+  m.def(
+      "flow",
+      [](const std::array<double, 3>& position, const std::array<double, 3>& direction, double t) {
+        const sol::GeodesicState s = sol::flow({vec3(position), vec3(direction)}, t);
+        return py::make_tuple(array(s.position), array(s.direction));
+      },
+      py::arg("position"), py::arg("direction"), py::arg("t"),
+      "Follows the geodesic from position with direction (frame components, normalised) for arc length t; "
+      "returns (end position, end direction).");
+  m.def(
+      "flow_many",
+      [](const std::array<double, 3>& position, const Points& directions, py::array_t<double, py::array::forcecast> t) {
+        const std::vector<glm::dvec3> dirs = rows(directions, "directions");
+        const py::buffer_info tb = t.request();
+        const auto nt = static_cast<std::size_t>(tb.size);
+        if (nt != 1 && nt != dirs.size()) throw sol::InvalidArgument("sol.flow_many: t must be a number or one per direction");
+        const auto* tv = static_cast<const double*>(tb.ptr);
+        std::vector<glm::dvec3> positions(dirs.size()), ends(dirs.size());
+        {
+          py::gil_scoped_release release;
+          for (std::size_t i = 0; i < dirs.size(); ++i) {
+            const sol::GeodesicState s = sol::flow({vec3(position), dirs[i]}, tv[nt == 1 ? 0 : i]);
+            positions[i] = s.position;
+            ends[i] = s.direction;
+          }
+        }
+        return py::make_tuple(rows_array(positions), rows_array(ends));
+      },
+      py::arg("position"), py::arg("directions"), py::arg("t"),
+      "flow for many directions (an (N, 3) array) from one position, t one number or one per direction; "
+      "returns ((N, 3) end positions, (N, 3) end directions).");
+  m.def(
+      "transport",
+      [](const std::array<double, 3>& position, const std::array<double, 3>& direction, double t) {
+        const glm::dmat3 q = sol::transport({vec3(position), vec3(direction)}, t);
+        py::array_t<double> out({py::ssize_t{3}, py::ssize_t{3}});
+        auto o = out.mutable_unchecked<2>();
+        for (py::ssize_t r = 0; r < 3; ++r) {
+          for (py::ssize_t c = 0; c < 3; ++c) o(r, c) = q[static_cast<glm::length_t>(c)][static_cast<glm::length_t>(r)];
+        }
+        return out;
+      },
+      py::arg("position"), py::arg("direction"), py::arg("t"),
+      "The parallel-transport matrix along the geodesic: column i holds the frame components at the end of "
+      "the frame vector E_i at the start, transported.");
+
+  // ---- Distances and connections
+  m.def("distance", [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return sol::distance(vec3(p), vec3(q)); },
+        py::arg("p"), py::arg("q"), "The exact Sol distance from p to q.");
+  m.def(
+      "distances",
+      [](const std::array<double, 3>& p, const Points& points) {
+        const std::vector<glm::dvec3> qs = rows(points, "points");
+        py::array_t<double> out(static_cast<py::ssize_t>(qs.size()));
+        auto o = out.mutable_unchecked<1>();
+        std::vector<double> d(qs.size());
+        {
+          py::gil_scoped_release release;
+          for (std::size_t i = 0; i < qs.size(); ++i) d[i] = sol::distance(vec3(p), qs[i]);
+        }
+        for (std::size_t i = 0; i < d.size(); ++i) o(static_cast<py::ssize_t>(i)) = d[i];
+        return out;
+      },
+      py::arg("p"), py::arg("points"), "The distances from p to each row of an (N, 3) array.");
+  m.def("minimising_geodesics",
+        [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return connections(sol::minimising_geodesics(vec3(p), vec3(q))); },
+        py::arg("p"), py::arg("q"),
+        "The shortest geodesics from p to q (one, or two on the cut locus) as a list of (unit direction at p, length).");
+  m.def("geodesics_between",
+        [](const std::array<double, 3>& p, const std::array<double, 3>& q, double max_length) {
+          return connections(sol::geodesics_between(vec3(p), vec3(q), max_length));
+        },
+        py::arg("p"), py::arg("q"), py::arg("max_length"),
+        "Every geodesic from p to q of length up to max_length, shortest first, as (unit direction at p, length).");
+  m.def("sphere_area_density",
+        [](const std::array<double, 3>& direction, double t) { return sol::sphere_area_density(vec3(direction), t); },
+        py::arg("direction"), py::arg("t"),
+        "J(v, t): the area of the geodesic sphere of radius t per unit solid angle at the direction (docs/lighting.md).");
+
+  // ---- The lattice
+  py::class_<sol::Lattice>(m, "Lattice", "The lattice Γ of the compact quotient Γ\\Sol")
+      .def_static("golden", &sol::Lattice::golden, "The golden lattice (the renderer's quotient).")
+      .def_property_readonly("height", &sol::Lattice::height, "The height of the fundamental domain D.")
+      .def(
+          "element", [](const sol::Lattice& l, long long a, long long b, long long c) { return array(l.element(a, b, c)); },
+          py::arg("a"), py::arg("b"), py::arg("c"), "The group element γ1^a γ2^b γ3^c as a point.")
+      .def("contains", [](const sol::Lattice& l, const std::array<double, 3>& p) { return l.contains(vec3(p)); }, py::arg("p"),
+           "Whether p lies in the fundamental domain D.")
+      .def(
+          "teleport",
+          [](const sol::Lattice& l, const std::array<double, 3>& p) {
+            const sol::Teleport t = l.teleport(vec3(p));
+            const sol::LatticeWord w = l.word_of(t.element);
+            return py::make_tuple(array(t.point), py::make_tuple(w.a, w.b, w.c));
+          },
+          py::arg("p"), "The point of D equivalent to p and the word (a, b, c) of the element taking p there.");
+
+  // ---- Scenes and the CPU renderer
+  py::class_<sol::Scene>(m, "Scene", "A scene: camera, objects, lights (docs/scene-format.md)")
+      .def("to_json", [](const sol::Scene& s) { return sol::to_json(s); }, "The scene as JSON text.")
+      .def_property_readonly("camera_position", [](const sol::Scene& s) { return array(s.camera.position); })
+      .def_property_readonly("object_count", [](const sol::Scene& s) { return s.objects.size(); });
+  m.def("preset_names", &sol::preset_names, "The names of the built-in scenes.");
+  m.def("preset_scene", [](const std::string& name) { return sol::preset_scene(name); }, py::arg("name"),
+        "A built-in scene by name.");
+  m.def("load_scene", &sol::load_scene, py::arg("path"), "A scene file.");
+  m.def("parse_scene", [](const std::string& text) { return sol::parse_scene(text); }, py::arg("text"),
+        "A scene from JSON text.");
+  m.def(
+      "render_cpu",
+      [](const sol::Scene& scene, int width, int height, int samples, unsigned threads) {
+        sol::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.samples = samples;
+        settings.threads = threads;
+        sol::RenderResult r;
+        {
+          py::gil_scoped_release release;
+          r = sol::render_cpu(scene, settings);
+        }
+        std::vector<float> point(3 * r.px.size());
+        for (std::size_t i = 0; i < r.px.size(); ++i) {
+          point[3 * i] = r.px[i];
+          point[3 * i + 1] = r.py[i];
+          point[3 * i + 2] = r.pz[i];
+        }
+        py::dict out;
+        out["rgba"] = image(r.rgba, r.height, r.width, 4);
+        out["object"] = image(r.object, r.height, r.width, 1);
+        out["distance"] = image(r.distance, r.height, r.width, 1);
+        out["point"] = image(point, r.height, r.width, 3);
+        out["steps"] = image(r.steps, r.height, r.width, 1);
+        return out;
+      },
+      py::arg("scene"), py::arg("width") = 256, py::arg("height") = 192, py::arg("samples") = 1, py::arg("threads") = 0,
+      "Renders the scene on the CPU; returns a dict of float32 arrays: rgba (H, W, 4, linear), object (H, W; "
+      "0 = no hit, k = k-th object), distance (H, W), point (H, W, 3; world coordinates) and steps (H, W).");
+}

@@ -1,0 +1,133 @@
+"""Tests of the Python module sol against the C++ programs (solgeodesic,
+solrender) and libsol's own identities. Run by ctest (python.pytest), which
+puts the built module on PYTHONPATH and names the programs in SOLGEODESIC
+and SOLRENDER."""
+import math
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+import pytest
+
+import sol
+
+
+def test_group_law_and_inverse():
+    p, q = (0.3, -1.2, 0.7), (2.0, 0.5, -0.4)
+    # (x1, y1, z1) * (x2, y2, z2) = (x1 + e^{z1} x2, y1 + e^{-z1} y2, z1 + z2), written out here.
+    expected = (0.3 + math.exp(0.7) * 2.0, -1.2 + math.exp(-0.7) * 0.5, 0.3)
+    assert np.allclose(sol.multiply(p, q), expected, rtol=0, atol=1e-15)
+    assert np.allclose(sol.multiply(p, sol.inverse(p)), (0, 0, 0), atol=1e-15)
+
+
+def solgeodesic_end(start, direction, length):
+    """The end of the geodesic as the C++ program solgeodesic prints it (8 decimals)."""
+    out = subprocess.run([os.environ["SOLGEODESIC"], "--from", *map(str, start), "--direction", *map(str, direction),
+                          "--length", str(length), "--samples", "2"], check=True, capture_output=True, text=True).stdout
+    rows = [line.split() for line in out.splitlines() if line.strip() and not line.startswith("#")]
+    last = [float(v) for v in rows[-1]]
+    return np.array(last[1:4]), np.array(last[4:7])
+
+
+@pytest.mark.parametrize("direction,length", [((1, 0, 0), 2.0), ((0.3, -0.5, 0.8), 4.5), ((1, 1, 0.01), 7.0)])
+def test_flow_matches_solgeodesic(direction, length):
+    start = (0.2, -0.1, 0.3)
+    position, tangent = sol.flow(start, direction, length)
+    cpp_position, cpp_tangent = solgeodesic_end(start, direction, length)
+    # solgeodesic prints positions to 8 decimals (relative to their size) and directions to 6.
+    assert np.allclose(position, cpp_position, rtol=1e-7, atol=1e-8)
+    assert np.allclose(tangent, cpp_tangent, atol=1e-6)
+    assert abs(np.linalg.norm(tangent) - 1.0) < 1e-12
+
+
+def test_vectorised_flow_and_distance_equal_one_at_a_time():
+    rng = np.random.default_rng(5)
+    directions = rng.normal(size=(20, 3))
+    lengths = rng.uniform(0.1, 3.0, size=20)
+    start = (0.1, 0.2, -0.3)
+    ends, tangents = sol.flow_many(start, directions, lengths)
+    for i in range(20):
+        p, u = sol.flow(start, directions[i], lengths[i])
+        assert np.array_equal(ends[i], p) and np.array_equal(tangents[i], u)
+    same_length, _ = sol.flow_many(start, directions, 1.5)
+    assert np.array_equal(same_length[3], sol.flow(start, directions[3], 1.5)[0])
+    d = sol.distances(start, ends)
+    for i in range(20):
+        assert d[i] == sol.distance(start, ends[i])
+        # The distance never exceeds the length of a geodesic that reaches the point.
+        assert d[i] <= lengths[i] + 1e-9
+
+
+def test_connections_reach_their_targets():
+    p, q = (0.0, 0.0, 0.0), (1.5, 0.8, -0.4)
+    shortest = sol.minimising_geodesics(p, q)
+    assert len(shortest) >= 1
+    direction, length = shortest[0]
+    assert length == pytest.approx(sol.distance(p, q), rel=1e-12)
+    assert np.allclose(sol.flow(p, direction, length)[0], q, atol=1e-9)
+    longer = sol.geodesics_between(p, q, length + 2.0)
+    assert len(longer) >= len(shortest)
+    for d, t in longer:
+        assert np.allclose(sol.flow(p, d, t)[0], q, atol=1e-8)
+
+
+def test_transport_is_orthogonal_and_carries_the_tangent():
+    q = sol.transport((0, 0, 0), (0.4, 0.5, 0.6), 2.0)
+    assert np.allclose(q @ q.T, np.eye(3), atol=1e-10)
+    u0 = np.array([0.4, 0.5, 0.6]) / np.linalg.norm([0.4, 0.5, 0.6])
+    assert np.allclose(q @ u0, sol.flow((0, 0, 0), u0, 2.0)[1], atol=1e-10)
+
+
+def test_lattice_teleport():
+    lattice = sol.Lattice.golden()
+    point, (a, b, c) = lattice.teleport((5.0, -3.0, 2.2))
+    assert lattice.contains(point)
+    assert np.allclose(sol.multiply(lattice.element(a, b, c), (5.0, -3.0, 2.2)), point, atol=1e-9)
+    assert lattice.height == pytest.approx(2 * math.log((1 + math.sqrt(5)) / 2), rel=1e-15)
+
+
+def test_spreading_along_the_z_axis():
+    assert sol.sphere_area_density((0, 0, 1), 2.0) == pytest.approx(math.sinh(2.0) ** 2, rel=1e-10)
+
+
+def test_scenes_round_trip():
+    assert "lattice-balls" in sol.preset_names()
+    scene = sol.preset_scene("sandwich")
+    again = sol.parse_scene(scene.to_json())
+    assert again.to_json() == scene.to_json()
+    assert scene.object_count == 2
+
+
+def srgb(linear):
+    linear = np.clip(linear, 0.0, 1.0)
+    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * np.power(linear, 1 / 2.4) - 0.055)
+
+
+@pytest.mark.skipif("SOLRENDER" not in os.environ, reason="solrender not built")
+def test_render_matches_solrender():
+    import matplotlib.image
+    result = sol.render_cpu(sol.preset_scene("sandwich"), 32, 24)
+    assert result["rgba"].shape == (24, 32, 4) and result["point"].shape == (24, 32, 3)
+    assert np.isfinite(result["rgba"]).all()
+    assert (result["object"] > 0).any()
+    with tempfile.TemporaryDirectory() as tmp:
+        png = os.path.join(tmp, "sandwich.png")
+        subprocess.run([os.environ["SOLRENDER"], "--device", "cpu", "--scene", "sandwich", "--width", "32", "--height",
+                        "24", "-o", png], check=True, capture_output=True)
+        written = matplotlib.image.imread(png)[:, :, :3]
+    # solrender's PNG is the same render sRGB-encoded to 8 bits: within rounding (half of 1/255, and a little).
+    assert np.abs(srgb(result["rgba"][:, :, :3]) - written).max() < 0.6 / 255
+
+
+def test_bad_arguments_raise_value_errors():
+    with pytest.raises(ValueError, match="direction"):
+        sol.flow((0, 0, 0), (0, 0, 0), 1.0)
+    with pytest.raises(ValueError, match="unknown preset 'tube'"):
+        sol.preset_scene("tube")
+    with pytest.raises(ValueError, match="shape"):
+        sol.distances((0, 0, 0), np.zeros((4, 2)))
+    with pytest.raises(ValueError):
+        sol.render_cpu(sol.preset_scene("plane"), 0, 10)
+    with pytest.raises(ValueError):
+        sol.parse_scene('{"objects": [{"type": "ball", "radius": -1}]}')
