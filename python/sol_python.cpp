@@ -171,6 +171,22 @@ PYBIND11_MODULE(sol, m) {
         py::arg("direction"), py::arg("t"),
         "J(v, t): the area of the geodesic sphere of radius t per unit solid angle at the direction (docs/lighting.md).");
 
+  // ---- Shapes
+  m.def(
+      "geodesic_sphere",
+      [](const std::array<double, 3>& center, double radius, int subdivisions) {
+        const sol::Mesh mesh = sol::geodesic_sphere(vec3(center), radius, subdivisions);
+        py::array_t<int> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
+        auto t = triangles.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+          for (py::ssize_t c = 0; c < 3; ++c) t(static_cast<py::ssize_t>(i), c) = mesh.triangles[i][static_cast<std::size_t>(c)];
+        }
+        return py::make_tuple(rows_array(mesh.vertices), triangles);
+      },
+      py::arg("center"), py::arg("radius"), py::arg("subdivisions") = 16,
+      "A closed, outward-oriented triangle mesh of the geodesic sphere about center (radius below sqrt(2) pi): "
+      "((N, 3) vertices in Sol coordinates, (M, 3) vertex indices).");
+
   // ---- The lattice
   py::class_<sol::Lattice>(m, "Lattice", "The lattice Γ of the compact quotient Γ\\Sol")
       .def_static("golden", &sol::Lattice::golden, "The golden lattice (the renderer's quotient).")

@@ -91,6 +91,14 @@ def test_spreading_along_the_z_axis():
     assert sol.sphere_area_density((0, 0, 1), 2.0) == pytest.approx(math.sinh(2.0) ** 2, rel=1e-10)
 
 
+def test_geodesic_sphere_vertices_at_the_radius():
+    vertices, triangles = sol.geodesic_sphere((0.2, 0.1, -0.3), 2.0, 4)
+    assert vertices.shape == (4 * 16 + 2, 3) and triangles.shape == (8 * 16, 3)
+    assert np.allclose(sol.distances((0.2, 0.1, -0.3), vertices), 2.0, atol=1e-9)
+    with pytest.raises(NotImplementedError, match="cut locus"):
+        sol.geodesic_sphere((0, 0, 0), 5.0)
+
+
 def test_scenes_round_trip():
     assert "lattice-balls" in sol.preset_names()
     scene = sol.preset_scene("sandwich")

@@ -19,5 +19,6 @@
 #include "sol/render.hpp"
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"
+#include "sol/shapes.hpp"
 #include "sol/spreading.hpp"
 #include "sol/version.hpp"
