@@ -23,6 +23,7 @@ packages=(
   parallel              # the film test: frames shard over GNU parallel jobs (docs/films.md)
   ffmpeg                # solrender --video (films) and its test
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module sol and its tests
+  libassimp-dev         # solshape: meshes to PLY, OBJ and STL
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 missing=()
