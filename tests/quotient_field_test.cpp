@@ -7,6 +7,7 @@
 // corners.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <utility>
@@ -222,5 +223,39 @@ TEST(QuotientField, MarchAgreesWithTheSlowMarchButAtGrazingRays) {
       EXPECT_LE(grazes, w * h / 100) << name;
       EXPECT_LT(worst, 1e-3) << name;  // both stop within hit_epsilon of the same surface
     }
+  }
+}
+
+// The kernels read a cell's candidates up to the first empty slot (one
+// distance per candidate rather than kFieldCandidates per step), so every
+// cell's word must hold its candidates in the lowest bytes and nothing after
+// the first empty slot; read here from the kernel's buffer itself.
+TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
+  namespace k = sol::kernel;
+  for (const char* name : {"lattice-balls", "lattice-pillars"}) {
+    const std::vector<sol::MarchObject> listed = sol::quotient_images(sol::preset_scene(name));
+    const sol::QuotientField field(listed);
+    const std::vector<std::uint32_t>& words = field.words();
+    const std::size_t nodes = static_cast<std::size_t>(k::kFieldLayers + 1) * (k::kFieldCells + 1) * (k::kFieldCells + 1);
+    const std::size_t first = 2 * static_cast<std::size_t>(k::kFieldLayers) + nodes;
+    ASSERT_EQ(words.size(), first + static_cast<std::size_t>(k::kFieldLayers) * k::kFieldCells * k::kFieldCells);
+    int several = 0;
+    for (std::size_t c = first; c < words.size(); ++c) {
+      if (words[c] == k::kFieldAllImages) continue;
+      int held = 0;
+      bool ended = false;
+      for (int s = 0; s < k::kFieldCandidates; ++s) {
+        const std::uint32_t slot = (words[c] >> (8 * s)) & 255u;
+        if (slot == static_cast<std::uint32_t>(k::kFieldEmpty)) {
+          ended = true;
+          continue;
+        }
+        ASSERT_FALSE(ended) << name << ": candidate after an empty slot in word " << c - first;
+        ASSERT_LT(slot, listed.size()) << name;
+        ++held;
+      }
+      several += held >= 2 ? 1 : 0;
+    }
+    EXPECT_GT(several, 0) << name;  // the order matters somewhere
   }
 }

@@ -436,7 +436,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         float nearest = 1e30, nearest_hit = 1e30;
         for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
           const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-          if (i == kFieldEmpty) continue;
+          if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
           const Image m = images[i];
           float d = object_distance(int(m.info.x), p, m.geometry, m.heading.xy, m.info.y);
           if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
@@ -744,7 +744,7 @@ void main() {
         int second_i = -1;
         for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
           const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-          if (i == kFieldEmpty) continue;
+          if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
           const Image m = images[i];
           const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
           if (d < nearest) {

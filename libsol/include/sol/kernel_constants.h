@@ -38,8 +38,10 @@ SOL_CONSTANT(int, kFieldLayers, 32);
 /// Where the field is below this, the march evaluates the cell's candidate
 /// images instead: every image whose bound can be below it in the cell.
 SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
-/// Candidate images per cell, 8 bits each in one word; kFieldEmpty marks an
-/// unused slot, kFieldAllImages a cell with more candidates (every image is evaluated there).
+/// Candidate images per cell, 8 bits each in one word, filling the slots
+/// from the lowest byte (the kernel stops at the first empty one);
+/// kFieldEmpty marks an unused slot, kFieldAllImages a cell with more
+/// candidates (every image is evaluated there).
 SOL_CONSTANT(int, kFieldCandidates, 4);
 SOL_CONSTANT(int, kFieldEmpty, 255);
 SOL_CONSTANT(uint, kFieldAllImages, 0xFFFFFFFEu);
