@@ -184,8 +184,34 @@ PYBIND11_MODULE(sol, m) {
         return py::make_tuple(rows_array(mesh.vertices), triangles);
       },
       py::arg("center"), py::arg("radius"), py::arg("subdivisions") = 16,
-      "A closed, outward-oriented triangle mesh of the geodesic sphere about center (radius below sqrt(2) pi): "
-      "((N, 3) vertices in Sol coordinates, (M, 3) vertex indices).");
+      "A closed, outward-oriented triangle mesh of the geodesic sphere about center (radius up to 6; from sqrt(2) pi "
+      "on with its creases on the cut locus): ((N, 3) vertices in Sol coordinates, (M, 3) vertex indices).");
+  m.def(
+      "cut_time", [](const std::array<double, 3>& direction) { return sol::cut_time(vec3(direction)); }, py::arg("direction"),
+      "Where the geodesic from the origin with this direction stops minimising: its z-period (inf for the planes' "
+      "and the vertical geodesics).");
+  m.def(
+      "geodesic_polylines",
+      [](const std::array<double, 3>& from, const Points& directions, double length, int segments) {
+        py::list out;
+        for (const auto& line : sol::geodesic_polylines(vec3(from), rows(directions, "directions"), length, segments)) {
+          out.append(rows_array(line));
+        }
+        return out;
+      },
+      py::arg("start"), py::arg("directions"), py::arg("length"), py::arg("segments") = 100,
+      "Geodesics from start along each direction (an (N, 3) array or one (3,)) to arc length `length`: a list of (segments + 1, 3) "
+      "arrays of points evenly spaced in arc length.");
+  m.def(
+      "cut_locus_curves",
+      [](const std::array<double, 3>& center, const std::vector<double>& radii, int samples) {
+        py::list out;
+        for (const auto& curve : sol::cut_locus_curves(vec3(center), radii, samples)) out.append(rows_array(curve));
+        return out;
+      },
+      py::arg("center"), py::arg("radii"), py::arg("samples") = 64,
+      "The cut locus of center where it meets the spheres of the given radii (in (sqrt(2) pi, 6]): four (samples, 3) "
+      "arcs per radius, each point with two minimising geodesics.");
 
   // ---- The lattice
   py::class_<sol::Lattice>(m, "Lattice", "The lattice Γ of the compact quotient Γ\\Sol")

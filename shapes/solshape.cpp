@@ -2,6 +2,8 @@
 // Blender, MeshLab or a 3D printer (docs/shapes.md).
 //
 //   solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S] -o FILE.ply|.obj|.stl
+//   solshape geodesics [--from X,Y,Z] --directions N --length L [--segments S] -o FILE.ply|.obj
+//   solshape cut-locus [--center X,Y,Z] --radii R1,R2,... [--samples S] -o FILE.ply|.obj
 //
 // The meshes go through Assimp (Debian: libassimp-dev), which writes PLY,
 // OBJ and (binary) STL from one in-memory scene; the file appears only when
@@ -14,6 +16,9 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <numbers>
+#include <vector>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -69,6 +74,124 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
   }
 }
 
+// Writes polylines as line segments (2-index faces: PLY faces of two
+// vertices, OBJ `l` lines) through Assimp. STL has no lines.
+void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const std::string& format, const std::string& path) {
+  aiScene scene;
+  scene.mRootNode = new aiNode();
+  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene.mNumMaterials = 1;
+  scene.mMeshes = new aiMesh*[1]{new aiMesh()};
+  scene.mNumMeshes = 1;
+  scene.mRootNode->mMeshes = new unsigned int[1]{0};
+  scene.mRootNode->mNumMeshes = 1;
+  aiMesh& m = *scene.mMeshes[0];
+  m.mMaterialIndex = 0;
+  m.mPrimitiveTypes = aiPrimitiveType_LINE;
+  std::size_t points = 0, segments = 0;
+  for (const auto& line : lines) {
+    points += line.size();
+    segments += line.empty() ? 0 : line.size() - 1;
+  }
+  m.mNumVertices = static_cast<unsigned int>(points);
+  m.mVertices = new aiVector3D[points];
+  m.mNumFaces = static_cast<unsigned int>(segments);
+  m.mFaces = new aiFace[segments];
+  std::size_t v = 0, f = 0;
+  for (const auto& line : lines) {
+    for (std::size_t i = 0; i < line.size(); ++i, ++v) {
+      m.mVertices[v] = aiVector3D(static_cast<ai_real>(line[i].x), static_cast<ai_real>(line[i].y), static_cast<ai_real>(line[i].z));
+      if (i == 0) continue;
+      aiFace& face = m.mFaces[f++];
+      face.mNumIndices = 2;
+      face.mIndices = new unsigned int[2]{static_cast<unsigned int>(v - 1), static_cast<unsigned int>(v)};
+    }
+  }
+  Assimp::Exporter exporter;
+  if (exporter.Export(&scene, format, path) != AI_SUCCESS) {
+    throw std::runtime_error(std::string("cannot write the curves: ") + exporter.GetErrorString());
+  }
+}
+
+// The output checks shared by the curve commands: a known line format.
+std::string curve_format(const sol::cli::CommandLine& cl, const std::string& output) {
+  if (output.empty()) cl.fail("no output file: give -o FILE.ply|.obj");
+  const std::string format = format_of(output);
+  if (format.empty() || format == "stlb") cl.fail(output + ": unknown curve format (the name must end in .ply or .obj; STL holds no lines)");
+  if (std::filesystem::is_directory(output)) cl.fail(output + ": cannot write: it is a directory");
+  return format;
+}
+
+// N directions spread evenly over the unit sphere (the Fibonacci lattice:
+// equal areas in height, the golden angle around).
+std::vector<glm::dvec3> spread_directions(int n) {
+  std::vector<glm::dvec3> out;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double c = 1.0 - (2.0 * i + 1.0) / n, ring = std::sqrt(std::max(0.0, 1.0 - c * c));
+    out.push_back({ring * std::cos(golden * i), ring * std::sin(golden * i), c});
+  }
+  return out;
+}
+
+int geodesics(int argc, char** argv) {
+  sol::cli::CommandLine cl("solshape geodesics", "--directions N --length L [options] -o FILE.ply|.obj",
+                           "Writes geodesics from a point as polylines in Sol coordinates (the paper's Fig. 2).");
+  std::optional<glm::dvec3> from;
+  int directions = 0, segments = 200;
+  double length = 0.0;
+  std::string output;
+  cl.add_vec3("--from", from, "X,Y,Z", "where the geodesics start (default 0,0,0)");
+  cl.add_integer("--directions", directions, 1, 100000, "N", "how many: N directions spread evenly over the sphere (Fibonacci lattice)");
+  cl.add_number("--length", length, "L", "arc length of each geodesic (Sol units)", sol::cli::positive());
+  cl.add_integer("--segments", segments, 1, 100000, "S", "segments per geodesic, evenly spaced in arc length (default 200)");
+  cl.add_text("-o,--output", output, "FILE", "the curves: .ply (ASCII; segments as two-vertex faces) or .obj (l lines)");
+  cl.set_footer("Points by the closed-form flow (sol::geodesic_polylines). docs/shapes.md.");
+  cl.parse(argc, argv);
+  if (directions == 0) cl.fail("--directions N is required");
+  if (length == 0.0) cl.fail("--length L is required");
+  const std::string format = curve_format(cl, output);
+  const auto lines = sol::geodesic_polylines(from.value_or(glm::dvec3(0.0)), spread_directions(directions), length, segments);
+  sol::programs::OutputFile file(output);
+  write_polylines(lines, format, file.path());
+  file.commit();
+  std::fprintf(stderr, "solshape: %d geodesics of length %g -> %s\n", directions, length, output.c_str());
+  return 0;
+}
+
+int cut_locus(int argc, char** argv) {
+  sol::cli::CommandLine cl("solshape cut-locus", "--radii R1,R2,... [options] -o FILE.ply|.obj",
+                           "Writes the cut locus of a point as curves: where it meets the geodesic spheres of the given radii "
+                           "(their creases), four arcs per radius.");
+  std::optional<glm::dvec3> center;
+  std::vector<double> radii;
+  int samples = 64;
+  std::string output;
+  cl.add_vec3("--center", center, "X,Y,Z", "the point (default 0,0,0)");
+  cl.add_value("--radii", "R1,R2,...", "radii in (sqrt(2) pi = 4.4429, 6]: one set of arcs each", [&](const std::string& text) {
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      const std::size_t comma = std::min(text.find(',', start), text.size());
+      radii.push_back(cl.checked_number(text.substr(start, comma - start), "--radii",
+                                        sol::cli::CommandLine::Condition{[](double r) { return r > sol::kSmoothSphereRadius && r <= sol::kMaxMeshedSphereRadius; },
+                                                                         "in (sqrt(2) pi = 4.4429, 6]"}));
+      start = comma + 1;
+    }
+  });
+  cl.add_integer("--samples", samples, 2, 100000, "S", "points per arc (default 64)");
+  cl.add_text("-o,--output", output, "FILE", "the curves: .ply (ASCII; segments as two-vertex faces) or .obj (l lines)");
+  cl.set_footer("Every point has two minimising geodesics from the centre (sol::cut_locus_curves). docs/shapes.md.");
+  cl.parse(argc, argv);
+  if (radii.empty()) cl.fail("--radii R1,R2,... is required");
+  const std::string format = curve_format(cl, output);
+  const auto curves = sol::cut_locus_curves(center.value_or(glm::dvec3(0.0)), radii, samples);
+  sol::programs::OutputFile file(output);
+  write_polylines(curves, format, file.path());
+  file.commit();
+  std::fprintf(stderr, "solshape: cut locus at %zu radii, %zu arcs -> %s\n", radii.size(), curves.size(), output.c_str());
+  return 0;
+}
+
 int sphere(int argc, char** argv) {
   sol::cli::CommandLine cl("solshape sphere", "--radius R [options] -o FILE.ply|.obj|.stl",
                            "Writes a mesh of the geodesic sphere {p : d(center, p) = R} in Sol coordinates.");
@@ -78,13 +201,14 @@ int sphere(int argc, char** argv) {
   std::optional<double> size_mm;
   std::string output;
   cl.add_number("--radius", radius, "R",
-                "the sphere's radius (Sol units), in (0, sqrt(2) pi = 4.4429): beyond, the sphere meets the cut "
-                "locus of its centre and has creases, not built yet",
-                sol::cli::CommandLine::Condition{[](double r) { return r > 0.0 && r < sol::kSmoothSphereRadius; },
-                                                 "in (0, sqrt(2) pi = 4.4429)"});
+                "the sphere's radius (Sol units), in (0, 6]; from sqrt(2) pi = 4.4429 on it meets the cut locus of "
+                "its centre and has creases there",
+                sol::cli::CommandLine::Condition{[](double r) { return r > 0.0 && r <= sol::kMaxMeshedSphereRadius; },
+                                                 "in (0, 6]"});
   cl.add_vec3("--center", center, "X,Y,Z", "the centre (default 0,0,0)");
   cl.add_integer("--resolution", resolution, 1, 512, "N",
-                 "each octant of directions in N^2 triangles: 8 N^2 triangles, 4 N^2 + 2 vertices (default 32)");
+                 "each octant of directions in N^2 triangles: 8 N^2 triangles, 4 N^2 + 2 vertices, fewer beyond "
+                 "sqrt(2) pi; at least 16 above radius 5.3 (default 32)");
   cl.add_number("--size-mm", size_mm, "S",
                 "scale the mesh so that its largest extent is S millimetres (STL's unit, for printing); without "
                 "it, coordinates are Sol units",
@@ -122,7 +246,9 @@ int main(int argc, char** argv) {
   sol::programs::install_signal_cleanup();
   const std::string usage =
       "usage: solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S] -o FILE.ply|.obj|.stl\n"
-      "Writes Sol's shapes as meshes (solshape sphere --help for the options).\n";
+      "       solshape geodesics [--from X,Y,Z] --directions N --length L [--segments S] -o FILE.ply|.obj\n"
+      "       solshape cut-locus [--center X,Y,Z] --radii R1,R2,... [--samples S] -o FILE.ply|.obj\n"
+      "Writes Sol's shapes as meshes and curves (solshape COMMAND --help for the options).\n";
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(usage.c_str(), argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
@@ -130,7 +256,9 @@ int main(int argc, char** argv) {
   const std::string shape = argv[1];
   try {
     if (shape == "sphere") return sphere(argc - 1, argv + 1);
-    std::fprintf(stderr, "solshape: unknown shape '%s' (known: sphere)\n", shape.c_str());
+    if (shape == "geodesics") return geodesics(argc - 1, argv + 1);
+    if (shape == "cut-locus") return cut_locus(argc - 1, argv + 1);
+    std::fprintf(stderr, "solshape: unknown shape '%s' (known: sphere, geodesics, cut-locus)\n", shape.c_str());
     return 2;
   } catch (const sol::InvalidArgument& e) {
     std::fprintf(stderr, "solshape: %s\n", e.what());

@@ -1,10 +1,14 @@
 // sol::geodesic_sphere: vertices at the radius (exact distances), a closed
 // outward-oriented 2-manifold, Sol's symmetries, left invariance, the
-// Euclidean limit.
+// Euclidean limit; beyond √2π its creases on the cut locus. sol::cut_time,
+// sol::cut_locus_curves against the connection solver's minimisers,
+// sol::geodesic_polylines against the integrated flow. (No self-
+// intersection: tests/shapes_mesh_test.cpp, with CGAL.)
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
 #include <utility>
 
@@ -28,8 +32,8 @@ double signed_volume(const sol::Mesh& m, const dvec3& center) {
 
 TEST(GeodesicSphere, VerticesLieAtTheRadius) {
   const dvec3 center(0.3, -0.4, 0.2);
-  for (double r : {0.5, 2.0, 4.0, 4.4}) {
-    const sol::Mesh m = sol::geodesic_sphere(center, r, 6);
+  for (double r : {0.5, 2.0, 4.0, 4.4, 4.5, 5.0, 6.0}) {
+    const sol::Mesh m = sol::geodesic_sphere(center, r, r > sol::kCoarseSphereRadius ? 16 : 6);
     double worst = 0.0;
     for (const dvec3& p : m.vertices) worst = std::max(worst, std::abs(sol::distance(center, p) - r));
     // The closed form's vertices against the solver's distance: both ~1e-12
@@ -38,29 +42,86 @@ TEST(GeodesicSphere, VerticesLieAtTheRadius) {
   }
 }
 
+// Every edge in exactly two triangles, once each way (consistent
+// orientation); the Euler characteristic V - E + F.
+long long check_closed_oriented(const sol::Mesh& m) {
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : m.triangles) {
+    for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
+  }
+  std::set<std::pair<int, int>> edges;
+  for (const auto& [e, count] : directed) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << "edge " << e.first << "-" << e.second << " has one face";
+    edges.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
+  }
+  std::vector<char> used(m.vertices.size(), 0);
+  for (const auto& t : m.triangles) {
+    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
+  }
+  EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](char u) { return u != 0; })) << "a vertex in no triangle";
+  return static_cast<long long>(m.vertices.size()) - static_cast<long long>(edges.size()) +
+         static_cast<long long>(m.triangles.size());
+}
+
 TEST(GeodesicSphere, ClosedOutwardTwoManifold) {
+  const dvec3 c(0.1, 0.2, -0.3);
   for (const int n : {1, 3, 8}) {
-    const sol::Mesh m = sol::geodesic_sphere(dvec3(0.1, 0.2, -0.3), 3.0, n);
+    const sol::Mesh m = sol::geodesic_sphere(c, 3.0, n);
     EXPECT_EQ(m.vertices.size(), static_cast<std::size_t>(4 * n * n + 2));
     EXPECT_EQ(m.triangles.size(), static_cast<std::size_t>(8 * n * n));
-    // Every edge in exactly two triangles, once each way (consistent orientation).
-    std::map<std::pair<int, int>, int> directed;
-    for (const auto& t : m.triangles) {
-      for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
-    }
-    std::set<std::pair<int, int>> edges;
-    for (const auto& [e, count] : directed) {
-      EXPECT_EQ(count, 1);
-      EXPECT_EQ(directed.count({e.second, e.first}), 1u) << "edge " << e.first << "-" << e.second << " has one face";
-      edges.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
-    }
-    const long long euler = static_cast<long long>(m.vertices.size()) - static_cast<long long>(edges.size()) +
-                            static_cast<long long>(m.triangles.size());
-    EXPECT_EQ(euler, 2);
-    EXPECT_GT(signed_volume(m, dvec3(0.1, 0.2, -0.3)), 0.0);  // outward
+    EXPECT_EQ(check_closed_oriented(m), 2);
+    EXPECT_GT(signed_volume(m, c), 0.0);  // outward
     // No degenerate triangles.
     for (const auto& t : m.triangles) {
       EXPECT_GT(glm::length(glm::cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]])), 1e-12);
+    }
+  }
+  // Beyond √2π: clipped at the cut locus and zipped, still a closed
+  // outward sphere without degenerate triangles, at radii where the discs
+  // cut away are smaller than a triangle (4.45) up to the largest.
+  for (const double r : {4.45, 4.5, 5.0, 5.5, 6.0}) {
+    for (const int n : {3, 8, 16, 24}) {
+      if (r > sol::kCoarseSphereRadius && n < sol::kMinCoarseSubdivisions) continue;
+      const sol::Mesh m = sol::geodesic_sphere(c, r, n);
+      EXPECT_EQ(check_closed_oriented(m), 2) << r << " " << n;
+      EXPECT_GT(signed_volume(m, c), 0.0) << r << " " << n;
+      for (const auto& t : m.triangles) {
+        ASSERT_GT(glm::length(glm::cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]])), 1e-12)
+            << r << " " << n;
+      }
+    }
+  }
+}
+
+// The creases: beyond √2π the mesh has vertices on the cut locus of the
+// centre, in the horizontal plane through it (a whole z-period returns z),
+// each reached by two minimising geodesics of length r, mirrors (a, b, ±c)
+// of each other, by the connection solver (an independent Newton search).
+TEST(GeodesicSphere, CreasesLieOnTheCutLocus) {
+  const dvec3 c(0.4, -0.2, 0.3);
+  for (const double r : {4.6, 5.2}) {
+    const sol::Mesh m = sol::geodesic_sphere(c, r, 12);
+    int creased = 0;
+    for (const dvec3& p : m.vertices) {
+      if (std::abs(p.z - c.z) > 1e-9) continue;
+      ++creased;
+      const std::vector<sol::Connection> ways = sol::minimising_geodesics(c, p);
+      ASSERT_EQ(ways.size(), 2u) << p.x << ", " << p.y;
+      for (const sol::Connection& w : ways) EXPECT_NEAR(w.length, r, 1e-8);
+      EXPECT_NEAR(ways[0].direction.x, ways[1].direction.x, 1e-6);
+      EXPECT_NEAR(ways[0].direction.y, ways[1].direction.y, 1e-6);
+      EXPECT_NEAR(ways[0].direction.z, -ways[1].direction.z, 1e-6);
+    }
+    // Four arcs, each with several vertices.
+    EXPECT_GE(creased, 4 * 4) << r;
+  }
+  // Below √2π nothing lies in that plane but where the sphere crosses it
+  // smoothly, with one minimiser.
+  const sol::Mesh smooth = sol::geodesic_sphere(c, 4.0, 12);
+  for (const dvec3& p : smooth.vertices) {
+    if (std::abs(p.z - c.z) < 1e-9) {
+      EXPECT_EQ(sol::minimising_geodesics(c, p).size(), 1u);
     }
   }
 }
@@ -68,24 +129,30 @@ TEST(GeodesicSphere, ClosedOutwardTwoManifold) {
 // Sol's isometries fixing the origin map the sphere's mesh onto itself:
 // (x, y, z) → (−x, y, z), (x, −y, z), (y, x, −z), vertex to vertex.
 TEST(GeodesicSphere, SymmetricUnderSolsIsometries) {
-  const sol::Mesh m = sol::geodesic_sphere(dvec3(0.0), 3.5, 5);
-  auto present = [&](const dvec3& q) {
-    return std::any_of(m.vertices.begin(), m.vertices.end(), [&](const dvec3& p) { return glm::length(p - q) < 1e-9 * (1.0 + glm::length(q)); });
-  };
-  for (const dvec3& p : m.vertices) {
-    EXPECT_TRUE(present({-p.x, p.y, p.z}));
-    EXPECT_TRUE(present({p.x, -p.y, p.z}));
-    EXPECT_TRUE(present({p.y, p.x, -p.z}));
+  for (const double r : {3.5, 5.0}) {
+    const sol::Mesh m = sol::geodesic_sphere(dvec3(0.0), r, 5);
+    auto present = [&](const dvec3& q) {
+      return std::any_of(m.vertices.begin(), m.vertices.end(),
+                         [&](const dvec3& p) { return glm::length(p - q) < 1e-9 * (1.0 + glm::length(q)); });
+    };
+    for (const dvec3& p : m.vertices) {
+      EXPECT_TRUE(present({-p.x, p.y, p.z})) << r;
+      EXPECT_TRUE(present({p.x, -p.y, p.z})) << r;
+      EXPECT_TRUE(present({p.y, p.x, -p.z})) << r;
+    }
   }
 }
 
 // Left invariance: the sphere about c is c times the sphere about the origin.
 TEST(GeodesicSphere, SphereAboutCIsCTimesTheSphereAboutTheOrigin) {
   const dvec3 c(1.5, -2.0, 0.7);
-  const sol::Mesh at_c = sol::geodesic_sphere(c, 2.5, 4), at_0 = sol::geodesic_sphere(dvec3(0.0), 2.5, 4);
-  ASSERT_EQ(at_c.vertices.size(), at_0.vertices.size());
-  for (std::size_t i = 0; i < at_c.vertices.size(); ++i) {
-    EXPECT_LT(glm::length(at_c.vertices[i] - sol::multiply(c, at_0.vertices[i])), 1e-12);
+  for (const double r : {2.5, 5.0}) {
+    const sol::Mesh at_c = sol::geodesic_sphere(c, r, 4), at_0 = sol::geodesic_sphere(dvec3(0.0), r, 4);
+    ASSERT_EQ(at_c.vertices.size(), at_0.vertices.size());
+    ASSERT_EQ(at_c.triangles, at_0.triangles);
+    for (std::size_t i = 0; i < at_c.vertices.size(); ++i) {
+      EXPECT_LT(glm::length(at_c.vertices[i] - sol::multiply(c, at_0.vertices[i])), 1e-11 * (1.0 + glm::length(at_c.vertices[i])));
+    }
   }
 }
 
@@ -104,8 +171,103 @@ TEST(GeodesicSphere, BadInputIsRefused) {
   EXPECT_THROW(sol::geodesic_sphere(dvec3(0.0), std::nan(""), 4), sol::InvalidArgument);
   EXPECT_THROW(sol::geodesic_sphere(dvec3(std::nan(""), 0, 0), 1.0, 4), sol::InvalidArgument);
   EXPECT_THROW(sol::geodesic_sphere(dvec3(0.0), 1.0, 0), sol::InvalidArgument);
-  EXPECT_THROW(sol::geodesic_sphere(dvec3(0.0), 4.5, 4), sol::NotImplemented);
+  EXPECT_THROW(sol::geodesic_sphere(dvec3(0.0), 6.01, 16), sol::InvalidArgument);
+  EXPECT_THROW(sol::geodesic_sphere(dvec3(0.0), 5.5, 8), sol::InvalidArgument);  // too coarse there
+  EXPECT_NO_THROW(sol::geodesic_sphere(dvec3(0.0), 5.5, 16));
   EXPECT_EQ(sol::kSmoothSphereRadius, std::sqrt(2.0) * std::numbers::pi);
+  EXPECT_THROW(sol::cut_time(dvec3(0.0)), sol::InvalidArgument);
+  EXPECT_THROW(sol::cut_time(dvec3(std::nan(""), 1, 0)), sol::InvalidArgument);
+  EXPECT_THROW(sol::geodesic_polylines(dvec3(0.0), {dvec3(0.0)}, 1.0, 4), sol::InvalidArgument);
+  EXPECT_THROW(sol::geodesic_polylines(dvec3(0.0), {dvec3(1, 0, 0)}, 0.0, 4), sol::InvalidArgument);
+  EXPECT_THROW(sol::geodesic_polylines(dvec3(0.0), {dvec3(1, 0, 0)}, 1.0, 0), sol::InvalidArgument);
+  EXPECT_THROW(sol::cut_locus_curves(dvec3(0.0), {4.4}, 8), sol::InvalidArgument);  // no cut locus within 4.4
+  EXPECT_THROW(sol::cut_locus_curves(dvec3(0.0), {5.0}, 1), sol::InvalidArgument);
+}
+
+// The cut time is where a geodesic and its mirror (a, b, -c) meet again
+// (both integrated by Dormand–Prince, not the closed form): at T their ends
+// coincide, before it they differ; the straight lines' limit √2π; the
+// planes' and the vertical's geodesics never come back (∞); the symmetries.
+TEST(CutTime, IsWhereAGeodesicMeetsItsMirror) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g;
+  int tested = 0;
+  while (tested < 40) {
+    dvec3 v = glm::normalize(dvec3(g(rng), g(rng), g(rng)));
+    const double T = sol::cut_time(v);
+    if (!(T < 12.0)) continue;
+    ++tested;
+    const dvec3 mirror(v.x, v.y, -v.z);
+    const dvec3 p = sol::flow({dvec3(0.0), v}, T, sol::Method::DormandPrince).position;
+    const dvec3 q = sol::flow({dvec3(0.0), mirror}, T, sol::Method::DormandPrince).position;
+    EXPECT_LT(glm::length(p - q), 1e-7 * (1.0 + glm::length(p))) << v.x << " " << v.y << " " << v.z;
+    EXPECT_NEAR(p.z, 0.0, 1e-7);
+    if (std::abs(v.z) > 0.05) {
+      const dvec3 p2 = sol::flow({dvec3(0.0), v}, 0.9 * T, sol::Method::DormandPrince).position;
+      const dvec3 q2 = sol::flow({dvec3(0.0), mirror}, 0.9 * T, sol::Method::DormandPrince).position;
+      EXPECT_GT(glm::length(p2 - q2), 1e-3);
+    }
+    EXPECT_EQ(T, sol::cut_time({-v.x, v.y, v.z}));
+    EXPECT_EQ(T, sol::cut_time({v.x, -v.y, -v.z}));
+    EXPECT_EQ(T, sol::cut_time({v.y, v.x, v.z}));
+  }
+  EXPECT_EQ(sol::cut_time(dvec3(1.0, 1.0, 0.0)), sol::kSmoothSphereRadius);
+  EXPECT_NEAR(sol::cut_time(dvec3(1.0, 1.0, 1e-6)), sol::kSmoothSphereRadius, 1e-9);
+  EXPECT_TRUE(std::isinf(sol::cut_time(dvec3(1.0, 0.0, 0.3))));
+  EXPECT_TRUE(std::isinf(sol::cut_time(dvec3(0.0, 0.0, 1.0))));
+  // The least cut time over a grid of directions is the straight lines'.
+  double least = 1e300;
+  for (int i = 0; i <= 60; ++i) {
+    for (int j = 0; j <= 60; ++j) {
+      const double th = std::numbers::pi * i / 60.0, ph = std::numbers::pi / 2.0 * j / 60.0;
+      least = std::min(least, sol::cut_time({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)}));
+    }
+  }
+  EXPECT_GE(least, sol::kSmoothSphereRadius * (1.0 - 1e-12));
+}
+
+// The cut locus curves: four arcs per radius in the plane through the
+// centre, every point with two minimising geodesics of length r (the
+// connection solver), the arcs' ends on the equator of directions.
+TEST(CutLocus, PointsHaveTwoMinimisersOfEqualLength) {
+  const dvec3 c(-0.3, 0.5, 0.2);
+  const std::vector<double> radii = {4.6, 5.5};
+  const auto curves = sol::cut_locus_curves(c, radii, 9);
+  ASSERT_EQ(curves.size(), 8u);
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    ASSERT_EQ(curves[k].size(), 9u);
+    const double r = radii[k / 4];
+    for (const dvec3& p : curves[k]) {
+      EXPECT_NEAR(p.z, c.z, 1e-9);
+      const std::vector<sol::Connection> ways = sol::minimising_geodesics(c, p);
+      ASSERT_FALSE(ways.empty());
+      EXPECT_NEAR(ways[0].length, r, 1e-8);
+      // At the arc's ends (c = 0) the two directions coincide.
+      if (&p != &curves[k].front() && &p != &curves[k].back()) {
+        ASSERT_EQ(ways.size(), 2u) << k;
+        EXPECT_NEAR(ways[1].length, r, 1e-8);
+      }
+    }
+  }
+  // The arcs for a larger radius reach farther from the centre.
+  EXPECT_GT(glm::length(curves[4][4] - c), glm::length(curves[0][4] - c));
+}
+
+// Polylines are the flow's points, evenly spaced in arc length: against
+// Dormand–Prince integration of the geodesic equations.
+TEST(GeodesicPolylines, MatchTheIntegratedFlow) {
+  const dvec3 from(0.2, -0.1, 0.4);
+  const std::vector<dvec3> dirs = {{1, 0, 0}, {0.3, 0.5, 0.8}, {-1, 2, -0.5}, {0, 0, -1}};
+  const auto lines = sol::geodesic_polylines(from, dirs, 3.0, 6);
+  ASSERT_EQ(lines.size(), dirs.size());
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    ASSERT_EQ(lines[k].size(), 7u);
+    EXPECT_EQ(lines[k][0], from);
+    for (int i = 0; i <= 6; ++i) {
+      const dvec3 ref = sol::flow({from, glm::normalize(dirs[k])}, 0.5 * i, sol::Method::DormandPrince).position;
+      EXPECT_LT(glm::length(lines[k][static_cast<std::size_t>(i)] - ref), 1e-8) << k << " " << i;
+    }
+  }
 }
 
 }  // namespace

@@ -1,41 +1,54 @@
 #include "sol/shapes.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <numbers>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
+#include "sol/closed_form.hpp"
 #include "sol/error.hpp"
 #include "sol/geodesic.hpp"
 
 namespace sol {
 
-Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) {
+double cut_time(const glm::dvec3& direction) {
+  const double a = std::abs(direction.x), b = std::abs(direction.y);
+  if (!(glm::length(direction) > 0.0) || !std::isfinite(a + b + direction.z)) {
+    throw InvalidArgument("sol::cut_time: direction must be finite and non-zero");
+  }
+  // The straight lines (1, ±1, 0)/√2 have no z-oscillation to time, but are
+  // the limit of the nearby periods (and conjugate at √2π).
+  const glm::dvec3 u = glm::normalize(direction);
+  if (std::abs(u.x) == std::abs(u.y) && u.z == 0.0) return kSmoothSphereRadius;
+  return ClosedFormGeodesic<double>(u).period();
+}
+
+namespace {
+
+void check_center(const glm::dvec3& center, const char* who) {
   for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(center[i])) throw InvalidArgument("sol::geodesic_sphere: center must be finite");
+    if (!std::isfinite(center[i])) throw InvalidArgument(std::string(who) + ": center must be finite");
   }
-  if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw InvalidArgument("sol::geodesic_sphere: radius must be finite and > 0, got " + std::to_string(radius));
-  }
-  if (radius >= kSmoothSphereRadius) {
-    throw NotImplemented("sol::geodesic_sphere: radius " + std::to_string(radius) +
-                         " reaches the cut locus of the centre (from sqrt(2) pi = 4.4429 on): its creases are not built yet");
-  }
-  if (subdivisions < 1 || subdivisions > 512) {
-    throw InvalidArgument("sol::geodesic_sphere: subdivisions must be in [1, 512], got " + std::to_string(subdivisions));
-  }
-  const int n = subdivisions;
+}
+
+// The unit direction sphere as the octahedron |x| + |y| + |z| = n divided on
+// its integer points and projected: symmetric under every permutation and
+// sign change of the components (so the arithmetic below, written without
+// preferring a component, keeps every symmetry bit for bit). Outward,
+// counter-clockwise triangles.
+Mesh direction_octahedron(int n) {
   Mesh mesh;
-  // Vertices keyed by their integer point w on the octahedron |x| + |y| + |z| = n,
-  // so the faces share their edges' vertices (a closed mesh).
   std::map<std::array<int, 3>, int> index;
   auto vertex = [&](const std::array<int, 3>& w) {
     const auto [it, fresh] = index.emplace(w, static_cast<int>(mesh.vertices.size()));
-    if (fresh) {
-      const glm::dvec3 v = glm::normalize(glm::dvec3(w[0], w[1], w[2]));
-      mesh.vertices.push_back(flow({center, v}, radius).position);
-    }
+    if (fresh) mesh.vertices.push_back(glm::normalize(glm::dvec3(w[0], w[1], w[2])));
     return it->second;
   };
   for (int sx : {1, -1}) {
@@ -58,6 +71,298 @@ Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) 
     }
   }
   return mesh;
+}
+
+// The quadrant's straight direction (sign a, sign b, 0)/√2 (the centre of
+// the region where geodesics stop minimising first).
+glm::dvec3 straight_of(const glm::dvec3& v) {
+  const double h = std::numbers::sqrt2 / 2.0;
+  return {v.x < 0.0 ? -h : h, v.y < 0.0 ? -h : h, 0.0};
+}
+
+// On the great circle from the straight direction s through v, the point at
+// angle ρ from s: cos ρ s + sin ρ u.
+struct Radial {
+  glm::dvec3 s, u;
+  double rho;  // v's angle
+  glm::dvec3 at(double r) const { return std::cos(r) * s + std::sin(r) * u; }
+  // Where the arc leaves s's quadrant (a = 0 or b = 0: a plane direction,
+  // cut_time ∞) or reaches the vertical (at π/2 when u is vertical), the
+  // first of them: cos ρ s_i + sin ρ u_i = 0 at tan ρ = -s_i/u_i.
+  double exit() const {
+    double first = std::numbers::pi / 2.0;
+    for (int i = 0; i < 2; ++i) {
+      if (u[i] * s[i] < 0.0) first = std::min(first, std::atan2(std::abs(s[i]), std::abs(u[i])));
+    }
+    return first;
+  }
+};
+
+Radial radial_of(const glm::dvec3& v) {
+  const glm::dvec3 s = straight_of(v);
+  const glm::dvec3 off = v - glm::dot(v, s) * s;
+  const double len = glm::length(off);
+  return {s, len > 0.0 ? off / len : glm::dvec3(0.0, 0.0, 1.0), std::atan2(len, glm::dot(v, s))};
+}
+
+// The angle ρ in [lo, hi] where cut_time crosses `radius` on a radial arc
+// (cut_time(at(lo)) < radius <= cut_time(at(hi))), by bisection to rounding.
+double radial_crossing(const Radial& arc, double lo, double hi, double radius) {
+  for (int i = 0; i < 80 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cut_time(arc.at(mid)) < radius ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+// The direction where cut_time crosses `radius` on the chord from `in`
+// (cut_time >= radius) to `out` (< radius), projected to the sphere.
+glm::dvec3 chord_crossing(const glm::dvec3& in, const glm::dvec3& out, double radius, double* fraction) {
+  double lo = 0.0, hi = 1.0;  // in at 0, out at 1
+  for (int i = 0; i < 80 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cut_time(glm::normalize((1.0 - mid) * in + mid * out)) >= radius ? lo : hi) = mid;
+  }
+  if (fraction != nullptr) *fraction = lo;
+  return glm::normalize((1.0 - lo) * in + lo * out);
+}
+
+// The direction mesh of the closed ball's boundary beyond √2π: the part
+// V = {v : cut_time(v) >= radius} of `dirs`, clipped on the curve
+// cut_time = radius (vertices within a quarter edge of it moved onto it
+// along their radial arc, so no sliver is left), with each point of that
+// curve identified with its mirror (a, b, -c), which reaches the same point
+// of the cut locus at the same length. Returns the directions (boundary ones
+// with c >= 0) and the triangles.
+Mesh clip_and_zip(Mesh dirs, double radius, int n) {
+  const std::size_t count = dirs.vertices.size();
+  enum State { In, On, Out };
+  std::vector<State> state(count);
+  for (std::size_t i = 0; i < count; ++i) state[i] = cut_time(dirs.vertices[i]) >= radius ? In : Out;
+  // The edges between In and Out, as (in, out) pairs.
+  auto crossing_edges = [&] {
+    std::vector<std::pair<int, int>> edges;
+    for (const auto& t : dirs.triangles) {
+      for (int e = 0; e < 3; ++e) {
+        const int p = t[e], q = t[(e + 1) % 3];
+        if (state[p] == In && state[q] == Out) edges.emplace_back(p, q);
+        if (state[p] == Out && state[q] == In) edges.emplace_back(q, p);
+      }
+    }
+    return edges;
+  };
+  // Snap: a vertex whose edge crossing lies within a quarter of the edge
+  // moves onto the curve along its radial arc (the same rule for every
+  // vertex of a symmetric orbit, so the symmetries stay exact).
+  const double h = std::numbers::pi / (2.0 * n);  // an edge's angle, about
+  std::vector<char> near(count, 0);
+  for (const auto& [p, q] : crossing_edges()) {
+    double f = 0.0;
+    chord_crossing(dirs.vertices[p], dirs.vertices[q], radius, &f);
+    if (f < 0.25) near[p] = 1;
+    if (f > 0.75) near[q] = 1;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!near[i]) continue;
+    const Radial arc = radial_of(dirs.vertices[i]);
+    if (!(arc.rho > 0.0)) continue;  // the disc's centre itself: no arc (and a tiny disc)
+    double lo = 0.0, hi = arc.rho;  // In: the crossing lies between s (√2π < radius) and v
+    if (state[i] == Out) {
+      lo = arc.rho;
+      hi = arc.rho;
+      while (hi < arc.rho + 0.5 * h && cut_time(arc.at(hi)) < radius) hi += 0.125 * h;
+      if (cut_time(arc.at(hi)) < radius) continue;
+    } else if (arc.rho - 0.5 * h > 0.0 && cut_time(arc.at(arc.rho - 0.5 * h)) >= radius) {
+      continue;  // the curve is farther than half an edge along the arc: leave it
+    }
+    const double crossing_at = radial_crossing(arc, lo, hi, radius);
+    if (std::abs(crossing_at - arc.rho) > 0.5 * h) continue;
+    dirs.vertices[i] = arc.at(crossing_at);
+    state[i] = On;
+  }
+  // Clip every triangle to V (Sutherland–Hodgman against cut_time >= radius:
+  // keeps the orientation), sharing the crossing points of shared edges.
+  Mesh out;
+  std::vector<int> kept(count, -1);
+  std::vector<char> boundary;
+  auto keep = [&](int i) {
+    if (kept[i] < 0) {
+      kept[i] = static_cast<int>(out.vertices.size());
+      out.vertices.push_back(dirs.vertices[i]);
+      boundary.push_back(state[i] == On);
+    }
+    return kept[i];
+  };
+  std::map<std::pair<int, int>, int> crossing;
+  auto cross = [&](int in, int outside) {
+    const auto [it, fresh] = crossing.emplace(std::pair(in, outside), static_cast<int>(out.vertices.size()));
+    if (fresh) {
+      out.vertices.push_back(chord_crossing(dirs.vertices[in], dirs.vertices[outside], radius, nullptr));
+      boundary.push_back(1);
+    }
+    return it->second;
+  };
+  std::vector<std::array<int, 3>> clipped;
+  for (const auto& t : dirs.triangles) {
+    int poly[4], m = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int p = t[e], q = t[(e + 1) % 3];
+      if (state[p] != Out) poly[m++] = keep(p);
+      if (state[p] == In && state[q] == Out) poly[m++] = cross(p, q);
+      if (state[p] == Out && state[q] == In) poly[m++] = cross(q, p);
+    }
+    if (m < 3) continue;
+    if (m == 3) {
+      clipped.push_back({poly[0], poly[1], poly[2]});
+      continue;
+    }
+    // A quad: split along a diagonal that leaves no triangle with every
+    // vertex fixed by the zip (on the rim or at c = 0: such a triangle and
+    // its mirror would become one triangle twice, a fold), else the shorter.
+    const auto& v = out.vertices;
+    auto fixed = [&](int i) { return boundary[i] || v[i].z == 0.0; };
+    const bool fold02 = (fixed(poly[0]) && fixed(poly[2])) && (fixed(poly[1]) || fixed(poly[3]));
+    const bool fold13 = (fixed(poly[1]) && fixed(poly[3])) && (fixed(poly[0]) || fixed(poly[2]));
+    const bool shorter02 = glm::length(v[poly[0]] - v[poly[2]]) <= glm::length(v[poly[1]] - v[poly[3]]);
+    if (fold02 != fold13 ? fold13 : shorter02) {
+      clipped.push_back({poly[0], poly[1], poly[2]});
+      clipped.push_back({poly[0], poly[2], poly[3]});
+    } else {
+      clipped.push_back({poly[0], poly[1], poly[3]});
+      clipped.push_back({poly[1], poly[2], poly[3]});
+    }
+  }
+  // Zip: a boundary direction with c < 0 becomes its mirror's vertex.
+  using Key = std::array<std::uint64_t, 3>;
+  auto key = [](const glm::dvec3& v) {
+    return Key{std::bit_cast<std::uint64_t>(v.x), std::bit_cast<std::uint64_t>(v.y), std::bit_cast<std::uint64_t>(std::abs(v.z))};
+  };
+  std::map<Key, int> upper;
+  for (std::size_t i = 0; i < out.vertices.size(); ++i) {
+    if (boundary[i] && out.vertices[i].z >= 0.0) upper.emplace(key(out.vertices[i]), static_cast<int>(i));
+  }
+  std::vector<int> remap(out.vertices.size());
+  for (std::size_t i = 0; i < out.vertices.size(); ++i) {
+    remap[i] = static_cast<int>(i);
+    if (boundary[i] && out.vertices[i].z < 0.0) {
+      const auto it = upper.find(key(out.vertices[i]));
+      if (it == upper.end()) throw std::logic_error("sol::geodesic_sphere: the cut locus seam lost its symmetry (a bug)");
+      remap[i] = it->second;
+    }
+  }
+  // Zipped triangles; a triangle whose vertices are all fixed by the zip
+  // meets its mirror as the same three vertices the other way round (a
+  // fold of no thickness, left where the rim ends on a triangle at c = 0):
+  // both go.
+  std::vector<std::array<int, 3>> triangles;
+  std::map<std::array<int, 3>, std::size_t> by_vertices;  // sorted vertices -> triangle
+  std::vector<char> folded;
+  for (const auto& t : clipped) {
+    const std::array<int, 3> r{remap[t[0]], remap[t[1]], remap[t[2]]};
+    if (r[0] == r[1] || r[1] == r[2] || r[2] == r[0]) continue;
+    std::array<int, 3> sorted = r;
+    std::sort(sorted.begin(), sorted.end());
+    const auto [it, fresh] = by_vertices.emplace(sorted, triangles.size());
+    if (!fresh && !folded[it->second]) {
+      folded[it->second] = 1;
+      continue;
+    }
+    triangles.push_back(r);
+    folded.push_back(0);
+  }
+  // Renumber the vertices still used.
+  Mesh zipped;
+  std::vector<int> index(out.vertices.size(), -1);
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    if (folded[k]) continue;
+    std::array<int, 3> r = triangles[k];
+    for (int& i : r) {
+      if (index[i] < 0) {
+        index[i] = static_cast<int>(zipped.vertices.size());
+        zipped.vertices.push_back(out.vertices[i]);
+      }
+      i = index[i];
+    }
+    zipped.triangles.push_back(r);
+  }
+  return zipped;
+}
+
+}  // namespace
+
+Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) {
+  check_center(center, "sol::geodesic_sphere");
+  if (!(radius > 0.0) || !(radius <= kMaxMeshedSphereRadius)) {
+    throw InvalidArgument("sol::geodesic_sphere: radius must be in (0, " + std::to_string(kMaxMeshedSphereRadius) +
+                          "], got " + std::to_string(radius));
+  }
+  if (subdivisions < 1 || subdivisions > 512) {
+    throw InvalidArgument("sol::geodesic_sphere: subdivisions must be in [1, 512], got " + std::to_string(subdivisions));
+  }
+  if (radius > kCoarseSphereRadius && subdivisions < kMinCoarseSubdivisions) {
+    throw InvalidArgument("sol::geodesic_sphere: radius " + std::to_string(radius) + " needs at least " +
+                          std::to_string(kMinCoarseSubdivisions) + " subdivisions (coarser meshes cross themselves), got " +
+                          std::to_string(subdivisions));
+  }
+  Mesh mesh = direction_octahedron(subdivisions);
+  if (radius >= kSmoothSphereRadius) mesh = clip_and_zip(std::move(mesh), radius, subdivisions);
+  for (glm::dvec3& v : mesh.vertices) v = flow({center, v}, radius).position;
+  return mesh;
+}
+
+std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, const std::vector<glm::dvec3>& directions,
+                                                        double length, int segments) {
+  check_center(from, "sol::geodesic_polylines");
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    throw InvalidArgument("sol::geodesic_polylines: length must be finite and > 0, got " + std::to_string(length));
+  }
+  if (segments < 1 || segments > 1000000) {
+    throw InvalidArgument("sol::geodesic_polylines: segments must be in [1, 1000000], got " + std::to_string(segments));
+  }
+  std::vector<std::vector<glm::dvec3>> lines;
+  for (const glm::dvec3& d : directions) {
+    if (!std::isfinite(d.x + d.y + d.z) || !(glm::length(d) > 0.0)) {
+      throw InvalidArgument("sol::geodesic_polylines: every direction must be finite and non-zero");
+    }
+    const glm::dvec3 u = glm::normalize(d);
+    std::vector<glm::dvec3>& line = lines.emplace_back();
+    line.reserve(static_cast<std::size_t>(segments) + 1);
+    line.push_back(from);
+    for (int i = 1; i <= segments; ++i) line.push_back(flow({from, u}, length * i / segments).position);
+  }
+  return lines;
+}
+
+std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, const std::vector<double>& radii, int samples) {
+  check_center(center, "sol::cut_locus_curves");
+  if (samples < 2 || samples > 100000) {
+    throw InvalidArgument("sol::cut_locus_curves: samples must be in [2, 100000], got " + std::to_string(samples));
+  }
+  std::vector<std::vector<glm::dvec3>> curves;
+  for (double r : radii) {
+    if (!(r > kSmoothSphereRadius) || !(r <= kMaxMeshedSphereRadius)) {
+      throw InvalidArgument("sol::cut_locus_curves: radii must be in (sqrt(2) pi, " + std::to_string(kMaxMeshedSphereRadius) +
+                            "], got " + std::to_string(r));
+    }
+    for (double sx : {1.0, -1.0}) {
+      for (double sy : {1.0, -1.0}) {
+        // Around the straight direction s, the directions at angle θ ∈ [0, π]
+        // from e1 = (sx, -sy, 0)/√2 towards e3 (c >= 0: their mirrors reach
+        // the same points), each on its radial arc where cut_time = r. The
+        // arc leaves the quadrant (a plane direction, cut_time = ∞) before π/2.
+        const double h = std::numbers::sqrt2 / 2.0;
+        const glm::dvec3 s(sx * h, sy * h, 0.0), e1(sx * h, -sy * h, 0.0), e3(0.0, 0.0, 1.0);
+        std::vector<glm::dvec3>& curve = curves.emplace_back();
+        for (int i = 0; i < samples; ++i) {
+          const double theta = std::numbers::pi * i / (samples - 1);
+          const Radial arc{s, std::cos(theta) * e1 + std::sin(theta) * e3, 0.0};
+          const double rho = radial_crossing(arc, 0.0, arc.exit(), r);
+          curve.push_back(flow({center, arc.at(rho)}, r).position);
+        }
+      }
+    }
+  }
+  return curves;
 }
 
 }  // namespace sol

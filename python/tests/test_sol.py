@@ -95,8 +95,44 @@ def test_geodesic_sphere_vertices_at_the_radius():
     vertices, triangles = sol.geodesic_sphere((0.2, 0.1, -0.3), 2.0, 4)
     assert vertices.shape == (4 * 16 + 2, 3) and triangles.shape == (8 * 16, 3)
     assert np.allclose(sol.distances((0.2, 0.1, -0.3), vertices), 2.0, atol=1e-9)
-    with pytest.raises(NotImplementedError, match="cut locus"):
-        sol.geodesic_sphere((0, 0, 0), 5.0)
+    with pytest.raises(ValueError, match="radius must be in"):
+        sol.geodesic_sphere((0, 0, 0), 7.0)
+    # Beyond sqrt(2) pi: still on the sphere, and equal to the library's own vertices.
+    v5, t5 = sol.geodesic_sphere((0, 0, 0), 5.0, 6)
+    assert np.allclose(sol.distances((0, 0, 0), v5), 5.0, atol=1e-9)
+    assert t5.max() == len(v5) - 1
+
+
+def test_cut_time_and_curves():
+    assert sol.cut_time((1, 1, 0)) == pytest.approx(math.sqrt(2) * math.pi, rel=1e-15)
+    assert math.isinf(sol.cut_time((1, 0, 0.5)))
+    curves = sol.cut_locus_curves((0, 0, 0), [5.0], 5)
+    assert len(curves) == 4 and all(c.shape == (5, 3) for c in curves)
+    middle = curves[0][2]
+    ways = sol.minimising_geodesics((0, 0, 0), tuple(middle))
+    assert len(ways) == 2 and all(w[1] == pytest.approx(5.0, abs=1e-8) for w in ways)
+    lines = sol.geodesic_polylines((0.1, 0, 0), np.array([[1.0, 0.2, 0.3], [0, 0, 1]]), 2.0, 4)
+    assert len(lines) == 2 and lines[0].shape == (5, 3)
+    one = sol.flow((0.1, 0, 0), (1.0, 0.2, 0.3), 1.5)
+    assert np.allclose(lines[0][3], one[0], atol=1e-12)
+    with pytest.raises(ValueError, match="radii must be in"):
+        sol.cut_locus_curves((0, 0, 0), [4.0])
+    with pytest.raises(ValueError, match=r"directions must have shape"):
+        sol.geodesic_polylines((0, 0, 0), np.zeros((2, 2)), 1.0)
+    with pytest.raises(ValueError, match="non-zero"):
+        sol.geodesic_polylines((0, 0, 0), np.zeros(3), 1.0)
+
+
+def test_load_scene_reads_a_file():
+    scene = sol.preset_scene("sandwich")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "s.json")
+        with open(path, "w") as f:
+            f.write(scene.to_json())
+        again = sol.load_scene(path)
+        assert again.to_json() == scene.to_json()
+        with pytest.raises(ValueError):
+            sol.load_scene(os.path.join(tmp, "missing.json"))
 
 
 def test_scenes_round_trip():

@@ -65,7 +65,13 @@ def test_stl_is_closed_and_scaled():
 
 
 @pytest.mark.parametrize("args,words", [
-    (["sphere", "--radius", "5", "-o", "x.ply"], "--radius must be in (0, sqrt(2) pi"),
+    (["sphere", "--radius", "6.5", "-o", "x.ply"], "--radius must be in (0, 6]"),
+    (["sphere", "--radius", "5.5", "--resolution", "8", "-o", "x.ply"], "needs at least 16 subdivisions"),
+    (["geodesics", "--directions", "3", "--length", "2", "-o", "x.stl"], "STL holds no lines"),
+    (["geodesics", "--length", "2", "-o", "x.ply"], "--directions N is required"),
+    (["cut-locus", "--radii", "5,4", "-o", "x.ply"], "--radii must be in (sqrt(2) pi"),
+    (["cut-locus", "--radii", "5,", "-o", "x.ply"], "--radii"),
+    (["cut-locus", "-o", "x.ply"], "--radii R1,R2,... is required"),
     (["sphere", "--radius", "-1", "-o", "x.ply"], "--radius must be in"),
     (["sphere", "--radius", "nan", "-o", "x.ply"], "finite number"),
     (["sphere", "--radius", "1", "-o", "x.xyz"], "unknown mesh format"),
@@ -83,3 +89,41 @@ def test_bad_input_exits_2_and_writes_nothing(args, words):
 def test_unwritable_file_fails_cleanly():
     r = run("sphere", "--radius", "1", "-o", "/nonexistent-dir/s.ply")
     assert r.returncode != 0 and "nonexistent-dir" in r.stderr
+
+
+def test_geodesics_follow_the_flow():
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "g.ply")
+        r = run("geodesics", "--from", "0.2,0,-0.1", "--directions", "7", "--length", "3", "--segments", "6", "-o", path)
+        assert r.returncode == 0, r.stderr
+        v, f = read_ascii_ply(path)  # segments: two-vertex faces
+    assert v.shape == (7 * 7, 3) and f.shape == (7 * 6, 2)
+    # Each polyline: its start, then the flow along its first segment's direction (recovered from the file as
+    # the direction whose flow reaches the first point: checked at every later point against sol.flow).
+    for k in range(7):
+        line = v[7 * k:7 * k + 7]
+        assert np.allclose(line[0], (0.2, 0, -0.1), atol=1e-7)
+        ways = sol.minimising_geodesics((0.2, 0, -0.1), tuple(line[1]))
+        direction, length = ways[0]
+        assert length == pytest.approx(0.5, abs=1e-5)  # 32-bit floats in the file
+        for i in range(1, 7):
+            assert np.allclose(sol.flow((0.2, 0, -0.1), direction, 0.5 * i)[0], line[i], atol=1e-4 * (1 + abs(line[i]).max()))
+    # The segments join consecutive points of one polyline.
+    assert all(b == a + 1 and a % 7 != 6 for a, b in f)
+
+
+def test_cut_locus_points_have_two_minimisers():
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "c.obj")
+        r = run("cut-locus", "--radii", "4.8,5.6", "--samples", "5", "-o", path)
+        assert r.returncode == 0, r.stderr
+        with open(path) as fh:
+            points = np.array([[float(x) for x in l.split()[1:]] for l in fh if l.startswith("v ")])
+    assert points.shape == (2 * 4 * 5, 3)
+    assert np.allclose(points[:, 2], 0.0, atol=1e-6)
+    for i, p in enumerate(points):
+        if i % 5 in (0, 4):
+            continue  # the arcs' ends: the two minimisers coincide there
+        ways = sol.minimising_geodesics((0, 0, 0), tuple(p))
+        assert len(ways) == 2
+        assert ways[0][1] == pytest.approx(4.8 if i < 20 else 5.6, abs=1e-5)
