@@ -240,6 +240,25 @@ PYBIND11_MODULE(sol, m) {
   m.def("preset_scene", [](const std::string& name) { return sol::preset_scene(name); }, py::arg("name"),
         "A built-in scene by name.");
   m.def("load_scene", &sol::load_scene, py::arg("path"), "A scene file.");
+  m.def(
+      "camera_rays",
+      [](const sol::Scene& scene, int width, int height) {
+        if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+          throw sol::InvalidArgument("sol.camera_rays: width and height must be in [1, 16384]");
+        }
+        py::array_t<double> out({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
+        auto o = out.mutable_unchecked<3>();
+        for (int j = 0; j < height; ++j) {
+          for (int i = 0; i < width; ++i) {
+            const glm::dvec3 d = sol::camera_ray(scene.camera, i, j, width, height);
+            for (py::ssize_t c = 0; c < 3; ++c) o(j, i, c) = d[static_cast<glm::length_t>(c)];
+          }
+        }
+        return out;
+      },
+      py::arg("scene"), py::arg("width"), py::arg("height"),
+      "The unit direction (frame components at the camera) of the ray through each pixel's centre, as render_cpu "
+      "shoots it: an (H, W, 3) array.");
   m.def("parse_scene", [](const std::string& text) { return sol::parse_scene(text); }, py::arg("text"),
         "A scene from JSON text.");
   m.def(
