@@ -175,3 +175,22 @@ def test_bad_arguments_raise_value_errors():
         sol.render_cpu(sol.preset_scene("plane"), 0, 10)
     with pytest.raises(ValueError):
         sol.parse_scene('{"objects": [{"type": "ball", "radius": -1}]}')
+
+
+def test_camera_rays_follow_the_camera_convention():
+    # The plane scene looks straight down (forward (0, 0, -1), up (0, 1, 0)) with a 90 degree vertical field of
+    # view: the middle pixel of an odd image looks straight down, and the top and bottom rows' middle rays are
+    # 45 degrees off it (to within half a pixel), up the image being +y.
+    scene = sol.preset_scene("plane")
+    d = sol.camera_rays(scene, 5, 101)
+    assert d.shape == (101, 5, 3)
+    assert np.allclose(np.linalg.norm(d, axis=2), 1.0)
+    assert np.allclose(d[50, 2], (0, 0, -1), atol=1e-15)
+    top = math.degrees(math.acos(-d[0, 2, 2]))
+    assert top == pytest.approx(45.0 * 100 / 101, abs=0.5) and d[0, 2, 1] > 0
+    # A ray the renderer says hits the plane does, at the arc length it reports.
+    r = sol.render_cpu(scene, 5, 101)
+    end = sol.flow(tuple(scene.camera_position), d[50, 2], float(r["distance"][50, 2]))[0]
+    assert abs(end[2]) < 1e-4
+    with pytest.raises(ValueError, match="width and height"):
+        sol.camera_rays(scene, 0, 4)
