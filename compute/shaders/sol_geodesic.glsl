@@ -19,6 +19,7 @@ float sol_log_cosh(float v) {
 }
 
 // ---- Carlson's R_F and R_D (Carlson 1995), square roots only ------------------
+// (R_D below, two at a time: carlson_rd2.)
 
 float carlson_rf(float x, float y, float z) {
   float a = (x + y + z) / 3.0;
@@ -39,14 +40,19 @@ float carlson_rf(float x, float y, float z) {
   return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / sqrt(a);
 }
 
-float carlson_rd(float x, float y, float z) {
-  float a = (x + y + 3.0 * z) / 5.0;
-  // (eps/4)^(-1/6) for float.
-  float q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
-  float scale = 1.0, sum = 0.0;
-  for (int i = 0; i < 80 && q * scale >= abs(a); ++i) {  // 4^80 covers any float spread
-    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
-    float l = sx * sy + sy * sz + sz * sx;
+// R_D of two triples at once, (x.x, y.x, z.x) and (x.y, y.y, z.y): one
+// loop whose duplications of the two interleave (the loop is a chain of
+// square roots; two independent chains hide each other's latency). Both run
+// until both have converged: a duplication past convergence is exact (the
+// duplication theorem holds at every step).
+vec2 carlson_rd2(vec2 x, vec2 y, vec2 z) {
+  vec2 a = (x + y + 3.0 * z) / 5.0;
+  vec2 q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
+  float scale = 1.0;
+  vec2 sum = vec2(0.0);
+  for (int i = 0; i < 80 && any(greaterThanEqual(q * scale, abs(a))); ++i) {
+    vec2 sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    vec2 l = sx * sy + sy * sz + sz * sx;
     sum += scale / (sz * (z + l));
     x = (x + l) * 0.25;
     y = (y + l) * 0.25;
@@ -54,11 +60,12 @@ float carlson_rd(float x, float y, float z) {
     a = (a + l) * 0.25;
     scale *= 0.25;
   }
-  float X = 1.0 - x / a, Y = 1.0 - y / a, Z = -(X + Y) / 3.0;
-  float xy = X * Y, z2 = Z * Z;
-  float e2 = xy - 6.0 * z2, e3 = (3.0 * xy - 8.0 * z2) * Z, e4 = 3.0 * (xy - z2) * z2, e5 = xy * z2 * Z;
-  float s = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
-            3.0 * e5 / 26.0;
+  vec2 inv_a = 1.0 / a;
+  vec2 X = 1.0 - x * inv_a, Y = 1.0 - y * inv_a, Z = -(X + Y) / 3.0;
+  vec2 xy = X * Y, z2 = Z * Z;
+  vec2 e2 = xy - 6.0 * z2, e3 = (3.0 * xy - 8.0 * z2) * Z, e4 = 3.0 * (xy - z2) * z2, e5 = xy * z2 * Z;
+  vec2 s = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
+           3.0 * e5 / 26.0;
   return scale * s / (a * sqrt(a)) + 3.0 * sum;
 }
 
@@ -74,6 +81,7 @@ const int SOL_AGM_LEVELS = 7;
 
 struct SolAgm {
   float mean[SOL_AGM_LEVELS];
+  float inv_mean[SOL_AGM_LEVELS];  // 1 / mean: the descent multiplies (a division per level saved per call)
   float root[SOL_AGM_LEVELS];
   float c;  // the mean: π/(2K)
 };
@@ -83,6 +91,7 @@ SolAgm sol_agm(float m1) {
   float a = 1.0, b = sqrt(m1);
   for (int i = 0; i < SOL_AGM_LEVELS; ++i) {
     g.mean[i] = a;
+    g.inv_mean[i] = 1.0 / a;
     g.root[i] = b;
     float next = 0.5 * (a + b);
     b = sqrt(a * b);
@@ -108,7 +117,7 @@ vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
     ratio *= c;
     c *= dn;
     dn = (agm.root[i] + ratio) / (agm.mean[i] + ratio);
-    ratio = c / agm.mean[i];
+    ratio = c * agm.inv_mean[i];
   }
   float s = sign(sn) / sqrt(c * c + 1.0);
   float cn_r = c * s;
@@ -162,6 +171,9 @@ struct SolRay {
   float nome, nome_quarter, Kp, sqrt_k, sqrt_kc;
   float log_cosh_s0;  // plane regime
   SolPoint start;
+  vec3 start_factors;  // sol_factors(start), kept with it
+  // The anchors' factors (sol_anchor): s₋, the middle, s₊.
+  vec3 anchor_bottom, anchor_middle, anchor_top;
   int start_quarter;
 };
 
@@ -203,31 +215,36 @@ int sol_absolute_quarter(SolRay g, float u, int quarter) {
 // Carlson's [1,-1,-1] integral between two limits given by their factors
 // (√t, √(t - s₋), √(s₊ - t)); gap = |t_x - t_y|. Scaled by the largest V_i
 // so nothing overflows (see carlson_piece in libsol/src/closed_form.cpp).
-float carlson_piece(vec3 x, vec3 y, float gap) {
-  if (!(gap > 0.0)) return 0.0;
-  float v1 = x.x * y.y * y.z + y.x * x.y * x.z;
-  float v2 = x.y * y.x * y.z + y.y * x.x * x.z;
-  float v3 = x.z * y.x * y.y + y.z * x.x * x.y;
-  float v_max = max(max(v1, v2), v3);
-  if (!(v1 > 0.0)) return 0.0;
-  float w1 = v1 / v_max, w2 = v2 / v_max, w3 = v3 / v_max, r = gap / v_max;
-  return 2.0 * x.x * y.x * r / w1 - (2.0 / 3.0) * r * r * r * carlson_rd(w2 * w2, w3 * w3, w1 * w1);
+// Two at once (their R_D by carlson_rd2): (x0, y0, gap0) and (x1, y1, gap1);
+// 0 for a piece with no gap or V_1 <= 0.
+vec2 carlson_piece2(vec3 x0, vec3 y0, float gap0, vec3 x1, vec3 y1, float gap1) {
+  const vec2 gap = vec2(gap0, gap1);
+  const vec2 v1 = vec2(x0.x * y0.y * y0.z + y0.x * x0.y * x0.z, x1.x * y1.y * y1.z + y1.x * x1.y * x1.z);
+  const vec2 v2 = vec2(x0.y * y0.x * y0.z + y0.y * x0.x * x0.z, x1.y * y1.x * y1.z + y1.y * x1.x * x1.z);
+  const vec2 v3 = vec2(x0.z * y0.x * y0.y + y0.z * x0.x * x0.y, x1.z * y1.x * y1.y + y1.z * x1.x * x1.y);
+  const bvec2 live = bvec2(gap0 > 0.0 && v1.x > 0.0, gap1 > 0.0 && v1.y > 0.0);
+  // Dead pieces get harmless operands (their result is replaced by 0 below).
+  const vec2 inv = 1.0 / mix(vec2(1.0), max(max(v1, v2), v3), live);
+  const vec2 w1 = mix(vec2(1.0), v1 * inv, live), w2 = mix(vec2(1.0), v2 * inv, live), w3 = mix(vec2(1.0), v3 * inv, live);
+  const vec2 r = mix(vec2(0.0), gap * inv, live);
+  const vec2 xy = vec2(x0.x * y0.x, x1.x * y1.x);
+  const vec2 piece = 2.0 * xy * r / w1 - (2.0 / 3.0) * r * r * r * carlson_rd2(w2 * w2, w3 * w3, w1 * w1);
+  return mix(vec2(0.0), piece, live);
 }
 
 vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
-  return vec3(1.0 / f.x, sqrt_sm * f.z / f.x, sqrt_sp * f.y / f.x);
+  const float inv = 1.0 / f.x;
+  return vec3(inv, sqrt_sm * f.z * inv, sqrt_sp * f.y * inv);
 }
 
 // Time integrals of s and 1/s between a point and an anchor (0: s₋, 1: middle, 2: s₊).
 // The integrals of s and 1/s between limits with factors fx, fy
 // (first factor e^{w}) and s-gap `gap`; the 1/s gap is gap/(s_x s_y).
 vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
-  float scale = 1.0 / (2.0 * g.sqrt_mu);
-  float ia = carlson_piece(fx, fy, gap) * scale;
-  float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
-  float ib = carlson_piece(sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp), sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp),
-                           gap_sigma) * scale;
-  return vec2(ia, ib);
+  const float scale = 1.0 / (2.0 * g.sqrt_mu);
+  const float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
+  return scale * carlson_piece2(fx, fy, gap, sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp),
+                                sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp), gap_sigma);
 }
 
 vec3 sol_factors(SolPoint p) { return vec3(p.ew, sqrt(p.f2), sqrt(p.f3)); }
@@ -235,9 +252,7 @@ vec3 sol_factors(SolPoint p) { return vec3(p.ew, sqrt(p.f2), sqrt(p.f3)); }
 // An anchor's factors (0: s₋, 1: middle, 2: s₊) and the s-gap from p to it.
 vec3 sol_anchor(SolRay g, SolPoint p, int anchor, out float gap) {
   gap = anchor == 0 ? p.f2 : (anchor == 1 ? abs(p.sm1) : p.f3);
-  return anchor == 0 ? vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm))
-                     : (anchor == 1 ? vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one))
-                                    : vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0));
+  return anchor == 0 ? g.anchor_bottom : (anchor == 1 ? g.anchor_middle : g.anchor_top);
 }
 
 // |s_p - s_q| of two points of one quarter from the representation with the
@@ -273,7 +288,7 @@ int sol_end_anchor(int q) { return q == 1 ? 2 : (q == 3 ? 0 : 1); }
 void sol_ray_far_forward(inout SolRay g) {
   float gap;
   const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
-  g.far_forward = sol_piece(g, sol_factors(g.start), f_far, gap);
+  g.far_forward = sol_piece(g, g.start_factors, f_far, gap);
 }
 
 SolRay sol_ray(vec3 direction) {
@@ -300,6 +315,7 @@ SolRay sol_ray(vec3 direction) {
   g.w0 = 0.0;
   g.sqrt_sm = 1.0;
   g.sqrt_sp = 1.0;
+  g.anchor_bottom = g.anchor_middle = g.anchor_top = g.start_factors = vec3(1.0, 0.0, 0.0);
   g.mu = g.a * g.b;
   if (g.a == 0.0 && g.b == 0.0) {
     g.regime = REGIME_VERTICAL;
@@ -360,7 +376,11 @@ SolRay sol_ray(vec3 direction) {
   g.sqrt_k = sqrt(g.k);
   g.sqrt_kc = sqrt(g.kc);
   // The start from its exact sn, cn, dn: no Jacobi evaluation in the setup.
+  g.anchor_bottom = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
+  g.anchor_middle = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
+  g.anchor_top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
   g.start = sol_point_from(g, vec3(sn0, cn0, dn0));
+  g.start_factors = sol_factors(g.start);
   g.start_quarter = sol_absolute_quarter(g, g.u0, g.start.quarter);
   g.quarter_lo = g.quarter_hi = 0.0;
   return g;
@@ -371,11 +391,10 @@ SolRay sol_ray(vec3 direction) {
 // needs heights computes them once, at the hit.
 void sol_ray_integrals(inout SolRay g) {
   if (g.regime != REGIME_GENERAL) return;
-  vec3 bottom = vec3(g.sqrt_sm, 0.0, sqrt(g.sp_minus_sm));
-  vec3 middle = vec3(1.0, sqrt(g.one_minus_sm), sqrt(g.sp_minus_one));
-  vec3 top = vec3(g.sqrt_sp, sqrt(g.sp_minus_sm), 0.0);
-  g.quarter_lo = carlson_piece(bottom, middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
-  g.quarter_hi = carlson_piece(middle, top, g.sp_minus_one) / (2.0 * g.sqrt_mu);
+  const vec2 quarters = carlson_piece2(g.anchor_bottom, g.anchor_middle, g.one_minus_sm, g.anchor_middle, g.anchor_top,
+                                      g.sp_minus_one) / (2.0 * g.sqrt_mu);
+  g.quarter_lo = quarters.x;
+  g.quarter_hi = quarters.y;
   sol_ray_far_forward(g);
 }
 
@@ -482,7 +501,7 @@ SolForward sol_forward(SolRay g, float t) {
   f.same = q <= g.start_quarter;
   float gap_near;
   vec3 f_near = sol_anchor(g, p, sol_start_anchor(p.quarter), gap_near);
-  f_near = f.same ? sol_factors(g.start) : f_near;
+  f_near = f.same ? g.start_factors : f_near;
   gap_near = f.same ? sol_two_point_gap(g.start, p) : gap_near;
   f.near = sol_piece(g, f_near, sol_factors(p), gap_near);
   const vec2 integral = f.same ? f.near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + f.near;
@@ -516,12 +535,12 @@ vec3 sol_position(SolRay g, float t) {
   //   backward:      the same, mirrored, with the sign flipped.
   float gap_near;
   vec3 f_near = sol_anchor(g, p, forward ? sol_start_anchor(p.quarter) : sol_end_anchor(p.quarter), gap_near);
-  f_near = same ? sol_factors(g.start) : f_near;
+  f_near = same ? g.start_factors : f_near;
   gap_near = same ? sol_two_point_gap(g.start, p) : gap_near;
   vec2 near = sol_piece(g, f_near, sol_factors(p), gap_near);
   float gap_far;
   vec3 f_far = sol_anchor(g, g.start, forward ? sol_end_anchor(g.start.quarter) : sol_start_anchor(g.start.quarter), gap_far);
-  vec2 far = sol_piece(g, sol_factors(g.start), f_far, same ? 0.0 : gap_far);
+  vec2 far = sol_piece(g, g.start_factors, f_far, same ? 0.0 : gap_far);
   vec2 middle = forward ? sol_quarters(g, g.start_quarter + 1, q - 1) : sol_quarters(g, q + 1, g.start_quarter - 1);
   vec2 integral = same ? (t < 0.0 ? -near : near) : (forward ? far + middle + near : -(far + middle + near));
   return vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
@@ -543,6 +562,7 @@ SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
   g.w0 = log(p.ew);
   g.u0 = u;
   g.start = p;
+  g.start_factors = sol_factors(p);
   g.start_quarter = sol_absolute_quarter(g, u, p.quarter);
   g.c = -g.k * g.lambda * p.jac.x;
   g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
