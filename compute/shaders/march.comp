@@ -108,7 +108,8 @@ layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
 float distance_lower_bound(vec3 p, vec3 q) {
   float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
-  float a = max(0.5 * dx * dx * exp(-sum), 0.5 * dy * dy * exp(sum));
+  const float e = exp(sum);  // one exponential for both planes
+  float a = max(0.5 * dx * dx / e, 0.5 * dy * dy * e);
   float sh = sinh(0.5 * dz);
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
@@ -310,11 +311,14 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 // ---- The quotient Γ\Sol of the golden lattice (mirrors march_quotient in
 // libsol/src/render.cpp and sol::Lattice::golden()) ----------------------------
 
+// (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ): a point's lattice
+// coordinates (multiplied by the constant 1/(φ² + 1): no division per step).
+const float kInverseDet = 1.0 / (kPhi * kPhi + 1.0);
+vec2 lattice_coordinates(vec3 p) { return vec2(kPhi * p.x - p.y, p.x + kPhi * p.y) * kInverseDet; }
+
 bool in_domain(vec3 p) {
-  // (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ).
-  const float det = kPhi * kPhi + 1.0;
-  const float s = (kPhi * p.x - p.y) / det, r = (p.x + kPhi * p.y) / det;
-  return s >= 0.0 && s < 1.0 && r >= 0.0 && r < 1.0 && p.z >= 0.0 && p.z < kLatticeHeight;
+  const vec2 sr = lattice_coordinates(p);
+  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0 && p.z >= 0.0 && p.z < kLatticeHeight;
 }
 
 // The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
@@ -324,8 +328,8 @@ vec3 teleport(vec3 p) {
   const float scale = pow(kPhi, 2.0 * n);
   vec3 q = vec3(scale * p.x, p.y / scale, p.z + n * kLatticeHeight);
   q.z = min(max(q.z, 0.0), kLatticeHeight * 0.9999999);
-  const float det = kPhi * kPhi + 1.0;
-  const float fs = floor((kPhi * q.x - q.y) / det), fr = floor((q.x + kPhi * q.y) / det);
+  const vec2 f = floor(lattice_coordinates(q));
+  const float fs = f.x, fr = f.y;
   q.x -= fs * kPhi + fr;
   q.y -= -fs + fr * kPhi;
   return q;
@@ -339,8 +343,7 @@ struct FieldCell {
 };
 
 FieldCell field_cell(vec3 p) {
-  const float det = kPhi * kPhi + 1.0;
-  const vec3 unit = clamp(vec3((kPhi * p.x - p.y) / det, (p.x + kPhi * p.y) / det, p.z / kLatticeHeight), 0.0, 1.0);
+  const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * (1.0 / kLatticeHeight)), 0.0, 1.0);
   const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
   FieldCell c;
   c.i = min(int(g.x), kFieldCells - 1);
