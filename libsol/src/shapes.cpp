@@ -15,6 +15,7 @@
 #include "sol/closed_form.hpp"
 #include "sol/error.hpp"
 #include "sol/geodesic.hpp"
+#include "sol/group.hpp"
 
 namespace sol {
 
@@ -116,14 +117,15 @@ double radial_crossing(const Radial& arc, double lo, double hi, double radius) {
 }
 
 // The direction where cut_time crosses `radius` on the chord from `in`
-// (cut_time >= radius) to `out` (< radius), projected to the sphere.
+// (cut_time >= radius) to `out` (< radius), projected to the sphere, and
+// its fraction of the chord from `in`.
 glm::dvec3 chord_crossing(const glm::dvec3& in, const glm::dvec3& out, double radius, double* fraction) {
   double lo = 0.0, hi = 1.0;  // in at 0, out at 1
   for (int i = 0; i < 80 && hi - lo > 1e-15; ++i) {
     const double mid = 0.5 * (lo + hi);
     (cut_time(glm::normalize((1.0 - mid) * in + mid * out)) >= radius ? lo : hi) = mid;
   }
-  if (fraction != nullptr) *fraction = lo;
+  *fraction = lo;
   return glm::normalize((1.0 - lo) * in + lo * out);
 }
 
@@ -139,28 +141,31 @@ Mesh clip_and_zip(Mesh dirs, double radius, int n) {
   enum State { In, On, Out };
   std::vector<State> state(count);
   for (std::size_t i = 0; i < count; ++i) state[i] = cut_time(dirs.vertices[i]) >= radius ? In : Out;
-  // The edges between In and Out, as (in, out) pairs.
-  auto crossing_edges = [&] {
-    std::vector<std::pair<int, int>> edges;
-    for (const auto& t : dirs.triangles) {
-      for (int e = 0; e < 3; ++e) {
-        const int p = t[e], q = t[(e + 1) % 3];
-        if (state[p] == In && state[q] == Out) edges.emplace_back(p, q);
-        if (state[p] == Out && state[q] == In) edges.emplace_back(q, p);
-      }
-    }
-    return edges;
+  // The rim's point on each edge between In and Out, keyed (in, out): one
+  // bisection per edge (each edge is seen from both its triangles), kept for
+  // the clipping below, where edges whose ends were not moved still cross.
+  struct Crossing {
+    glm::dvec3 direction;
+    double fraction;  // from the In end
   };
+  std::map<std::pair<int, int>, Crossing> rim;
+  for (const auto& t : dirs.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      int p = t[e], q = t[(e + 1) % 3];
+      if (state[p] == state[q]) continue;
+      if (state[p] == Out) std::swap(p, q);
+      const auto [it, fresh] = rim.try_emplace({p, q});
+      if (fresh) it->second.direction = chord_crossing(dirs.vertices[p], dirs.vertices[q], radius, &it->second.fraction);
+    }
+  }
   // Snap: a vertex whose edge crossing lies within a quarter of the edge
   // moves onto the curve along its radial arc (the same rule for every
   // vertex of a symmetric orbit, so the symmetries stay exact).
   const double h = std::numbers::pi / (2.0 * n);  // an edge's angle, about
   std::vector<char> near(count, 0);
-  for (const auto& [p, q] : crossing_edges()) {
-    double f = 0.0;
-    chord_crossing(dirs.vertices[p], dirs.vertices[q], radius, &f);
-    if (f < 0.25) near[p] = 1;
-    if (f > 0.75) near[q] = 1;
+  for (const auto& [edge, c] : rim) {
+    if (c.fraction < 0.25) near[edge.first] = 1;
+    if (c.fraction > 0.75) near[edge.second] = 1;
   }
   for (std::size_t i = 0; i < count; ++i) {
     if (!near[i]) continue;
@@ -197,7 +202,7 @@ Mesh clip_and_zip(Mesh dirs, double radius, int n) {
   auto cross = [&](int in, int outside) {
     const auto [it, fresh] = crossing.emplace(std::pair(in, outside), static_cast<int>(out.vertices.size()));
     if (fresh) {
-      out.vertices.push_back(chord_crossing(dirs.vertices[in], dirs.vertices[outside], radius, nullptr));
+      out.vertices.push_back(rim.at({in, outside}).direction);  // neither end moved: still its crossing
       boundary.push_back(1);
     }
     return it->second;
@@ -324,11 +329,18 @@ std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, 
     if (!std::isfinite(d.x + d.y + d.z) || !(glm::length(d) > 0.0)) {
       throw InvalidArgument("sol::geodesic_polylines: every direction must be finite and non-zero");
     }
-    const glm::dvec3 u = glm::normalize(d);
+    // One closed form per direction (sol::flow would set it up per point).
+    const ClosedFormGeodesic<double> geodesic(glm::normalize(d));
     std::vector<glm::dvec3>& line = lines.emplace_back();
     line.reserve(static_cast<std::size_t>(segments) + 1);
     line.push_back(from);
-    for (int i = 1; i <= segments; ++i) line.push_back(flow({from, u}, length * i / segments).position);
+    for (int i = 1; i <= segments; ++i) {
+      const glm::dvec3 p = multiply(from, geodesic.at(length * i / segments).position);
+      if (!std::isfinite(p.x + p.y + p.z)) {
+        throw OutOfRange("sol::geodesic_polylines: the geodesic leaves the range of double (e^{z} overflows); shorten the length");
+      }
+      line.push_back(p);
+    }
   }
   return lines;
 }

@@ -79,7 +79,8 @@ Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions);
 /// normalised here) to arc length `length`, each as segments + 1 points
 /// evenly spaced in arc length (sol::flow: the closed form). Throws
 /// InvalidArgument for non-finite input, a zero direction, length <= 0 or
-/// segments outside [1, 10⁶].
+/// segments outside [1, 10⁶]; OutOfRange where a point overflows double (as
+/// sol::flow).
 std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, const std::vector<glm::dvec3>& directions,
                                                         double length, int segments);
 
