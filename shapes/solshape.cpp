@@ -41,9 +41,9 @@ std::string format_of(const std::string& path) {
   return "";
 }
 
-// Writes `mesh` (scaled by `scale`) to `path` in `format` through Assimp.
-void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, const std::string& path) {
-  aiScene scene;  // its destructor frees what is attached below
+// Gives `scene` (whose destructor frees what is attached here) one mesh of
+// `primitives`, with one default material, on its root node; returns it.
+aiMesh& single_mesh(aiScene& scene, aiPrimitiveType primitives) {
   scene.mRootNode = new aiNode();
   scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
   scene.mNumMaterials = 1;
@@ -53,7 +53,22 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
   scene.mRootNode->mNumMeshes = 1;
   aiMesh& m = *scene.mMeshes[0];
   m.mMaterialIndex = 0;
-  m.mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  m.mPrimitiveTypes = primitives;
+  return m;
+}
+
+// Writes `scene` to `path` in `format` through Assimp; `what` names it in the error.
+void export_scene(const aiScene& scene, const std::string& format, const std::string& path, const char* what) {
+  Assimp::Exporter exporter;
+  if (exporter.Export(&scene, format, path) != AI_SUCCESS) {
+    throw std::runtime_error(std::string("cannot write the ") + what + ": " + exporter.GetErrorString());
+  }
+}
+
+// Writes `mesh` (scaled by `scale`) to `path` in `format` through Assimp.
+void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, const std::string& path) {
+  aiScene scene;
+  aiMesh& m = single_mesh(scene, aiPrimitiveType_TRIANGLE);
   m.mNumVertices = static_cast<unsigned int>(mesh.vertices.size());
   m.mVertices = new aiVector3D[mesh.vertices.size()];
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
@@ -68,26 +83,14 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
     f.mIndices = new unsigned int[3];
     for (int k = 0; k < 3; ++k) f.mIndices[k] = static_cast<unsigned int>(mesh.triangles[i][static_cast<std::size_t>(k)]);
   }
-  Assimp::Exporter exporter;
-  if (exporter.Export(&scene, format, path) != AI_SUCCESS) {
-    throw std::runtime_error(std::string("cannot write the mesh: ") + exporter.GetErrorString());
-  }
+  export_scene(scene, format, path, "mesh");
 }
 
 // Writes polylines as line segments (2-index faces: PLY faces of two
 // vertices, OBJ `l` lines) through Assimp. STL has no lines.
 void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const std::string& format, const std::string& path) {
   aiScene scene;
-  scene.mRootNode = new aiNode();
-  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
-  scene.mNumMaterials = 1;
-  scene.mMeshes = new aiMesh*[1]{new aiMesh()};
-  scene.mNumMeshes = 1;
-  scene.mRootNode->mMeshes = new unsigned int[1]{0};
-  scene.mRootNode->mNumMeshes = 1;
-  aiMesh& m = *scene.mMeshes[0];
-  m.mMaterialIndex = 0;
-  m.mPrimitiveTypes = aiPrimitiveType_LINE;
+  aiMesh& m = single_mesh(scene, aiPrimitiveType_LINE);
   std::size_t points = 0, segments = 0;
   for (const auto& line : lines) {
     points += line.size();
@@ -107,10 +110,7 @@ void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const st
       face.mIndices = new unsigned int[2]{static_cast<unsigned int>(v - 1), static_cast<unsigned int>(v)};
     }
   }
-  Assimp::Exporter exporter;
-  if (exporter.Export(&scene, format, path) != AI_SUCCESS) {
-    throw std::runtime_error(std::string("cannot write the curves: ") + exporter.GetErrorString());
-  }
+  export_scene(scene, format, path, "curves");
 }
 
 // The output checks shared by the curve commands: a known line format.

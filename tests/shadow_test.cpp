@@ -156,11 +156,7 @@ TEST(Shadows, NoShadowAcneOnALoneBall) {
     sol::Scene scene;
     scene.camera = {{0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 50.0};
     scene.objects = {{sol::Ball{{1.0, 1.0, 0.0}, 0.4, exact_ball}, {0.9, 0.5, 0.3}}};
-    sol::Light light;
-    light.type = sol::LightType::Point;
-    light.position = {0.2, 0.9, 0.4};
-    light.exact = true;
-    light.shadows = true;
+    const sol::Light light = sol::test::shadowing_light({0.2, 0.9, 0.4});
     scene.lights = {light};
     sol::Scene unshadowed = scene;
     unshadowed.lights[0].shadows = false;
