@@ -42,6 +42,113 @@ struct MarchLimits {
   bool leave_start = false;
 };
 
+// Planes x = c and y = c met as roots, not marched. Along a geodesic from
+// the origin with initial frame components (a, b, ·) the momenta conjugate
+// to x and y are conserved: x' = a e^{2z}, y' = b e^{-2z}. So x(t) and y(t)
+// are monotone and each such plane is crossed once at most, at the root of
+// x(t) - c (y(t) - c). The first crossing among them (all solved together,
+// one closed-form position per iteration): Newton's step from the latest
+// point towards the least root it predicts, kept inside the bracket [lo, hi]
+// (lo past no plane, hi past some; bisection where Newton leaves it), to
+// double precision. A plane within the hit epsilon of the start is hit
+// there (as the march's first step), unless `skip` holds it (a shadow ray
+// leaving it). The kernel's twin: plane_xy_roots in march.comp, which stops
+// at float precision.
+struct PlaneCrossing {
+  std::size_t k = 0;
+  double t = std::numeric_limits<double>::infinity();  ///< none within the limit: infinity
+  int steps = 0;                                       ///< positions evaluated
+};
+
+PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const std::vector<MarchObject>& objects,
+                                   std::uint64_t skip, double limit, double epsilon) {
+  constexpr std::size_t kNone = ~std::size_t{0};
+  const glm::dvec3 d = ray.direction();
+  std::uint64_t ahead = 0;  // the planes ahead of the ray, coming nearer
+  PlaneCrossing r;
+  double lo = 0.0, hi = limit, t = 0.0;
+  bool bracketed = false;  // some plane crossed at hi
+  glm::dvec3 q(0.0);
+  for (int it = 0; it < 400; ++it) {
+    if (it > 0) {
+      q = ray.at(t).position;
+      ++r.steps;
+    }
+    // Settled: Newton's step to the root below 1e-12 relative (the closed
+    // form's positions hold 1e-14; the root's rounding is that over the rate).
+    const double tolerance = 1e-12 * std::max(1.0, t);
+    const double ez = std::exp(q.z);
+    bool crossed = false, unsettled = false;  // some plane past, and one past by more than the tolerance
+    double ahead_root = std::numeric_limits<double>::infinity(), behind_root = ahead_root, settled_root = ahead_root;
+    std::size_t settled_k = kNone, behind_k = kNone;
+    for (std::size_t k = 0; k < objects.size(); ++k) {
+      const auto* px = std::get_if<PlaneX>(&objects[k].shape);
+      const auto* py = std::get_if<PlaneY>(&objects[k].shape);
+      const std::uint64_t bit = std::uint64_t{1} << k;
+      if ((!px && !py) || (skip & bit)) continue;
+      const double speed = px ? d.x : d.y;
+      const double gap = px ? q.x - px->c : q.y - py->c;
+      const double f = speed < 0.0 ? -gap : gap;  // rises along the ray; the crossing at f = 0
+      if (it == 0) {
+        if (std::abs(gap) * (px ? 1.0 / ez : ez) < epsilon) {  // on it at the start: hit there
+          r.k = k;
+          r.t = 0.0;
+          return r;
+        }
+        if (f < 0.0 && speed != 0.0) ahead |= bit;
+      }
+      if (!(ahead & bit)) continue;
+      const double rate = std::abs(speed) * (px ? ez * ez : 1.0 / (ez * ez));
+      const double root = t - f / rate;
+      const bool settled = std::abs(f / rate) <= tolerance;
+      if (settled && root < settled_root) {
+        settled_root = root;
+        settled_k = k;
+      }
+      if (f >= 0.0) {
+        crossed = true;
+        unsettled = unsettled || !settled;
+        if (root < behind_root) {
+          behind_root = root;
+          behind_k = k;
+        }
+      } else {
+        ahead_root = std::min(ahead_root, root);
+      }
+    }
+    if (settled_k != kNone && !unsettled) {
+      r.k = settled_k;
+      r.t = t;
+      return r;
+    }
+    if (ahead == 0) return r;
+    if (crossed) {
+      hi = t;
+      bracketed = true;
+      if (!(hi - lo > tolerance)) {  // the bracket closed at the tolerance: the crossing is here
+        r.k = behind_k;
+        r.t = t;
+        return r;
+      }
+    } else {
+      if (t >= limit) return r;  // none crossed within the limit
+      lo = t;
+    }
+    double next = crossed ? behind_root : ahead_root;
+    if (bracketed) {
+      // Newton inside the bracket; bisection outside it, and from the eighth
+      // iteration on every fourth (a bound on the iterations whatever Newton does).
+      if (!(next > lo && next < hi) || (it >= 8 && it % 4 == 3)) next = 0.5 * (lo + hi);
+      if (!(hi - lo > tolerance)) next = hi;
+    } else {  // no bracket yet: at most the limit, and from the eighth iteration on the limit every fourth
+      next = it >= 8 && it % 4 == 3 ? limit : std::min(next, limit);
+      if (!(next > lo)) next = 0.5 * (lo + limit);
+    }
+    t = next;
+  }
+  throw std::logic_error("sol::render_cpu: the crossing of a plane x = c or y = c did not converge");
+}
+
 // The march in Sol: `objects` relative to `origin`, so the ray starts at
 // the origin of their coordinates.
 MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const std::vector<MarchObject>& objects,
@@ -76,12 +183,30 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     }
   }
   const bool full = !heights_only || prepared.features().cutout_gaps;
+  // Planes x = c, y = c: their first crossing solved; the march takes the
+  // other objects up to it (their distance: the arc length left to it).
+  const bool planes_xy = prepared.features().planes_xy;
+  PlaneCrossing crossing;
+  bool others = !planes_xy;
+  if (planes_xy) {
+    crossing = first_plane_crossing(ray, objects, passing, max_length, world.hit_epsilon);
+    for (const MarchObject& o : objects) others = others || !(std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
+  }
+  if (!others && !(crossing.t <= max_length)) {  // nothing else to march, and no crossing
+    hit.steps = crossing.steps;
+    hit.distance = max_length;
+    return hit;
+  }
   for (int step = 0; step < world.max_steps; ++step) {
+    if (!others) t = crossing.t;  // nothing else to march: straight to the crossing
     const glm::dvec3 q = full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
     std::size_t hit_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
       double d = object_distance(objects[k], q);
+      if (planes_xy && (std::holds_alternative<PlaneX>(objects[k].shape) || std::holds_alternative<PlaneY>(objects[k].shape))) {
+        d = k == crossing.k ? std::max(crossing.t - t, 0.0) : std::numeric_limits<double>::infinity();
+      }
       const SceneObject& o = world.objects[k];
       if (o.cutout && std::holds_alternative<PlaneZ>(o.shape)) {
         d = std::max(d, cutout_gap_bound(o.pattern, multiply(origin, q)));
@@ -94,7 +219,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
         hit_k = k;
       }
     }
-    hit.steps = step + 1;
+    hit.steps = crossing.steps + step + 1;
     if (nearest_hit < world.hit_epsilon) {
       const glm::dvec3 p = full ? q : ray.at(t).position;  // the full position, once
       const SceneObject& o = world.objects[hit_k];
