@@ -268,6 +268,79 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
   expect_no_validation_errors();
 }
 
+// Exact balls at the ends of the radii the kernel accepts, in Sol (a small
+// ball near the eye; balls of radius kMaxExactBallRadius = 2 seen from afar,
+// whose surface lies beyond the distance table and whose far points once
+// took Newton's first seed out of its reach: false hits up to 1.6 off the
+// sphere) and in the quotient (the lattice's ball at the base point made
+// exact, at r = 0.25 and at the largest radius the quotient accepts, 0.45):
+// every kernel hit lies on the geodesic sphere of the nearest image of the
+// centre to 1e-4 (hit_epsilon 5e-5 and float positions, as above), and the
+// hit masks follow the CPU renderer's. Larger exact balls are refused (the
+// CPU renders them).
+TEST(Kernel, ExactBallsHoldAtEveryRadiusAndInTheQuotient) {
+  struct Case {
+    std::string name;
+    sol::Scene scene;
+  };
+  std::vector<Case> cases;
+  const sol::Ball small_ball{{0.2, 0.06, 0.02}, 0.05, true};
+  cases.push_back({"r = 0.05", sol::preset_scene("plane")});
+  cases.back().scene.camera = {{0.0, 0.0, 0.0}, {1.0, 0.3, 0.1}, {0.0, 0.0, 1.0}, 40.0};
+  cases.back().scene.objects = {{small_ball}};
+  const double r = sol::vk::MarchRenderer::kMaxExactBallRadius;
+  for (const glm::dvec3& centre : {glm::dvec3(20.0, -6.0, 0.4), glm::dvec3(8.0, 3.0, -0.5), glm::dvec3(-6.0, 9.0, 1.2),
+                                   glm::dvec3(3.0, -3.0, 2.0)}) {
+    cases.push_back({"r = 2 at (" + std::to_string(centre.x) + ", " + std::to_string(centre.y) + ")", sol::preset_scene("plane")});
+    cases.back().scene.camera = {{0.0, 0.0, centre.x > 10.0 ? 0.3 : 0.0}, centre.x > 10.0 ? glm::dvec3(1.0, -0.4, 0.1) : centre,
+                                 {0.0, 0.0, 1.0}, centre.x > 10.0 ? 80.0 : 70.0};
+    cases.back().scene.objects = {{sol::Ball{centre, r, true}}};
+  }
+  for (double radius : {0.25, 0.45}) {
+    cases.push_back({"quotient r = " + std::to_string(radius), sol::preset_scene("lattice-balls")});
+    std::get<sol::Ball>(cases.back().scene.objects[0].shape) = sol::Ball{{0.0, 0.0, 0.0}, radius, true};
+  }
+  const sol::Lattice gamma = sol::Lattice::golden();
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const Case& c : cases) {
+    const sol::Ball ball = std::get<sol::Ball>(c.scene.objects[0].shape);
+    const bool quotient = c.scene.quotient != sol::Quotient::None;
+    const sol::RenderResult gpu = renderer.render(c.scene, 24, 18);
+    sol::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    const sol::RenderResult cpu = sol::render_cpu(c.scene, settings);
+    double worst = 0.0;
+    int hits = 0;
+    for (std::size_t i = 0; i < gpu.object.size(); ++i) {
+      if (gpu.object[i] != 1.0f) continue;
+      ++hits;
+      const glm::dvec3 p(gpu.px[i], gpu.py[i], gpu.pz[i]);
+      double d = sol::distance(p, ball.center);
+      if (quotient) {  // the nearest image g·centre, g over the words near D
+        for (int a = -3; a <= 3; ++a) {
+          for (int b = -3; b <= 3; ++b) {
+            for (int e = -1; e <= 1; ++e) d = std::min(d, sol::distance(p, sol::multiply(gamma.element(a, b, e), ball.center)));
+          }
+        }
+      }
+      worst = std::max(worst, std::abs(d - ball.radius));
+    }
+    const Comparison m = compare(gpu, cpu);
+    std::printf("exact ball %s: %d hits, worst |d - r| = %.2e, mask differs at %d of %d\n", c.name.c_str(), hits, worst,
+                m.mask_differs, m.pixels);
+    EXPECT_GT(hits, 20) << c.name;
+    EXPECT_LT(worst, 1e-4) << c.name;
+    EXPECT_LE(m.mask_differs, m.pixels / 50) << c.name;  // silhouettes may go either way in float
+  }
+  sol::Scene larger = cases[1].scene;
+  std::get<sol::Ball>(larger.objects[0].shape).radius = 2.01;
+  EXPECT_FALSE(sol::vk::MarchRenderer::supports(larger));
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(larger).find("objects[0].radius"), std::string::npos);
+  EXPECT_THROW(renderer.render(larger, 8, 8), sol::NotImplemented);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges) {
   // As Render.NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges, in float: the
   // camera's e^{±80} and coordinates of 1e15 meet the kernel's arithmetic.

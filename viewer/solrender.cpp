@@ -321,11 +321,8 @@ int main(int argc, char** argv) {
 #ifdef SOL_HAVE_VULKAN
     std::optional<sol::vk::Context> context;
     std::optional<sol::vk::MarchRenderer> renderer;
-    if (device == "auto" && !sol::vk::MarchRenderer::supports(scene)) {
-      std::fprintf(stderr,
-                   "solrender: exact point lights with a reach above %g (1 in the quotient) are CPU-only; rendering "
-                   "on the CPU\n",
-                   sol::ConnectionTable::kReach);
+    if (const std::string why = sol::vk::MarchRenderer::unsupported(scene); device == "auto" && !why.empty()) {
+      std::fprintf(stderr, "solrender: %s; rendering on the CPU\n", why.c_str());
     } else if (device != "cpu") {
       try {
         sol::vk::ContextOptions context_options;

@@ -246,7 +246,7 @@ struct App {
     watched = time;
     try {
       const sol::Scene fresh = load(scene_name);
-      if (!sol::vk::MarchRenderer::supports(fresh)) throw std::runtime_error("the kernel cannot render this world");
+      if (const std::string why = sol::vk::MarchRenderer::unsupported(fresh); !why.empty()) throw std::runtime_error(why);
       const bool camera_moved = fresh.camera.position != scene.camera.position ||
                                 fresh.camera.forward != scene.camera.forward || fresh.camera.up != scene.camera.up;
       const bool quotient_changed = fresh.quotient != scene.quotient;
@@ -268,7 +268,7 @@ struct App {
   void world_edited() {
     try {
       sol::validate(scene);
-      if (!sol::vk::MarchRenderer::supports(scene)) throw std::runtime_error("the kernel cannot render this world");
+      if (const std::string why = sol::vk::MarchRenderer::unsupported(scene); !why.empty()) throw std::runtime_error(why);
       good_world = scene;
       world_changed = true;
       ++world_version;

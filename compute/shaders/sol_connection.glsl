@@ -293,18 +293,44 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
 // the distance; for exact balls, march.comp): Newton with secant updates
 // (sol_newton) from `v` and its Jacobian `J` when they are given (`known`:
 // the solution at a nearby point, the march's last, with `end` its end
-// point), else from the shortest
-// seed of w's cell of the table (a minimiser at one of its corners), else
-// from the Euclidean guess in the frame at the middle height. Returns the
-// residual over its float floor; below 2e-4 the solution lands on w.
+// point), else from the shortest seed of w's cell of the table (a minimiser
+// at one of its corners), else from the Euclidean guess in the frame at the
+// middle height. Where that does not land (a far point, whose cell's first
+// seed lies outside Newton's reach), every seed of the cell is polished with
+// fresh Jacobians and the shortest landing is kept. One call of sol_newton
+// in the loop: see sol_newton. Returns the residual over its float floor;
+// below 2e-4 the solution lands on w.
 float sol_shortest(vec3 w, inout vec3 v, inout vec3 end, inout mat3 J, inout bool known) {
-  if (!known) {
-    const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
-    const vec4 seed = connection_seeds[sol_seed_base(target)];
-    const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
-    v = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
+  const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
+  const int base = sol_seed_base(target);
+  const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
+  float best = 1e30, best_residual = 1e30;
+  vec3 best_v = v, best_end = end;
+  mat3 best_J = J;
+  for (int s = -1; s < kSeedSlots; ++s) {
+    vec3 start = v, at_end = end;
+    mat3 jacobian = J;
+    bool carried = s < 0 && known;
+    if (!carried) {
+      const vec4 seed = connection_seeds[base + max(s, 0)];
+      if (s >= 0 && seed.w == 0.0) break;  // slots are filled in order
+      start = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
+    }
+    float residual;
+    const vec3 found = sol_newton(start, w, s < 0, at_end, jacobian, carried, residual);
+    if (residual < 2e-4 ? (best_residual >= 2e-4 || length(found) < best) : residual < best_residual && best_residual >= 2e-4) {
+      best = length(found);
+      best_residual = residual;
+      best_v = found;
+      best_end = at_end;
+      best_J = jacobian;
+      known = carried;
+    }
+    if (s < 0 && residual < 2e-4) break;  // the usual case: one solve
   }
-  float residual;
-  v = sol_newton(v, w, true, end, J, known, residual);
-  return residual;
+  v = best_v;
+  end = best_end;
+  J = best_J;
+  known = best_residual < 2e-4 && known;
+  return best_residual;
 }

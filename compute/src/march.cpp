@@ -339,14 +339,7 @@ MarchRenderer::MarchRenderer(MarchRenderer&&) noexcept = default;
 MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
 void MarchRenderer::set_world(const World& world) {
-  if (!supports(world)) {
-    char message[200];
-    std::snprintf(message, sizeof message,
-                  "sol::vk::MarchRenderer: exact point lights with a reach above %g (1 in the quotient) render on "
-                  "the CPU only (--device cpu)",
-                  ConnectionTable::kReach);
-    throw NotImplemented(message);
-  }
+  if (const std::string why = unsupported(world); !why.empty()) throw NotImplemented("sol::vk::MarchRenderer: " + why);
   if (world.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(world.objects.size()) +
                           " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
@@ -482,15 +475,35 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                               group_count(f.height, kernel::kGroupSize));
 }
 
-bool MarchRenderer::supports(const World& world) {
+std::string MarchRenderer::unsupported(const World& world) {
   // In the quotient a light's images within reach of D grow fast with the
   // reach (about 300 at 0, 2000 at 1): beyond reach 1 they outgrow
   // kMaxGpuLightImages.
   const double most = world.quotient == Quotient::None ? ConnectionTable::kReach : 1.0;
-  return std::none_of(world.lights.begin(), world.lights.end(), [most](const Light& l) {
-    return l.type == LightType::Point && l.exact && l.reach > most;
-  });
+  char message[256];
+  for (std::size_t i = 0; i < world.lights.size(); ++i) {
+    const Light& l = world.lights[i];
+    if (l.type == LightType::Point && l.exact && l.reach > most) {
+      std::snprintf(message, sizeof message,
+                    "lights[%zu].reach: exact point lights with a reach above %g (1 in the quotient) render on the "
+                    "CPU only (--device cpu)",
+                    i, ConnectionTable::kReach);
+      return message;
+    }
+  }
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
+    if (b && b->exact && b->radius > kMaxExactBallRadius) {
+      std::snprintf(message, sizeof message,
+                    "objects[%zu].radius: exact balls of a radius above %g render on the CPU only (--device cpu)", i,
+                    kMaxExactBallRadius);
+      return message;
+    }
+  }
+  return {};
 }
+
+bool MarchRenderer::supports(const World& world) { return unsupported(world).empty(); }
 
 bool MarchRenderer::can_write_unorm(const Context& context, VkFormat format) {
   if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_B8G8R8A8_UNORM) return false;

@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -161,13 +162,24 @@ class MarchRenderer {
   /// (Context::storage_write_without_format).
   static bool can_write_unorm(const Context& context, VkFormat format);
 
+  /// Exact balls of a larger radius render on the CPU only: the kernel
+  /// starts its Newton solves from sol::ConnectionTable's seeds and keeps
+  /// to the connection it tracks, and beyond this radius a few pixels of a
+  /// far observer's view landed on a longer connection, off the sphere by up
+  /// to 4e-2 (test Kernel.ExactBallsHoldAtEveryRadiusAndInTheQuotient; at 2
+  /// and below every hit lies within 1e-4 of the geodesic sphere).
+  static constexpr double kMaxExactBallRadius = 2.0;
+
   /// Whether the kernel renders the world: all but those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach
-  /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages).
-  /// set_world throws sol::NotImplemented for those; the CPU renderer takes
-  /// every world.
+  /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages),
+  /// and those with exact balls above kMaxExactBallRadius. set_world throws
+  /// sol::NotImplemented for those; the CPU renderer takes every world.
   static bool supports(const World& world);
+  /// Why the kernel does not render the world, naming the field and saying
+  /// where it renders ("" when it does: supports()).
+  static std::string unsupported(const World& world);
 
  private:
   struct Frame;
