@@ -55,6 +55,7 @@ struct MarchLimits {
 // leaving it). The kernel's twin: plane_xy_roots in march.comp, which stops
 // at float precision.
 struct PlaneCrossing {
+  bool solved = true;  ///< else (no convergence: non-finite positions far out) the planes are marched
   std::size_t k = 0;
   double t = std::numeric_limits<double>::infinity();  ///< none within the limit: infinity
   int steps = 0;                                       ///< positions evaluated
@@ -146,7 +147,9 @@ PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const 
     }
     t = next;
   }
-  throw std::logic_error("sol::render_cpu: the crossing of a plane x = c or y = c did not converge");
+  r.solved = false;  // bisection halves the bracket every fourth iteration: only non-finite values end here
+  r.t = std::numeric_limits<double>::infinity();
+  return r;
 }
 
 // The march in Sol: `objects` relative to `origin`, so the ray starts at
@@ -191,6 +194,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   if (planes_xy) {
     crossing = first_plane_crossing(ray, objects, passing, max_length, world.hit_epsilon);
     for (const MarchObject& o : objects) others = others || !(std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
+    others = others || !crossing.solved;
   }
   if (!others && !(crossing.t <= max_length)) {  // nothing else to march, and no crossing
     hit.steps = crossing.steps;
@@ -204,7 +208,8 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     std::size_t hit_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
       double d = object_distance(objects[k], q);
-      if (planes_xy && (std::holds_alternative<PlaneX>(objects[k].shape) || std::holds_alternative<PlaneY>(objects[k].shape))) {
+      if (planes_xy && crossing.solved &&
+          (std::holds_alternative<PlaneX>(objects[k].shape) || std::holds_alternative<PlaneY>(objects[k].shape))) {
         d = k == crossing.k ? std::max(crossing.t - t, 0.0) : std::numeric_limits<double>::infinity();
       }
       const SceneObject& o = world.objects[k];
