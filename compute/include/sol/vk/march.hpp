@@ -166,7 +166,7 @@ class MarchRenderer {
   /// starts its Newton solves from sol::ConnectionTable's seeds and keeps
   /// to the connection it tracks, and beyond this radius a few pixels of a
   /// far observer's view landed on a longer connection, off the sphere by up
-  /// to 4e-2 (test Kernel.ExactBallsHoldAtEveryRadiusAndInTheQuotient; at 2
+  /// to 4e-2 (test Kernel.ExactBallsLieOnTheGeodesicSphere; at 2
   /// and below every hit lies within 1e-4 of the geodesic sphere).
   static constexpr double kMaxExactBallRadius = 2.0;
 
