@@ -148,7 +148,7 @@ TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "falloff": "geodesic"}]})",
                   "lights[0].falloff geodesic needs \"exact\": true");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "exact": true, "falloff": "cubic"}]})",
-                  "'lights[0].falloff' must be geodesic or inverse-square, got cubic");
+                  "'lights[0].falloff' must be geodesic or inverse-square, got 'cubic'");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": 1, "intensity": 2}]})", "takes 'power' or 'intensity', not both");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": -1}]})", "lights[0].power must be in");
   expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "directional", "falloff": "geodesic"}]})", "falloff");

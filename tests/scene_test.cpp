@@ -69,7 +69,10 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
-  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden");
+  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden, got 'torus'");
+  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none or golden, got '7'");
+  expect_rejected(R"({"camera": {"projection": ["fisheye"]}, )" + objects + "}",
+                  "'camera.projection' must be perspective, equirectangular or fisheye, got '[\"fisheye\"]'");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})",
                   "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got w");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": 2, "through": [0, 0, 0], "radius": 1}]})",

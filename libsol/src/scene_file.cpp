@@ -24,17 +24,10 @@ void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (!c.is_object()) r.fail("camera", "'camera' must be an object");
   r.require_known_keys(c, {"position", "forward", "up", "fov", "frustum", "projection", "fisheye_fov"}, "camera", "camera");
   if (c.contains("projection")) {
-    const std::string p = SceneFileReader::text(c["projection"]);
-    if (p == "perspective") {
-      camera.projection = Projection::Perspective;
-    } else if (p == "equirectangular") {
-      camera.projection = Projection::Equirectangular;
-    } else if (p == "fisheye") {
-      camera.projection = Projection::Fisheye;
-    } else {
-      r.fail("camera.projection", "'camera.projection' must be perspective, equirectangular or fisheye, got '" +
-                                      SceneFileReader::shown(p) + "'");
-    }
+    camera.projection = r.choice<Projection>(c["projection"], "camera.projection",
+                                             {{"perspective", Projection::Perspective},
+                                              {"equirectangular", Projection::Equirectangular},
+                                              {"fisheye", Projection::Fisheye}});
   }
   if (c.contains("fisheye_fov")) camera.fisheye_fov = r.number(c["fisheye_fov"], "camera.fisheye_fov");
   if (c.contains("position")) camera.position = r.vec3(c["position"], "camera.position");
@@ -69,14 +62,8 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
     if (l.contains("exact")) light.exact = r.boolean(l["exact"], at + ".exact");
     if (l.contains("reach")) light.reach = r.number(l["reach"], at + ".reach");
     if (l.contains("falloff")) {
-      const std::string falloff = SceneFileReader::text(l["falloff"]);
-      if (falloff == "geodesic") {
-        light.falloff = Falloff::Geodesic;
-      } else if (falloff == "inverse-square") {
-        light.falloff = Falloff::InverseSquare;
-      } else {
-        r.fail(at + ".falloff", "'" + at + ".falloff' must be geodesic or inverse-square, got " + falloff);
-      }
+      light.falloff = r.choice<Falloff>(l["falloff"], at + ".falloff",
+                                        {{"geodesic", Falloff::Geodesic}, {"inverse-square", Falloff::InverseSquare}});
     }
     if (l.contains("power")) {
       // The radiant power Φ, spread over the sphere of directions: I = Φ / 4π.
@@ -137,14 +124,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   }
   if (root.contains("ambient")) s.ambient = r.number(root["ambient"], "ambient");
   if (root.contains("quotient")) {
-    const std::string name = SceneFileReader::text(root["quotient"]);
-    if (name == "none") {
-      s.quotient = Quotient::None;
-    } else if (name == "golden") {
-      s.quotient = Quotient::Golden;
-    } else {
-      r.fail("quotient", "'quotient' must be none or golden, got " + name);
-    }
+    s.quotient = r.choice<Quotient>(root["quotient"], "quotient", {{"none", Quotient::None}, {"golden", Quotient::Golden}});
   }
   if (root.contains("fog_distance")) {
     const double d = r.number(root["fog_distance"], "fog_distance");

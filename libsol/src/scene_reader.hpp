@@ -12,6 +12,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
@@ -59,6 +60,26 @@ class SceneFileReader {
   /// Fails unless `object` has `key`: "<what> needs <noun>".
   void require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
                    const std::string& path) const;
+
+  /// The value of the entry of `options` that `value` (a string) names;
+  /// fails "'<path>' must be a, b or c, got '<value>'" otherwise.
+  template <class T>
+  T choice(const json& value, const std::string& path,
+           std::initializer_list<std::pair<std::string_view, T>> options) const {
+    if (value.is_string()) {
+      for (const auto& [name, result] : options) {
+        if (value.get_ref<const std::string&>() == name) return result;
+      }
+    }
+    std::string names;
+    std::size_t i = 0;
+    for (const auto& option : options) {
+      names += i == 0 ? "" : (i + 1 == options.size() ? " or " : ", ");
+      names += option.first;
+      ++i;
+    }
+    fail(path, "'" + path + "' must be " + names + ", got '" + text(value) + "'");
+  }
 
   /// A string value as it is, anything else as its JSON text (for messages
   /// and names), shortened as shown().
