@@ -53,7 +53,7 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "plane_z", "color": [1, 1]}]})", "array of 3 numbers");
   expect_rejected(R"({"objects": [{"type": "plane_z", "color": [2, 0, 0]}]})", "color");
   expect_rejected(R"({"objects": [{"type": "plane_z", "c": "nan"}]})", "must be a number");
-  expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "dots"}]})", "none, circles, checker");
+  expect_rejected(R"({"objects": [{"type": "plane_z", "pattern": "dots"}]})", "none, circles or checker");
   expect_rejected(R"({"camera": {"forward": [0, 0, 0]}, )" + objects + "}", "camera.forward");
   expect_rejected(R"({"camera": {"forward": [0, 0, 2], "up": [0, 0, -1]}, )" + objects + "}", "parallel");
   expect_rejected(R"({"camera": {"fov": 180}, )" + objects + "}", "fov");
@@ -93,7 +93,7 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "stripes"}]})",
-                  "'objects[0].pattern' must be one of none, circles, checker, got stripes");
+                  "'objects[0].pattern' must be none, circles or checker, got 'stripes'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "cutout": true}]})",
                   "unknown key 'cutout'");
   // The quotient: only objects whose images under Γ stay finite near D.

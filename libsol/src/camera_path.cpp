@@ -35,33 +35,23 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
   };
   if (j.contains("walk")) {
     r.require_known_keys(j, {"walk", "distance", "duration"}, at + " (a walk)", at);
-    const std::string way = SceneFileReader::text(j["walk"]);
-    const std::pair<const char*, glm::dvec3> ways[] = {{"forward", {0, 0, 1}}, {"back", {0, 0, -1}},
-                                                       {"right", {1, 0, 0}},   {"left", {-1, 0, 0}},
-                                                       {"up", {0, 1, 0}},      {"down", {0, -1, 0}}};
-    auto it = std::find_if(std::begin(ways), std::end(ways), [&](const auto& w) { return way == w.first; });
-    if (it == std::end(ways)) {
-      r.fail(at + ".walk", at + ".walk must be forward, back, left, right, up or down, got '" + SceneFileReader::shown(way) + "'");
-    }
+    const glm::dvec3 direction = r.choice<glm::dvec3>(j["walk"], at + ".walk",
+                                                      {{"forward", {0, 0, 1}}, {"back", {0, 0, -1}},
+                                                       {"left", {-1, 0, 0}},   {"right", {1, 0, 0}},
+                                                       {"up", {0, 1, 0}},      {"down", {0, -1, 0}}});
     r.require_key(j, "distance", at + " (a walk)", "a 'distance'", at);
     r.require_key(j, "duration", at + " (a walk)", "a 'duration'", at);
     s.kind = PathSegment::Kind::Walk;
-    s.direction = it->second;
+    s.direction = direction;
     s.distance = r.number(j["distance"], at + ".distance");
     if (!(std::abs(s.distance) <= kMaxDistance)) r.fail(at + ".distance", at + ".distance must be within ±1e4");
     s.duration = duration("duration");
   } else if (j.contains("turn")) {
     r.require_known_keys(j, {"turn", "degrees", "duration"}, at + " (a turn)", at);
-    const std::string axis = SceneFileReader::text(j["turn"]);
-    if (axis == "yaw") {
-      s.axis = PathSegment::Axis::Yaw;
-    } else if (axis == "pitch") {
-      s.axis = PathSegment::Axis::Pitch;
-    } else if (axis == "roll") {
-      s.axis = PathSegment::Axis::Roll;
-    } else {
-      r.fail(at + ".turn", at + ".turn must be yaw, pitch or roll, got '" + SceneFileReader::shown(axis) + "'");
-    }
+    s.axis = r.choice<PathSegment::Axis>(j["turn"], at + ".turn",
+                                         {{"yaw", PathSegment::Axis::Yaw},
+                                          {"pitch", PathSegment::Axis::Pitch},
+                                          {"roll", PathSegment::Axis::Roll}});
     r.require_key(j, "degrees", at + " (a turn)", "'degrees'", at);
     r.require_key(j, "duration", at + " (a turn)", "a 'duration'", at);
     s.kind = PathSegment::Kind::Turn;

@@ -500,11 +500,10 @@ std::string kind_names(std::index_sequence<I...>) {
 }
 
 Pattern read_pattern(const json& value, const SceneFileReader& r, const std::string& path) {
-  const std::string s = SceneFileReader::text(value);
-  for (Pattern p : {Pattern::None, Pattern::Circles, Pattern::Checker}) {
-    if (to_string(p) == s) return p;
-  }
-  r.fail(path, "'" + path + "' must be one of none, circles, checker, got " + s);
+  return r.choice<Pattern>(value, path,
+                           {{to_string(Pattern::None), Pattern::None},
+                            {to_string(Pattern::Circles), Pattern::Circles},
+                            {to_string(Pattern::Checker), Pattern::Checker}});
 }
 
 }  // namespace
