@@ -734,6 +734,21 @@ TEST(Render, EveryPresetRendersWithoutNaN) {
   EXPECT_THROW(sol::render_cpu(sol::preset_scene("plane"), bad), sol::InvalidArgument);
 }
 
+// The features the march's short cuts rest on: planes x = c and y = c alone
+// (then nothing is marched once their crossing is solved), and not when
+// any other object joins them or there are none.
+TEST(Render, FeaturesSayWhenEveryObjectIsAPlaneXOrY) {
+  sol::Scene sheets = sol::preset_scene("sheets");
+  EXPECT_TRUE(sol::features_of(sheets).planes_xy_only);
+  EXPECT_TRUE(sol::features_of(sheets).planes_xy);
+  sheets.objects.push_back({sol::PlaneZ{-1.0}});
+  EXPECT_FALSE(sol::features_of(sheets).planes_xy_only);
+  EXPECT_TRUE(sol::features_of(sheets).planes_xy);
+  EXPECT_FALSE(sol::features_of(sol::preset_scene("plane")).planes_xy_only);
+  sheets.objects.clear();
+  EXPECT_FALSE(sol::features_of(sheets).planes_xy_only);
+}
+
 // A world prepared once (CpuRenderer::set_world) renders any camera as a
 // fresh render of the scene with that camera does, in Sol and in the
 // quotient: nothing of the first camera stays in the prepared world.

@@ -1,6 +1,5 @@
 #include "sol/camera_path.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 

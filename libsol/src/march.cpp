@@ -102,9 +102,11 @@ MarchFeatures features_of(const World& world) {
   MarchFeatures f;
   f.quotient = world.quotient != Quotient::None;
   f.heights_only = !f.quotient;
+  f.planes_xy_only = !world.objects.empty();
   for (const SceneObject& o : world.objects) {
     const bool plane_z = std::holds_alternative<PlaneZ>(o.shape);
     f.heights_only = f.heights_only && plane_z;
+    f.planes_xy_only = f.planes_xy_only && (std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
     f.solids = f.solids || std::holds_alternative<Ball>(o.shape) || std::holds_alternative<Tube>(o.shape);
     f.tubes = f.tubes || std::holds_alternative<Tube>(o.shape);
     f.planes_xy = f.planes_xy || std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape);

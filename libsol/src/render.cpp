@@ -58,6 +58,7 @@ struct PlaneCrossing {
   bool solved = true;  ///< else (no convergence: non-finite positions far out) the planes are marched
   std::size_t k = 0;
   double t = std::numeric_limits<double>::infinity();  ///< none within the limit: infinity
+  glm::dvec3 q{0.0};                                   ///< the position at t (relative to the start)
   int steps = 0;                                       ///< positions evaluated
 };
 
@@ -120,6 +121,7 @@ PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const 
     if (settled_k != kNone && !unsettled) {
       r.k = settled_k;
       r.t = t;
+      r.q = q;
       return r;
     }
     if (ahead == 0) return r;
@@ -129,6 +131,7 @@ PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const 
       if (!(hi - lo > tolerance)) {  // the bracket closed at the tolerance: the crossing is here
         r.k = behind_k;
         r.t = t;
+        r.q = q;
         return r;
       }
     } else {
@@ -190,20 +193,16 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   // other objects up to it (their distance: the arc length left to it).
   const bool planes_xy = prepared.features().planes_xy;
   PlaneCrossing crossing;
-  bool others = !planes_xy;
-  if (planes_xy) {
-    crossing = first_plane_crossing(ray, objects, passing, max_length, world.hit_epsilon);
-    for (const MarchObject& o : objects) others = others || !(std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
-    others = others || !crossing.solved;
-  }
+  if (planes_xy) crossing = first_plane_crossing(ray, objects, passing, max_length, world.hit_epsilon);
+  const bool others = !prepared.features().planes_xy_only || !crossing.solved;
   if (!others && !(crossing.t <= max_length)) {  // nothing else to march, and no crossing
     hit.steps = crossing.steps;
     hit.distance = max_length;
     return hit;
   }
   for (int step = 0; step < world.max_steps; ++step) {
-    if (!others) t = crossing.t;  // nothing else to march: straight to the crossing
-    const glm::dvec3 q = full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
+    if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
+    const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
     std::size_t hit_k = 0;
     for (std::size_t k = 0; k < n; ++k) {

@@ -79,6 +79,7 @@ struct MarchFeatures {
   bool bound_balls = false;   ///< balls drawn with their bound (not exact)
   bool tubes = false;
   bool planes_xy = false;     ///< planes x = c or y = c
+  bool planes_xy_only = false;  ///< every object a plane x = c or y = c: once their crossing is solved, nothing to march
   bool point_lights = false;
   bool fog = false;
   bool cutout = false;        ///< cutout planes
