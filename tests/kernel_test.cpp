@@ -833,6 +833,7 @@ struct CrossingErrors {
   int planes = 0;      // such pixels
   Comparison images;   // the two renders (masks, colours, arc lengths)
   double mean_steps = 0;  // the kernel's
+  int unsettled = 0;      // the kernel's rays of over 16 positions (planes x, y only: roots unsettled, then marched)
 };
 
 // Each pixel of a mono or ODS stereo pair (`ipd` > 0, equirectangular) whose
@@ -850,7 +851,10 @@ CrossingErrors plane_crossing_errors(const sol::Scene& scene, int w, int h, doub
   const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, ipd);
   CrossingErrors e;
   e.images = compare(gpu, cpu);
-  for (float n : gpu.steps) e.mean_steps += n / static_cast<double>(gpu.steps.size());
+  for (float n : gpu.steps) {
+    e.mean_steps += n / static_cast<double>(gpu.steps.size());
+    e.unsettled += n > 16.0f ? 1 : 0;  // march.comp's kPlaneRootIterations
+  }
   for (int eye = 0; eye < (stereo ? 2 : 1); ++eye) {
     const sol::Camera camera = stereo ? (eye == 0 ? eyes.left : eyes.right) : scene.camera;
     sol::Camera mono = camera;
@@ -906,6 +910,13 @@ TEST(Kernel, PlanesXYHitAtTheirCrossing) {
   away.camera.fov = 40.0;
   sol::Scene on = sheets;  // the eye on the sheet x = 0: every ray hits it at once, or the other
   on.camera.position.x = 0.0;
+  // Every direction from farther away, up to 200: some rays' roots do not
+  // settle within 16 positions (float rounding far out); the kernel then
+  // marches the planes (for a world of planes x, y only, inside plane_xy_roots).
+  sol::Scene far = sheets;
+  far.camera.position = {5.0, 3.0, 2.0};
+  far.camera.projection = sol::Projection::Equirectangular;
+  far.max_distance = 200.0;
   struct Case {
     const char* name;
     const sol::Scene& scene;
@@ -915,11 +926,14 @@ TEST(Kernel, PlanesXYHitAtTheirCrossing) {
   };
   for (const Case& c : {Case{"sheets", sheets, 48, 32, 0.0, true}, Case{"sheets with a ball", ball, 48, 32, 0.0, true},
                         Case{"sheets ODS", ods, 48, 24, 0.3, true}, Case{"looking away", away, 24, 16, 0.0, false},
-                        Case{"on a sheet", on, 24, 16, 0.0, true}}) {
+                        Case{"on a sheet", on, 24, 16, 0.0, true}, Case{"far, all around", far, 96, 48, 0.0, true}}) {
     const CrossingErrors e = plane_crossing_errors(c.scene, c.w, c.h, c.ipd);
-    std::printf("%s: %d plane hits, %d masks differ, mean kernel steps %.2f; kernel: worst off the plane %.2f of its "
-                "budget, arc length %.2e; CPU: arc length %.2e relative\n",
-                c.name, e.planes, e.images.mask_differs, e.mean_steps, e.gpu, e.gpu_arc, e.cpu);
+    std::printf("%s: %d plane hits, %d masks differ, mean kernel steps %.2f (%d rays over 16); kernel: "
+                "worst off the plane %.2f of its budget, arc length %.2e; CPU: arc length %.2e relative\n",
+                c.name, e.planes, e.images.mask_differs, e.mean_steps, e.unsettled, e.gpu, e.gpu_arc, e.cpu);
+    if (&c.scene == &far) {
+      EXPECT_GT(e.unsettled, 0) << "the march after unsettled roots is not exercised";
+    }
     if (c.hits) {
       EXPECT_GT(e.planes, c.w * c.h / 2) << c.name;
     } else {

@@ -182,7 +182,8 @@ struct KernelVariant {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows}) {
+                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
+                   f.planes_xy_only}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -241,7 +242,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
                                                 {kernel::kSpecProjections, v.projections ? 1u : 0u},
                                                 {kernel::kSpecOds, v.ods ? 1u : 0u},
-                                                {kernel::kSpecShadows, f.shadows ? 1u : 0u}}});
+                                                {kernel::kSpecShadows, f.shadows ? 1u : 0u},
+                                                {kernel::kSpecPlanesXYOnly, f.planes_xy_only ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the
