@@ -737,6 +737,18 @@ TEST(Render, EveryPresetRendersWithoutNaN) {
 // The features the march's short cuts rest on: planes x = c and y = c alone
 // (then nothing is marched once their crossing is solved), and not when
 // any other object joins them or there are none.
+// The kernel's fold partners are compiled in for exact lights with a reach only.
+TEST(Render, FeaturesSayWhenAnExactLightHasAReach) {
+  sol::Scene spheres = sol::preset_scene("spheres");
+  ASSERT_FALSE(spheres.lights.empty());
+  EXPECT_TRUE(sol::features_of(spheres).exact_lights);
+  EXPECT_FALSE(sol::features_of(spheres).light_reach);
+  spheres.lights[0].reach = 1.0;
+  EXPECT_TRUE(sol::features_of(spheres).light_reach);
+  spheres.lights[0].exact = false;
+  EXPECT_FALSE(sol::features_of(spheres).light_reach);
+}
+
 TEST(Render, FeaturesSayWhenEveryObjectIsAPlaneXOrY) {
   sol::Scene sheets = sol::preset_scene("sheets");
   EXPECT_TRUE(sol::features_of(sheets).planes_xy_only);

@@ -43,6 +43,11 @@ layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
 // Exact point lights (kLightExactPoint): directions along the geodesics to
 // the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
 layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
+// Exact point lights with a reach (the longer connections): only they look
+// for the partners of connections near a fold (sol_connections), code that
+// costs the kernel even where it never runs.
+layout(constant_id = kSpecLightReach) const bool HAS_LIGHT_REACH = false;
+#define SOL_FOLD_PARTNERS HAS_LIGHT_REACH
 // Equirectangular or fisheye eyes (a uniform says which): compiled in only
 // for them, so the perspective kernels keep their cost.
 layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;

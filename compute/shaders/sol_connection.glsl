@@ -21,18 +21,29 @@
 
 #include "sol/kernel_constants.h"
 
+// Whether sol_connections looks for fold partners when given a reach: a
+// constant the including kernel may set (march.comp: its specialisation
+// constant for lights with a reach), so that kernels without a reach do not
+// carry that code; on by default.
+#ifndef SOL_FOLD_PARTNERS
+#define SOL_FOLD_PARTNERS true
+#endif
+
 const int SOL_NEWTON_ITERATIONS = 8;
 // A seed within SOL_SEED_SKIP max(1, t) of a connection already found (in
 // t·(a, b, c)) is not polished: it would find that connection again.
 const float SOL_SEED_SKIP = 0.25;
 
-// The exponential map at the origin: the end of the geodesic with initial vector v.
+// The exponential map at the origin: the end of the geodesic with initial
+// vector v. Forward (t >= 0): sol_ray_integrals' start-to-end-of-quarter
+// piece is the far piece, so three Carlson pairs in all (the quarters, that
+// piece, the near piece) where sol_position would take a fourth.
 vec3 sol_exp(vec3 v) {
   const float t = length(v);
   if (!(t > 0.0)) return vec3(0.0);
   SolRay g = sol_ray(v / t);
   sol_ray_integrals(g);
-  return sol_position(g, t);
+  return sol_position_forward(g, t);
 }
 
 // exp(v) - w in frame components at w (e^{z} = ez there).
@@ -261,7 +272,7 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
       for (int j = 0; j < count; ++j) known = known || length(found[j].xyz * found[j].w - start) < SOL_SEED_SKIP * max(1.0, seed.w);
       if (known) continue;
     } else {
-      if (!(reach > 0.0)) break;
+      if (!SOL_FOLD_PARTNERS || !(reach > 0.0)) break;
       if (first < 0) {
         first = count;
         originals = found;  // the inserts below reorder found

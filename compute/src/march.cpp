@@ -183,7 +183,7 @@ struct KernelVariant {
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
                    srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
-                   f.planes_xy_only}) {
+                   f.planes_xy_only, f.light_reach}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -208,6 +208,7 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
           .cutout_gaps = true,
           .exact_balls = world.exact_balls,
           .exact_lights = world.exact_lights,
+          .light_reach = world.exact_lights,
           .shadows = world.shadows};
 }
 
@@ -243,7 +244,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecProjections, v.projections ? 1u : 0u},
                                                 {kernel::kSpecOds, v.ods ? 1u : 0u},
                                                 {kernel::kSpecShadows, f.shadows ? 1u : 0u},
-                                                {kernel::kSpecPlanesXYOnly, f.planes_xy_only ? 1u : 0u}}});
+                                                {kernel::kSpecPlanesXYOnly, f.planes_xy_only ? 1u : 0u},
+                                                {kernel::kSpecLightReach, f.light_reach ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the

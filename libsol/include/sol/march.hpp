@@ -86,6 +86,7 @@ struct MarchFeatures {
   bool cutout_gaps = false;   ///< cutout planes z = c: their gap bounds need the full position
   bool exact_balls = false;
   bool exact_lights = false;
+  bool light_reach = false;   ///< exact point lights with a reach: the longer connections (and the kernel's fold partners)
   bool shadows = false;       ///< exact point lights with shadows
 };
 MarchFeatures features_of(const World& world);

@@ -52,6 +52,7 @@ SOL_CONSTANT(int, kSpecProjections, 13);    ///< bool: an eye's projection is eq
 SOL_CONSTANT(int, kSpecOds, 14);            ///< bool: omnidirectional stereo eyes (binding 8)
 SOL_CONSTANT(int, kSpecShadows, 15);        ///< bool: exact point lights with shadows (Params::light_shadows)
 SOL_CONSTANT(int, kSpecPlanesXYOnly, 16);   ///< bool: every object a plane x = c or y = c (needs kSpecPlanesXY)
+SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a reach (needs kSpecExactLights)
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
