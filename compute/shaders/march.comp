@@ -761,6 +761,28 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
   return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
 }
 
+// The end of a march step whose nearest object (for a hit) is nearest_k at
+// nearest_hit and whose step is `nearest`: a hit (`hit` set), a pass
+// between a cutout plane's discs, or the advance. Returns whether the march
+// goes on.
+bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, int type, vec4 eye_camera, vec4 eye_frac,
+                    float hit_epsilon, float max_distance, inout uint passing, inout float t, inout int hit) {
+  if (nearest_hit < hit_epsilon) {
+    if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
+      const vec2 uv = plane_coordinates(type, q, eye_camera, eye_frac);  // full positions whenever the scene has cutouts
+      if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
+        passing |= 1u << uint(nearest_k);  // between the discs: go through
+        t += max(nearest, 2.0 * hit_epsilon);
+        return !(t > max_distance);
+      }
+    }
+    hit = nearest_k + 1;
+    return false;
+  }
+  t += (HAS_CUTOUT && passing != 0u) ? max(nearest, 2.0 * hit_epsilon) : nearest;
+  return !(t > max_distance);
+}
+
 void main() {
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
   // This dispatch's tile of the image (the whole image unless rendered in tiles).
@@ -996,62 +1018,87 @@ void main() {
     }
   }
   // (With PLANES_XY_ONLY the roots did all: no march loop is compiled.)
-  for (int step = 0; step < max_steps && reachable && march && !PLANES_XY_ONLY; ++step) {
-    if (INTEGRATOR == 0) {
-      // Cutout planes need the full position for their gap bounds.
-      q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
-    } else {
-      rk4_advance(rk_p, rk_u, t - rk_t, rk4_step);
-      rk_t = t;
-      q = rk_p;
-    }
-    if (HAS_ODS) q = sol_translate(start, q);  // from the column's eye
-    float nearest = 1e30, nearest_hit = 1e30;
-    int nearest_k = 0;
-    // With exact balls, the runners-up too: the least distance to the other
-    // objects (`others`, any object: for the step) and the next candidate hit
-    // (`second_hit`, `second_k`), for when the nearest is an exact ball.
-    float others = 1e30, second_hit = 1e30;
-    int nearest_any = 0, second_k = 0;
-    for (int k = 0; k < count; ++k) {
-      float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
-      if (HAS_PLANES_XY && xy.solved && (types[k] == kObjectPlaneX || types[k] == kObjectPlaneY)) {
-        d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
+  // The march. With exact balls it runs in rounds: the inner loop marches
+  // by the objects' distances (exact balls by their approach,
+  // exact_ball_distance) until the ray comes within kExactShell of an exact
+  // ball; that step is finished after the inner loop by the exact distance
+  // (exact_ball_sdf), and the next round goes on. lavapipe executes the body
+  // of every if, and of every loop at least once, for all its lanes, masked,
+  // whichever way they go: inside the loop the exact solve (a Newton loop
+  // around the closed form) cost every step of every ray; here once a round.
+  bool alive = reachable && march && !PLANES_XY_ONLY;
+  int step = 0;
+  // One step's findings. With exact balls, the runners-up too: the least
+  // distance to the other objects (`others`, any object: for the step) and
+  // the next candidate hit (`second_hit`, `second_k`), for when the nearest
+  // is an exact ball.
+  float nearest = 1e30, nearest_hit = 1e30, others = 1e30, second_hit = 1e30;
+  int nearest_k = 0, nearest_any = 0, second_k = 0;
+  bool shell = false;  // the step's nearest is an exact ball within kExactShell: finished exactly
+  for (int round = 0; HAS_EXACT_BALLS ? round < max_steps && alive : round < 1; ++round) {  // once without exact balls
+    for (; step < max_steps && alive; ++step) {
+      if (INTEGRATOR == 0) {
+        // Cutout planes need the full position for their gap bounds.
+        q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
+      } else {
+        rk4_advance(rk_p, rk_u, t - rk_t, rk4_step);
+        rk_t = t;
+        q = rk_p;
       }
-      if (HAS_CUTOUT && cutouts[k] != 0) {
-        d = max(d, cutout_gap_bound(cutouts[k], plane_coordinates(2, q, eye_camera, eye_frac), eye_camera.w * exp(q.z)));
-      }
-      // Cutout planes being passed through (between their discs) are not hits
-      // until the ray is 2 hit_epsilon away again (as the CPU reference).
-      const uint bit = 1u << uint(k);
-      if (HAS_CUTOUT && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
-      if (HAS_EXACT_BALLS) {
-        if (d < nearest) {
-          others = nearest;
-          nearest_any = k;
-        } else {
-          others = min(others, d);
+      if (HAS_ODS) q = sol_translate(start, q);  // from the column's eye
+      nearest = 1e30;
+      nearest_hit = 1e30;
+      nearest_k = 0;
+      others = 1e30;
+      second_hit = 1e30;
+      nearest_any = 0;
+      second_k = 0;
+      for (int k = 0; k < count; ++k) {
+        float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
+        if (HAS_PLANES_XY && xy.solved && (types[k] == kObjectPlaneX || types[k] == kObjectPlaneY)) {
+          d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
         }
-      }
-      nearest = min(nearest, d);
-      if ((!HAS_CUTOUT || (passing & bit) == 0u) && d < nearest_hit) {
+        if (HAS_CUTOUT && cutouts[k] != 0) {
+          d = max(d, cutout_gap_bound(cutouts[k], plane_coordinates(2, q, eye_camera, eye_frac), eye_camera.w * exp(q.z)));
+        }
+        // Cutout planes being passed through (between their discs) are not hits
+        // until the ray is 2 hit_epsilon away again (as the CPU reference).
+        const uint bit = 1u << uint(k);
+        if (HAS_CUTOUT && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
         if (HAS_EXACT_BALLS) {
-          second_hit = nearest_hit;
-          second_k = nearest_k;
+          if (d < nearest) {
+            others = nearest;
+            nearest_any = k;
+          } else {
+            others = min(others, d);
+          }
         }
-        nearest_hit = d;
-        nearest_k = k;
-      } else if (HAS_EXACT_BALLS && (!HAS_CUTOUT || (passing & bit) == 0u) && d < second_hit) {
-        second_hit = d;
-        second_k = k;
+        nearest = min(nearest, d);
+        if ((!HAS_CUTOUT || (passing & bit) == 0u) && d < nearest_hit) {
+          if (HAS_EXACT_BALLS) {
+            second_hit = nearest_hit;
+            second_k = nearest_k;
+          }
+          nearest_hit = d;
+          nearest_k = k;
+        } else if (HAS_EXACT_BALLS && (!HAS_CUTOUT || (passing & bit) == 0u) && d < second_hit) {
+          second_hit = d;
+          second_k = k;
+        }
       }
+      shell = HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell;
+      if (shell) break;  // finished below
+      steps = root_steps + step + 1;
+      alive = march_step_end(nearest, nearest_hit, nearest_k, q, types[nearest_k], eye_camera, eye_frac, hit_epsilon,
+                             max_distance, passing, t, hit);
     }
-    if (HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell) {
+    if (HAS_EXACT_BALLS && shell && alive) {
       // Near an exact ball: its exact distance (steps, and hits on the true
       // sphere), against the least distance to every other object.
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
-      const float exact = exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
+      const float exact =
+          exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
       nearest = min(nearest_any == nearest_k ? others : nearest, exact);
       if (exact <= second_hit) {
         nearest_hit = exact;
@@ -1059,24 +1106,13 @@ void main() {
         nearest_hit = second_hit;
         nearest_k = second_k;
       }
+      steps = root_steps + step + 1;
+      alive = march_step_end(nearest, nearest_hit, nearest_k, q, types[nearest_k], eye_camera, eye_frac, hit_epsilon,
+                             max_distance, passing, t, hit);
+      shell = false;
+      ++step;
     }
-    steps = root_steps + step + 1;
-    if (nearest_hit < hit_epsilon) {
-      if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
-        const vec3 qp = q;  // full positions whenever the scene has cutouts
-        const vec2 uv = plane_coordinates(types[nearest_k], qp, eye_camera, eye_frac);
-        if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
-          passing |= 1u << uint(nearest_k);  // between the discs: go through
-          t += max(nearest, 2.0 * hit_epsilon);
-          if (t > max_distance) break;
-          continue;
-        }
-      }
-      hit = nearest_k + 1;
-      break;
-    }
-    t += (HAS_CUTOUT && passing != 0u) ? max(nearest, 2.0 * hit_epsilon) : nearest;
-    if (t > max_distance) break;
+    alive = alive && step < max_steps;
   }
 
   vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
