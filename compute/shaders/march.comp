@@ -1017,7 +1017,6 @@ void main() {
       }
     }
   }
-  // (With PLANES_XY_ONLY the roots did all: no march loop is compiled.)
   // The march. With exact balls it runs in rounds: the inner loop marches
   // by the objects' distances (exact balls by their approach,
   // exact_ball_distance) until the ray comes within kExactShell of an exact
@@ -1035,7 +1034,10 @@ void main() {
   float nearest = 1e30, nearest_hit = 1e30, others = 1e30, second_hit = 1e30;
   int nearest_k = 0, nearest_any = 0, second_k = 0;
   bool shell = false;  // the step's nearest is an exact ball within kExactShell: finished exactly
-  for (int round = 0; HAS_EXACT_BALLS ? round < max_steps && alive : round < 1; ++round) {  // once without exact balls
+  // (Without exact balls one round, a loop the compiler unrolls; with
+  // PLANES_XY_ONLY none: the roots did all, and a loop whose condition is
+  // not a constant would run its body once.)
+  for (int round = 0; !PLANES_XY_ONLY && (HAS_EXACT_BALLS ? round < max_steps && alive : round < 1); ++round) {
     for (; step < max_steps && alive; ++step) {
       if (INTEGRATOR == 0) {
         // Cutout planes need the full position for their gap bounds.
