@@ -28,7 +28,9 @@ layout(constant_id = kSpecTubes) const bool HAS_TUBES = true;
 layout(constant_id = kSpecPlanesXY) const bool HAS_PLANES_XY = true;
 // Every object a plane x = c or y = c (sol::MarchFeatures::planes_xy_only):
 // their crossing solved (plane_xy_roots) is the whole march.
-layout(constant_id = kSpecPlanesXYOnly) const bool PLANES_XY_ONLY = false;
+layout(constant_id = kSpecPlanesXYOnly) const bool PLANES_XY_ONLY_WORLD = false;
+// (The roots need the closed form: with RK4 such a world is marched.)
+const bool PLANES_XY_ONLY = PLANES_XY_ONLY_WORLD && INTEGRATOR == 0;
 layout(constant_id = kSpecPointLights) const bool HAS_POINT_LIGHTS = true;
 layout(constant_id = kSpecFog) const bool HAS_FOG = true;
 layout(constant_id = kSpecCutout) const bool HAS_CUTOUT = true;
@@ -589,7 +591,8 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[kSe
 // by the caller's march (`solved` false), or, when every object is such a
 // plane (PLANES_XY_ONLY), here, from lo, by their exact distances, within
 // `max_steps` more positions. The kernel then has no march loop at all: on
-// lavapipe a loop that never runs still costs (sheets: 53.6 -> 41.4 ms).
+// lavapipe a loop that never runs still costs: its body runs once (sheets:
+// 53.8 -> 43.7 ms).
 const int kPlaneRootIterations = 16;
 struct PlaneRoot {
   bool solved;  // else: march the planes
@@ -1003,12 +1006,10 @@ void main() {
   PlaneRoot xy;
   xy.solved = false;
   xy.k = -1;
-  bool march = true;
   int root_steps = 0;
   if (HAS_PLANES_XY && INTEGRATOR == 0) {
     xy = plane_xy_roots(ray, start, count, types, constants, max_distance, hit_epsilon, max_steps, root_steps);
     if (PLANES_XY_ONLY) {
-      march = false;
       steps = root_steps;
       if (xy.k >= 0) {
         hit = xy.k + 1;
@@ -1025,7 +1026,7 @@ void main() {
   // of every if, and of every loop at least once, for all its lanes, masked,
   // whichever way they go: inside the loop the exact solve (a Newton loop
   // around the closed form) cost every step of every ray; here once a round.
-  bool alive = reachable && march && !PLANES_XY_ONLY;
+  bool alive = reachable && !PLANES_XY_ONLY;
   int step = 0;
   // One step's findings. With exact balls, the runners-up too: the least
   // distance to the other objects (`others`, any object: for the step) and
