@@ -332,11 +332,19 @@ bool in_domain(vec3 p) {
 }
 
 // The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
-// y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram.
-vec3 teleport(vec3 p) {
+// y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram. With
+// `step_end` (a constant at each call), p is the end of a march step from a
+// point of D, less than kLatticeHeight long, so n is -1, 0 or 1 and φ^{±2n}
+// a choice between constants (the march runs this at every step, masked:
+// no pow there); else any n.
+vec3 teleport(vec3 p, const bool step_end) {
   const float n = -floor(p.z / kLatticeHeight);
-  const float scale = pow(kPhi, 2.0 * n);
-  vec3 q = vec3(scale * p.x, p.y / scale, p.z + n * kLatticeHeight);
+  const float phi2 = kPhi * kPhi;
+  const float up = n > 0.5 ? phi2 : (n < -0.5 ? 1.0 / phi2 : 1.0);
+  const float down = n > 0.5 ? 1.0 / phi2 : (n < -0.5 ? phi2 : 1.0);
+  const float scale = step_end ? up : pow(kPhi, 2.0 * n);
+  const float inverse_scale = step_end ? down : 1.0 / scale;
+  vec3 q = vec3(scale * p.x, p.y * inverse_scale, p.z + n * kLatticeHeight);
   q.z = min(max(q.z, 0.0), kLatticeHeight * 0.9999999);
   const vec2 f = floor(lattice_coordinates(q));
   const float fs = f.x, fr = f.y;
@@ -435,7 +443,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       const SolForward forward = sol_forward(ray, local_t);
       vec3 p = sol_translate(origin, forward.position);
       if (!in_domain(p)) {
-        origin = teleport(p);
+        origin = teleport(p, true);
         ray = sol_ray_restarted(ray, local_t, forward);
         local_t = 0.0;
         p = origin;
@@ -883,7 +891,7 @@ void main() {
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     if (HAS_ODS) {  // the column's eye, teleported into D
       origin = sol_translate(origin, start);
-      if (!in_domain(origin)) origin = teleport(origin);
+      if (!in_domain(origin)) origin = teleport(origin, false);
     }
     SolRay qray = sol_ray(direction);
     sol_ray_integrals(qray);
@@ -900,7 +908,7 @@ void main() {
       if (!in_domain(q)) {
         // The same geodesic goes on from the teleported point, restarted
         // from what sol_forward found there (sol_ray_restarted).
-        origin = teleport(q);
+        origin = teleport(q, true);
         qray = sol_ray_restarted(qray, local_t, forward);
         local_t = 0.0;
         q = origin;
