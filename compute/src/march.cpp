@@ -251,12 +251,10 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
 // Which connection table exact balls and point lights need: none, the
 // minimisers', or with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
-SeedTable seed_table_of(const World& world) {
+SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
-  if (!uses_exact(world)) return SeedTable::None;
-  const bool longer = std::any_of(world.lights.begin(), world.lights.end(),
-                                  [](const Light& l) { return l.exact && l.reach > 0.0; });
-  return longer ? SeedTable::Longer : SeedTable::Minimisers;
+  if (!f.exact_balls && !f.exact_lights) return SeedTable::None;
+  return f.light_reach ? SeedTable::Longer : SeedTable::Minimisers;
 }
 
 }  // namespace
@@ -357,7 +355,7 @@ void MarchRenderer::set_world(const World& world) {
   // process); exact point lights: the connection solver's seeds; else stubs.
   const std::vector<float> stub(4, 0.0f);
   const std::vector<float>& table = f.exact_balls ? DistanceTable::shared().values : stub;
-  const SeedTable seeds = seed_table_of(world);
+  const SeedTable seeds = seed_table_of(f);
   // Nothing may still read the old buffers (one frame in flight: the caller waited for it).
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
