@@ -138,14 +138,20 @@ namespace {
 
 // The march of the quotient with every listed image's bound at every step
 // (capped at kQuotientMaxStep), written here from scratch: the slow path the
-// distance field replaces. Returns (object, arc length).
-std::pair<int, double> slow_march(const sol::Scene& scene, const std::vector<sol::MarchObject>& images,
-                                  const glm::dvec3& direction) {
+// distance field and the clearances replace. Returns (object, arc length, steps).
+struct SlowHit {
+  int object;
+  double distance;
+  int steps;
+};
+SlowHit slow_march(const sol::Scene& scene, const std::vector<sol::MarchObject>& images, const glm::dvec3& direction) {
   const sol::Lattice lattice = sol::Lattice::golden();
   glm::dvec3 origin = lattice.teleport(scene.camera.position).point;
   auto ray = std::make_unique<sol::ClosedFormGeodesic<double>>(direction);
   double t = 0.0, local = 0.0;
+  int steps = 0;
   for (int step = 0; step < scene.max_steps; ++step) {
+    steps = step + 1;
     glm::dvec3 q = sol::multiply(origin, ray->at(local).position);
     if (!lattice.contains(q)) {
       const glm::dvec3 u = ray->direction_at(local);
@@ -163,12 +169,12 @@ std::pair<int, double> slow_march(const sol::Scene& scene, const std::vector<sol
         owner = static_cast<int>(m.owner);
       }
     }
-    if (nearest < scene.hit_epsilon) return {owner + 1, t};
+    if (nearest < scene.hit_epsilon) return {owner + 1, t, steps};
     t += nearest;
     local += nearest;
     if (t > scene.max_distance) break;
   }
-  return {0, std::min(t, scene.max_distance)};
+  return {0, std::min(t, scene.max_distance), steps};
 }
 
 // The least bound of the images along the ray for arc lengths in [a, b].
@@ -203,11 +209,14 @@ TEST(QuotientField, MarchAgreesWithTheSlowMarchButAtGrazingRays) {
       const int w = 96, h = 64;
       int grazes = 0;
       double worst = 0.0;
+      long fast_steps = 0, slow_steps = 0;
       for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
           const dvec3 direction = sol::camera_ray(scene.camera, i, j, w, h);
           const sol::MarchHit fast = renderer.march(scene.camera, direction);
-          const auto [object, distance] = slow_march(scene, images, direction);
+          const auto [object, distance, steps] = slow_march(scene, images, direction);
+          fast_steps += fast.steps;
+          slow_steps += steps;
           if (fast.object == object && (object == 0 || std::abs(fast.distance - distance) < 1e-3)) {
             if (object != 0) worst = std::max(worst, std::abs(fast.distance - distance));
             continue;
@@ -219,9 +228,14 @@ TEST(QuotientField, MarchAgreesWithTheSlowMarchButAtGrazingRays) {
           EXPECT_LT(least, scene.hit_epsilon) << name << " pixel " << i << ", " << j;
         }
       }
-      std::printf("%s: %d grazing rays of %d differ, elsewhere arc lengths within %.1e\n", name, grazes, w * h, worst);
+      std::printf("%s: %d grazing rays of %d differ, elsewhere arc lengths within %.1e; steps %ld against %ld\n", name,
+                  grazes, w * h, worst, fast_steps, slow_steps);
       EXPECT_LE(grazes, w * h / 100) << name;
       EXPECT_LT(worst, 1e-3) << name;  // both stop within hit_epsilon of the same surface
+      // The clearances step past the surfaces the rays graze: fewer steps
+      // than this march by the least bound, whose steps are never shorter
+      // than the field's (measured: 0.76 and 0.60 of them).
+      EXPECT_LT(static_cast<double>(fast_steps), 0.85 * static_cast<double>(slow_steps)) << name;
     }
   }
 }

@@ -13,6 +13,9 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // march does at its teleports; backward: sol_ray_advanced) and the positions
 // composed by the group law.
 layout(constant_id = 0) const int SEGMENTS = 1;
+// True: the unit tangent at arc length w >= 0, as sol_forward gives it to
+// the quotient march's clearances, instead of the position.
+layout(constant_id = 1) const bool TANGENTS = false;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: direction (frame components), w: arc length
@@ -30,6 +33,10 @@ void main() {
   const vec4 query = queries[i];
   SolRay ray = sol_ray(query.xyz);
   sol_ray_integrals(ray);
+  if (TANGENTS) {
+    results[i] = vec4(sol_forward(ray, query.w).direction, 0.0);
+    return;
+  }
   if (SEGMENTS == 1) {
     // Forward arc lengths through the march's path (sol_position_forward).
     const vec3 position = query.w >= 0.0 ? sol_position_forward(ray, query.w) : sol_position(ray, query.w);

@@ -225,6 +225,71 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   return abs(q.z - c);
 }
 
+// ---- Clearances (sol/clearance.hpp): how far the geodesic from q with unit
+// tangent u goes before it can reach an object, to second order. Each term h
+// of a bound (a maximum of terms) with h' = slope and h'' >= -curvature
+// stays positive up to the first root of h + slope s - ½ curvature s².
+
+float clearance_root(float h, float slope, float curvature) {
+  const float root = sqrt(slope * slope + 2.0 * curvature * max(h, 0.0));
+  const float s = slope >= 0.0 ? (slope + root) / curvature : 2.0 * h / (root - slope);
+  return h > 0.0 ? s : 0.0;
+}
+
+// A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
+// S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound, clearance).
+vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius) {
+  const float dz = q.z - c.z, dx = q.x - c.x, dy = q.y - c.y;
+  const float e = exp(q.z + c.z), ec = exp(c.z);
+  const float sh = sinh(0.5 * dz), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
+  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx / e, sh2 + 0.25 * dy * dy * e);
+  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x / ec - 0.25 * dx * dx / e * u.z,
+                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec + 0.25 * dy * dy * e * u.z);
+  const vec2 s = sqrt(s2);
+  const vec2 h = 2.0 * asinh(s) - radius;
+  const vec2 slope = rate / max(s * sqrt(1.0 + s2), 1e-30);
+  const float distance = max(h.x, h.y);
+  return vec2(distance, max(distance, max(clearance_root(h.x, slope.x, 1.0), clearance_root(h.y, slope.y, 1.0))));
+}
+
+// A tube's bound (sol::clearance_tube): vertical, the slabs around x = x0 and
+// y = y0; horizontal along h, the z slab and the across term asinh|G|,
+// G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (bend 2√5, or 1 along x or y,
+// where it is a slab's). Returns (distance bound, clearance).
+vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius) {
+  const vec3 d = q - through;
+  const float ez = exp(q.z), iez = 1.0 / ez;
+  const vec2 w = vec2(abs(d.x) * iez, abs(d.y) * ez);
+  const vec2 hv = asinh(w) - radius;
+  const vec2 sv = vec2((d.x >= 0.0 ? u.x : -u.x) - w.x * u.z, (d.y >= 0.0 ? u.y : -u.y) + w.y * u.z) * inversesqrt(1.0 + w * w);
+  const float D = abs(h.x) * iez + abs(h.y) * ez;
+  const float G = (h.y * d.x - h.x * d.y) / D;
+  const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) / D;
+  const float ha = asinh(abs(G)) - radius, hz = abs(d.z) - radius;
+  const float sa = (G >= 0.0 ? rate_G : -rate_G) * inversesqrt(1.0 + G * G), sz = d.z >= 0.0 ? u.z : -u.z;
+  const float bend = h.x == 0.0 || h.y == 0.0 ? 1.0 : kAcrossCurvature;
+  const float vertical = max(hv.x, hv.y), horizontal = max(ha, hz);
+  const vec2 v = vec2(vertical, max(vertical, max(clearance_root(hv.x, sv.x, 1.0), clearance_root(hv.y, sv.y, 1.0))));
+  const vec2 hr = vec2(horizontal, max(horizontal, max(clearance_root(ha, sa, bend), clearance_root(hz, sz, 1.0))));
+  return axis == kTubeVertical ? v : hr;
+}
+
+// The object's distance (object_distance) and clearance, the larger of it
+// and the second-order step of its bound (exact balls: of the bound's
+// ball, which holds the exact one). The objects of the quotient: planes
+// z = c, balls and tubes.
+vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius) {
+  if (HAS_BOUND_BALLS && type == kObjectBall) return ball_clearance(q, u, rel.xyz, radius);
+  if (HAS_EXACT_BALLS && type == kObjectExactBall) {
+    const float approach = exact_ball_distance(q, rel.xyz, radius);
+    return vec2(approach, max(approach, ball_clearance(q, u, rel.xyz, radius).y));
+  }
+  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius);
+  const float d = object_distance(type, q, rel, heading, radius);
+  const float plane_z = max(d, clearance_root(d, q.z >= rel.x ? u.z : -u.z, 1.0));
+  return vec2(d, type == kObjectPlaneZ ? plane_z : d);
+}
+
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
 // camera's side (the origin): the march stops within hit_epsilon, possibly
 // just across the plane. Mirrors object_normal in libsol/src/render.cpp.
@@ -454,12 +519,13 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       if (field < kFieldNear) {
         const uint word = field_candidates(cell);
         const bool all = word == kFieldAllImages;
-        float nearest = 1e30, nearest_hit = 1e30;
+        float clear = 1e30, nearest_hit = 1e30;
         for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
           const int i = all ? s : int((word >> uint(8 * s)) & 255u);
           if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
           const Image m = images[i];
-          float d = object_distance(int(m.info.x), p, m.geometry, m.heading.xy, m.info.y);
+          const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y);
+          float d = dc.x;
           if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
             if (exact_i != i) exact_known = false;
             exact_i = i;
@@ -472,11 +538,11 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
               else leaving = true;
             }
           }
-          nearest = min(nearest, d);
+          clear = min(clear, max(d, dc.y));
           if (!leaving) nearest_hit = min(nearest_hit, d);
         }
         if (nearest_hit < eps) return true;
-        step_length = max(field, min(nearest, kFieldNear));
+        step_length = max(field, min(clear, kFieldNear));
       }
       if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
       t += step_length;
@@ -882,11 +948,12 @@ void main() {
     // The march of libsol's march_quotient: rays in D, teleported back when a
     // step ends outside. Each step is the distance field's lower bound
     // (sol::QuotientField: one read instead of every image's bound); where
-    // that is below kFieldNear, the step is also the least bound of the
-    // cell's candidate images (every image that can be nearer than
-    // kFieldNear there), whichever is larger, and the candidate that comes
-    // within hit_epsilon is the object hit. Steps stay below
-    // kQuotientMaxStep, the reach of the listed images.
+    // that is below kFieldNear, the step is also the least clearance along
+    // the ray (object_clearance) of the cell's candidate images (every image
+    // that can be nearer than kFieldNear there), capped at kFieldNear,
+    // whichever is larger, and the candidate that comes within hit_epsilon
+    // is the object hit. Steps stay below kQuotientMaxStep, the reach of
+    // the listed images.
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     if (HAS_ODS) {  // the column's eye, teleported into D
@@ -924,19 +991,27 @@ void main() {
         int nearest_i = -1;
         float second = 1e30;  // the least distance but the nearest's, and its image
         int second_i = -1;
+        // The clearances (object_clearance) of the nearest and the least of the others'.
+        float clear_nearest = 1e30, clear_rest = 1e30;
         for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
           const int i = all ? s : int((word >> uint(8 * s)) & 255u);
           if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
           const Image m = images[i];
-          const float d = object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y);
+          const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y);
+          const float d = dc.x;
           if (d < nearest) {
             second = nearest;
             second_i = nearest_i;
             nearest = d;
             nearest_i = i;
-          } else if (d < second) {
-            second = d;
-            second_i = i;
+            clear_rest = min(clear_rest, clear_nearest);
+            clear_nearest = dc.y;
+          } else {
+            clear_rest = min(clear_rest, dc.y);
+            if (d < second) {
+              second = d;
+              second_i = i;
+            }
           }
         }
         if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
@@ -946,12 +1021,13 @@ void main() {
           const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_J, exact_known);
           nearest_i = exact <= second ? nearest_i : second_i;
           nearest = min(exact, second);
+          clear_nearest = max(clear_nearest, exact);
         }
         if (nearest < hit_epsilon) {
           hit_image = nearest_i;
           break;
         }
-        step_length = max(field, min(nearest, kFieldNear));
+        step_length = max(field, min(min(clear_nearest, clear_rest), kFieldNear));
       }
       t += step_length;
       local_t += step_length;

@@ -407,13 +407,23 @@ void sol_ray_integrals(inout SolRay g) {
 // march evaluates it at every step for every ray (a select, not a branch:
 // lavapipe pays for the body of an if whichever way its lanes go, and a
 // branching form with its overflow guard cost the quotient 8-10 %).
-vec3 sol_plane_position(SolRay g, float t) {
+// The tangent there, from the same exp: (1/cosh v, 0, -tanh v) with
+// 1/cosh v = 2 e^{-A}/(1 + e^{-2A}), tanh v = sign(v)(1 - e^{-2A})/(1 + e^{-2A}).
+vec3 sol_plane_position(SolRay g, float t, out vec3 direction) {
   const float T = abs(t), A = abs(t + g.s0);
   const float e_v = exp(-2.0 * A);
   const float x = sign(t) * exp(T - A) * (1.0 - exp(-2.0 * T)) / (1.0 + e_v);
   vec3 p = vec3(x, 0.0, g.log_cosh_s0 - (A - 0.693147181 + log(1.0 + e_v)));
+  vec3 d = vec3(2.0 * sqrt(e_v), 0.0, -sign(t + g.s0) * (1.0 - e_v)) / (1.0 + e_v);
   p = g.swapped ? vec3(p.y, p.x, -p.z) : p;
+  d = g.swapped ? vec3(d.y, d.x, -d.z) : d;
+  direction = vec3(g.sign_x * d.x, g.sign_y * d.y, d.z);
   return vec3(g.sign_x * p.x, g.sign_y * p.y, p.z);
+}
+
+vec3 sol_plane_position(SolRay g, float t) {
+  vec3 unused;
+  return sol_plane_position(g, t, unused);
 }
 
 // e^{w} = (dn u + k cn u)/k' by Jacobi theta series, the cheap path for
@@ -482,7 +492,8 @@ vec2 sol_height_range(SolRay g) {
 // What sol_forward found on its way to a position: enough to restart the
 // ray there without another Jacobi or Carlson evaluation (sol_ray_restarted).
 struct SolForward {
-  vec3 position;  // relative to the start
+  vec3 position;   // relative to the start
+  vec3 direction;  // the unit tangent there (frame components)
   SolPoint point;  // the path's values there (general regime)
   vec2 near;       // the integrals from the start of the point's quarter (or the ray's start, `same`) to it
   bool same;       // the point lies in the start's quarter
@@ -507,11 +518,15 @@ SolForward sol_forward(SolRay g, float t) {
   f.near = sol_piece(g, f_near, sol_factors(p), gap_near);
   const vec2 integral = f.same ? f.near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + f.near;
   f.position = vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+  f.direction = vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
   // The other regimes by selects (see sol_plane_position).
-  const vec3 plane = sol_plane_position(g, t);
+  vec3 plane_direction;
+  const vec3 plane = sol_plane_position(g, t, plane_direction);
   f.position = g.regime == REGIME_PLANE ? plane : f.position;
   f.position = g.regime == REGIME_VERTICAL ? vec3(0.0, 0.0, g.c * t) : f.position;
   f.position = g.regime == REGIME_STRAIGHT ? vec3(g.direction.x * t, g.direction.y * t, 0.0) : f.position;
+  f.direction = g.regime == REGIME_PLANE ? plane_direction : f.direction;
+  f.direction = g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT ? g.direction : f.direction;
   return f;
 }
 

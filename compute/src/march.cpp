@@ -619,8 +619,10 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
   return r;
 }
 
-std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
-  if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow: segments must be >= 1");
+namespace {
+
+// flow.comp over the queries: positions (walked in `segments`) or tangents.
+std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& queries, int segments, bool tangents) {
   if (queries.empty()) return {};
   const VkDeviceSize bytes = queries.size() * sizeof(glm::vec4);
   Buffer in(context, bytes), out(context, bytes);
@@ -629,7 +631,8 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
                                      .spirv = std::span<const std::uint32_t>(flow_comp_spv),
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
                                      .push_constant_size = sizeof(std::uint32_t),
-                                     .specialization = {{0, static_cast<std::uint32_t>(segments)}}});
+                                     .specialization = {{0, static_cast<std::uint32_t>(segments)},
+                                                        {1, static_cast<std::uint32_t>(tangents)}}});
   pipeline.bind(0, in);
   pipeline.bind(1, out);
   const auto count = static_cast<std::uint32_t>(queries.size());
@@ -637,6 +640,20 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
   std::vector<glm::vec4> results(queries.size());
   out.read(results);
   return results;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
+  if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow: segments must be >= 1");
+  return run_flow(context, queries, segments, false);
+}
+
+std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries) {
+  for (const glm::vec4& q : queries) {
+    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents: arc lengths must be >= 0");
+  }
+  return run_flow(context, queries, 1, true);
 }
 
 std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {

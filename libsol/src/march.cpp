@@ -16,6 +16,10 @@ MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin) {
 
 double object_distance(const MarchObject& object, const glm::dvec3& q) { return shape_distance(object.shape, q); }
 
+double object_clearance(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u) {
+  return shape_clearance(object.shape, q, u);
+}
+
 double cutout_gap_bound(Pattern pattern, const glm::dvec3& w) {
   const double ez = std::exp(w.z);
   const double fu = w.x - std::floor(w.x), fv = w.y - std::floor(w.y);

@@ -9,6 +9,7 @@
 
 #include "field_error.hpp"
 #include "objects_internal.hpp"
+#include "sol/clearance.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"
 #include "sol/group.hpp"
@@ -100,6 +101,10 @@ double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& hea
 
 double PlaneX::distance(const glm::dvec3& q) const { return sdf_plane_x(q, c); }
 
+double PlaneX::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
+  return sol::clearance(std::array{slab_x_term(q, u, c, 0.0)});
+}
+
 glm::dvec3 PlaneX::normal(const glm::dvec3& q) const {
   glm::dvec3 n = sdf_plane_x_gradient(q, c);
   n.x = origin_side(c) * std::abs(n.x);
@@ -115,6 +120,10 @@ KernelShape PlaneX::kernel_shape() const { return {kernel::kObjectPlaneX, {c, 0.
 
 double PlaneY::distance(const glm::dvec3& q) const { return sdf_plane_y(q, c); }
 
+double PlaneY::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
+  return sol::clearance(std::array{slab_y_term(q, u, c, 0.0)});
+}
+
 glm::dvec3 PlaneY::normal(const glm::dvec3& q) const {
   glm::dvec3 n = sdf_plane_y_gradient(q, c);
   n.y = origin_side(c) * std::abs(n.y);
@@ -128,6 +137,8 @@ KernelShape PlaneY::kernel_shape() const { return {kernel::kObjectPlaneY, {c, 0.
 // ---- PlaneZ --------------------------------------------------------------
 
 double PlaneZ::distance(const glm::dvec3& q) const { return sdf_plane_z(q, c); }
+
+double PlaneZ::clearance(const glm::dvec3& q, const glm::dvec3& u) const { return clearance_plane_z(q, u, c); }
 
 glm::dvec3 PlaneZ::normal(const glm::dvec3&) const { return {0.0, 0.0, origin_side(c)}; }
 
@@ -149,6 +160,9 @@ bool PlaneZ::same_set(const PlaneZ& other) const { return std::abs(c - other.c) 
 double Ball::distance(const glm::dvec3& q) const {
   return exact ? sdf_ball_exact(q, center, radius) : sdf_ball(q, center, radius);
 }
+
+// The exact ball lies inside the bound's ball: its clearance serves both.
+double Ball::clearance(const glm::dvec3& q, const glm::dvec3& u) const { return clearance_ball(q, u, center, radius); }
 
 glm::dvec3 Ball::normal(const glm::dvec3& q) const {
   if (exact) {
@@ -232,6 +246,10 @@ double Tube::distance(const glm::dvec3& q) const {
   return vertical() ? sdf_tube(q, through, 2, radius) : sdf_tube_horizontal(q, through, {direction.x, direction.y}, radius);
 }
 
+double Tube::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
+  return clearance_tube(q, u, through, vertical(), {direction.x, direction.y}, radius);
+}
+
 glm::dvec3 Tube::normal(const glm::dvec3& q) const { return gradient_normal(*this, q); }
 
 glm::dvec2 Tube::pattern_uv(const glm::dvec3& q) const {
@@ -295,6 +313,10 @@ std::string_view kind_name(const Shape& shape) {
 
 double shape_distance(const Shape& shape, const glm::dvec3& q) {
   return std::visit([&](const auto& k) { return k.distance(q); }, shape);
+}
+
+double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
+  return std::visit([&](const auto& k) { return k.clearance(q, u); }, shape);
 }
 
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q) {

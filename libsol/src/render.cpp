@@ -255,10 +255,12 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // closed-form geodesic restarts there). A step is the world's distance field
 // F (sol::QuotientField: a lower bound of the least distance bound of the
 // images around D, capped at kQuotientMaxStep); where F < kFieldNear it is
-// also the least bound of the cell's candidate images (every image whose
-// bound can be below kFieldNear in the cell), capped at kFieldNear,
-// whichever is larger: both never exceed the distance to the nearest image,
-// so a step may cross a face of D but never passes through an object. The
+// also the least clearance of the cell's candidate images along the ray
+// (every image whose bound can be below kFieldNear in the cell; each
+// image's clearance, sol/clearance.hpp, is at least its bound and longer
+// beside it), capped at kFieldNear, whichever is larger: neither reaches an
+// object (the other images' bounds exceed kFieldNear at q), so a step may
+// cross a face of D but never passes through an object. The
 // candidate that comes within hit_epsilon is the object hit. The kernel
 // (march.comp) marches the same way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
@@ -292,13 +294,15 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     const double bound = field.lower_bound(q);
     double step_length = bound;
     if (bound < QuotientField::kNear) {
-      double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
+      double clear = std::numeric_limits<double>::infinity(), nearest_hit = clear;
       int nearest_k = -1;
+      const glm::dvec3 u = ray->direction_at(local);
       for (int k : field.candidates(q)) {
-        const double d = object_distance(images[static_cast<std::size_t>(k)], q);
+        const MarchObject& image = images[static_cast<std::size_t>(k)];
+        const double d = object_distance(image, q);
         auto left = std::find(passing.begin(), passing.end(), k);
         if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
-        nearest = std::min(nearest, d);
+        clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
         if (left == passing.end() && d < nearest_hit) {
           nearest_hit = d;
           nearest_k = k;
@@ -315,7 +319,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
         hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
         return hit;
       }
-      step_length = std::max(bound, std::min(nearest, QuotientField::kNear));
+      step_length = std::max(bound, std::min(clear, QuotientField::kNear));
     }
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;

@@ -43,6 +43,11 @@ MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin);
 /// tubes: sol/distance.hpp) from q to an object in the same coordinates.
 double object_distance(const MarchObject& object, const glm::dvec3& q);
 
+/// How far the geodesic from q with unit tangent u (frame components) goes
+/// before it can reach the object (sol/clearance.hpp): a safe step, like
+/// max(object_distance, object_clearance), and longer beside the surface.
+double object_clearance(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u);
+
 /// A lower bound of the distance from the world point w to the solid part of
 /// a cutout plane z = c with `pattern` (its discs or light squares), to be
 /// combined with |w_z - c| by max; 0 where it cannot help (on a light square,

@@ -6,6 +6,11 @@
 //   distance(q)      a signed distance: exact for planes, a lower bound for
 //                    balls and tubes (sol/distance.hpp), so sphere tracing
 //                    never passes through the surface;
+//   clearance(q, u)  how far the geodesic from q with unit tangent u goes
+//                    before it can reach the object: at least the bound's
+//                    distance, longer beside it (sol/clearance.hpp; exact
+//                    balls: that of the bound's ball, which holds them, so
+//                    a march steps by the larger of it and distance(q));
 //   normal(q)        the unit surface normal at a hit q (frame components);
 //   pattern_uv(q)    the coordinates its pattern is drawn in;
 //   seen_from(p)     the same object left-translated by p⁻¹ (relative to p);
@@ -15,7 +20,8 @@
 // lattice_range and same_set (sol::quotient_images). A scene object is a
 // kind (`Shape`, a std::variant) with a colour and a pattern. Adding a kind:
 // its struct here, its functions in objects.cpp (geometry, checks, scene-
-// file keys), its distance in compute/shaders/march.comp, and its tests.
+// file keys), its distance and clearance in compute/shaders/march.comp, and
+// its tests.
 #pragma once
 
 #include <cstddef>
@@ -48,6 +54,7 @@ struct PlaneX {
 
   /// asinh(|x - c| e^{-z}).
   double distance(const glm::dvec3& q) const;
+  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
   /// Facing the side of the origin (the march's point of view).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.y, world.z}; }
@@ -63,6 +70,7 @@ struct PlaneY {
 
   /// asinh(|y - c| e^{z}).
   double distance(const glm::dvec3& q) const;
+  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.z}; }
   PlaneY seen_from(const glm::dvec3& p) const;
@@ -77,6 +85,7 @@ struct PlaneZ {
 
   /// |z - c|.
   double distance(const glm::dvec3& q) const;
+  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.y}; }
   PlaneZ seen_from(const glm::dvec3& p) const;
@@ -100,6 +109,7 @@ struct Ball {
   bool exact = false;
 
   double distance(const glm::dvec3& q) const;
+  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The true sphere's normal when exact, else the bound's gradient by
   /// central differences (kernel::kNormalStep along E1, E2, E3).
   glm::dvec3 normal(const glm::dvec3& q) const;
@@ -143,6 +153,7 @@ struct Tube {
 
   bool vertical() const { return direction.x == 0.0 && direction.y == 0.0; }
   double distance(const glm::dvec3& q) const;
+  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The bound's gradient by central differences (as Ball's).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& q) const;
@@ -192,6 +203,7 @@ constexpr double kMaxQuotientRadius = 0.45;
 // Visiting a shape: the distance, normal, pattern coordinates and
 // left-translation of whichever kind it holds.
 double shape_distance(const Shape& shape, const glm::dvec3& q);
+double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u);
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q);
 Shape shape_seen_from(const Shape& shape, const glm::dvec3& p);
 KernelShape kernel_shape(const Shape& shape);

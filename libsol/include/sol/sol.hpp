@@ -3,6 +3,7 @@
 
 #include "sol/camera.hpp"
 #include "sol/camera_path.hpp"
+#include "sol/clearance.hpp"
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
 #include "sol/distance.hpp"

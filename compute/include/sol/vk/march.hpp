@@ -197,6 +197,11 @@ class MarchRenderer {
 /// positions composed: then w is the position's z. For tests and benchmarks.
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
 
+/// The kernel's unit tangent (frame components; w 0) at the arc length w >= 0
+/// of each query's geodesic, as the quotient march takes it for its
+/// clearances (sol_forward in compute/shaders/sol_geodesic.glsl). For tests.
+std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries);
+
 /// Evaluates the kernel's J (compute/shaders/sol_spreading.glsl, the
 /// spreading of light along a geodesic) for queries (direction xyz, arc
 /// length w); the float counterpart of sol::sphere_area_density. For tests

@@ -1,0 +1,197 @@
+// sol/clearance.hpp: the second-order steps of the quotient march. Each
+// bound is the maximum of its terms; each term's rate is its derivative
+// along the geodesic and its bend bounds its second derivative from below,
+// checked by differences along geodesics of the independent integrator
+// (tests/support/reference_geodesic.hpp, Bulirsch–Stoer in double here);
+// and a clearance never reaches the object: the geodesic, walked by the
+// bound itself (sphere tracing, which never passes a surface), comes no
+// nearer than the hit tolerance before the clearance's end.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+
+#include "support/reference_geodesic.hpp"
+
+namespace {
+
+using glm::dvec3;
+using Terms = std::array<sol::BoundTerm, 2>;
+using Reference = sol::test::ReferenceGeodesic<double>;
+
+// An object's bound as sol/distance.hpp writes it, and the clearance's terms.
+struct Solid {
+  std::string name;
+  dvec3 near;  // a point of the object: samples are drawn around it
+  std::function<double(const dvec3&)> bound;
+  std::function<Terms(const dvec3&, const dvec3&)> terms;
+};
+
+std::vector<Solid> solids() {
+  std::vector<Solid> out;
+  for (const auto& [centre, r] : {std::pair{dvec3(0.3, -0.2, 0.4), 0.25}, std::pair{dvec3(1.0, 2.0, -1.0), 0.6},
+                                  std::pair{dvec3(-0.5, 0.7, 1.5), 0.05}}) {
+    out.push_back({"ball r " + std::to_string(r), centre, [=](const dvec3& p) { return sol::sdf_ball(p, centre, r); },
+                   [=](const dvec3& p, const dvec3& u) { return sol::ball_terms(p, u, centre, r); }});
+  }
+  const dvec3 through(0.2, 0.1, 0.3);
+  out.push_back({"vertical tube", through, [=](const dvec3& p) { return sol::sdf_tube(p, through, 2, 0.06); },
+                 [=](const dvec3& p, const dvec3& u) { return sol::tube_terms(p, u, through, true, {0, 0}, 0.06); }});
+  const double phi = sol::kernel::kPhi;
+  for (const auto& [name, h] : {std::pair{"tube along x", glm::dvec2(1, 0)}, std::pair{"tube along y", glm::dvec2(0, -1)},
+                                std::pair{"tube along gamma1", glm::normalize(glm::dvec2(phi, -1))},
+                                std::pair{"tube along gamma2", glm::normalize(glm::dvec2(1, phi))}}) {
+    for (const double r : {0.06, 0.3}) {
+      out.push_back({std::string(name) + " r " + std::to_string(r), through,
+                     [=](const dvec3& p) { return sol::sdf_tube_horizontal(p, through, h, r); },
+                     [=](const dvec3& p, const dvec3& u) { return sol::tube_terms(p, u, through, false, h, r); }});
+    }
+  }
+  // Planes: one term each (the second a copy, so the maximum is the same).
+  out.push_back({"plane z", through, [=](const dvec3& p) { return sol::sdf_plane_z(p, through.z); },
+                 [=](const dvec3& p, const dvec3& u) {
+                   const sol::BoundTerm h = sol::plane_z_term(p, u, through.z);
+                   return Terms{h, h};
+                 }});
+  out.push_back({"plane x", through, [=](const dvec3& p) { return sol::sdf_plane_x(p, through.x); },
+                 [=](const dvec3& p, const dvec3& u) {
+                   const sol::BoundTerm h = sol::slab_x_term(p, u, through.x, 0.0);
+                   return Terms{h, h};
+                 }});
+  out.push_back({"plane y", through, [=](const dvec3& p) { return sol::sdf_plane_y(p, through.y); },
+                 [=](const dvec3& p, const dvec3& u) {
+                   const sol::BoundTerm h = sol::slab_y_term(p, u, through.y, 0.0);
+                   return Terms{h, h};
+                 }});
+  return out;
+}
+
+dvec3 random_unit(std::mt19937_64& rng) {
+  std::normal_distribution<double> n;
+  return glm::normalize(dvec3(n(rng), n(rng), n(rng)));
+}
+
+// A point near the object: its reference point moved by up to `spread` in
+// each coordinate, in frame lengths at that height.
+dvec3 random_point(std::mt19937_64& rng, const dvec3& near, double spread) {
+  std::uniform_real_distribution<double> o(-spread, spread);
+  const double ez = std::exp(near.z);
+  return near + dvec3(o(rng) * ez, o(rng) / ez, o(rng));
+}
+
+TEST(Clearance, RootIsTheParabolasFirstRoot) {
+  for (const double h : {1e-9, 1e-4, 0.1, 0.3}) {
+    for (const double slope : {-1.0, -0.3, -1e-5, 0.0, 1e-5, 0.4, 1.0}) {
+      for (const double bend : {1.0, sol::kAcrossCurvature}) {
+        const double s = sol::clearance_root({h, slope, bend});
+        // The root of the quadratic, from the textbook formula in long double.
+        const long double disc = static_cast<long double>(slope) * slope + 2.0L * bend * h;
+        const long double expected = (slope + std::sqrt(disc)) / bend;
+        EXPECT_NEAR(s, static_cast<double>(expected), 1e-12 * std::max(1.0, s)) << h << " " << slope << " " << bend;
+        EXPECT_GT(s, 0.0);
+        EXPECT_NEAR(h + slope * s - 0.5 * bend * s * s, 0.0, 1e-12);
+      }
+    }
+  }
+  EXPECT_EQ(sol::clearance_root({0.0, 1.0, 1.0}), 0.0);   // on the surface: no second-order step
+  EXPECT_EQ(sol::clearance_root({-0.1, 1.0, 1.0}), 0.0);  // inside
+}
+
+TEST(Clearance, TermsAreTheBoundWithTheirRatesAndBends) {
+  std::mt19937_64 rng(20261126);
+  constexpr double kDelta = 1e-4;  // differences: O(δ²) truncation, 1e-16/δ² rounding in the second
+  for (const Solid& solid : solids()) {
+    double worst_value = 0.0, worst_rate = 0.0, least_bent = 1e30;
+    int checked = 0;
+    for (int n = 0; n < 400; ++n) {
+      const dvec3 p = random_point(rng, solid.near, 0.8), u = random_unit(rng);
+      const Terms terms = solid.terms(p, u);
+      worst_value = std::max(worst_value, std::abs(std::max(terms[0].value, terms[1].value) - solid.bound(p)));
+      // The terms at ±δ and ±2δ along the reference geodesic through p.
+      Reference geodesic(p, u, false, 1e-13);
+      std::array<Terms, 5> at;
+      for (int k = -2; k <= 2; ++k) at[k + 2] = solid.terms(geodesic.at(k * kDelta).position, u);
+      for (int i = 0; i < 2; ++i) {
+        const double m2 = at[0][i].value, m1 = at[1][i].value, c = at[2][i].value, p1 = at[3][i].value,
+                     p2 = at[4][i].value;
+        // Skip a kink of |.| within the stencil (the two one-sided rates disagree).
+        if (std::abs((p1 - c) - (c - m1)) > 1e-3 * kDelta || std::abs((p2 - p1) - (m1 - m2)) > 1e-2 * kDelta) continue;
+        if (!(c > 0.0)) continue;  // outside the term's set: where the march steps by it
+        ++checked;
+        const double rate = (8.0 * (p1 - m1) - (p2 - m2)) / (12.0 * kDelta);  // fourth order
+        worst_rate = std::max(worst_rate, std::abs(rate - terms[i].slope));
+        {
+          const double second = (p1 - 2.0 * c + m1) / (kDelta * kDelta);
+          least_bent = std::min(least_bent, second / terms[i].bend);
+          EXPECT_GE(second, -terms[i].bend - 1e-5) << solid.name << " term " << i << " at sample " << n;
+        }
+      }
+    }
+    std::printf("%s: %d terms checked; value within %.1e of the bound, rate within %.1e, least h''/M %.3f\n",
+                solid.name.c_str(), checked, worst_value, worst_rate, least_bent);
+    EXPECT_GT(checked, 300) << solid.name;
+    EXPECT_LT(worst_value, 1e-12) << solid.name;
+    EXPECT_LT(worst_rate, 1e-8) << solid.name;  // the difference's δ⁴ h⁽⁵⁾/30 and rounding 1e-16/δ
+  }
+}
+
+// The first arc length at which the geodesic from p along u comes within
+// `tolerance` of the object, walked by the bound (at least `floor` a step),
+// up to `limit`; +infinity if it does not.
+double first_contact(const std::function<double(const dvec3&)>& bound, const dvec3& p, const dvec3& u, double limit,
+                     double tolerance, double floor) {
+  Reference geodesic(p, u, false, 1e-13);
+  for (double s = 0.0; s <= limit;) {
+    const double b = bound(geodesic.at(s).position);
+    if (b < tolerance) return s;
+    s += std::max(b, floor);
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+TEST(Clearance, NeverReachesTheObjectAndOutrunsTheBoundBesideIt) {
+  std::mt19937_64 rng(7);
+  for (const Solid& solid : solids()) {
+    int samples = 0, longer = 0, reached = 0;
+    double tightest = 0.0;  // the largest clearance / first contact where the geodesic reaches the object
+    for (int n = 0; n < 5000 && samples < 150; ++n) {
+      const dvec3 p = random_point(rng, solid.near, 0.6);
+      const double b = solid.bound(p);
+      if (!(b > 1e-6 && b < 0.3)) continue;  // outside, near: where the march uses clearances
+      // Half the directions graze: across the bound's gradient (by differences).
+      dvec3 u = random_unit(rng);
+      if (n % 2 == 0) {
+        const double h = 1e-6, ez = std::exp(p.z);
+        const dvec3 g((solid.bound(p + dvec3(h * ez, 0, 0)) - b) / h, (solid.bound(p + dvec3(0, h / ez, 0)) - b) / h,
+                      (solid.bound(p + dvec3(0, 0, h)) - b) / h);
+        if (glm::length(g) > 0.0) u = glm::normalize(u - glm::dot(u, g) / glm::dot(g, g) * g);
+      }
+      const double clear = sol::clearance(solid.terms(p, u));
+      ASSERT_GE(clear, b - 1e-15) << solid.name;
+      ++samples;
+      longer += clear > 2.0 * b;
+      // The sphere-traced walk stops within 1e-7 of the surface (its floor
+      // step 1e-8 passes at most that far into a thin wedge).
+      const double contact = first_contact(solid.bound, p, u, clear + 0.05, 1e-7, 1e-8);
+      if (std::isfinite(contact)) {
+        ++reached;
+        tightest = std::max(tightest, clear / contact);
+      }
+      EXPECT_GE(contact, clear - 1e-6) << solid.name << ": sample " << n << " bound " << b << " clearance " << clear;
+    }
+    std::printf("%s: %d samples, clearance above twice the bound at %d; %d reach the object within it + 0.05, "
+                "clearance up to %.3f of the way there\n",
+                solid.name.c_str(), samples, longer, reached, tightest);
+    EXPECT_EQ(samples, 150) << solid.name;
+    EXPECT_GT(longer, samples / 4) << solid.name;  // beside the surface it steps much farther than the bound
+  }
+}
+
+}  // namespace
