@@ -458,6 +458,14 @@ uint field_candidates(FieldCell c) {
   return field_words[2 * kFieldLayers + nodes + (c.k * kFieldCells + c.j) * kFieldCells + c.i];
 }
 
+// The cell's reach (sol::QuotientField::reach): no image but its
+// candidates is within it of the cell.
+float field_reach(FieldCell c) {
+  const int nodes = (kFieldLayers + 1) * (kFieldCells + 1) * (kFieldCells + 1);
+  const int cells = kFieldLayers * kFieldCells * kFieldCells;
+  return uintBitsToFloat(field_words[2 * kFieldLayers + nodes + cells + (c.k * kFieldCells + c.j) * kFieldCells + c.i]);
+}
+
 
 // ---- Shadows (sol::Light::shadows; the CPU's `blocked` in libsol/src/render.cpp)
 
@@ -542,7 +550,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
           if (!leaving) nearest_hit = min(nearest_hit, d);
         }
         if (nearest_hit < eps) return true;
-        step_length = max(field, min(clear, kFieldNear));
+        step_length = max(field, min(clear, field_reach(cell)));
       }
       if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
       t += step_length;
@@ -950,10 +958,10 @@ void main() {
     // (sol::QuotientField: one read instead of every image's bound); where
     // that is below kFieldNear, the step is also the least clearance along
     // the ray (object_clearance) of the cell's candidate images (every image
-    // that can be nearer than kFieldNear there), capped at kFieldNear,
-    // whichever is larger, and the candidate that comes within hit_epsilon
-    // is the object hit. Steps stay below kQuotientMaxStep, the reach of
-    // the listed images.
+    // that can be nearer than kFieldNear there), capped at the cell's reach
+    // (field_reach: the other images are farther), whichever is larger, and
+    // the candidate that comes within hit_epsilon is the object hit. Steps
+    // stay below kQuotientMaxStep, the reach of the listed images.
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     if (HAS_ODS) {  // the column's eye, teleported into D
@@ -1027,7 +1035,7 @@ void main() {
           hit_image = nearest_i;
           break;
         }
-        step_length = max(field, min(min(clear_nearest, clear_rest), kFieldNear));
+        step_length = max(field, min(min(clear_nearest, clear_rest), field_reach(cell)));
       }
       t += step_length;
       local_t += step_length;

@@ -66,7 +66,7 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_c
   }
   const Lattice lattice = Lattice::golden();
   const double h = lattice.height();
-  m_words.assign(kHeader + kNodes + kCellCount, 0u);
+  m_words.assign(kHeader + kNodes + 2 * kCellCount, 0u);
   // Per layer, the Sol length of a cell's edges along s and r (at most, over
   // the layer's heights) and the cells' diameter; the edge along z is h / kNz.
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
@@ -110,10 +110,19 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_c
         const glm::dvec3 centre = point_at(lattice, (i + 0.5) / kN, (j + 0.5) / kN, (k + 0.5) * dz);
         std::uint32_t word = 0xFFFFFFFFu;  // every slot empty (kFieldEmpty)
         int count = 0;
+        // The reach: the least bound of the other images over the cell
+        // (above kNear, as they are not candidates), capped at the step
+        // beyond which unlisted images may come into reach.
+        double reach = kQuotientMaxStep;
         for (std::size_t m = 0; m < images.size(); ++m) {
-          if (bound(images[m], centre) - radius > kNear) continue;
+          const double least = bound(images[m], centre) - radius;
+          if (least > kNear) {
+            reach = std::min(reach, least);
+            continue;
+          }
           if (count == kCandidates) {
             word = kernel::kFieldAllImages;
+            reach = kQuotientMaxStep;  // every image is evaluated
             break;
           }
           word &= ~(0xFFu << (8 * count));
@@ -121,6 +130,10 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_c
           ++count;
         }
         m_words[kHeader + kNodes + cell_index(i, j, k)] = word;
+        // Rounded down to float, less the kernel's rounding: never above the bounds.
+        float f = static_cast<float>(reach - kRounding);
+        if (static_cast<double>(f) > reach - kRounding) f = std::nextafter(f, -1.0f);
+        m_words[kHeader + kNodes + kCellCount + cell_index(i, j, k)] = std::bit_cast<std::uint32_t>(f);
       }
     }
   });
@@ -157,6 +170,11 @@ double QuotientField::lower_bound(const glm::dvec3& q) const {
   const double path = d.x * edge(c.k, 0) + d.y * edge(c.k, 1) + d.z * kEdgeZ;
   return node(c.i + static_cast<int>(away.x), c.j + static_cast<int>(away.y), c.k + static_cast<int>(away.z)) - path -
          kRounding;
+}
+
+double QuotientField::reach(const glm::dvec3& q) const {
+  const Cell c = cell_of(q);
+  return std::bit_cast<float>(m_words[kHeader + kNodes + kCellCount + cell_index(c.i, c.j, c.k)]);
 }
 
 std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {

@@ -258,8 +258,8 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // also the least clearance of the cell's candidate images along the ray
 // (every image whose bound can be below kFieldNear in the cell; each
 // image's clearance, sol/clearance.hpp, is at least its bound and longer
-// beside it), capped at kFieldNear, whichever is larger: neither reaches an
-// object (the other images' bounds exceed kFieldNear at q), so a step may
+// beside it), capped at the cell's reach (the other images' bounds exceed
+// it at q), whichever is larger: neither reaches an object, so a step may
 // cross a face of D but never passes through an object. The
 // candidate that comes within hit_epsilon is the object hit. The kernel
 // (march.comp) marches the same way in float.
@@ -319,7 +319,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
         hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
         return hit;
       }
-      step_length = std::max(bound, std::min(clear, QuotientField::kNear));
+      step_length = std::max(bound, std::min(clear, field.reach(q)));
     }
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;

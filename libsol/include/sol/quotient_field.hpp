@@ -26,7 +26,12 @@
 // kFieldNear somewhere in the cell (b_i(centre) - the cell's circumradius <=
 // kFieldNear). For q in the cell every other image has b_i(q) > kFieldNear,
 // so min(min over the candidates, kFieldNear) <= B(q): a safe step, and the
-// candidate that reaches hit_epsilon is the object hit.
+// candidate that reaches hit_epsilon is the object hit. Each cell also
+// keeps its reach R, the least of b_j(centre) - circumradius over the other
+// images (so R > kFieldNear), at most kQuotientMaxStep (kQuotientMaxStep
+// where every image is a candidate), less ε: a step of at most R from q
+// reaches none of them, so the march may step
+// min(the candidates' least clearance, R) (sol/clearance.hpp).
 #pragma once
 
 #include <cstdint>
@@ -53,14 +58,19 @@ class QuotientField {
 
   /// F(q) for q in D (clamped into it), as the kernel computes it, in double.
   double lower_bound(const glm::dvec3& q) const;
+  /// The reach of q's cell: no image but its candidates is within it of
+  /// any point of the cell; in (kNear, kQuotientMaxStep].
+  double reach(const glm::dvec3& q) const;
   /// The candidate images of q's cell (indices into the images), or every
   /// image when the cell has more than kCandidates.
   std::vector<int> candidates(const glm::dvec3& q) const;
 
   /// The kernel's buffer: per layer L_s and L_r (2 kLayers floats), the node
   /// values ((kLayers + 1)(kCells + 1)² floats, index (k (kCells + 1) + j)(kCells + 1) + i
-  /// for s_i, r_j, z_k) and the cells' candidates (kLayers kCells² words,
-  /// 8 bits a candidate), all as 32-bit words (floats by their bits).
+  /// for s_i, r_j, z_k), the cells' candidates (kLayers kCells² words,
+  /// 8 bits a candidate, index (k kCells + j) kCells + i) and the cells'
+  /// reaches (kLayers kCells² floats, the same index), all as 32-bit words
+  /// (floats by their bits).
   const std::vector<std::uint32_t>& words() const { return m_words; }
 
  private:
