@@ -130,6 +130,38 @@ TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   expect_no_validation_errors();
 }
 
+// The cut time that certifies the exact lights' minimisers (sol_cut_time)
+// against libsol's sol::cut_time (itself tested against where a geodesic
+// and its mirror meet): random and stiff directions, the straight lines
+// (√2 π) and, where ab = 0, infinite (1e30 in the kernel).
+TEST(Kernel, CutTimesMatchLibsol) {
+  std::vector<dvec3> dirs = sol::test::stiff_directions();
+  for (const dvec3& d : sol::test::random_directions(2000, 37)) dirs.push_back(d);
+  for (const dvec3& d : {glm::normalize(dvec3(1, 1, 0)), dvec3(0, 0.6, 0.8), dvec3(1, 0, 0), dvec3(0, 0, -1)}) dirs.push_back(d);
+  std::vector<glm::vec3> queries;
+  for (const dvec3& d : dirs) queries.emplace_back(d);
+  const std::vector<float> got = sol::vk::evaluate_kernel_cut_times(vk_context(), queries);
+  double worst = 0.0;
+  int infinite = 0;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const double ref = sol::cut_time(dvec3(queries[i]));
+    if (std::isinf(ref)) {
+      ++infinite;
+      EXPECT_GE(got[i], 1e30f) << i;
+      continue;
+    }
+    // Float: the AGM's K to a few ulps, and K grows like log(1/|ab|) where
+    // |ab| is small (the stiff set down to 1e-12).
+    const double error = std::abs(got[i] - ref) / ref;
+    worst = std::max(worst, error);
+    EXPECT_LT(error, 1e-5) << "(" << dirs[i].x << ", " << dirs[i].y << ", " << dirs[i].z << "): " << got[i] << " vs " << ref;
+  }
+  std::printf("kernel cut times against libsol, %zu directions (%d infinite): worst relative error %.2e\n", dirs.size(),
+              infinite, worst);
+  EXPECT_GE(infinite, 3);
+  expect_no_validation_errors();
+}
+
 // The kernel's J (sol_spreading.glsl) against libsol's double
 // sphere_area_density for random and stiff directions, t in (0, 6]: the
 // float method's tolerance (relative 1e-4 of max(J, t²),

@@ -13,9 +13,10 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // march does at its teleports; backward: sol_ray_advanced) and the positions
 // composed by the group law.
 layout(constant_id = 0) const int SEGMENTS = 1;
-// True: the unit tangent at arc length w >= 0, as sol_forward gives it to
-// the quotient march's clearances, instead of the position.
-layout(constant_id = 1) const bool TANGENTS = false;
+// What to evaluate: 0 the position (and the height); 1 the unit tangent at
+// arc length w >= 0, as sol_forward gives it to the quotient march's
+// clearances; 2 the cut time (sol_cut_time) of the direction, in x.
+layout(constant_id = 1) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: direction (frame components), w: arc length
@@ -33,8 +34,12 @@ void main() {
   const vec4 query = queries[i];
   SolRay ray = sol_ray(query.xyz);
   sol_ray_integrals(ray);
-  if (TANGENTS) {
+  if (VALUE == 1) {
     results[i] = vec4(sol_forward(ray, query.w).direction, 0.0);
+    return;
+  }
+  if (VALUE == 2) {
+    results[i] = vec4(sol_cut_time(normalize(query.xyz)), 0.0, 0.0, 0.0);
     return;
   }
   if (SEGMENTS == 1) {

@@ -196,6 +196,14 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[kSeedSlots], in
   ++count;
 }
 
+// A connection clearly shorter than its period (by the float margin
+// kMinimiserMargin, relative) is the unique minimiser: a second geodesic
+// of the same length would cut it before its period.
+const float kMinimiserMargin = 1e-3;
+// The residual (over its float floor, sol_newton) of a polish that ended at
+// the floor rather than out of iterations.
+const float kMinimiserPolish = 1e-5;
+
 // A seed for the fold partner of the connection v (0 when v is not near a
 // fold): with J the Jacobian of the residual F at v, n its right singular
 // vector of the smallest singular value σ (inverse iteration on JᵀJ) and
@@ -286,6 +294,15 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
     float residual;
     const vec3 v = sol_polish(start, target, residual);
     sol_add_connection(v, residual, found, residuals, count);
+    // Without a reach only the minimisers count: once the shortest found is
+    // certified the unique one (shorter than its period) and polished to
+    // the float floor, the other seeds could only find longer connections
+    // (or polish it again). Next to the cut locus (two minimisers, the
+    // length near the period) every seed is polished.
+    if (!(reach > 0.0) && count > 0 && residuals[0] < kMinimiserPolish &&
+        found[0].w < (1.0 - kMinimiserMargin) * sol_cut_time(found[0].xyz)) {
+      break;
+    }
   }
   int kept = 0;
   for (int i = 0; i < count; ++i) {

@@ -489,6 +489,16 @@ vec2 sol_height_range(SolRay g) {
   return g.regime == REGIME_STRAIGHT ? vec2(0.0) : r;
 }
 
+// The z-period T of the geodesic with unit direction d, 4K(m)/λ (1e30,
+// infinite, where ab = 0: the planes x, y = const and the vertical line),
+// as sol::cut_time: a geodesic minimises exactly up to it
+// (Coiculescu–Schwartz).
+float sol_cut_time(vec3 d) {
+  const float mu = abs(d.x * d.y), lambda2 = 1.0 + 2.0 * mu;
+  const SolAgm agm = sol_agm(4.0 * mu / lambda2);  // of k'² = m1
+  return mu > 0.0 ? 4.0 * (SOL_PI / (2.0 * agm.c)) / sqrt(lambda2) : 1e30;
+}
+
 // What sol_forward found on its way to a position: enough to restart the
 // ray there without another Jacobi or Carlson evaluation (sol_ray_restarted).
 struct SolForward {

@@ -621,8 +621,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
 
 namespace {
 
-// flow.comp over the queries: positions (walked in `segments`) or tangents.
-std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& queries, int segments, bool tangents) {
+// flow.comp over the queries: positions (walked in `segments`, value 0),
+// tangents (1) or cut times (2).
+std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& queries, int segments, int value) {
   if (queries.empty()) return {};
   const VkDeviceSize bytes = queries.size() * sizeof(glm::vec4);
   Buffer in(context, bytes), out(context, bytes);
@@ -632,7 +633,7 @@ std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& 
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
                                      .push_constant_size = sizeof(std::uint32_t),
                                      .specialization = {{0, static_cast<std::uint32_t>(segments)},
-                                                        {1, static_cast<std::uint32_t>(tangents)}}});
+                                                        {1, static_cast<std::uint32_t>(value)}}});
   pipeline.bind(0, in);
   pipeline.bind(1, out);
   const auto count = static_cast<std::uint32_t>(queries.size());
@@ -646,14 +647,26 @@ std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& 
 
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
   if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow: segments must be >= 1");
-  return run_flow(context, queries, segments, false);
+  return run_flow(context, queries, segments, 0);
 }
 
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries) {
   for (const glm::vec4& q : queries) {
     if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents: arc lengths must be >= 0");
   }
-  return run_flow(context, queries, 1, true);
+  return run_flow(context, queries, 1, 1);
+}
+
+std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector<glm::vec3>& directions) {
+  std::vector<glm::vec4> queries;
+  for (const glm::vec3& d : directions) {
+    if (!(glm::length(d) > 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_cut_times: directions must be nonzero");
+    queries.emplace_back(d, 0.0f);
+  }
+  const std::vector<glm::vec4> results = run_flow(context, queries, 1, 2);
+  std::vector<float> out;
+  for (const glm::vec4& r : results) out.push_back(r.x);
+  return out;
 }
 
 std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {

@@ -202,6 +202,10 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
 /// clearances (sol_forward in compute/shaders/sol_geodesic.glsl). For tests.
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries);
 
+/// The kernel's cut time of each direction (sol_cut_time, the z-period
+/// that certifies a minimiser; 1e30 where sol::cut_time is infinite). For tests.
+std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector<glm::vec3>& directions);
+
 /// Evaluates the kernel's J (compute/shaders/sol_spreading.glsl, the
 /// spreading of light along a geodesic) for queries (direction xyz, arc
 /// length w); the float counterpart of sol::sphere_area_density. For tests
