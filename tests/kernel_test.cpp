@@ -372,8 +372,9 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
     EXPECT_GT(hits, 20) << c.name;
     EXPECT_LT(worst, 1e-4) << c.name;
     EXPECT_LE(m.mask_differs, 2) << c.name;  // a silhouette pixel may go either way in float
-    // Both march to within hit_epsilon of the same surface; a grazing ray
-    // moves along itself by more than the surface gap (measured 4.8e-5).
+    // Both march to within hit_epsilon of the same surface; an oblique ray
+    // moves along itself by more than the surface gap (measured 1.2e-3: the
+    // kernel's last steps are the ball's clearance, the CPU's its distance).
     EXPECT_LT(m.distance, 5e-3) << c.name;
   }
   sol::Scene larger = cases[1].scene;

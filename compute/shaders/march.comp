@@ -236,6 +236,24 @@ float clearance_root(float h, float slope, float curvature) {
   return h > 0.0 ? s : 0.0;
 }
 
+// The clearance of an exact ball (sol/clearance.hpp) from q, where its
+// exact distance is f = d - r (d the distance from the centre) and f' =
+// slope along the ray, for steps of at most kExactClearanceCap. Sol's
+// sectional curvatures are at most 1 (its curvature operator is diagonal
+// in the frame, +1, -1, -1), so by the Hessian comparison theorem
+// Hess d >= cot(d) (g - ∇d ∇d) where d < π, before any conjugate or cut
+// point (those lie at least √2 π away): along the ray f'' >= min(0, cot d),
+// and over the step d stays below D = d + cap. So f'' >= -M with M = 0
+// where D <= π/2 (f convex: a Newton step never passes its root), -cot D
+// up to π - 0.1, and no clearance beyond. Aimed at f = hit_epsilon/2, so
+// that float rounding of the slope does not carry the step into the ball.
+float exact_ball_clearance(float f, float d, float slope, float eps) {
+  const float D = d + kExactClearanceCap;
+  const float bend = D <= 1.5707963 ? 1e-6 : -cos(D) / sin(D);
+  const float s = min(clearance_root(f - 0.5 * eps, slope, bend), kExactClearanceCap);
+  return D < 3.0415927 ? max(f, s) : f;
+}
+
 // A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
 // S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound, clearance).
 vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius) {
@@ -1194,7 +1212,14 @@ void main() {
       exact_k = nearest_k;
       const float exact =
           exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
-      nearest = min(nearest_any == nearest_k ? others : nearest, exact);
+      // The step: beyond the exact distance by the ball's clearance along
+      // the ray (its rate from the sphere's normal, the gradient of d).
+      float exact_step = exact;
+      if (exact_known && exact > hit_epsilon) {
+        const float slope = dot(exact_ball_normal(exact_v), sol_direction(ray, t));
+        exact_step = exact_ball_clearance(exact, length(exact_v), slope, hit_epsilon);
+      }
+      nearest = min(nearest_any == nearest_k ? others : nearest, exact_step);
       if (exact <= second_hit) {
         nearest_hit = exact;
       } else {

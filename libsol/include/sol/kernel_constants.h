@@ -109,6 +109,9 @@ SOL_CONSTANT(SOL_REAL, kDistanceTableMax, 1.2);
 /// ... and within this of that approach they step by the exact distance
 /// (Newton on the geodesic from the centre), so hits lie on the true sphere.
 SOL_CONSTANT(SOL_REAL, kExactShell, 0.025);
+/// The longest step by an exact ball's clearance (its exact distance's
+/// convexity along the ray, march.comp's exact_ball_clearance).
+SOL_CONSTANT(SOL_REAL, kExactClearanceCap, 0.5);
 
 // ---- sol::ConnectionTable: the seeds of the kernels' connection solver
 /// Connections kept per cell.
