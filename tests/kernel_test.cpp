@@ -272,6 +272,16 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   EXPECT_LE(c.mask_differs, c.pixels / 100);
   EXPECT_LE(c.color_differs, c.pixels / 100);
   EXPECT_LT(c.distance, 1e-3);
+  // Both step by the nearest ball's or tube's clearance (sol/clearance.hpp):
+  // the same steps within float rounding (measured: equal to two decimals).
+  double cpu_steps = 0.0, gpu_steps = 0.0;
+  for (std::size_t k = 0; k < cpu.steps.size(); ++k) {
+    cpu_steps += cpu.steps[k];
+    gpu_steps += gpu.steps[k];
+  }
+  std::printf("ball scene: %.2f steps per ray on the kernel, %.2f on the CPU\n",
+              gpu_steps / static_cast<double>(cpu.steps.size()), cpu_steps / static_cast<double>(cpu.steps.size()));
+  EXPECT_NEAR(gpu_steps / cpu_steps, 1.0, 0.02);
   int balls = 0;
   for (float o : gpu.object) balls += o == 1.0f;
   EXPECT_GT(balls, 30);

@@ -38,13 +38,29 @@ const float SOL_SEED_SKIP = 0.25;
 // vector v. Forward (t >= 0): sol_ray_integrals' start-to-end-of-quarter
 // piece is the far piece, so three Carlson pairs in all (the quarters, that
 // piece, the near piece) where sol_position would take a fourth.
-vec3 sol_exp(vec3 v) {
+// The end of a connection: exp(v), and the geodesic's unit tangent there
+// (frame components: at the far end of the geodesic from the origin, the
+// gradient of the distance from the origin where it minimises).
+struct SolEnd {
+  vec3 point;
+  vec3 tangent;
+};
+
+SolEnd sol_exp_end(vec3 v) {
+  SolEnd e;
+  e.point = vec3(0.0);
+  e.tangent = vec3(0.0, 0.0, 1.0);
   const float t = length(v);
-  if (!(t > 0.0)) return vec3(0.0);
+  if (!(t > 0.0)) return e;
   SolRay g = sol_ray(v / t);
   sol_ray_integrals(g);
-  return sol_position_forward(g, t);
+  const SolForward f = sol_forward(g, t);
+  e.point = f.position;
+  e.tangent = f.direction;
+  return e;
 }
+
+vec3 sol_exp(vec3 v) { return sol_exp_end(v).point; }
 
 // exp(v) - w in frame components at w (e^{z} = ez there).
 vec3 sol_connection_residual(vec3 v, vec3 w, float ez) {
@@ -72,11 +88,11 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 // loop over flow evaluations with a single call of the closed form: Mesa
 // compiles every inlined call of it separately, and one call site keeps
 // lavapipe's compile time in seconds.
-vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout vec3 end, inout mat3 J, inout bool known,
+vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout SolEnd end, inout mat3 J, inout bool known,
                 out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
-  vec3 r = known ? (end - w) * to_frame : vec3(0.0), dv = vec3(0.0);
+  vec3 r = known ? (end.point - w) * to_frame : vec3(0.0), dv = vec3(0.0);
   float h = 1e-3 * max(1.0, length(v));
   // 0: r at v; 1-3: column phase - 1 of J; 4: a trial step v + dv; 5: a step from r and J
   int phase = known ? 5 : 0;
@@ -88,8 +104,8 @@ vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout vec3 end, inout mat3 J,
       vec3 at = v;
       if (phase >= 1 && phase <= 3) at[phase - 1] += h;
       if (phase == 4) at += dv;
-      const vec3 at_end = sol_exp(at);
-      const vec3 f = (at_end - w) * to_frame;
+      const SolEnd at_end = sol_exp_end(at);
+      const vec3 f = (at_end.point - w) * to_frame;
       if (phase >= 1 && phase <= 3) {
         J[phase - 1] = (f - r) / h;
         if (phase < 3) {
@@ -145,7 +161,9 @@ vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout vec3 end, inout mat3 J,
 
 // sol_newton with a fresh Jacobian by differences at every iteration.
 vec3 sol_polish(vec3 v, vec3 w, out float residual) {
-  vec3 end = vec3(0.0);
+  SolEnd end;
+  end.point = vec3(0.0);
+  end.tangent = vec3(0.0, 0.0, 1.0);
   mat3 J = mat3(1.0);
   bool known = false;
   return sol_newton(v, w, false, end, J, known, residual);
@@ -328,15 +346,17 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
 // fresh Jacobians and the shortest landing is kept. One call of sol_newton
 // in the loop: see sol_newton. Returns the residual over its float floor;
 // below 2e-4 the solution lands on w.
-float sol_shortest(vec3 w, inout vec3 v, inout vec3 end, inout mat3 J, inout bool known) {
+float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout mat3 J, inout bool known) {
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const int base = sol_seed_base(target);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   float best = 1e30, best_residual = 1e30;
-  vec3 best_v = v, best_end = end;
+  vec3 best_v = v;
+  SolEnd best_end = end;
   mat3 best_J = J;
   for (int s = -1; s < kSeedSlots; ++s) {
-    vec3 start = v, at_end = end;
+    vec3 start = v;
+    SolEnd at_end = end;
     mat3 jacobian = J;
     bool carried = s < 0 && known;
     if (!carried) {

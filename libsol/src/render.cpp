@@ -200,11 +200,16 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     hit.distance = max_length;
     return hit;
   }
+  // The nearest object, where it is a ball or a tube, lets the step be its
+  // clearance along the ray (sol/clearance.hpp; longer than its bound
+  // beside it) up to the next object's distance. (Only the nearest's: it
+  // is what limits the step, and the kernel evaluates one clearance a step.)
+  const bool solids = prepared.features().solids && full;
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
-    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest;
-    std::size_t hit_k = 0;
+    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
+    std::size_t hit_k = 0, nearest_k = 0;
     for (std::size_t k = 0; k < n; ++k) {
       double d = object_distance(objects[k], q);
       if (planes_xy && crossing.solved &&
@@ -217,11 +222,21 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       }
       const std::uint64_t bit = std::uint64_t{1} << k;
       if ((passing & bit) && d > 2.0 * world.hit_epsilon) passing &= ~bit;
-      nearest = std::min(nearest, d);
+      if (d < nearest) {
+        second = nearest;
+        nearest = d;
+        nearest_k = k;
+      } else {
+        second = std::min(second, d);
+      }
       if (!(passing & bit) && d < nearest_hit) {
         nearest_hit = d;
         hit_k = k;
       }
+    }
+    const Shape& nearest_shape = objects[nearest_k].shape;
+    if (solids && others && (std::holds_alternative<Ball>(nearest_shape) || std::holds_alternative<Tube>(nearest_shape))) {
+      nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, ray.direction_at(t))));
     }
     hit.steps = crossing.steps + step + 1;
     if (nearest_hit < world.hit_epsilon) {
