@@ -1051,7 +1051,7 @@ void main() {
     vec3 q = origin;
     int exact_i = -1;           // the exact ball image whose geodesic from the centre exact_v holds
     vec3 exact_v = vec3(0.0);
-  SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
+    SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
     mat3 exact_J = mat3(1.0);
     bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
     for (int step = 0; step < max_steps; ++step) {
