@@ -270,21 +270,27 @@ vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius) {
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (bend 2√5, or 1 along x or y,
 // where it is a slab's). Returns (distance bound, clearance).
 vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius) {
+  // Both forms have two terms; the first is asinh(w) - r for either (w the
+  // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
+  // serves both: the inputs are chosen first (lavapipe runs both sides of
+  // every choice, so a shared evaluation is cheaper than two).
+  const bool vertical = axis == kTubeVertical;
   const vec3 d = q - through;
   const float ez = exp(q.z), iez = 1.0 / ez;
-  const vec2 w = vec2(abs(d.x) * iez, abs(d.y) * ez);
-  const vec2 hv = asinh(w) - radius;
-  const vec2 sv = vec2((d.x >= 0.0 ? u.x : -u.x) - w.x * u.z, (d.y >= 0.0 ? u.y : -u.y) + w.y * u.z) * inversesqrt(1.0 + w * w);
   const float D = abs(h.x) * iez + abs(h.y) * ez;
   const float G = (h.y * d.x - h.x * d.y) / D;
   const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) / D;
-  const float ha = asinh(abs(G)) - radius, hz = abs(d.z) - radius;
-  const float sa = (G >= 0.0 ? rate_G : -rate_G) * inversesqrt(1.0 + G * G), sz = d.z >= 0.0 ? u.z : -u.z;
-  const float bend = h.x == 0.0 || h.y == 0.0 ? 1.0 : kAcrossCurvature;
-  const float vertical = max(hv.x, hv.y), horizontal = max(ha, hz);
-  const vec2 v = vec2(vertical, max(vertical, max(clearance_root(hv.x, sv.x, 1.0), clearance_root(hv.y, sv.y, 1.0))));
-  const vec2 hr = vec2(horizontal, max(horizontal, max(clearance_root(ha, sa, bend), clearance_root(hz, sz, 1.0))));
-  return axis == kTubeVertical ? v : hr;
+  const float wx = abs(d.x) * iez, rate_wx = (d.x >= 0.0 ? u.x : -u.x) - wx * u.z;
+  const float wa = vertical ? wx : abs(G), rate_a = vertical ? rate_wx : (G >= 0.0 ? rate_G : -rate_G);
+  const float wy = abs(d.y) * ez, rate_wy = (d.y >= 0.0 ? u.y : -u.y) + wy * u.z;
+  const vec2 w = vec2(wa, wy);
+  const vec2 hw = asinh(w) - radius;
+  const vec2 sw = vec2(rate_a, rate_wy) * inversesqrt(1.0 + w * w);
+  // The second term: the slab around y = y0 (vertical), or |Δz| - r.
+  const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
+  const float bend = vertical || h.x == 0.0 || h.y == 0.0 ? 1.0 : kAcrossCurvature;
+  const float distance = max(hw.x, hb);
+  return vec2(distance, max(distance, max(clearance_root(hw.x, sw.x, bend), clearance_root(hb, sb, 1.0))));
 }
 
 // The object's distance (object_distance) and clearance, the larger of it
