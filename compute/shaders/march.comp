@@ -231,9 +231,10 @@ float clearance_root(float h, float slope, float curvature) {
   return h > 0.0 ? s : 0.0;
 }
 
-// The clearance of an exact ball (sol/clearance.hpp) from q, where its
-// exact distance is f = d - r (d the distance from the centre) and f' =
-// slope along the ray, for steps of at most kExactClearanceCap. Sol's
+// The clearance of an exact ball from q (the kernel's own: the CPU steps by
+// the exact distance; derivation in docs/exact.md), where its exact
+// distance is f = d - r (d the distance from the centre) and f' = slope
+// along the ray, for steps of at most kExactClearanceCap. Sol's
 // sectional curvatures are at most 1 (its curvature operator is diagonal
 // in the frame, +1, -1, -1), so by the Hessian comparison theorem
 // Hess d >= cot(d) (g - ∇d ∇d) where d < π, before any conjugate or cut

@@ -34,10 +34,6 @@ const int SOL_NEWTON_ITERATIONS = 8;
 // t·(a, b, c)) is not polished: it would find that connection again.
 const float SOL_SEED_SKIP = 0.25;
 
-// The exponential map at the origin: the end of the geodesic with initial
-// vector v. Forward (t >= 0): sol_ray_integrals' start-to-end-of-quarter
-// piece is the far piece, so three Carlson pairs in all (the quarters, that
-// piece, the near piece) where sol_position would take a fourth.
 // The end of a connection: exp(v), and the geodesic's unit tangent there
 // (frame components: at the far end of the geodesic from the origin, the
 // gradient of the distance from the origin where it minimises).
@@ -46,6 +42,10 @@ struct SolEnd {
   vec3 tangent;
 };
 
+// The exponential map at the origin: the end of the geodesic with initial
+// vector v. Forward (t >= 0): sol_ray_integrals' start-to-end-of-quarter
+// piece is the far piece, so three Carlson pairs in all (the quarters, that
+// piece, the near piece) where sol_position would take a fourth.
 SolEnd sol_exp_end(vec3 v) {
   SolEnd e;
   e.point = vec3(0.0);

@@ -44,8 +44,9 @@ MarchObject relative_to(const MarchObject& object, const glm::dvec3& origin);
 double object_distance(const MarchObject& object, const glm::dvec3& q);
 
 /// How far the geodesic from q with unit tangent u (frame components) goes
-/// before it can reach the object (sol/clearance.hpp): a safe step, like
-/// max(object_distance, object_clearance), and longer beside the surface.
+/// before it can reach the object (sol/clearance.hpp): a safe step, longer
+/// than the bound beside the surface. For exact balls it is the bound's
+/// ball's; a march steps by the larger of it and object_distance.
 double object_clearance(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u);
 
 /// A lower bound of the distance from the world point w to the solid part of
