@@ -159,6 +159,7 @@ TEST(Kernel, CutTimesMatchLibsol) {
   std::printf("kernel cut times against libsol, %zu directions (%d infinite): worst relative error %.2e\n", dirs.size(),
               infinite, worst);
   EXPECT_GE(infinite, 3);
+  EXPECT_THROW(sol::vk::evaluate_kernel_cut_times(vk_context(), {glm::vec3(0.0f)}), sol::InvalidArgument);
   expect_no_validation_errors();
 }
 
