@@ -197,6 +197,17 @@ Comparison compare(const sol::RenderResult& gpu, const sol::RenderResult& cpu) {
   return sol::test::compare_images(gpu, cpu, 2e-3f);
 }
 
+// The least distance bound from p (a hit point as the renderers report it:
+// world coordinates, in D for the quotient) to the object `object`
+// (1-based) of the prepared world, by the double bounds.
+double surface_gap(const sol::MarchWorld& world, int object, const dvec3& p) {
+  double least = 1e300;
+  for (const sol::MarchObject& m : world.objects()) {
+    if (static_cast<int>(m.owner) == object - 1) least = std::min(least, sol::object_distance(m, p));
+  }
+  return least;
+}
+
 TEST(Kernel, PresetsMatchTheCpuRenderer) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const std::string& name : sol::preset_names()) {
@@ -218,7 +229,27 @@ TEST(Kernel, PresetsMatchTheCpuRenderer) {
     // colours to 2e-3 (fog and Lambert change by less for such a distance).
     EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
     EXPECT_LE(c.color_differs, c.pixels / 100) << name;
-    EXPECT_LT(c.distance, 1e-3) << name;
+    // Where the arc lengths differ by more (a ray meeting a surface at a
+    // grazing angle is within hit_epsilon of it over a longer stretch, and
+    // float and double may stop at different steps of it; seen in
+    // lattice-balls: 1.2e-3 at an angle of about 2 degrees), the kernel's
+    // hit point must still lie within hit_epsilon of the object's surface by
+    // the double bounds (less float rounding of the point, 1e-5), at no more
+    // than 1% of the pixels.
+    const sol::MarchWorld world(scene);
+    int grazing = 0;
+    for (int k = 0; k < c.pixels; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (gpu.object[i] == 0 || gpu.object[i] != cpu.object[i] || std::abs(gpu.distance[i] - cpu.distance[i]) < 1e-3) {
+        continue;
+      }
+      ++grazing;
+      const double gap = surface_gap(world, static_cast<int>(gpu.object[i]), dvec3(gpu.px[i], gpu.py[i], gpu.pz[i]));
+      EXPECT_GT(gap, -1e-5) << name << " pixel " << k;
+      EXPECT_LT(gap, scene.hit_epsilon + 1e-5) << name << " pixel " << k;
+      EXPECT_LT(std::abs(gpu.distance[i] - cpu.distance[i]), 0.05) << name << " pixel " << k;
+    }
+    EXPECT_LE(grazing, c.pixels / 100) << name;
     if (scene.quotient != sol::Quotient::None) {
       // The kernel marches as the CPU does, by the same field and the same
       // clearances (sol/clearance.hpp): its mean steps per ray within 2 %

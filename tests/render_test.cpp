@@ -975,13 +975,14 @@ bool same_set(const sol::MarchObject& a, const sol::MarchObject& b) {
   return std::abs(s.through.z - t.through.z) < 1e-9 && std::abs(ha.x * hb.y - ha.y * hb.x) < 1e-9 && std::abs(cross) < 1e-9;
 }
 
-// sol::quotient_images lists every image a march step (<= 0.5 from a point of
-// D) can reach: against a far wider enumeration (|a|, |b| <= 16, |c| <= 3,
-// from the objects as given, not first moved into D), every image whose
-// bound is within the step at some sampled point of D (random, on the faces,
-// at the corners) is listed. And no listed image is far out of reach (it
-// would only cost time): each comes within 0.5 + 1 of a point of D (the
-// domain bound uses P's bounding box in x and y, looser by up to ~0.85).
+// sol::quotient_images lists every image a march step (at most the longest
+// step S, 0.5 or 0.9, from a point of D) can reach: against a far wider
+// enumeration (|a|, |b| <= 30, |c| <= 4, from the objects as given, not
+// first moved into D), every image whose bound is within S at some sampled
+// point of D (random, on the faces, at the corners) is listed. And no
+// listed image is far out of reach (it would only cost time): each comes
+// within S + 1.5 of a point of D (the domain bound uses P's bounding box in
+// x and y; measured looser by up to 0.85 at S = 0.5, 1.38 at S = 0.9).
 TEST(Quotient, ImagesAreCompleteAndReachable) {
   const sol::Lattice lattice = sol::Lattice::golden();
   const double h = lattice.height();
@@ -999,9 +1000,9 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
     }
   }
   // Speed: object_distance is 1-Lipschitz in the Sol distance, so an image
-  // farther than 0.5 + R from D's centre, R >= the distance from the centre
+  // farther than S + R from D's centre, R >= the distance from the centre
   // to every sample (a horizontal then vertical coordinate path), is never
-  // within 0.5 of a sample and need not be checked against each.
+  // within S of a sample and need not be checked against each.
   const dvec3 centre = in_d(0.5, 0.5, 0.5);
   double reach = 0.0;
   for (const dvec3& q : samples) {
@@ -1023,19 +1024,20 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   sol::validate(mixed);
   scenes.push_back(mixed);
   for (const sol::Scene& scene : scenes) {
-    const std::vector<sol::MarchObject> listed = sol::quotient_images(scene);
+   for (const double step : {sol::kQuotientShortStep, sol::kQuotientMaxStep}) {
+    const std::vector<sol::MarchObject> listed = sol::quotient_images(scene, step);
     std::vector<bool> reached(listed.size(), false);
     int needed = 0;
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const sol::MarchObject world{scene.objects[i].shape, i};
-      for (int c = -3; c <= 3; ++c) {
-        for (int a = -16; a <= 16; ++a) {
-          for (int b = -16; b <= 16; ++b) {
+      for (int c = -4; c <= 4; ++c) {
+        for (int a = -30; a <= 30; ++a) {
+          for (int b = -30; b <= 30; ++b) {
             const sol::MarchObject image = sol::relative_to(world, sol::inverse(lattice.element(a, b, c)));
-            if (sol::object_distance(image, centre) > sol::kQuotientMaxStep + reach) continue;
+            if (sol::object_distance(image, centre) > step + reach) continue;
             bool within = false;
             for (const dvec3& q : samples) {
-              if (sol::object_distance(image, q) <= sol::kQuotientMaxStep) {
+              if (sol::object_distance(image, q) <= step) {
                 within = true;
                 break;
               }
@@ -1046,8 +1048,8 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
             for (std::size_t k = 0; k < listed.size(); ++k) {
               if (same_set(listed[k], image)) found = reached[k] = true;
             }
-            EXPECT_TRUE(found) << "object " << i << " image (" << a << ", " << b << ", " << c << ") is within a step of D "
-                               << "but not listed";
+            EXPECT_TRUE(found) << "object " << i << " image (" << a << ", " << b << ", " << c << ") is within a step of "
+                               << step << " of D but not listed";
           }
         }
       }
@@ -1056,8 +1058,9 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
     for (std::size_t k = 0; k < listed.size(); ++k) {
       double closest = reached[k] ? 0.0 : 1e300;
       for (const dvec3& q : samples) closest = std::min(closest, sol::object_distance(listed[k], q));
-      EXPECT_LE(closest, sol::kQuotientMaxStep + 1.0) << "listed image " << k << " is never within reach";
+      EXPECT_LE(closest, step + 1.5) << "listed image " << k << " is never within reach of a step of " << step;
     }
+   }
   }
 }
 

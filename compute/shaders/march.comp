@@ -251,11 +251,15 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
 }
 
 // A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
-// S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound, clearance).
-vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius) {
-  const float dz = q.z - c.z, dx = q.x - c.x, dy = q.y - c.y;
-  const float e = exp(q.z + c.z), ec = exp(c.z);
-  const float sh = sinh(0.5 * dz), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
+// S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
+// clearance). ez = e^{q.z} and ec = e^{c.z} come from the caller (the
+// quotient march takes e^{q.z} once a step for all its candidates, and
+// e^{c.z} from the image's record): no exponential here.
+vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, float ez, float ec) {
+  const float dx = q.x - c.x, dy = q.y - c.y;
+  const float e = ez * ec;
+  const float half_exp_dz = sqrt(ez / ec);  // e^{(q.z - c.z)/2}
+  const float sh = 0.5 * (half_exp_dz - 1.0 / half_exp_dz), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
   const vec2 s2 = vec2(sh2 + 0.25 * dx * dx / e, sh2 + 0.25 * dy * dy * e);
   const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x / ec - 0.25 * dx * dx / e * u.z,
                          half_sinh_dz * u.z + 0.5 * dy * u.y * ec + 0.25 * dy * dy * e * u.z);
@@ -270,14 +274,14 @@ vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius) {
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (bend 2√5, or 1 along x or y,
 // where it is a slab's). Returns (distance bound, clearance).
-vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius) {
+vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, float ez) {
   // Both forms have two terms; the first is asinh(w) - r for either (w the
   // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
   // serves both: the inputs are chosen first (lavapipe runs both sides of
   // every choice, so a shared evaluation is cheaper than two).
   const bool vertical = axis == kTubeVertical;
   const vec3 d = q - through;
-  const float ez = exp(q.z), iez = 1.0 / ez;
+  const float iez = 1.0 / ez;  // ez = e^{q.z}, from the caller
   const float D = abs(h.x) * iez + abs(h.y) * ez;
   const float G = (h.y * d.x - h.x * d.y) / D;
   const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) / D;
@@ -297,14 +301,14 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
 // The object's distance (object_distance) and clearance, the larger of it
 // and the second-order step of its bound (exact balls: of the bound's
 // ball, which holds the exact one). The objects of the quotient: planes
-// z = c, balls and tubes.
-vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius) {
-  if (HAS_BOUND_BALLS && type == kObjectBall) return ball_clearance(q, u, rel.xyz, radius);
+// z = c, balls and tubes. ez = e^{q.z}; ec = e^{rel.z} (balls only).
+vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, float ez, float ec) {
+  if (HAS_BOUND_BALLS && type == kObjectBall) return ball_clearance(q, u, rel.xyz, radius, ez, ec);
   if (HAS_EXACT_BALLS && type == kObjectExactBall) {
     const float approach = exact_ball_distance(q, rel.xyz, radius);
-    return vec2(approach, max(approach, ball_clearance(q, u, rel.xyz, radius).y));
+    return vec2(approach, max(approach, ball_clearance(q, u, rel.xyz, radius, ez, ec).y));
   }
-  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius);
+  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius, ez);
   const float d = object_distance(type, q, rel, heading, radius);
   const float plane_z = max(d, clearance_root(d, q.z >= rel.x ? u.z : -u.z, 1.0));
   return vec2(d, type == kObjectPlaneZ ? plane_z : d);
@@ -548,35 +552,34 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       }
       const FieldCell cell = field_cell(p);
       const float field = field_lower_bound(cell);
-      float step_length = field;
-      if (field < kFieldNear) {
-        const uint word = field_candidates(cell);
-        const bool all = word == kFieldAllImages;
-        float clear = 1e30, nearest_hit = 1e30;
-        for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
-          const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-          if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
-          const Image m = images[i];
-          const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y);
-          float d = dc.x;
-          if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
-            if (exact_i != i) exact_known = false;
-            exact_i = i;
-            d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_J, exact_known);
-          }
-          bool leaving = false;
-          for (int h = 0; h < 4; ++h) {
-            if (passing[h] == i) {
-              if (d > 2.0 * eps) passing[h] = -1;
-              else leaving = true;
-            }
-          }
-          clear = min(clear, max(d, dc.y));
-          if (!leaving) nearest_hit = min(nearest_hit, d);
+      const uint word = field_candidates(cell);
+      const bool all = word == kFieldAllImages;
+      const float ez = exp(p.z);  // shared by the candidates' clearances
+      float clear = 1e30, nearest_hit = 1e30;
+      for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+        const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+        if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
+        const Image m = images[i];
+        const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, ez,
+                                         m.heading.z);
+        float d = dc.x;
+        if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
+          if (exact_i != i) exact_known = false;
+          exact_i = i;
+          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_J, exact_known);
         }
-        if (nearest_hit < eps) return true;
-        step_length = max(field, min(clear, field_reach(cell)));
+        bool leaving = false;
+        for (int h = 0; h < 4; ++h) {
+          if (passing[h] == i) {
+            if (d > 2.0 * eps) passing[h] = -1;
+            else leaving = true;
+          }
+        }
+        clear = min(clear, max(d, dc.y));
+        if (!leaving) nearest_hit = min(nearest_hit, d);
       }
+      if (nearest_hit < eps) return true;
+      float step_length = max(field, min(clear, field_reach(cell)));
       if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
       t += step_length;
       local_t += step_length;
@@ -1038,13 +1041,14 @@ void main() {
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a
     // step ends outside. Each step is the distance field's lower bound
-    // (sol::QuotientField: one read instead of every image's bound); where
-    // that is below kFieldNear, the step is also the least clearance along
-    // the ray (object_clearance) of the cell's candidate images (every image
-    // that can be nearer than kFieldNear there), capped at the cell's reach
-    // (field_reach: the other images are farther), whichever is larger, and
-    // the candidate that comes within hit_epsilon is the object hit. Steps
-    // stay below kQuotientMaxStep, the reach of the listed images.
+    // (sol::QuotientField: one read instead of every image's bound) or the
+    // least clearance along the ray (object_clearance) of the cell's
+    // candidate images (every image that can be nearer than kFieldNear
+    // there, or else the nearest), capped at the cell's reach (field_reach:
+    // the other images are farther), whichever is larger, and the candidate
+    // that comes within hit_epsilon is the object hit. Steps stay within
+    // the world's longest step (sol::quotient_max_step), the reach of the
+    // listed images, which the field and the reaches are capped at.
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     if (HAS_ODS) {  // the column's eye, teleported into D
@@ -1074,53 +1078,52 @@ void main() {
       }
       const FieldCell cell = field_cell(q);
       const float field = field_lower_bound(cell);
-      float step_length = field;
       steps = step + 1;
-      if (field < kFieldNear) {
-        const uint word = field_candidates(cell);
-        const bool all = word == kFieldAllImages;
-        float nearest = 1e30;
-        int nearest_i = -1;
-        float second = 1e30;  // the least distance but the nearest's, and its image
-        int second_i = -1;
-        // The clearances (object_clearance) of the nearest and the least of the others'.
-        float clear_nearest = 1e30, clear_rest = 1e30;
-        for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
-          const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-          if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
-          const Image m = images[i];
-          const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y);
-          const float d = dc.x;
-          if (d < nearest) {
-            second = nearest;
-            second_i = nearest_i;
-            nearest = d;
-            nearest_i = i;
-            clear_rest = min(clear_rest, clear_nearest);
-            clear_nearest = dc.y;
-          } else {
-            clear_rest = min(clear_rest, dc.y);
-            if (d < second) {
-              second = d;
-              second_i = i;
-            }
+      const uint word = field_candidates(cell);
+      const bool all = word == kFieldAllImages;
+      const float ez = exp(q.z);  // shared by the candidates' clearances
+      float nearest = 1e30;
+      int nearest_i = -1;
+      float second = 1e30;  // the least distance but the nearest's, and its image
+      int second_i = -1;
+      // The clearances (object_clearance) of the nearest and the least of the others'.
+      float clear_nearest = 1e30, clear_rest = 1e30;
+      for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+        const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+        if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
+        const Image m = images[i];
+        const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, ez,
+                                         m.heading.z);
+        const float d = dc.x;
+        if (d < nearest) {
+          second = nearest;
+          second_i = nearest_i;
+          nearest = d;
+          nearest_i = i;
+          clear_rest = min(clear_rest, clear_nearest);
+          clear_nearest = dc.y;
+        } else {
+          clear_rest = min(clear_rest, dc.y);
+          if (d < second) {
+            second = d;
+            second_i = i;
           }
         }
-        if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
-          // Near an exact ball's image: its exact distance (as in Sol).
-          if (exact_i != nearest_i) exact_known = false;
-          exact_i = nearest_i;
-          const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_J, exact_known);
-          nearest_i = exact <= second ? nearest_i : second_i;
-          nearest = min(exact, second);
-          clear_nearest = max(clear_nearest, exact);
-        }
-        if (nearest < hit_epsilon) {
-          hit_image = nearest_i;
-          break;
-        }
-        step_length = max(field, min(min(clear_nearest, clear_rest), field_reach(cell)));
       }
+      if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
+        // Near an exact ball's image: its exact distance (as in Sol).
+        if (exact_i != nearest_i) exact_known = false;
+        exact_i = nearest_i;
+        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_J, exact_known);
+        nearest_i = exact <= second ? nearest_i : second_i;
+        nearest = min(exact, second);
+        clear_nearest = max(clear_nearest, exact);
+      }
+      if (nearest < hit_epsilon) {
+        hit_image = nearest_i;
+        break;
+      }
+      const float step_length = max(field, min(min(clear_nearest, clear_rest), field_reach(cell)));
       t += step_length;
       local_t += step_length;
       if (t > max_distance) break;
@@ -1277,7 +1280,7 @@ void main() {
       // least distance (as the CPU's march_cover: one clearance a step).
       if (HAS_BALLS && types[nearest_any] >= kObjectBall) {
         nearest = min(others, object_clearance(types[nearest_any], q, u, relative[nearest_any], headings[nearest_any],
-                                               radii[nearest_any]).y);
+                                               radii[nearest_any], exp(q.z), exp(relative[nearest_any].z)).y);
       }
       shell = HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell;
       if (shell) break;  // finished below

@@ -57,24 +57,35 @@ bool same_image(const MarchObject& a, const MarchObject& b) {
 }  // namespace
 
 // Why these images are all a march step can reach. A step starts at a point
-// q of D and is at most kQuotientMaxStep (0.5) long, and object_distance is
-// a lower bound of the distance to the drawn object; so an image whose bound
-// exceeds 0.5 all over D is never reached, and each kind's
-// least_distance_over_domain (objects.cpp) proves that for the images
-// dropped here. The enumeration is wide enough: (1) |c| >= 2 moves an
-// object, first moved into the cells z in [0, h), by at least h = 0.962 in z
-// from D, beyond 0.5 + radius while the radius is at most
-// kMaxQuotientRadius (0.45; validate checks it); (2) an image within reach
-// lies over x in [-3.1, φ + 4.1], y in [-2.2, φ + 1.2] (asinh(gap e^{-h}) <=
-// 0.95), whose lattice coordinates are below 3.4 in size, while γ3^{±1}
-// moves a point of D to lattice coordinates below 3 (the entries of
-// [[2,1],[1,1]] and its inverse), so |a|, |b| <= 7 suffice for balls and
-// vertical lines; a horizontal line along a lattice vector of length <= 4.3
-// has a point γ3^c o + λ within 4.3 of any of its points, which adds at most
-// 2.3 to |a|, |b| (lattice_range: 10). The test
+// q of D and is at most max_step <= kQuotientMaxStep (0.9) long, and
+// object_distance is a lower bound of the distance to the drawn object; so
+// an image whose bound exceeds max_step all over D is never reached, and
+// each kind's least_distance_over_domain (objects.cpp) proves that for the
+// images dropped here. The enumeration is wide enough. A reachable image has
+// its centre (or a point of its axis) within R = 0.9 + 0.45 = 1.35 of a
+// point q of D (radii are at most kMaxQuotientRadius, 0.45; validate checks
+// it). (1) Sol distance is at least the difference in z, and |c| >= 3 moves
+// an object, first moved into the cells z in [0, h), by at least 2h = 1.92
+// from D: beyond R. (2) The distance from q to a point is at least
+// asinh(|Δx| e^{-z_q}) and asinh(|Δy| e^{z_q}) (the planes x, y = const
+// through it), so a reachable centre lies within sinh(R) e^{h} = 4.71 in x
+// and sinh(R) = 1.80 in y of D's (x, y) (x in [0, φ + 1], y in [-1, φ]):
+// lattice coordinates (s, r) of size below 4.1. γ3^c with |c| <= 2 moves a
+// point of D to lattice coordinates of size at most 8 (the entries of
+// [[2,1],[1,1]]^{±2} sum to at most 8 per row), and γ1^a γ2^b adds (a, b):
+// |a|, |b| <= 13 suffice for balls and for vertical lines (which pass
+// through lattice points, validate checks it, mapped by γ3 onto each
+// other). A horizontal line along γ1 or γ2 is mapped by γ3^c onto a line
+// along a lattice vector v with coordinates of size at most 5 and 3, under
+// whose translation it is invariant; so its reachable point is within
+// (5 + 3)/2 = 4 in lattice coordinates of an image of the moved axis point,
+// which adds 4 to |a|, |b|: 17, and lattice_range is 22. The test
 // Quotient.ImagesAreCompleteAndReachable checks that a wider enumeration
-// finds nothing more.
-std::vector<MarchObject> quotient_images(const World& world) {
+// finds nothing more, at both longest steps.
+std::vector<MarchObject> quotient_images(const World& world, double max_step) {
+  if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
+    throw std::invalid_argument("sol::quotient_images: max_step must be in (0, kQuotientMaxStep]");
+  }
   const Lattice lattice = Lattice::golden();
   std::vector<MarchObject> images;
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
@@ -84,11 +95,11 @@ std::vector<MarchObject> quotient_images(const World& world) {
           if constexpr (!std::is_same_v<Kind, PlaneX> && !std::is_same_v<Kind, PlaneY>) {
             const MarchObject base{kind.into_domain(lattice), i};
             const int range = kind.lattice_range();
-            for (int c = -1; c <= 1; ++c) {
+            for (int c = -2; c <= 2; ++c) {
               for (int a = -range; a <= range; ++a) {
                 for (int b = -range; b <= range; ++b) {
                   const MarchObject image = relative_to(base, inverse(lattice.element(a, b, c)));
-                  if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > kQuotientMaxStep) continue;
+                  if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > max_step) continue;
                   if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
                     images.push_back(image);
                   }
@@ -101,6 +112,14 @@ std::vector<MarchObject> quotient_images(const World& world) {
   }
   return images;
 }
+
+double quotient_max_step(const World& world) {
+  return quotient_images(world, kQuotientMaxStep).size() > static_cast<std::size_t>(kernel::kQuotientLongStepImages)
+             ? kQuotientShortStep
+             : kQuotientMaxStep;
+}
+
+std::vector<MarchObject> quotient_images(const World& world) { return quotient_images(world, quotient_max_step(world)); }
 
 MarchFeatures features_of(const World& world) {
   MarchFeatures f;
@@ -135,8 +154,9 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   validate(world);
   m_features = features_of(world);
   if (m_features.quotient) {
-    m_objects = quotient_images(world);
-    m_field = std::make_shared<const QuotientField>(m_objects);
+    m_max_step = quotient_max_step(world);
+    m_objects = quotient_images(world, m_max_step);
+    m_field = std::make_shared<const QuotientField>(m_objects, m_max_step);
     for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l));
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});

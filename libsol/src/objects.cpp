@@ -22,7 +22,7 @@ namespace {
 // Lattice words γ1^a γ2^b γ3^c with |a|, |b| up to this are searched for the
 // images of balls and tubes in the quotient: see the proof at
 // sol::quotient_images (march.cpp).
-constexpr int kQuotientLatticeRange = 10;
+constexpr int kQuotientLatticeRange = 22;
 
 // Two images are the same set when they agree to this.
 constexpr double kSameSetTolerance = 1e-9;
@@ -383,7 +383,7 @@ void check_radius(double radius, const std::string& at, bool quotient) {
   if (!(radius > 0.0) || !std::isfinite(radius)) field_error(at + ".radius", at + ".radius must be finite and > 0");
   if (quotient && radius > kMaxQuotientRadius) {
     field_error(at + ".radius",
-                at + ".radius must be <= 0.45 in the quotient (one cell's height, 2 ln φ, less the longest step)");
+                at + ".radius must be <= 0.45 in the quotient (the listing of the objects' images around the domain assumes it)");
   }
 }
 

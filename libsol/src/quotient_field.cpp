@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -60,9 +61,13 @@ void parallel_for(int count, F&& f) {
 
 }  // namespace
 
-QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_count(images.size()) {
+QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_step)
+    : m_image_count(images.size()), m_max_step(max_step) {
   if (images.size() > 254) {
     throw std::invalid_argument("sol::QuotientField: at most 254 images, got " + std::to_string(images.size()));
+  }
+  if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
+    throw std::invalid_argument("sol::QuotientField: max_step must be in (0, kQuotientMaxStep]");
   }
   const Lattice lattice = Lattice::golden();
   const double h = lattice.height();
@@ -88,7 +93,7 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_c
     m_words[2 * static_cast<std::size_t>(k) + 1] = up(along_r);
   }
   auto nearest = [&](const glm::dvec3& q) {
-    double b = kQuotientMaxStep;
+    double b = max_step;
     for (const MarchObject& image : images) b = std::min(b, bound(image, q));
     return b;
   };
@@ -109,25 +114,42 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images) : m_image_c
       for (int i = 0; i < kN; ++i) {
         const glm::dvec3 centre = point_at(lattice, (i + 0.5) / kN, (j + 0.5) / kN, (k + 0.5) * dz);
         std::uint32_t word = 0xFFFFFFFFu;  // every slot empty (kFieldEmpty)
+        // The candidates: every image whose bound can be below kNear in the
+        // cell, and at least the nearest one (a ray far from every surface
+        // then steps by its clearance, not by the field alone); more than
+        // kCandidates: every image. The reach: the least bound of the other
+        // images over the cell, capped at the longest step.
         int count = 0;
-        // The reach: the least bound of the other images over the cell
-        // (above kNear, as they are not candidates), capped at the step
-        // beyond which unlisted images may come into reach.
-        double reach = kQuotientMaxStep;
+        // The least and second least bound over the cell of the images that
+        // are not within kNear, and the image of the least.
+        double first = std::numeric_limits<double>::infinity(), second = first;
+        std::size_t first_image = 0;
         for (std::size_t m = 0; m < images.size(); ++m) {
           const double least = bound(images[m], centre) - radius;
           if (least > kNear) {
-            reach = std::min(reach, least);
+            if (least < first) {
+              second = first;
+              first = least;
+              first_image = m;
+            } else {
+              second = std::min(second, least);
+            }
             continue;
           }
           if (count == kCandidates) {
             word = kernel::kFieldAllImages;
-            reach = kQuotientMaxStep;  // every image is evaluated
             break;
           }
           word &= ~(0xFFu << (8 * count));
           word |= static_cast<std::uint32_t>(m) << (8 * count);
           ++count;
+        }
+        double reach = std::min(max_step, first);
+        if (word == kernel::kFieldAllImages) {
+          reach = max_step;  // every image is evaluated
+        } else if (count == 0 && !images.empty()) {
+          word = (word & ~0xFFu) | static_cast<std::uint32_t>(first_image);  // only the nearest
+          reach = std::min(max_step, second);
         }
         m_words[kHeader + kNodes + cell_index(i, j, k)] = word;
         // Rounded down to float, less the kernel's rounding: never above the bounds.

@@ -269,13 +269,13 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // in frame components, is unchanged by the left-translation, and its
 // closed-form geodesic restarts there). A step is the world's distance field
 // F (sol::QuotientField: a lower bound of the least distance bound of the
-// images around D, capped at kQuotientMaxStep); where F < kFieldNear it is
-// also the least clearance of the cell's candidate images along the ray
-// (every image whose bound can be below kFieldNear in the cell; each
-// image's clearance, sol/clearance.hpp, is at least its bound and longer
-// beside it), capped at the cell's reach (the other images' bounds exceed
-// it at q), whichever is larger: neither reaches an object, so a step may
-// cross a face of D but never passes through an object. The
+// images around D, capped at the world's longest step) or the least
+// clearance of the cell's candidate images along the ray (every image
+// whose bound can be below kFieldNear in the cell, or else the nearest
+// one; each image's clearance, sol/clearance.hpp, is at least its bound and
+// longer beside it) capped at the cell's reach (the other images' bounds
+// exceed it at q), whichever is larger: neither reaches an object, so a
+// step may cross a face of D but never passes through an object. The
 // candidate that comes within hit_epsilon is the object hit. The kernel
 // (march.comp) marches the same way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
@@ -307,35 +307,32 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     }
     hit.steps = step + 1;
     const double bound = field.lower_bound(q);
-    double step_length = bound;
-    if (bound < QuotientField::kNear) {
-      double clear = std::numeric_limits<double>::infinity(), nearest_hit = clear;
-      int nearest_k = -1;
-      const glm::dvec3 u = ray->direction_at(local);
-      for (int k : field.candidates(q)) {
-        const MarchObject& image = images[static_cast<std::size_t>(k)];
-        const double d = object_distance(image, q);
-        auto left = std::find(passing.begin(), passing.end(), k);
-        if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
-        clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
-        if (left == passing.end() && d < nearest_hit) {
-          nearest_hit = d;
-          nearest_k = k;
-        }
+    double clear = std::numeric_limits<double>::infinity(), nearest_hit = clear;
+    int nearest_k = -1;
+    const glm::dvec3 u = ray->direction_at(local);
+    for (int k : field.candidates(q)) {
+      const MarchObject& image = images[static_cast<std::size_t>(k)];
+      const double d = object_distance(image, q);
+      auto left = std::find(passing.begin(), passing.end(), k);
+      if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
+      clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
+      if (left == passing.end() && d < nearest_hit) {
+        nearest_hit = d;
+        nearest_k = k;
       }
-      if (nearest_hit < world.hit_epsilon) {
-        const MarchObject& image = images[static_cast<std::size_t>(nearest_k)];
-        hit.object = static_cast<int>(image.owner) + 1;
-        hit.distance = t;
-        hit.point = q;
-        // Normals are left-invariant: evaluate relative to the segment's origin
-        // (a plane then faces the side the ray comes from, as in the cover).
-        hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
-        hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
-        return hit;
-      }
-      step_length = std::max(bound, std::min(clear, field.reach(q)));
     }
+    if (nearest_hit < world.hit_epsilon) {
+      const MarchObject& image = images[static_cast<std::size_t>(nearest_k)];
+      hit.object = static_cast<int>(image.owner) + 1;
+      hit.distance = t;
+      hit.point = q;
+      // Normals are left-invariant: evaluate relative to the segment's origin
+      // (a plane then faces the side the ray comes from, as in the cover).
+      hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
+      hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
+      return hit;
+    }
+    double step_length = std::max(bound, std::min(clear, field.reach(q)));
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;
     local += step_length;

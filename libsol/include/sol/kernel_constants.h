@@ -27,8 +27,14 @@ SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
 
 // ---- The march in the quotient (docs/renderer.md "The quotient")
 /// The longest march step: only the objects' images a step this long can
-/// reach from D are listed (sol::quotient_images).
-SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.5);
+/// reach from D are listed (sol::quotient_images). Below kLatticeHeight,
+/// so that a step from D ends at most one layer of cells above or below it
+/// (the kernel's teleport relies on it).
+SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.9);
+/// The longest step of a world whose images within kQuotientMaxStep of D
+/// would be more than kQuotientLongStepImages (sol::quotient_max_step).
+SOL_CONSTANT(SOL_REAL, kQuotientShortStep, 0.5);
+SOL_CONSTANT(int, kQuotientLongStepImages, 64);
 /// Clearances (sol/clearance.hpp): the bend of the across term of tubes
 /// along a horizontal direction other than x or y, 2√5.
 SOL_CONSTANT(SOL_REAL, kAcrossCurvature, 4.47213595499957939282);
@@ -38,8 +44,9 @@ SOL_CONSTANT(SOL_REAL, kAcrossCurvature, 4.47213595499957939282);
 SOL_CONSTANT(int, kFieldCells, 64);
 /// ... and along z in [0, kLatticeHeight).
 SOL_CONSTANT(int, kFieldLayers, 32);
-/// Where the field is below this, the march evaluates the cell's candidate
-/// images instead: every image whose bound can be below it in the cell.
+/// A cell's candidate images, which the march evaluates at every step in
+/// it: every image whose bound can be below this in the cell, and at least
+/// the image nearest to the cell.
 SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
 /// Candidate images per cell, 8 bits each in one word, filling the slots
 /// from the lowest byte (the kernel stops at the first empty one);

@@ -67,14 +67,28 @@ double cutout_gap_bound(Pattern pattern, const glm::dvec3& w);
 
 /// The longest march step in the quotient: no image beyond it is listed.
 inline constexpr double kQuotientMaxStep = kernel::kQuotientMaxStep;
+/// The longest step of crowded quotient worlds (sol::quotient_max_step).
+inline constexpr double kQuotientShortStep = kernel::kQuotientShortStep;
+static_assert(kQuotientShortStep < kQuotientMaxStep && kQuotientMaxStep < kernel::kLatticeHeight,
+              "a quotient step from D must end within one layer of cells of it");
 
 /// Quotient worlds: the images, in world coordinates, of the world's objects
-/// that a march step can reach from D. Each object is first moved by Γ so
-/// that its centre or axis point lies in D; its images g·object, g =
-/// γ1^a γ2^b γ3^c with |a|, |b| <= 10, |c| <= 1, are kept when a lower bound
-/// of their distance bound over all of D is at most the longest step (0.5):
-/// see the proof in march.cpp. Lines that coincide are listed once.
+/// that a march step of at most `max_step` (<= kQuotientMaxStep) can reach
+/// from D. Each object is first moved by Γ so that its centre or axis point
+/// lies in D; its images g·object, g = γ1^a γ2^b γ3^c with |a|, |b| <= 22,
+/// |c| <= 2, are kept when a lower bound of their distance bound over all of
+/// D is at most max_step: see the proof in march.cpp. Lines that coincide
+/// are listed once.
+std::vector<MarchObject> quotient_images(const World& world, double max_step);
+/// The images for the world's own longest step (quotient_max_step).
 std::vector<MarchObject> quotient_images(const World& world);
+
+/// The longest march step of a quotient world: kQuotientMaxStep, or
+/// kQuotientShortStep where more than kQuotientLongStepImages images lie
+/// within kQuotientMaxStep of D (long steps list many images: the kernel
+/// takes at most kMaxGpuImages, and every one costs the distance field's
+/// construction time).
+double quotient_max_step(const World& world);
 
 /// What a world uses, for the march's short cuts and the kernels'
 /// specialisation constants.
@@ -118,6 +132,8 @@ class MarchWorld {
   std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
   /// The quotient: the distance field of objects() over D (null in Sol).
   const QuotientField* field() const { return m_field.get(); }
+  /// The quotient: the longest march step (sol::quotient_max_step; 0 in Sol).
+  double max_step() const { return m_max_step; }
   /// The quotient: each light's images (sol::quotient_light_images; empty
   /// for all but exact point lights, and in Sol).
   const std::vector<std::vector<glm::dvec3>>& light_images() const { return m_light_images; }
@@ -127,6 +143,7 @@ class MarchWorld {
   MarchFeatures m_features;
   std::vector<MarchObject> m_objects;
   std::shared_ptr<const QuotientField> m_field;
+  double m_max_step = 0.0;
   std::vector<std::vector<glm::dvec3>> m_light_images;
 };
 

@@ -195,9 +195,10 @@ struct SceneObject {
   bool cutout = false;
 };
 
-/// Largest radius of a ball or tube in a quotient scene: the images of the
-/// objects are listed for the cells next to D only (sol::quotient_images),
-/// which holds while h - radius exceeds the longest quotient step (0.5).
+/// Largest radius of a ball or tube in a quotient scene: the proof that
+/// sol::quotient_images lists every image a step can reach assumes it
+/// (lattice words γ3^c with |c| <= 2 only, which holds while 2h - radius
+/// exceeds the longest quotient step, 0.9; and the widths of its search).
 constexpr double kMaxQuotientRadius = 0.45;
 
 // Visiting a shape: the distance, normal, pattern coordinates and

@@ -58,7 +58,8 @@ SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a
 /// Most objects a scene may hold on the GPU.
 SOL_CONSTANT(int, kMaxGpuObjects, 8);
 /// Most images of the objects around the domain in a quotient scene
-/// (sol::quotient_images; lattice-balls has 16, lattice-pillars 15).
+/// (sol::quotient_images; lattice-balls has 50, lattice-pillars 27; a
+/// world with more than kQuotientLongStepImages takes the short step).
 SOL_CONSTANT(int, kMaxGpuImages, 64);
 /// Most images of the lights in a quotient scene (sol::quotient_light_images,
 /// all lights together; about 300 for a light with reach 0, 2000 with reach 1).
@@ -120,7 +121,7 @@ struct Params {
 struct Image {
   vec4 geometry;  ///< ball: centre; tube: (point of the axis, axis code); plane z = c: (c, 0, 0, 0)
   vec4 info;      ///< x: object code, y: radius, z: the scene object it images (0-based)
-  vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction
+  vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; z: e^{geometry.z} (balls' clearances)
 };
 
 // ---- An omnidirectional stereo eye's column (binding 8, std430): sol::column_eye
