@@ -15,7 +15,7 @@
 //     point differences where both hit, and the kernel time. Written to
 //     render_error_vs_time.csv.
 //  3. Exact against bound: the `spheres` preset on the kernel with its balls
-//     drawn by the distance bound or exactly (sol::DistanceTable) and its
+//     drawn by the distance bound or exactly (sol_shortest) and its
 //     point light by the coordinate direction or exactly
 //     (sol_connection.glsl, reach 0 and 2), at --size x 3/4 --size: kernel
 //     time and time per ray against the all-bound variant. Written to

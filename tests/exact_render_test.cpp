@@ -167,30 +167,6 @@ TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
 
 namespace {
 
-TEST(ExactTable, AccuracyAgainstTheSolver) {
-  // The kernels' table of d(0, ·): trilinear interpolation against the
-  // solver at random points of its box where the table's value lies in
-  // [kDistanceTableMin, kDistanceTableMax] = [0.3, 1.2], where the kernels
-  // trust it to kDistanceTableError (approaching exact balls by the table
-  // less that error: it must never exceed the true distance there).
-  const sol::DistanceTable& table = sol::DistanceTable::shared();
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> ux(-sol::DistanceTable::kExtent, sol::DistanceTable::kExtent),
-      uz(-sol::DistanceTable::kHeight, sol::DistanceTable::kHeight);
-  double worst = 0.0;
-  int checked = 0;
-  while (checked < 1200) {
-    const glm::dvec3 w(ux(rng), ux(rng), uz(rng));
-    const double looked = table.lookup(w);
-    if (looked < sol::kernel::kDistanceTableMin || looked > sol::kernel::kDistanceTableMax) continue;
-    ++checked;
-    worst = std::max(worst, std::abs(looked - sol::distance({0, 0, 0}, w)));
-  }
-  std::printf("distance table: worst |lookup - distance| = %.2e over %d points (0.3 <= lookup <= 1.2)\n", worst, checked);
-  EXPECT_LT(worst, sol::kernel::kDistanceTableError);  // measured 6.4e-3 (docs/exact.md)
-  EXPECT_LT(table.lookup({3.0, 0.0, 0.0}), 0.0);  // outside the box
-}
-
 TEST(ConnectionTable, EverySeedIsAConnectionToACornerOfItsCell) {
   // The kernels' seeds (sol::ConnectionTable, minimisers): in every cell,
   // each seed is a unit direction with x, y >= 0, seeds come shortest

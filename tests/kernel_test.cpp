@@ -340,14 +340,13 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   expect_no_validation_errors();
 }
 
-// The kernel approaches exact balls by sol::DistanceTable less its error
-// (or the bound), then takes the exact distance from the shortest geodesic
-// (sol_shortest) within kExactShell: hit points lie on the geodesic sphere
-// (of the nearest image of the centre, in the quotient) to hit_epsilon
-// (5e-5) plus float rounding, 1e-4, and the hit masks follow the CPU
-// renderer's (the double solver), its arc lengths too. Balls the table
-// covers (r = 0.5) and ones it does not (r = 1.4, where the march comes by
-// the bound); the ends of the radii the kernel accepts: a small ball near
+// The kernel approaches exact balls by the bound, then takes the exact
+// distance from the shortest geodesic (sol_shortest) within kExactShell:
+// hit points lie on the geodesic sphere (of the nearest image of the
+// centre, in the quotient) to hit_epsilon (5e-5) plus float rounding, 1e-4,
+// and the hit masks follow the CPU renderer's (the double solver), its arc
+// lengths too. Balls of radius 0.5 and 1.4; the ends of the radii the
+// kernel accepts: a small ball near
 // the eye, balls of radius kMaxExactBallRadius = 2 seen from up to 9.5 away
 // (far points once took Newton's first seed out of its reach: false hits up
 // to 1.6 off the sphere); in the quotient the lattice's ball at the base

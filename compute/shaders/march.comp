@@ -40,7 +40,7 @@ layout(constant_id = kSpecQuotient) const bool QUOTIENT = false;
 // presenters, which take the colour alone (MarchRenderer::record) and bind
 // the colour image there too.
 layout(constant_id = kSpecWriteAovs) const bool WRITE_AOVS = true;
-// Exact balls (kObjectExactBall): the table of d(0, ·) in kBindingDistanceTable.
+// Exact balls (kObjectExactBall): the exact distance near their sphere (sol_shortest).
 layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
 // Exact point lights (kLightExactPoint): directions along the geodesics to
 // the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
@@ -83,13 +83,6 @@ layout(std430, set = 0, binding = kBindingImages) readonly buffer Images {
   Image images[];
 };
 
-// sol::DistanceTable: d(0, (x, y, z)) on a grid of kDistanceTableSize³
-// points over x, y in [0, kDistanceTableExtent], z in ±kDistanceTableHeight,
-// index (k n + j) n + i.
-layout(std430, set = 0, binding = kBindingDistanceTable) readonly buffer DistanceTable {
-  float distance_table[];
-};
-
 // sol::QuotientField: the quotient world's distance field over D and each
 // cell's candidate images (layout in sol/quotient_field.hpp).
 layout(std430, set = 0, binding = kBindingField) readonly buffer QuotientField {
@@ -124,33 +117,14 @@ float distance_lower_bound(vec3 p, vec3 q) {
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
 
-// Exact balls, approached: the bound beyond the band kExactBallBand; within
-// it, where the table (sol::DistanceTable, at w = centre⁻¹·q) is known to
-// kDistanceTableError (kDistanceTableMin <= d <= kDistanceTableMax), the table
-// less that error (never below the bound); elsewhere the bound. Never above
-// the distance to the true sphere, so the approach never passes it; within
-// kExactShell of it the march takes the exact distance (exact_ball_sdf).
-float table_at(int i, int j, int k) {
-  return distance_table[(k * kDistanceTableSize + j) * kDistanceTableSize + i];
-}
-float exact_ball_distance(vec3 q, vec3 c, float radius) {
-  const float bound = distance_lower_bound(q, c) - radius;
-  if (bound > kExactBallBand) return bound;
-  const float ecz = exp(c.z);
-  const float last = float(kDistanceTableSize - 1);
-  const vec3 step = vec3(kDistanceTableExtent, kDistanceTableExtent, 2.0 * kDistanceTableHeight) / last;
-  const vec3 g = vec3(abs(q.x - c.x) / ecz, abs(q.y - c.y) * ecz, q.z - c.z + kDistanceTableHeight) / step;
-  if (!(g.x < last && g.y < last && g.z >= 0.0 && g.z < last)) return bound;
-  const ivec3 i = ivec3(g);
-  const vec3 f = g - vec3(i);
-  const float x00 = mix(table_at(i.x, i.y, i.z), table_at(i.x + 1, i.y, i.z), f.x);
-  const float x10 = mix(table_at(i.x, i.y + 1, i.z), table_at(i.x + 1, i.y + 1, i.z), f.x);
-  const float x01 = mix(table_at(i.x, i.y, i.z + 1), table_at(i.x + 1, i.y, i.z + 1), f.x);
-  const float x11 = mix(table_at(i.x, i.y + 1, i.z + 1), table_at(i.x + 1, i.y + 1, i.z + 1), f.x);
-  const float d = mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
-  const bool known = d >= kDistanceTableMin && d <= kDistanceTableMax;
-  return known ? max(bound, d - radius - kDistanceTableError) : bound;
-}
+// Exact balls, approached: the bound (the true sphere lies inside the
+// bound's), never above the distance to it, so the approach never passes
+// it; within kExactShell of it the march takes the exact distance
+// (exact_ball_sdf) and steps by its clearance (exact_ball_clearance).
+// (Until this session a table of d(0, ·) tightened the approach within 0.25
+// of the sphere: its eight reads per ball and step cost more than the
+// exact solves it saved, spheres 290 -> 222 ms without it, docs/exact.md.)
+float exact_ball_distance(vec3 q, vec3 c, float radius) { return distance_lower_bound(q, c) - radius; }
 
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,

@@ -222,7 +222,6 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingHit, DescriptorType::StorageImage},
                                           {kernel::kBindingPoint, DescriptorType::StorageImage},
                                           {kernel::kBindingImages, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingDistanceTable, DescriptorType::StorageBuffer},
                                           {kernel::kBindingSeeds, DescriptorType::StorageBuffer},
                                           {kernel::kBindingField, DescriptorType::StorageBuffer},
                                           {kernel::kBindingColumns, DescriptorType::StorageBuffer},
@@ -277,7 +276,6 @@ struct MarchRenderer::Impl {
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns, so they live until the next set_world.
   std::optional<Buffer> images;
-  std::optional<Buffer> table;  // exact balls: sol::DistanceTable
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
   std::optional<Buffer> light_images;  // the quotient: its lights' images
@@ -312,7 +310,6 @@ struct MarchRenderer::Impl {
     if (built.world_bound != generation) {
       built.pipeline.bind(kernel::kBindingParams, params);
       built.pipeline.bind(kernel::kBindingImages, *images);
-      built.pipeline.bind(kernel::kBindingDistanceTable, *table);
       built.pipeline.bind(kernel::kBindingSeeds, *seeds);
       built.pipeline.bind(kernel::kBindingField, *field);
       built.pipeline.bind(kernel::kBindingLightImages, *light_images);
@@ -351,18 +348,13 @@ void MarchRenderer::set_world(const World& world) {
   const std::vector<kernel::Image> images = pack_images(prepared);
   const std::vector<glm::vec4> light_images = pack_light_images(prepared);
   const MarchFeatures& f = prepared.features();
-  // Exact balls: the table of d(0, ·) (sol::DistanceTable, computed once per
-  // process); exact point lights: the connection solver's seeds; else stubs.
+  // Exact point lights: the connection solver's seeds (also the exact balls'
+  // first guesses, sol_shortest); else a stub.
   const std::vector<float> stub(4, 0.0f);
-  const std::vector<float>& table = f.exact_balls ? DistanceTable::shared().values : stub;
   const SeedTable seeds = seed_table_of(f);
   // Nothing may still read the old buffers (one frame in flight: the caller waited for it).
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
-  if (!m.table || m.table->size() != table.size() * sizeof(float)) {
-    m.table.emplace(m.context, table.size() * sizeof(float));
-    m.table->write(table);
-  }
   if (!m.seeds || m.seeds_held != seeds) {
     const std::vector<float>& values = seeds == SeedTable::None ? stub : ConnectionTable::shared(seeds == SeedTable::Longer).seeds;
     m.seeds.emplace(m.context, values.size() * sizeof(float));

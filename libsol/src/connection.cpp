@@ -608,46 +608,6 @@ std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3&
   return geodesics_between(p, q, max_length, ConnectionOptions{});
 }
 
-const DistanceTable& DistanceTable::shared() {
-  static const DistanceTable table = [] {
-    DistanceTable t;
-    constexpr int n = kSize;
-    t.values.assign(static_cast<std::size_t>(n * n * n), 0.0f);
-    const double hxy = kExtent / (n - 1), hz = 2.0 * kHeight / (n - 1);
-    auto fill = [&](int k0, int k1) {
-      for (int k = k0; k < k1; ++k) {
-        for (int j = 0; j < n; ++j) {
-          for (int i = 0; i < n; ++i) {
-            const glm::dvec3 w(i * hxy, j * hxy, -kHeight + k * hz);
-            t.values[static_cast<std::size_t>((k * n + j) * n + i)] = static_cast<float>(distance({0, 0, 0}, w));
-          }
-        }
-      }
-    };
-    std::thread other(fill, 0, n / 2);
-    fill(n / 2, n);
-    other.join();
-    return t;
-  }();
-  return table;
-}
-
-double DistanceTable::lookup(const glm::dvec3& w) const {
-  constexpr int n = kSize;
-  const double hxy = kExtent / (n - 1), hz = 2.0 * kHeight / (n - 1);
-  const glm::dvec3 g(std::abs(w.x) / hxy, std::abs(w.y) / hxy, (w.z + kHeight) / hz);
-  if (!(g.x < n - 1 && g.y < n - 1 && g.z >= 0.0 && g.z < n - 1)) return -1.0;
-  const int i = static_cast<int>(g.x), j = static_cast<int>(g.y), k = static_cast<int>(g.z);
-  const double fx = g.x - i, fy = g.y - j, fz = g.z - k;
-  auto at = [&](int a, int b, int c) { return static_cast<double>(values[static_cast<std::size_t>((c * n + b) * n + a)]); };
-  const double x00 = at(i, j, k) + fx * (at(i + 1, j, k) - at(i, j, k));
-  const double x10 = at(i, j + 1, k) + fx * (at(i + 1, j + 1, k) - at(i, j + 1, k));
-  const double x01 = at(i, j, k + 1) + fx * (at(i + 1, j, k + 1) - at(i, j, k + 1));
-  const double x11 = at(i, j + 1, k + 1) + fx * (at(i + 1, j + 1, k + 1) - at(i, j + 1, k + 1));
-  const double y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
-  return y0 + fz * (y1 - y0);
-}
-
 ConnectionTable ConnectionTable::build(bool longer, unsigned threads) {
   constexpr int n = kCellsXY + 1, nz = kCellsZ + 1;
   // The connections from the origin to every node.

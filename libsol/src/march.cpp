@@ -114,7 +114,7 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
 }
 
 double quotient_max_step(const World& world) {
-  return quotient_images(world, kQuotientMaxStep).size() > static_cast<std::size_t>(kernel::kQuotientLongStepImages)
+  return quotient_images(world, kQuotientMaxStep).size() > kQuotientLongStepImages
              ? kQuotientShortStep
              : kQuotientMaxStep;
 }

@@ -113,7 +113,7 @@ std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dve
 /// Where exact balls switch from the bound to the exact distance: sphere
 /// tracing steps by distance_lower_bound(q, centre) - radius while that
 /// exceeds this band, by distance(q, centre) - radius within it.
-inline constexpr double kExactBallBand = kernel::kExactBallBand;
+inline constexpr double kExactBallBand = 0.25;
 
 /// Signed distance to the geodesic ball (center, radius), exact within
 /// `band` of its bound: a sphere-tracing distance whose zero set is the true
@@ -126,26 +126,6 @@ double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radi
 /// at q of the minimising geodesic from the centre (the first one on the cut
 /// locus).
 glm::dvec3 sdf_ball_exact_gradient(const glm::dvec3& q, const glm::dvec3& center);
-
-/// The distance from the origin tabulated for kernels (which have no
-/// connection solver): d(0, (x, y, z)) on a uniform grid over x, y in
-/// [0, kExtent], z in [-kHeight, kHeight] (the symmetries (±x, ±y, z) give
-/// the rest), read by trilinear interpolation. Covers the exact band of
-/// balls of radius up to ~0.7 (|Δz| <= bound <= r + 0.25); outside it a
-/// kernel keeps the bound. Accuracy of lookup against distance(): see
-/// test ExactTable.AccuracyAgainstTheSolver (docs/exact.md).
-struct DistanceTable {
-  static constexpr int kSize = kernel::kDistanceTableSize;          ///< points per axis
-  static constexpr double kExtent = kernel::kDistanceTableExtent;  ///< x, y in [0, kExtent]
-  static constexpr double kHeight = kernel::kDistanceTableHeight;  ///< z in [-kHeight, kHeight]
-  std::vector<float> values;                  ///< d, index (k kSize + j) kSize + i for (x_i, y_j, z_k)
-
-  /// Computed once per process (about 2 s on 2 cores) and shared.
-  static const DistanceTable& shared();
-  /// d(0, w) by trilinear interpolation; negative when w is outside the box
-  /// (after |x|, |y|): the caller keeps its bound there.
-  double lookup(const glm::dvec3& w) const;
-};
 
 /// Seeds for the kernels' connection solver (compute/shaders/
 /// sol_connection.glsl, exact point lights), which has no scan and no

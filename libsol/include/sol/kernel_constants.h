@@ -2,7 +2,7 @@
 // written once. This file is valid C++ and valid GLSL: C++ sees each as an
 // `inline constexpr` in namespace sol::kernel (reals as double), GLSL as a
 // global `const` (reals as float). libsol's own constants are defined from
-// these (Lattice::golden, DistanceTable, ConnectionTable, the patterns of
+// these (Lattice::golden, ConnectionTable, the patterns of
 // the CPU renderer); the kernels include this file directly or through
 // sol/vk/march_interface.h (compute/include). A number that only one side
 // uses does not belong here.
@@ -31,10 +31,6 @@ SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
 /// so that a step from D ends at most one layer of cells above or below it
 /// (the kernel's teleport relies on it).
 SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.9);
-/// The longest step of a world whose images within kQuotientMaxStep of D
-/// would be more than kQuotientLongStepImages (sol::quotient_max_step).
-SOL_CONSTANT(SOL_REAL, kQuotientShortStep, 0.5);
-SOL_CONSTANT(int, kQuotientLongStepImages, 64);
 /// Clearances (sol/clearance.hpp): the bend of the across term of tubes
 /// along a horizontal direction other than x or y, 2√5.
 SOL_CONSTANT(SOL_REAL, kAcrossCurvature, 4.47213595499957939282);
@@ -96,25 +92,10 @@ SOL_CONSTANT(int, kMaxLights, 4);
 /// step along each frame vector.
 SOL_CONSTANT(SOL_REAL, kNormalStep, 1e-3);
 
-// ---- sol::DistanceTable: d(0, (x, y, z)) for exact balls
-/// Points per axis of the grid.
-SOL_CONSTANT(int, kDistanceTableSize, 25);
-/// x, y in [0, kDistanceTableExtent].
-SOL_CONSTANT(SOL_REAL, kDistanceTableExtent, 2.4);
-/// z in [-kDistanceTableHeight, kDistanceTableHeight].
-SOL_CONSTANT(SOL_REAL, kDistanceTableHeight, 1.2);
-/// Exact balls step by the bound while it exceeds this band, by the exact
-/// distance within it (sol::sdf_ball_exact).
-SOL_CONSTANT(SOL_REAL, kExactBallBand, 0.25);
-/// What the table's distances may be off by where they lie in
-/// [kDistanceTableMin, kDistanceTableMax] (measured at most 6.4e-3: test
-/// ExactTable.AccuracyAgainstTheSolver): the kernels approach exact balls by
-/// the table less this, never past the true sphere (elsewhere by the bound) ...
-SOL_CONSTANT(SOL_REAL, kDistanceTableError, 1e-2);
-SOL_CONSTANT(SOL_REAL, kDistanceTableMin, 0.3);
-SOL_CONSTANT(SOL_REAL, kDistanceTableMax, 1.2);
-/// ... and within this of that approach they step by the exact distance
-/// (Newton on the geodesic from the centre), so hits lie on the true sphere.
+// ---- Exact balls
+/// The kernels' exact balls step by the bound (their approach) until it is
+/// below this, and then by the exact distance (Newton on the geodesic from
+/// the centre) and its clearance, so hits lie on the true sphere.
 SOL_CONSTANT(SOL_REAL, kExactShell, 0.025);
 /// The longest step by an exact ball's clearance (its exact distance's
 /// convexity along the ray, march.comp's exact_ball_clearance).

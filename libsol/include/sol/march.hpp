@@ -67,8 +67,10 @@ double cutout_gap_bound(Pattern pattern, const glm::dvec3& w);
 
 /// The longest march step in the quotient: no image beyond it is listed.
 inline constexpr double kQuotientMaxStep = kernel::kQuotientMaxStep;
-/// The longest step of crowded quotient worlds (sol::quotient_max_step).
-inline constexpr double kQuotientShortStep = kernel::kQuotientShortStep;
+/// The longest step of a world whose images within kQuotientMaxStep of D
+/// would be more than kQuotientLongStepImages (sol::quotient_max_step).
+inline constexpr double kQuotientShortStep = 0.5;
+inline constexpr std::size_t kQuotientLongStepImages = 64;
 static_assert(kQuotientShortStep < kQuotientMaxStep && kQuotientMaxStep < kernel::kLatticeHeight,
               "a quotient step from D must end within one layer of cells of it");
 

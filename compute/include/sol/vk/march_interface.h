@@ -28,7 +28,7 @@ SOL_CONSTANT(int, kBindingColor, 1);        ///< storage image: linear RGBA (or 
 SOL_CONSTANT(int, kBindingHit, 2);          ///< storage image: object, distance, steps, 0 (AOVs)
 SOL_CONSTANT(int, kBindingPoint, 3);        ///< storage image: the hit point Px, Py, Pz, 0 (AOVs)
 SOL_CONSTANT(int, kBindingImages, 4);       ///< storage buffer: the quotient's Image records
-SOL_CONSTANT(int, kBindingDistanceTable, 5);  ///< storage buffer: sol::DistanceTable::values
+// (Binding 5 held a table of d(0, ·) for exact balls, no longer read.)
 SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::ConnectionTable::seeds
 SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientField::words
 SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' Column records
