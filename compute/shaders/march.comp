@@ -117,27 +117,18 @@ float distance_lower_bound(vec3 p, vec3 q) {
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
 
-// Exact balls, approached: the bound (the true sphere lies inside the
-// bound's), never above the distance to it, so the approach never passes
-// it; within kExactShell of it the march takes the exact distance
-// (exact_ball_sdf) and steps by its clearance (exact_ball_clearance).
-// (Until this session a table of d(0, ·) tightened the approach within 0.25
-// of the sphere: its eight reads per ball and step cost more than the
-// exact solves it saved, spheres 290 -> 222 ms without it, docs/exact.md.)
-float exact_ball_distance(vec3 q, vec3 c, float radius) { return distance_lower_bound(q, c) - radius; }
-
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,
 // started from `v`, its end point `end` and its Jacobian `J` when `known`,
-// the last solution, and left holding this one); where Newton does not land, the approach
-// distance (safe, but the hit then lies on the approach's surface) and the
-// next solve starts afresh.
+// the last solution, and left holding this one); where Newton does not land, the bound
+// (safe, but the hit then lies on the bound's surface) and the next solve
+// starts afresh.
 float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout SolEnd end, inout mat3 J, inout bool known) {
   const vec3 w = vec3((q.x - c.x) * exp(-c.z), (q.y - c.y) * exp(c.z), q.z - c.z);
   const float residual = sol_shortest(w, v, end, J, known);
   if (residual < 2e-4) return length(v) - radius;
   known = false;
-  return exact_ball_distance(q, c, radius);
+  return distance_lower_bound(q, c) - radius;
 }
 
 // The true sphere's outward normal at the end of the geodesic from its
@@ -185,8 +176,15 @@ float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
 // object given in the coordinates of q (camera-relative, or world in the quotient).
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   // Each kind only when the world has it: lavapipe evaluates every branch.
-  if (HAS_BOUND_BALLS && type == kObjectBall) return distance_lower_bound(q, rel.xyz) - radius;
-  if (HAS_EXACT_BALLS && type == kObjectExactBall) return exact_ball_distance(q, rel.xyz, radius);
+  // Exact balls are approached by the bound too (the true sphere lies inside
+  // the bound's), and within kExactShell of it marched by their exact
+  // distance (exact_ball_sdf) and its clearance (exact_ball_clearance).
+  // (Until 2026-11 a table of d(0, ·) tightened their approach within 0.25
+  // of the sphere: its eight reads per ball and step cost more than the
+  // exact solves it saved, docs/exact.md.)
+  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
+    return distance_lower_bound(q, rel.xyz) - radius;
+  }
   if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
   float c = rel.x;
   if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) * exp(-q.z));
@@ -273,14 +271,13 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
 }
 
 // The object's distance (object_distance) and clearance, the larger of it
-// and the second-order step of its bound (exact balls: of the bound's
-// ball, which holds the exact one). The objects of the quotient: planes
-// z = c, balls and tubes. ez = e^{q.z}; ec = e^{rel.z} (balls only).
+// and the second-order step of its bound (exact balls: the bound's ball,
+// which holds the exact one, as object_distance). The objects of the
+// quotient: planes z = c, balls and tubes. ez = e^{q.z}; ec = e^{rel.z}
+// (balls only).
 vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, float ez, float ec) {
-  if (HAS_BOUND_BALLS && type == kObjectBall) return ball_clearance(q, u, rel.xyz, radius, ez, ec);
-  if (HAS_EXACT_BALLS && type == kObjectExactBall) {
-    const float approach = exact_ball_distance(q, rel.xyz, radius);
-    return vec2(approach, max(approach, ball_clearance(q, u, rel.xyz, radius, ez, ec).y));
+  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
+    return ball_clearance(q, u, rel.xyz, radius, ez, ec);
   }
   if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius, ez);
   const float d = object_distance(type, q, rel, heading, radius);
@@ -1173,8 +1170,8 @@ void main() {
     }
   }
   // The march. With exact balls it runs in rounds: the inner loop marches
-  // by the objects' distances (exact balls by their approach,
-  // exact_ball_distance) until the ray comes within kExactShell of an exact
+  // by the objects' distances (exact balls by their bound, object_distance)
+  // until the ray comes within kExactShell of an exact
   // ball; that step is finished after the inner loop by the exact distance
   // (exact_ball_sdf), and the next round goes on. lavapipe executes the body
   // of every if, and of every loop at least once, for all its lanes, masked,

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
@@ -113,13 +115,23 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   return images;
 }
 
-double quotient_max_step(const World& world) {
-  return quotient_images(world, kQuotientMaxStep).size() > kQuotientLongStepImages
-             ? kQuotientShortStep
-             : kQuotientMaxStep;
+namespace {
+
+// The images for the world's longest step, and that step: those within
+// kQuotientMaxStep of D or, where they are more than
+// kQuotientLongStepImages, those within kQuotientShortStep (one listing
+// where the long step holds).
+std::pair<std::vector<MarchObject>, double> listed_images(const World& world) {
+  std::vector<MarchObject> images = quotient_images(world, kQuotientMaxStep);
+  if (images.size() <= kQuotientLongStepImages) return {std::move(images), kQuotientMaxStep};
+  return {quotient_images(world, kQuotientShortStep), kQuotientShortStep};
 }
 
-std::vector<MarchObject> quotient_images(const World& world) { return quotient_images(world, quotient_max_step(world)); }
+}  // namespace
+
+double quotient_max_step(const World& world) { return listed_images(world).second; }
+
+std::vector<MarchObject> quotient_images(const World& world) { return listed_images(world).first; }
 
 MarchFeatures features_of(const World& world) {
   MarchFeatures f;
@@ -154,8 +166,7 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   validate(world);
   m_features = features_of(world);
   if (m_features.quotient) {
-    m_max_step = quotient_max_step(world);
-    m_objects = quotient_images(world, m_max_step);
+    std::tie(m_objects, m_max_step) = listed_images(world);
     m_field = std::make_shared<const QuotientField>(m_objects, m_max_step);
     for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l));
   } else {
