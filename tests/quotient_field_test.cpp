@@ -12,6 +12,7 @@
 #include <memory>
 #include <utility>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -299,4 +300,16 @@ TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
     }
     EXPECT_GT(several, 0) << name;  // the order matters somewhere
   }
+}
+
+// A longest step outside (0, kQuotientMaxStep] would list too few images
+// for the step (or none): refused by name, not a field that oversteps.
+TEST(QuotientField, LongestStepOutsideItsRangeIsRefused) {
+  const sol::Scene scene = sol::preset_scene("lattice-balls");
+  for (const double step : {0.0, -0.5, sol::kQuotientMaxStep + 0.01, std::nan("")}) {
+    EXPECT_THROW((void)sol::quotient_images(scene, step), std::invalid_argument) << step;
+    EXPECT_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), step), std::invalid_argument)
+        << step;
+  }
+  EXPECT_NO_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), sol::kQuotientShortStep));
 }
