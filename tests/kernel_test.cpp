@@ -190,6 +190,52 @@ TEST(Kernel, SpreadingMatchesTheDoubleReference) {
   expect_no_validation_errors();
 }
 
+// The kernel's Jacobian of the exponential map (sol_exp_jacobian: Jacobi
+// fields by RK4, the connection solver's Newton steps) against central
+// differences of libsol's double flow (h = 1e-4: truncation ~1e-8, rounding
+// ~1e-12), in frame components at the end point, for random and stiff
+// directions, t in (0, 4]. Newton's steps need it only approximately (an
+// error ε slows quadratic convergence to a rate of about ε; the connections'
+// accuracy is Kernel.ConnectionsMatchTheMinimisers'), but an error here
+// beyond RK4's own would be a wrong equation: the bound is about 3x the
+// worst measured, relative to max(1, |J|).
+TEST(Kernel, ExpJacobianMatchesDifferences) {
+  std::vector<dvec3> dirs = sol::test::stiff_directions();
+  for (const dvec3& d : sol::test::random_directions(300, 43)) dirs.push_back(d);
+  std::vector<glm::vec4> queries;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    queries.emplace_back(glm::vec3(dirs[i]), static_cast<float>(0.01 + 4.0 * static_cast<double>(i % 89) / 89.0));
+  }
+  const std::vector<glm::mat3> got = sol::vk::evaluate_kernel_exp_jacobians(vk_context(), queries);
+  ASSERT_EQ(got.size(), queries.size());
+  const auto exp_map = [](const dvec3& v) { return sol::flow({dvec3(0.0), glm::normalize(v)}, glm::length(v)).position; };
+  double worst = 0.0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const dvec3 v = glm::normalize(dvec3(glm::vec3(queries[i]))) * static_cast<double>(queries[i].w);
+    const dvec3 end = exp_map(v);
+    const dvec3 to_frame(std::exp(-end.z), std::exp(end.z), 1.0);
+    const double h = 1e-4;
+    glm::dmat3 ref;
+    for (int c = 0; c < 3; ++c) {
+      dvec3 e(0.0);
+      e[c] = h;
+      ref[c] = (exp_map(v + e) - exp_map(v - e)) / (2.0 * h) * to_frame;
+    }
+    double size = 1.0, error = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      size = std::max(size, glm::length(ref[c]));
+      error = std::max(error, glm::length(dvec3(got[i][c]) - ref[c]));
+    }
+    worst = std::max(worst, error / size);
+    EXPECT_LT(error / size, 2e-3) << "v = (" << v.x << ", " << v.y << ", " << v.z << ")";
+  }
+  std::printf("kernel exp Jacobian (float, RK4) against double differences, %zu queries, t <= 4: worst relative error %.2e\n",
+              queries.size(), worst);
+  EXPECT_THROW(sol::vk::evaluate_kernel_exp_jacobians(vk_context(), {glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)}),
+               sol::InvalidArgument);
+  expect_no_validation_errors();
+}
+
 // The kernel against the CPU renderer (or another kernel render): colours
 // count as different beyond 2e-3 per channel.
 using Comparison = sol::test::ImageComparison;

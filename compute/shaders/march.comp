@@ -119,13 +119,13 @@ float distance_lower_bound(vec3 p, vec3 q) {
 
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,
-// started from `v`, its end point `end` and its Jacobian `J` when `known`,
-// the last solution, and left holding this one); where Newton does not land, the bound
+// started from `v` and its end point `end` when `known`, the last
+// solution, and left holding this one); where Newton does not land, the bound
 // (safe, but the hit then lies on the bound's surface) and the next solve
 // starts afresh.
-float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout SolEnd end, inout mat3 J, inout bool known) {
+float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout SolEnd end, inout bool known) {
   const vec3 w = vec3((q.x - c.x) * exp(-c.z), (q.y - c.y) * exp(c.z), q.z - c.z);
-  const float residual = sol_shortest(w, v, end, J, known);
+  const float residual = sol_shortest(w, v, end, known);
   if (residual < 2e-4) return length(v) - radius;
   known = false;
   return distance_lower_bound(q, c) - radius;
@@ -490,7 +490,6 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   const float limit = min(len, params.limits.x);
   vec3 exact_v = vec3(0.0);
   SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
-  mat3 exact_J = mat3(1.0);
   bool exact_known = false;
   if (QUOTIENT) {
     const int image_count = min(params.counts.x, kMaxGpuImages);
@@ -537,7 +536,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
           exact_i = i;
-          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_J, exact_known);
+          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_known);
         }
         bool leaving = false;
         for (int h = 0; h < 4; ++h) {
@@ -635,7 +634,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       // Near an exact ball: its exact distance, and its clearance for the step.
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
-      const float exact = exact_ball_sdf(p, g_relative[nearest_k].xyz, g_radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
+      const float exact = exact_ball_sdf(p, g_relative[nearest_k].xyz, g_radii[nearest_k], exact_v, exact_end, exact_known);
       float exact_step = exact;
       if (exact_known && exact > eps) {
         exact_step = exact_ball_clearance(exact, length(exact_v), dot(exact_end.tangent, u), eps);
@@ -1034,8 +1033,7 @@ void main() {
     int exact_i = -1;           // the exact ball image whose geodesic from the centre exact_v holds
     vec3 exact_v = vec3(0.0);
     SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
-    mat3 exact_J = mat3(1.0);
-    bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
+    bool exact_known = false;  // exact_v, exact_end: a solution to start from
     for (int step = 0; step < max_steps; ++step) {
       const SolForward forward = sol_forward(qray, local_t);
       q = sol_translate(origin, forward.position);
@@ -1085,7 +1083,7 @@ void main() {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
         exact_i = nearest_i;
-        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_J, exact_known);
+        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known);
         nearest_i = exact <= second ? nearest_i : second_i;
         nearest = min(exact, second);
         clear_nearest = max(clear_nearest, exact);
@@ -1140,8 +1138,7 @@ void main() {
   int exact_k = -1;           // the exact ball whose geodesic from the centre exact_v holds
   vec3 exact_v = vec3(0.0);
   SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
-  mat3 exact_J = mat3(1.0);
-  bool exact_known = false;  // exact_v, exact_end, exact_J: a solution to start from
+  bool exact_known = false;  // exact_v, exact_end: a solution to start from
   float t = 0.0;
   vec3 q = vec3(0.0);
   // Exact culling for planes z = c (as the CPU reference): a ray whose whole
@@ -1265,7 +1262,7 @@ void main() {
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
       const float exact =
-          exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_J, exact_known);
+          exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_known);
       // The step: beyond the exact distance by the ball's clearance along
       // the ray (its rate from the sphere's normal, the gradient of d).
       float exact_step = exact;

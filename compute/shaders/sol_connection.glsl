@@ -8,8 +8,8 @@
 // (the connections at its eight corners, found by the double solver) and
 // polishes each by Newton's method on v = t·(a, b, c), the initial vector of
 // the exponential map, through the float closed form of sol_geodesic.glsl:
-// forward-difference Jacobian, steps capped and halved while the residual
-// grows. A polished seed is a connection when its end point lies within the
+// the Jacobian from the Jacobi fields (sol_spreading.glsl), steps capped
+// and halved while the residual grows. A polished seed is a connection when its end point lies within the
 // float tolerance of w (measured in frame components at w). What that finds
 // and how accurately: tests vk.Kernel.Connections* and docs/exact.md "Exact spheres
 // and point lights in the renderer".
@@ -20,6 +20,7 @@
 // sol/kernel_constants.h.
 
 #include "sol/kernel_constants.h"
+#include "sol_spreading.glsl"  // sol_exp_jacobian
 
 // Whether sol_connections looks for fold partners when given a reach: a
 // constant the including kernel may set (march.comp: its specialisation
@@ -29,7 +30,10 @@
 #define SOL_FOLD_PARTNERS true
 #endif
 
-const int SOL_NEWTON_ITERATIONS = 8;
+// Newton's iterations (accepted steps) at most: near the cut locus, where
+// the Jacobian is nearly singular, 8 left some connections short of the
+// float floor.
+const int SOL_NEWTON_ITERATIONS = 16;
 // A seed within SOL_SEED_SKIP max(1, t) of a connection already found (in
 // t·(a, b, c)) is not polished: it would find that connection again.
 const float SOL_SEED_SKIP = 0.25;
@@ -77,96 +81,62 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 
 // Newton's method from v towards w, steps capped and halved (up to 3
 // times) while the residual grows; `residual` receives the final
-// |exp(v) - w| (frame components at w) over sol_connection_scale. When
-// `known`, `end` = exp(v) and `J` is a Jacobian carried from a solve at a
-// nearby w, so the first residual costs no flow evaluation; else the
-// Jacobian comes by forward differences at v. With `secant`, each accepted
-// step updates it by Broyden's rule (the secant through the step: one flow
-// evaluation per iteration instead of four) and a step it does not improve
-// takes a fresh one by differences; without, every iteration takes a fresh
-// one. v, end, J and known leave holding the last solution. Written as one
-// loop over flow evaluations with a single call of the closed form: Mesa
-// compiles every inlined call of it separately, and one call site keeps
-// lavapipe's compile time in seconds.
-vec3 sol_newton(vec3 v, vec3 w, const bool secant, inout SolEnd end, inout mat3 J, inout bool known,
-                out float residual) {
+// |exp(v) - w| (frame components at w) over sol_connection_scale. Every
+// iteration takes the Jacobian at v from the Jacobi fields
+// (sol_exp_jacobian: products and sums) and one closed-form evaluation, at
+// the trial v + dv. When `known`, `end` = exp(v) (a solve at a nearby w,
+// the march's last), so the first residual costs no evaluation; else the
+// first iteration evaluates v itself. v, end and known leave holding the
+// last solution (known: end = exp(v)). Written as one loop with a single
+// call of the closed form: Mesa compiles every inlined call of it
+// separately, and one call site keeps lavapipe's compile time in seconds;
+// and lavapipe runs code its lanes all skip, masked, so a separate first
+// evaluation before the loop would cost every SIMD group that shades no hit
+// a whole evaluation. (Until 2026-11 the Jacobian came by forward
+// differences, three evaluations, or by Broyden's updates for the march's
+// exact balls: 14.8 evaluations per lit hit, now 4.5 and 3.5 Jacobians.)
+vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
-  vec3 r = known ? (end.point - w) * to_frame : vec3(0.0), dv = vec3(0.0);
-  float h = 1e-3 * max(1.0, length(v));
-  // 0: r at v; 1-3: column phase - 1 of J; 4: a trial step v + dv; 5: a step from r and J
-  int phase = known ? 5 : 0;
+  vec3 r = (end.point - w) * to_frame, dv = vec3(0.0);
   int iterations = 0, halvings = 0;
-  bool fresh = false;  // J by differences at the current v
   bool done = known && length(r) < 2e-6 * sol_connection_scale(w, ez, length(v));
-  for (int e = 0; e < SOL_NEWTON_ITERATIONS * 7 + 1 && !done; ++e) {
-    if (phase != 5) {
-      vec3 at = v;
-      if (phase >= 1 && phase <= 3) at[phase - 1] += h;
-      if (phase == 4) at += dv;
-      const SolEnd at_end = sol_exp_end(at);
-      const vec3 f = (at_end.point - w) * to_frame;
-      if (phase >= 1 && phase <= 3) {
-        J[phase - 1] = (f - r) / h;
-        if (phase < 3) {
-          ++phase;
-          continue;
-        }
-        known = true;
-        fresh = true;
-      } else {
-        if (phase == 4) {
-          if (!(length(f) < length(r))) {
-            if (!fresh) {  // a carried or updated Jacobian misled: one by differences at v
-              phase = 1;
-              continue;
-            }
-            dv *= 0.5;  // no better with a fresh one: halve the step, or give up
-            done = ++halvings > 3;
-            continue;
-          }
-          if (secant) J += outerProduct(f - r - J * dv, dv) / dot(dv, dv);
-          fresh = false;
-          known = secant;
-          v = at;
-          ++iterations;
-        }
-        r = f;
-        end = at_end;
-        h = 1e-3 * max(1.0, length(v));
-        // At the float floor, or out of iterations: done; else a step.
-        done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
-        if (done) break;
-        if (!known) {
-          phase = 1;
-          continue;
-        }
-      }
+  for (int e = 0; e < 3 * SOL_NEWTON_ITERATIONS + 1 && !done; ++e) {
+    if (known && halvings == 0) {  // a step from r and the Jacobian at v
+      const mat3 J = sol_exp_jacobian(v, end.point.z, w.z);
+      if (!(abs(determinant(J)) > 1e-12)) break;  // singular: a conjugate point (or NaN)
+      dv = -(inverse(J) * r);
+      const float cap = 0.5 * max(1.0, length(v));
+      if (length(dv) > cap) dv *= cap / length(dv);
     }
-    // A step from r and J.
-    if (!(abs(determinant(J)) > 1e-12)) {  // singular: a conjugate point (or NaN)
-      if (fresh) break;                     // give up
-      phase = 1;                            // or a fresh Jacobian
+    const vec3 at = known ? v + dv : v;
+    const SolEnd at_end = sol_exp_end(at);
+    const vec3 f = (at_end.point - w) * to_frame;
+    if (known && !(length(f) < length(r))) {
+      dv *= 0.5;  // no better: halve the step, or give up
+      done = ++halvings > 3;
       continue;
     }
-    dv = -(inverse(J) * r);
-    const float cap = 0.5 * max(1.0, length(v));
-    if (length(dv) > cap) dv *= cap / length(dv);
+    iterations += known ? 1 : 0;
+    known = true;
     halvings = 0;
-    phase = 4;
+    v = at;
+    r = f;
+    end = at_end;
+    // At the float floor, or out of iterations: done; else a step.
+    done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
   }
-  residual = length(r) / sol_connection_scale(w, ez, length(v));
+  residual = known ? length(r) / sol_connection_scale(w, ez, length(v)) : 1e30;
   return v;
 }
 
-// sol_newton with a fresh Jacobian by differences at every iteration.
+// sol_newton from v alone.
 vec3 sol_polish(vec3 v, vec3 w, out float residual) {
   SolEnd end;
   end.point = vec3(0.0);
   end.tangent = vec3(0.0, 0.0, 1.0);
-  mat3 J = mat3(1.0);
   bool known = false;
-  return sol_newton(v, w, false, end, J, known, residual);
+  return sol_newton(v, w, end, known, residual);
 }
 
 // The index of the first seed of the table's cell holding `target` (w with
@@ -336,49 +306,43 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
 }
 
 // The shortest geodesic from the origin to w, as its initial vector v (|v|
-// the distance; for exact balls, march.comp): Newton with secant updates
-// (sol_newton) from `v` and its Jacobian `J` when they are given (`known`:
-// the solution at a nearby point, the march's last, with `end` its end
-// point), else from the shortest seed of w's cell of the table (a minimiser
-// at one of its corners), else from the Euclidean guess in the frame at the
-// middle height. Where that does not land (a far point, whose cell's first
-// seed lies outside Newton's reach), every seed of the cell is polished with
-// fresh Jacobians and the shortest landing is kept. One call of sol_newton
-// in the loop: see sol_newton. Returns the residual over its float floor;
-// below 2e-4 the solution lands on w.
-float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout mat3 J, inout bool known) {
+// the distance; for exact balls, march.comp): Newton (sol_newton) from `v`
+// when it is given (`known`: the solution at a nearby point, the march's
+// last, with `end` its end point), else from the shortest seed of w's cell
+// of the table (a minimiser at one of its corners), else from the
+// Euclidean guess in the frame at the middle height. Where that does not
+// land (a far point, whose cell's first seed lies outside Newton's reach),
+// every other seed of the cell is polished and the shortest landing is
+// kept. One call of sol_newton in the loop: see sol_newton. Returns the
+// residual over its float floor; below 2e-4 the solution lands on w.
+float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout bool known) {
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const int base = sol_seed_base(target);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   float best = 1e30, best_residual = 1e30;
   vec3 best_v = v;
   SolEnd best_end = end;
-  mat3 best_J = J;
-  for (int s = -1; s < kSeedSlots; ++s) {
+  for (int s = known ? -1 : 0; s < kSeedSlots; ++s) {
     vec3 start = v;
     SolEnd at_end = end;
-    mat3 jacobian = J;
-    bool carried = s < 0 && known;
+    bool carried = s < 0;
     if (!carried) {
-      const vec4 seed = connection_seeds[base + max(s, 0)];
-      if (s >= 0 && seed.w == 0.0) break;  // slots are filled in order
+      const vec4 seed = connection_seeds[base + s];
+      if (s > 0 && seed.w == 0.0) break;  // slots are filled in order
       start = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
     }
     float residual;
-    const vec3 found = sol_newton(start, w, s < 0, at_end, jacobian, carried, residual);
+    const vec3 found = sol_newton(start, w, at_end, carried, residual);
     if (residual < 2e-4 ? (best_residual >= 2e-4 || length(found) < best) : residual < best_residual && best_residual >= 2e-4) {
       best = length(found);
       best_residual = residual;
       best_v = found;
       best_end = at_end;
-      best_J = jacobian;
-      known = carried;
     }
-    if (s < 0 && residual < 2e-4) break;  // the usual case: one solve
+    if (s <= 0 && residual < 2e-4) break;  // the usual case: one solve
   }
   v = best_v;
   end = best_end;
-  J = best_J;
-  known = best_residual < 2e-4 && known;
+  known = best_residual < 2e-4;
   return best_residual;
 }

@@ -4,7 +4,8 @@
 // (libsol/include/sol/spreading.hpp has the derivation): the velocity u and
 // two Jacobi fields (ξ in frame components at the current point, δu the
 // variation of u) integrated together by classical RK4 in equal steps of at
-// most kSpreadingStep; J = |det[ξ1, ξ2, u]|.
+// most kSpreadingStep; J = |det[ξ1, ξ2, u]|. With three fields the same
+// equations give the Jacobian of the exponential map (sol_exp_jacobian).
 #ifndef SOL_SPREADING_GLSL
 #define SOL_SPREADING_GLSL
 
@@ -55,6 +56,64 @@ float sol_sphere_area_density(vec3 direction, float t) {
     y.u += h / 6.0 * (k1.u + 2.0 * k2.u + 2.0 * k3.u + k4.u);
   }
   return abs(dot(cross(y.x1, y.x2), normalize(y.u)));
+}
+
+// The Jacobian of the exponential map at the origin, d exp(v)/dv, for the
+// connection solver's Newton steps (sol_newton in sol_connection.glsl), in
+// frame components at the height w_z (the target's) where exp(v) lies at
+// the height z_end. A variation δv moves exp(v) by the Jacobi field ξ along
+// the geodesic with ξ(0) = 0, ξ'(0) = δv / t (t = |v|, arc length s = t τ
+// for the curve τ -> exp(τ v)), taken at s = t: so the columns are the
+// fields ξ_i with ξ_i'(0) = e_i / t, integrated with the velocity by RK4 in
+// equal steps of at most kJacobianStep (as sol_sphere_area_density, with
+// three fields), then moved from the frame at exp(v) to the frame at w_z
+// (x scales by e^{z_end - w_z}, y by its inverse). Products and sums only
+// (one exp), where a forward-difference Jacobian takes three closed-form
+// evaluations (each a ray's set-up, its integrals and a position). Step
+// 0.25: at 0.5 the Newton iterations near the cut locus, where J is nearly
+// singular, converged too slowly (test Kernel.ExpJacobianMatchesDifferences
+// holds it to the double flow).
+const float kJacobianStep = 0.25;
+
+struct SolFields {
+  vec3 u;     // the velocity
+  mat3 x, d;  // the three fields (columns) and their δu
+};
+
+SolFields sol_fields_rate(SolFields y) {
+  SolFields r;
+  r.u = vec3(y.u.x * y.u.z, -y.u.y * y.u.z, y.u.y * y.u.y - y.u.x * y.u.x);
+  for (int i = 0; i < 3; ++i) {
+    vec3 rx, rd;
+    sol_variation(y.u, y.x[i], y.d[i], rx, rd);
+    r.x[i] = rx;
+    r.d[i] = rd;
+  }
+  return r;
+}
+
+SolFields sol_fields_step(SolFields y, float h, SolFields k) {
+  return SolFields(y.u + h * k.u, y.x + h * k.x, y.d + h * k.d);
+}
+
+mat3 sol_exp_jacobian(vec3 v, float z_end, float w_z) {
+  const float t = length(v);
+  if (!(t > 0.0)) return mat3(1.0);  // exp(v) = v to first order at 0
+  SolFields y = SolFields(v / t, mat3(0.0), mat3(1.0 / t));
+  const int steps = max(1, int(ceil(t / kJacobianStep)));
+  const float h = t / float(steps);
+  for (int s = 0; s < steps; ++s) {
+    const SolFields k1 = sol_fields_rate(y);
+    const SolFields k2 = sol_fields_rate(sol_fields_step(y, 0.5 * h, k1));
+    const SolFields k3 = sol_fields_rate(sol_fields_step(y, 0.5 * h, k2));
+    const SolFields k4 = sol_fields_rate(sol_fields_step(y, h, k3));
+    y.u += (h / 6.0) * (k1.u + 2.0 * k2.u + 2.0 * k3.u + k4.u);
+    y.x += (h / 6.0) * (k1.x + 2.0 * k2.x + 2.0 * k3.x + k4.x);
+    y.d += (h / 6.0) * (k1.d + 2.0 * k2.d + 2.0 * k3.d + k4.d);
+  }
+  const float e = exp(z_end - w_z);
+  const vec3 to_w = vec3(e, 1.0 / e, 1.0);
+  return mat3(y.x[0] * to_w, y.x[1] * to_w, y.x[2] * to_w);
 }
 
 #endif  // SOL_SPREADING_GLSL

@@ -1,18 +1,24 @@
 #version 450
 // Evaluates the kernel's J (sol_spreading.glsl) for a list of (direction,
 // arc length) pairs: the test that holds it to libsol's double
-// sol::sphere_area_density (tests/kernel_test.cpp).
+// sol::sphere_area_density (tests/kernel_test.cpp); or (VALUE 1) the
+// Jacobian of the exponential map at v = direction * arc length
+// (sol_exp_jacobian, in frame components at its end point), held to
+// differences of the double flow.
 #extension GL_GOOGLE_include_directive : require
 
 #include "sol_spreading.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+// 0: J, one float per query; 1: the exponential map's Jacobian, nine
+// floats per query (column-major).
+layout(constant_id = 0) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: direction (frame components), w: arc length
 };
 layout(std430, set = 0, binding = 1) writeonly buffer Results {
-  float results[];  // J
+  float results[];  // J, or the Jacobians
 };
 layout(push_constant) uniform Count {
   uint count;
@@ -21,5 +27,13 @@ layout(push_constant) uniform Count {
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
+  if (VALUE == 1) {
+    const vec4 q = queries[i];
+    const mat3 J = sol_exp_jacobian(normalize(q.xyz) * q.w, 0.0, 0.0);  // the frame at the end point
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) results[9 * i + uint(3 * c + r)] = J[c][r];
+    }
+    return;
+  }
   results[i] = sol_sphere_area_density(queries[i].xyz, queries[i].w);
 }

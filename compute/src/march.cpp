@@ -661,21 +661,49 @@ std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector
   return out;
 }
 
-std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {
+namespace {
+
+// spread.comp over the queries: J (value 0, one float each) or the
+// exponential map's Jacobian (value 1, nine floats each).
+std::vector<float> run_spread(Context& context, const std::vector<glm::vec4>& queries, int value) {
   if (queries.empty()) return {};
-  Buffer in(context, queries.size() * sizeof(glm::vec4)), out(context, queries.size() * sizeof(float));
+  const std::size_t per_query = value == 1 ? 9 : 1;
+  Buffer in(context, queries.size() * sizeof(glm::vec4)), out(context, queries.size() * per_query * sizeof(float));
   in.write(queries);
   ComputePipeline pipeline(context, {.name = "spread",
                                      .spirv = std::span<const std::uint32_t>(spread_comp_spv),
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
-                                     .push_constant_size = sizeof(std::uint32_t)});
+                                     .push_constant_size = sizeof(std::uint32_t),
+                                     .specialization = {{0, static_cast<std::uint32_t>(value)}}});
   pipeline.bind(0, in);
   pipeline.bind(1, out);
   const auto count = static_cast<std::uint32_t>(queries.size());
   pipeline.run(group_count(count, 64), 1, count);
-  std::vector<float> results(queries.size());
+  std::vector<float> results(queries.size() * per_query);
   out.read(results);
   return results;
+}
+
+}  // namespace
+
+std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {
+  return run_spread(context, queries, 0);
+}
+
+std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries) {
+  for (const glm::vec4& q : queries) {
+    if (!(glm::length(glm::vec3(q)) > 0.0f) || !(q.w >= 0.0f)) {
+      throw InvalidArgument("sol::vk::evaluate_kernel_exp_jacobians: directions must be nonzero, lengths >= 0");
+    }
+  }
+  const std::vector<float> raw = run_spread(context, queries, 1);
+  std::vector<glm::mat3> out(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) out[i][c][r] = raw[9 * i + static_cast<std::size_t>(3 * c + r)];
+    }
+  }
+  return out;
 }
 
 std::vector<KernelConnections> evaluate_kernel_connections(Context& context, const std::vector<glm::vec4>& queries,

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec4.hpp>
 #include <vulkan/vulkan_core.h>
 #include <sol/camera.hpp>
@@ -211,6 +212,13 @@ std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector
 /// length w); the float counterpart of sol::sphere_area_density. For tests
 /// and benchmarks.
 std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries);
+
+/// The kernel's Jacobian of the exponential map at the origin, d exp(v)/dv
+/// at v = t·d for queries (direction d xyz, nonzero; length t >= 0 in w),
+/// in frame components at exp(v) (sol_exp_jacobian in
+/// compute/shaders/sol_spreading.glsl: the connection solver's Newton
+/// steps). For tests.
+std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries);
 
 /// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
 /// the exact point lights' directions) returns for one target.
