@@ -7,6 +7,12 @@
 #include "sol_geodesic.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+// Built twice, as march.comp: every connection found kept (the longer
+// connections' table, queries with a reach), or with SOL_MINIMISERS_BUILD
+// the minimisers' 4 slots.
+#ifdef SOL_MINIMISERS_BUILD
+#define SOL_FOUND_SLOTS 4
+#endif
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: w (the target seen from the origin), w: reach
@@ -26,9 +32,10 @@ layout(push_constant) uniform Count {
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
-  vec4 found[kSeedSlots];
+  vec4 found[SOL_FOUND_SLOTS];
   const int n = sol_connections(queries[i].xyz, queries[i].w, found);
   const uint base = i * uint(kSeedSlots + 1);
-  for (int s = 0; s < kSeedSlots; ++s) results[base + uint(s)] = found[s];
+  for (int s = 0; s < SOL_FOUND_SLOTS; ++s) results[base + uint(s)] = found[s];
+  for (int s = SOL_FOUND_SLOTS; s < kSeedSlots; ++s) results[base + uint(s)] = vec4(0.0);
   results[base + uint(kSeedSlots)] = vec4(float(n), 0.0, 0.0, 0.0);
 }

@@ -50,6 +50,15 @@ layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
 // costs the kernel even where it never runs.
 layout(constant_id = kSpecLightReach) const bool HAS_LIGHT_REACH = false;
 #define SOL_FOLD_PARTNERS HAS_LIGHT_REACH
+// Without a reach a light's search keeps the minimisers (4 slots), with one
+// every connection found (sol_connection.glsl): a separate build of this
+// kernel for lights with a reach (SOL_LIGHT_REACH_BUILD, march_reach_*),
+// whose pipelines set HAS_LIGHT_REACH.
+#ifdef SOL_LIGHT_REACH_BUILD
+#define SOL_FOUND_SLOTS kSeedSlots
+#else
+#define SOL_FOUND_SLOTS 4
+#endif
 // Equirectangular or fisheye eyes (a uniform says which): compiled in only
 // for them, so the perspective kernels keep their cost.
 layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
@@ -669,9 +678,9 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
 // least distance to any image. Images are taken in order of their distance
 // lower bound from q while that is within the least length found + reach
 // (at most kMaxLightImageSolves of them), their connections solved and
-// kept (the shortest kSeedSlots), then those longer than the least + reach
+// kept (the shortest SOL_FOUND_SLOTS), then those longer than the least + reach
 // dropped (with 2e-3 of it for the float lengths).
-int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[kSeedSlots]) {
+int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL_FOUND_SLOTS]) {
   const int first = params.light_image_first[light], count = params.light_image_count[light];
   float best = 1e30, last = -1.0;
   int last_k = -1, n = 0;
@@ -691,15 +700,15 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[kSe
     last = lo;
     last_k = lo_k;
     const vec3 d = light_images[first + lo_k].xyz - q;
-    vec4 found[kSeedSlots];
+    vec4 found[SOL_FOUND_SLOTS];
     const int paths = sol_connections(vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z), reach, found);
     for (int j = 0; j < paths; ++j) {
       best = min(best, found[j].w);
-      if (n < kSeedSlots) {
+      if (n < SOL_FOUND_SLOTS) {
         kept[n++] = found[j];
       } else {  // full: replace the longest if this one is shorter
         int longest = 0;
-        for (int m = 1; m < kSeedSlots; ++m) longest = kept[m].w > kept[longest].w ? m : longest;
+        for (int m = 1; m < SOL_FOUND_SLOTS; ++m) longest = kept[m].w > kept[longest].w ? m : longest;
         if (found[j].w < kept[longest].w) kept[longest] = found[j];
       }
     }
@@ -874,7 +883,7 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       // q⁻¹·light: the light seen from q, in frame components at q.
       const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
       if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
-        vec4 found[kSeedSlots];
+        vec4 found[SOL_FOUND_SLOTS];
         const int paths = QUOTIENT ? quotient_light_connections(i, q, lp.w, found) : sol_connections(towards, lp.w, found);
         for (int j = 0; j < paths; ++j) {
           // found[j]: the geodesic's direction at q and its length; its J seen

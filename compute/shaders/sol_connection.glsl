@@ -30,6 +30,17 @@
 #define SOL_FOLD_PARTNERS true
 #endif
 
+// How many connections a search keeps (the shortest; at most kSeedSlots):
+// a preprocessor constant the including kernel may set (an array size: a
+// specialisation constant cannot size arrays that are copied). Without a
+// reach only the minimisers count (two on the cut locus, and within the
+// float tolerance of their length a third past its conjugate point): 4
+// keep them. lavapipe keeps these arrays in per-lane memory; at 16 slots
+// the light of `spheres` cost 15 % more. Default: all.
+#ifndef SOL_FOUND_SLOTS
+#define SOL_FOUND_SLOTS kSeedSlots
+#endif
+
 // Newton's iterations (accepted steps) at most: near the cut locus, where
 // the Jacobian is nearly singular, 8 left some connections short of the
 // float floor.
@@ -148,13 +159,13 @@ int sol_seed_base(vec3 target) {
   return ((cell.z * kSeedCellsXY + cell.y) * kSeedCellsXY + cell.x) * kSeedSlots;
 }
 
-// Adds the polished vector v to the connections found (sorted by length)
-// when it converged and is new; a connection found twice keeps the better
-// polished copy.
-void sol_add_connection(vec3 v, float residual, inout vec4 found[kSeedSlots], inout float residuals[kSeedSlots],
+// Adds the polished vector v to the connections found (sorted by length,
+// the shortest SOL_FOUND_SLOTS) when it converged and is new; a connection
+// found twice keeps the better polished copy.
+void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_FOUND_SLOTS], inout float residuals[SOL_FOUND_SLOTS],
                         inout int count) {
   const float t = length(v);
-  if (!(residual < 2e-4) || !(t > 0.0) || count == kSeedSlots) return;
+  if (!(residual < 2e-4) || !(t > 0.0)) return;
   vec4 c = vec4(v / t, t);
   float c_residual = residual;
   int same = -1;
@@ -168,8 +179,9 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[kSeedSlots], in
     }
     return;
   }
-  // Insert in order of length.
-  for (int j = 0; j < kSeedSlots; ++j) {
+  // Insert in order of length; when all slots are taken, the longest of
+  // them and c (left in c) drops out.
+  for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
     if (j < count && found[j].w > c.w) {
       const vec4 held = found[j];
       const float held_residual = residuals[j];
@@ -179,9 +191,11 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[kSeedSlots], in
       c_residual = held_residual;
     }
   }
-  found[count] = c;
-  residuals[count] = c_residual;
-  ++count;
+  if (count < SOL_FOUND_SLOTS) {
+    found[count] = c;
+    residuals[count] = c_residual;
+    ++count;
+  }
 }
 
 // A connection clearly shorter than its period (by the float margin
@@ -229,14 +243,14 @@ vec3 sol_fold_partner(vec3 v, vec3 w) {
   return v + x * n;
 }
 
-// The connections from the origin to w (at most kSeedSlots), shortest
+// The connections from the origin to w (at most SOL_FOUND_SLOTS), shortest
 // first, as (unit direction, length), up to the shortest one found + reach;
 // returns how many. None when w = 0, or when no seed converges (far outside
 // the table, or at a fold where the seeds' connections vanish): the caller
 // then keeps the coordinate approximation, as sol::lights_at does when the
 // solver gives up.
-int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
-  for (int i = 0; i < kSeedSlots; ++i) found[i] = vec4(0.0);
+int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
+  for (int i = 0; i < SOL_FOUND_SLOTS; ++i) found[i] = vec4(0.0);
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   if (target.x == 0.0 && target.y == 0.0) {  // the vertical line, the only connection
@@ -246,13 +260,13 @@ int sol_connections(vec3 w, float reach, out vec4 found[kSeedSlots]) {
   }
   const int base = sol_seed_base(target);
   int count = 0;
-  float residuals[kSeedSlots];
+  float residuals[SOL_FOUND_SLOTS];
   // Candidates: the cell's seeds, then (with a reach: the longer
   // connections) a fold partner of each connection the seeds found. Near a
   // fold (a caustic) connections come in pairs that merge there, and a pair
   // born inside a table cell has seeds at none of its corners. One call of
   // sol_polish (see there).
-  vec4 originals[kSeedSlots];
+  vec4 originals[SOL_FOUND_SLOTS];
   int first = -1;
   for (int s = 0; s < 2 * kSeedSlots; ++s) {
     vec3 start = vec3(0.0);

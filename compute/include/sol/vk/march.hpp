@@ -229,7 +229,9 @@ struct KernelConnections {
 
 /// Runs the kernel's connection solver (compute/shaders/connect.comp) for
 /// queries (w xyz: the target seen from the origin, reach w) with the seeds
-/// of sol::ConnectionTable::shared(longer); the dispatch time in ms into
+/// of sol::ConnectionTable::shared(longer), keeping every connection found
+/// with `longer` and the shortest 4 without (as the march kernel does for
+/// lights with and without a reach); the dispatch time in ms into
 /// *device_ms when given. For tests and benchmarks.
 std::vector<KernelConnections> evaluate_kernel_connections(Context& context, const std::vector<glm::vec4>& queries,
                                                            bool longer, double* device_ms = nullptr);
