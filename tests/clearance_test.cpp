@@ -89,7 +89,7 @@ dvec3 random_point(std::mt19937_64& rng, const dvec3& near, double spread) {
 TEST(Clearance, RootIsTheParabolasFirstRoot) {
   for (const double h : {1e-9, 1e-4, 0.1, 0.3}) {
     for (const double slope : {-1.0, -0.3, -1e-5, 0.0, 1e-5, 0.4, 1.0}) {
-      for (const double bend : {1.0, sol::kAcrossCurvature}) {
+      for (const double bend : {1.0, 4.5}) {
         const double s = sol::clearance_root({h, slope, bend});
         // The root of the quadratic, from the textbook formula in long double.
         const long double disc = static_cast<long double>(slope) * slope + 2.0L * bend * h;
@@ -140,6 +140,60 @@ TEST(Clearance, TermsAreTheBoundWithTheirRatesAndBends) {
     EXPECT_LT(worst_value, 1e-12) << solid.name;
     EXPECT_LT(worst_rate, 1e-8) << solid.name;  // the difference's δ⁴ h⁽⁵⁾/30 and rounding 1e-16/δ
   }
+}
+
+// The across term of slanted tubes bends by at most 1, far from the tube
+// too (|G| up to 1e3, heights where either exponential dominates): its
+// second difference along reference geodesics never falls below -1 (the
+// proof: scripts/prove_across_bend.py, docs/renderer.md). And 1 is tight:
+// along a vertical geodesic at the height where |h_x| e^{-z} = |h_y| e^{z},
+// (asinh G)'' = -G/sqrt(1 + G^2) exactly, -0.995 at G = 10.
+TEST(Clearance, AcrossTermBendsByOne) {
+  constexpr double kDelta = 1e-3;  // second differences: O(δ²) truncation, 1e-16/δ² rounding
+  const double phi = sol::kernel::kPhi;
+  const dvec3 through(0.2, 0.1, 0.3);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double least = 1e30;
+  int checked = 0;
+  for (const glm::dvec2 h : {glm::normalize(glm::dvec2(phi, -1)), glm::normalize(glm::dvec2(1, phi)),
+                             glm::normalize(glm::dvec2(-0.3, -2.0))}) {
+    for (int n = 0; n < 300; ++n) {
+      // A point at |G| = g (log-uniform in [1e-2, 1e3]) on either side, at a height in [-3, 3].
+      const double g = std::pow(10.0, -2.0 + 5.0 * unit(rng)), z = -3.0 + 6.0 * unit(rng);
+      const double D = std::abs(h.x) * std::exp(-z) + std::abs(h.y) * std::exp(z);
+      const double side = unit(rng) < 0.5 ? -1.0 : 1.0, along = 4.0 * unit(rng) - 2.0;
+      const dvec3 p =
+          through + dvec3(side * g * D * h.y + along * h.x, -side * g * D * h.x + along * h.y, z - through.z);
+      const dvec3 u = random_unit(rng);
+      const sol::BoundTerm term = sol::tube_terms(p, u, through, false, h, 0.06)[0];
+      ASSERT_NEAR(term.value, std::asinh(g) - 0.06, 1e-9 * std::max(1.0, g));
+      EXPECT_EQ(term.bend, 1.0);
+      Reference geodesic(p, u, false, 1e-13);
+      double v[3];
+      for (int k = -1; k <= 1; ++k) {
+        v[k + 1] = sol::tube_terms(geodesic.at(k * kDelta).position, u, through, false, h, 0.06)[0].value;
+      }
+      const double second = (v[2] - 2.0 * v[1] + v[0]) / (kDelta * kDelta);
+      least = std::min(least, second);
+      EXPECT_GE(second, -1.0 - 1e-4) << "h = (" << h.x << ", " << h.y << "), G = " << g << ", z = " << z;
+      ++checked;
+    }
+  }
+  std::printf("across term: %d points with |G| in [1e-2, 1e3]: least h'' %.4f\n", checked, least);
+  // Tight: a vertical geodesic at the balance height, G = 10 there.
+  const glm::dvec2 h = glm::normalize(glm::dvec2(phi, -1));
+  const double z0 = 0.5 * std::log(std::abs(h.x) / std::abs(h.y)), g = 10.0;
+  const double D = std::abs(h.x) * std::exp(-z0) + std::abs(h.y) * std::exp(z0);
+  const dvec3 p = through + dvec3(g * D * h.y, -g * D * h.x, z0 - through.z);
+  Reference geodesic(p, dvec3(0.0, 0.0, 1.0), false, 1e-13);
+  double v[3];
+  for (int k = -1; k <= 1; ++k) {
+    v[k + 1] = sol::tube_terms(geodesic.at(k * kDelta).position, {0, 0, 1}, through, false, h, 0.06)[0].value;
+  }
+  const double second = (v[2] - 2.0 * v[1] + v[0]) / (kDelta * kDelta);
+  EXPECT_NEAR(second, -g / std::sqrt(1.0 + g * g), 1e-5);
+  EXPECT_LT(second, -0.99);
 }
 
 // The first arc length at which the geodesic from p along u comes within

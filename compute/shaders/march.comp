@@ -253,8 +253,8 @@ vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, float ez, float ec) {
 
 // A tube's bound (sol::clearance_tube): vertical, the slabs around x = x0 and
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
-// G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (bend 2√5, or 1 along x or y,
-// where it is a slab's). Returns (distance bound, clearance).
+// G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
+// y); every term bends by at most 1. Returns (distance bound, clearance).
 vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, float ez) {
   // Both forms have two terms; the first is asinh(w) - r for either (w the
   // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
@@ -274,9 +274,8 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
   const vec2 sw = vec2(rate_a, rate_wy) * inversesqrt(1.0 + w * w);
   // The second term: the slab around y = y0 (vertical), or |Δz| - r.
   const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
-  const float bend = vertical || h.x == 0.0 || h.y == 0.0 ? 1.0 : kAcrossCurvature;
   const float distance = max(hw.x, hb);
-  return vec2(distance, max(distance, max(clearance_root(hw.x, sw.x, bend), clearance_root(hb, sb, 1.0))));
+  return vec2(distance, max(distance, max(clearance_root(hw.x, sw.x, 1.0), clearance_root(hb, sb, 1.0))));
 }
 
 // The object's distance (object_distance) and clearance, the larger of it

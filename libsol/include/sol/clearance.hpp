@@ -27,9 +27,15 @@
 //    h'' >= −u2² >= −1, M = 1. Likewise (y, z) with u1²: d_yz − r,
 //    asinh(|y − c| e^{z}).
 //  - the across term of a tube along a horizontal h with h_x h_y ≠ 0,
-//    asinh(|G|), G = (h_y Δx − h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}): from the
-//    first integrals, |G''| <= 2 + 3|G| and |G'| <= √(1 + G²), so
-//    (asinh G)'' >= −(2 + 4|G|)/√(1 + G²) >= −2√5, M = 2√5.
+//    asinh(|G|), G = (h_y Δx − h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}): along
+//    a geodesic (asinh G)'' (1 + G²)^{3/2} is a quadratic form in the frame
+//    velocity whose coefficients depend on G and the balance
+//    c = (|h_y| e^{z} − |h_x| e^{-z}) / (|h_x| e^{-z} + |h_y| e^{z}) alone; the
+//    form plus (1 + G²)^{3/2} times the identity is positive semidefinite
+//    for every G and c (scripts/prove_across_bend.py: its principal minors
+//    are polynomials, certified nonnegative by exact Bernstein
+//    coefficients), so M = 1, and no less: along a vertical geodesic where
+//    c = 0, (asinh G)'' = −G/√(1 + G²) (docs/renderer.md).
 // The kernel mirrors these (object_clearance in compute/shaders/march.comp).
 #pragma once
 
@@ -45,9 +51,6 @@
 #include "sol/kernel_constants.h"
 
 namespace sol {
-
-/// M for the across term of horizontal tubes not along x or y: 2√5.
-inline constexpr double kAcrossCurvature = kernel::kAcrossCurvature;
 
 /// One term h of a bound (the bound being the maximum of its terms) at a
 /// point, along the geodesic through it: its value, its rate h' and the bend
@@ -121,7 +124,7 @@ inline std::array<BoundTerm, 2> ball_terms(const glm::dvec3& p, const glm::dvec3
 /// coordinate direction h): vertical, the slabs around x = x0 and y = y0;
 /// horizontal, the across term asinh|G| − r, G = L/D with
 /// L = h_y Δx − h_x Δy, D = |h_x| e^{-z} + |h_y| e^{z} (a slab's term along
-/// x or y, bend 1; else bend 2√5), and the z slab |Δz| − r.
+/// x or y), and the z slab |Δz| − r; every term bends by at most 1.
 inline std::array<BoundTerm, 2> tube_terms(const glm::dvec3& p, const glm::dvec3& u, const glm::dvec3& through,
                                            bool vertical, const glm::dvec2& h, double radius) {
   if (vertical) return {slab_x_term(p, u, through.x, radius), slab_y_term(p, u, through.y, radius)};
@@ -135,7 +138,7 @@ inline std::array<BoundTerm, 2> tube_terms(const glm::dvec3& p, const glm::dvec3
   const double rate_L = h.y * ez * u.x - h.x / ez * u.y, rate_D = (std::abs(h.y) * ez - std::abs(h.x) / ez) * u.z;
   const double G = L / D, rate_G = rate_L / D - G * rate_D / D;
   const BoundTerm across{std::asinh(std::abs(G)) - radius, (G >= 0.0 ? rate_G : -rate_G) / std::sqrt(1.0 + G * G),
-                         kAcrossCurvature};
+                         1.0};
   return {across, z};
 }
 

@@ -31,9 +31,6 @@ SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
 /// so that a step from D ends at most one layer of cells above or below it
 /// (the kernel's teleport relies on it).
 SOL_CONSTANT(SOL_REAL, kQuotientMaxStep, 0.9);
-/// Clearances (sol/clearance.hpp): the bend of the across term of tubes
-/// along a horizontal direction other than x or y, 2√5.
-SOL_CONSTANT(SOL_REAL, kAcrossCurvature, 4.47213595499957939282);
 
 // ---- sol::QuotientField: a distance field of a quotient world over D
 /// Cells along the lattice coordinates s and r (x, y = s γ1 + r γ2) ...
