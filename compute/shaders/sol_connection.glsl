@@ -9,8 +9,9 @@
 // polishes each by Newton's method on v = t·(a, b, c), the initial vector of
 // the exponential map, through the float closed form of sol_geodesic.glsl:
 // the Jacobian from the Jacobi fields (sol_spreading.glsl), steps capped
-// and halved while the residual grows. A polished seed is a connection when its end point lies within the
-// float tolerance of w (measured in frame components at w). What that finds
+// and halved while the residual grows. A polished seed is a connection
+// when its end point lies within the float tolerance of w (measured in
+// frame components at w). What that finds
 // and how accurately: tests vk.Kernel.Connections* and docs/exact.md "Exact spheres
 // and point lights in the renderer".
 //
@@ -105,7 +106,8 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 // evaluation before the loop would cost every SIMD group that shades no hit
 // a whole evaluation. (Until 2026-11 the Jacobian came by forward
 // differences, three evaluations, or by Broyden's updates for the march's
-// exact balls: 14.8 evaluations per lit hit, now 4.5 and 3.5 Jacobians.)
+// exact balls: 14.8 evaluations per lit hit of `spheres`, now 4.4, each
+// with its Jacobian; 16.5 per hit for its exact balls, now 8.2.)
 vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
