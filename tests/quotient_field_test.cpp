@@ -110,6 +110,7 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
     const std::vector<sol::MarchObject> reference = wide_images(worlds[w], centre, spread + max_step);
     double worst_over = -1e300, loosest = 0.0, mean_gap = 0.0, reach_sum = 0.0;
     int near = 0;
+    sol::QuotientField::Sample cell;
     for (const dvec3& q : samples) {
       double b = max_step;
       for (const sol::MarchObject& m : reference) b = std::min(b, bound(m, q));
@@ -118,6 +119,11 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
       // candidate (the same image: the same bound at q).
       const std::vector<int> candidates = field.candidates(q);
       const double reach = field.reach(q);
+      // The march's one lookup a step (reused across samples) says the same.
+      field.sample(q, cell);
+      ASSERT_EQ(cell.lower_bound, f);
+      ASSERT_EQ(cell.reach, reach);
+      ASSERT_EQ(cell.candidates, candidates);
       reach_sum += reach;
       ASSERT_GT(reach, sol::QuotientField::kNear - 1e-3) << "world " << w;
       ASSERT_LE(reach, max_step) << "world " << w;

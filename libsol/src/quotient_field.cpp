@@ -183,8 +183,7 @@ std::uint32_t QuotientField::cell_candidates(int i, int j, int k) const {
   return m_words[kHeader + kNodes + cell_index(i, j, k)];
 }
 
-double QuotientField::lower_bound(const glm::dvec3& q) const {
-  const Cell c = cell_of(q);
+double QuotientField::lower_bound(const Cell& c) const {
   // The nearest node n, and the path from q to it along s, r (at q's height:
   // the edge lengths of q's layer) and then z.
   const glm::dvec3 away = glm::round(c.f);
@@ -194,24 +193,38 @@ double QuotientField::lower_bound(const glm::dvec3& q) const {
          kRounding;
 }
 
-double QuotientField::reach(const glm::dvec3& q) const {
-  const Cell c = cell_of(q);
+double QuotientField::reach(const Cell& c) const {
   return std::bit_cast<float>(m_words[kHeader + kNodes + kCellCount + cell_index(c.i, c.j, c.k)]);
 }
 
-std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {
-  const Cell c = cell_of(q);
+void QuotientField::candidates(const Cell& c, std::vector<int>& out) const {
+  out.clear();
   const std::uint32_t word = cell_candidates(c.i, c.j, c.k);
-  std::vector<int> out;
   if (word == kernel::kFieldAllImages) {
     for (std::size_t m = 0; m < m_image_count; ++m) out.push_back(static_cast<int>(m));
-    return out;
+    return;
   }
   for (int s = 0; s < kCandidates; ++s) {
     const int m = static_cast<int>((word >> (8 * s)) & 0xFFu);
     if (m != kernel::kFieldEmpty) out.push_back(m);
   }
+}
+
+double QuotientField::lower_bound(const glm::dvec3& q) const { return lower_bound(cell_of(q)); }
+
+double QuotientField::reach(const glm::dvec3& q) const { return reach(cell_of(q)); }
+
+std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {
+  std::vector<int> out;
+  candidates(cell_of(q), out);
   return out;
+}
+
+void QuotientField::sample(const glm::dvec3& q, Sample& out) const {
+  const Cell c = cell_of(q);
+  out.lower_bound = lower_bound(c);
+  out.reach = reach(c);
+  candidates(c, out.candidates);
 }
 
 }  // namespace sol

@@ -296,21 +296,24 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
     }
   }
+  QuotientField::Sample cell;  // q's cell: F, the reach, the candidates (one lookup a step)
   for (int step = 0; step < world.max_steps; ++step) {
-    glm::dvec3 q = multiply(origin, ray->at(local).position);
+    // The position and the tangent (frame components, kept by the teleport's
+    // left translation: the restarted ray starts along it).
+    const ClosedFormGeodesic<double>::State state = ray->at(local);
+    glm::dvec3 q = multiply(origin, state.position);
+    const glm::dvec3 u = state.direction;
     if (!lattice.contains(q)) {
-      const glm::dvec3 u = ray->direction_at(local);
       origin = lattice.teleport(q).point;
       ray = std::make_unique<ClosedFormGeodesic<double>>(u);
       local = 0.0;
       q = origin;
     }
     hit.steps = step + 1;
-    const double bound = field.lower_bound(q);
+    field.sample(q, cell);
     double clear = std::numeric_limits<double>::infinity(), nearest_hit = clear;
     int nearest_k = -1;
-    const glm::dvec3 u = ray->direction_at(local);
-    for (int k : field.candidates(q)) {
+    for (int k : cell.candidates) {
       const MarchObject& image = images[static_cast<std::size_t>(k)];
       const double d = object_distance(image, q);
       auto left = std::find(passing.begin(), passing.end(), k);
@@ -332,7 +335,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
       return hit;
     }
-    double step_length = std::max(bound, std::min(clear, field.reach(q)));
+    double step_length = std::max(cell.lower_bound, std::min(clear, cell.reach));
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;
     local += step_length;

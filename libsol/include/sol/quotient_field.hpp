@@ -69,6 +69,13 @@ class QuotientField {
   /// while there are images), or every image when the cell has more than
   /// kCandidates.
   std::vector<int> candidates(const glm::dvec3& q) const;
+  /// All three for q's cell from one lookup, the candidates into a vector
+  /// the caller keeps (a march takes one a step: no allocation per step).
+  struct Sample {
+    double lower_bound = 0.0, reach = 0.0;
+    std::vector<int> candidates;
+  };
+  void sample(const glm::dvec3& q, Sample& out) const;
   /// The longest step: B's cap, and the reach's.
   double max_step() const { return m_max_step; }
 
@@ -86,6 +93,9 @@ class QuotientField {
     glm::dvec3 f;  // fractions within the cell
   };
   Cell cell_of(const glm::dvec3& q) const;
+  double lower_bound(const Cell& c) const;
+  double reach(const Cell& c) const;
+  void candidates(const Cell& c, std::vector<int>& out) const;  // replaces out's contents
   float edge(int layer, int axis) const;
   float node(int i, int j, int k) const;
   std::uint32_t cell_candidates(int i, int j, int k) const;
