@@ -386,6 +386,89 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   expect_no_validation_errors();
 }
 
+// The deferred passes (MarchOptions::deferred: the resume pass goes on with
+// the rays that reach an exact ball, the shade pass shades the hits of
+// exact lights) render the image of the one dispatch. The march is the
+// same (the resume pass starts from the arc length, step and cutout state
+// the march pass left), so the AOVs are equal to the bit; the colour within
+// 1e-5: the normal travels through the list as its octahedral code, exact up
+// to float rounding (1e-7), which the shading carries into the colour; a
+// hit shaded with another point, normal, eye or object changes it by 1e-2
+// and more. Mono and side-by-side stereo (the second eye's pixels), whole
+// and in 8 x 8 tiles with 3 samples (each tile's lists; the running mean),
+// shadows, a cutout plane through an exact ball, the quotient
+// with an exact light (its hits shaded deferred), and record() (spheres).
+TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
+  sol::vk::MarchRenderer deferred(vk_context()), single(vk_context(), {.deferred = false});
+  struct Case {
+    std::string name;
+    sol::Scene scene;
+    int passes;  // deferred passes the world takes
+  };
+  std::vector<Case> cases;
+  cases.push_back({"spheres", sol::preset_scene("spheres"), 2});
+  sol::Scene shadows = sol::preset_scene("spheres");
+  shadows.lights[0].shadows = true;
+  cases.push_back({"spheres with shadows", shadows, 2});
+  // A cutout checkerboard in the plane z = 1 through the ball centred at
+  // (1, 1, 1): rays reach its shell through the dark squares. (The march
+  // pass hands the resume pass the cutout planes a ray is passing, those
+  // within 2 hit_epsilon behind it where it came within hit_epsilon of a
+  // light square; no ray of this image reaches a shell while passing one,
+  // a case no test pins.)
+  sol::Scene cutout = sol::preset_scene("spheres");
+  cutout.objects.push_back({sol::PlaneZ{1.0}, {0.8, 0.8, 0.8}, sol::Pattern::Checker, true});
+  cases.push_back({"spheres and a cutout plane", cutout, 2});
+  sol::Scene balls = sol::preset_scene("spheres");
+  balls.lights[0].exact = false;
+  cases.push_back({"exact balls, coordinate light", balls, 1});
+  sol::Scene lattice = sol::preset_scene("lattice-balls");
+  sol::Light light;
+  light.type = sol::LightType::Point;
+  light.exact = true;
+  light.position = {0.5, 0.4, 0.2};
+  light.intensity = 3.0;
+  lattice.lights = {light};
+  cases.push_back({"lattice-balls, exact light", lattice, 1});
+  for (const Case& c : cases) {
+    const int w = 40, h = 28;
+    deferred.set_world(c.scene);
+    single.set_world(c.scene);
+    EXPECT_EQ(deferred.deferred_passes(), c.passes) << c.name;
+    EXPECT_EQ(single.deferred_passes(), 0) << c.name;
+    const sol::Camera eyes[] = {c.scene.camera, sol::stereo_eyes(c.scene.camera, 0.1).right};
+    for (int n : {1, 2}) {
+      for (int samples : {1, 3}) {
+        sol::vk::RenderOptions options;
+        options.samples = samples;
+        if (samples > 1) options.max_dispatch_ms = 1e-6;  // tiles of 8 x 8 pixels
+        const sol::RenderResult a = deferred.render(std::span(eyes, static_cast<std::size_t>(n)), w, h, options);
+        const sol::RenderResult b = single.render(std::span(eyes, static_cast<std::size_t>(n)), w, h, options);
+        const std::string what = c.name + ", " + std::to_string(n) + " eyes, " + std::to_string(samples) + " samples";
+        EXPECT_EQ(a.object, b.object) << what;
+        EXPECT_EQ(a.distance, b.distance) << what;
+        EXPECT_EQ(a.steps, b.steps) << what;
+        EXPECT_EQ(a.px, b.px) << what;
+        ASSERT_EQ(a.rgba.size(), b.rgba.size());
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
+        EXPECT_LT(worst, 1e-5f) << what;
+        int hits = 0;
+        for (float o : a.object) hits += o > 0.0f;
+        EXPECT_GT(hits, static_cast<int>(a.object.size()) / 20) << what << ": hits to shade";
+      }
+    }
+    // The presenters' recorded frame: the render's colour (one world: each
+    // compiles three more pipelines, seconds on lavapipe).
+    if (c.name != "spheres") continue;
+    const sol::RenderResult ref = deferred.render(c.scene, w, h);
+    sol::vk::StorageImage target(vk_context(), w, h);
+    vk_context().submit_and_wait([&](VkCommandBuffer cb) { deferred.record(cb, std::span(eyes, 1), w, h, target); });
+    EXPECT_EQ(target.download(), ref.rgba) << c.name << ": record()";
+  }
+  expect_no_validation_errors();
+}
+
 // The kernel approaches exact balls by the bound, then takes the exact
 // distance from the shortest geodesic (sol_shortest) within kExactShell:
 // hit points lie on the geodesic sphere (of the nearest image of the

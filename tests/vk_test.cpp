@@ -275,6 +275,47 @@ TEST(VkPipeline, FillWritesEveryPixelExactly) {
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
 }
 
+// An indirect dispatch takes its workgroup counts from a buffer: (1, 1, 1)
+// fills the first 8 x 8 group of a 16 x 16 image alone, (2, 2, 1) all of it;
+// a command past the buffer's end throws. The device's own buffers
+// (DeviceStorage) are not mapped: reading or writing them from the host throws.
+TEST(VkPipeline, IndirectDispatchTakesItsGroupsFromTheBuffer) {
+  Context context(validated());
+  StorageImage image(context, 16, 16, VK_FORMAT_R32G32B32A32_SFLOAT);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, image);
+  fill.run(2u, 2u, 0.0f);
+  Buffer arguments(context, 2 * sizeof(VkDispatchIndirectCommand));
+  const std::uint32_t commands[6] = {1, 1, 1, 2, 2, 1};
+  arguments.write(commands);
+  const float value = 5.0f;
+  const auto push = std::as_bytes(std::span(&value, 1));
+  context.submit_and_wait([&](VkCommandBuffer cb) { fill.record_dispatch_indirect(cb, arguments, 0, push); });
+  std::vector<float> pixels = image.download();
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      EXPECT_EQ(pixels[(static_cast<std::size_t>(y) * 16 + x) * 4 + 2], x < 8 && y < 8 ? 5.0f : 0.0f) << x << ", " << y;
+    }
+  }
+  context.submit_and_wait([&](VkCommandBuffer cb) {
+    fill.record_dispatch_indirect(cb, arguments, sizeof(VkDispatchIndirectCommand), push);
+  });
+  expect_fill(image.download(), 16, 16, 5.0f);
+  context.submit_and_wait([&](VkCommandBuffer cb) {
+    EXPECT_THROW(fill.record_dispatch_indirect(cb, arguments, 2 * sizeof(VkDispatchIndirectCommand) - 4, push),
+                 std::invalid_argument);
+    EXPECT_THROW(fill.record_dispatch_indirect(cb, arguments, 2, push), std::invalid_argument);
+  });
+
+  Buffer device_only(context, 64, BufferUsage::DeviceStorage);
+  std::vector<float> values(4, 1.0f);
+  EXPECT_THROW(device_only.write(values), std::logic_error);
+  EXPECT_THROW(device_only.read(values), std::logic_error);
+  EXPECT_TRUE(device_only.bytes().empty());
+  const std::vector<std::string> errors = context.validation_errors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
 // The pipeline cache kept between runs (ContextOptions::pipeline_cache_dir):
 // written when the Context ends with this device's header; read back by the
 // next Context (pipeline_cache_loaded_bytes() is how a second run is seen to

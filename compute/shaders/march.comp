@@ -67,6 +67,13 @@ layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
 layout(constant_id = kSpecOds) const bool HAS_ODS = false;
 // Shadows of exact point lights (params.light_shadows): compiled in only for them.
 layout(constant_id = kSpecShadows) const bool HAS_SHADOWS = false;
+// The deferred passes (sol/vk/march_interface.h, docs/renderer.md): which
+// pass this pipeline runs, and what its march pass leaves to the others.
+layout(constant_id = kSpecPass) const int PASS = kPassMarch;
+layout(constant_id = kSpecDeferShading) const bool DEFER_SHADING = false;
+layout(constant_id = kSpecDeferExact) const bool DEFER_EXACT_WORLD = false;
+// (Only the Sol march, with the closed form, stops at exact balls' shells.)
+const bool DEFER_EXACT = DEFER_EXACT_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -114,8 +121,64 @@ layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds
   vec4 connection_seeds[];
 };
 
+// The deferred passes' lists (QueueHeader, then the records).
+layout(std430, set = 0, binding = kBindingQueue) buffer Queue {
+  QueueHeader queue;
+  uvec4 queue_records[];
+};
+
 #include "sol_connection.glsl"
 #include "sol_spreading.glsl"
+
+// ---- The deferred passes' lists (layout in sol/vk/march_interface.h)
+
+// A pixel of the (side-by-side) image in one word, and back.
+uint pack_pixel(ivec2 pixel) { return uint(pixel.x) | (uint(pixel.y) << 16); }
+ivec2 unpack_pixel(uint word) { return ivec2(int(word & 0xffffu), int(word >> 16)); }
+
+// The records a dispatch's lists have room for: one per pixel of its tile.
+int queue_capacity() { return params.tile.z * params.tile.w; }
+
+// A new record's slot in a list (its count in `header.w`), counting the
+// list's workgroups in header.x as records fill them.
+#define SOL_QUEUE_APPEND(header, slot)                                  \
+  {                                                                     \
+    slot = atomicAdd(header.w, 1);                                      \
+    if (slot % (kGroupSize * kGroupSize) == 0) atomicAdd(header.x, 1);  \
+  }
+
+// This invocation's record in a resume or shade dispatch.
+int queue_slot() { return int(gl_WorkGroupID.x) * kGroupSize * kGroupSize + int(gl_LocalInvocationIndex); }
+
+// Unit vectors in two floats (the octahedral map; exact up to float rounding).
+vec2 octahedral_encode(vec3 n) {
+  const vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+  return n.z >= 0.0 ? p : (1.0 - abs(p.yx)) * vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+}
+vec3 octahedral_decode(vec2 p) {
+  vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
+
+// The march pass: a hit for the shade pass (q, t, its normal, and the scene
+// object, or in the quotient the image, it lies on).
+void defer_shading(ivec2 pixel, vec3 q, float t, vec3 n, int index) {
+  int slot;
+  SOL_QUEUE_APPEND(queue.shade, slot);
+  const int at = queue_capacity() + 2 * slot;
+  queue_records[at] = uvec4(floatBitsToUint(q), floatBitsToUint(t));
+  queue_records[at + 1] = uvec4(floatBitsToUint(octahedral_encode(n)), pack_pixel(pixel), uint(index));
+}
+
+// The march pass: a ray that reached an exact ball's shell, for the resume
+// pass to go on with from arc length t, march step `step`, with the cutout
+// planes it is passing.
+void defer_exact(ivec2 pixel, float t, uint passing, int step) {
+  int slot;
+  SOL_QUEUE_APPEND(queue.resume, slot);
+  queue_records[slot] = uvec4(pack_pixel(pixel), floatBitsToUint(t), passing, uint(step));
+}
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
 float distance_lower_bound(vec3 p, vec3 q) {
@@ -932,12 +995,76 @@ bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, int
   return !(t > max_distance);
 }
 
+// The objects of eye `eye` for the shadow march (g_count and the rest).
+void load_shadow_objects(int eye) {
+  g_count = min(params.counts.x, kMaxGpuObjects);
+  for (int k = 0; k < kMaxGpuObjects; ++k) {
+    g_types[k] = int(params.objects[k].plane.x);
+    g_cutouts[k] = HAS_CUTOUT && g_types[k] == kObjectPlaneZ && params.objects[k].plane.w != 0.0
+                       ? int(params.objects[k].plane.z)
+                       : 0;
+    g_radii[k] = params.objects[k].plane.y;
+    g_relative[k] = params.eyes[eye].relative[k];
+    g_headings[k] = params.eyes[eye].heading[k].xy;
+  }
+  g_eye_camera = params.eyes[eye].camera;
+  g_eye_frac = params.eyes[eye].camera_frac;
+}
+
+// The shade pass: the hits the march pass listed (defer_shading), shaded
+// into their pixels as the march would have (shade_hit; the pattern's
+// coordinates from the hit point, as main()).
+void shade_pass() {
+  const int slot = queue_slot();
+  if (slot >= queue.shade.w) return;
+  const int at = queue_capacity() + 2 * slot;
+  const uvec4 a = queue_records[at], b = queue_records[at + 1];
+  const ivec2 pixel = unpack_pixel(b.z);
+  const int eye = pixel.x >= params.counts.y ? 1 : 0;
+  const vec3 q = uintBitsToFloat(a.xyz);
+  const float t = uintBitsToFloat(a.w);
+  const vec3 n = octahedral_decode(uintBitsToFloat(b.xy));
+  const int index = int(b.w);
+  int k = index;
+  vec2 uv;
+  if (QUOTIENT) {
+    const Image m = images[index];
+    const int type = int(m.info.x);
+    k = int(m.info.z);
+    uv = type >= kObjectBall ? solid_coordinates(type, q, m.geometry, m.heading.xy, m.info.y) : q.xy;
+  } else {
+    const int type = int(params.objects[k].plane.x);
+    uv = (HAS_BALLS && type >= kObjectBall)
+             ? solid_coordinates(type, q, params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy,
+                                 params.objects[k].plane.y)
+             : plane_coordinates(type, q, params.eyes[eye].camera, params.eyes[eye].camera_frac);
+    if (HAS_SHADOWS) load_shadow_objects(eye);
+  }
+  const vec4 color = shade_hit(k, n, uv, t, q, eye);
+  imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+}
+
 void main() {
+  if (PASS == kPassShade) {
+    shade_pass();
+    return;
+  }
   // Uniform values copied to locals once: lavapipe does not hoist uniform loads out of loops.
   // This dispatch's tile of the image (the whole image unless rendered in tiles).
   const ivec4 tile = params.tile;
-  if (any(greaterThanEqual(ivec2(gl_GlobalInvocationID.xy), tile.zw))) return;
-  const ivec2 pixel = tile.xy + ivec2(gl_GlobalInvocationID.xy);
+  // The resume pass: the ray of a record of the march pass (defer_exact),
+  // which goes on from where that pass left it.
+  uvec4 resumed = uvec4(0u);
+  ivec2 pixel;
+  if (PASS == kPassResume) {
+    const int slot = queue_slot();
+    if (slot >= queue.resume.w) return;
+    resumed = queue_records[slot];
+    pixel = unpack_pixel(resumed.x);
+  } else {
+    if (any(greaterThanEqual(ivec2(gl_GlobalInvocationID.xy), tile.zw))) return;
+    pixel = tile.xy + ivec2(gl_GlobalInvocationID.xy);
+  }
   const int width = params.counts.y, height = params.counts.z;
   if (pixel.x >= width * params.counts.w || pixel.y >= height) return;
   const int eye = pixel.x >= width ? 1 : 0;
@@ -958,19 +1085,8 @@ void main() {
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
     constants[k] = relative[k].x;
-    if (HAS_SHADOWS) {
-      g_types[k] = types[k];
-      g_radii[k] = radii[k];
-      g_relative[k] = relative[k];
-      g_headings[k] = headings[k];
-      g_cutouts[k] = cutouts[k];
-    }
   }
-  if (HAS_SHADOWS) {
-    g_count = count;
-    g_eye_camera = eye_camera;
-    g_eye_frac = eye_frac;
-  }
+  if (HAS_SHADOWS && !DEFER_SHADING) load_shadow_objects(eye);
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
   const int max_steps = int(params.limits.w);
   const float rk4_step = eye_forward.w;
@@ -1120,12 +1236,17 @@ void main() {
                          : plane_normal(type, q, geom.x, geom, heading, info.y, origin);
       // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
       const vec2 uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
-      color = shade_hit(k, n, uv, t, q, eye);
+      if (DEFER_SHADING) {
+        defer_shading(pixel, q, t, n, hit_image);
+      } else {
+        color = shade_hit(k, n, uv, t, q, eye);
+      }
       hit_aov.x = float(k + 1);
       hit_aov.y = t;
       point_aov = vec4(q, 0.0);
     }
-    imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
+    // (A hit's colour comes from the shade pass.)
+    if (!DEFER_SHADING || hit_image < 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
     if (write_aovs) {
       imageStore(aov_hit, pixel, hit_aov);
       imageStore(aov_point, pixel, point_aov);
@@ -1142,12 +1263,12 @@ void main() {
   float rk_t = 0.0;
 
   int hit = 0, steps = 0;
-  uint passing = 0u;
+  uint passing = resumed.z;  // (the resume pass: the march pass's state)
   int exact_k = -1;           // the exact ball whose geodesic from the centre exact_v holds
   vec3 exact_v = vec3(0.0);
   SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
   bool exact_known = false;  // exact_v, exact_end: a solution to start from
-  float t = 0.0;
+  float t = uintBitsToFloat(resumed.y);
   vec3 q = vec3(0.0);
   // Exact culling for planes z = c (as the CPU reference): a ray whose whole
   // z-range misses every plane by more than the hit epsilon never hits.
@@ -1183,7 +1304,7 @@ void main() {
   // whichever way they go: inside the loop the exact solve (a Newton loop
   // around the closed form) cost every step of every ray; here once a round.
   bool alive = reachable && !PLANES_XY_ONLY;
-  int step = 0;
+  int step = int(resumed.w);
   // One step's findings. With exact balls, the runners-up too: the least
   // distance to the other objects (`others`, any object: for the step) and
   // the next candidate hit (`second_hit`, `second_k`), for when the nearest
@@ -1195,7 +1316,10 @@ void main() {
   // (Without exact balls one round, a loop the compiler unrolls; with
   // PLANES_XY_ONLY none: the roots did all, and a loop whose condition is
   // not a constant would run its body once.)
-  for (int round = 0; !PLANES_XY_ONLY && (HAS_EXACT_BALLS ? round < max_steps && alive : round < 1); ++round) {
+  // (The march pass of a deferred world stops at the first exact ball's
+  // shell: one round, its exact block left to the resume pass.)
+  const bool rounds = HAS_EXACT_BALLS && !(DEFER_EXACT && PASS == kPassMarch);
+  for (int round = 0; !PLANES_XY_ONLY && (rounds ? round < max_steps && alive : round < 1); ++round) {
     for (; step < max_steps && alive; ++step) {
       if (INTEGRATOR == 0) {
         // Cutout planes need the full position for their gap bounds.
@@ -1264,7 +1388,12 @@ void main() {
       alive = march_step_end(nearest, nearest_hit, nearest_k, q, types[nearest_k], eye_camera, eye_frac, hit_epsilon,
                              max_distance, passing, t, hit);
     }
-    if (HAS_EXACT_BALLS && shell && alive) {
+    if (DEFER_EXACT && PASS == kPassMarch) {
+      if (shell && alive) {  // the rest of this ray in the resume pass
+        defer_exact(pixel, t, passing, step);
+        return;
+      }
+    } else if (HAS_EXACT_BALLS && shell && alive) {
       // Near an exact ball: its exact distance (steps, and hits on the true
       // sphere), against the least distance to every other object.
       if (exact_k != nearest_k) exact_known = false;
@@ -1313,11 +1442,16 @@ void main() {
     const vec3 scaled = vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
     const vec2 uv = (HAS_BALLS && type >= kObjectBall) ? solid_coordinates(type, q, relative[k], headings[k], radii[k])
                                              : plane_coordinates(type, q, eye_camera, eye_frac);
-    color = shade_hit(k, n, uv, t, q, eye);
+    if (DEFER_SHADING) {
+      defer_shading(pixel, q, t, n, k);
+    } else {
+      color = shade_hit(k, n, uv, t, q, eye);
+    }
     hit_aov.y = t;
     point_aov = vec4(eye_camera.xyz + scaled, 0.0);
   }
-  imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
+  // (A hit's colour comes from the shade pass.)
+  if (!DEFER_SHADING || hit == 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
   if (write_aovs) {
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);

@@ -33,7 +33,9 @@ Buffer::Buffer(std::shared_ptr<detail::Device> owner, VkDeviceSize size, BufferU
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     info.size = size;
     // Transfers both ways too, so that images can be copied in and out.
-    info.usage = (usage == BufferUsage::Uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) |
+    // Storage buffers may hold indirect dispatch arguments.
+    info.usage = (usage == BufferUsage::Uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
+                                                : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT) |
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     check(vkCreateBuffer(vk_device, &info, nullptr, &m_buffer), "vkCreateBuffer");
@@ -45,11 +47,16 @@ Buffer::Buffer(std::shared_ptr<detail::Device> owner, VkDeviceSize size, BufferU
     allocate.allocationSize = requirements.size;
     // Every device has a host-visible, host-coherent type (the spec requires
     // one); cached memory makes reading results back fast.
+    // (The device's own buffers: device-local memory where there is any.)
+    const bool mapped_memory = usage != BufferUsage::DeviceStorage;
     allocate.memoryTypeIndex =
-        device.memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                           VK_MEMORY_PROPERTY_HOST_CACHED_BIT, "Buffer");
+        mapped_memory ? device.memory_type(requirements.memoryTypeBits,
+                                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                           VK_MEMORY_PROPERTY_HOST_CACHED_BIT, "Buffer")
+                      : device.memory_type(requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "Buffer");
     check(vkAllocateMemory(vk_device, &allocate, nullptr, &m_memory), "vkAllocateMemory");
     check(vkBindBufferMemory(vk_device, m_buffer, m_memory, 0), "vkBindBufferMemory");
+    if (!mapped_memory) return;
     void* mapped = nullptr;
     check(vkMapMemory(vk_device, m_memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
     m_mapped = static_cast<std::byte*>(mapped);
@@ -96,11 +103,13 @@ void Buffer::release() noexcept {
 }
 
 void Buffer::write_bytes(std::span<const std::byte> data, VkDeviceSize offset) {
+  if (m_usage == BufferUsage::DeviceStorage) throw std::logic_error("Buffer::write: a DeviceStorage buffer is not mapped");
   check_range(offset, data.size(), m_size, "write");
   if (!data.empty()) std::memcpy(m_mapped + offset, data.data(), data.size());
 }
 
 void Buffer::read_bytes(std::span<std::byte> data, VkDeviceSize offset) const {
+  if (m_usage == BufferUsage::DeviceStorage) throw std::logic_error("Buffer::read: a DeviceStorage buffer is not mapped");
   check_range(offset, data.size(), m_size, "read");
   if (!data.empty()) std::memcpy(data.data(), m_mapped + offset, data.size());
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <cstdint>
+#include <future>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -181,12 +182,14 @@ struct KernelVariant {
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
   bool projections = false;  // an eye is not perspective (a camera's property: the frame's eyes decide)
   bool ods = false;          // an eye is omnidirectional stereo (Camera::eye_offset)
+  bool defer_shading = false;  // hits shaded by the shade pass (defer_passes)
+  bool defer_exact = false;    // rays that reach an exact ball go on in the resume pass
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
                    srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
-                   f.planes_xy_only, f.light_reach}) {
+                   f.planes_xy_only, f.light_reach, defer_shading, defer_exact}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -226,9 +229,20 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
                       : std::span<const std::uint32_t>(march_comp_spv);
 }
 
-ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v) {
+// Which deferred passes a variant of the world takes (MarchOptions::deferred):
+// the shade pass for exact point lights (their connections are the dear
+// part of shading), the resume pass for exact balls in Sol with the closed
+// form (the kernel's exact solves).
+void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
-  return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ")",
+  v.defer_shading = o.deferred && f.exact_lights;
+  v.defer_exact = o.deferred && f.exact_balls && !f.quotient && o.integrator == Integrator::ClosedForm;
+}
+
+// The variant's pipeline for one pass (kernel::kPass*).
+ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v, int pass) {
+  const MarchFeatures& f = v.features;
+  return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ", pass " + std::to_string(pass) + ")",
                              .spirv = march_spirv(v),
                              .bindings = {{kernel::kBindingParams, DescriptorType::UniformBuffer},
                                           {kernel::kBindingColor, DescriptorType::StorageImage},
@@ -238,7 +252,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingSeeds, DescriptorType::StorageBuffer},
                                           {kernel::kBindingField, DescriptorType::StorageBuffer},
                                           {kernel::kBindingColumns, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingLightImages, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingLightImages, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingQueue, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
                                                 {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
@@ -257,7 +272,10 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecOds, v.ods ? 1u : 0u},
                                                 {kernel::kSpecShadows, f.shadows ? 1u : 0u},
                                                 {kernel::kSpecPlanesXYOnly, f.planes_xy_only ? 1u : 0u},
-                                                {kernel::kSpecLightReach, f.light_reach ? 1u : 0u}}});
+                                                {kernel::kSpecLightReach, f.light_reach ? 1u : 0u},
+                                                {kernel::kSpecPass, static_cast<std::uint32_t>(pass)},
+                                                {kernel::kSpecDeferShading, v.defer_shading ? 1u : 0u},
+                                                {kernel::kSpecDeferExact, v.defer_exact ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -274,10 +292,35 @@ SeedTable seed_table_of(const MarchFeatures& f) {
 struct MarchRenderer::Impl {
   Context& context;
   MarchOptions options;
+  // A variant's pipelines: the march pass, and the deferred passes it takes.
   struct Built {
     ComputePipeline pipeline;
+    std::optional<ComputePipeline> resume, shade;
     std::uint64_t world_bound = 0;    // the world generation whose buffers are bound (0: none)
     std::uint64_t columns_bound = 0;  // the columns buffer's generation bound (0: none)
+    std::uint64_t queue_bound = 0;    // the queue buffer's generation bound (0: none)
+
+    // The deferred passes' pipelines compile on threads of their own while
+    // the march pass's does (lavapipe takes about a second and a half for each).
+    static Built build(Context& c, const MarchOptions& o, const KernelVariant& v) {
+      auto compile = [&](bool needed, int pass) {
+        return needed ? std::async(std::launch::async, [&c, &o, &v, pass] { return make_pipeline(c, o, v, pass); })
+                      : std::future<ComputePipeline>();
+      };
+      std::future<ComputePipeline> resume = compile(v.defer_exact, kernel::kPassResume);
+      std::future<ComputePipeline> shade = compile(v.defer_shading, kernel::kPassShade);
+      Built built{make_pipeline(c, o, v, kernel::kPassMarch)};
+      if (resume.valid()) built.resume.emplace(resume.get());
+      if (shade.valid()) built.shade.emplace(shade.get());
+      return built;
+    }
+    // Binds a resource to every pass's pipeline.
+    template <class Resource>
+    void bind(int binding, const Resource& resource) {
+      pipeline.bind(static_cast<std::uint32_t>(binding), resource);
+      if (resume) resume->bind(static_cast<std::uint32_t>(binding), resource);
+      if (shade) shade->bind(static_cast<std::uint32_t>(binding), resource);
+    }
   };
   // One pipeline per kernel variant, built when first needed and kept.
   std::map<std::uint32_t, Built> pipelines;
@@ -296,6 +339,10 @@ struct MarchRenderer::Impl {
   // each frame that has such eyes, reallocated when they outgrow it.
   std::optional<Buffer> columns;
   std::uint64_t columns_generation = 0;
+  // The deferred passes' lists (kernel::QueueHeader, then the records): for
+  // the largest dispatch so far, in device memory.
+  std::optional<Buffer> queue;
+  std::uint64_t queue_generation = 0;
   SeedTable seeds_held = SeedTable::None;
   // For the AOV bindings (rgba32f, never written without AOVs) when the
   // colour binding holds a caller's 8-bit image.
@@ -303,6 +350,7 @@ struct MarchRenderer::Impl {
 
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {
     write_columns(std::vector<kernel::Column>(1));  // a stub until an ODS frame
+    reserve_queue(0);                               // the header alone until a deferring frame
   }
 
   // The ODS eyes' columns into the device buffer (a larger one when needed).
@@ -315,24 +363,91 @@ struct MarchRenderer::Impl {
     columns->write(records);
   }
 
-  // The pipeline of a variant with the current world's buffers bound.
-  ComputePipeline& pipeline(const KernelVariant& v) {
+  // Room in the lists for dispatches of up to `pixels` pixels (a resume
+  // record and a shade record each; sol/vk/march_interface.h).
+  static VkDeviceSize queue_bytes(std::uint64_t pixels) { return sizeof(kernel::QueueHeader) + pixels * 3 * 16; }
+  void reserve_queue(std::uint64_t pixels) {
+    const VkDeviceSize bytes = queue_bytes(pixels);
+    if (queue && queue->size() >= bytes) return;
+    queue.emplace(context, bytes, BufferUsage::DeviceStorage);
+    ++queue_generation;
+  }
+
+  // The pipelines of a variant with the current world's buffers bound.
+  Built& pipeline(const KernelVariant& v) {
     auto it = pipelines.find(v.key());
-    if (it == pipelines.end()) it = pipelines.emplace(v.key(), Built{make_pipeline(context, options, v)}).first;
+    if (it == pipelines.end()) it = pipelines.emplace(v.key(), Built::build(context, options, v)).first;
     Built& built = it->second;
     if (built.world_bound != generation) {
-      built.pipeline.bind(kernel::kBindingParams, params);
-      built.pipeline.bind(kernel::kBindingImages, *images);
-      built.pipeline.bind(kernel::kBindingSeeds, *seeds);
-      built.pipeline.bind(kernel::kBindingField, *field);
-      built.pipeline.bind(kernel::kBindingLightImages, *light_images);
+      built.bind(kernel::kBindingParams, params);
+      built.bind(kernel::kBindingImages, *images);
+      built.bind(kernel::kBindingSeeds, *seeds);
+      built.bind(kernel::kBindingField, *field);
+      built.bind(kernel::kBindingLightImages, *light_images);
       built.world_bound = generation;
     }
     if (built.columns_bound != columns_generation) {
-      built.pipeline.bind(kernel::kBindingColumns, *columns);
+      built.bind(kernel::kBindingColumns, *columns);
       built.columns_bound = columns_generation;
     }
-    return built.pipeline;
+    if (built.queue_bound != queue_generation) {
+      built.bind(kernel::kBindingQueue, *queue);
+      built.queue_bound = queue_generation;
+    }
+    return built;
+  }
+
+  // Records a dispatch of `built` over groups_x × groups_y workgroups: the
+  // march pass, then, when the variant defers, each deferred pass over its
+  // list (an indirect dispatch of the workgroups the march pass counted),
+  // with the barriers between them; the lists' header is reset first.
+  // record_passes in a submission of its own, waited for (as
+  // ComputePipeline::run: earlier writes before it, its writes visible to
+  // the host after it); returns the device's time in milliseconds.
+  double run_passes(const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {
+    return context.submit_and_wait([&](VkCommandBuffer cb) {
+      VkMemoryBarrier before{};
+      before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+      before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                           nullptr, 0, nullptr);
+      record_passes(cb, built, groups_x, groups_y);
+      VkMemoryBarrier after{};
+      after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+      after.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, nullptr,
+                           0, nullptr);
+    });
+  }
+
+  void record_passes(VkCommandBuffer cb, const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {
+    if (!built.resume && !built.shade) {
+      built.pipeline.record_dispatch(cb, groups_x, groups_y);
+      return;
+    }
+    const kernel::QueueHeader header{.resume = glm::ivec4(0, 1, 1, 0), .shade = glm::ivec4(0, 1, 1, 0)};
+    vkCmdUpdateBuffer(cb, queue->handle(), 0, sizeof header, &header);
+    auto barrier = [&](VkPipelineStageFlags from, VkAccessFlags written) {
+      VkMemoryBarrier b{};
+      b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+      b.srcAccessMask = written;
+      b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+      vkCmdPipelineBarrier(cb, from, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &b,
+                           0, nullptr, 0, nullptr);
+    };
+    barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    built.pipeline.record_dispatch(cb, groups_x, groups_y);
+    if (built.resume) {
+      barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+      built.resume->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, resume));
+    }
+    if (built.shade) {
+      barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+      built.shade->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, shade));
+    }
   }
 };
 
@@ -343,7 +458,7 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
   m_impl = std::make_unique<Impl>(context, options);
   // Build one now (the planes' z = c kernel): errors surface here, not at the first frame.
   const KernelVariant planes{.features = {.heights_only = true}};
-  m_impl->pipelines.emplace(planes.key(), Impl::Built{make_pipeline(context, options, planes)});
+  m_impl->pipelines.emplace(planes.key(), Impl::Built::build(context, options, planes));
 }
 
 MarchRenderer::~MarchRenderer() = default;
@@ -391,8 +506,14 @@ const MarchWorld& MarchRenderer::world() const {
   return *m_impl->world;
 }
 
+int MarchRenderer::deferred_passes() const {
+  KernelVariant variant{kernel_features(world().features(), m_impl->options.all_features)};
+  defer_passes(variant, m_impl->options);
+  return (variant.defer_shading ? 1 : 0) + (variant.defer_exact ? 1 : 0);
+}
+
 struct MarchRenderer::Frame {
-  ComputePipeline* pipeline;
+  Impl::Built* pipeline;  // the variant's passes
   std::uint32_t width, height;  // of the whole (side-by-side) image
   Params params;                // the uniforms written (render() rewrites their tile and sample per dispatch)
 };
@@ -441,8 +562,21 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   m.params.write(std::span<const Params>(&g, 1));
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
-  const KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections,
-                              ods};
+  KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections, ods};
+  defer_passes(variant, m.options);
+  // The lists hold a record per pixel of a dispatch, at most the whole
+  // image; a frame whose lists one indirect dispatch or one storage buffer
+  // binding could not hold renders in one dispatch.
+  if (variant.defer_exact || variant.defer_shading) {
+    const std::uint64_t pixels = static_cast<std::uint64_t>(width) * eyes.size() * static_cast<std::uint64_t>(height);
+    const VkPhysicalDeviceLimits& limits = m.context.limits();
+    if (pixels / (kernel::kGroupSize * kernel::kGroupSize) + 1 > limits.maxComputeWorkGroupCount[0] ||
+        Impl::queue_bytes(pixels) > limits.maxStorageBufferRange) {
+      variant.defer_exact = variant.defer_shading = false;
+    } else {
+      m.reserve_queue(pixels);
+    }
+  }
   return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
           static_cast<std::uint32_t>(height), g};
 }
@@ -475,11 +609,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                           std::to_string(f.width) + " x " + std::to_string(f.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) {
-    f.pipeline->bind(static_cast<std::uint32_t>(b), target);
-  }
-  f.pipeline->record_dispatch(command_buffer, group_count(f.width, kernel::kGroupSize),
-                              group_count(f.height, kernel::kGroupSize));
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(b, target);
+  m_impl->record_passes(command_buffer, *f.pipeline, group_count(f.width, kernel::kGroupSize),
+                        group_count(f.height, kernel::kGroupSize));
 }
 
 std::string MarchRenderer::unsupported(const World& world) {
@@ -534,9 +666,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
   f.pipeline->bind(kernel::kBindingColor, target.view);
-  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(static_cast<std::uint32_t>(b), *m.placeholder);
-  f.pipeline->record_dispatch(command_buffer, group_count(f.width, kernel::kGroupSize),
-                              group_count(f.height, kernel::kGroupSize));
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(b, *m.placeholder);
+  m.record_passes(command_buffer, *f.pipeline, group_count(f.width, kernel::kGroupSize),
+                  group_count(f.height, kernel::kGroupSize));
 }
 
 RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int height, double* device_ms, int samples) {
@@ -555,7 +687,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
   const Frame f = prepare_frame(eyes, width, height, true, false);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
   StorageImage color(m.context, f.width, f.height), hit(m.context, f.width, f.height), point(m.context, f.width, f.height);
-  ComputePipeline& pipeline = *f.pipeline;
+  Impl::Built& pipeline = *f.pipeline;
   pipeline.bind(kernel::kBindingColor, color);
   pipeline.bind(kernel::kBindingHit, hit);
   pipeline.bind(kernel::kBindingPoint, point);
@@ -578,7 +710,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
         const PixelSample sample = k == 0 ? PixelSample{} : PixelSample{pixel_sample(k), 1.0 / (k + 1)};
         g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, k == 0 ? 1.0 : 0.0));
         m.params.write(std::span<const Params>(&g, 1));
-        ms += pipeline.run(group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
+        ms += m.run_passes(pipeline, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
                            group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize));
         pixels_timed += static_cast<double>(cols) * rows;
       }

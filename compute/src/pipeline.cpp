@@ -324,9 +324,7 @@ void ComputePipeline::check_dispatch(std::uint32_t groups_x, std::uint32_t group
   }
 }
 
-void ComputePipeline::record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
-                                      std::span<const std::byte> push_constants) const {
-  check_dispatch(groups_x, groups_y, push_constants);
+void ComputePipeline::record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants) const {
   vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline);
   if (m_set != VK_NULL_HANDLE) {
     vkCmdBindDescriptorSets(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout, 0, 1, &m_set, 0, nullptr);
@@ -335,7 +333,25 @@ void ComputePipeline::record_dispatch(VkCommandBuffer command_buffer, std::uint3
     vkCmdPushConstants(command_buffer, m_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        static_cast<std::uint32_t>(push_constants.size()), push_constants.data());
   }
+}
+
+void ComputePipeline::record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
+                                      std::span<const std::byte> push_constants) const {
+  check_dispatch(groups_x, groups_y, push_constants);
+  record_state(command_buffer, push_constants);
   vkCmdDispatch(command_buffer, groups_x, groups_y, 1);
+}
+
+void ComputePipeline::record_dispatch_indirect(VkCommandBuffer command_buffer, const Buffer& arguments,
+                                               VkDeviceSize offset, std::span<const std::byte> push_constants) const {
+  check_dispatch(1, 1, push_constants);
+  if (arguments.handle() == VK_NULL_HANDLE || offset % 4 != 0 || offset > arguments.size() ||
+      arguments.size() - offset < sizeof(VkDispatchIndirectCommand)) {
+    throw std::invalid_argument("pipeline '" + m_name + "': no dispatch command at byte " + std::to_string(offset) +
+                                " of the arguments buffer");
+  }
+  record_state(command_buffer, push_constants);
+  vkCmdDispatchIndirect(command_buffer, arguments.handle(), offset);
 }
 
 double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants) {

@@ -24,8 +24,11 @@ struct Device;
 }
 
 /// How shaders see the buffer: a `buffer` block (std430) or a `uniform`
-/// block (std140).
-enum class BufferUsage { Storage, Uniform };
+/// block (std140). DeviceStorage is a `buffer` block that only the device
+/// reads and writes (a kernel's scratch lists, indirect dispatch arguments):
+/// in device-local memory where the device has it, never mapped (bytes() is
+/// empty; write() and read() throw std::logic_error).
+enum class BufferUsage { Storage, Uniform, DeviceStorage };
 
 /// A contiguous range of trivially copyable values (std::vector<float>,
 /// std::array, std::span, ...).
@@ -48,8 +51,8 @@ class Buffer {
   BufferUsage usage() const { return m_usage; }
 
   /// The mapped memory.
-  std::span<std::byte> bytes() { return {m_mapped, static_cast<std::size_t>(m_size)}; }
-  std::span<const std::byte> bytes() const { return {m_mapped, static_cast<std::size_t>(m_size)}; }
+  std::span<std::byte> bytes() { return {m_mapped, m_mapped ? static_cast<std::size_t>(m_size) : 0u}; }
+  std::span<const std::byte> bytes() const { return {m_mapped, m_mapped ? static_cast<std::size_t>(m_size) : 0u}; }
 
   /// Copies `data` to byte `offset`; throws std::out_of_range past the end.
   void write_bytes(std::span<const std::byte> data, VkDeviceSize offset = 0);

@@ -45,6 +45,12 @@ struct MarchOptions {
   /// (the default specialises it to the world: planes z = c only, balls,
   /// point lights, fog). Same image; for benchmarks.
   bool all_features = false;
+  /// Deferred passes (docs/renderer.md): the hits of worlds with exact
+  /// point lights are shaded, and the rays of worlds with exact balls that
+  /// reach one go on, in later dispatches over a list of those pixels alone,
+  /// so that the other pixels do not pay for that work. Same image; false
+  /// renders everything in one dispatch (the comparison the tests make).
+  bool deferred = true;
 };
 
 /// Most objects a scene may hold on the GPU, and most images of the objects
@@ -112,6 +118,13 @@ class MarchRenderer {
   void set_world(const World& world);
   /// The prepared world (std::logic_error before set_world).
   const MarchWorld& world() const;
+  /// How many deferred passes (MarchOptions::deferred) the world's frames
+  /// take after the march pass: the shade pass (exact point lights) and the
+  /// resume pass (exact balls, in Sol with the closed form); 0 for worlds
+  /// rendered in one dispatch. (Frames whose lists outgrow one indirect
+  /// dispatch or the device's largest storage buffer binding, 48 bytes a
+  /// pixel, render in one dispatch too.) std::logic_error before set_world.
+  int deferred_passes() const;
 
   /// Renders the world from one or two eyes (side by side, each width ×
   /// height in 1..16384, left eye first) with the AOVs, like

@@ -33,6 +33,7 @@ SOL_CONSTANT(int, kBindingSeeds, 6);        ///< storage buffer: sol::Connection
 SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientField::words
 SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' Column records
 SOL_CONSTANT(int, kBindingLightImages, 9);  ///< storage buffer: the quotient's light images (vec4, xyz world)
+SOL_CONSTANT(int, kBindingQueue, 10);       ///< storage buffer: the deferred passes' lists (QueueHeader, then records)
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
@@ -53,6 +54,21 @@ SOL_CONSTANT(int, kSpecOds, 14);            ///< bool: omnidirectional stereo ey
 SOL_CONSTANT(int, kSpecShadows, 15);        ///< bool: exact point lights with shadows (Params::light_shadows)
 SOL_CONSTANT(int, kSpecPlanesXYOnly, 16);   ///< bool: every object a plane x = c or y = c (needs kSpecPlanesXY)
 SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a reach (needs kSpecExactLights)
+SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline runs (kPass*)
+SOL_CONSTANT(int, kSpecDeferShading, 19);   ///< bool: hits are shaded by the shade pass (exact lights)
+SOL_CONSTANT(int, kSpecDeferExact, 20);     ///< bool: rays that reach an exact ball go on in the resume pass
+
+// ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
+// everything. With it (docs/renderer.md "Deferred passes"), the march pass
+// lists the pixels whose ray reached an exact ball's shell (kSpecDeferExact)
+// and the hits to shade (kSpecDeferShading) in binding kBindingQueue; the
+// resume pass goes on with the first list's rays, the shade pass shades the
+// second list's hits: each an indirect dispatch over its list alone, so
+// that the pixels that need none of that work do not pay for it (lavapipe
+// runs every branch of a SIMD group, masked, whatever its lanes take).
+SOL_CONSTANT(int, kPassMarch, 0);
+SOL_CONSTANT(int, kPassResume, 1);
+SOL_CONSTANT(int, kPassShade, 2);
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
@@ -124,6 +140,19 @@ struct Image {
   vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; z: e^{geometry.z} (balls' clearances)
 };
 
+// ---- The deferred passes' lists (binding kBindingQueue, std430): the
+// header, then for a dispatch of n pixels (Params::tile: n = tile.z ·
+// tile.w) n resume records (uvec4: pixel, t, passing mask, march step) and
+// n shade records (2 uvec4: the hit point and t; the normal's octahedral
+// code, pixel, object or quotient image). A list's dispatch (x, y, z) counts
+// its workgroups of kGroupSize² records: the march pass adds one for every
+// kGroupSize²-th record it appends. The host resets the header each frame
+// (QueueHeader{} with y = z = 1).
+struct QueueHeader {
+  ivec4 resume;  ///< xyz: the resume pass's VkDispatchIndirectCommand; w: its records
+  ivec4 shade;   ///< the same for the shade pass
+};
+
 // ---- An omnidirectional stereo eye's column (binding 8, std430): sol::column_eye
 struct Column {
   vec4 offset;        ///< xyz: where the column's rays start, relative to the eye's camera
@@ -132,7 +161,8 @@ struct Column {
 
 #ifdef __cplusplus
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16 && sizeof(Column) == 4 * 16, "vec4 records");
+static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
+              "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
                   offsetof(Eye, lights) == (7 + 2 * kMaxGpuObjects) * 16 &&

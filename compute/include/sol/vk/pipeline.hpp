@@ -117,6 +117,15 @@ class ComputePipeline {
   void record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
                        std::span<const std::byte> push_constants = {}) const;
 
+  /// The same with the workgroup counts read by the device from `arguments`
+  /// at byte `offset` (a VkDispatchIndirectCommand, written by an earlier
+  /// dispatch: the caller's barrier makes it visible to
+  /// VK_ACCESS_INDIRECT_COMMAND_READ_BIT). Throws std::logic_error when a
+  /// binding has nothing bound, std::invalid_argument when the command lies
+  /// outside the buffer or `offset` is not a multiple of 4.
+  void record_dispatch_indirect(VkCommandBuffer command_buffer, const Buffer& arguments, VkDeviceSize offset,
+                                std::span<const std::byte> push_constants = {}) const;
+
   const std::string& name() const { return m_name; }
   VkPipeline handle() const { return m_pipeline; }
   VkPipelineLayout layout() const { return m_layout; }
@@ -126,6 +135,8 @@ class ComputePipeline {
   const Binding& find_binding(std::uint32_t binding, DescriptorType type) const;
   void check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
                       std::span<const std::byte> push_constants) const;
+  // Binds the pipeline, its set and the push constants for a dispatch.
+  void record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants) const;
   void release() noexcept;
 
   std::shared_ptr<detail::Device> m_owner;
