@@ -195,9 +195,9 @@ float distance_lower_bound(vec3 p, vec3 q) {
 // solution, and left holding this one); where Newton does not land, the bound
 // (safe, but the hit then lies on the bound's surface) and the next solve
 // starts afresh.
-float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout SolEnd end, inout bool known) {
+float exact_ball_sdf(vec3 q, vec3 c, float radius, inout vec3 v, inout SolEnd end, inout bool known, inout mat3 J) {
   const vec3 w = vec3((q.x - c.x) * exp(-c.z), (q.y - c.y) * exp(c.z), q.z - c.z);
-  const float residual = sol_shortest(w, v, end, known);
+  const float residual = sol_shortest(w, v, end, known, J);
   if (residual < 2e-4) return length(v) - radius;
   known = false;
   return distance_lower_bound(q, c) - radius;
@@ -562,6 +562,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   vec3 exact_v = vec3(0.0);
   SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
   bool exact_known = false;
+  mat3 exact_J = mat3(1.0);  // the last solve's Jacobian (sol_newton)
   if (QUOTIENT) {
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = q;
@@ -607,7 +608,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
           exact_i = i;
-          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_known);
+          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_known, exact_J);
         }
         bool leaving = false;
         for (int h = 0; h < 4; ++h) {
@@ -705,7 +706,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       // Near an exact ball: its exact distance, and its clearance for the step.
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
-      const float exact = exact_ball_sdf(p, g_relative[nearest_k].xyz, g_radii[nearest_k], exact_v, exact_end, exact_known);
+      const float exact = exact_ball_sdf(p, g_relative[nearest_k].xyz, g_radii[nearest_k], exact_v, exact_end, exact_known, exact_J);
       float exact_step = exact;
       if (exact_known && exact > eps) {
         exact_step = exact_ball_clearance(exact, length(exact_v), dot(exact_end.tangent, u), eps);
@@ -1158,6 +1159,7 @@ void main() {
     vec3 exact_v = vec3(0.0);
     SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
     bool exact_known = false;  // exact_v, exact_end: a solution to start from
+    mat3 exact_J = mat3(1.0);  // the last solve's Jacobian (sol_newton)
     for (int step = 0; step < max_steps; ++step) {
       const SolForward forward = sol_forward(qray, local_t);
       q = sol_translate(origin, forward.position);
@@ -1207,7 +1209,7 @@ void main() {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
         exact_i = nearest_i;
-        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known);
+        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known, exact_J);
         nearest_i = exact <= second ? nearest_i : second_i;
         nearest = min(exact, second);
         clear_nearest = max(clear_nearest, exact);
@@ -1268,6 +1270,7 @@ void main() {
   vec3 exact_v = vec3(0.0);
   SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
   bool exact_known = false;  // exact_v, exact_end: a solution to start from
+  mat3 exact_J = mat3(1.0);  // the last solve's Jacobian (sol_newton)
   float t = uintBitsToFloat(resumed.y);
   vec3 q = vec3(0.0);
   // Exact culling for planes z = c (as the CPU reference): a ray whose whole
@@ -1399,7 +1402,7 @@ void main() {
       if (exact_k != nearest_k) exact_known = false;
       exact_k = nearest_k;
       const float exact =
-          exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_known);
+          exact_ball_sdf(q, relative[nearest_k].xyz, radii[nearest_k], exact_v, exact_end, exact_known, exact_J);
       // The step: beyond the exact distance by the ball's clearance along
       // the ray (its rate from the sphere's normal, the gradient of d).
       float exact_step = exact;

@@ -108,15 +108,19 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 // differences, three evaluations, or by Broyden's updates for the march's
 // exact balls: 14.8 evaluations per lit hit of `spheres`, now 4.4, each
 // with its Jacobian; 16.5 per hit for its exact balls, now 8.2.)
-vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, out float residual) {
+vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J, out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
   vec3 r = (end.point - w) * to_frame, dv = vec3(0.0);
   int iterations = 0, halvings = 0;
   bool done = known && length(r) < 2e-6 * sol_connection_scale(w, ez, length(v));
+  // Given a solution (`known`), J is the last solve's Jacobian, taken near
+  // v: the first step is taken with it (a chord step), and only where that
+  // does not lower the residual with a fresh one.
+  bool chord = known;
   for (int e = 0; e < 3 * SOL_NEWTON_ITERATIONS + 1 && !done; ++e) {
     if (known && halvings == 0) {  // a step from r and the Jacobian at v
-      const mat3 J = sol_exp_jacobian(v, end.point.z, w.z);
+      if (!chord) J = sol_exp_jacobian(v, end.point.z, w.z);
       if (!(abs(determinant(J)) > 1e-12)) break;  // singular: a conjugate point (or NaN)
       dv = -(inverse(J) * r);
       const float cap = 0.5 * max(1.0, length(v));
@@ -126,10 +130,15 @@ vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, out float re
     const SolEnd at_end = sol_exp_end(at);
     const vec3 f = (at_end.point - w) * to_frame;
     if (known && !(length(f) < length(r))) {
+      if (chord) {  // the old Jacobian did not help: a fresh one
+        chord = false;
+        continue;
+      }
       dv *= 0.5;  // no better: halve the step, or give up
       done = ++halvings > 3;
       continue;
     }
+    chord = false;
     iterations += known ? 1 : 0;
     known = true;
     halvings = 0;
@@ -149,7 +158,8 @@ vec3 sol_polish(vec3 v, vec3 w, out float residual) {
   end.point = vec3(0.0);
   end.tangent = vec3(0.0, 0.0, 1.0);
   bool known = false;
-  return sol_newton(v, w, end, known, residual);
+  mat3 J = mat3(1.0);  // (unused: no solution given)
+  return sol_newton(v, w, end, known, J, residual);
 }
 
 // The index of the first seed of the table's cell holding `target` (w with
@@ -331,16 +341,18 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
 // every other seed of the cell is polished and the shortest landing is
 // kept. One call of sol_newton in the loop: see sol_newton. Returns the
 // residual over its float floor; below 2e-4 the solution lands on w.
-float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout bool known) {
+float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout bool known, inout mat3 J) {
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const int base = sol_seed_base(target);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   float best = 1e30, best_residual = 1e30;
   vec3 best_v = v;
   SolEnd best_end = end;
+  mat3 best_J = J;
   for (int s = known ? -1 : 0; s < kSeedSlots; ++s) {
     vec3 start = v;
     SolEnd at_end = end;
+    mat3 at_J = J;
     bool carried = s < 0;
     if (!carried) {
       const vec4 seed = connection_seeds[base + s];
@@ -348,17 +360,19 @@ float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout bool known) {
       start = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
     }
     float residual;
-    const vec3 found = sol_newton(start, w, at_end, carried, residual);
+    const vec3 found = sol_newton(start, w, at_end, carried, at_J, residual);
     if (residual < 2e-4 ? (best_residual >= 2e-4 || length(found) < best) : residual < best_residual && best_residual >= 2e-4) {
       best = length(found);
       best_residual = residual;
       best_v = found;
       best_end = at_end;
+      best_J = at_J;
     }
     if (s <= 0 && residual < 2e-4) break;  // the usual case: one solve
   }
   v = best_v;
   end = best_end;
+  J = best_J;
   known = best_residual < 2e-4;
   return best_residual;
 }
