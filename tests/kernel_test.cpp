@@ -784,7 +784,8 @@ TEST(Kernel, SrgbEncodingIsTheStandardCurve) {
 // MarchRenderer::record into a caller's 8-bit image (the presenters' direct
 // path into a storage-capable swapchain image) writes render()'s colour
 // sRGB-encoded, within 1 in 255, mono and stereo, in both channel orders,
-// with the target larger than the image.
+// with the target larger than the image; `spheres` through the deferred
+// passes (the shade pass writes the 8-bit colour).
 TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
   sol::vk::MarchRenderer renderer(vk_context());
   // lavapipe has the feature and both formats: there the test must run.
@@ -799,7 +800,7 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
     }
     ++formats_tested;
     const bool bgr = format == VK_FORMAT_B8G8R8A8_UNORM;
-    for (const char* name : {"plane", "sandwich", "lattice-balls"}) {
+    for (const char* name : {"plane", "sandwich", "lattice-balls", "spheres"}) {
       const sol::Scene scene = sol::preset_scene(name);
       const int w = 12, h = 8;
       const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
