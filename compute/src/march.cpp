@@ -401,26 +401,10 @@ struct MarchRenderer::Impl {
   // march pass, then, when the variant defers, each deferred pass over its
   // list (an indirect dispatch of the workgroups the march pass counted),
   // with the barriers between them; the lists' header is reset first.
-  // record_passes in a submission of its own, waited for (as
-  // ComputePipeline::run: earlier writes before it, its writes visible to
-  // the host after it); returns the device's time in milliseconds.
+  // record_passes in a submission of its own, waited for
+  // (sol::vk::run_recorded); returns the device's time in milliseconds.
   double run_passes(const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {
-    return context.submit_and_wait([&](VkCommandBuffer cb) {
-      VkMemoryBarrier before{};
-      before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-      before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
-                           nullptr, 0, nullptr);
-      record_passes(cb, built, groups_x, groups_y);
-      VkMemoryBarrier after{};
-      after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-      after.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, nullptr,
-                           0, nullptr);
-    });
+    return run_recorded(context, [&](VkCommandBuffer cb) { record_passes(cb, built, groups_x, groups_y); });
   }
 
   void record_passes(VkCommandBuffer cb, const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {

@@ -1,6 +1,7 @@
 #include "sol/vk/pipeline.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -354,19 +355,23 @@ void ComputePipeline::record_dispatch_indirect(VkCommandBuffer command_buffer, c
   vkCmdDispatchIndirect(command_buffer, arguments.handle(), offset);
 }
 
-double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants) {
-  check_dispatch(groups_x, groups_y, push_constants);  // before anything is recorded
-  return m_owner->submit_and_wait([&](VkCommandBuffer commands) {
-    // Earlier submissions' shader writes and copies (to and from the same
-    // images and buffers) complete before this dispatch reads or overwrites them.
+namespace {
+
+// One submission of `record`'s commands between the barriers run() needs,
+// waited for: earlier submissions' shader writes and copies (to and from the
+// same images and buffers) complete before these commands read or overwrite
+// them (transfers among them too: a buffer update), and their shader writes
+// are visible to the host, which reads mapped buffers as soon as this returns.
+double submit_between_barriers(detail::Device& device, const std::function<void(VkCommandBuffer)>& record) {
+  return device.submit_and_wait([&](VkCommandBuffer commands) {
     VkMemoryBarrier before{};
     before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-    before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
-    record_dispatch(commands, groups_x, groups_y, push_constants);
-    // The host reads mapped buffers as soon as run() returns.
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                         nullptr, 0, nullptr);
+    record(commands);
     VkMemoryBarrier after{};
     after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     after.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -374,6 +379,19 @@ double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std:
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0,
                          nullptr, 0, nullptr);
   });
+}
+
+}  // namespace
+
+double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants) {
+  check_dispatch(groups_x, groups_y, push_constants);  // before anything is recorded
+  return submit_between_barriers(*m_owner, [&](VkCommandBuffer commands) {
+    record_dispatch(commands, groups_x, groups_y, push_constants);
+  });
+}
+
+double run_recorded(Context& context, const std::function<void(VkCommandBuffer)>& record) {
+  return submit_between_barriers(*context.internals(), record);
 }
 
 }  // namespace sol::vk

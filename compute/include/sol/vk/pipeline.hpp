@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <ranges>
 #include <span>
@@ -150,5 +151,12 @@ class ComputePipeline {
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
   VkDescriptorSet m_set = VK_NULL_HANDLE;
 };
+
+/// Several dispatches in one submission, as run() submits one: `record`
+/// records them (with the barriers between them) and is placed between
+/// run()'s barriers (earlier shader writes and copies complete first; the
+/// shader writes are visible to the host after); waits, and returns the
+/// device's time in milliseconds (see Context::submit_and_wait).
+double run_recorded(Context& context, const std::function<void(VkCommandBuffer)>& record);
 
 }  // namespace sol::vk
