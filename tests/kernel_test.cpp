@@ -79,6 +79,18 @@ TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
   std::uniform_real_distribution<double> arc(-12.0, 12.0);
   std::vector<glm::vec4> queries;
   for (const dvec3& d : dirs) queries.emplace_back(glm::vec3(d), static_cast<float>(arc(rng)));
+  // Steep rays (|a|, |b| below 2e-3) restarted before and after they cross
+  // the middle of their oscillation (e^{w} = 1, z' = ±kλ ≈ ±1, at
+  // z = -w0 = ½ ln(|b/a|): ±0.58 for |a| : |b| = 0.3 : 0.95), where the
+  // restarted ray's coordinate taken by Carlson changes (sol_ray_restarted
+  // then uses the other coordinate's piece, from the first integral).
+  for (double c : {1.0 - 1e-6, 1.0 - 1e-12, -(1.0 - 1e-6), -(1.0 - 1e-12)}) {
+    for (const glm::dvec2 ab : {glm::dvec2(0.3, 0.95), glm::dvec2(-0.95, 0.3), glm::dvec2(0.95, -0.3)}) {
+      for (double t : {0.05, 0.1, 0.2, 0.4, 0.8, 1.6, 3.2}) {
+        queries.emplace_back(glm::vec3(sol::test::direction_with_c(ab.x, ab.y, c)), static_cast<float>(t));
+      }
+    }
+  }
   for (int segments : {2, 5, 20}) {
     const std::vector<glm::vec4> results = sol::vk::evaluate_kernel_flow(vk_context(), queries, segments);
     double worst = 0, worst_forward = 0;  // forward: restarted by sol_ray_restarted, backward by sol_ray_advanced

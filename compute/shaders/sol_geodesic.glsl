@@ -69,6 +69,30 @@ vec2 carlson_rd2(vec2 x, vec2 y, vec2 z) {
   return scale * s / (a * sqrt(a)) + 3.0 * sum;
 }
 
+// R_D of one triple: carlson_rd2's loop and series for a single chain.
+float carlson_rd(float x, float y, float z) {
+  float a = (x + y + 3.0 * z) / 5.0;
+  float q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
+  float scale = 1.0, sum = 0.0;
+  for (int i = 0; i < 80 && q * scale >= abs(a); ++i) {
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    float l = sx * sy + sy * sz + sz * sx;
+    sum += scale / (sz * (z + l));
+    x = (x + l) * 0.25;
+    y = (y + l) * 0.25;
+    z = (z + l) * 0.25;
+    a = (a + l) * 0.25;
+    scale *= 0.25;
+  }
+  float inv_a = 1.0 / a;
+  float X = 1.0 - x * inv_a, Y = 1.0 - y * inv_a, Z = -(X + Y) / 3.0;
+  float xy = X * Y, z2 = Z * Z;
+  float e2 = xy - 6.0 * z2, e3 = (3.0 * xy - 8.0 * z2) * Z, e4 = 3.0 * (xy - z2) * z2, e5 = xy * z2 * Z;
+  float s = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
+            3.0 * e5 / 26.0;
+  return scale * s / (a * sqrt(a)) + 3.0 * sum;
+}
+
 // ---- Jacobi functions ------------------------------------------------------------
 
 // The arithmetic–geometric mean of 1 and k' with its sequence: depends only
@@ -161,9 +185,10 @@ struct SolRay {
   float a, b, c;
   float s0;  // plane regime
   float mu, sqrt_mu, lambda, k, kc, w0, m, m1, K, u0;
+  float inv_ew0;  // e^{-w0}
   float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
   float quarter_lo, quarter_hi;
-  vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_position_forward)
+  vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_forward: its coordinate's)
   SolAgm agm;
   // Heights by Jacobi theta series (sol_height): nome q <= e^{-π} of k'
   // (hyperbolic form, m > 1/2) or of k (m <= 1/2), K' = K(m1).
@@ -232,6 +257,19 @@ vec2 carlson_piece2(vec3 x0, vec3 y0, float gap0, vec3 x1, vec3 y1, float gap1) 
   return mix(vec2(0.0), piece, live);
 }
 
+// carlson_piece2 for one piece (x0, y0, gap).
+float carlson_piece(vec3 x0, vec3 y0, float gap) {
+  const float v1 = x0.x * y0.y * y0.z + y0.x * x0.y * x0.z;
+  const float v2 = x0.y * y0.x * y0.z + y0.y * x0.x * x0.z;
+  const float v3 = x0.z * y0.x * y0.y + y0.z * x0.x * x0.y;
+  const bool live = gap > 0.0 && v1 > 0.0;
+  const float inv = 1.0 / (live ? max(max(v1, v2), v3) : 1.0);
+  const float w1 = live ? v1 * inv : 1.0, w2 = live ? v2 * inv : 1.0, w3 = live ? v3 * inv : 1.0;
+  const float r = live ? gap * inv : 0.0;
+  const float piece = 2.0 * x0.x * y0.x * r / w1 - (2.0 / 3.0) * r * r * r * carlson_rd(w2 * w2, w3 * w3, w1 * w1);
+  return live ? piece : 0.0;
+}
+
 vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
   const float inv = 1.0 / f.x;
   return vec3(inv, sqrt_sm * f.z * inv, sqrt_sp * f.y * inv);
@@ -245,6 +283,21 @@ vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
   const float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
   return scale * carlson_piece2(fx, fy, gap, sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp),
                                 sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp), gap_sigma);
+}
+
+// Which coordinate's integral sol_forward takes by Carlson: y's where
+// |a| >= |b| (x then follows from the first integral z' + a x - b y = c,
+// divided by the larger of |a|, |b|), else x's.
+bool sol_carlson_y(SolRay g) { return g.a >= g.b; }
+
+// sol_piece's component for that coordinate alone (x: the integral of s,
+// y: of 1/s): one Carlson R_D instead of two.
+float sol_piece_one(SolRay g, vec3 fx, vec3 fy, float gap) {
+  const bool y = sol_carlson_y(g);
+  const vec3 x0 = y ? sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp) : fx;
+  const vec3 y0 = y ? sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp) : fy;
+  const float gap_one = y ? gap / (fx.x * fx.x * fy.x * fy.x) : gap;
+  return carlson_piece(x0, y0, gap_one) / (2.0 * g.sqrt_mu);
 }
 
 vec3 sol_factors(SolPoint p) { return vec3(p.ew, sqrt(p.f2), sqrt(p.f3)); }
@@ -313,6 +366,7 @@ SolRay sol_ray(vec3 direction) {
   g.lambda = 1.0;
   g.u0 = 0.0;
   g.w0 = 0.0;
+  g.inv_ew0 = 1.0;
   g.sqrt_sm = 1.0;
   g.sqrt_sp = 1.0;
   g.anchor_bottom = g.anchor_middle = g.anchor_top = g.start_factors = vec3(1.0, 0.0, 0.0);
@@ -349,6 +403,7 @@ SolRay sol_ray(vec3 direction) {
   g.agm = sol_agm(g.m1);
   g.K = SOL_PI / (2.0 * g.agm.c);  // K = π / (2 AGM(1, k'))
   g.w0 = 0.5 * (log(g.a) - log(g.b));
+  g.inv_ew0 = sqrt(g.b / g.a);
   // u0 from sn u0, cn u0, dn u0 directly (never through the angle).
   float root = sqrt(m2);
   float sn0 = -g.c / root, cn0 = (g.a - g.b) / root, dn0 = (g.a + g.b) / g.lambda;
@@ -386,16 +441,22 @@ SolRay sol_ray(vec3 direction) {
   return g;
 }
 
-// The time integrals of a ray over whole lower and upper quarters: needed by
-// sol_position, not by sol_height, so a march that only
-// needs heights computes them once, at the hit.
+// The time integrals of a ray over whole lower and upper quarters (needed by
+// sol_position and sol_forward, not by sol_height, so a march that only
+// needs heights computes them once, at the hit), and the piece from the
+// start to the end of its quarter for the coordinate sol_forward takes by
+// Carlson (the other component 0; sol_ray_advanced and sol_ray_restarted
+// set both).
 void sol_ray_integrals(inout SolRay g) {
   if (g.regime != REGIME_GENERAL) return;
   const vec2 quarters = carlson_piece2(g.anchor_bottom, g.anchor_middle, g.one_minus_sm, g.anchor_middle, g.anchor_top,
                                       g.sp_minus_one) / (2.0 * g.sqrt_mu);
   g.quarter_lo = quarters.x;
   g.quarter_hi = quarters.y;
-  sol_ray_far_forward(g);
+  float gap;
+  const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
+  const float piece = sol_piece_one(g, g.start_factors, f_far, gap);
+  g.far_forward = sol_carlson_y(g) ? vec2(0.0, piece) : vec2(piece, 0.0);
 }
 
 
@@ -509,13 +570,22 @@ struct SolForward {
   bool same;       // the point lies in the start's quarter
 };
 
-// Position (relative to the start) at arc length t >= 0 (a march's): as
+// Position (relative to the start) at arc length t >= 0 (a march's), and
+// what was found on the way (SolForward), after sol_ray_integrals: as
 // sol_position, with the piece from the start to the end of its quarter
-// precomputed (SolRay::far_forward), so one Carlson pair per call instead of two.
+// precomputed (SolRay::far_forward), and for one coordinate: one Carlson R_D
+// per call where sol_position takes two pairs (`near` holds that coordinate
+// alone). The coordinate with the larger of |a|, |b| in a x - b y = c - z'
+// (the first integral along a geodesic from the origin with unit direction
+// (a, b, c); docs/mathematics.md) comes from the other: x = (c - z' + b y)/a
+// where |a| >= |b|, else y = (a x - c + z')/b. Where c and z' share their
+// sign and |c + z'| >= 1/2, c - z' (both near ±1 on a steep ray, whose |a|,
+// |b| are small) is taken without cancellation from |u| = 1 as
+// (c² - z'²)/(c + z'), c² - z'² = a²(e^{2z} - 1) + b²(e^{-2z} - 1), which
+// leaves x its relative accuracy; elsewhere c - z' is not small, or
+// max(|a|, |b|) is not.
 SolForward sol_forward(SolRay g, float t) {
   SolForward f;
-  f.same = true;
-  f.near = vec2(0.0);
   const float u = g.lambda * t + g.u0;
   const SolPoint p = sol_point(g, u);
   f.point = p;
@@ -525,11 +595,20 @@ SolForward sol_forward(SolRay g, float t) {
   vec3 f_near = sol_anchor(g, p, sol_start_anchor(p.quarter), gap_near);
   f_near = f.same ? g.start_factors : f_near;
   gap_near = f.same ? sol_two_point_gap(g.start, p) : gap_near;
-  f.near = sol_piece(g, f_near, sol_factors(p), gap_near);
-  const vec2 integral = f.same ? f.near : g.far_forward + sol_quarters(g, g.start_quarter + 1, q - 1) + f.near;
-  f.position = vec3(g.sign_x * g.b * integral.x, g.sign_y * g.a * integral.y, log(p.ew) - g.w0);
+  const bool carlson_y = sol_carlson_y(g);
+  const float near = sol_piece_one(g, f_near, sol_factors(p), gap_near);
+  f.near = carlson_y ? vec2(0.0, near) : vec2(near, 0.0);
+  const vec2 whole = sol_quarters(g, g.start_quarter + 1, q - 1);
+  const float integral = f.same ? near : (carlson_y ? g.far_forward.y + whole.y : g.far_forward.x + whole.x) + near;
+  const float z = log(p.ew) - g.w0;
   f.direction = vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
-  // The other regimes by selects (see sol_plane_position).
+  // The first integral: a x - b y = c - z' (signed a, b, c: the start's direction).
+  const float a = g.direction.x, b = g.direction.y, c = g.direction.z, dz = f.direction.z;
+  const float ez = p.ew * g.inv_ew0, e2 = ez * ez;
+  const float energy = (a * a * (ez - 1.0) * (ez + 1.0) + b * b * (1.0 - e2) / e2) / (c + dz);
+  const float c_minus_dz = c * dz > 0.0 && abs(c + dz) >= 0.5 ? energy : c - dz;
+  const float y = g.sign_y * g.a * integral, x = g.sign_x * g.b * integral;
+  f.position = carlson_y ? vec3((c_minus_dz + b * y) / a, y, z) : vec3(x, (a * x - c_minus_dz) / b, z);
   vec3 plane_direction;
   const vec3 plane = sol_plane_position(g, t, plane_direction);
   f.position = g.regime == REGIME_PLANE ? plane : f.position;
@@ -588,6 +667,7 @@ SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
   g.a = g.sqrt_mu * p.ew;
   g.b = g.sqrt_mu / p.ew;
   g.w0 = log(p.ew);
+  g.inv_ew0 = 1.0 / p.ew;
   g.u0 = u;
   g.start = p;
   g.start_factors = sol_factors(p);
@@ -622,18 +702,42 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
 }
 
 // sol_ray_advanced(g, t0) for t0 >= 0 from what sol_forward(g, t0) found
-// there: its point instead of a new Jacobi evaluation, and the piece from it
-// to the end of its quarter as what is left of the quarter's integrals
-// (the whole quarter, or the start's piece to that end, less the piece up to
-// the point: one subtraction instead of a Carlson pair). The difference
-// loses at most float rounding of the quarter's integrals, which the
-// positions carry anyway; tests/kernel_test.cpp walks rays in segments
-// through it against the double closed form.
+// there: its point instead of a new Jacobi evaluation. The restarted ray
+// needs the piece from the point p to the end E of its quarter for both
+// coordinates (its own choice of coordinate may differ). For sol_forward's
+// coordinate it is what is left of the quarter's integrals (the whole
+// quarter, or the start's piece to that end, less the piece up to the
+// point: one subtraction instead of a Carlson pair); for the other it comes
+// from the first integral between p and E, in the old ray's coordinates:
+// a ΔX - b ΔY = z'_p - z'_E, divided by the larger of |a|, |b| as in
+// sol_forward (z'_E is 0 at a turning point and ∓kλ at the middle of the
+// oscillation). That piece is used only where the restarted ray takes the
+// other coordinate, that is where the ray has crossed the middle (e^{w} = 1,
+// where |a| = |b|) since its start, so E is the turning point beyond it
+// (z'_E = 0: no cancellation) unless the segment also turned there and came
+// back near the middle; then the rounding of z'_p - z'_E, divided by |a| at
+// p (about √μ there), costs 2e-7/√μ, and a segment that spans a turning
+// point and the middle spans ln((1 + k)/k') in height: for a step of the
+// quotient march, within about 1.9 of D's height range, μ >= 0.015 and the
+// cost below 2e-6. The other differences lose at most float rounding of the
+// quarter's integrals, which the positions carry anyway;
+// tests/kernel_test.cpp walks rays in segments through it against the
+// double closed form.
 SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
-  if (g.regime != REGIME_GENERAL) return sol_ray_advanced(g, t0);  // cheap there: no Jacobi, no Carlson
+  if (g.regime != REGIME_GENERAL) return sol_ray_advanced(g, t0);
+  const bool carlson_y = sol_carlson_y(g);
   const bool lower = f.point.quarter == 0 || f.point.quarter == 3;
   const vec2 quarter = lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
-  const vec2 far_forward = max((f.same ? g.far_forward : quarter) - f.near, vec2(0.0));
+  const vec2 whole = f.same ? g.far_forward : quarter;
+  const float piece = max((carlson_y ? whole.y - f.near.y : whole.x - f.near.x), 0.0);
+  // z'_p - z'_E: E ends quarter 0 and 2 at the middle (sn = ∓1), 1 and 3 at a turning point.
+  const float slope_end = f.point.quarter == 0 ? g.k * g.lambda : (f.point.quarter == 2 ? -g.k * g.lambda : 0.0);
+  const float a = g.direction.x, b = g.direction.y;
+  const float dslope = -g.k * g.lambda * f.point.jac.x - slope_end;
+  // The other coordinate's step to E, then in its integral's units (x = σx |b| I_x, y = σy |a| I_y).
+  const float other = carlson_y ? (dslope + b * g.sign_y * g.a * piece) / a / (g.sign_x * g.b)
+                                : (a * g.sign_x * g.b * piece - dslope) / b / (g.sign_y * g.a);
+  const vec2 far_forward = carlson_y ? vec2(max(other, 0.0), piece) : vec2(piece, max(other, 0.0));
   g = sol_ray_started_at(g, sol_restart_phase(g, t0), f.point);
   g.far_forward = far_forward;
   return g;
