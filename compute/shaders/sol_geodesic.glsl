@@ -449,10 +449,11 @@ SolRay sol_ray(vec3 direction) {
 // set both).
 void sol_ray_integrals(inout SolRay g) {
   if (g.regime != REGIME_GENERAL) return;
-  const vec2 quarters = carlson_piece2(g.anchor_bottom, g.anchor_middle, g.one_minus_sm, g.anchor_middle, g.anchor_top,
-                                      g.sp_minus_one) / (2.0 * g.sqrt_mu);
-  g.quarter_lo = quarters.x;
-  g.quarter_hi = quarters.y;
+  // A lower quarter's integral of s by Carlson; the upper one's from the
+  // first integral over the lower quarter, whose integral of 1/s it is:
+  // I_x - I_y = -Δz'/μ, Δz' = kλ (a sum of positive terms).
+  g.quarter_lo = carlson_piece(g.anchor_bottom, g.anchor_middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
+  g.quarter_hi = g.quarter_lo + g.k * g.lambda / g.mu;
   float gap;
   const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
   const float piece = sol_piece_one(g, g.start_factors, f_far, gap);
