@@ -19,7 +19,7 @@ float sol_log_cosh(float v) {
 }
 
 // ---- Carlson's R_F and R_D (Carlson 1995), square roots only ------------------
-// (R_D below, two at a time: carlson_rd2.)
+// (R_D below: carlson_rd.)
 
 float carlson_rf(float x, float y, float z) {
   float a = (x + y + z) / 3.0;
@@ -40,36 +40,8 @@ float carlson_rf(float x, float y, float z) {
   return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / sqrt(a);
 }
 
-// R_D of two triples at once, (x.x, y.x, z.x) and (x.y, y.y, z.y): one
-// loop whose duplications of the two interleave (the loop is a chain of
-// square roots; two independent chains hide each other's latency). Both run
-// until both have converged: a duplication past convergence is exact (the
-// duplication theorem holds at every step).
-vec2 carlson_rd2(vec2 x, vec2 y, vec2 z) {
-  vec2 a = (x + y + 3.0 * z) / 5.0;
-  vec2 q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
-  float scale = 1.0;
-  vec2 sum = vec2(0.0);
-  for (int i = 0; i < 80 && any(greaterThanEqual(q * scale, abs(a))); ++i) {
-    vec2 sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
-    vec2 l = sx * sy + sy * sz + sz * sx;
-    sum += scale / (sz * (z + l));
-    x = (x + l) * 0.25;
-    y = (y + l) * 0.25;
-    z = (z + l) * 0.25;
-    a = (a + l) * 0.25;
-    scale *= 0.25;
-  }
-  vec2 inv_a = 1.0 / a;
-  vec2 X = 1.0 - x * inv_a, Y = 1.0 - y * inv_a, Z = -(X + Y) / 3.0;
-  vec2 xy = X * Y, z2 = Z * Z;
-  vec2 e2 = xy - 6.0 * z2, e3 = (3.0 * xy - 8.0 * z2) * Z, e4 = 3.0 * (xy - z2) * z2, e5 = xy * z2 * Z;
-  vec2 s = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
-           3.0 * e5 / 26.0;
-  return scale * s / (a * sqrt(a)) + 3.0 * sum;
-}
-
-// R_D of one triple: carlson_rd2's loop and series for a single chain.
+// Carlson's R_D(x, y, z) (Carlson 1995): duplications until the spread is
+// below float rounding, then the series to fifth order.
 float carlson_rd(float x, float y, float z) {
   float a = (x + y + 3.0 * z) / 5.0;
   float q = 17.9593928 * max(max(abs(a - x), abs(a - y)), abs(a - z));
@@ -239,25 +211,8 @@ int sol_absolute_quarter(SolRay g, float u, int quarter) {
 
 // Carlson's [1,-1,-1] integral between two limits given by their factors
 // (√t, √(t - s₋), √(s₊ - t)); gap = |t_x - t_y|. Scaled by the largest V_i
-// so nothing overflows (see carlson_piece in libsol/src/closed_form.cpp).
-// Two at once (their R_D by carlson_rd2): (x0, y0, gap0) and (x1, y1, gap1);
-// 0 for a piece with no gap or V_1 <= 0.
-vec2 carlson_piece2(vec3 x0, vec3 y0, float gap0, vec3 x1, vec3 y1, float gap1) {
-  const vec2 gap = vec2(gap0, gap1);
-  const vec2 v1 = vec2(x0.x * y0.y * y0.z + y0.x * x0.y * x0.z, x1.x * y1.y * y1.z + y1.x * x1.y * x1.z);
-  const vec2 v2 = vec2(x0.y * y0.x * y0.z + y0.y * x0.x * x0.z, x1.y * y1.x * y1.z + y1.y * x1.x * x1.z);
-  const vec2 v3 = vec2(x0.z * y0.x * y0.y + y0.z * x0.x * x0.y, x1.z * y1.x * y1.y + y1.z * x1.x * x1.y);
-  const bvec2 live = bvec2(gap0 > 0.0 && v1.x > 0.0, gap1 > 0.0 && v1.y > 0.0);
-  // Dead pieces get harmless operands (their result is replaced by 0 below).
-  const vec2 inv = 1.0 / mix(vec2(1.0), max(max(v1, v2), v3), live);
-  const vec2 w1 = mix(vec2(1.0), v1 * inv, live), w2 = mix(vec2(1.0), v2 * inv, live), w3 = mix(vec2(1.0), v3 * inv, live);
-  const vec2 r = mix(vec2(0.0), gap * inv, live);
-  const vec2 xy = vec2(x0.x * y0.x, x1.x * y1.x);
-  const vec2 piece = 2.0 * xy * r / w1 - (2.0 / 3.0) * r * r * r * carlson_rd2(w2 * w2, w3 * w3, w1 * w1);
-  return mix(vec2(0.0), piece, live);
-}
-
-// carlson_piece2 for one piece (x0, y0, gap).
+// so nothing overflows (see carlson_piece in libsol/src/closed_form.cpp);
+// 0 for a piece with no gap or V_1 <= 0 (dead pieces get harmless operands).
 float carlson_piece(vec3 x0, vec3 y0, float gap) {
   const float v1 = x0.x * y0.y * y0.z + y0.x * x0.y * x0.z;
   const float v2 = x0.y * y0.x * y0.z + y0.y * x0.x * x0.z;
@@ -281,8 +236,8 @@ vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
 vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
   const float scale = 1.0 / (2.0 * g.sqrt_mu);
   const float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
-  return scale * carlson_piece2(fx, fy, gap, sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp),
-                                sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp), gap_sigma);
+  return scale * vec2(carlson_piece(fx, fy, gap), carlson_piece(sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp),
+                                                                 sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp), gap_sigma));
 }
 
 // Which coordinate's integral sol_forward takes by Carlson: y's where
