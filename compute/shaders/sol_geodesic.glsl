@@ -157,7 +157,6 @@ struct SolRay {
   float a, b, c;
   float s0;  // plane regime
   float mu, sqrt_mu, lambda, k, kc, w0, m, m1, K, u0;
-  float inv_ew0;  // e^{-w0}
   float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
   float quarter_lo, quarter_hi;
   vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_forward: its coordinate's)
@@ -321,7 +320,6 @@ SolRay sol_ray(vec3 direction) {
   g.lambda = 1.0;
   g.u0 = 0.0;
   g.w0 = 0.0;
-  g.inv_ew0 = 1.0;
   g.sqrt_sm = 1.0;
   g.sqrt_sp = 1.0;
   g.anchor_bottom = g.anchor_middle = g.anchor_top = g.start_factors = vec3(1.0, 0.0, 0.0);
@@ -358,7 +356,6 @@ SolRay sol_ray(vec3 direction) {
   g.agm = sol_agm(g.m1);
   g.K = SOL_PI / (2.0 * g.agm.c);  // K = π / (2 AGM(1, k'))
   g.w0 = 0.5 * (log(g.a) - log(g.b));
-  g.inv_ew0 = sqrt(g.b / g.a);
   // u0 from sn u0, cn u0, dn u0 directly (never through the angle).
   float root = sqrt(m2);
   float sn0 = -g.c / root, cn0 = (g.a - g.b) / root, dn0 = (g.a + g.b) / g.lambda;
@@ -537,9 +534,10 @@ struct SolForward {
 // where |a| >= |b|, else y = (a x - c + z')/b. Where c and z' share their
 // sign and |c + z'| >= 1/2, c - z' (both near ±1 on a steep ray, whose |a|,
 // |b| are small) is taken without cancellation from |u| = 1 as
-// (c² - z'²)/(c + z'), c² - z'² = a²(e^{2z} - 1) + b²(e^{-2z} - 1), which
-// leaves x its relative accuracy; elsewhere c - z' is not small, or
-// max(|a|, |b|) is not.
+// (c² - z'²)/(c + z'), c² - z'² = u1² - a² + u2² - b² (the tangent's frame
+// components u1 = a e^{z}, u2 = b e^{-z}), whose rounding scales with a², b²
+// and which leaves x its relative accuracy; elsewhere c - z' is not small,
+// or max(|a|, |b|) is not.
 SolForward sol_forward(SolRay g, float t) {
   SolForward f;
   const float u = g.lambda * t + g.u0;
@@ -557,11 +555,13 @@ SolForward sol_forward(SolRay g, float t) {
   const vec2 whole = sol_quarters(g, g.start_quarter + 1, q - 1);
   const float integral = f.same ? near : (carlson_y ? g.far_forward.y + whole.y : g.far_forward.x + whole.x) + near;
   const float z = log(p.ew) - g.w0;
-  f.direction = vec3(g.sign_x * g.sqrt_mu * p.ew, g.sign_y * g.sqrt_mu / p.ew, -g.k * g.lambda * p.jac.x);
-  // The first integral: a x - b y = c - z' (signed a, b, c: the start's direction).
+  // The tangent's frame components: |u1| = |a| e^{z} = √μ e^{w}, |u2| = |b| e^{-z}.
+  const float u1 = g.sqrt_mu * p.ew, u2 = g.sqrt_mu / p.ew;
+  f.direction = vec3(g.sign_x * u1, g.sign_y * u2, -g.k * g.lambda * p.jac.x);
+  // The first integral: a x - b y = c - z' (signed a, b, c: the start's direction);
+  // c² - z'² = u1² - a² + u2² - b² (|u| = 1 at both ends).
   const float a = g.direction.x, b = g.direction.y, c = g.direction.z, dz = f.direction.z;
-  const float ez = p.ew * g.inv_ew0, e2 = ez * ez;
-  const float energy = (a * a * (ez - 1.0) * (ez + 1.0) + b * b * (1.0 - e2) / e2) / (c + dz);
+  const float energy = ((u1 - g.a) * (u1 + g.a) + (u2 - g.b) * (u2 + g.b)) / (c + dz);
   const float c_minus_dz = c * dz > 0.0 && abs(c + dz) >= 0.5 ? energy : c - dz;
   const float y = g.sign_y * g.a * integral, x = g.sign_x * g.b * integral;
   f.position = carlson_y ? vec3((c_minus_dz + b * y) / a, y, z) : vec3(x, (a * x - c_minus_dz) / b, z);
@@ -623,7 +623,6 @@ SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
   g.a = g.sqrt_mu * p.ew;
   g.b = g.sqrt_mu / p.ew;
   g.w0 = log(p.ew);
-  g.inv_ew0 = 1.0 / p.ew;
   g.u0 = u;
   g.start = p;
   g.start_factors = sol_factors(p);
