@@ -181,13 +181,18 @@ void defer_exact(ivec2 pixel, float t, uint passing, int step) {
 }
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
-float distance_lower_bound(vec3 p, vec3 q) {
-  float dz = p.z - q.z, sum = p.z + q.z, dx = p.x - q.x, dy = p.y - q.y;
-  const float e = exp(sum);  // one exponential for both planes
-  float a = max(0.5 * dx * dx / e, 0.5 * dy * dy * e);
-  float sh = sinh(0.5 * dz);
+// With e^{p.z} and e^{q.z} given (`ep`, `eq`): a march step shares e^{p.z}
+// among its objects, and an object's e^{q.z} is the ray's (sinh(Δz/2) from
+// e^{Δz/2} = √(e^{p.z}/e^{q.z}), as ball_clearance).
+float distance_lower_bound(vec3 p, vec3 q, float ep, float eq) {
+  const float dx = p.x - q.x, dy = p.y - q.y;
+  const float e = ep * eq;  // e^{p.z + q.z}, for both planes
+  const float a = max(0.5 * dx * dx / e, 0.5 * dy * dy * e);
+  const float half_exp_dz = sqrt(ep / eq), sh = 0.5 * (half_exp_dz - 1.0 / half_exp_dz);
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
 }
+
+float distance_lower_bound(vec3 p, vec3 q) { return distance_lower_bound(p, q, exp(p.z), exp(q.z)); }
 
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,
@@ -236,9 +241,8 @@ vec4 accumulate(ivec2 pixel, vec4 color, float weight) {
 // Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
 // containing it) and sol::sdf_tube_horizontal (a horizontal line along the
 // unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
-float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
+float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius, float ez) {
   const vec3 d = q - through;
-  const float ez = exp(q.z);
   if (axis == kTubeVertical) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
   const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
   return max(asinh(across), abs(d.z)) - radius;
@@ -246,7 +250,9 @@ float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius) {
 
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
 // object given in the coordinates of q (camera-relative, or world in the quotient).
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+// With e^{q.z} (`ez`) and, for balls, e^{rel.z} (`ec`) given: a march step
+// shares them among its objects.
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, float ez, float ec) {
   // Each kind only when the world has it: lavapipe evaluates every branch.
   // Exact balls are approached by the bound too (the true sphere lies inside
   // the bound's), and within kExactShell of it marched by their exact
@@ -255,13 +261,18 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   // of the sphere: its eight reads per ball and step cost more than the
   // exact solves it saved, docs/exact.md.)
   if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return distance_lower_bound(q, rel.xyz) - radius;
+    return distance_lower_bound(q, rel.xyz, ez, ec) - radius;
   }
-  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius);
+  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius, ez);
   float c = rel.x;
-  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) * exp(-q.z));
-  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * exp(q.z));
+  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) / ez);
+  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * ez);
   return abs(q.z - c);
+}
+
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  const bool ball = (HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall);
+  return object_distance(type, q, rel, heading, radius, exp(q.z), ball ? exp(rel.z) : 1.0);
 }
 
 // ---- Clearances (sol/clearance.hpp): how far the geodesic from q with unit
@@ -1079,6 +1090,7 @@ void main() {
   vec4 relative[kMaxGpuObjects];
   vec2 headings[kMaxGpuObjects];
   int cutouts[kMaxGpuObjects];  // cutout planes z = c: their pattern code; else kPatternNone
+  float exp_z[kMaxGpuObjects];  // balls: e^{z} of the centre, for object_distance and object_clearance
   for (int k = 0; k < kMaxGpuObjects; ++k) {
     types[k] = int(params.objects[k].plane.x);
     cutouts[k] = HAS_CUTOUT && types[k] == kObjectPlaneZ && params.objects[k].plane.w != 0.0 ? int(params.objects[k].plane.z) : 0;
@@ -1086,6 +1098,7 @@ void main() {
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
     constants[k] = relative[k].x;
+    exp_z[k] = HAS_BALLS ? exp(relative[k].z) : 1.0;
   }
   if (HAS_SHADOWS && !DEFER_SHADING) load_shadow_objects(eye);
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
@@ -1347,8 +1360,10 @@ void main() {
       second_hit = 1e30;
       nearest_any = 0;
       second_k = 0;
+      const float ez = HEIGHTS_ONLY ? 1.0 : exp(q.z);  // shared by the objects
       for (int k = 0; k < count; ++k) {
-        float d = HEIGHTS_ONLY ? abs(q.z - constants[k]) : object_distance(types[k], q, relative[k], headings[k], radii[k]);
+        float d = HEIGHTS_ONLY ? abs(q.z - constants[k])
+                               : object_distance(types[k], q, relative[k], headings[k], radii[k], ez, exp_z[k]);
         if (HAS_PLANES_XY && xy.solved && (types[k] == kObjectPlaneX || types[k] == kObjectPlaneY)) {
           d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
         }
@@ -1383,7 +1398,7 @@ void main() {
       // least distance (as the CPU's march_cover: one clearance a step).
       if (HAS_BALLS && types[nearest_any] >= kObjectBall) {
         nearest = min(others, object_clearance(types[nearest_any], q, u, relative[nearest_any], headings[nearest_any],
-                                               radii[nearest_any], exp(q.z), exp(relative[nearest_any].z)).y);
+                                               radii[nearest_any], ez, exp_z[nearest_any]).y);
       }
       shell = HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell;
       if (shell) break;  // finished below
