@@ -159,7 +159,7 @@ struct SolRay {
   float mu, sqrt_mu, lambda, k, kc, w0, m, m1, K, u0;
   float sqrt_sm, sqrt_sp, one_minus_sm, sp_minus_one, sp_minus_sm;
   float quarter_lo, quarter_hi;
-  vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_forward: its coordinate's)
+  vec2 far_forward;  // the integrals from the start to the end of its quarter (sol_forward's coordinate; both after sol_ray_restarted)
   SolAgm agm;
   // Heights by Jacobi theta series (sol_height): nome q <= e^{-π} of k'
   // (hyperbolic form, m > 1/2) or of k (m <= 1/2), K' = K(m1).
@@ -229,14 +229,19 @@ vec3 sol_reciprocal(vec3 f, float sqrt_sm, float sqrt_sp) {
   return vec3(inv, sqrt_sm * f.z * inv, sqrt_sp * f.y * inv);
 }
 
-// Time integrals of s and 1/s between a point and an anchor (0: s₋, 1: middle, 2: s₊).
-// The integrals of s and 1/s between limits with factors fx, fy
-// (first factor e^{w}) and s-gap `gap`; the 1/s gap is gap/(s_x s_y).
+// The time integral of s (x's, y = false) or of 1/s (y's) between limits
+// with factors fx, fy (first factor e^{w}) and s-gap `gap`; the 1/s gap is
+// gap/(s_x s_y).
+float sol_piece_of(SolRay g, vec3 fx, vec3 fy, float gap, bool y) {
+  const vec3 x0 = y ? sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp) : fx;
+  const vec3 y0 = y ? sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp) : fy;
+  const float gap_of = y ? gap / (fx.x * fx.x * fy.x * fy.x) : gap;
+  return carlson_piece(x0, y0, gap_of) / (2.0 * g.sqrt_mu);
+}
+
+// Both integrals (x's, y's) between those limits.
 vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
-  const float scale = 1.0 / (2.0 * g.sqrt_mu);
-  const float gap_sigma = gap / (fx.x * fx.x * fy.x * fy.x);
-  return scale * vec2(carlson_piece(fx, fy, gap), carlson_piece(sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp),
-                                                                 sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp), gap_sigma));
+  return vec2(sol_piece_of(g, fx, fy, gap, false), sol_piece_of(g, fx, fy, gap, true));
 }
 
 // Which coordinate's integral sol_forward takes by Carlson: y's where
@@ -244,15 +249,8 @@ vec2 sol_piece(SolRay g, vec3 fx, vec3 fy, float gap) {
 // divided by the larger of |a|, |b|), else x's.
 bool sol_carlson_y(SolRay g) { return g.a >= g.b; }
 
-// sol_piece's component for that coordinate alone (x: the integral of s,
-// y: of 1/s): one Carlson R_D instead of two.
-float sol_piece_one(SolRay g, vec3 fx, vec3 fy, float gap) {
-  const bool y = sol_carlson_y(g);
-  const vec3 x0 = y ? sol_reciprocal(fx, g.sqrt_sm, g.sqrt_sp) : fx;
-  const vec3 y0 = y ? sol_reciprocal(fy, g.sqrt_sm, g.sqrt_sp) : fy;
-  const float gap_one = y ? gap / (fx.x * fx.x * fy.x * fy.x) : gap;
-  return carlson_piece(x0, y0, gap_one) / (2.0 * g.sqrt_mu);
-}
+// sol_piece's component for that coordinate alone: one Carlson R_D.
+float sol_piece_one(SolRay g, vec3 fx, vec3 fy, float gap) { return sol_piece_of(g, fx, fy, gap, sol_carlson_y(g)); }
 
 vec3 sol_factors(SolPoint p) { return vec3(p.ew, sqrt(p.f2), sqrt(p.f3)); }
 
@@ -290,12 +288,15 @@ vec2 sol_quarters(SolRay g, int first, int last) {
 int sol_start_anchor(int q) { return q == 0 ? 0 : (q == 2 ? 2 : 1); }
 int sol_end_anchor(int q) { return q == 1 ? 2 : (q == 3 ? 0 : 1); }
 
-// The integrals from the ray's start to the end of its quarter: the part of
-// every forward position past that quarter that does not depend on the point.
+// The integral from the ray's start to the end of its quarter, for the
+// coordinate sol_forward takes by Carlson (the other component 0): the part
+// of every forward position past that quarter that does not depend on the
+// point.
 void sol_ray_far_forward(inout SolRay g) {
   float gap;
   const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
-  g.far_forward = sol_piece(g, g.start_factors, f_far, gap);
+  const float piece = sol_piece_one(g, g.start_factors, f_far, gap);
+  g.far_forward = sol_carlson_y(g) ? vec2(0.0, piece) : vec2(piece, 0.0);
 }
 
 SolRay sol_ray(vec3 direction) {
@@ -397,8 +398,7 @@ SolRay sol_ray(vec3 direction) {
 // sol_position and sol_forward, not by sol_height, so a march that only
 // needs heights computes them once, at the hit), and the piece from the
 // start to the end of its quarter for the coordinate sol_forward takes by
-// Carlson (the other component 0; sol_ray_advanced and sol_ray_restarted
-// set both).
+// Carlson (sol_ray_far_forward; sol_ray_restarted sets both).
 void sol_ray_integrals(inout SolRay g) {
   if (g.regime != REGIME_GENERAL) return;
   // A lower quarter's integral of s by Carlson; the upper one's from the
@@ -406,10 +406,7 @@ void sol_ray_integrals(inout SolRay g) {
   // I_x - I_y = -Δz'/μ, Δz' = kλ (a sum of positive terms).
   g.quarter_lo = carlson_piece(g.anchor_bottom, g.anchor_middle, g.one_minus_sm) / (2.0 * g.sqrt_mu);
   g.quarter_hi = g.quarter_lo + g.k * g.lambda / g.mu;
-  float gap;
-  const vec3 f_far = sol_anchor(g, g.start, sol_end_anchor(g.start.quarter), gap);
-  const float piece = sol_piece_one(g, g.start_factors, f_far, gap);
-  g.far_forward = sol_carlson_y(g) ? vec2(0.0, piece) : vec2(piece, 0.0);
+  sol_ray_far_forward(g);
 }
 
 
