@@ -166,7 +166,7 @@ vec3 octahedral_decode(vec2 p) {
 void defer_shading(ivec2 pixel, vec3 q, float t, vec3 n, int index) {
   int slot;
   SOL_QUEUE_APPEND(queue.shade, slot);
-  const int at = queue_capacity() + 2 * slot;
+  const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
   queue_records[at] = uvec4(floatBitsToUint(q), floatBitsToUint(t));
   queue_records[at + 1] = uvec4(floatBitsToUint(octahedral_encode(n)), pack_pixel(pixel), uint(index));
 }
@@ -177,7 +177,7 @@ void defer_shading(ivec2 pixel, vec3 q, float t, vec3 n, int index) {
 void defer_exact(ivec2 pixel, float t, uint passing, int step) {
   int slot;
   SOL_QUEUE_APPEND(queue.resume, slot);
-  queue_records[slot] = uvec4(pack_pixel(pixel), floatBitsToUint(t), passing, uint(step));
+  queue_records[kQueueResumeRecord * slot] = uvec4(pack_pixel(pixel), floatBitsToUint(t), passing, uint(step));
 }
 
 // The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
@@ -1029,7 +1029,7 @@ void load_shadow_objects(int eye) {
 void shade_pass() {
   const int slot = queue_slot();
   if (slot >= queue.shade.w) return;
-  const int at = queue_capacity() + 2 * slot;
+  const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
   const uvec4 a = queue_records[at], b = queue_records[at + 1];
   const ivec2 pixel = unpack_pixel(b.z);
   const int eye = pixel.x >= params.counts.y ? 1 : 0;
@@ -1071,7 +1071,7 @@ void main() {
   if (PASS == kPassResume) {
     const int slot = queue_slot();
     if (slot >= queue.resume.w) return;
-    resumed = queue_records[slot];
+    resumed = queue_records[kQueueResumeRecord * slot];
     pixel = unpack_pixel(resumed.x);
   } else {
     if (any(greaterThanEqual(ivec2(gl_GlobalInvocationID.xy), tile.zw))) return;

@@ -365,7 +365,9 @@ struct MarchRenderer::Impl {
 
   // Room in the lists for dispatches of up to `pixels` pixels (a resume
   // record and a shade record each; sol/vk/march_interface.h).
-  static VkDeviceSize queue_bytes(std::uint64_t pixels) { return sizeof(kernel::QueueHeader) + pixels * 3 * 16; }
+  static VkDeviceSize queue_bytes(std::uint64_t pixels) {
+    return sizeof(kernel::QueueHeader) + pixels * (kernel::kQueueResumeRecord + kernel::kQueueShadeRecord) * sizeof(glm::uvec4);
+  }
   void reserve_queue(std::uint64_t pixels) {
     const VkDeviceSize bytes = queue_bytes(pixels);
     if (queue && queue->size() >= bytes) return;
@@ -415,12 +417,8 @@ struct MarchRenderer::Impl {
     const kernel::QueueHeader header{.resume = glm::ivec4(0, 1, 1, 0), .shade = glm::ivec4(0, 1, 1, 0)};
     vkCmdUpdateBuffer(cb, queue->handle(), 0, sizeof header, &header);
     auto barrier = [&](VkPipelineStageFlags from, VkAccessFlags written) {
-      VkMemoryBarrier b{};
-      b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-      b.srcAccessMask = written;
-      b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-      vkCmdPipelineBarrier(cb, from, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &b,
-                           0, nullptr, 0, nullptr);
+      record_memory_barrier(cb, from, written, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     };
     barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     built.pipeline.record_dispatch(cb, groups_x, groups_y);

@@ -152,6 +152,9 @@ struct QueueHeader {
   ivec4 resume;  ///< xyz: the resume pass's VkDispatchIndirectCommand; w: its records
   ivec4 shade;   ///< the same for the shade pass
 };
+/// The records' sizes in uvec4s: a resume record, a shade record.
+SOL_CONSTANT(int, kQueueResumeRecord, 1);
+SOL_CONSTANT(int, kQueueShadeRecord, 2);
 
 // ---- An omnidirectional stereo eye's column (binding 8, std430): sol::column_eye
 struct Column {
