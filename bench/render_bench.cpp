@@ -279,13 +279,10 @@ int main(int argc, char** argv) {
       // Each frame's writes (the target, the deferred passes' lists) complete
       // before the next frame's commands touch them.
       const auto between_frames = [](VkCommandBuffer cb) {
-        VkMemoryBarrier b{};
-        b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-        b.srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-        b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &b, 0, nullptr,
-                             0, nullptr);
+        sol::vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
       };
       // The mean time of one frame of `eyes` over a batch recorded back to back.
       const auto batch_ms = [&](std::span<const sol::Camera> eyes) {

@@ -152,6 +152,12 @@ class ComputePipeline {
   VkDescriptorSet m_set = VK_NULL_HANDLE;
 };
 
+/// Records a global memory barrier: what `src_access` wrote in `src_stages`
+/// completes and becomes visible to `dst_access` in `dst_stages` (and
+/// `src_stages` finish before `dst_stages` start).
+void record_memory_barrier(VkCommandBuffer command_buffer, VkPipelineStageFlags src_stages, VkAccessFlags src_access,
+                           VkPipelineStageFlags dst_stages, VkAccessFlags dst_access);
+
 /// Several dispatches in one submission, as run() submits one: `record`
 /// records them (with the barriers between them) and is placed between
 /// run()'s barriers (earlier shader writes and copies complete first; the
