@@ -83,7 +83,8 @@ SOL_CONSTANT(int, kMaxGpuLightImages, 4096);
 /// Most images a pixel solves connections to, per light, nearest (by the
 /// distance lower bound) first.
 SOL_CONSTANT(int, kMaxLightImageSolves, 16);
-/// The workgroup of march.comp: kGroupSize x kGroupSize pixels.
+/// The workgroup of march.comp: kGroupSize x kGroupSize pixels (8: its
+/// group_pixel lays the invocations out in 2 x 4 blocks of an 8 x 8 group).
 SOL_CONSTANT(int, kGroupSize, 8);
 
 // ---- The uniform block (std140; vec4 and ivec4 members only, so no padding)
