@@ -192,19 +192,26 @@ void defer_exact(ivec2 pixel, float t, uint passing, int step) {
   queue_records[kQueueResumeRecord * slot] = uvec4(pack_pixel(pixel), floatBitsToUint(t), passing, uint(step));
 }
 
-// The lower bound of the Sol distance (sol::distance_lower_bound, docs/mathematics.md).
-// With e^{p.z} and e^{q.z} given (`ep`, `eq`): a march step shares e^{p.z}
-// among its objects, and an object's e^{q.z} is the ray's (sinh(Δz/2) from
-// e^{Δz/2} = √(e^{p.z}/e^{q.z}), as ball_clearance).
-float distance_lower_bound(vec3 p, vec3 q, float ep, float eq) {
+// A height's half exponentials (e^{z/2}, e^{-z/2}): the bounds below take
+// e^{±z} as their squares and e^{±Δz/2} as their products, so that they
+// divide by neither (a march step takes its point's once for all objects,
+// and the objects' come with them).
+vec2 half_exp(float z) { return vec2(exp(0.5 * z), exp(-0.5 * z)); }
+
+// The lower bound of the Sol distance (sol::distance_lower_bound,
+// docs/mathematics.md), with the half exponentials of p.z and q.z given
+// (`hp`, `hq`): sinh(Δz/2) = (e^{Δz/2} - e^{-Δz/2})/2 from their products,
+// as ball_clearance.
+float distance_lower_bound(vec3 p, vec3 q, vec2 hp, vec2 hq) {
   const float dx = p.x - q.x, dy = p.y - q.y;
-  const float e = ep * eq;  // e^{p.z + q.z}, for both planes
-  const float a = max(0.5 * dx * dx / e, 0.5 * dy * dy * e);
-  const float half_exp_dz = sqrt(ep / eq), sh = 0.5 * (half_exp_dz - 1.0 / half_exp_dz);
-  return 2.0 * asinh(sqrt(sh * sh + 0.5 * a));
+  const vec2 e = hp * hq;  // e^{(p.z + q.z)/2}, e^{-(p.z + q.z)/2}
+  const float a = 0.5 * max(dx * dx * e.y * e.y, dy * dy * e.x * e.x);
+  const float sh = 0.5 * (hp.x * hq.y - hp.y * hq.x);
+  const float s2 = sh * sh + 0.5 * a;
+  return 2.0 * log(sqrt(s2) + sqrt(1.0 + s2));  // 2 asinh √s2
 }
 
-float distance_lower_bound(vec3 p, vec3 q) { return distance_lower_bound(p, q, exp(p.z), exp(q.z)); }
+float distance_lower_bound(vec3 p, vec3 q) { return distance_lower_bound(p, q, half_exp(p.z), half_exp(q.z)); }
 
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,
@@ -253,18 +260,19 @@ vec4 accumulate(ivec2 pixel, vec4 color, float weight) {
 // Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
 // containing it) and sol::sdf_tube_horizontal (a horizontal line along the
 // unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
-float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius, float ez) {
+float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
   const vec3 d = q - through;
-  if (axis == kTubeVertical) return max(asinh(abs(d.x) / ez), asinh(abs(d.y) * ez)) - radius;
-  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) / ez + abs(h.y) * ez);
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
+  if (axis == kTubeVertical) return max(asinh(abs(d.x) * iez), asinh(abs(d.y) * ez)) - radius;
+  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) * iez + abs(h.y) * ez);
   return max(asinh(across), abs(d.z)) - radius;
 }
 
 // Distance (planes: exact; balls, tubes: the bound minus the radius) to an
 // object given in the coordinates of q (camera-relative, or world in the quotient).
-// With e^{q.z} (`ez`) and, for balls, e^{rel.z} (`ec`) given: a march step
-// shares them among its objects.
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, float ez, float ec) {
+// With the half exponentials (half_exp) of q.z (`hz`) and, for balls, of
+// rel.z (`hc`) given: a march step shares them among its objects.
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   // Each kind only when the world has it: lavapipe evaluates every branch.
   // Exact balls are approached by the bound too (the true sphere lies inside
   // the bound's), and within kExactShell of it marched by their exact
@@ -273,18 +281,18 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, fl
   // of the sphere: its eight reads per ball and step cost more than the
   // exact solves it saved, docs/exact.md.)
   if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return distance_lower_bound(q, rel.xyz, ez, ec) - radius;
+    return distance_lower_bound(q, rel.xyz, hz, hc) - radius;
   }
-  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius, ez);
+  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius, hz);
   float c = rel.x;
-  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) / ez);
-  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * ez);
+  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) * hz.y * hz.y);
+  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * hz.x * hz.x);
   return abs(q.z - c);
 }
 
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   const bool ball = (HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall);
-  return object_distance(type, q, rel, heading, radius, exp(q.z), ball ? exp(rel.z) : 1.0);
+  return object_distance(type, q, rel, heading, radius, half_exp(q.z), ball ? half_exp(rel.z) : vec2(1.0));
 }
 
 // ---- Clearances (sol/clearance.hpp): how far the geodesic from q with unit
@@ -319,20 +327,21 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
 
 // A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
 // S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
-// clearance). ez = e^{q.z} and ec = e^{c.z} come from the caller (the
-// quotient march takes e^{q.z} once a step for all its candidates, and
-// e^{c.z} from the image's record): no exponential here.
-vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, float ez, float ec) {
+// clearance). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
+// the caller (the quotient march takes q's once a step for all its
+// candidates, and the centre's from the image's record): no exponential and
+// no division here but the slopes'.
+vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   const float dx = q.x - c.x, dy = q.y - c.y;
-  const float e = ez * ec;
-  const float half_exp_dz = sqrt(ez / ec);  // e^{(q.z - c.z)/2}
-  const float sh = 0.5 * (half_exp_dz - 1.0 / half_exp_dz), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
-  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx / e, sh2 + 0.25 * dy * dy * e);
-  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x / ec - 0.25 * dx * dx / e * u.z,
-                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec + 0.25 * dy * dy * e * u.z);
-  const vec2 s = sqrt(s2);
-  const vec2 h = 2.0 * asinh(s) - radius;
-  const vec2 slope = rate / max(s * sqrt(1.0 + s2), 1e-30);
+  const vec2 e = hz * hc, ec = hc * hc;  // e^{±(q.z + c.z)/2}, e^{±c.z}
+  const float e2 = e.x * e.x, ie2 = e.y * e.y;  // e^{q.z + c.z}, its inverse
+  const float sh = 0.5 * (hz.x * hc.y - hz.y * hc.x), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
+  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx * ie2, sh2 + 0.25 * dy * dy * e2);
+  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x * ec.y - 0.25 * dx * dx * ie2 * u.z,
+                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec.x + 0.25 * dy * dy * e2 * u.z);
+  const vec2 s = sqrt(s2), root = sqrt(1.0 + s2);
+  const vec2 h = 2.0 * log(s + root) - radius;  // 2 asinh s
+  const vec2 slope = rate / max(s * root, 1e-30);
   const float distance = max(h.x, h.y);
   return vec2(distance, max(distance, max(clearance_root(h.x, slope.x, 1.0), clearance_root(h.y, slope.y, 1.0))));
 }
@@ -341,14 +350,14 @@ vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, float ez, float ec) {
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
 // y); every term bends by at most 1. Returns (distance bound, clearance).
-vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, float ez) {
+vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
   // Both forms have two terms; the first is asinh(w) - r for either (w the
   // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
   // serves both: the inputs are chosen first (lavapipe runs both sides of
   // every choice, so a shared evaluation is cheaper than two).
   const bool vertical = axis == kTubeVertical;
   const vec3 d = q - through;
-  const float iez = 1.0 / ez;  // ez = e^{q.z}, from the caller
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}, from the caller's half exponentials
   const float D = abs(h.x) * iez + abs(h.y) * ez;
   const float G = (h.y * d.x - h.x * d.y) / D;
   const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) / D;
@@ -367,13 +376,13 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
 // The object's distance (object_distance) and clearance, the larger of it
 // and the second-order step of its bound (exact balls: the bound's ball,
 // which holds the exact one, as object_distance). The objects of the
-// quotient: planes z = c, balls and tubes. ez = e^{q.z}; ec = e^{rel.z}
-// (balls only).
-vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, float ez, float ec) {
+// quotient: planes z = c, balls and tubes. hz, hc: the half exponentials
+// of q.z and (balls only) rel.z.
+vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return ball_clearance(q, u, rel.xyz, radius, ez, ec);
+    return ball_clearance(q, u, rel.xyz, radius, hz, hc);
   }
-  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius, ez);
+  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius, hz);
   const float d = object_distance(type, q, rel, heading, radius);
   const float plane_z = max(d, clearance_root(d, q.z >= rel.x ? u.z : -u.z, 1.0));
   return vec2(d, type == kObjectPlaneZ ? plane_z : d);
@@ -619,14 +628,14 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       const float field = field_lower_bound(cell);
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
-      const float ez = exp(p.z);  // shared by the candidates' clearances
+      const vec2 hz = half_exp(p.z);  // shared by the candidates' clearances
       float clear = 1e30, nearest_hit = 1e30;
       for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
         if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
         const Image m = images[i];
-        const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, ez,
-                                         m.heading.z);
+        const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
+                                         m.heading.zw);
         float d = dc.x;
         if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
@@ -1103,7 +1112,7 @@ void main() {
   vec4 relative[kMaxGpuObjects];
   vec2 headings[kMaxGpuObjects];
   int cutouts[kMaxGpuObjects];  // cutout planes z = c: their pattern code; else kPatternNone
-  float exp_z[kMaxGpuObjects];  // balls: e^{z} of the centre, for object_distance and object_clearance
+  vec2 half_exp_z[kMaxGpuObjects];  // balls: the centre's half exponentials, for object_distance and object_clearance
   for (int k = 0; k < kMaxGpuObjects; ++k) {
     types[k] = int(params.objects[k].plane.x);
     cutouts[k] = HAS_CUTOUT && types[k] == kObjectPlaneZ && params.objects[k].plane.w != 0.0 ? int(params.objects[k].plane.z) : 0;
@@ -1111,7 +1120,7 @@ void main() {
     relative[k] = params.eyes[eye].relative[k];
     headings[k] = params.eyes[eye].heading[k].xy;
     constants[k] = relative[k].x;
-    exp_z[k] = HAS_BALLS ? exp(relative[k].z) : 1.0;
+    half_exp_z[k] = HAS_BALLS ? half_exp(relative[k].z) : vec2(1.0);
   }
   if (HAS_SHADOWS && !DEFER_SHADING) load_shadow_objects(eye);
   const float max_distance = params.limits.x, hit_epsilon = params.limits.y;
@@ -1202,7 +1211,7 @@ void main() {
       steps = step + 1;
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
-      const float ez = exp(q.z);  // shared by the candidates' clearances
+      const vec2 hz = half_exp(q.z);  // shared by the candidates' clearances
       float nearest = 1e30;
       int nearest_i = -1;
       float second = 1e30;  // the least distance but the nearest's, and its image
@@ -1213,8 +1222,8 @@ void main() {
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
         if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
         const Image m = images[i];
-        const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, ez,
-                                         m.heading.z);
+        const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
+                                         m.heading.zw);
         const float d = dc.x;
         if (d < nearest) {
           second = nearest;
@@ -1373,10 +1382,10 @@ void main() {
       second_hit = 1e30;
       nearest_any = 0;
       second_k = 0;
-      const float ez = HEIGHTS_ONLY ? 1.0 : exp(q.z);  // shared by the objects
+      const vec2 hz = HEIGHTS_ONLY ? vec2(1.0) : half_exp(q.z);  // shared by the objects
       for (int k = 0; k < count; ++k) {
         float d = HEIGHTS_ONLY ? abs(q.z - constants[k])
-                               : object_distance(types[k], q, relative[k], headings[k], radii[k], ez, exp_z[k]);
+                               : object_distance(types[k], q, relative[k], headings[k], radii[k], hz, half_exp_z[k]);
         if (HAS_PLANES_XY && xy.solved && (types[k] == kObjectPlaneX || types[k] == kObjectPlaneY)) {
           d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
         }
@@ -1411,7 +1420,7 @@ void main() {
       // least distance (as the CPU's march_cover: one clearance a step).
       if (HAS_BALLS && types[nearest_any] >= kObjectBall) {
         nearest = min(others, object_clearance(types[nearest_any], q, u, relative[nearest_any], headings[nearest_any],
-                                               radii[nearest_any], ez, exp_z[nearest_any]).y);
+                                               radii[nearest_any], hz, half_exp_z[nearest_any]).y);
       }
       shell = HAS_EXACT_BALLS && types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell;
       if (shell) break;  // finished below
