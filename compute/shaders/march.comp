@@ -8,6 +8,15 @@
 // INTEGRATOR = 1 replaces the closed form by classical RK4 on the geodesic
 // ODE in frame components with step `forward.w`; it advances from the last
 // step's state, so its error accumulates (that is what the bench measures).
+//
+// Loops tested at their end. lavapipe runs a loop's body, masked, until no
+// lane is left in it, and tests that at the body's end: a loop whose
+// condition comes first (for, while) runs its body once more after its
+// last lane has left, every lane masked. The loops whose bodies are dear
+// (the march's steps and rounds, the objects of a step, the quotient's
+// candidates, Newton's iterations) are written as do-while, tested at the
+// end, behind an if where they may run no time: they run as often as their
+// slowest lane needs (docs/renderer.md, "What lavapipe runs").
 #extension GL_GOOGLE_include_directive : require
 
 #include "sol/vk/march_interface.h"
@@ -556,6 +565,14 @@ uint field_candidates(FieldCell c) {
   return field_words[2 * kFieldLayers + nodes + (c.k * kFieldCells + c.j) * kFieldCells + c.i];
 }
 
+// How many of a cell's candidate slots (not kFieldAllImages) are filled:
+// they fill from the lowest byte.
+int field_candidate_count(uint word) {
+  int n = 0;
+  for (int s = 0; s < kFieldCandidates; ++s) n += ((word >> uint(8 * s)) & 255u) != uint(kFieldEmpty) ? 1 : 0;
+  return n;
+}
+
 // The cell's reach (sol::QuotientField::reach): no image but its
 // candidates is within it of the cell.
 float field_reach(FieldCell c) {
@@ -630,12 +647,14 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       const bool all = word == kFieldAllImages;
       const vec2 hz = half_exp(p.z);  // shared by the candidates' clearances
       float clear = 1e30, nearest_hit = 1e30;
-      for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+      const int listed = all ? image_count : field_candidate_count(word);
+      int s = 0;
+      do {  // as main()'s candidates
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-        if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
-        const Image m = images[i];
-        const vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
-                                         m.heading.zw);
+        const Image m = images[s < listed ? i : 0];
+        vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
+                                   m.heading.zw);
+        if (s >= listed) dc = vec2(1e30);
         float d = dc.x;
         if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
@@ -651,7 +670,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         }
         clear = min(clear, max(d, dc.y));
         if (!leaving) nearest_hit = min(nearest_hit, d);
-      }
+      } while (++s < listed);
       if (nearest_hit < eps) return true;
       float step_length = max(field, min(clear, field_reach(cell)));
       if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
@@ -674,12 +693,13 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   float t = 0.0;
   int step = 0;
   bool alive = true;
-  for (int round = 0; HAS_EXACT_BALLS ? round < max_steps && alive : round < 1; ++round) {
+  int round = 0;
+  do {  // (loops tested at their end: see the top of this file)
     vec3 p = vec3(0.0), u = vec3(0.0);
     float nearest = 1e30, nearest_hit = 1e30, others = 1e30, second_hit = 1e30;
     int nearest_k = 0, nearest_any = 0, second_k = 0;
     bool shell = false;
-    for (; step < max_steps && alive; ++step) {
+    if (step < max_steps && alive) do {
       const SolForward forward = sol_forward(ray, t);
       p = sol_translate(q, forward.position);
       u = forward.direction;
@@ -690,7 +710,8 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       nearest_k = 0;
       nearest_any = 0;
       second_k = 0;
-      for (int k = 0; k < g_count; ++k) {
+      int k = 0;
+      if (g_count > 0) do {
         float d = object_distance(g_types[k], p, g_relative[k], g_headings[k], g_radii[k]);
         if (HAS_CUTOUT && g_cutouts[k] != 0) {
           d = max(d, cutout_gap_bound(g_cutouts[k], plane_coordinates(2, p, g_eye_camera, g_eye_frac),
@@ -716,7 +737,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
           second_hit = d;
           second_k = k;
         }
-      }
+      } while (++k < g_count);
       shell = HAS_EXACT_BALLS && g_types[nearest_k] == kObjectExactBall && nearest_hit < kExactShell;
       if (shell) break;  // finished below
       if (nearest_hit < eps) {
@@ -733,7 +754,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       }
       t += passing != 0u ? max(nearest, 2.0 * eps) : nearest;
       alive = t <= limit;
-    }
+    } while (++step < max_steps && alive);
     if (HAS_EXACT_BALLS && shell && alive) {
       // Near an exact ball: its exact distance, and its clearance for the step.
       if (exact_k != nearest_k) exact_known = false;
@@ -764,7 +785,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       ++step;
     }
     alive = alive && step < max_steps;
-  }
+  } while (HAS_EXACT_BALLS && ++round < max_steps && alive);
   return false;
 }
 
@@ -1218,12 +1239,17 @@ void main() {
       int second_i = -1;
       // The clearances (object_clearance) of the nearest and the least of the others'.
       float clear_nearest = 1e30, clear_rest = 1e30;
-      for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+      // (A do-while, tested at its end: see the top of this file. A world
+      // without objects lists none: its one pass through the body is masked
+      // out by `listed`.)
+      const int listed = all ? image_count : field_candidate_count(word);
+      int s = 0;
+      do {
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-        if (i == kFieldEmpty) break;  // the candidates fill the slots from the first
-        const Image m = images[i];
-        const vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
-                                         m.heading.zw);
+        const Image m = images[s < listed ? i : 0];
+        vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
+                                   m.heading.zw);
+        if (s >= listed) dc = vec2(1e30);
         const float d = dc.x;
         if (d < nearest) {
           second = nearest;
@@ -1239,7 +1265,7 @@ void main() {
             second_i = i;
           }
         }
-      }
+      } while (++s < listed);
       if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
@@ -1356,9 +1382,11 @@ void main() {
   // not a constant would run its body once.)
   // (The march pass of a deferred world stops at the first exact ball's
   // shell: one round, its exact block left to the resume pass.)
+  // (Loops tested at their end: see the top of this file.)
   const bool rounds = HAS_EXACT_BALLS && !(DEFER_EXACT && PASS == kPassMarch);
-  for (int round = 0; !PLANES_XY_ONLY && (rounds ? round < max_steps && alive : round < 1); ++round) {
-    for (; step < max_steps && alive; ++step) {
+  int round = 0;
+  if (!PLANES_XY_ONLY) do {
+    if (step < max_steps && alive) do {
       if (INTEGRATOR == 0) {
         // Cutout planes need the full position for their gap bounds.
         if (HAS_BALLS) {
@@ -1383,7 +1411,8 @@ void main() {
       nearest_any = 0;
       second_k = 0;
       const vec2 hz = HEIGHTS_ONLY ? vec2(1.0) : half_exp(q.z);  // shared by the objects
-      for (int k = 0; k < count; ++k) {
+      int k = 0;
+      if (count > 0) do {
         float d = HEIGHTS_ONLY ? abs(q.z - constants[k])
                                : object_distance(types[k], q, relative[k], headings[k], radii[k], hz, half_exp_z[k]);
         if (HAS_PLANES_XY && xy.solved && (types[k] == kObjectPlaneX || types[k] == kObjectPlaneY)) {
@@ -1414,7 +1443,7 @@ void main() {
           second_hit = d;
           second_k = k;
         }
-      }
+      } while (++k < count);
       // The nearest object, where it is a ball or a tube, lets the step be
       // its clearance along the ray (object_clearance) up to the others'
       // least distance (as the CPU's march_cover: one clearance a step).
@@ -1427,7 +1456,7 @@ void main() {
       steps = root_steps + step + 1;
       alive = march_step_end(nearest, nearest_hit, nearest_k, q, types[nearest_k], eye_camera, eye_frac, hit_epsilon,
                              max_distance, passing, t, hit);
-    }
+    } while (++step < max_steps && alive);
     if (DEFER_EXACT && PASS == kPassMarch) {
       if (shell && alive) {  // the rest of this ray in the resume pass
         defer_exact(pixel, t, passing, step);
@@ -1461,7 +1490,7 @@ void main() {
       ++step;
     }
     alive = alive && step < max_steps;
-  }
+  } while (rounds && ++round < max_steps && alive);
 
   vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
   vec4 hit_aov = vec4(float(hit), 0.0, float(steps), 0.0);

@@ -119,7 +119,8 @@ vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J
   // v: the first step is taken with it (a chord step), and only where that
   // does not lower the residual with a fresh one.
   bool chord = known;
-  for (int e = 0; e < 3 * SOL_NEWTON_ITERATIONS + 1 && !done; ++e) {
+  int e = 0;  // (tested at its end: see the top of march.comp)
+  if (!done) do {
     if (known && halvings == 0) {  // a step from r and the Jacobian at v
       if (!chord) J = sol_exp_jacobian(v, end.point.z, w.z);
       if (!(abs(determinant(J)) > 1e-12)) break;  // singular: a conjugate point (or NaN)
@@ -148,7 +149,7 @@ vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J
     end = at_end;
     // At the float floor, or out of iterations: done; else a step.
     done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
-  }
+  } while (++e < 3 * SOL_NEWTON_ITERATIONS + 1 && !done);
   residual = known ? length(r) / sol_connection_scale(w, ez, length(v)) : 1e30;
   return v;
 }

@@ -149,6 +149,9 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
     out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
                    glm::vec4(shape.heading.x, shape.heading.y, std::exp(0.5 * shape.geometry.z), std::exp(-0.5 * shape.geometry.z))});
   }
+  // The kernel reads a first record even where a cell lists no candidate
+  // (its loop is tested at the end, masked): never an empty buffer.
+  if (out.empty()) out.resize(1);
   return out;
 }
 
