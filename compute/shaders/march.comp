@@ -989,7 +989,8 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
   const float ambient = params.shading.x;
   const int light_count = min(int(params.shading.z), kMaxLights);
   vec3 light = vec3(0.0);
-  for (int i = 0; i < light_count; ++i) {
+  int i = 0;
+  if (light_count > 0) do {  // (tested at its end, as the paths': see the top of this file)
     const vec4 lc = params.light_color[i];
     const vec4 lp = params.eyes[eye].lights[i];
     vec3 l = lp.xyz;
@@ -1001,7 +1002,8 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
         vec4 found[SOL_FOUND_SLOTS];
         const int paths = QUOTIENT ? quotient_light_connections(i, q, lp.w, found) : sol_connections(towards, lp.w, found);
-        for (int j = 0; j < paths; ++j) {
+        int j = 0;
+        if (paths > 0) do {
           // found[j]: the geodesic's direction at q and its length; its J seen
           // from q is its J seen from the light (reciprocity).
           const float cosine = max(0.0, dot(n, found[j].xyz));
@@ -1011,7 +1013,7 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
                                    ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
                                    : 1.0 + found[j].w * found[j].w;
           light += lc.rgb * (cosine / spread);
-        }
+        } while (++j < paths);
         if (paths > 0) continue;
       }
       const float r = distance_lower_bound(q, lp.xyz);
@@ -1020,7 +1022,7 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
       attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
     }
     light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
-  }
+  } while (++i < light_count);
   const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
                        (ambient + (1.0 - ambient) * light);
   const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
