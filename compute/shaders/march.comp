@@ -581,6 +581,18 @@ float field_reach(FieldCell c) {
   return uintBitsToFloat(field_words[2 * kFieldLayers + nodes + cells + (c.k * kFieldCells + c.j) * kFieldCells + c.i]);
 }
 
+// The s-th of a cell's `listed` candidates (its word, or every image when
+// `all`; field_candidate_count): its image index `i`, its record `m` and
+// its object_clearance from q along u (hz: q.z's half exponentials). Past
+// the listed ones (a cell listing none: the one masked pass of the
+// marches' do-while over the candidates) `m` is the first record and no
+// object answers (1e30).
+vec2 candidate_clearance(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
+  i = all ? s : int((word >> uint(8 * s)) & 255u);
+  m = images[s < listed ? i : 0];
+  const vec2 dc = object_clearance(int(m.info.x), q, u, m.geometry, m.heading.xy, m.info.y, hz, m.heading.zw);
+  return s < listed ? dc : vec2(1e30);
+}
 
 // ---- Shadows (sol::Light::shadows; the CPU's `blocked` in libsol/src/render.cpp)
 
@@ -592,6 +604,7 @@ float g_radii[kMaxGpuObjects];
 vec4 g_relative[kMaxGpuObjects];
 vec2 g_headings[kMaxGpuObjects];
 int g_cutouts[kMaxGpuObjects];
+vec2 g_half_exp_z[kMaxGpuObjects];  // balls: the centre's half exponentials (as main()'s half_exp_z)
 vec4 g_eye_camera, g_eye_frac;
 
 // Whether the geodesic from q (a hit point, in the march's coordinates)
@@ -650,11 +663,9 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       const int listed = all ? image_count : field_candidate_count(word);
       int s = 0;
       do {  // as main()'s candidates
-        const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-        const Image m = images[s < listed ? i : 0];
-        vec2 dc = object_clearance(int(m.info.x), p, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
-                                   m.heading.zw);
-        if (s >= listed) dc = vec2(1e30);
+        int i;
+        Image m;
+        const vec2 dc = candidate_clearance(word, all, s, listed, p, forward.direction, hz, i, m);
         float d = dc.x;
         if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
@@ -710,9 +721,10 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       nearest_k = 0;
       nearest_any = 0;
       second_k = 0;
+      const vec2 hz = half_exp(p.z);  // shared by the objects
       int k = 0;
       if (g_count > 0) do {
-        float d = object_distance(g_types[k], p, g_relative[k], g_headings[k], g_radii[k]);
+        float d = object_distance(g_types[k], p, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
         if (HAS_CUTOUT && g_cutouts[k] != 0) {
           d = max(d, cutout_gap_bound(g_cutouts[k], plane_coordinates(2, p, g_eye_camera, g_eye_frac),
                                       g_eye_camera.w * exp(p.z)));
@@ -800,12 +812,14 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL
   const int first = params.light_image_first[light], count = params.light_image_count[light];
   float best = 1e30, last = -1.0;
   int last_k = -1, n = 0;
+  const vec2 hq = half_exp(q.z);  // shared by the images' bounds
   for (int round = 0; round < kMaxLightImageSolves; ++round) {
     // The next image by (lower bound, index) after the last one solved.
     float lo = 1e30;
     int lo_k = -1;
     for (int k = 0; k < count; ++k) {
-      const float b = distance_lower_bound(q, light_images[first + k].xyz);
+      const vec3 image = light_images[first + k].xyz;
+      const float b = distance_lower_bound(q, image, hq, half_exp(image.z));
       const bool after = b > last || (b == last && k > last_k);
       if (after && b < lo) {
         lo = b;
@@ -1062,6 +1076,7 @@ void load_shadow_objects(int eye) {
     g_radii[k] = params.objects[k].plane.y;
     g_relative[k] = params.eyes[eye].relative[k];
     g_headings[k] = params.eyes[eye].heading[k].xy;
+    g_half_exp_z[k] = HAS_BALLS ? half_exp(g_relative[k].z) : vec2(1.0);
   }
   g_eye_camera = params.eyes[eye].camera;
   g_eye_frac = params.eyes[eye].camera_frac;
@@ -1241,17 +1256,14 @@ void main() {
       int second_i = -1;
       // The clearances (object_clearance) of the nearest and the least of the others'.
       float clear_nearest = 1e30, clear_rest = 1e30;
-      // (A do-while, tested at its end: see the top of this file. A world
-      // without objects lists none: its one pass through the body is masked
-      // out by `listed`.)
+      // (A do-while, tested at its end: see the top of this file and
+      // candidate_clearance.)
       const int listed = all ? image_count : field_candidate_count(word);
       int s = 0;
       do {
-        const int i = all ? s : int((word >> uint(8 * s)) & 255u);
-        const Image m = images[s < listed ? i : 0];
-        vec2 dc = object_clearance(int(m.info.x), q, forward.direction, m.geometry, m.heading.xy, m.info.y, hz,
-                                   m.heading.zw);
-        if (s >= listed) dc = vec2(1e30);
+        int i;
+        Image m;
+        const vec2 dc = candidate_clearance(word, all, s, listed, q, forward.direction, hz, i, m);
         const float d = dc.x;
         if (d < nearest) {
           second = nearest;

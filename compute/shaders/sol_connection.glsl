@@ -61,8 +61,8 @@ struct SolEnd {
 // The exponential map at the origin: the end of the geodesic with initial
 // vector v. Forward (t >= 0): sol_ray_integrals's start-to-end-of-quarter
 // piece is the far piece, and the far and near pieces are taken for one
-// coordinate (sol_forward): one Carlson pair (the quarters) and two
-// single R_D in all, where sol_position would take four pairs.
+// coordinate (sol_forward): three single R_D in all (the lower quarter,
+// the far piece, the near piece), where sol_position would take four pairs.
 SolEnd sol_exp_end(vec3 v) {
   SolEnd e;
   e.point = vec3(0.0);
