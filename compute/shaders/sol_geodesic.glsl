@@ -641,6 +641,20 @@ SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
   return g;
 }
 
+// The restart of a ray of the other regimes (for sol_ray_advanced and
+// sol_ray_restarted): the plane regime's hyperbolic parameter moves, s0 +
+// t0; vertical and straight lines keep their direction. sol_ray_restarted
+// calls this, not sol_ray_advanced, whose general path (a Jacobi point and
+// a Carlson piece) would sit in the quotient march's loop though no ray
+// there takes it.
+SolRay sol_ray_advanced_special(SolRay g, float t0) {
+  if (g.regime == REGIME_PLANE) {
+    g.s0 += t0;
+    g.log_cosh_s0 = sol_log_cosh(g.s0);
+  }
+  return g;
+}
+
 // The same geodesic, restarted at arc length t0: a ray from its point there
 // (the origin of the new coordinates, the left translation by that point's
 // inverse) with its tangent there. Left translations keep frame components,
@@ -651,14 +665,9 @@ SolRay sol_ray_started_at(SolRay g, float u, SolPoint p) {
 // start move. A teleport of the quotient march restarts its ray this way
 // instead of building it from scratch (sol_ray, sol_ray_integrals), and
 // stays on the exact geodesic instead of one through a rounded tangent.
-// In the plane regime the hyperbolic parameter moves: s0 + t0.
+// The other regimes: sol_ray_advanced_special.
 SolRay sol_ray_advanced(SolRay g, float t0) {
-  if (g.regime == REGIME_PLANE) {
-    g.s0 += t0;
-    g.log_cosh_s0 = sol_log_cosh(g.s0);
-    return g;
-  }
-  if (g.regime != REGIME_GENERAL) return g;  // vertical and straight lines keep their direction
+  if (g.regime != REGIME_GENERAL) return sol_ray_advanced_special(g, t0);
   const float u = sol_restart_phase(g, t0);
   g = sol_ray_started_at(g, u, sol_point(g, u));
   sol_ray_far_forward(g);
@@ -688,7 +697,7 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
 // tests/kernel_test.cpp walks rays in segments through it against the
 // double closed form.
 SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
-  if (g.regime != REGIME_GENERAL) return sol_ray_advanced(g, t0);
+  if (g.regime != REGIME_GENERAL) return sol_ray_advanced_special(g, t0);
   const bool carlson_y = sol_carlson_y(g);
   const bool lower = f.point.quarter == 0 || f.point.quarter == 3;
   const vec2 quarter = lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
