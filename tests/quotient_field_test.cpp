@@ -6,6 +6,7 @@
 // sol::quotient_images), at random points of D, on its faces, edges and
 // corners.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -108,20 +109,18 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
     const sol::QuotientField field(listed, max_step);
     EXPECT_EQ(field.max_step(), max_step);
     const std::vector<sol::MarchObject> reference = wide_images(worlds[w], centre, spread + max_step);
-    double worst_over = -1e300, loosest = 0.0, mean_gap = 0.0, reach_sum = 0.0;
+    double reach_sum = 0.0, tightest = 1e300;  // the least gap between the reach and a non-candidate's bound
     int near = 0;
     sol::QuotientField::Sample cell;
     for (const dvec3& q : samples) {
       double b = max_step;
       for (const sol::MarchObject& m : reference) b = std::min(b, bound(m, q));
-      const double f = field.lower_bound(q);
-      // The cell's reach: every image of the reference nearer than it is a
-      // candidate (the same image: the same bound at q).
+      // The cell's reach never overestimates: every image of the reference
+      // nearer than it is a candidate (the same image: the same bound at q).
       const std::vector<int> candidates = field.candidates(q);
       const double reach = field.reach(q);
       // The march's one lookup a step (reused across samples) says the same.
       field.sample(q, cell);
-      ASSERT_EQ(cell.lower_bound, f);
       ASSERT_EQ(cell.reach, reach);
       ASSERT_EQ(cell.candidates, candidates);
       reach_sum += reach;
@@ -129,19 +128,17 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
       ASSERT_LE(reach, max_step) << "world " << w;
       // Every cell has candidates: far from surfaces at least its nearest image.
       ASSERT_FALSE(candidates.empty()) << "world " << w;
+      std::vector<double> candidate_bounds;
+      for (int c : candidates) candidate_bounds.push_back(bound(listed[static_cast<std::size_t>(c)], q));
       for (const sol::MarchObject& m : reference) {
         const double d = bound(m, q);
+        const bool candidate = std::any_of(candidate_bounds.begin(), candidate_bounds.end(),
+                                           [&](double c) { return std::abs(c - d) < 1e-9; });
+        if (!candidate) tightest = std::min(tightest, d - reach);
         if (d >= reach) continue;
-        const bool candidate = std::any_of(candidates.begin(), candidates.end(), [&](int c) {
-          return std::abs(bound(listed[static_cast<std::size_t>(c)], q) - d) < 1e-9;
-        });
         ASSERT_TRUE(candidate) << "world " << w << " at " << q.x << ", " << q.y << ", " << q.z << ": an image at " << d
                                << " within the reach " << reach << " is no candidate";
       }
-      worst_over = std::max(worst_over, f - b);
-      loosest = std::max(loosest, b - f);
-      mean_gap += b - f;
-      ASSERT_LE(f, b + 1e-12) << "world " << w << " at " << q.x << ", " << q.y << ", " << q.z;
       if (b < sol::QuotientField::kNear) {
         // The cell's candidates hold the nearest image: their least bound is B.
         ++near;
@@ -150,16 +147,13 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
         EXPECT_NEAR(least, b, 1e-9) << "world " << w << " at " << q.x << ", " << q.y << ", " << q.z;
       }
     }
-    std::printf("world %zu: %zu images, F - B at most %.2e, B - F at most %.3f (mean %.3f), %d of %zu samples near; "
-                "mean reach %.3f\n",
-                w, listed.size(), worst_over, loosest, mean_gap / static_cast<double>(samples.size()), near, samples.size(),
-                reach_sum / static_cast<double>(samples.size()));
+    std::printf("world %zu: %zu images, %d of %zu samples near; mean reach %.3f, a non-candidate's bound at least "
+                "%.2e beyond it\n",
+                w, listed.size(), near, samples.size(), reach_sum / static_cast<double>(samples.size()), tightest);
     EXPECT_GT(near, 100);
-    // Useful: F is below B by at most twice the path to the nearest node
-    // (half a cell along each axis: at most 0.06 at the top layer), and by
-    // about a quarter cell on average (measured 0.104 at most, 0.023 on average).
-    EXPECT_LT(loosest, 0.12);
-    EXPECT_LT(mean_gap / static_cast<double>(samples.size()), 0.03);
+    // Useful: the reach is, on average, well beyond kFieldNear (measured
+    // mean reach: printed above).
+    EXPECT_GT(reach_sum / static_cast<double>(samples.size()), sol::QuotientField::kNear + 0.05);
   }
 }
 
@@ -265,8 +259,8 @@ TEST(QuotientField, MarchAgreesWithTheSlowMarchButAtGrazingRays) {
       EXPECT_LE(grazes, w * h / 100) << name;
       EXPECT_LT(worst, 1e-3) << name;  // both stop within hit_epsilon of the same surface
       // The clearances step past the surfaces the rays graze: fewer steps
-      // than this march by the least bound, whose steps are never shorter
-      // than the field's (measured: 0.54 and 0.51 of them).
+      // than this march by the least bound of every image (measured: 0.54
+      // and 0.47 of them).
       EXPECT_LT(static_cast<double>(fast_steps), 0.7 * static_cast<double>(slow_steps)) << name;
     }
   }
@@ -283,12 +277,34 @@ TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
     const std::vector<sol::MarchObject> listed = sol::quotient_images(scene);
     const sol::QuotientField field(listed, sol::quotient_max_step(scene));
     const std::vector<std::uint32_t>& words = field.words();
-    const std::size_t nodes = static_cast<std::size_t>(k::kFieldLayers + 1) * (k::kFieldCells + 1) * (k::kFieldCells + 1);
-    const std::size_t first = 2 * static_cast<std::size_t>(k::kFieldLayers) + nodes;
     const std::size_t cells = static_cast<std::size_t>(k::kFieldLayers) * k::kFieldCells * k::kFieldCells;
-    ASSERT_EQ(words.size(), first + 2 * cells);  // the candidates, then the reaches
+    ASSERT_EQ(words.size(), 2 * cells);  // per cell its candidates, then its reach
+    // The layout march.comp reads (field_cell, field_candidates,
+    // field_reach): cell (i, j, k) at (k kFieldCells + j) kFieldCells + i,
+    // the same cell as the library's lookups at its centre.
+    const sol::Lattice lattice = sol::Lattice::golden();
+    const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+    std::mt19937_64 rng(5);
+    std::uniform_int_distribution<int> ij(0, k::kFieldCells - 1), layer(0, k::kFieldLayers - 1);
+    for (int n = 0; n < 500; ++n) {
+      const int i = ij(rng), j = ij(rng), l = layer(rng);
+      const double s = (i + 0.5) / k::kFieldCells, r = (j + 0.5) / k::kFieldCells;
+      const dvec3 q(s * g1.x + r * g2.x, s * g1.y + r * g2.y, (l + 0.5) * lattice.height() / k::kFieldLayers);
+      const std::size_t c = (static_cast<std::size_t>(l) * k::kFieldCells + static_cast<std::size_t>(j)) * k::kFieldCells +
+                            static_cast<std::size_t>(i);
+      ASSERT_EQ(static_cast<double>(std::bit_cast<float>(words[2 * c + 1])), field.reach(q)) << name;
+      std::vector<int> from_word;
+      for (int slot = 0; slot < k::kFieldCandidates && words[2 * c] != k::kFieldAllImages; ++slot) {
+        const std::uint32_t m = (words[2 * c] >> (8 * slot)) & 255u;
+        if (m != static_cast<std::uint32_t>(k::kFieldEmpty)) from_word.push_back(static_cast<int>(m));
+      }
+      if (words[2 * c] != k::kFieldAllImages) {
+        ASSERT_EQ(from_word, field.candidates(q)) << name;
+      }
+    }
     int several = 0;
-    for (std::size_t c = first; c < first + cells; ++c) {
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      const std::size_t c = 2 * cell;
       if (words[c] == k::kFieldAllImages) continue;
       int held = 0;
       bool ended = false;
@@ -298,7 +314,7 @@ TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
           ended = true;
           continue;
         }
-        ASSERT_FALSE(ended) << name << ": candidate after an empty slot in word " << c - first;
+        ASSERT_FALSE(ended) << name << ": candidate after an empty slot in cell " << cell;
         ASSERT_LT(slot, listed.size()) << name;
         ++held;
       }

@@ -108,8 +108,8 @@ layout(std430, set = 0, binding = kBindingImages) readonly buffer Images {
   Image images[];
 };
 
-// sol::QuotientField: the quotient world's distance field over D and each
-// cell's candidate images (layout in sol/quotient_field.hpp).
+// sol::QuotientField: the quotient world's field over D, each cell's
+// candidate images and reach (layout in sol/quotient_field.hpp).
 layout(std430, set = 0, binding = kBindingField) readonly buffer QuotientField {
   uint field_words[];
 };
@@ -525,45 +525,16 @@ vec3 teleport(vec3 p, const bool step_end) {
   return q;
 }
 
-// The field's cell of a point of D: (cell index, layer) and the fractions
-// within the cell (sol::QuotientField::cell_of).
-struct FieldCell {
-  int i, j, k;
-  vec3 f;
-};
-
-FieldCell field_cell(vec3 p) {
+// The field's cell of a point of D, as its index (sol::QuotientField::cell_of).
+int field_cell(vec3 p) {
   const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * (1.0 / kLatticeHeight)), 0.0, 1.0);
   const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
-  FieldCell c;
-  c.i = min(int(g.x), kFieldCells - 1);
-  c.j = min(int(g.y), kFieldCells - 1);
-  c.k = min(int(g.z), kFieldLayers - 1);
-  c.f = g - vec3(c.i, c.j, c.k);
-  return c;
-}
-
-float field_node(int i, int j, int k) {
-  return uintBitsToFloat(field_words[2 * kFieldLayers + (k * (kFieldCells + 1) + j) * (kFieldCells + 1) + i]);
-}
-
-// F(q): a lower bound of the step the march may take from q, never above
-// the least distance bound of the images: the nearest node's value less the
-// length of a path to it (sol::QuotientField::lower_bound).
-float field_lower_bound(FieldCell c) {
-  const vec3 away = round(c.f);
-  const vec3 d = abs(c.f - away);
-  const ivec3 n = ivec3(c.i, c.j, c.k) + ivec3(away);
-  const float edge_s = uintBitsToFloat(field_words[2 * c.k]), edge_r = uintBitsToFloat(field_words[2 * c.k + 1]);
-  return field_node(n.x, n.y, n.z) - (d.x * edge_s + d.y * edge_r + d.z * (kLatticeHeight / float(kFieldLayers))) -
-         kFieldRounding;
+  const int i = min(int(g.x), kFieldCells - 1), j = min(int(g.y), kFieldCells - 1), k = min(int(g.z), kFieldLayers - 1);
+  return (k * kFieldCells + j) * kFieldCells + i;
 }
 
 // The cell's candidate images (8 bits each), or kFieldAllImages.
-uint field_candidates(FieldCell c) {
-  const int nodes = (kFieldLayers + 1) * (kFieldCells + 1) * (kFieldCells + 1);
-  return field_words[2 * kFieldLayers + nodes + (c.k * kFieldCells + c.j) * kFieldCells + c.i];
-}
+uint field_candidates(int cell) { return field_words[2 * cell]; }
 
 // How many of a cell's candidate slots (not kFieldAllImages) are filled:
 // they fill from the lowest byte.
@@ -574,12 +545,8 @@ int field_candidate_count(uint word) {
 }
 
 // The cell's reach (sol::QuotientField::reach): no image but its
-// candidates is within it of the cell.
-float field_reach(FieldCell c) {
-  const int nodes = (kFieldLayers + 1) * (kFieldCells + 1) * (kFieldCells + 1);
-  const int cells = kFieldLayers * kFieldCells * kFieldCells;
-  return uintBitsToFloat(field_words[2 * kFieldLayers + nodes + cells + (c.k * kFieldCells + c.j) * kFieldCells + c.i]);
-}
+// candidates is within it of any point of the cell.
+float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]); }
 
 // The s-th of a cell's `listed` candidates (its word, or every image when
 // `all`; field_candidate_count): its image index `i`, its record `m` and
@@ -654,8 +621,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         local_t = 0.0;
         p = origin;
       }
-      const FieldCell cell = field_cell(p);
-      const float field = field_lower_bound(cell);
+      const int cell = field_cell(p);
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
       const vec2 hz = half_exp(p.z);  // shared by the candidates' clearances
@@ -683,7 +649,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         if (!leaving) nearest_hit = min(nearest_hit, d);
       } while (++s < listed);
       if (nearest_hit < eps) return true;
-      float step_length = max(field, min(clear, field_reach(cell)));
+      float step_length = min(clear, field_reach(cell));
       if (any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * eps);
       t += step_length;
       local_t += step_length;
@@ -1208,15 +1174,14 @@ void main() {
 
   if (QUOTIENT) {
     // The march of libsol's march_quotient: rays in D, teleported back when a
-    // step ends outside. Each step is the distance field's lower bound
-    // (sol::QuotientField: one read instead of every image's bound) or the
-    // least clearance along the ray (object_clearance) of the cell's
-    // candidate images (every image that can be nearer than kFieldNear
-    // there, or else the nearest), capped at the cell's reach (field_reach:
-    // the other images are farther), whichever is larger, and the candidate
-    // that comes within hit_epsilon is the object hit. Steps stay within
-    // the world's longest step (sol::quotient_max_step), the reach of the
-    // listed images, which the field and the reaches are capped at.
+    // step ends outside. Each step is the least clearance along the ray
+    // (object_clearance) of the cell's candidate images (sol::QuotientField:
+    // every image that can be nearer than kFieldNear there, or else the
+    // nearest), capped at the cell's reach (field_reach: every other image
+    // is farther; one read instead of every image's bound), and the
+    // candidate that comes within hit_epsilon is the object hit. Steps stay
+    // within the world's longest step (sol::quotient_max_step), the reach of
+    // the listed images, which the reaches are capped at.
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = eye_camera.xyz;  // the eye, already in D (from double)
     if (HAS_ODS) {  // the column's eye, teleported into D
@@ -1244,8 +1209,7 @@ void main() {
         local_t = 0.0;
         q = origin;
       }
-      const FieldCell cell = field_cell(q);
-      const float field = field_lower_bound(cell);
+      const int cell = field_cell(q);
       steps = step + 1;
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
@@ -1293,7 +1257,7 @@ void main() {
         hit_image = nearest_i;
         break;
       }
-      const float step_length = max(field, min(min(clear_nearest, clear_rest), field_reach(cell)));
+      const float step_length = min(min(clear_nearest, clear_rest), field_reach(cell));
       t += step_length;
       local_t += step_length;
       if (t > max_distance) break;

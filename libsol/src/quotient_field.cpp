@@ -17,19 +17,11 @@ namespace sol {
 namespace {
 
 constexpr int kN = QuotientField::kCells, kNz = QuotientField::kLayers;
-constexpr std::size_t kNodes = static_cast<std::size_t>(kNz + 1) * (kN + 1) * (kN + 1);
 constexpr std::size_t kCellCount = static_cast<std::size_t>(kNz) * kN * kN;
-// The buffer's header: per layer the edge lengths along s and r.
-constexpr std::size_t kHeader = 2 * static_cast<std::size_t>(kNz);
-// Float rounding of the position, the lattice coordinates and the
-// interpolation in the kernel, far below this.
+// Float rounding of the position and the lattice coordinates in the
+// kernel, far below this.
 constexpr double kRounding = kernel::kFieldRounding;
-// The Sol length of a cell's edge along z.
-constexpr double kEdgeZ = kernel::kLatticeHeight / kNz;
 
-std::size_t node_index(int i, int j, int k) {
-  return (static_cast<std::size_t>(k) * (kN + 1) + static_cast<std::size_t>(j)) * (kN + 1) + static_cast<std::size_t>(i);
-}
 std::size_t cell_index(int i, int j, int k) {
   return (static_cast<std::size_t>(k) * kN + static_cast<std::size_t>(j)) * kN + static_cast<std::size_t>(i);
 }
@@ -71,43 +63,16 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
   }
   const Lattice lattice = Lattice::golden();
   const double h = lattice.height();
-  m_words.assign(kHeader + kNodes + 2 * kCellCount, 0u);
-  // Per layer, the Sol length of a cell's edges along s and r (at most, over
-  // the layer's heights) and the cells' diameter; the edge along z is h / kNz.
+  m_words.assign(2 * kCellCount, 0u);
+  // Per layer, the cells' diameter (at most, over the layer's heights).
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   const double dz = h / kNz;
   std::vector<double> diameter(kNz);
   for (int k = 0; k < kNz; ++k) {
     const double lo = std::exp(-2.0 * k * dz), hi = std::exp(2.0 * (k + 1) * dz);  // e^{-2 z0}, e^{2 z1}
-    const double along_s = std::sqrt(lo * g1.x * g1.x + hi * g1.y * g1.y) / kN;
-    const double along_r = std::sqrt(lo * g2.x * g2.x + hi * g2.y * g2.y) / kN;
     const double dx = (std::abs(g1.x) + std::abs(g2.x)) / kN, dy = (std::abs(g1.y) + std::abs(g2.y)) / kN;
     diameter[static_cast<std::size_t>(k)] = std::sqrt(lo * dx * dx + hi * dy * dy + dz * dz);
-    // Rounded up to float: never below the length.
-    auto up = [](double v) {
-      float f = static_cast<float>(v);
-      if (static_cast<double>(f) < v) f = std::nextafter(f, 2.0f * f + 1.0f);
-      return std::bit_cast<std::uint32_t>(f);
-    };
-    m_words[2 * static_cast<std::size_t>(k)] = up(along_s);
-    m_words[2 * static_cast<std::size_t>(k) + 1] = up(along_r);
   }
-  auto nearest = [&](const glm::dvec3& q) {
-    double b = max_step;
-    for (const MarchObject& image : images) b = std::min(b, bound(image, q));
-    return b;
-  };
-  parallel_for(kNz + 1, [&](int k) {
-    for (int j = 0; j <= kN; ++j) {
-      for (int i = 0; i <= kN; ++i) {
-        const double b = nearest(point_at(lattice, static_cast<double>(i) / kN, static_cast<double>(j) / kN, k * dz));
-        // Rounded down to float: never above B.
-        float f = static_cast<float>(b);
-        if (static_cast<double>(f) > b) f = std::nextafter(f, -1.0f);
-        m_words[kHeader + node_index(i, j, k)] = std::bit_cast<std::uint32_t>(f);
-      }
-    }
-  });
   parallel_for(kNz, [&](int k) {
     const double radius = 0.5 * diameter[static_cast<std::size_t>(k)];
     for (int j = 0; j < kN; ++j) {
@@ -116,7 +81,7 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
         std::uint32_t word = 0xFFFFFFFFu;  // every slot empty (kFieldEmpty)
         // The candidates: every image whose bound can be below kNear in the
         // cell, and at least the nearest one (a ray far from every surface
-        // then steps by its clearance, not by the field alone); more than
+        // then steps by its clearance, up to the next image's bound); more than
         // kCandidates: every image. The reach: the least bound of the other
         // images over the cell, capped at the longest step.
         int count = 0;
@@ -151,11 +116,11 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
           word = (word & ~0xFFu) | static_cast<std::uint32_t>(first_image);  // only the nearest
           reach = std::min(max_step, second);
         }
-        m_words[kHeader + kNodes + cell_index(i, j, k)] = word;
+        m_words[2 * cell_index(i, j, k)] = word;
         // Rounded down to float, less the kernel's rounding: never above the bounds.
         float f = static_cast<float>(reach - kRounding);
         if (static_cast<double>(f) > reach - kRounding) f = std::nextafter(f, -1.0f);
-        m_words[kHeader + kNodes + kCellCount + cell_index(i, j, k)] = std::bit_cast<std::uint32_t>(f);
+        m_words[2 * cell_index(i, j, k) + 1] = std::bit_cast<std::uint32_t>(f);
       }
     }
   });
@@ -168,33 +133,15 @@ QuotientField::Cell QuotientField::cell_of(const glm::dvec3& q) const {
                      std::clamp(q.z / lattice.height(), 0.0, 1.0) * kNz);
   const int i = std::min(static_cast<int>(g.x), kN - 1), j = std::min(static_cast<int>(g.y), kN - 1),
             k = std::min(static_cast<int>(g.z), kNz - 1);
-  return {i, j, k, g - glm::dvec3(i, j, k)};
-}
-
-float QuotientField::edge(int layer, int axis) const {
-  return std::bit_cast<float>(m_words[2 * static_cast<std::size_t>(layer) + static_cast<std::size_t>(axis)]);
-}
-
-float QuotientField::node(int i, int j, int k) const {
-  return std::bit_cast<float>(m_words[kHeader + node_index(i, j, k)]);
+  return {i, j, k};
 }
 
 std::uint32_t QuotientField::cell_candidates(int i, int j, int k) const {
-  return m_words[kHeader + kNodes + cell_index(i, j, k)];
-}
-
-double QuotientField::lower_bound(const Cell& c) const {
-  // The nearest node n, and the path from q to it along s, r (at q's height:
-  // the edge lengths of q's layer) and then z.
-  const glm::dvec3 away = glm::round(c.f);
-  const glm::dvec3 d = glm::abs(c.f - away);
-  const double path = d.x * edge(c.k, 0) + d.y * edge(c.k, 1) + d.z * kEdgeZ;
-  return node(c.i + static_cast<int>(away.x), c.j + static_cast<int>(away.y), c.k + static_cast<int>(away.z)) - path -
-         kRounding;
+  return m_words[2 * cell_index(i, j, k)];
 }
 
 double QuotientField::reach(const Cell& c) const {
-  return std::bit_cast<float>(m_words[kHeader + kNodes + kCellCount + cell_index(c.i, c.j, c.k)]);
+  return std::bit_cast<float>(m_words[2 * cell_index(c.i, c.j, c.k) + 1]);
 }
 
 void QuotientField::candidates(const Cell& c, std::vector<int>& out) const {
@@ -210,8 +157,6 @@ void QuotientField::candidates(const Cell& c, std::vector<int>& out) const {
   }
 }
 
-double QuotientField::lower_bound(const glm::dvec3& q) const { return lower_bound(cell_of(q)); }
-
 double QuotientField::reach(const glm::dvec3& q) const { return reach(cell_of(q)); }
 
 std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {
@@ -222,7 +167,6 @@ std::vector<int> QuotientField::candidates(const glm::dvec3& q) const {
 
 void QuotientField::sample(const glm::dvec3& q, Sample& out) const {
   const Cell c = cell_of(q);
-  out.lower_bound = lower_bound(c);
   out.reach = reach(c);
   candidates(c, out.candidates);
 }

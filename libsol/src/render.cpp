@@ -267,15 +267,14 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // The march in Γ\Sol: the ray lives in D. Every step starts in D (a ray
 // found outside is first teleported back by an element of Γ; its direction,
 // in frame components, is unchanged by the left-translation, and its
-// closed-form geodesic restarts there). A step is the world's distance field
-// F (sol::QuotientField: a lower bound of the least distance bound of the
-// images around D, capped at the world's longest step) or the least
-// clearance of the cell's candidate images along the ray (every image
-// whose bound can be below kFieldNear in the cell, or else the nearest
-// one; each image's clearance, sol/clearance.hpp, is at least its bound and
-// longer beside it) capped at the cell's reach (the other images' bounds
-// exceed it at q), whichever is larger: neither reaches an object, so a
-// step may cross a face of D but never passes through an object. The
+// closed-form geodesic restarts there). A step is the least clearance of
+// the cell's candidate images along the ray (sol::QuotientField: every
+// image whose bound can be below kFieldNear in the cell, or else the
+// nearest one; each image's clearance, sol/clearance.hpp, is at least its
+// bound and longer beside it) capped at the cell's reach (the other
+// images' bounds exceed it at q; at most the world's longest step): it
+// reaches no object, so a step may cross a face of D but never passes
+// through an object. The
 // candidate that comes within hit_epsilon is the object hit. The kernel
 // (march.comp) marches the same way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
@@ -296,7 +295,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
     }
   }
-  QuotientField::Sample cell;  // q's cell: F, the reach, the candidates (one lookup a step)
+  QuotientField::Sample cell;  // q's cell: the reach and the candidates (one lookup a step)
   for (int step = 0; step < world.max_steps; ++step) {
     // The position and the tangent (frame components, kept by the teleport's
     // left translation: the restarted ray starts along it).
@@ -335,7 +334,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
       return hit;
     }
-    double step_length = std::max(cell.lower_bound, std::min(clear, cell.reach));
+    double step_length = std::min(clear, cell.reach);
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     t += step_length;
     local += step_length;

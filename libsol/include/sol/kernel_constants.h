@@ -48,8 +48,8 @@ SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
 SOL_CONSTANT(int, kFieldCandidates, 4);
 SOL_CONSTANT(int, kFieldEmpty, 255);
 SOL_CONSTANT(uint, kFieldAllImages, 0xFFFFFFFEu);
-/// Taken off the field for the float rounding of the position, the lattice
-/// coordinates and the interpolation (all below 1e-5).
+/// Taken off each cell's reach for the kernel's float rounding of the
+/// position and the lattice coordinates (below 1e-5).
 SOL_CONSTANT(SOL_REAL, kFieldRounding, 1e-4);
 
 // ---- Object, pattern and light codes of the kernels' scene description
