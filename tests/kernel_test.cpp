@@ -639,6 +639,34 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   expect_no_validation_errors();
 }
 
+// A quotient world of several kinds (tubes, a plane z = c, a ball): the
+// kernel reads each image's code (march.comp's image_type, which a world of
+// one kind does not read) and tells them apart as the CPU reference does.
+TEST(Kernel, QuotientWorldOfSeveralKindsMatchesTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Lattice lattice = sol::Lattice::golden();
+  sol::Scene mixed = sol::preset_scene("lattice-pillars");
+  mixed.objects.push_back({sol::PlaneZ{0.2 * lattice.height()}, {0.8, 0.8, 0.8}, sol::Pattern::Checker});
+  mixed.objects.push_back({sol::Ball{{0.9, 0.9, 0.6}, 0.15}, {0.9, 0.5, 0.3}});
+  sol::RenderSettings settings;
+  settings.width = 32;
+  settings.height = 24;
+  const sol::RenderResult mixed_cpu = sol::render_cpu(mixed, settings);
+  int tube = 0, plane = 0, ball = 0;  // objects 1-3, 4, 5
+  for (float object : mixed_cpu.object) {
+    tube += object >= 1.0f && object <= 3.0f ? 1 : 0;
+    plane += object == 4.0f ? 1 : 0;
+    ball += object == 5.0f ? 1 : 0;
+  }
+  std::printf("mixed quotient world: %d tube, %d plane, %d ball pixels\n", tube, plane, ball);
+  EXPECT_GT(std::min({tube, plane, ball}), 10);  // each kind is seen
+  const Comparison m = compare(renderer.render(mixed, 32, 24), mixed_cpu);
+  EXPECT_LE(m.mask_differs, m.pixels / 100);
+  EXPECT_LE(m.color_differs, m.pixels / 100);
+  EXPECT_LT(m.distance, 2e-3);  // as PresetsMatchTheCpuRenderer's quotient presets
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PlaneAovsLieOnThePlane) {
   sol::vk::MarchRenderer renderer(vk_context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.

@@ -749,6 +749,22 @@ TEST(Render, FeaturesSayWhenAnExactLightHasAReach) {
   EXPECT_FALSE(sol::features_of(spheres).light_reach);
 }
 
+// The kinds of object a world holds: a quotient world of one kind lets the
+// kernel skip reading each image's code.
+TEST(Render, FeaturesSayWhichKindsOfObjectAWorldHolds) {
+  sol::Scene balls = sol::preset_scene("lattice-balls");
+  EXPECT_TRUE(sol::features_of(balls).bound_balls);
+  EXPECT_FALSE(sol::features_of(balls).tubes);
+  EXPECT_FALSE(sol::features_of(balls).planes_z);
+  EXPECT_FALSE(sol::features_of(balls).exact_balls);
+  EXPECT_TRUE(sol::features_of(sol::preset_scene("lattice-pillars")).tubes);
+  EXPECT_FALSE(sol::features_of(sol::preset_scene("lattice-pillars")).planes_z);
+  EXPECT_TRUE(sol::features_of(sol::preset_scene("plane")).planes_z);
+  balls.objects.push_back({sol::PlaneZ{0.5}});
+  EXPECT_TRUE(sol::features_of(balls).planes_z);
+  EXPECT_FALSE(sol::features_of(sol::preset_scene("sheets")).planes_z);
+}
+
 TEST(Render, FeaturesSayWhenEveryObjectIsAPlaneXOrY) {
   sol::Scene sheets = sol::preset_scene("sheets");
   EXPECT_TRUE(sol::features_of(sheets).planes_xy_only);

@@ -34,6 +34,7 @@ layout(constant_id = kSpecHeightsOnly) const bool HEIGHTS_ONLY = false;
 layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;  // balls or tubes
 layout(constant_id = kSpecBoundBalls) const bool HAS_BOUND_BALLS = true;
 layout(constant_id = kSpecTubes) const bool HAS_TUBES = true;
+layout(constant_id = kSpecPlanesZ) const bool HAS_PLANES_Z = true;
 layout(constant_id = kSpecPlanesXY) const bool HAS_PLANES_XY = true;
 // Every object a plane x = c or y = c (sol::MarchFeatures::planes_xy_only):
 // their crossing solved (plane_xy_roots) is the whole march.
@@ -548,6 +549,13 @@ int field_candidate_count(uint word) {
 // candidates is within it of any point of the cell.
 float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]); }
 
+// A quotient world of one kind of object (specialisation constants): every
+// image's code is that kind's, and is not read (on lavapipe each word a
+// step reads at a per-lane index is a gather of 8 loads).
+const bool ONE_KIND = (HAS_BOUND_BALLS ? 1 : 0) + (HAS_EXACT_BALLS ? 1 : 0) + (HAS_TUBES ? 1 : 0) + (HAS_PLANES_Z ? 1 : 0) == 1;
+const int ONLY_KIND = HAS_BOUND_BALLS ? kObjectBall : (HAS_EXACT_BALLS ? kObjectExactBall : (HAS_TUBES ? kObjectTube : kObjectPlaneZ));
+int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
+
 // The s-th of a cell's `listed` candidates (its word, or every image when
 // `all`; field_candidate_count): its image index `i`, its record `m` and
 // its object_clearance from q along u (hz: q.z's half exponentials). Past
@@ -557,7 +565,7 @@ float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]);
 vec2 candidate_clearance(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
   i = all ? s : int((word >> uint(8 * s)) & 255u);
   m = images[s < listed ? i : 0];
-  const vec2 dc = object_clearance(int(m.info.x), q, u, m.geometry, m.heading.xy, m.info.y, hz, m.heading.zw);
+  const vec2 dc = object_clearance(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, m.heading.zw);
   return s < listed ? dc : vec2(1e30);
 }
 

@@ -193,7 +193,7 @@ struct KernelVariant {
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
                    srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
-                   f.planes_xy_only, f.light_reach, defer_shading, defer_exact}) {
+                   f.planes_xy_only, f.light_reach, defer_shading, defer_exact, f.planes_z}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -211,6 +211,7 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
           .solids = true,
           .bound_balls = true,
           .tubes = true,
+          .planes_z = true,
           .planes_xy = !world.quotient,
           .point_lights = true,
           .fog = true,
@@ -271,6 +272,7 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u},
                                                 {kernel::kSpecBoundBalls, f.bound_balls ? 1u : 0u},
                                                 {kernel::kSpecTubes, f.tubes ? 1u : 0u},
+                                                {kernel::kSpecPlanesZ, f.planes_z ? 1u : 0u},
                                                 {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
                                                 {kernel::kSpecProjections, v.projections ? 1u : 0u},
                                                 {kernel::kSpecOds, v.ods ? 1u : 0u},

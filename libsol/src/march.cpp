@@ -144,6 +144,7 @@ MarchFeatures features_of(const World& world) {
     f.planes_xy_only = f.planes_xy_only && (std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
     f.solids = f.solids || std::holds_alternative<Ball>(o.shape) || std::holds_alternative<Tube>(o.shape);
     f.tubes = f.tubes || std::holds_alternative<Tube>(o.shape);
+    f.planes_z = f.planes_z || plane_z;
     f.planes_xy = f.planes_xy || std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape);
     f.cutout = f.cutout || o.cutout;
     f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);

@@ -100,6 +100,7 @@ struct MarchFeatures {
   bool solids = false;        ///< balls or tubes
   bool bound_balls = false;   ///< balls drawn with their bound (not exact)
   bool tubes = false;
+  bool planes_z = false;      ///< planes z = c
   bool planes_xy = false;     ///< planes x = c or y = c
   bool planes_xy_only = false;  ///< every object a plane x = c or y = c: once their crossing is solved, nothing to march
   bool point_lights = false;

@@ -57,6 +57,7 @@ SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a
 SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline runs (kPass*)
 SOL_CONSTANT(int, kSpecDeferShading, 19);   ///< bool: hits are shaded by the shade pass (exact lights)
 SOL_CONSTANT(int, kSpecDeferExact, 20);     ///< bool: rays that reach an exact ball go on in the resume pass
+SOL_CONSTANT(int, kSpecPlanesZ, 21);        ///< bool: planes z = c
 
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
 // everything. With it (docs/renderer.md "Deferred passes"), the march pass
