@@ -339,8 +339,8 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
 // S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
 // clearance). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
 // the caller (the quotient march takes q's once a step for all its
-// candidates, and the centre's from the image's record): no exponential and
-// no division here but the slopes'.
+// candidates, and each candidate's centre's; the Sol march keeps each
+// ball's per ray): no exponential and no division here but the slopes'.
 vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   const float dx = q.x - c.x, dy = q.y - c.y;
   const vec2 e = hz * hc, ec = hc * hc;  // e^{±(q.z + c.z)/2}, e^{±c.z}
@@ -565,7 +565,9 @@ int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
 vec2 candidate_clearance(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
   i = all ? s : int((word >> uint(8 * s)) & 255u);
   m = images[s < listed ? i : 0];
-  const vec2 dc = object_clearance(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, m.heading.zw);
+  // A ball's centre's half exponentials taken here: two exponentials cost
+  // lavapipe less than two more words read (docs/renderer.md).
+  const vec2 dc = object_clearance(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, half_exp(m.geometry.z));
   return s < listed ? dc : vec2(1e30);
 }
 

@@ -147,7 +147,7 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   for (const MarchObject& m : images) {
     const KernelShape shape = kernel_shape(m.shape);
     out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
-                   glm::vec4(shape.heading.x, shape.heading.y, std::exp(0.5 * shape.geometry.z), std::exp(-0.5 * shape.geometry.z))});
+                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0)});
   }
   // The kernel reads a first record even where a cell lists no candidate
   // (its loop is tested at the end, masked): never an empty buffer.

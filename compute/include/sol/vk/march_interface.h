@@ -139,7 +139,7 @@ struct Params {
 struct Image {
   vec4 geometry;  ///< ball: centre; tube: (point of the axis, axis code); plane z = c: (c, 0, 0, 0)
   vec4 info;      ///< x: object code, y: radius, z: the scene object it images (0-based)
-  vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; zw: e^{±geometry.z/2} (balls' clearances)
+  vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; zw: 0 (unused)
 };
 
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
