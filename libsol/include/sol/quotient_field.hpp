@@ -23,8 +23,9 @@
 // The nearest image as a candidate far from surfaces lets a ray that passes
 // it step by its clearance up to the next image's bound. (Until 2026-11 the
 // field also sampled min(S, min_i b_i) at the grid's nodes, a point-wise
-// lower bound F the march stepped by where it was longer: 0.5 % of the
-// steps, for three more reads a step; docs/renderer.md.)
+// lower bound F the march stepped by where it was longer: at 8 % of the
+// steps, and so little longer that without it a ray takes 0.5 % more
+// steps, while it cost three more reads a step; docs/renderer.md.)
 #pragma once
 
 #include <cstdint>
