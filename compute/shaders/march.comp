@@ -549,9 +549,10 @@ int field_candidate_count(uint word) {
 // candidates is within it of any point of the cell.
 float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]); }
 
-// A quotient world of one kind of object (specialisation constants): every
-// image's code is that kind's, and is not read (on lavapipe each word a
-// step reads at a per-lane index is a gather of 8 loads).
+// An image's kind (object code). A quotient world of one kind of object
+// (specialisation constants): every image's code is that kind's, and is not
+// read (on lavapipe each word a step reads at a per-lane index is a gather
+// of 8 loads). The quotient's marches and shading read the kind only here.
 const bool ONE_KIND = (HAS_BOUND_BALLS ? 1 : 0) + (HAS_EXACT_BALLS ? 1 : 0) + (HAS_TUBES ? 1 : 0) + (HAS_PLANES_Z ? 1 : 0) == 1;
 const int ONLY_KIND = HAS_BOUND_BALLS ? kObjectBall : (HAS_EXACT_BALLS ? kObjectExactBall : (HAS_TUBES ? kObjectTube : kObjectPlaneZ));
 int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
@@ -619,7 +620,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
         if (i == kFieldEmpty || held == 4) continue;
         const Image m = images[i];
-        if (object_distance(int(m.info.x), q, m.geometry, m.heading.xy, m.info.y) < 2.0 * eps) passing[held++] = i;
+        if (object_distance(image_type(m), q, m.geometry, m.heading.xy, m.info.y) < 2.0 * eps) passing[held++] = i;
       }
     }
     for (int step = 0; step < max_steps; ++step) {
@@ -643,7 +644,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         Image m;
         const vec2 dc = candidate_clearance(word, all, s, listed, p, forward.direction, hz, i, m);
         float d = dc.x;
-        if (HAS_EXACT_BALLS && int(m.info.x) == kObjectExactBall && d < kExactShell) {
+        if (HAS_EXACT_BALLS && image_type(m) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
           exact_i = i;
           d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_known, exact_J);
@@ -1076,7 +1077,7 @@ void shade_pass() {
   vec2 uv;
   if (QUOTIENT) {
     const Image m = images[index];
-    const int type = int(m.info.x);
+    const int type = image_type(m);
     k = int(m.info.z);
     uv = type >= kObjectBall ? solid_coordinates(type, q, m.geometry, m.heading.xy, m.info.y) : q.xy;
   } else {
@@ -1254,7 +1255,7 @@ void main() {
           }
         }
       } while (++s < listed);
-      if (HAS_EXACT_BALLS && nearest_i >= 0 && int(images[nearest_i].info.x) == kObjectExactBall && nearest < kExactShell) {
+      if (HAS_EXACT_BALLS && nearest_i >= 0 && image_type(images[nearest_i]) == kObjectExactBall && nearest < kExactShell) {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
         exact_i = nearest_i;
@@ -1278,7 +1279,7 @@ void main() {
     if (hit_image >= 0) {
       const vec4 geom = images[hit_image].geometry, info = images[hit_image].info;
       const vec2 heading = images[hit_image].heading.xy;
-      const int k = int(info.z), type = int(info.x);
+      const int k = int(info.z), type = image_type(images[hit_image]);
       // Planes face the side of the segment's origin (the ray's side); the
       // bounds of balls and tubes are left-invariant, so their gradients
       // along the frame are taken in world coordinates.
