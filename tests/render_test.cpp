@@ -7,11 +7,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
@@ -975,6 +977,102 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
     EXPECT_LT(worst_height, quotient.hit_epsilon + 1e-7) << "c = " << c;
     EXPECT_LT(worst_crossing, 2.0 * quotient.hit_epsilon + 1e-6) << "c = " << c;
   }
+}
+
+// A ray of the quotient followed by plain sphere tracing (the test's own
+// reference): in D, teleported back when it leaves, its closed form
+// restarted there; every step the least bound of every listed image
+// (sol::quotient_images, object_distance), at most the world's longest
+// step. The bounds are 1-Lipschitz, so no step passes a surface; no field,
+// no clearance, no over-relaxation. `visit(t, q)` sees every point it
+// stops at; it stops where visit returns false.
+template <class Visit>
+void follow_quotient_ray(const sol::MarchWorld& world, const dvec3& camera, const dvec3& direction, double max_step,
+                         Visit&& visit) {
+  const sol::Lattice lattice = sol::Lattice::golden();
+  dvec3 origin = lattice.teleport(camera).point;
+  auto ray = std::make_unique<sol::ClosedFormGeodesic<double>>(direction);
+  double t = 0.0, local = 0.0;
+  while (t <= world.world().max_distance) {
+    const sol::ClosedFormGeodesic<double>::State state = ray->at(local);
+    dvec3 q = sol::multiply(origin, state.position);
+    if (!lattice.contains(q)) {
+      origin = q = lattice.teleport(q).point;
+      ray = std::make_unique<sol::ClosedFormGeodesic<double>>(state.direction);
+      local = 0.0;
+    }
+    const double step = visit(t, q);
+    if (!(step > 0.0)) return;
+    const double length = std::min(step, max_step);
+    t += length;
+    local += length;
+  }
+}
+
+// The least bound of the listed images at q, and the image's owner (1-based).
+std::pair<double, int> least_bound(const sol::MarchWorld& world, const dvec3& q) {
+  std::pair<double, int> least{std::numeric_limits<double>::infinity(), 0};
+  for (const sol::MarchObject& image : world.objects()) {
+    const double d = sol::object_distance(image, q);
+    if (d < least.first) least = {d, static_cast<int>(image.owner) + 1};
+  }
+  return least;
+}
+
+// The quotient march over-relaxes the steps its cells' reach limits
+// (march_quotient; docs/renderer.md "The quotient"): it proposes a longer
+// step and keeps it only where the clearance back from its end covers what
+// the step's own bound did not. Against plain sphere tracing
+// (follow_quotient_ray), ray by ray: both stop on the same surface, at
+// arc lengths within 0.005 of each other (both stop within hit_epsilon =
+// 5e-5 of it; a ray meeting it at 1 degree is that near over 3e-3; measured
+// at 128 x 128: 3.3e-3), or else the earlier stop is only a graze: the
+// bound, sampled every 1e-4 of arc length within 0.02 of it, never falls
+// below 0 there, so the ray never entered an object where the other march
+// went on (at most 1 % of the rays; measured: none). With proposals
+// kept unchecked, 446 (balls) and 328 (pillars) of the 2304 rays failed
+// this, passing through an object.
+TEST_P(QuotientPresets, OverRelaxedMarchMeetsWhatPlainSphereTracingMeets) {
+  const sol::Scene scene = sol::preset_scene(GetParam());
+  const sol::CpuRenderer renderer(scene);
+  const sol::MarchWorld& world = renderer.world();
+  const int width = 48, height = 48;
+  const auto graze = [&](const dvec3& direction, double at) {
+    double least = std::numeric_limits<double>::infinity();
+    follow_quotient_ray(world, scene.camera.position, direction, world.max_step(), [&](double t, const dvec3& q) {
+      if (t >= at - 0.02) least = std::min(least, least_bound(world, q).first);
+      return t > at + 0.02 ? 0.0 : (t < at - 0.05 ? 0.05 : 1e-4);
+    });
+    return least >= 0.0;
+  };
+  int grazes = 0, hits = 0;
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) {
+      const dvec3 direction = sol::camera_ray(scene.camera, i, j, width, height);
+      const sol::MarchHit marched = renderer.march(scene.camera, direction);
+      int plain_object = 0;
+      double plain_t = 0.0;
+      follow_quotient_ray(world, scene.camera.position, direction, world.max_step(), [&](double t, const dvec3& q) {
+        const auto [d, owner] = least_bound(world, q);
+        if (d < scene.hit_epsilon) {
+          plain_object = owner;
+          plain_t = t;
+        }
+        return d < scene.hit_epsilon ? 0.0 : d;
+      });
+      hits += plain_object != 0;
+      if (marched.object == plain_object && (plain_object == 0 || std::abs(marched.distance - plain_t) <= 0.005)) continue;
+      ++grazes;
+      // The earlier of the two stops on a surface.
+      const bool plain_first = plain_object != 0 && (marched.object == 0 || plain_t < marched.distance);
+      EXPECT_TRUE(graze(direction, plain_first ? plain_t : marched.distance))
+          << GetParam() << " pixel " << i << ", " << j << ": marched " << marched.object << " at " << marched.distance
+          << ", plain sphere tracing " << plain_object << " at " << plain_t;
+    }
+  }
+  std::printf("%s: %d of %d rays hit, %d grazes\n", GetParam(), hits, width * height, grazes);
+  EXPECT_GT(hits, width * height / 2);
+  EXPECT_LE(grazes, width * height / 100);
 }
 
 // Whether two world-coordinate images are the same set (a test-side check).

@@ -316,6 +316,17 @@ float clearance_root(float h, float slope, float curvature) {
   return h > 0.0 ? s : 0.0;
 }
 
+// clearance_root with curvature 1 both ways along the geodesic, (ahead:
+// slope, back: -slope): with B = |slope| + √(slope² + 2h), the root on the
+// side the term grows towards is B and the other 2h/B (their product is
+// 2h), so one square root and one division give both without cancellation.
+vec2 clearance_roots(float h, float slope) {
+  const float big = abs(slope) + sqrt(slope * slope + 2.0 * max(h, 0.0));
+  const float small = 2.0 * h / max(big, 1e-30);
+  const vec2 s = slope >= 0.0 ? vec2(big, small) : vec2(small, big);
+  return h > 0.0 ? s : vec2(0.0);
+}
+
 // The clearance of an exact ball from q (the kernel's own: the CPU steps by
 // the exact distance; derivation in docs/exact.md), where its exact
 // distance is f = d - r (d the distance from the centre) and f' = slope
@@ -341,7 +352,7 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
 // the caller (the quotient march takes q's once a step for all its
 // candidates, and each candidate's centre's; the Sol march keeps each
 // ball's per ray): no exponential and no division here but the slopes'.
-vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
+vec3 ball_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   const float dx = q.x - c.x, dy = q.y - c.y;
   const vec2 e = hz * hc, ec = hc * hc;  // e^{±(q.z + c.z)/2}, e^{±c.z}
   const float e2 = e.x * e.x, ie2 = e.y * e.y;  // e^{q.z + c.z}, its inverse
@@ -353,14 +364,16 @@ vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   const vec2 h = 2.0 * log(s + root) - radius;  // 2 asinh s
   const vec2 slope = rate / max(s * root, 1e-30);
   const float distance = max(h.x, h.y);
-  return vec2(distance, max(distance, max(clearance_root(h.x, slope.x, 1.0), clearance_root(h.y, slope.y, 1.0))));
+  return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
 }
+
+vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) { return ball_clearances(q, u, c, radius, hz, hc).xy; }
 
 // A tube's bound (sol::clearance_tube): vertical, the slabs around x = x0 and
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
 // y); every term bends by at most 1. Returns (distance bound, clearance).
-vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
+vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
   // Both forms have two terms; the first is asinh(w) - r for either (w the
   // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
   // serves both: the inputs are chosen first (lavapipe runs both sides of
@@ -380,7 +393,11 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
   // The second term: the slab around y = y0 (vertical), or |Δz| - r.
   const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
   const float distance = max(hw.x, hb);
-  return vec2(distance, max(distance, max(clearance_root(hw.x, sw.x, 1.0), clearance_root(hb, sb, 1.0))));
+  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+}
+
+vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
+  return tube_clearances(q, u, through, axis, h, radius, hz).xy;
 }
 
 // The object's distance (object_distance) and clearance, the larger of it
@@ -388,14 +405,21 @@ vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius
 // which holds the exact one, as object_distance). The objects of the
 // quotient: planes z = c, balls and tubes. hz, hc: the half exponentials
 // of q.z and (balls only) rel.z.
-vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+// object_clearances: the same with the clearance back along -u third (the
+// quotient march's check of an over-relaxed step).
+vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return ball_clearance(q, u, rel.xyz, radius, hz, hc);
+    return ball_clearances(q, u, rel.xyz, radius, hz, hc);
   }
-  if (HAS_TUBES && type == kObjectTube) return tube_clearance(q, u, rel.xyz, int(rel.w), heading, radius, hz);
+  if (HAS_TUBES && type == kObjectTube) return tube_clearances(q, u, rel.xyz, int(rel.w), heading, radius, hz);
   const float d = object_distance(type, q, rel, heading, radius);
-  const float plane_z = max(d, clearance_root(d, q.z >= rel.x ? u.z : -u.z, 1.0));
-  return vec2(d, type == kObjectPlaneZ ? plane_z : d);
+  const float rate = q.z >= rel.x ? u.z : -u.z;
+  const vec2 plane_z = max(vec2(d), clearance_roots(d, rate));
+  return type == kObjectPlaneZ ? vec3(d, plane_z) : vec3(d);
+}
+
+vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return object_clearances(type, q, u, rel, heading, radius, hz, hc).xy;
 }
 
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
@@ -559,17 +583,21 @@ int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
 
 // The s-th of a cell's `listed` candidates (its word, or every image when
 // `all`; field_candidate_count): its image index `i`, its record `m` and
-// its object_clearance from q along u (hz: q.z's half exponentials). Past
+// its object_clearances from q along u (hz: q.z's half exponentials). Past
 // the listed ones (a cell listing none: the one masked pass of the
 // marches' do-while over the candidates) `m` is the first record and no
 // object answers (1e30).
-vec2 candidate_clearance(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
+vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
   i = all ? s : int((word >> uint(8 * s)) & 255u);
   m = images[s < listed ? i : 0];
   // A ball's centre's half exponentials taken here: two exponentials cost
   // lavapipe less than two more words read (docs/renderer.md).
-  const vec2 dc = object_clearance(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, half_exp(m.geometry.z));
-  return s < listed ? dc : vec2(1e30);
+  const vec3 dc = object_clearances(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, half_exp(m.geometry.z));
+  return s < listed ? dc : vec3(1e30);
+}
+
+vec2 candidate_clearance(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
+  return candidate_clearances(word, all, s, listed, q, u, hz, i, m).xy;
 }
 
 // ---- Shadows (sol::Light::shadows; the CPU's `blocked` in libsol/src/render.cpp)
@@ -1209,37 +1237,38 @@ void main() {
     SolEnd exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
     bool exact_known = false;  // exact_v, exact_end: a solution to start from
     mat3 exact_J = mat3(1.0);  // the last solve's Jacobian (sol_newton)
+    // Over-relaxation (march_quotient's): `proposal` is the step from q, the
+    // last point the march moved to, and `covered` the part of it q's own
+    // bounds clear; a longer proposal is kept where the clearance back from
+    // its end e covers the rest, else the march steps `covered` from q.
+    float proposal = 0.0, covered = 0.0;
     for (int step = 0; step < max_steps; ++step) {
-      const SolForward forward = sol_forward(qray, local_t);
-      q = sol_translate(origin, forward.position);
-      if (!in_domain(q)) {
-        // The same geodesic goes on from the teleported point, restarted
-        // from what sol_forward found there (sol_ray_restarted).
-        origin = teleport(q, true);
-        qray = sol_ray_restarted(qray, local_t, forward);
-        local_t = 0.0;
-        q = origin;
-      }
-      const int cell = field_cell(q);
+      const SolForward forward = sol_forward(qray, local_t + proposal);
+      vec3 e = sol_translate(origin, forward.position);
+      const bool outside = !in_domain(e);
+      if (outside) e = teleport(e, true);
+      const int cell = field_cell(e);
       steps = step + 1;
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
-      const vec2 hz = half_exp(q.z);  // shared by the candidates' clearances
+      const vec2 hz = half_exp(e.z);  // shared by the candidates' clearances
       float nearest = 1e30;
       int nearest_i = -1;
       float second = 1e30;  // the least distance but the nearest's, and its image
       int second_i = -1;
-      // The clearances (object_clearance) of the nearest and the least of the others'.
-      float clear_nearest = 1e30, clear_rest = 1e30;
+      // The clearances (object_clearances) of the nearest and the least of
+      // the others' ahead, and the least back.
+      float clear_nearest = 1e30, clear_rest = 1e30, back = 1e30;
       // (A do-while, tested at its end: see the top of this file and
-      // candidate_clearance.)
+      // candidate_clearances.)
       const int listed = all ? image_count : field_candidate_count(word);
       int s = 0;
       do {
         int i;
         Image m;
-        const vec2 dc = candidate_clearance(word, all, s, listed, q, forward.direction, hz, i, m);
+        const vec3 dc = candidate_clearances(word, all, s, listed, e, forward.direction, hz, i, m);
         const float d = dc.x;
+        back = min(back, dc.z);
         if (d < nearest) {
           second = nearest;
           second_i = nearest_i;
@@ -1259,19 +1288,37 @@ void main() {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
         exact_i = nearest_i;
-        const float exact = exact_ball_sdf(q, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known, exact_J);
+        const float exact = exact_ball_sdf(e, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known, exact_J);
         nearest_i = exact <= second ? nearest_i : second_i;
         nearest = min(exact, second);
         clear_nearest = max(clear_nearest, exact);
       }
+      const float reach = field_reach(cell);
+      if (proposal > covered && covered + min(back, reach) < proposal) {
+        proposal = covered;  // not covered: the plain step instead
+        continue;
+      }
+      // The march moves to e. The same geodesic goes on from a teleported
+      // point, restarted from what sol_forward found there (sol_ray_restarted).
+      t += proposal;
+      if (outside) {
+        origin = e;
+        qray = sol_ray_restarted(qray, local_t + proposal, forward);
+        local_t = 0.0;
+      } else {
+        local_t += proposal;
+      }
+      q = e;
       if (nearest < hit_epsilon) {
         hit_image = nearest_i;
         break;
       }
-      const float step_length = min(min(clear_nearest, clear_rest), field_reach(cell));
-      t += step_length;
-      local_t += step_length;
-      if (t > max_distance) break;
+      const float clear = min(clear_nearest, clear_rest);
+      const float step_length = min(clear, reach);
+      if (t + step_length > max_distance) break;
+      covered = step_length;
+      proposal = reach < clear ? min(max(step_length, min(kQuotientOverRelax * step_length, kQuotientMaxStep)), max_distance - t)
+                               : step_length;
     }
     vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 hit_aov = vec4(0.0, 0.0, float(steps), 0.0);

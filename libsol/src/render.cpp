@@ -274,9 +274,22 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // bound and longer beside it) capped at the cell's reach (the other
 // images' bounds exceed it at q; at most the world's longest step): it
 // reaches no object, so a step may cross a face of D but never passes
-// through an object. The
-// candidate that comes within hit_epsilon is the object hit. The kernel
-// (march.comp) marches the same way in float.
+// through an object. The candidate that comes within hit_epsilon is the
+// object hit.
+//
+// Over-relaxation (camera rays): where the reach, not a candidate, limits
+// the step c, the march proposes kQuotientOverRelax c instead (at most
+// kQuotientMaxStep) and evaluates its end e. The ray's geodesic from q is
+// free of objects up to c (the step's own bound), and back from e for the
+// clearance of e's candidates along the reversed tangent, capped at e's
+// reach (the same bounds, for the geodesic run backwards from e: it is a
+// geodesic too). Where the two cover the proposal (c + back >= proposal)
+// no object lies on it and the march moves to e; else it stays at q and
+// steps c, as without over-relaxation. Two sound pieces, so a proposal
+// never passes through an object; a ray that only grazes a surface (within
+// hit_epsilon without crossing it) may be stepped past where the plain
+// march would have stopped on it. The kernel (march.comp) marches the same
+// way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
                         const MarchLimits& limits = {}) {
   const World& world = prepared.world();
@@ -295,22 +308,25 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
     }
   }
+  const bool over_relax = !limits.leave_start;
+  // The step from the last point the march moved to (0 before the first),
+  // and the part of it that point's own bound covers (the step taken where
+  // a proposal fails).
+  double proposal = 0.0, covered = 0.0;
   QuotientField::Sample cell;  // q's cell: the reach and the candidates (one lookup a step)
   for (int step = 0; step < world.max_steps; ++step) {
     // The position and the tangent (frame components, kept by the teleport's
     // left translation: the restarted ray starts along it).
-    const ClosedFormGeodesic<double>::State state = ray->at(local);
+    const ClosedFormGeodesic<double>::State state = ray->at(local + proposal);
     glm::dvec3 q = multiply(origin, state.position);
     const glm::dvec3 u = state.direction;
-    if (!lattice.contains(q)) {
-      origin = lattice.teleport(q).point;
-      ray = std::make_unique<ClosedFormGeodesic<double>>(u);
-      local = 0.0;
-      q = origin;
-    }
+    const bool outside = !lattice.contains(q);
+    if (outside) q = lattice.teleport(q).point;
     hit.steps = step + 1;
     field.sample(q, cell);
-    double clear = std::numeric_limits<double>::infinity(), nearest_hit = clear;
+    // The clearances ahead and (for a proposal to check) back.
+    double clear = std::numeric_limits<double>::infinity(), back = clear, nearest_hit = clear;
+    const bool check = proposal > covered;
     int nearest_k = -1;
     for (int k : cell.candidates) {
       const MarchObject& image = images[static_cast<std::size_t>(k)];
@@ -318,10 +334,22 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       auto left = std::find(passing.begin(), passing.end(), k);
       if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
       clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
+      if (check) back = std::min(back, std::max(d, object_clearance(image, q, -u)));
       if (left == passing.end() && d < nearest_hit) {
         nearest_hit = d;
         nearest_k = k;
       }
+    }
+    if (check && covered + std::min(back, cell.reach) < proposal) {
+      proposal = covered;  // not covered: the plain step instead
+      continue;
+    }
+    t += proposal;
+    local += proposal;
+    if (outside) {
+      origin = q;
+      ray = std::make_unique<ClosedFormGeodesic<double>>(u);
+      local = 0.0;
     }
     if (nearest_hit < world.hit_epsilon) {
       const MarchObject& image = images[static_cast<std::size_t>(nearest_k)];
@@ -336,9 +364,15 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     }
     double step_length = std::min(clear, cell.reach);
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
-    t += step_length;
-    local += step_length;
-    if (t > max_length) break;
+    if (t + step_length > max_length) {
+      t += step_length;
+      break;
+    }
+    covered = step_length;
+    proposal = over_relax && cell.reach < clear
+                   ? std::min(std::max(step_length, std::min(kernel::kQuotientOverRelax * step_length, kQuotientMaxStep)),
+                              max_length - t)
+                   : step_length;
   }
   hit.distance = std::min(t, max_length);
   return hit;

@@ -48,6 +48,11 @@ SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
 SOL_CONSTANT(int, kFieldCandidates, 4);
 SOL_CONSTANT(int, kFieldEmpty, 255);
 SOL_CONSTANT(uint, kFieldAllImages, 0xFFFFFFFEu);
+/// The over-relaxation of the quotient march (docs/renderer.md "The
+/// quotient"): a step the cell's reach limits is proposed this many times
+/// longer (at most kQuotientMaxStep) and kept only where the clearance
+/// back from its end covers what the reach did not.
+SOL_CONSTANT(SOL_REAL, kQuotientOverRelax, 1.6);
 /// Taken off each cell's reach for the kernel's float rounding of the
 /// position and the lattice coordinates (below 1e-5).
 SOL_CONSTANT(SOL_REAL, kFieldRounding, 1e-4);
