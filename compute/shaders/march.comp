@@ -348,7 +348,7 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
 
 // A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
 // S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
-// clearance). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
+// clearance along u, clearance back along -u). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
 // the caller (the quotient march takes q's once a step for all its
 // candidates, and each candidate's centre's; the Sol march keeps each
 // ball's per ray): no exponential and no division here but the slopes'.
@@ -367,12 +367,11 @@ vec3 ball_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
 }
 
-vec2 ball_clearance(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) { return ball_clearances(q, u, c, radius, hz, hc).xy; }
-
 // A tube's bound (sol::clearance_tube): vertical, the slabs around x = x0 and
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
-// y); every term bends by at most 1. Returns (distance bound, clearance).
+// y); every term bends by at most 1. Returns (distance bound, clearance
+// along u, clearance back along -u).
 vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
   // Both forms have two terms; the first is asinh(w) - r for either (w the
   // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
@@ -394,10 +393,6 @@ vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radiu
   const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
   const float distance = max(hw.x, hb);
   return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
-}
-
-vec2 tube_clearance(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
-  return tube_clearances(q, u, through, axis, h, radius, hz).xy;
 }
 
 // The object's distance (object_distance) and clearance, the larger of it
