@@ -639,6 +639,82 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   expect_no_validation_errors();
 }
 
+// The quotient march takes every ray off the plane regime
+// (sol_direction_off_plane_regime in sol_geodesic.glsl: μ = |ab| raised to
+// 2e-24, or a vertical line), so that its steps leave that regime's
+// position out. The rays of that regime are those in a plane x = const or
+// y = const through the eye: with an odd image size the middle column and
+// row of a camera looking along z (lattice-balls) are such rays (the
+// middle pixel's sample lies on the axis), and its middle pixel is
+// vertical; a camera looking along x has its middle column in a plane
+// y = const. Each of those pixels against the CPU renderer, which marches
+// them in double by its own plane and vertical regimes.
+TEST(Kernel, QuotientRaysInPlanesXOrYConstMatchTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  sol::Scene balls = sol::preset_scene("lattice-balls");
+  sol::Scene pillars = sol::preset_scene("lattice-pillars");
+  pillars.camera.forward = {1.0, 0.0, 0.0};
+  pillars.camera.up = {0.0, 0.0, 1.0};
+  const int width = 33, height = 25;
+  for (const sol::Scene& scene : {balls, pillars}) {
+    const int mid_i = width / 2, mid_j = height / 2;
+    const bool along_z = scene.camera.forward.z != 0.0;
+    // The pixels of the plane regime, checked from the camera's own rays:
+    // one horizontal component exactly 0.
+    std::vector<std::pair<int, int>> pixels;
+    for (int j = 0; j < height; ++j) pixels.emplace_back(mid_i, j);
+    if (along_z) {
+      for (int i = 0; i < width; ++i) {
+        if (i != mid_i) pixels.emplace_back(i, mid_j);
+      }
+    }
+    for (const auto& [i, j] : pixels) {
+      const dvec3 d = sol::camera_ray(scene.camera, i, j, width, height);
+      ASSERT_EQ(d.x * d.y, 0.0) << i << ", " << j;
+    }
+    sol::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+    const sol::RenderResult gpu = renderer.render(scene, width, height);
+    const sol::MarchWorld world(scene);
+    int hits = 0, mask_differs = 0, grazing = 0;
+    double worst = 0.0;
+    for (const auto& [i, j] : pixels) {
+      const auto k = static_cast<std::size_t>(j * width + i);
+      ASSERT_TRUE(std::isfinite(gpu.distance[k]) && std::isfinite(gpu.px[k]) && std::isfinite(gpu.py[k]) &&
+                  std::isfinite(gpu.pz[k]))
+          << i << ", " << j;
+      if (gpu.object[k] != cpu.object[k]) {
+        ++mask_differs;
+        continue;
+      }
+      if (cpu.object[k] == 0.0f) continue;
+      ++hits;
+      const double difference = std::abs(gpu.distance[k] - cpu.distance[k]);
+      if (difference < 1e-3) {
+        worst = std::max(worst, difference);
+        continue;
+      }
+      // A grazing hit, as PresetsMatchTheCpuRenderer's: the kernel's point
+      // lies within hit_epsilon of the surface by the double bounds.
+      ++grazing;
+      const double gap = surface_gap(world, static_cast<int>(gpu.object[k]), dvec3(gpu.px[k], gpu.py[k], gpu.pz[k]));
+      EXPECT_GT(gap, -1e-5) << i << ", " << j;
+      EXPECT_LT(gap, scene.hit_epsilon + 1e-5) << i << ", " << j;
+      EXPECT_LT(difference, 0.05) << i << ", " << j;
+    }
+    std::printf("%s: %zu rays of the plane regime, %d hits (%d grazing), mask differs at %d, worst distance difference "
+                "of the others %.2e\n",
+                along_z ? "lattice-balls" : "lattice-pillars along x", pixels.size(), hits, grazing, mask_differs, worst);
+    EXPECT_GE(hits, static_cast<int>(pixels.size()) / 4);  // the lines do meet objects
+    // As PresetsMatchTheCpuRenderer (1% of pixels there): a graze may go
+    // either way, at one of these pixels.
+    EXPECT_LE(mask_differs + grazing, 1);
+  }
+  expect_no_validation_errors();
+}
+
 // A quotient world of several kinds (tubes, a plane z = c, a ball): the
 // kernel reads each image's code (march.comp's image_type, which a world of
 // one kind does not read) and tells them apart as the CPU reference does.

@@ -205,8 +205,12 @@ void defer_exact(ivec2 pixel, float t, uint passing, int step) {
 // A height's half exponentials (e^{z/2}, e^{-z/2}): the bounds below take
 // e^{±z} as their squares and e^{±Δz/2} as their products, so that they
 // divide by neither (a march step takes its point's once for all objects,
-// and the objects' come with them).
-vec2 half_exp(float z) { return vec2(exp(0.5 * z), exp(-0.5 * z)); }
+// and the objects' come with them). One exponential and its reciprocal:
+// on lavapipe a division costs less than a second exponential.
+vec2 half_exp(float z) {
+  const float h = exp(0.5 * z);
+  return vec2(h, 1.0 / h);
+}
 
 // The lower bound of the Sol distance (sol::distance_lower_bound,
 // docs/mathematics.md), with the half exponentials of p.z and q.z given
@@ -629,7 +633,9 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   if (QUOTIENT) {
     const int image_count = min(params.counts.x, kMaxGpuImages);
     vec3 origin = q;
-    SolRay ray = sol_ray(direction);
+    vec2 origin_scale = vec2(exp(origin.z), exp(-origin.z));  // sol_translate's, kept with origin
+    // (No plane regime: see main()'s quotient march.)
+    SolRay ray = sol_ray(sol_direction_off_plane_regime(direction));
     sol_ray_integrals(ray);
     float t = 0.0, local_t = 0.0;
     int exact_i = -1;
@@ -647,18 +653,20 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
       }
     }
     for (int step = 0; step < max_steps; ++step) {
-      const SolForward forward = sol_forward(ray, local_t);
-      vec3 p = sol_translate(origin, forward.position);
-      if (!in_domain(p)) {
+      const SolForward forward = sol_forward(ray, local_t, false);
+      vec3 p = sol_translate(origin, origin_scale, forward.position);
+      const bool outside = !in_domain(p);
+      if (outside) {
         origin = teleport(p, true);
-        ray = sol_ray_restarted(ray, local_t, forward);
+        ray = sol_ray_restarted(ray, local_t, forward, false);
         local_t = 0.0;
         p = origin;
       }
+      const vec2 hz = half_exp(p.z);  // shared by the candidates' clearances
+      if (outside) origin_scale = hz * hz;
       const int cell = field_cell(p);
       const uint word = field_candidates(cell);
       const bool all = word == kFieldAllImages;
-      const vec2 hz = half_exp(p.z);  // shared by the candidates' clearances
       float clear = 1e30, nearest_hit = 1e30;
       const int listed = all ? image_count : field_candidate_count(word);
       int s = 0;
@@ -1222,7 +1230,11 @@ void main() {
       origin = sol_translate(origin, start);
       if (!in_domain(origin)) origin = teleport(origin, false);
     }
-    SolRay qray = sol_ray(direction);
+    vec2 origin_scale = vec2(exp(origin.z), exp(-origin.z));  // sol_translate's, kept with origin
+    // The ray's direction off the plane regime (sol_direction_off_plane_regime,
+    // a change far below float rounding), so that no step evaluates that
+    // regime's position for every ray.
+    SolRay qray = sol_ray(sol_direction_off_plane_regime(direction));
     sol_ray_integrals(qray);
     float t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
@@ -1238,8 +1250,8 @@ void main() {
     // its end e covers the rest, else the march steps `covered` from q.
     float proposal = 0.0, covered = 0.0;
     for (int step = 0; step < max_steps; ++step) {
-      const SolForward forward = sol_forward(qray, local_t + proposal);
-      vec3 e = sol_translate(origin, forward.position);
+      const SolForward forward = sol_forward(qray, local_t + proposal, false);
+      vec3 e = sol_translate(origin, origin_scale, forward.position);
       const bool outside = !in_domain(e);
       if (outside) e = teleport(e, true);
       const int cell = field_cell(e);
@@ -1298,7 +1310,8 @@ void main() {
       t += proposal;
       if (outside) {
         origin = e;
-        qray = sol_ray_restarted(qray, local_t + proposal, forward);
+        origin_scale = hz * hz;  // e^{±z} of e
+        qray = sol_ray_restarted(qray, local_t + proposal, forward, false);
         local_t = 0.0;
       } else {
         local_t += proposal;

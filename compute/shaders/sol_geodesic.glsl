@@ -547,7 +547,12 @@ struct SolForward {
 // components u1 = a e^{z}, u2 = b e^{-z}), whose rounding scales with a², b²
 // and which leaves x its relative accuracy; elsewhere c - z' is not small,
 // or max(|a|, |b|) is not.
-SolForward sol_forward(SolRay g, float t) {
+//
+// `plane_regime` (a constant at each call): whether g may be of the plane
+// regime. Without it (a ray from sol_direction_off_plane_regime) the plane
+// regime's position, three exp and a log that lavapipe evaluates for every
+// ray (a select, below), is left out.
+SolForward sol_forward(SolRay g, float t, const bool plane_regime) {
   SolForward f;
   const float u = g.lambda * t + g.u0;
   const SolPoint p = sol_point(g, u);
@@ -574,14 +579,37 @@ SolForward sol_forward(SolRay g, float t) {
   const float c_minus_dz = c * dz > 0.0 && abs(c + dz) >= 0.5 ? energy : c - dz;
   const float y = g.sign_y * g.a * integral, x = g.sign_x * g.b * integral;
   f.position = carlson_y ? vec3((c_minus_dz + b * y) / a, y, z) : vec3(x, (a * x - c_minus_dz) / b, z);
-  vec3 plane_direction;
-  const vec3 plane = sol_plane_position(g, t, plane_direction);
-  f.position = g.regime == REGIME_PLANE ? plane : f.position;
+  if (plane_regime) {
+    vec3 plane_direction;
+    const vec3 plane = sol_plane_position(g, t, plane_direction);
+    f.position = g.regime == REGIME_PLANE ? plane : f.position;
+    f.direction = g.regime == REGIME_PLANE ? plane_direction : f.direction;
+  }
   f.position = g.regime == REGIME_VERTICAL ? vec3(0.0, 0.0, g.c * t) : f.position;
   f.position = g.regime == REGIME_STRAIGHT ? vec3(g.direction.x * t, g.direction.y * t, 0.0) : f.position;
-  f.direction = g.regime == REGIME_PLANE ? plane_direction : f.direction;
   f.direction = g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT ? g.direction : f.direction;
   return f;
+}
+
+SolForward sol_forward(SolRay g, float t) { return sol_forward(g, t, true); }
+
+// A direction for a ray that sol_forward and sol_ray_restarted may take
+// without the plane regime: a direction of that regime (μ = |ab| < 1e-24,
+// not vertical) has its smaller horizontal component raised to 2e-24 over
+// the larger one, so that μ is 2e-24 and the ray is of the general regime,
+// whose float evaluation holds down to μ = 1e-24 (see sol_agm); where the
+// larger is below 1e-12 both are set to 0 (the vertical regime). Either
+// moves the unit direction by at most 2e-12, far below float rounding (and
+// the geodesic by that much times the growth e^{t} of a deviation, below
+// 1e-6 at any arc length a march takes). Other directions are returned as
+// they are.
+vec3 sol_direction_off_plane_regime(vec3 direction) {
+  const vec3 d = normalize(direction);
+  const float a = abs(d.x), b = abs(d.y), larger = max(a, b);
+  if (a * b >= 1e-24) return d;
+  if (larger < 1e-12) return vec3(0.0, 0.0, d.z < 0.0 ? -1.0 : 1.0);
+  const float raised = 2e-24 / larger;
+  return a < b ? vec3(d.x < 0.0 ? -raised : raised, d.y, d.z) : vec3(d.x, d.y < 0.0 ? -raised : raised, d.z);
 }
 
 vec3 sol_position_forward(SolRay g, float t) {
@@ -696,8 +724,11 @@ SolRay sol_ray_advanced(SolRay g, float t0) {
 // quarter's integrals, which the positions carry anyway;
 // tests/kernel_test.cpp walks rays in segments through it against the
 // double closed form.
-SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
-  if (g.regime != REGIME_GENERAL) return sol_ray_advanced_special(g, t0);
+//
+// `plane_regime` as for sol_forward: without it a ray that is not of the
+// general regime (vertical or straight) is restarted as it is.
+SolRay sol_ray_restarted(SolRay g, float t0, SolForward f, const bool plane_regime) {
+  if (g.regime != REGIME_GENERAL) return plane_regime ? sol_ray_advanced_special(g, t0) : g;
   const bool carlson_y = sol_carlson_y(g);
   const bool lower = f.point.quarter == 0 || f.point.quarter == 3;
   const vec2 quarter = lower ? vec2(g.quarter_lo, g.quarter_hi) : vec2(g.quarter_hi, g.quarter_lo);
@@ -716,11 +747,16 @@ SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) {
   return g;
 }
 
+SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) { return sol_ray_restarted(g, t0, f, true); }
+
 // The point `local` given relative to `origin`, in the coordinates `origin`
-// is given in: origin · local (the group law).
-vec3 sol_translate(vec3 origin, vec3 local) {
-  return vec3(origin.x + exp(origin.z) * local.x, origin.y + exp(-origin.z) * local.y, origin.z + local.z);
+// is given in: origin · local (the group law); `scale` = (e^{z}, e^{-z}) of
+// origin's z (a march keeps it with its origin).
+vec3 sol_translate(vec3 origin, vec2 scale, vec3 local) {
+  return vec3(origin.x + scale.x * local.x, origin.y + scale.y * local.y, origin.z + local.z);
 }
+
+vec3 sol_translate(vec3 origin, vec3 local) { return sol_translate(origin, vec2(exp(origin.z), exp(-origin.z)), local); }
 
 // The unit tangent (frame components) of the closed-form ray at arc length t.
 vec3 sol_direction(SolRay g, float t) {
