@@ -287,4 +287,35 @@ TEST(Clearance, DistanceFromAPointBendsNoMoreThanCurvatureOneAllows) {
   EXPECT_GE(least_convex, -1e-5);
 }
 
+// sol::shape_clearances gives, from one evaluation of a shape's terms, its
+// clearance ahead along u and back along -u (the over-relaxed quotient
+// march's check): each the clearance along that tangent evaluated on its
+// own (sol::shape_clearance with u and with -u), to the bit, since a term's
+// rate is linear in the tangent (negating it negates every product of its
+// sum exactly) and its value and bend do not depend on it.
+TEST(Clearance, BothWaysAreTheClearancesAlongTheTangentAndItsReverse) {
+  std::mt19937_64 rng(11);
+  const dvec3 through(0.2, 0.1, 0.3);
+  const std::vector<std::pair<std::string, sol::Shape>> shapes = {
+      {"plane x", sol::PlaneX{0.4}},
+      {"plane y", sol::PlaneY{-0.3}},
+      {"plane z", sol::PlaneZ{0.2}},
+      {"ball", sol::Ball{through, 0.25}},
+      {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.06)},
+      {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.06)},
+      {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3)},
+  };
+  for (const auto& [name, shape] : shapes) {
+    int differ = 0;  // back and ahead differ: the test sees two directions
+    for (int n = 0; n < 500; ++n) {
+      const dvec3 p = random_point(rng, through, 0.8), u = random_unit(rng);
+      const sol::Clearances both = sol::shape_clearances(shape, p, u);
+      ASSERT_EQ(both.ahead, sol::shape_clearance(shape, p, u)) << name << " sample " << n;
+      ASSERT_EQ(both.back, sol::shape_clearance(shape, p, -u)) << name << " sample " << n;
+      differ += both.ahead != both.back ? 1 : 0;
+    }
+    EXPECT_GT(differ, 100) << name;
+  }
+}
+
 }  // namespace

@@ -350,7 +350,7 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
   return D < 3.0415927 ? max(f, s) : f;
 }
 
-// A ball's bound (sol::clearance_ball): the terms d_xz - r, d_yz - r with
+// A ball's bound (sol::ball_terms): the terms d_xz - r, d_yz - r with
 // S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
 // clearance along u, clearance back along -u). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
 // the caller (the quotient march takes q's once a step for all its
@@ -371,7 +371,7 @@ vec3 ball_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
   return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
 }
 
-// A tube's bound (sol::clearance_tube): vertical, the slabs around x = x0 and
+// A tube's bound (sol::tube_terms): vertical, the slabs around x = x0 and
 // y = y0; horizontal along h, the z slab and the across term asinh|G|,
 // G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
 // y); every term bends by at most 1. Returns (distance bound, clearance

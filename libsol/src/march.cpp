@@ -22,6 +22,10 @@ double object_clearance(const MarchObject& object, const glm::dvec3& q, const gl
   return shape_clearance(object.shape, q, u);
 }
 
+Clearances object_clearances(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u) {
+  return shape_clearances(object.shape, q, u);
+}
+
 double cutout_gap_bound(Pattern pattern, const glm::dvec3& w) {
   const double ez = std::exp(w.z);
   const double fu = w.x - std::floor(w.x), fv = w.y - std::floor(w.y);

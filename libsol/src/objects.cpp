@@ -101,8 +101,8 @@ double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& hea
 
 double PlaneX::distance(const glm::dvec3& q) const { return sdf_plane_x(q, c); }
 
-double PlaneX::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
-  return sol::clearance(std::array{slab_x_term(q, u, c, 0.0)});
+std::array<BoundTerm, 1> PlaneX::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return {slab_x_term(q, u, c, 0.0)};
 }
 
 glm::dvec3 PlaneX::normal(const glm::dvec3& q) const {
@@ -120,8 +120,8 @@ KernelShape PlaneX::kernel_shape() const { return {kernel::kObjectPlaneX, {c, 0.
 
 double PlaneY::distance(const glm::dvec3& q) const { return sdf_plane_y(q, c); }
 
-double PlaneY::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
-  return sol::clearance(std::array{slab_y_term(q, u, c, 0.0)});
+std::array<BoundTerm, 1> PlaneY::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return {slab_y_term(q, u, c, 0.0)};
 }
 
 glm::dvec3 PlaneY::normal(const glm::dvec3& q) const {
@@ -138,7 +138,9 @@ KernelShape PlaneY::kernel_shape() const { return {kernel::kObjectPlaneY, {c, 0.
 
 double PlaneZ::distance(const glm::dvec3& q) const { return sdf_plane_z(q, c); }
 
-double PlaneZ::clearance(const glm::dvec3& q, const glm::dvec3& u) const { return clearance_plane_z(q, u, c); }
+std::array<BoundTerm, 1> PlaneZ::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return {plane_z_term(q, u, c)};
+}
 
 glm::dvec3 PlaneZ::normal(const glm::dvec3&) const { return {0.0, 0.0, origin_side(c)}; }
 
@@ -162,7 +164,9 @@ double Ball::distance(const glm::dvec3& q) const {
 }
 
 // The exact ball lies inside the bound's ball: its clearance serves both.
-double Ball::clearance(const glm::dvec3& q, const glm::dvec3& u) const { return clearance_ball(q, u, center, radius); }
+std::array<BoundTerm, 2> Ball::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return ball_terms(q, u, center, radius);
+}
 
 glm::dvec3 Ball::normal(const glm::dvec3& q) const {
   if (exact) {
@@ -246,8 +250,8 @@ double Tube::distance(const glm::dvec3& q) const {
   return vertical() ? sdf_tube(q, through, 2, radius) : sdf_tube_horizontal(q, through, {direction.x, direction.y}, radius);
 }
 
-double Tube::clearance(const glm::dvec3& q, const glm::dvec3& u) const {
-  return clearance_tube(q, u, through, vertical(), {direction.x, direction.y}, radius);
+std::array<BoundTerm, 2> Tube::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return tube_terms(q, u, through, vertical(), {direction.x, direction.y}, radius);
 }
 
 glm::dvec3 Tube::normal(const glm::dvec3& q) const { return gradient_normal(*this, q); }
@@ -316,7 +320,11 @@ double shape_distance(const Shape& shape, const glm::dvec3& q) {
 }
 
 double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
-  return std::visit([&](const auto& k) { return k.clearance(q, u); }, shape);
+  return std::visit([&](const auto& k) { return clearance(k.clearance_terms(q, u)); }, shape);
+}
+
+Clearances shape_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
+  return std::visit([&](const auto& k) { return clearances(k.clearance_terms(q, u)); }, shape);
 }
 
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q) {

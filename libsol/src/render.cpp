@@ -333,8 +333,13 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       const double d = object_distance(image, q);
       auto left = std::find(passing.begin(), passing.end(), k);
       if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
-      clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
-      if (check) back = std::min(back, std::max(d, object_clearance(image, q, -u)));
+      if (check) {
+        const Clearances both = object_clearances(image, q, u);
+        clear = std::min(clear, std::max(d, both.ahead));
+        back = std::min(back, std::max(d, both.back));
+      } else {
+        clear = std::min(clear, std::max(d, object_clearance(image, q, u)));
+      }
       if (left == passing.end() && d < nearest_hit) {
         nearest_hit = d;
         nearest_k = k;

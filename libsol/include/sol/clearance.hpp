@@ -36,7 +36,8 @@
 //    are polynomials, certified nonnegative by exact Bernstein
 //    coefficients), so M = 1, and no less: along a vertical geodesic where
 //    c = 0, (asinh G)'' = −G/√(1 + G²) (docs/renderer.md).
-// The kernel mirrors these (object_clearance in compute/shaders/march.comp).
+// The kinds give their terms (clearance_terms in sol/objects.hpp). The
+// kernel mirrors these (object_clearances in compute/shaders/march.comp).
 #pragma once
 
 #include <algorithm>
@@ -76,6 +77,27 @@ double clearance(const std::array<BoundTerm, N>& terms) {
   double best = terms[0].value;
   for (const BoundTerm& h : terms) best = std::max({best, h.value, clearance_root(h)});
   return best;
+}
+
+/// A bound's clearances both ways along the geodesic through p: ahead
+/// along u and back along −u.
+struct Clearances {
+  double ahead = 0.0;
+  double back = 0.0;
+};
+
+/// clearance() of `terms` (taken along u) and of the same terms along −u,
+/// whose values are the same and whose rates, linear in the tangent, change
+/// sign (the bends do not depend on it): one evaluation of the terms for
+/// both (the quotient march's check of an over-relaxed step needs the
+/// clearance back from its end).
+template <std::size_t N>
+Clearances clearances(std::array<BoundTerm, N> terms) {
+  Clearances both;
+  both.ahead = clearance(terms);
+  for (BoundTerm& h : terms) h.slope = -h.slope;
+  both.back = clearance(terms);
+  return both;
 }
 
 /// |z − c|: its rate is ±u3, z'' = u2² − u1² >= −1.
@@ -140,18 +162,6 @@ inline std::array<BoundTerm, 2> tube_terms(const glm::dvec3& p, const glm::dvec3
   const BoundTerm across{std::asinh(std::abs(G)) - radius, (G >= 0.0 ? rate_G : -rate_G) / std::sqrt(1.0 + G * G),
                          1.0};
   return {across, z};
-}
-
-/// Clearances of the kinds (sol::shape_clearance).
-inline double clearance_plane_z(const glm::dvec3& p, const glm::dvec3& u, double c) {
-  return clearance(std::array{plane_z_term(p, u, c)});
-}
-inline double clearance_ball(const glm::dvec3& p, const glm::dvec3& u, const glm::dvec3& center, double radius) {
-  return clearance(ball_terms(p, u, center, radius));
-}
-inline double clearance_tube(const glm::dvec3& p, const glm::dvec3& u, const glm::dvec3& through, bool vertical,
-                             const glm::dvec2& h, double radius) {
-  return clearance(tube_terms(p, u, through, vertical, h, radius));
 }
 
 }  // namespace sol

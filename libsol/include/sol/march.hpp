@@ -48,6 +48,8 @@ double object_distance(const MarchObject& object, const glm::dvec3& q);
 /// than the bound beside the surface. For exact balls it is the bound's
 /// ball's; a march steps by the larger of it and object_distance.
 double object_clearance(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u);
+/// object_clearance ahead along u and back along −u (sol::shape_clearances).
+Clearances object_clearances(const MarchObject& object, const glm::dvec3& q, const glm::dvec3& u);
 
 /// A lower bound of the distance from the world point w to the solid part of
 /// a cutout plane z = c with `pattern` (its discs or light squares), to be

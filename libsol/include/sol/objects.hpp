@@ -6,11 +6,14 @@
 //   distance(q)      a signed distance: exact for planes, a lower bound for
 //                    balls and tubes (sol/distance.hpp), so sphere tracing
 //                    never passes through the surface;
-//   clearance(q, u)  how far the geodesic from q with unit tangent u goes
-//                    before it can reach the object: at least the bound's
-//                    distance, longer beside it (sol/clearance.hpp; exact
-//                    balls: that of the bound's ball, which holds them, so
-//                    a march steps by the larger of it and distance(q));
+//   clearance_terms(q, u)
+//                    the terms of its bound at q along the geodesic with
+//                    unit tangent u (sol/clearance.hpp), from which
+//                    sol::shape_clearance and sol::shape_clearances take how
+//                    far that geodesic goes before it can reach the object:
+//                    at least the bound's distance, longer beside it (exact
+//                    balls: the bound's ball's, which holds them, so a
+//                    march steps by the larger of it and distance(q));
 //   normal(q)        the unit surface normal at a hit q (frame components);
 //   pattern_uv(q)    the coordinates its pattern is drawn in;
 //   seen_from(p)     the same object left-translated by p⁻¹ (relative to p);
@@ -24,6 +27,7 @@
 // its tests.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -33,6 +37,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+
+#include "sol/clearance.hpp"
 
 namespace sol {
 
@@ -54,7 +60,7 @@ struct PlaneX {
 
   /// asinh(|x - c| e^{-z}).
   double distance(const glm::dvec3& q) const;
-  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
+  std::array<BoundTerm, 1> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// Facing the side of the origin (the march's point of view).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.y, world.z}; }
@@ -70,7 +76,7 @@ struct PlaneY {
 
   /// asinh(|y - c| e^{z}).
   double distance(const glm::dvec3& q) const;
-  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
+  std::array<BoundTerm, 1> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.z}; }
   PlaneY seen_from(const glm::dvec3& p) const;
@@ -85,7 +91,7 @@ struct PlaneZ {
 
   /// |z - c|.
   double distance(const glm::dvec3& q) const;
-  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
+  std::array<BoundTerm, 1> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.y}; }
   PlaneZ seen_from(const glm::dvec3& p) const;
@@ -109,7 +115,7 @@ struct Ball {
   bool exact = false;
 
   double distance(const glm::dvec3& q) const;
-  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
+  std::array<BoundTerm, 2> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The true sphere's normal when exact, else the bound's gradient by
   /// central differences (kernel::kNormalStep along E1, E2, E3).
   glm::dvec3 normal(const glm::dvec3& q) const;
@@ -153,7 +159,7 @@ struct Tube {
 
   bool vertical() const { return direction.x == 0.0 && direction.y == 0.0; }
   double distance(const glm::dvec3& q) const;
-  double clearance(const glm::dvec3& q, const glm::dvec3& u) const;
+  std::array<BoundTerm, 2> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The bound's gradient by central differences (as Ball's).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& q) const;
@@ -204,7 +210,12 @@ constexpr double kMaxQuotientRadius = 0.45;
 // Visiting a shape: the distance, normal, pattern coordinates and
 // left-translation of whichever kind it holds.
 double shape_distance(const Shape& shape, const glm::dvec3& q);
+/// How far the geodesic from q along u goes before it can reach the shape
+/// (sol::clearance of its clearance_terms).
 double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u);
+/// The same ahead along u and back along -u, from one evaluation of the
+/// terms (sol::clearances).
+Clearances shape_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u);
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q);
 Shape shape_seen_from(const Shape& shape, const glm::dvec3& p);
 KernelShape kernel_shape(const Shape& shape);
