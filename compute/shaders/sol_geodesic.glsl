@@ -599,10 +599,10 @@ SolForward sol_forward(SolRay g, float t) { return sol_forward(g, t, true); }
 // the larger one, so that μ is 2e-24 and the ray is of the general regime,
 // whose float evaluation holds down to μ = 1e-24 (see sol_agm); where the
 // larger is below 1e-12 both are set to 0 (the vertical regime). Either
-// moves the unit direction by at most 2e-12, far below float rounding (and
-// the geodesic by that much times the growth e^{t} of a deviation, below
-// 1e-6 at any arc length a march takes). Other directions are returned as
-// they are.
+// moves the unit direction by at most 2e-12, 30 000 times less than the
+// float rounding of the direction itself (6e-8), whose effect on the
+// geodesic grows along it the same way (at most as e^{t}). Other
+// directions are returned as they are.
 vec3 sol_direction_off_plane_regime(vec3 direction) {
   const vec3 d = normalize(direction);
   const float a = abs(d.x), b = abs(d.y), larger = max(a, b);
