@@ -14,6 +14,7 @@
 #include <sol/vk/context.hpp>
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
+#include <sol/vk/march_interface.h>
 
 #include "srgb.hpp"
 #include "support/directions.hpp"
@@ -115,6 +116,72 @@ TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
 // vertical and the straight lines, t in [0, 12] (the quotient presets'
 // max_distance). The tangent's float error follows the phase's, like the
 // position's (5e-5 at t = 50 in FlowMatchesTheDoubleClosedForm).
+
+// The quotient march's first pass takes its positions from Jacobi's zeta
+// function (sol_forward_zeta) for rays of μ = |ab| >= kZetaLeastMu, walked
+// in segments as it restarts its rays at teleports (sol_ray_restarted_zeta):
+// against the double closed form. Directions: random ones of μ >=
+// kZetaLeastMu, μ just above it at several c, μ on both sides of 1/6 (m =
+// (1 - 2μ)/(1 + 2μ) = 1/2, where the mean rate changes formula), the
+// straight lines (μ = 1/2) and a ≈ ±b with c ≈ 0 (m near 0); arc lengths up
+// to 12, the quotient presets' max_distance. The float rounding of the
+// integrals is about 2e-7/μ relative (measured: 2.3e-5 at μ = 0.01, 1.8e-6
+// above 0.1, with 5 segments); 5e-5 is the Carlson flow's goal
+// (FlowWalkedInSegmentsStaysOnTheGeodesic).
+TEST(Kernel, FlowByZetaMatchesTheDoubleClosedFormAboveItsLeastMu) {
+  const double least = sol::vk::kernel::kZetaLeastMu;
+  const auto mu_of = [](const glm::vec3& f) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(f));
+    return std::abs(d.x * d.y);
+  };
+  const auto direction_with_mu = [](double mu, double c, double sign_a, double sign_b) {
+    const double h2 = (1.0 - c) * (1.0 + c), half = 0.5 * std::asin(std::min(1.0, 2.0 * mu / h2));
+    const double h = std::sqrt(h2);
+    return dvec3(sign_a * h * std::cos(half), sign_b * h * std::sin(half), c);
+  };
+  std::vector<dvec3> dirs;
+  for (const dvec3& d : sol::test::stiff_directions()) {
+    if (mu_of(glm::vec3(d)) >= least) dirs.push_back(d);
+  }
+  for (const dvec3& d : sol::test::random_directions(3000, 43)) {
+    if (mu_of(glm::vec3(d)) >= least) dirs.push_back(d);
+  }
+  for (double c : {-0.95, -0.6, -0.2, 0.0, 0.3, 0.7, 0.97}) {
+    for (double mu : {least * 1.0001, 1.0 / 6.0 - 1e-4, 1.0 / 6.0 + 1e-4}) {
+      if (2.0 * mu > (1.0 - c) * (1.0 + c)) continue;
+      dirs.push_back(direction_with_mu(mu, c, 1.0, 1.0));
+      dirs.push_back(direction_with_mu(mu, c, -1.0, 1.0));
+      dirs.push_back(direction_with_mu(mu, c, 1.0, -1.0));
+    }
+  }
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> arc(0.0, 12.0);
+  std::vector<glm::vec4> queries;
+  for (const dvec3& d : dirs) {
+    if (mu_of(glm::vec3(d)) < least) continue;  // (rounded below it)
+    for (const double t : {0.0, 1e-3, 0.05, 1.0, 12.0, arc(rng), arc(rng)}) queries.emplace_back(glm::vec3(d), static_cast<float>(t));
+  }
+  for (int segments : {1, 2, 5, 20}) {
+    const std::vector<glm::vec4> results = sol::vk::evaluate_kernel_flow_by_zeta(vk_context(), queries, segments);
+    double worst = 0;
+    std::size_t worst_at = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const dvec3 d(queries[i].x, queries[i].y, queries[i].z);
+      const dvec3 ref = sol::ClosedFormGeodesic<double>(d).at(queries[i].w).position;
+      const double e = sol::test::scaled_error(dvec3(results[i].x, results[i].y, results[i].z), ref);
+      if (!(e <= worst)) {
+        worst = e;
+        worst_at = i;
+      }
+    }
+    const glm::vec4 q = queries[worst_at];
+    std::printf("kernel flow by the zeta function in %d segments, %zu queries (mu >= %g), t <= 12: worst %.3e at mu %.3g, t = %g\n",
+                segments, queries.size(), least, worst, mu_of(glm::vec3(q)), q.w);
+    EXPECT_LT(worst, 5e-5) << segments << " segments";
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   std::vector<dvec3> dirs = sol::test::stiff_directions();
   for (const dvec3& d : sol::test::random_directions(1000, 35)) dirs.push_back(d);
@@ -399,17 +466,20 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
 }
 
 // The deferred passes (MarchOptions::deferred: the resume pass goes on with
-// the rays that reach an exact ball, the shade pass shades the hits of
-// exact lights) render the image of the one dispatch. The march is the
-// same (the resume pass starts from the arc length, step and cutout state
-// the march pass left), so the AOVs are equal to the bit; the colour within
+// the rays that reach an exact ball, in the quotient marches the rays of μ
+// below kZetaLeastMu; the shade pass shades the hits of exact lights)
+// render the image of the one dispatch. The march is the same (the resume
+// pass starts from the arc length, step and cutout state the march pass
+// left; in the quotient one dispatch takes each ray's positions as its
+// pass would), so the AOVs are equal to the bit; the colour within
 // 1e-5: the normal travels through the list as its octahedral code, exact up
 // to float rounding (1e-7), which the shading carries into the colour; a
 // hit shaded with another point, normal, eye or object changes it by 1e-2
 // and more. Mono and side-by-side stereo (the second eye's pixels), whole
 // and in 8 x 8 tiles with 3 samples (each tile's lists; the running mean),
-// shadows, a cutout plane through an exact ball, the quotient
-// with an exact light (its hits shaded deferred), and record() (spheres).
+// shadows, a cutout plane through an exact ball, the quotient (6.6 % of
+// lattice-balls' rays have μ < kZetaLeastMu) alone and with an exact light
+// (its hits shaded deferred), and record() (spheres).
 TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
   sol::vk::MarchRenderer deferred(vk_context()), single(vk_context(), {.deferred = false});
   struct Case {
@@ -441,7 +511,8 @@ TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
   light.position = {0.5, 0.4, 0.2};
   light.intensity = 3.0;
   lattice.lights = {light};
-  cases.push_back({"lattice-balls, exact light", lattice, 1});
+  cases.push_back({"lattice-balls, exact light", lattice, 2});
+  cases.push_back({"lattice-balls", sol::preset_scene("lattice-balls"), 1});
   for (const Case& c : cases) {
     const int w = 40, h = 28;
     deferred.set_world(c.scene);

@@ -15,7 +15,10 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 layout(constant_id = 0) const int SEGMENTS = 1;
 // What to evaluate: 0 the position (and the height); 1 the unit tangent at
 // arc length w >= 0, as sol_forward gives it to the quotient march's
-// clearances; 2 the cut time (sol_cut_time) of the direction, in x.
+// clearances; 2 the cut time (sol_cut_time) of the direction, in x; 3 the
+// position at arc length w >= 0 by Jacobi's zeta function (sol_forward_zeta,
+// walked in SEGMENTS as the quotient march's first pass restarts its rays:
+// sol_ray_restarted_zeta).
 layout(constant_id = 1) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
@@ -32,6 +35,19 @@ void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const vec4 query = queries[i];
+  if (VALUE == 3) {
+    SolRay zeta = sol_ray(query.xyz);
+    sol_ray_zeta(zeta);
+    const float segment = query.w / float(SEGMENTS);
+    vec3 origin = vec3(0.0);
+    for (int k = 0; k < SEGMENTS; ++k) {
+      const SolForward f = sol_forward_zeta(zeta, segment);
+      origin = sol_translate(origin, f.position);
+      zeta = sol_ray_restarted_zeta(zeta, f);
+    }
+    results[i] = vec4(origin, 0.0);
+    return;
+  }
   SolRay ray = sol_ray(query.xyz);
   sol_ray_integrals(ray);
   if (VALUE == 1) {

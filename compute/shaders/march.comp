@@ -81,9 +81,14 @@ layout(constant_id = kSpecShadows) const bool HAS_SHADOWS = false;
 // pass this pipeline runs, and what its march pass leaves to the others.
 layout(constant_id = kSpecPass) const int PASS = kPassMarch;
 layout(constant_id = kSpecDeferShading) const bool DEFER_SHADING = false;
-layout(constant_id = kSpecDeferExact) const bool DEFER_EXACT_WORLD = false;
+layout(constant_id = kSpecResume) const bool RESUME_WORLD = false;
 // (Only the Sol march, with the closed form, stops at exact balls' shells.)
-const bool DEFER_EXACT = DEFER_EXACT_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0;
+const bool DEFER_EXACT = RESUME_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0;
+// The quotient's march pass leaves the rays of μ below kZetaLeastMu to the
+// resume pass: it marches the others with the zeta function's positions
+// alone, the resume pass those with Carlson's integrals alone
+// (quotient_forward).
+const bool DEFER_SMALL_MU = RESUME_WORLD && QUOTIENT;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -193,9 +198,10 @@ ivec2 group_pixel(int index) {
   return ivec2((run & 3) * 2 + (lane & 1), (run >> 2) * 4 + (lane >> 1));
 }
 
-// The march pass: a ray that reached an exact ball's shell, for the resume
-// pass to go on with from arc length t, march step `step`, with the cutout
-// planes it is passing.
+// The march pass: a ray for the resume pass. In Sol one that reached an
+// exact ball's shell, to go on with from arc length t, march step `step`,
+// with the cutout planes it is passing; in the quotient one of μ below
+// kZetaLeastMu, which the resume pass marches from its start (0, 0, 0).
 void defer_exact(ivec2 pixel, float t, uint passing, int step) {
   int slot;
   SOL_QUEUE_APPEND(queue.resume, slot);
@@ -1123,6 +1129,31 @@ void shade_pass() {
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
 }
 
+// The quotient camera march's positions (sol_forward_zeta where the ray's
+// μ is at least kZetaLeastMu, `by_zeta`, else sol_forward), its set-up
+// and its restarts. With the resume pass (DEFER_SMALL_MU) each pass holds
+// one of the two alone (constants); in one dispatch both are there and
+// each ray takes its own.
+const bool QUOTIENT_ZETA_ONLY = DEFER_SMALL_MU && PASS == kPassMarch;
+const bool QUOTIENT_CARLSON_ONLY = DEFER_SMALL_MU && PASS == kPassResume;
+
+void quotient_ray_prepared(inout SolRay g) {
+  if (!QUOTIENT_CARLSON_ONLY) sol_ray_zeta(g);
+  if (!QUOTIENT_ZETA_ONLY) sol_ray_integrals(g);
+}
+
+SolForward quotient_forward(SolRay g, float t, bool by_zeta) {
+  if (QUOTIENT_ZETA_ONLY) return sol_forward_zeta(g, t);
+  if (QUOTIENT_CARLSON_ONLY) return sol_forward(g, t, false);
+  return by_zeta ? sol_forward_zeta(g, t) : sol_forward(g, t, false);
+}
+
+SolRay quotient_ray_restarted(SolRay g, float t0, SolForward f, bool by_zeta) {
+  if (QUOTIENT_ZETA_ONLY) return sol_ray_restarted_zeta(g, f);
+  if (QUOTIENT_CARLSON_ONLY) return sol_ray_restarted(g, t0, f, false);
+  return by_zeta ? sol_ray_restarted_zeta(g, f) : sol_ray_restarted(g, t0, f, false);
+}
+
 void main() {
   if (PASS == kPassShade) {
     shade_pass();
@@ -1235,7 +1266,14 @@ void main() {
     // a change far below float rounding), so that no step evaluates that
     // regime's position for every ray.
     SolRay qray = sol_ray(sol_direction_off_plane_regime(direction));
-    sol_ray_integrals(qray);
+    // Its positions by the zeta function, or by Carlson's integrals where μ
+    // is small (quotient_forward); those rays left to the resume pass.
+    const bool by_zeta = qray.mu >= kZetaLeastMu;
+    if (DEFER_SMALL_MU && PASS == kPassMarch && !by_zeta) {
+      defer_exact(pixel, 0.0, 0u, 0);  // this ray in the resume pass, by Carlson's integrals
+      return;
+    }
+    quotient_ray_prepared(qray);
     float t = 0.0, local_t = 0.0;
     int hit_image = -1, steps = 0;
     vec3 q = origin;
@@ -1250,7 +1288,7 @@ void main() {
     // its end e covers the rest, else the march steps `covered` from q.
     float proposal = 0.0, covered = 0.0;
     for (int step = 0; step < max_steps; ++step) {
-      const SolForward forward = sol_forward(qray, local_t + proposal, false);
+      const SolForward forward = quotient_forward(qray, local_t + proposal, by_zeta);
       vec3 e = sol_translate(origin, origin_scale, forward.position);
       const bool outside = !in_domain(e);
       if (outside) e = teleport(e, true);
@@ -1306,12 +1344,13 @@ void main() {
         continue;
       }
       // The march moves to e. The same geodesic goes on from a teleported
-      // point, restarted from what sol_forward found there (sol_ray_restarted).
+      // point, restarted from what quotient_forward found there
+      // (quotient_ray_restarted).
       t += proposal;
       if (outside) {
         origin = e;
         origin_scale = hz * hz;  // e^{±z} of e
-        qray = sol_ray_restarted(qray, local_t + proposal, forward, false);
+        qray = quotient_ray_restarted(qray, local_t + proposal, forward, by_zeta);
         local_t = 0.0;
       } else {
         local_t += proposal;

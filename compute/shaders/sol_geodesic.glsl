@@ -4,6 +4,10 @@
 // functions it needs (libsol/src/elliptic.cpp, carlson.hpp). Keep the two in
 // step: tests/kernel_test.cpp holds them together.
 //
+// The positions by Jacobi's zeta function (sol_forward_zeta, the quotient
+// march's first pass) are the kernel's own: no C++ mirror; tested against
+// libsol's double closed form.
+//
 // Differences from the C++ float version, all below float rounding at the
 // arc lengths a frame uses: K comes from a float AGM (no double-double
 // K_lo), the AGM chain of sn, cn, dn runs in float, and the AGM sequence is
@@ -75,11 +79,27 @@ float carlson_rd(float x, float y, float z) {
 // levels past convergence are exact identities (a = b).
 const int SOL_AGM_LEVELS = 7;
 
+// sol_forward_zeta's descent: 5 levels, for rays of μ >= 0.01 (k' >= 0.198,
+// the quotient march's kZetaLeastMu), where the AGM's c_5 is below 1e-11:
+// the fifth level's term of Z, 2^5 c_5 times the 2/(λ m1) <= 50 of the
+// integrals, is below 1e-8 (with 4 levels the fourth's, 6e-5 times 50,
+// is not: measured 2e-3 at μ = 0.01).
+const int SOL_ZETA_LEVELS = 5;
+// sol_forward_zeta's segments shorter than this (arc length) take the
+// corrected trapezoid rule: its error h⁵ max|s⁗|/720 is then below the
+// zeta function's rounding (tests/kernel_test.cpp walks rays in segments).
+const float SOL_ZETA_SHORT = 0.1;
+
 struct SolAgm {
   float mean[SOL_AGM_LEVELS];
   float inv_mean[SOL_AGM_LEVELS];  // 1 / mean: the descent multiplies (a division per level saved per call)
   float root[SOL_AGM_LEVELS];
   float c;  // the mean: π/(2K)
+  // Jacobi's zeta function by the same descent (jacobi_agm's `zeta`): level
+  // i's 2^i c_i and modulus k_i = c_i/a_i (c_i = (a_{i-1} - b_{i-1})/2).
+  float zeta_coef[SOL_AGM_LEVELS];
+  float zeta_k[SOL_AGM_LEVELS];
+  float zeta_sum;  // Σ_{i>=1} 2^i c_i² (1 - E/K = (m + zeta_sum)/2)
 };
 
 SolAgm sol_agm(float m1) {
@@ -94,6 +114,19 @@ SolAgm sol_agm(float m1) {
     a = next;
   }
   g.c = a;
+  // c_1 = (1 - k')/2, then c_{i+1} = c_i²/(4 a_{i+1}) (no cancellation).
+  float ci = 0.5 * (1.0 - g.root[0]), scale = 2.0;
+  g.zeta_coef[0] = 0.0;
+  g.zeta_k[0] = 0.0;
+  g.zeta_sum = 0.0;
+  for (int i = 1; i < SOL_AGM_LEVELS; ++i) {
+    g.zeta_coef[i] = scale * ci;
+    g.zeta_k[i] = ci * g.inv_mean[i];
+    g.zeta_sum += scale * ci * ci;
+    scale *= 2.0;
+    const float next_mean = i + 1 < SOL_AGM_LEVELS ? g.mean[i + 1] : g.c;
+    ci = ci * ci / (4.0 * next_mean);
+  }
   return g;
 }
 
@@ -110,9 +143,10 @@ float sol_tan_quarter(float x) {
 
 // sn, cn, dn of |r| <= K/2: Bulirsch's multiplicative back-substitution
 // down the AGM sequence; dn from cn (dn² = m1 + m cn²).
-vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
+vec3 jacobi_agm(float r, float m, float m1, SolAgm agm, const int levels, out float zeta) {
   if (abs(r) < 0.0093) {  // r⁴ below rounding: Taylor series
     float r2 = r * r;
+    zeta = r * (0.5 * (m + agm.zeta_sum) - m * r2 / 3.0);
     return vec3(r * (1.0 - (1.0 + m) * r2 / 6.0), 1.0 - r2 / 2.0, 1.0 - m * r2 / 2.0);
   }
   float c = agm.c, dn = 1.0;
@@ -121,29 +155,45 @@ vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
   const float scaled = r * c;
   float ratio = 1.0 / sol_tan_quarter(scaled);
   c *= ratio;
-  for (int i = SOL_AGM_LEVELS - 1; i >= 0; --i) {
+  zeta = 0.0;
+  for (int i = levels - 1; i >= 0; --i) {
     ratio *= c;
     c *= dn;
     dn = (agm.root[i] + ratio) / (agm.mean[i] + ratio);
     ratio = c * agm.inv_mean[i];
+    // Level i: ratio = cn/sn and dn of (a_i r | k_i); Z(r) = Σ 2^i c_i sn cn dn/(1 + k_i sn²).
+    if (i > 0) zeta += agm.zeta_coef[i] * ratio * dn / (1.0 + ratio * ratio + agm.zeta_k[i]);
   }
   float s = sign(scaled) / sqrt(c * c + 1.0);
   float cn_r = c * s;
-  return vec3(s, cn_r, sqrt(m1 + m * cn_r * cn_r));
+  // (sol_forward_zeta's descent: dn from its last level, which is dn(r).)
+  return vec3(s, cn_r, levels == SOL_ZETA_LEVELS ? dn : sqrt(m1 + m * cn_r * cn_r));
 }
 
-// sn, cn, dn of any u: u = nK + r, |r| <= K/2, then the quarter shifts.
-vec3 jacobi(float u, float m, float m1, float K, float kc, SolAgm agm) {
+vec3 jacobi_agm(float r, float m, float m1, SolAgm agm) {
+  float unused;
+  return jacobi_agm(r, m, m1, agm, SOL_AGM_LEVELS, unused);
+}
+
+// sn, cn, dn of any u (xyz) and Jacobi's zeta function Z(u) = E(u) - (E/K) u
+// (w): u = nK + r, |r| <= K/2, then the quarter shifts; Z has period 2K and
+// Z(K + r) = Z(r) - m sn r cd r (the addition theorem of E).
+vec4 jacobi_zeta(float u, float m, float m1, float K, float kc, SolAgm agm, const int levels) {
   float n = round(u / K);
   float r = u - n * K;
-  vec3 j = jacobi_agm(r, m, m1, agm);
+  float zeta;
+  vec3 j = jacobi_agm(r, m, m1, agm, levels, zeta);
   int quarter = int(n - 4.0 * floor(n / 4.0));  // n mod 4 in [0, 3]
-  if (quarter == 0) return j;
-  if (quarter == 2) return vec3(-j.x, -j.y, j.z);
+  if (quarter == 0) return vec4(j, zeta);
+  if (quarter == 2) return vec4(-j.x, -j.y, j.z, zeta);
   // sn(K + r) = cd r, cn(K + r) = -k' sd r, dn(K + r) = k' nd r.
   vec3 shifted = vec3(j.y / j.z, -kc * j.x / j.z, kc / j.z);
-  return quarter == 1 ? shifted : vec3(-shifted.x, -shifted.y, shifted.z);
+  zeta -= m * j.x * shifted.x;
+  return quarter == 1 ? vec4(shifted, zeta) : vec4(-shifted.x, -shifted.y, shifted.z, zeta);
 }
+
+// sn, cn, dn of any u.
+vec3 jacobi(float u, float m, float m1, float K, float kc, SolAgm agm) { return jacobi_zeta(u, m, m1, K, kc, agm, SOL_AGM_LEVELS).xyz; }
 
 // ---- The geodesic ----------------------------------------------------------------
 
@@ -183,6 +233,12 @@ struct SolRay {
   // The anchors' factors (sol_anchor): s₋, the middle, s₊.
   vec3 anchor_bottom, anchor_middle, anchor_top;
   int start_quarter;
+  // Positions by Jacobi's zeta function (sol_ray_zeta, sol_forward_zeta):
+  // the integrals' mean rate per unit of phase G/λ, their scale 2/(λ m1),
+  // Z and sn at the start's phase, e^{±2w} there, 1/k'.
+  float zeta_rate, zeta_scale, zeta_start, sn_start;
+  float s_start, is_start;
+  float inv_kc, zeta_inv_lambda;
 };
 
 // The path's values from sn, cn, dn at one parameter (see sol_point).
@@ -336,6 +392,10 @@ SolRay sol_ray(vec3 direction) {
   g.sqrt_sm = 1.0;
   g.sqrt_sp = 1.0;
   g.anchor_bottom = g.anchor_middle = g.anchor_top = g.start_factors = vec3(1.0, 0.0, 0.0);
+  g.zeta_rate = g.zeta_scale = g.zeta_start = g.sn_start = 0.0;
+  g.s_start = g.is_start = 1.0;
+  g.inv_kc = 1.0;
+  g.zeta_inv_lambda = 1.0;
   g.mu = g.a * g.b;
   if (g.a == 0.0 && g.b == 0.0) {
     g.regime = REGIME_VERTICAL;
@@ -530,7 +590,44 @@ struct SolForward {
   SolPoint point;  // the path's values there (general regime)
   vec2 near;       // the integrals from the start of the point's quarter (or the ray's start, `same`) to it
   bool same;       // the point lies in the start's quarter
+  float zeta;      // sol_forward_zeta: Z at the point's phase
+  float inv_ew;    // sol_forward_zeta: e^{-w} there (point.ew's reciprocal)
+  float phase;     // sol_forward_zeta: the phase u evaluated
 };
+
+// sol_forward's (and sol_forward_zeta's) position and tangent at arc
+// length t for the regimes other than the general one (the plane regime's
+// where `plane_regime`, a constant).
+void sol_forward_regimes(SolRay g, float t, const bool plane_regime, inout SolForward f) {
+  if (plane_regime) {
+    vec3 plane_direction;
+    const vec3 plane = sol_plane_position(g, t, plane_direction);
+    f.position = g.regime == REGIME_PLANE ? plane : f.position;
+    f.direction = g.regime == REGIME_PLANE ? plane_direction : f.direction;
+  }
+  f.position = g.regime == REGIME_VERTICAL ? vec3(0.0, 0.0, g.c * t) : f.position;
+  f.position = g.regime == REGIME_STRAIGHT ? vec3(g.direction.x * t, g.direction.y * t, 0.0) : f.position;
+  f.direction = g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT ? g.direction : f.direction;
+}
+
+// The rest of sol_forward at arc length t, whose point p and integral (of
+// sol_carlson_y's coordinate, from the start) are found: the height, the
+// tangent, the other coordinate from the first integral, the other regimes.
+void sol_forward_at(SolRay g, float t, SolPoint p, float integral, const bool plane_regime, inout SolForward f) {
+  const bool carlson_y = sol_carlson_y(g);
+  const float z = log(p.ew) - g.w0;
+  // The tangent's frame components: |u1| = |a| e^{z} = √μ e^{w}, |u2| = |b| e^{-z}.
+  const float u1 = g.sqrt_mu * p.ew, u2 = g.sqrt_mu / p.ew;
+  f.direction = vec3(g.sign_x * u1, g.sign_y * u2, -g.k * g.lambda * p.jac.x);
+  // The first integral: a x - b y = c - z' (signed a, b, c: the start's direction);
+  // c² - z'² = u1² - a² + u2² - b² (|u| = 1 at both ends).
+  const float a = g.direction.x, b = g.direction.y, c = g.direction.z, dz = f.direction.z;
+  const float energy = ((u1 - g.a) * (u1 + g.a) + (u2 - g.b) * (u2 + g.b)) / (c + dz);
+  const float c_minus_dz = c * dz > 0.0 && abs(c + dz) >= 0.5 ? energy : c - dz;
+  const float y = g.sign_y * g.a * integral, x = g.sign_x * g.b * integral;
+  f.position = carlson_y ? vec3((c_minus_dz + b * y) / a, y, z) : vec3(x, (a * x - c_minus_dz) / b, z);
+  sol_forward_regimes(g, t, plane_regime, f);
+}
 
 // Position (relative to the start) at arc length t >= 0 (a march's), and
 // what was found on the way (SolForward), after sol_ray_integrals: as
@@ -568,30 +665,78 @@ SolForward sol_forward(SolRay g, float t, const bool plane_regime) {
   f.near = carlson_y ? vec2(0.0, near) : vec2(near, 0.0);
   const vec2 whole = sol_quarters(g, g.start_quarter + 1, q - 1);
   const float integral = f.same ? near : (carlson_y ? g.far_forward.y + whole.y : g.far_forward.x + whole.x) + near;
-  const float z = log(p.ew) - g.w0;
-  // The tangent's frame components: |u1| = |a| e^{z} = √μ e^{w}, |u2| = |b| e^{-z}.
-  const float u1 = g.sqrt_mu * p.ew, u2 = g.sqrt_mu / p.ew;
-  f.direction = vec3(g.sign_x * u1, g.sign_y * u2, -g.k * g.lambda * p.jac.x);
-  // The first integral: a x - b y = c - z' (signed a, b, c: the start's direction);
-  // c² - z'² = u1² - a² + u2² - b² (|u| = 1 at both ends).
-  const float a = g.direction.x, b = g.direction.y, c = g.direction.z, dz = f.direction.z;
-  const float energy = ((u1 - g.a) * (u1 + g.a) + (u2 - g.b) * (u2 + g.b)) / (c + dz);
-  const float c_minus_dz = c * dz > 0.0 && abs(c + dz) >= 0.5 ? energy : c - dz;
-  const float y = g.sign_y * g.a * integral, x = g.sign_x * g.b * integral;
-  f.position = carlson_y ? vec3((c_minus_dz + b * y) / a, y, z) : vec3(x, (a * x - c_minus_dz) / b, z);
-  if (plane_regime) {
-    vec3 plane_direction;
-    const vec3 plane = sol_plane_position(g, t, plane_direction);
-    f.position = g.regime == REGIME_PLANE ? plane : f.position;
-    f.direction = g.regime == REGIME_PLANE ? plane_direction : f.direction;
-  }
-  f.position = g.regime == REGIME_VERTICAL ? vec3(0.0, 0.0, g.c * t) : f.position;
-  f.position = g.regime == REGIME_STRAIGHT ? vec3(g.direction.x * t, g.direction.y * t, 0.0) : f.position;
-  f.direction = g.regime == REGIME_VERTICAL || g.regime == REGIME_STRAIGHT ? g.direction : f.direction;
+  sol_forward_at(g, t, p, integral, plane_regime, f);
   return f;
 }
 
 SolForward sol_forward(SolRay g, float t) { return sol_forward(g, t, true); }
+
+// What positions by Jacobi's zeta function need (sol_forward_zeta), in
+// place of sol_ray_integrals. Along a geodesic e^{w} = (dn u + k cn u)/k',
+// so the integrals of s = e^{2w} and 1/s over u are
+//   (2E(u) ± 2k sn u - m1 u)/m1 = G u + (2Z(u) ± 2k sn u)/m1,
+// E(u) = (E/K) u + Z(u), with the mean rate G = (2E/K - m1)/m1 and, by
+// E/K = 1 - ½ Σ_{i>=0} 2^i c_i² (c_0 = k, the AGM's c_i; Abramowitz and
+// Stegun 17.6.3), 2E/K - m1 = 1 - Σ_{i>=1} 2^i c_i²: at least 0.66 for the
+// rays sol_forward_zeta serves (μ >= 0.01, m <= 0.961), no cancellation.
+void sol_ray_zeta(inout SolRay g) {
+  if (g.regime != REGIME_GENERAL) return;
+  const float rate = 1.0 - g.agm.zeta_sum;
+  g.zeta_rate = rate / (g.lambda * g.m1);
+  g.zeta_scale = 2.0 / (g.lambda * g.m1);
+  g.inv_kc = 1.0 / g.kc;
+  g.zeta_inv_lambda = 1.0 / g.lambda;
+  // Z and sn at the start's phase from the same descent as at every later
+  // phase (sol_forward_zeta), so that the integrals are 0 there.
+  const vec4 start = jacobi_zeta(g.u0, g.m, g.m1, g.K, g.kc, g.agm, SOL_ZETA_LEVELS);
+  g.zeta_start = start.w;
+  g.sn_start = start.x;
+  g.s_start = g.start.ew * g.start.ew;
+  g.is_start = 1.0 / g.s_start;
+}
+
+// sol_forward by Jacobi's zeta function (after sol_ray_zeta), for t >= 0:
+// the integrals from the start's phase u0 to u = u0 + λt are
+// (G (u - u0) + 2(ΔZ ± k Δsn)/m1)/λ, with one descent (jacobi_zeta) at u:
+// no Carlson integral and no quarters. The rounding of Z and sn, a few
+// ulps, is amplified by 2/(λ m1) = λ/(2μ): about 2e-7/μ relative to the
+// position's scale a segment (measured: 8e-6 at μ = 0.012, t <= 12), so
+// rays of small μ take sol_forward (the quotient march: kZetaLeastMu).
+SolForward sol_forward_zeta(SolRay g, float t) {
+  SolForward f;
+  const float u = g.lambda * t + g.u0;
+  f.phase = u;
+  const vec4 jz = jacobi_zeta(u, g.m, g.m1, g.K, g.kc, g.agm, SOL_ZETA_LEVELS);
+  // e^{±w} = (dn ± k cn)/k' = k'/(dn ∓ k cn): of the two forms of each, the
+  // one without cancellation (dn + k|cn|), so one division for both.
+  const float D = jz.z + g.k * abs(jz.y), inv_D = 1.0 / D;
+  const bool upper = jz.y >= 0.0;
+  f.point.jac = jz.xyz;
+  f.point.ew = upper ? D * g.inv_kc : g.kc * inv_D;
+  f.inv_ew = upper ? g.kc * inv_D : D * g.inv_kc;
+  f.zeta = jz.w;
+  f.same = true;
+  f.near = vec2(0.0);
+  // The integrals of s (x's) and of 1/s (y's) from the start. The phase's
+  // rounding only moves the point along the geodesic: the mean rate takes
+  // the phase evaluated, u - u0, not λt.
+  const float du = u - g.u0, h = du * g.zeta_inv_lambda;
+  const float base = g.zeta_rate * du + g.zeta_scale * (jz.w - g.zeta_start);
+  const float k_sn = g.zeta_scale * g.k * (jz.x - g.sn_start);
+  vec2 integrals = vec2(base + k_sn, base - k_sn);
+  // Short segments: that rounding does not shrink with the segment (and
+  // adds up over a ray's restarts), so below SOL_ZETA_SHORT the corrected
+  // trapezoid rule h (f0 + f1)/2 + h² (f0' - f1')/12 from the ends' s and
+  // 1/s and their slopes ±2 s z' (z' = c at the start, -kλ sn here).
+  const float s1 = f.point.ew * f.point.ew, is1 = f.inv_ew * f.inv_ew, dz1 = -g.k * g.lambda * jz.x;
+  const vec2 ends = vec2(g.s_start + s1, g.is_start + is1), slopes = vec2(g.s_start * g.c - s1 * dz1, is1 * dz1 - g.is_start * g.c);
+  integrals = h < SOL_ZETA_SHORT ? 0.5 * h * ends + (h * h / 6.0) * slopes : integrals;
+  f.position = vec3(g.sign_x * g.b * integrals.x, g.sign_y * g.a * integrals.y, log(f.point.ew) - g.w0);
+  // The tangent's frame components: |u1| = |a| e^{z} = √μ e^{w}, |u2| = |b| e^{-z}.
+  f.direction = vec3(g.sign_x * g.sqrt_mu * f.point.ew, g.sign_y * g.sqrt_mu * f.inv_ew, -g.k * g.lambda * jz.x);
+  sol_forward_regimes(g, t, false, f);
+  return f;
+}
 
 // A direction for a ray that sol_forward and sol_ray_restarted may take
 // without the plane regime: a direction of that regime (μ = |ab| < 1e-24,
@@ -748,6 +893,26 @@ SolRay sol_ray_restarted(SolRay g, float t0, SolForward f, const bool plane_regi
 }
 
 SolRay sol_ray_restarted(SolRay g, float t0, SolForward f) { return sol_ray_restarted(g, t0, f, true); }
+
+// sol_ray_restarted for sol_forward_zeta: the ray restarted at the point f
+// found (as sol_ray_started_at, with what sol_forward_zeta needs alone).
+// Its phase is the one evaluated there, not reduced: Z and sn at the new
+// start are then the values the old segment ended with, so the rounding
+// of each cancels between the two segments.
+SolRay sol_ray_restarted_zeta(SolRay g, SolForward f) {
+  if (g.regime != REGIME_GENERAL) return g;
+  g.a = g.sqrt_mu * f.point.ew;
+  g.b = g.sqrt_mu * f.inv_ew;
+  g.w0 = log(f.point.ew);
+  g.u0 = f.phase;
+  g.c = -g.k * g.lambda * f.point.jac.x;
+  g.direction = vec3(g.sign_x * g.a, g.sign_y * g.b, g.c);
+  g.zeta_start = f.zeta;
+  g.sn_start = f.point.jac.x;
+  g.s_start = f.point.ew * f.point.ew;
+  g.is_start = f.inv_ew * f.inv_ew;
+  return g;
+}
 
 // The point `local` given relative to `origin`, in the coordinates `origin`
 // is given in: origin · local (the group law); `scale` = (e^{z}, e^{-z}) of

@@ -187,13 +187,13 @@ struct KernelVariant {
   bool projections = false;  // an eye is not perspective (a camera's property: the frame's eyes decide)
   bool ods = false;          // an eye is omnidirectional stereo (Camera::eye_offset)
   bool defer_shading = false;  // hits shaded by the shade pass (defer_passes)
-  bool defer_exact = false;    // rays that reach an exact ball go on in the resume pass
+  bool resume = false;         // the resume pass: rays that reach an exact ball (Sol), of small μ (the quotient)
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
     for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
                    srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
-                   f.planes_xy_only, f.light_reach, defer_shading, defer_exact, f.planes_z}) {
+                   f.planes_xy_only, f.light_reach, defer_shading, resume, f.planes_z}) {
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -237,11 +237,13 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
 // Which deferred passes a variant of the world takes (MarchOptions::deferred):
 // the shade pass for exact point lights (their connections are the dear
 // part of shading), the resume pass for exact balls in Sol with the closed
-// form (the kernel's exact solves).
+// form (the kernel's exact solves) and in the quotient for the rays whose
+// positions take Carlson's integrals (μ below kZetaLeastMu), so that the
+// march pass holds the zeta function's positions alone.
 void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
   v.defer_shading = o.deferred && f.exact_lights;
-  v.defer_exact = o.deferred && f.exact_balls && !f.quotient && o.integrator == Integrator::ClosedForm;
+  v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 
 // The variant's pipeline for one pass (kernel::kPass*).
@@ -281,7 +283,7 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecLightReach, f.light_reach ? 1u : 0u},
                                                 {kernel::kSpecPass, static_cast<std::uint32_t>(pass)},
                                                 {kernel::kSpecDeferShading, v.defer_shading ? 1u : 0u},
-                                                {kernel::kSpecDeferExact, v.defer_exact ? 1u : 0u}}});
+                                                {kernel::kSpecResume, v.resume ? 1u : 0u}}});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -313,7 +315,7 @@ struct MarchRenderer::Impl {
         return needed ? std::async(std::launch::async, [&c, &o, &v, pass] { return make_pipeline(c, o, v, pass); })
                       : std::future<ComputePipeline>();
       };
-      std::future<ComputePipeline> resume = compile(v.defer_exact, kernel::kPassResume);
+      std::future<ComputePipeline> resume = compile(v.resume, kernel::kPassResume);
       std::future<ComputePipeline> shade = compile(v.defer_shading, kernel::kPassShade);
       Built built{make_pipeline(c, o, v, kernel::kPassMarch)};
       if (resume.valid()) built.resume.emplace(resume.get());
@@ -497,7 +499,7 @@ const MarchWorld& MarchRenderer::world() const {
 int MarchRenderer::deferred_passes() const {
   KernelVariant variant{kernel_features(world().features(), m_impl->options.all_features)};
   defer_passes(variant, m_impl->options);
-  return (variant.defer_shading ? 1 : 0) + (variant.defer_exact ? 1 : 0);
+  return (variant.defer_shading ? 1 : 0) + (variant.resume ? 1 : 0);
 }
 
 struct MarchRenderer::Frame {
@@ -555,12 +557,12 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   // The lists hold a record per pixel of a dispatch, at most the whole
   // image; a frame whose lists one indirect dispatch or one storage buffer
   // binding could not hold renders in one dispatch.
-  if (variant.defer_exact || variant.defer_shading) {
+  if (variant.resume || variant.defer_shading) {
     const std::uint64_t pixels = static_cast<std::uint64_t>(width) * eyes.size() * static_cast<std::uint64_t>(height);
     const VkPhysicalDeviceLimits& limits = m.context.limits();
     if (pixels / (kernel::kGroupSize * kernel::kGroupSize) + 1 > limits.maxComputeWorkGroupCount[0] ||
         Impl::queue_bytes(pixels) > limits.maxStorageBufferRange) {
-      variant.defer_exact = variant.defer_shading = false;
+      variant.resume = variant.defer_shading = false;
     } else {
       m.reserve_queue(pixels);
     }
@@ -773,6 +775,14 @@ std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& 
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
   if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow: segments must be >= 1");
   return run_flow(context, queries, segments, 0);
+}
+
+std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std::vector<glm::vec4>& queries, int segments) {
+  if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow_by_zeta: segments must be >= 1");
+  for (const glm::vec4& q : queries) {
+    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_flow_by_zeta: arc lengths must be >= 0");
+  }
+  return run_flow(context, queries, segments, 3);
 }
 
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries) {

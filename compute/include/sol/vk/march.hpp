@@ -46,10 +46,12 @@ struct MarchOptions {
   /// point lights, fog). Same image; for benchmarks.
   bool all_features = false;
   /// Deferred passes (docs/renderer.md): the hits of worlds with exact
-  /// point lights are shaded, and the rays of worlds with exact balls that
-  /// reach one go on, in later dispatches over a list of those pixels alone,
-  /// so that the other pixels do not pay for that work. Same image; false
-  /// renders everything in one dispatch (the comparison the tests make).
+  /// point lights are shaded, the rays of worlds with exact balls that
+  /// reach one go on, and in the quotient the rays of small μ (whose
+  /// positions take Carlson's integrals) are marched, in later dispatches
+  /// over a list of those pixels alone, so that the other pixels do not
+  /// pay for that work. Same image; false renders everything in one
+  /// dispatch (the comparison the tests make; slower on lavapipe).
   bool deferred = true;
 };
 
@@ -120,7 +122,8 @@ class MarchRenderer {
   const MarchWorld& world() const;
   /// How many deferred passes (MarchOptions::deferred) the world's frames
   /// take after the march pass: the shade pass (exact point lights) and the
-  /// resume pass (exact balls, in Sol with the closed form); 0 for worlds
+  /// resume pass (exact balls, in Sol with the closed form; every quotient
+  /// world, for its rays of small μ); 0 for worlds
   /// rendered in one dispatch. (Frames whose lists outgrow one indirect
   /// dispatch or the device's largest storage buffer binding, 48 bytes a
   /// pixel, render in one dispatch too.) std::logic_error before set_world.
@@ -210,6 +213,12 @@ class MarchRenderer {
 /// end (sol_ray_advanced, as the quotient march's teleports) and the
 /// positions composed: then w is the position's z. For tests and benchmarks.
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
+
+/// The kernel's position (xyz; w 0) at the arc length w >= 0 of each query's
+/// geodesic by Jacobi's zeta function (sol_forward_zeta), as the quotient
+/// march's first pass takes it for rays of μ = |ab| >= kZetaLeastMu; walked
+/// in `segments` as evaluate_kernel_flow (sol_ray_restarted_zeta). For tests.
+std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
 
 /// The kernel's unit tangent (frame components; w 0) at the arc length w >= 0
 /// of each query's geodesic, as the quotient march takes it for its

@@ -56,13 +56,14 @@ SOL_CONSTANT(int, kSpecPlanesXYOnly, 16);   ///< bool: every object a plane x = 
 SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a reach (needs kSpecExactLights)
 SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline runs (kPass*)
 SOL_CONSTANT(int, kSpecDeferShading, 19);   ///< bool: hits are shaded by the shade pass (exact lights)
-SOL_CONSTANT(int, kSpecDeferExact, 20);     ///< bool: rays that reach an exact ball go on in the resume pass
+SOL_CONSTANT(int, kSpecResume, 20);         ///< bool: the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient)
 SOL_CONSTANT(int, kSpecPlanesZ, 21);        ///< bool: planes z = c
 
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
 // everything. With it (docs/renderer.md "Deferred passes"), the march pass
-// lists the pixels whose ray reached an exact ball's shell (kSpecDeferExact)
-// and the hits to shade (kSpecDeferShading) in binding kBindingQueue; the
+// lists the pixels whose ray reached an exact ball's shell in Sol, or whose
+// ray has μ = |ab| below kZetaLeastMu in the quotient (kSpecResume), and
+// the hits to shade (kSpecDeferShading) in binding kBindingQueue; the
 // resume pass goes on with the first list's rays, the shade pass shades the
 // second list's hits: each an indirect dispatch over its list alone, so
 // that the pixels that need none of that work do not pay for it (lavapipe
@@ -70,6 +71,13 @@ SOL_CONSTANT(int, kSpecPlanesZ, 21);        ///< bool: planes z = c
 SOL_CONSTANT(int, kPassMarch, 0);
 SOL_CONSTANT(int, kPassResume, 1);
 SOL_CONSTANT(int, kPassShade, 2);
+
+/// The quotient march's positions: by Jacobi's zeta function
+/// (sol_forward_zeta in sol_geodesic.glsl) for rays of μ = |ab| at least
+/// this, whose float rounding, about 2e-7/μ relative to the scale of the
+/// position, is then below 2e-5; by Carlson's integrals (sol_forward) for
+/// the others (with the resume pass, in that pass).
+SOL_CONSTANT(SOL_REAL, kZetaLeastMu, 0.01);
 
 // ---- Limits
 /// Most objects a scene may hold on the GPU.
