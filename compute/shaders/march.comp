@@ -390,15 +390,16 @@ vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radiu
   const bool vertical = axis == kTubeVertical;
   const vec3 d = q - through;
   const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}, from the caller's half exponentials
-  const float D = abs(h.x) * iez + abs(h.y) * ez;
-  const float G = (h.y * d.x - h.x * d.y) / D;
-  const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) / D;
+  const float inv_D = 1.0 / (abs(h.x) * iez + abs(h.y) * ez);
+  const float G = (h.y * d.x - h.x * d.y) * inv_D;
+  const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) * inv_D;
   const float wx = abs(d.x) * iez, rate_wx = (d.x >= 0.0 ? u.x : -u.x) - wx * u.z;
   const float wa = vertical ? wx : abs(G), rate_a = vertical ? rate_wx : (G >= 0.0 ? rate_G : -rate_G);
   const float wy = abs(d.y) * ez, rate_wy = (d.y >= 0.0 ? u.y : -u.y) + wy * u.z;
-  const vec2 w = vec2(wa, wy);
-  const vec2 hw = asinh(w) - radius;
-  const vec2 sw = vec2(rate_a, rate_wy) * inversesqrt(1.0 + w * w);
+  const vec2 w = vec2(wa, wy);  // >= 0
+  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
+  const vec2 hw = log(w + root) - radius;
+  const vec2 sw = vec2(rate_a, rate_wy) / root;
   // The second term: the slab around y = y0 (vertical), or |Δz| - r.
   const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
   const float distance = max(hw.x, hb);
