@@ -110,24 +110,18 @@ TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
   expect_no_validation_errors();
 }
 
-// The tangent the quotient march takes for its clearances (sol_forward's
-// direction) against the double closed form's, in every regime: random
-// and stiff directions, the planes x = 0 and y = 0 (a or b zero), the
-// vertical and the straight lines, t in [0, 12] (the quotient presets'
-// max_distance). The tangent's float error follows the phase's, like the
-// position's (5e-5 at t = 50 in FlowMatchesTheDoubleClosedForm).
-
 // The quotient march's first pass takes its positions from Jacobi's zeta
 // function (sol_forward_zeta) for rays of μ = |ab| >= kZetaLeastMu, walked
 // in segments as it restarts its rays at teleports (sol_ray_restarted_zeta):
 // against the double closed form. Directions: random ones of μ >=
 // kZetaLeastMu, μ just above it at several c, μ on both sides of 1/6 (m =
-// (1 - 2μ)/(1 + 2μ) = 1/2, where the mean rate changes formula), the
-// straight lines (μ = 1/2) and a ≈ ±b with c ≈ 0 (m near 0); arc lengths up
-// to 12, the quotient presets' max_distance. The float rounding of the
-// integrals is about 2e-7/μ relative (measured: 2.3e-5 at μ = 0.01, 1.8e-6
-// above 0.1, with 5 segments); 5e-5 is the Carlson flow's goal
-// (FlowWalkedInSegmentsStaysOnTheGeodesic).
+// (1 - 2μ)/(1 + 2μ) = 1/2, where the descent's modulus and its
+// complement's cross), the straight lines (μ = 1/2) and a ≈ ±b with c ≈ 0
+// (m near 0); arc lengths up to 12, the quotient presets' max_distance,
+// with short ones, whose segments take the trapezoid rule. The float
+// rounding of the integrals is about 2e-7/μ relative a segment (measured,
+// worst at μ near 0.01: 5.8e-6 in one segment, 3.3e-5 in 20); 5e-5 is the
+// Carlson flow's goal (FlowWalkedInSegmentsStaysOnTheGeodesic).
 TEST(Kernel, FlowByZetaMatchesTheDoubleClosedFormAboveItsLeastMu) {
   const double least = sol::vk::kernel::kZetaLeastMu;
   const auto mu_of = [](const glm::vec3& f) {
@@ -182,6 +176,13 @@ TEST(Kernel, FlowByZetaMatchesTheDoubleClosedFormAboveItsLeastMu) {
   expect_no_validation_errors();
 }
 
+// The tangent the quotient march takes for its clearances (sol_forward's
+// direction; sol_forward_zeta's where μ >= kZetaLeastMu, below) against
+// the double closed form's, in every regime: random
+// and stiff directions, the planes x = 0 and y = 0 (a or b zero), the
+// vertical and the straight lines, t in [0, 12] (the quotient presets'
+// max_distance). The tangent's float error follows the phase's, like the
+// position's (5e-5 at t = 50 in FlowMatchesTheDoubleClosedForm).
 TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   std::vector<dvec3> dirs = sol::test::stiff_directions();
   for (const dvec3& d : sol::test::random_directions(1000, 35)) dirs.push_back(d);
@@ -206,6 +207,25 @@ TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   }
   std::printf("kernel tangents (float) against double, %zu queries, t <= 12: worst %.2e\n", queries.size(), worst);
   EXPECT_THROW(sol::vk::evaluate_kernel_tangents(vk_context(), {glm::vec4(1, 0, 0, -1)}), sol::InvalidArgument);
+  // The quotient march's first pass: the tangent by the zeta function's
+  // descent (five levels, dn from its last level) for the directions of
+  // μ >= kZetaLeastMu, to the same bound.
+  std::vector<glm::vec4> steep;
+  for (const glm::vec4& q : queries) {
+    if (std::abs(double(q.x) * double(q.y)) / glm::dot(glm::dvec3(glm::vec3(q)), glm::dvec3(glm::vec3(q))) >= sol::vk::kernel::kZetaLeastMu) {
+      steep.push_back(q);
+    }
+  }
+  const std::vector<glm::vec4> by_zeta = sol::vk::evaluate_kernel_tangents_by_zeta(vk_context(), steep);
+  double worst_zeta = 0.0;
+  for (std::size_t i = 0; i < steep.size(); ++i) {
+    const dvec3 d(steep[i].x, steep[i].y, steep[i].z);
+    const double error = glm::length(dvec3(by_zeta[i]) - sol::ClosedFormGeodesic<double>(d).direction_at(steep[i].w));
+    worst_zeta = std::max(worst_zeta, error);
+    EXPECT_LT(error, 5e-5) << "by the zeta function: (" << d.x << ", " << d.y << ", " << d.z << "), t = " << steep[i].w;
+  }
+  std::printf("kernel tangents by the zeta function, %zu queries (mu >= %g): worst %.2e\n", steep.size(),
+              static_cast<double>(sol::vk::kernel::kZetaLeastMu), worst_zeta);
   expect_no_validation_errors();
 }
 

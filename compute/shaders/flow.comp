@@ -18,7 +18,7 @@ layout(constant_id = 0) const int SEGMENTS = 1;
 // clearances; 2 the cut time (sol_cut_time) of the direction, in x; 3 the
 // position at arc length w >= 0 by Jacobi's zeta function (sol_forward_zeta,
 // walked in SEGMENTS as the quotient march's first pass restarts its rays:
-// sol_ray_restarted_zeta).
+// sol_ray_restarted_zeta); 4 the unit tangent there by sol_forward_zeta.
 layout(constant_id = 1) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
@@ -35,9 +35,13 @@ void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const vec4 query = queries[i];
-  if (VALUE == 3) {
+  if (VALUE == 3 || VALUE == 4) {
     SolRay zeta = sol_ray(query.xyz);
     sol_ray_zeta(zeta);
+    if (VALUE == 4) {
+      results[i] = vec4(sol_forward_zeta(zeta, query.w).direction, 0.0);
+      return;
+    }
     const float segment = query.w / float(SEGMENTS);
     vec3 origin = vec3(0.0);
     for (int k = 0; k < SEGMENTS; ++k) {

@@ -785,6 +785,13 @@ std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std:
   return run_flow(context, queries, segments, 3);
 }
 
+std::vector<glm::vec4> evaluate_kernel_tangents_by_zeta(Context& context, const std::vector<glm::vec4>& queries) {
+  for (const glm::vec4& q : queries) {
+    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents_by_zeta: arc lengths must be >= 0");
+  }
+  return run_flow(context, queries, 1, 4);
+}
+
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries) {
   for (const glm::vec4& q : queries) {
     if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents: arc lengths must be >= 0");

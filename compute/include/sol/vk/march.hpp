@@ -225,6 +225,10 @@ std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std:
 /// clearances (sol_forward in compute/shaders/sol_geodesic.glsl). For tests.
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries);
 
+/// The same by Jacobi's zeta function (sol_forward_zeta), as the quotient
+/// march's first pass takes it for rays of μ >= kZetaLeastMu. For tests.
+std::vector<glm::vec4> evaluate_kernel_tangents_by_zeta(Context& context, const std::vector<glm::vec4>& queries);
+
 /// The kernel's cut time of each direction (sol_cut_time, the z-period
 /// that certifies a minimiser; 1e30 where sol::cut_time is infinite). For tests.
 std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector<glm::vec3>& directions);
