@@ -27,6 +27,13 @@ using glm::dvec3;
 using sol::test::expect_no_validation_errors;
 using sol::test::vk_context;
 
+// μ = |ab| of the unit direction along f, as the kernel's sol_ray takes it
+// (the quotient march's choice of positions: kZetaLeastMu).
+double mu_of(const glm::vec3& f) {
+  const dvec3 d = glm::normalize(dvec3(f));
+  return std::abs(d.x * d.y);
+}
+
 // 10^5 (direction, arc length) pairs: random directions and the stiff set,
 // |t| <= 50; the reference is the double closed form for the float-rounded
 // direction and arc length.
@@ -124,10 +131,6 @@ TEST(Kernel, FlowWalkedInSegmentsStaysOnTheGeodesic) {
 // Carlson flow's goal (FlowWalkedInSegmentsStaysOnTheGeodesic).
 TEST(Kernel, FlowByZetaMatchesTheDoubleClosedFormAboveItsLeastMu) {
   const double least = sol::vk::kernel::kZetaLeastMu;
-  const auto mu_of = [](const glm::vec3& f) {
-    const glm::dvec3 d = glm::normalize(glm::dvec3(f));
-    return std::abs(d.x * d.y);
-  };
   const auto direction_with_mu = [](double mu, double c, double sign_a, double sign_b) {
     const double h2 = (1.0 - c) * (1.0 + c), half = 0.5 * std::asin(std::min(1.0, 2.0 * mu / h2));
     const double h = std::sqrt(h2);
@@ -173,6 +176,8 @@ TEST(Kernel, FlowByZetaMatchesTheDoubleClosedFormAboveItsLeastMu) {
                 segments, queries.size(), least, worst, mu_of(glm::vec3(q)), q.w);
     EXPECT_LT(worst, 5e-5) << segments << " segments";
   }
+  EXPECT_THROW(sol::vk::evaluate_kernel_flow_by_zeta(vk_context(), {glm::vec4(0.6f, 0.8f, 0, -1)}), sol::InvalidArgument);
+  EXPECT_THROW(sol::vk::evaluate_kernel_flow_by_zeta(vk_context(), queries, 0), sol::InvalidArgument);
   expect_no_validation_errors();
 }
 
@@ -212,9 +217,7 @@ TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   // μ >= kZetaLeastMu, to the same bound.
   std::vector<glm::vec4> steep;
   for (const glm::vec4& q : queries) {
-    if (std::abs(double(q.x) * double(q.y)) / glm::dot(glm::dvec3(glm::vec3(q)), glm::dvec3(glm::vec3(q))) >= sol::vk::kernel::kZetaLeastMu) {
-      steep.push_back(q);
-    }
+    if (mu_of(glm::vec3(q)) >= sol::vk::kernel::kZetaLeastMu) steep.push_back(q);
   }
   const std::vector<glm::vec4> by_zeta = sol::vk::evaluate_kernel_tangents_by_zeta(vk_context(), steep);
   double worst_zeta = 0.0;
@@ -226,6 +229,7 @@ TEST(Kernel, TangentsMatchTheDoubleClosedForm) {
   }
   std::printf("kernel tangents by the zeta function, %zu queries (mu >= %g): worst %.2e\n", steep.size(),
               static_cast<double>(sol::vk::kernel::kZetaLeastMu), worst_zeta);
+  EXPECT_THROW(sol::vk::evaluate_kernel_tangents_by_zeta(vk_context(), {glm::vec4(0.6f, 0.8f, 0, -1)}), sol::InvalidArgument);
   expect_no_validation_errors();
 }
 

@@ -749,7 +749,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, int width, int 
 namespace {
 
 // flow.comp over the queries: positions (walked in `segments`, value 0),
-// tangents (1) or cut times (2).
+// tangents (1), cut times (2), positions by the zeta function (walked in
+// `segments`, 3) or its tangents (4).
 std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& queries, int segments, int value) {
   if (queries.empty()) return {};
   const VkDeviceSize bytes = queries.size() * sizeof(glm::vec4);
@@ -770,6 +771,13 @@ std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& 
   return results;
 }
 
+// The forward evaluations (sol_forward, sol_forward_zeta) take arc lengths >= 0.
+void require_forward_arcs(const std::vector<glm::vec4>& queries, const char* function) {
+  for (const glm::vec4& q : queries) {
+    if (!(q.w >= 0.0f)) throw InvalidArgument(std::string("sol::vk::") + function + ": arc lengths must be >= 0");
+  }
+}
+
 }  // namespace
 
 std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments) {
@@ -779,23 +787,17 @@ std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<
 
 std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std::vector<glm::vec4>& queries, int segments) {
   if (segments < 1) throw InvalidArgument("sol::vk::evaluate_kernel_flow_by_zeta: segments must be >= 1");
-  for (const glm::vec4& q : queries) {
-    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_flow_by_zeta: arc lengths must be >= 0");
-  }
+  require_forward_arcs(queries, "evaluate_kernel_flow_by_zeta");
   return run_flow(context, queries, segments, 3);
 }
 
 std::vector<glm::vec4> evaluate_kernel_tangents_by_zeta(Context& context, const std::vector<glm::vec4>& queries) {
-  for (const glm::vec4& q : queries) {
-    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents_by_zeta: arc lengths must be >= 0");
-  }
+  require_forward_arcs(queries, "evaluate_kernel_tangents_by_zeta");
   return run_flow(context, queries, 1, 4);
 }
 
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries) {
-  for (const glm::vec4& q : queries) {
-    if (!(q.w >= 0.0f)) throw InvalidArgument("sol::vk::evaluate_kernel_tangents: arc lengths must be >= 0");
-  }
+  require_forward_arcs(queries, "evaluate_kernel_tangents");
   return run_flow(context, queries, 1, 1);
 }
 
