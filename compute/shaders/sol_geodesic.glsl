@@ -142,7 +142,11 @@ float sol_tan_quarter(float x) {
 }
 
 // sn, cn, dn of |r| <= K/2: Bulirsch's multiplicative back-substitution
-// down the AGM sequence; dn from cn (dn² = m1 + m cn²).
+// down the AGM sequence over its first `levels` levels; dn from cn
+// (dn² = m1 + m cn²), but for sol_forward_zeta's descent (SOL_ZETA_LEVELS
+// levels) the last level's dn, which is dn(r) (a square root fewer; that
+// path is tested on its own). With `zeta`, Jacobi's zeta function Z(r)
+// from the same levels (docs/mathematics.md).
 vec3 jacobi_agm(float r, float m, float m1, SolAgm agm, const int levels, out float zeta) {
   if (abs(r) < 0.0093) {  // r⁴ below rounding: Taylor series
     float r2 = r * r;
