@@ -838,6 +838,48 @@ TEST(Kernel, QuotientWorldOfSeveralKindsMatchesTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+// The quotient's tubes reach the march as four-word records (Image::bound:
+// a horizontal tube's direction scaled by its radius and turned so that its
+// x component is not negative, a vertical one's radius negated). Tubes of
+// each case against the CPU reference, which marches the tubes themselves
+// in double: along -γ1 and -γ2 (directions of negative x component, turned;
+// the quotient takes horizontal tubes along γ1 and γ2 only), along γ2 as
+// given, and vertical.
+TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Lattice lattice = sol::Lattice::golden();
+  sol::Scene tubes;
+  tubes.quotient = sol::Quotient::Golden;
+  tubes.camera = {{1.1, 0.4, 0.5 * lattice.height()}, {1.0, 0.6, -0.15}, {0.0, 0.0, 1.0}, 100.0};
+  tubes.max_distance = 6.0;
+  tubes.max_steps = 400;
+  tubes.fog_density = 1.0 / 5.0;
+  const dvec3 gamma1 = sol::tube_axis_direction(sol::TubeAxis::Gamma1), gamma2 = sol::tube_axis_direction(sol::TubeAxis::Gamma2);
+  tubes.objects = {{sol::Tube{{0.0, 0.9, 0.3}, -gamma1, 0.08}, {0.9, 0.35, 0.3}, sol::Pattern::Checker},
+                   {sol::Tube{{1.6, 0.0, 0.7}, -gamma2, 0.07}, {0.35, 0.8, 0.4}, sol::Pattern::Checker},
+                   {sol::make_tube(sol::TubeAxis::Gamma2, {0.4, 0.2, 0.1}, 0.09), {0.9, 0.8, 0.2}, sol::Pattern::Checker},
+                   {sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, 0, 0), dvec3(0.0)), 0.1), {0.35, 0.5, 0.95},
+                    sol::Pattern::Checker}};
+  sol::RenderSettings settings;
+  settings.width = 32;
+  settings.height = 24;
+  const sol::RenderResult cpu = sol::render_cpu(tubes, settings);
+  std::array<int, 4> seen{};
+  for (float object : cpu.object) {
+    if (object >= 1.0f) ++seen[static_cast<std::size_t>(object) - 1];
+  }
+  std::printf("quotient tubes along -gamma1, -gamma2, gamma2 and z: %d, %d, %d, %d pixels\n", seen[0], seen[1], seen[2],
+              seen[3]);
+  EXPECT_GT(*std::min_element(seen.begin(), seen.end()), 10);  // each record's case is seen
+  const Comparison c = compare(renderer.render(tubes, 32, 24), cpu);
+  std::printf("hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", c.mask_differs,
+              c.pixels, c.color_differs, c.distance);
+  EXPECT_LE(c.mask_differs, c.pixels / 100);
+  EXPECT_LE(c.color_differs, c.pixels / 100);
+  EXPECT_LT(c.distance, 2e-3);  // as PresetsMatchTheCpuRenderer's quotient presets
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PlaneAovsLieOnThePlane) {
   sol::vk::MarchRenderer renderer(vk_context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.

@@ -406,6 +406,32 @@ vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radiu
   return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
 }
 
+// A quotient image's tube bound from its record (Image::bound: the radius
+// in the scale of h, the axis in the first word's sign). Both forms are
+// two terms, the first asinh|G| - r, G = (h_y x - h_x y - c)/(|h_x| e^{-z}
+// + |h_y| e^{z}): a vertical tube's slab around x = x0 is that term with
+// h = (0, 1), c = x0, its second the slab around y = y0; a horizontal
+// tube's second is |z - z0| - r. As tube_clearances, in four words.
+vec3 tube_record_clearances(vec3 q, vec3 u, vec4 b, vec2 hz) {
+  const bool vertical = b.x < 0.0;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}
+  const float hx = vertical ? 0.0 : b.x, hy = vertical ? 1.0 : b.y, c = vertical ? b.y : b.z;  // hx >= 0
+  const float radius = vertical ? -b.x : b.x + abs(b.y);
+  const float inv_D = 1.0 / (hx * iez + abs(hy) * ez);
+  const float G = (hy * q.x - hx * q.y - c) * inv_D;
+  const float rate_G = ((hy * ez * u.x - hx * iez * u.y) - G * (abs(hy) * ez - hx * iez) * u.z) * inv_D;
+  const float dy = q.y - b.z;  // vertical: the slab around y = y0
+  const float wy = abs(dy) * ez, rate_wy = (dy >= 0.0 ? u.y : -u.y) + wy * u.z;
+  const vec2 w = vec2(abs(G), wy);
+  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
+  const vec2 hw = log(w + root) - radius;
+  const vec2 sw = vec2(G >= 0.0 ? rate_G : -rate_G, rate_wy) / root;
+  const float dz = q.z - b.w;
+  const float hb = vertical ? hw.y : abs(dz) - radius, sb = vertical ? sw.y : (dz >= 0.0 ? u.z : -u.z);
+  const float distance = max(hw.x, hb);
+  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+}
+
 // The object's distance (object_distance) and clearance, the larger of it
 // and the second-order step of its bound (exact balls: the bound's ball,
 // which holds the exact one, as object_distance). The objects of the
@@ -427,6 +453,23 @@ vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float r
 vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return object_clearances(type, q, u, rel, heading, radius, hz, hc).xy;
 }
+
+// object_clearances of a quotient image from its bound record
+// (Image::bound): balls (centre, radius), tubes (tube_record_clearances),
+// planes z = c (c, ...).
+vec3 image_clearances(int type, vec3 q, vec3 u, vec4 b, vec2 hz) {
+  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
+    return ball_clearances(q, u, b.xyz, b.w, hz, half_exp(b.z));
+  }
+  if (HAS_TUBES && type == kObjectTube) return tube_record_clearances(q, u, b, hz);
+  const float d = abs(q.z - b.x);
+  const vec2 plane_z = max(vec2(d), clearance_roots(d, q.z >= b.x ? u.z : -u.z));
+  return vec3(d, plane_z);
+}
+
+// A quotient image's distance (its bound's, image_clearances' first
+// component, which the direction does not enter).
+float image_distance(int type, vec3 q, vec4 b) { return image_clearances(type, q, vec3(0.0), b, half_exp(q.z)).x; }
 
 // Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
 // camera's side (the origin): the march stops within hit_epsilon, possibly
@@ -596,9 +639,10 @@ int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
 vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
   i = all ? s : int((word >> uint(8 * s)) & 255u);
   m = images[s < listed ? i : 0];
-  // A ball's centre's half exponentials taken here: two exponentials cost
-  // lavapipe less than two more words read (docs/renderer.md).
-  const vec3 dc = object_clearances(image_type(m), q, u, m.geometry, m.heading.xy, m.info.y, hz, half_exp(m.geometry.z));
+  // Its bound record alone (Image::bound); a ball's centre's half
+  // exponentials taken here: two exponentials cost lavapipe less than two
+  // more words read (docs/renderer.md).
+  const vec3 dc = image_clearances(image_type(m), q, u, m.bound, hz);
   return s < listed ? dc : vec3(1e30);
 }
 
@@ -656,7 +700,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         const int i = all ? s : int((word >> uint(8 * s)) & 255u);
         if (i == kFieldEmpty || held == 4) continue;
         const Image m = images[i];
-        if (object_distance(image_type(m), q, m.geometry, m.heading.xy, m.info.y) < 2.0 * eps) passing[held++] = i;
+        if (image_distance(image_type(m), q, m.bound) < 2.0 * eps) passing[held++] = i;
       }
     }
     for (int step = 0; step < max_steps; ++step) {
@@ -685,7 +729,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
         if (HAS_EXACT_BALLS && image_type(m) == kObjectExactBall && d < kExactShell) {
           if (exact_i != i) exact_known = false;
           exact_i = i;
-          d = exact_ball_sdf(p, m.geometry.xyz, m.info.y, exact_v, exact_end, exact_known, exact_J);
+          d = exact_ball_sdf(p, m.bound.xyz, m.bound.w, exact_v, exact_end, exact_known, exact_J);
         }
         bool leaving = false;
         for (int h = 0; h < 4; ++h) {
@@ -1334,7 +1378,7 @@ void main() {
         // Near an exact ball's image: its exact distance (as in Sol).
         if (exact_i != nearest_i) exact_known = false;
         exact_i = nearest_i;
-        const float exact = exact_ball_sdf(e, images[nearest_i].geometry.xyz, images[nearest_i].info.y, exact_v, exact_end, exact_known, exact_J);
+        const float exact = exact_ball_sdf(e, images[nearest_i].bound.xyz, images[nearest_i].bound.w, exact_v, exact_end, exact_known, exact_J);
         nearest_i = exact <= second ? nearest_i : second_i;
         nearest = min(exact, second);
         clear_nearest = max(clear_nearest, exact);

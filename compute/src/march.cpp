@@ -133,6 +133,17 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   return e;
 }
 
+// An image's bound record (kernel::Image::bound), in double.
+glm::dvec4 image_bound(const KernelShape& shape) {
+  if (shape.code != kernel::kObjectTube) return {glm::dvec3(shape.geometry), shape.radius};
+  const glm::dvec3 through(shape.geometry);
+  if (static_cast<int>(shape.geometry.w) == kernel::kTubeVertical) return {-shape.radius, through.x, through.y, 0.0};
+  const double k = (shape.heading.x < 0.0 ? -shape.radius : shape.radius) /
+                   (std::abs(shape.heading.x) + std::abs(shape.heading.y));
+  const glm::dvec2 h = k * shape.heading;
+  return {h.x, h.y, h.y * through.x - h.x * through.y, through.z};
+}
+
 // The quotient images (sol::quotient_images, shared with the CPU reference)
 // as the kernel's Image records (binding kBindingImages); a stub otherwise.
 std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
@@ -147,7 +158,7 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   for (const MarchObject& m : images) {
     const KernelShape shape = kernel_shape(m.shape);
     out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
-                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0)});
+                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0), glm::vec4(image_bound(shape))});
   }
   // The kernel reads a first record even where a cell lists no candidate
   // (its loop is tested at the end, masked): never an empty buffer.

@@ -148,6 +148,16 @@ struct Image {
   vec4 geometry;  ///< ball: centre; tube: (point of the axis, axis code); plane z = c: (c, 0, 0, 0)
   vec4 info;      ///< x: object code, y: radius, z: the scene object it images (0-based)
   vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; zw: 0 (unused)
+  /// The object's bound as the march's candidates read it (march.comp's
+  /// image_clearances; four words, as each word a step reads at a per-lane
+  /// index is a gather on lavapipe): balls (centre, radius); planes z = c
+  /// (c, 0, 0, 0); tubes (vertical: (-radius, x0, y0, 0); horizontal along
+  /// the unit coordinate direction h through (x0, y0, z0):
+  /// (k h_x, k h_y, k (h_y x0 - h_x y0), z0), k = ±radius / (|h_x| + |h_y|)
+  /// with the sign that makes k h_x >= 0: the bound's across term is
+  /// invariant under scaling h, so the scale carries the radius,
+  /// |k h_x| + |k h_y|, and the first word's sign the axis).
+  vec4 bound;
 };
 
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
@@ -174,7 +184,7 @@ struct Column {
 
 #ifdef __cplusplus
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 3 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
+static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
