@@ -89,6 +89,16 @@ const bool DEFER_EXACT = RESUME_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRA
 // alone, the resume pass those with Carlson's integrals alone
 // (quotient_forward).
 const bool DEFER_SMALL_MU = RESUME_WORLD && QUOTIENT;
+// The same in Sol for worlds of exact balls (the closed form): a ray of μ
+// >= kZetaLeastMu takes the zeta function's positions up to its first
+// exact shell, and from there on, as every other ray, Carlson's integrals.
+// The march pass stops there (or, for the others, before the first step):
+// the resume pass takes Carlson's alone. In one dispatch a ray's first
+// round (`zeta_round`) ends where the march pass would stop and the next
+// takes that step again by Carlson's integrals, so that both render the
+// same image.
+const bool SOL_ZETA = HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0 && PASS == kPassMarch;
+const bool SOL_ZETA_ONLY = SOL_ZETA && DEFER_EXACT;
 
 layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
   Params params;
@@ -1446,9 +1456,16 @@ void main() {
   }
 
   SolRay ray;
+  bool zeta_round = false;  // this round's positions by the zeta function (SOL_ZETA)
   if (INTEGRATOR == 0) {
     ray = sol_ray(direction);
+    zeta_round = SOL_ZETA && ray.mu >= kZetaLeastMu;
+    if (SOL_ZETA_ONLY && !zeta_round) {
+      defer_exact(pixel, 0.0, 0u, 0);  // this ray in the resume pass, by Carlson's integrals
+      return;
+    }
     if (!heights_only || HAS_CUTOUT) sol_ray_integrals(ray);
+    if (SOL_ZETA) sol_ray_zeta(ray);
   }
   vec3 rk_p = vec3(0.0), rk_u = direction;
   float rk_t = 0.0;
@@ -1518,7 +1535,8 @@ void main() {
       if (INTEGRATOR == 0) {
         // Cutout planes need the full position for their gap bounds.
         if (HAS_BALLS) {
-          const SolForward forward = sol_forward(ray, t);
+          const SolForward forward = SOL_ZETA_ONLY ? sol_forward_zeta(ray, t)
+                                     : (SOL_ZETA && zeta_round ? sol_forward_zeta(ray, t) : sol_forward(ray, t));
           q = forward.position;
           u = forward.direction;
         } else {
@@ -1590,6 +1608,9 @@ void main() {
         defer_exact(pixel, t, passing, step);
         return;
       }
+    } else if (SOL_ZETA && zeta_round && shell && alive) {
+      zeta_round = false;  // this step again, by Carlson's integrals (as the resume pass)
+      shell = false;
     } else if (HAS_EXACT_BALLS && shell && alive) {
       // Near an exact ball: its exact distance (steps, and hits on the true
       // sphere), against the least distance to every other object.
