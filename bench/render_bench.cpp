@@ -135,26 +135,29 @@ int main(int argc, char** argv) {
       // that their ratios within one run hold. One renderer per preset
       // keeps its pipelines between rounds.
       std::vector<std::string> names;
+      std::vector<sol::Scene> scenes;
       for (const std::string& name : sol::preset_names()) {
-        if (scene_name.empty() || name == scene_name) names.push_back(name);
+        if (!scene_name.empty() && name != scene_name) continue;
+        names.push_back(name);
+        scenes.push_back(sol::preset_scene(name));
       }
       std::vector<std::unique_ptr<sol::vk::MarchRenderer>> renderers;
       std::vector<double> bests(names.size(), 1e300);
       std::vector<sol::RenderResult> results(names.size());
-      for (const std::string& name : names) {
+      for (const sol::Scene& scene : scenes) {
         renderers.push_back(std::make_unique<sol::vk::MarchRenderer>(context));
-        renderers.back()->render(sol::preset_scene(name), size, size);  // warm-up: shader compilation and caches
+        renderers.back()->render(scene, size, size);  // warm-up: shader compilation and caches
       }
       for (int k = 0; k < repeats; ++k) {
         for (std::size_t i = 0; i < names.size(); ++i) {
           double ms = 0;
-          results[i] = renderers[i]->render(sol::preset_scene(names[i]), size, size, &ms);
+          results[i] = renderers[i]->render(scenes[i], size, size, &ms);
           bests[i] = std::min(bests[i], ms);
         }
       }
       for (std::size_t i = 0; i < names.size(); ++i) {
         const std::string& name = names[i];
-        const sol::Scene scene = sol::preset_scene(name);
+        const sol::Scene& scene = scenes[i];
         const double best = bests[i];
         const sol::RenderResult& r = results[i];
         const double rays = static_cast<double>(size) * size;

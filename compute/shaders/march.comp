@@ -472,9 +472,7 @@ vec3 image_clearances(int type, vec3 q, vec3 u, vec4 b, vec2 hz) {
     return ball_clearances(q, u, b.xyz, b.w, hz, half_exp(b.z));
   }
   if (HAS_TUBES && type == kObjectTube) return tube_record_clearances(q, u, b, hz);
-  const float d = abs(q.z - b.x);
-  const vec2 plane_z = max(vec2(d), clearance_roots(d, q.z >= b.x ? u.z : -u.z));
-  return vec3(d, plane_z);
+  return object_clearances(type, q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));  // planes z = c: the record is (c, ...)
 }
 
 // A quotient image's distance (its bound's, image_clearances' first
