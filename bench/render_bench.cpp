@@ -37,10 +37,16 @@
 //     with --only gpu (it takes many minutes there; pass a smaller
 //     --gpu-size).
 //
+//  5. Pipeline builds: every preset's first frame (16²) from a new
+//     MarchRenderer, its pipelines built, with the specialisation constants
+//     folded into the SPIR-V (the default) and handed to the driver, after
+//     one build of each to warm the driver's disk cache. Written to
+//     render_pipelines.csv.
+//
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu] [--scene PRESET] [--kernel-only]
+//                [--only throughput|error|exact|gpu|pipelines] [--scene PRESET] [--kernel-only]
 //
 // For quick before/after figures of one change: --only throughput --scene
 // lattice-balls --kernel-only (the specialised kernel alone, one preset).
@@ -106,12 +112,13 @@ int main(int argc, char** argv) {
   cl.add_integer("--gpu-size", gpu_size, 1, 8192, "N", "one eye's side for the headset section (default 2048)");
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu"}, "run one section and write its files");
-  cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput and headset sections: this preset only");
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines"}, "run one section and write its files");
+  cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput, headset and pipeline sections: this preset only");
   cl.add_flag("--kernel-only", kernel_only,
               "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
-                "render_exact.csv and render_gpu.csv (on a CPU device only with --only gpu) to DIR.");
+                "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu) and\n"
+                "render_pipelines.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
   if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
@@ -340,6 +347,33 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "gpu: %s", line);
       }
       files.emplace_back("render_gpu.csv", gpu);
+    }
+
+    // 5. Pipeline builds: a new renderer's first frame (16², the world's
+    // pipelines built) with the specialisation constants folded into the
+    // SPIR-V and handed to the driver. Each variant is built once first, so
+    // that the driver's own disk cache (Mesa's) is warm for both, as for a
+    // program run before.
+    if (runs("pipelines")) {
+      std::string builds = "scene,device,folded_s,driver_s,ratio\n";
+      for (const std::string& name : sol::preset_names()) {
+        if (!scene_name.empty() && name != scene_name) continue;
+        const sol::Scene scene = sol::preset_scene(name);
+        double seconds[2] = {0.0, 0.0};
+        for (const bool fold : {true, false}) {
+          sol::vk::MarchRenderer(context, {.fold_specialization = fold}).render(scene, 16, 16);  // warms the driver's cache
+          sol::vk::MarchRenderer renderer(context, {.fold_specialization = fold});
+          const auto start = std::chrono::steady_clock::now();
+          renderer.render(scene, 16, 16);
+          seconds[fold ? 0 : 1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,%s,%.2f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(), seconds[0],
+                      seconds[1], seconds[1] / seconds[0]);
+        builds += line;
+        std::fprintf(stderr, "pipelines: %s", line);
+      }
+      files.emplace_back("render_pipelines.csv", builds);
     }
 
     for (const auto& [name, text] : files) {

@@ -472,6 +472,29 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+// The kernel's specialisation constants folded into its SPIR-V (the
+// default, MarchOptions::fold_specialization) or handed to the driver: the
+// same program, so the same image to the bit on lavapipe (its compiler
+// sees the same live code either way): planes z = c (heights only), the
+// quotient with its resume pass, and exact balls and an exact light
+// (three passes).
+TEST(Kernel, FoldedSpecialisationRendersTheDriversImage) {
+  sol::vk::MarchRenderer folded(vk_context()), by_driver(vk_context(), {.fold_specialization = false});
+  for (const std::string name : {"plane", "lattice-balls", "spheres"}) {
+    const sol::Scene scene = sol::preset_scene(name);
+    const sol::RenderResult a = folded.render(scene, 40, 28), b = by_driver.render(scene, 40, 28);
+    EXPECT_EQ(a.object, b.object) << name;
+    EXPECT_EQ(a.distance, b.distance) << name;
+    EXPECT_EQ(a.steps, b.steps) << name;
+    EXPECT_EQ(a.px, b.px) << name;
+    EXPECT_EQ(a.rgba, b.rgba) << name;
+    int hits = 0;
+    for (float o : a.object) hits += o > 0.0f;
+    EXPECT_GT(hits, static_cast<int>(a.object.size()) / 10) << name << ": a picture to compare";
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   // The kernel specialised to a scene's features and the one with every
   // feature compiled in compute the same march (the general one evaluates

@@ -3,6 +3,7 @@
 // kernel end to end under the validation layer, and errors that must be
 // exceptions rather than crashes.
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,8 @@
 #include <gtest/gtest.h>
 
 #include <sol/vk/vk.hpp>
+
+#include "shaders/specialised_comp_spv.hpp"
 
 namespace {
 
@@ -271,6 +274,63 @@ TEST(VkPipeline, FillWritesEveryPixelExactly) {
   fill.run(2u, 1u, -3.5f);
   expect_fill(image.download(), width, height, -3.5f);
 
+  const std::vector<std::string> errors = context.validation_errors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
+// Specialisation constants folded into the SPIR-V (sol::vk::specialize_spirv,
+// the default) give the program the driver gives them, and the code they
+// rule out is gone before the driver sees it. tests/shaders/specialised.comp
+// writes ((x + OFFSET) * SCALE, y, SQUARE ? v² + 2 OFFSET : 0, 1): small
+// integers and halves, exact in float, so both ways are held to the host's
+// values exactly. A constant the module does not declare (id 7) is ignored
+// either way, as Vulkan ignores it.
+TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
+  Context context(validated());
+  const std::span<const std::uint32_t> words(specialised_comp_spv);
+  constexpr std::uint32_t width = 11, height = 5;
+  // Opcodes: OpSpecConstantTrue..OpSpecConstantOp are 48..52, OpFunction 54.
+  const auto count_opcodes = [](std::span<const std::uint32_t> code, std::uint32_t first, std::uint32_t last) {
+    int n = 0;
+    for (std::size_t at = 5; at < code.size() && (code[at] >> 16) > 0; at += code[at] >> 16) {
+      n += (code[at] & 0xffffu) >= first && (code[at] & 0xffffu) <= last;
+    }
+    return n;
+  };
+  EXPECT_EQ(count_opcodes(words, 54, 54), 2) << "main and squared";
+  EXPECT_GE(count_opcodes(words, 48, 52), 4) << "SQUARE, OFFSET, SCALE and 2 * OFFSET";
+  for (const bool square : {false, true}) {
+    const int offset = 3;
+    const float scale = 0.5f;
+    const std::vector<sol::vk::SpecializationConstant> constants = {
+        {0, square ? 1u : 0u}, {1, static_cast<std::uint32_t>(offset)}, {2, std::bit_cast<std::uint32_t>(scale)}, {7, 42u}};
+    const std::vector<std::uint32_t> folded = sol::vk::specialize_spirv(words, constants, "specialised");
+    EXPECT_EQ(count_opcodes(folded, 48, 52), 0) << "no specialisation constant left";
+    EXPECT_EQ(count_opcodes(folded, 54, 54), square ? 2 : 1) << "squared() only where it is called";
+    for (const bool fold : {true, false}) {
+      StorageImage image(context, width, height, VK_FORMAT_R32G32B32A32_SFLOAT);
+      ComputePipeline pipeline(context, {.name = "specialised",
+                                         .spirv = words,
+                                         .bindings = {{0, DescriptorType::StorageImage}},
+                                         .specialization = constants,
+                                         .fold_specialization = fold});
+      pipeline.bind(0, image);
+      pipeline.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8));
+      const std::vector<float> pixels = image.download();
+      int wrong = 0;
+      for (std::uint32_t y = 0; y < height; ++y) {
+        for (std::uint32_t x = 0; x < width; ++x) {
+          const float v = static_cast<float>(static_cast<int>(x) + offset) * scale;
+          const float expected[4] = {v, static_cast<float>(y), square ? v * v + 2.0f * offset : 0.0f, 1.0f};
+          for (int c = 0; c < 4; ++c) wrong += pixels[4 * (y * width + x) + c] != expected[c];
+        }
+      }
+      EXPECT_EQ(wrong, 0) << (fold ? "folded" : "by the driver") << (square ? ", SQUARE" : "");
+    }
+  }
+  // Not SPIR-V: the same error as the pipeline's.
+  const std::vector<std::uint32_t> garbage(16, 0x12345678u);
+  EXPECT_THROW(sol::vk::specialize_spirv(garbage, {}, "garbage"), VulkanError);
   const std::vector<std::string> errors = context.validation_errors();
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
 }

@@ -294,7 +294,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecLightReach, f.light_reach ? 1u : 0u},
                                                 {kernel::kSpecPass, static_cast<std::uint32_t>(pass)},
                                                 {kernel::kSpecDeferShading, v.defer_shading ? 1u : 0u},
-                                                {kernel::kSpecResume, v.resume ? 1u : 0u}}});
+                                                {kernel::kSpecResume, v.resume ? 1u : 0u}},
+                             .fold_specialization = o.fold_specialization});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -320,7 +321,7 @@ struct MarchRenderer::Impl {
     std::uint64_t queue_bound = 0;    // the queue buffer's generation bound (0: none)
 
     // The deferred passes' pipelines compile on threads of their own while
-    // the march pass's does (lavapipe takes about a second and a half for each).
+    // the march pass's does (lavapipe takes up to a second for each, folded).
     static Built build(Context& c, const MarchOptions& o, const KernelVariant& v) {
       auto compile = [&](bool needed, int pass) {
         return needed ? std::async(std::launch::async, [&c, &o, &v, pass] { return make_pipeline(c, o, v, pass); })
@@ -456,10 +457,9 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
   if (!(options.rk4_step > 0.0) || !std::isfinite(options.rk4_step)) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
   }
+  // No pipeline yet: each variant is built when a frame first needs it
+  // (lavapipe takes seconds for each, so none is built that no frame uses).
   m_impl = std::make_unique<Impl>(context, options);
-  // Build one now (the planes' z = c kernel): errors surface here, not at the first frame.
-  const KernelVariant planes{.features = {.heights_only = true}};
-  m_impl->pipelines.emplace(planes.key(), Impl::Built::build(context, options, planes));
 }
 
 MarchRenderer::~MarchRenderer() = default;

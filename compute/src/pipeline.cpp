@@ -4,9 +4,12 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
 
 #include "device.hpp"
 #include "sol/vk/buffer.hpp"
@@ -81,6 +84,36 @@ void validate_spirv(std::span<const std::uint32_t> words, const std::string& pip
 
 }  // namespace
 
+std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
+                                            std::span<const SpecializationConstant> constants,
+                                            const std::string& pipeline) {
+  validate_spirv(words, pipeline);
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> values;
+  for (const SpecializationConstant& c : constants) values[c.id] = {c.value};
+  std::string diagnostics;
+  spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_2);
+  optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* message) {
+    if (level > SPV_MSG_WARNING) return;
+    if (!diagnostics.empty()) diagnostics += "; ";
+    diagnostics += message;
+  });
+  optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(values))
+      .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
+      .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+      .RegisterPass(spvtools::CreateDeadBranchElimPass())
+      .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
+      .RegisterPass(spvtools::CreateAggressiveDCEPass());
+  spvtools::OptimizerOptions options;
+  options.set_run_validator(false);  // validated above
+  std::vector<std::uint32_t> folded;
+  if (!optimizer.Run(words.data(), words.size(), &folded, options)) {
+    throw VulkanError(VK_ERROR_UNKNOWN, "pipeline '" + pipeline + "': its specialisation constants could not be folded" +
+                                            (diagnostics.empty() ? std::string() : ": " + diagnostics));
+  }
+  validate_spirv(folded, pipeline + "' (specialised");
+  return folded;
+}
+
 ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& desc)
     : m_owner(context.internals()),
       m_name(desc.name.empty() ? std::string("unnamed") : desc.name),
@@ -101,7 +134,16 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
                                 " is not a multiple of 4 in [0, " +
                                 std::to_string(d.properties.limits.maxPushConstantsSize) + "]");
   }
-  validate_spirv(desc.spirv, m_name);
+  // The code the driver sees: the constants folded in, or the words as given.
+  std::vector<std::uint32_t> folded;
+  std::span<const std::uint32_t> code = desc.spirv;
+  const bool fold = desc.fold_specialization && !desc.specialization.empty();
+  if (fold) {
+    folded = specialize_spirv(desc.spirv, desc.specialization, m_name);
+    code = folded;
+  } else {
+    validate_spirv(desc.spirv, m_name);
+  }
 
   VkShaderModule module = VK_NULL_HANDLE;
   try {
@@ -140,8 +182,8 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     VkShaderModuleCreateInfo module_info{};
 
     module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-    module_info.codeSize = desc.spirv.size_bytes();
-    module_info.pCode = desc.spirv.data();
+    module_info.codeSize = code.size_bytes();
+    module_info.pCode = code.data();
     check(vkCreateShaderModule(d.device, &module_info, nullptr, &module), "vkCreateShaderModule");
 
     std::vector<VkSpecializationMapEntry> entries;
@@ -164,7 +206,7 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipeline_info.stage.module = module;
     pipeline_info.stage.pName = "main";
-    pipeline_info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
+    pipeline_info.stage.pSpecializationInfo = entries.empty() || fold ? nullptr : &specialization;
     pipeline_info.layout = m_layout;
     check(vkCreateComputePipelines(d.device, d.pipeline_cache, 1, &pipeline_info, nullptr, &m_pipeline),
           "vkCreateComputePipelines");

@@ -53,6 +53,11 @@ struct MarchOptions {
   /// pay for that work. Same image; false renders everything in one
   /// dispatch (the comparison the tests make; slower on lavapipe).
   bool deferred = true;
+  /// The kernel's specialisation constants folded into its SPIR-V before the
+  /// driver compiles it (ComputePipelineDesc::fold_specialization). Same
+  /// image; false hands them to the driver (the comparison the tests make;
+  /// lavapipe then takes several times longer to build each variant).
+  bool fold_specialization = true;
 };
 
 /// Most objects a scene may hold on the GPU, and most images of the objects
@@ -97,16 +102,18 @@ struct RenderOptions {
 };
 
 /// The ray-marcher on a Vulkan device. It holds one world at a time,
-/// prepared once by set_world (checks, features, the kernel built for them,
-/// the quotient's images and the exact objects' tables uploaded); every frame
-/// then only sends its cameras:
+/// prepared once by set_world (checks, features, the quotient's images and
+/// the exact objects' tables uploaded; the kernel for those features is
+/// built by the first frame that needs it and kept); every frame then only
+/// sends its cameras:
 ///
 ///   sol::vk::MarchRenderer renderer(context);
 ///   renderer.set_world(scene);                       // once per world
 ///   renderer.record(command_buffer, cameras, w, h, target);  // per frame
 class MarchRenderer {
  public:
-  /// Builds the pipeline; throws VulkanError on failure, InvalidArgument for bad options.
+  /// Checks the options (InvalidArgument); builds no pipeline: each variant
+  /// of the kernel is built when a frame first needs it (VulkanError there).
   explicit MarchRenderer(Context& context, const MarchOptions& options = {});
   ~MarchRenderer();
   MarchRenderer(MarchRenderer&&) noexcept;

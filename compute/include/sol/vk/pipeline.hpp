@@ -62,7 +62,26 @@ struct ComputePipelineDesc {
   /// maxPushConstantsSize; 0 for none).
   std::uint32_t push_constant_size = 0;
   std::vector<SpecializationConstant> specialization{};
+  /// How the specialisation constants reach the code. true (the default):
+  /// folded into the SPIR-V before the driver sees it (specialize_spirv), so
+  /// that the driver compiles only the code they select; false: handed to the
+  /// driver (VkSpecializationInfo). The same program either way; lavapipe,
+  /// which inlines every function before it drops the branches the constants
+  /// rule out, compiles the march kernel's variants several times faster
+  /// folded (docs/renderer.md, "Pipelines").
+  bool fold_specialization = true;
 };
+
+/// The module with its specialisation constants given their values and
+/// frozen into constants, and the code those values rule out removed
+/// (SPIRV-Tools: frozen default values, folded constant expressions, dead
+/// branches, dead functions, aggressive dead-code elimination; no other
+/// rewriting). Constants the module does not declare are ignored, as
+/// Vulkan ignores them. Throws VulkanError where the words are not valid
+/// SPIR-V or the result does not validate.
+std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
+                                            std::span<const SpecializationConstant> constants,
+                                            const std::string& pipeline = "unnamed");
 
 /// Workgroups needed to cover `extent` invocations with groups of `local_size`.
 constexpr std::uint32_t group_count(std::uint32_t extent, std::uint32_t local_size) {
