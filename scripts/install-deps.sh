@@ -14,7 +14,7 @@ packages=(
   libvulkan-dev         # Vulkan headers and loader (Sol::vk)
   mesa-vulkan-drivers   # lavapipe: the CPU Vulkan device the tests run on
   glslang-tools         # glslangValidator: GLSL compute shaders to SPIR-V at build time
-  spirv-tools           # SPIRV-Tools library: Sol::vk validates SPIR-V before a driver sees it
+  spirv-tools           # SPIRV-Tools: Sol::vk validates SPIR-V and folds its specialisation constants before a driver sees it
   vulkan-validationlayers  # VK_LAYER_KHRONOS_validation, on in the Vulkan tests
   libopenxr-dev libopenxr-loader1  # OpenXR headers and loader: solxr and its headless test runtime
   libglfw3-dev          # solview: window and Vulkan surface
