@@ -472,22 +472,37 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
-// The kernel's specialisation constants folded into its SPIR-V (the
-// default, MarchOptions::fold_specialization) or handed to the driver: the
-// same program, so the same image to the bit on lavapipe (its compiler
-// sees the same live code either way): planes z = c (heights only), the
-// quotient with its resume pass, and exact balls and an exact light
-// (three passes).
+// The kernel's specialisation constants folded into its SPIR-V or handed
+// to the driver (MarchOptions::specialization_folding; by default folded on
+// a CPU device): the same program. lavapipe's compiler then sees the same
+// live code either way, so the images are equal to the bit there; a GPU's
+// compiler may schedule the two modules differently (its contractions are
+// its own), so there they are held to the tolerances of the specialised
+// kernel against the general one (float rounding; edges may flip). Planes
+// z = c (heights only), the quotient with its resume pass, and exact balls
+// and an exact light (three passes).
 TEST(Kernel, FoldedSpecialisationRendersTheDriversImage) {
-  sol::vk::MarchRenderer folded(vk_context()), by_driver(vk_context(), {.fold_specialization = false});
+  using sol::vk::SpecializationFolding;
+  sol::vk::MarchRenderer folded(vk_context(), {.specialization_folding = SpecializationFolding::Folded});
+  sol::vk::MarchRenderer by_driver(vk_context(), {.specialization_folding = SpecializationFolding::Driver});
+  const bool cpu = vk_context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   for (const std::string name : {"plane", "lattice-balls", "spheres"}) {
     const sol::Scene scene = sol::preset_scene(name);
     const sol::RenderResult a = folded.render(scene, 40, 28), b = by_driver.render(scene, 40, 28);
-    EXPECT_EQ(a.object, b.object) << name;
-    EXPECT_EQ(a.distance, b.distance) << name;
-    EXPECT_EQ(a.steps, b.steps) << name;
-    EXPECT_EQ(a.px, b.px) << name;
-    EXPECT_EQ(a.rgba, b.rgba) << name;
+    if (cpu) {
+      EXPECT_EQ(a.object, b.object) << name;
+      EXPECT_EQ(a.distance, b.distance) << name;
+      EXPECT_EQ(a.steps, b.steps) << name;
+      EXPECT_EQ(a.px, b.px) << name;
+      EXPECT_EQ(a.rgba, b.rgba) << name;
+    } else {
+      const Comparison c = compare(a, b);
+      std::printf("%s: folded against the driver's: mask differs at %d of %d pixels, colour at %d, worst distance %.2e\n",
+                  name.c_str(), c.mask_differs, c.pixels, c.color_differs, c.distance);
+      EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+      EXPECT_LE(c.color_differs, c.pixels / 100) << name;
+      EXPECT_LT(c.distance, 1e-3) << name;
+    }
     int hits = 0;
     for (float o : a.object) hits += o > 0.0f;
     EXPECT_GT(hits, static_cast<int>(a.object.size()) / 10) << name << ": a picture to compare";

@@ -313,7 +313,8 @@ TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
                                          .spirv = words,
                                          .bindings = {{0, DescriptorType::StorageImage}},
                                          .specialization = constants,
-                                         .fold_specialization = fold});
+                                         .specialization_folding = fold ? sol::vk::SpecializationFolding::Folded
+                                                                        : sol::vk::SpecializationFolding::Driver});
       pipeline.bind(0, image);
       pipeline.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8));
       const std::vector<float> pixels = image.download();

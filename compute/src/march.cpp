@@ -295,7 +295,7 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                                 {kernel::kSpecPass, static_cast<std::uint32_t>(pass)},
                                                 {kernel::kSpecDeferShading, v.defer_shading ? 1u : 0u},
                                                 {kernel::kSpecResume, v.resume ? 1u : 0u}},
-                             .fold_specialization = o.fold_specialization});
+                             .specialization_folding = o.specialization_folding});
 }
 
 // Which connection table exact balls and point lights need: none, the

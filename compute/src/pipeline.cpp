@@ -137,7 +137,10 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
   // The code the driver sees: the constants folded in, or the words as given.
   std::vector<std::uint32_t> folded;
   std::span<const std::uint32_t> code = desc.spirv;
-  const bool fold = desc.fold_specialization && !desc.specialization.empty();
+  const bool fold = !desc.specialization.empty() &&
+                    (desc.specialization_folding == SpecializationFolding::Folded ||
+                     (desc.specialization_folding == SpecializationFolding::Auto &&
+                      d.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU));
   if (fold) {
     folded = specialize_spirv(desc.spirv, desc.specialization, m_name);
     code = folded;

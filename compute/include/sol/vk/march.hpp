@@ -27,6 +27,7 @@
 #include <sol/scene.hpp>
 
 #include "sol/vk/march_interface.h"
+#include "sol/vk/pipeline.hpp"
 
 namespace sol::vk {
 
@@ -53,11 +54,11 @@ struct MarchOptions {
   /// pay for that work. Same image; false renders everything in one
   /// dispatch (the comparison the tests make; slower on lavapipe).
   bool deferred = true;
-  /// The kernel's specialisation constants folded into its SPIR-V before the
-  /// driver compiles it (ComputePipelineDesc::fold_specialization). Same
-  /// image; false hands them to the driver (the comparison the tests make;
-  /// lavapipe then takes several times longer to build each variant).
-  bool fold_specialization = true;
+  /// Where the kernel's specialisation constants are applied
+  /// (ComputePipelineDesc::specialization_folding): by default folded into
+  /// its SPIR-V on a CPU device and handed to the driver on a GPU. Same
+  /// image; the tests compare both ways.
+  SpecializationFolding specialization_folding = SpecializationFolding::Auto;
 };
 
 /// Most objects a scene may hold on the GPU, and most images of the objects

@@ -50,6 +50,22 @@ struct SpecializationConstant {
   std::uint32_t value = 0;
 };
 
+/// Where a pipeline's specialisation constants are applied. The same
+/// program either way; what differs is the build time and, on a GPU, the
+/// code its compiler makes of it (docs/renderer.md, "The kernel's interface").
+enum class SpecializationFolding {
+  /// Folded on a CPU device (VK_PHYSICAL_DEVICE_TYPE_CPU: lavapipe, whose
+  /// front end inlines every function before it drops the branches the
+  /// constants rule out, builds the march kernel's variants 5-9x faster
+  /// folded), handed to the driver elsewhere (an NVIDIA driver builds them
+  /// faster itself, and its code for some variants was faster unfolded).
+  Auto,
+  /// Folded into the SPIR-V before the driver sees it (specialize_spirv).
+  Folded,
+  /// Handed to the driver (VkSpecializationInfo), as Vulkan does.
+  Driver,
+};
+
 // Members have default initialisers so that designated initialisers may leave
 // any out without -Wmissing-field-initializers.
 struct ComputePipelineDesc {
@@ -62,14 +78,8 @@ struct ComputePipelineDesc {
   /// maxPushConstantsSize; 0 for none).
   std::uint32_t push_constant_size = 0;
   std::vector<SpecializationConstant> specialization{};
-  /// How the specialisation constants reach the code. true (the default):
-  /// folded into the SPIR-V before the driver sees it (specialize_spirv), so
-  /// that the driver compiles only the code they select; false: handed to the
-  /// driver (VkSpecializationInfo). The same program either way; lavapipe,
-  /// which inlines every function before it drops the branches the constants
-  /// rule out, compiles the march kernel's variants several times faster
-  /// folded (docs/renderer.md, "Pipelines").
-  bool fold_specialization = true;
+  /// How the specialisation constants reach the code (SpecializationFolding).
+  SpecializationFolding specialization_folding = SpecializationFolding::Auto;
 };
 
 /// The module with its specialisation constants given their values and
