@@ -39,10 +39,9 @@
 //
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
-//     folded into the SPIR-V (the default on a CPU device) and handed to the
-//     driver (the default on a GPU), after
-//     one build of each to warm the driver's disk cache. Written to
-//     render_pipelines.csv.
+//     folded into the SPIR-V (the default on a CPU device) and handed to
+//     the driver (the default on a GPU), after one build of each to warm
+//     the driver's disk cache. Written to render_pipelines.csv.
 //
 // CSV fields holding a device name are quoted (names contain commas).
 //

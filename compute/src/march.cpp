@@ -458,7 +458,8 @@ MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
   }
   // No pipeline yet: each variant is built when a frame first needs it
-  // (lavapipe takes seconds for each, so none is built that no frame uses).
+  // (a build costs lavapipe up to a second even folded, and one built here
+  // was a variant most worlds never used).
   m_impl = std::make_unique<Impl>(context, options);
 }
 

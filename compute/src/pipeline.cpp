@@ -110,7 +110,7 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
     throw VulkanError(VK_ERROR_UNKNOWN, "pipeline '" + pipeline + "': its specialisation constants could not be folded" +
                                             (diagnostics.empty() ? std::string() : ": " + diagnostics));
   }
-  validate_spirv(folded, pipeline + "' (specialised");
+  validate_spirv(folded, pipeline + " (specialised)");
   return folded;
 }
 
