@@ -122,6 +122,11 @@ int main(int argc, char** argv) {
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
   if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
+  // The presets the throughput, headset and pipeline sections take (--scene: one).
+  std::vector<std::string> presets;
+  for (const std::string& name : sol::preset_names()) {
+    if (scene_name.empty() || name == scene_name) presets.push_back(name);
+  }
   try {
     sol::vk::Context context;
     const std::string device = context.device_name();
@@ -141,13 +146,9 @@ int main(int argc, char** argv) {
       // long, longer than a preset's repeats) fall on all presets alike, so
       // that their ratios within one run hold. One renderer per preset
       // keeps its pipelines between rounds.
-      std::vector<std::string> names;
+      const std::vector<std::string>& names = presets;
       std::vector<sol::Scene> scenes;
-      for (const std::string& name : sol::preset_names()) {
-        if (!scene_name.empty() && name != scene_name) continue;
-        names.push_back(name);
-        scenes.push_back(sol::preset_scene(name));
-      }
+      for (const std::string& name : names) scenes.push_back(sol::preset_scene(name));
       std::vector<std::unique_ptr<sol::vk::MarchRenderer>> renderers;
       std::vector<double> bests(names.size(), 1e300);
       std::vector<sol::RenderResult> results(names.size());
@@ -323,8 +324,7 @@ int main(int argc, char** argv) {
                }) /
                kBackToBack;
       };
-      for (const std::string& name : sol::preset_names()) {
-        if (!scene_name.empty() && name != scene_name) continue;
+      for (const std::string& name : presets) {
         const sol::Scene scene = sol::preset_scene(name);
         renderer.set_world(scene);
         const sol::StereoEyes stereo_eyes = sol::stereo_eyes(scene.camera, 0.064);
@@ -356,8 +356,7 @@ int main(int argc, char** argv) {
     // program run before.
     if (runs("pipelines")) {
       std::string builds = "scene,device,folded_s,driver_s,ratio\n";
-      for (const std::string& name : sol::preset_names()) {
-        if (!scene_name.empty() && name != scene_name) continue;
+      for (const std::string& name : presets) {
         const sol::Scene scene = sol::preset_scene(name);
         double seconds[2] = {0.0, 0.0};
         for (const bool fold : {true, false}) {

@@ -592,25 +592,30 @@ TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
         const std::string what = c.name + ", " + std::to_string(n) + " eyes, " + std::to_string(samples) + " samples";
         // On a failure, how far apart (a GPU compiles the two pipelines
         // with its own contractions; lavapipe's are bitwise equal).
-        const auto apart = [](const std::vector<float>& x, const std::vector<float>& y) {
-          float worst = 0.0f;
+        struct Apart {
           int differ = 0;
+          float worst = 0.0f;
+        };
+        const auto apart = [](const std::vector<float>& x, const std::vector<float>& y) {
+          Apart d;
           for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
-            worst = std::max(worst, std::abs(x[i] - y[i]));
-            differ += x[i] != y[i];
+            d.worst = std::max(d.worst, std::abs(x[i] - y[i]));
+            d.differ += x[i] != y[i];
           }
+          return d;
+        };
+        const auto told = [&](const std::vector<float>& x, const std::vector<float>& y) {
+          const Apart d = apart(x, y);
           char text[64];
-          std::snprintf(text, sizeof text, ": %d pixels differ, worst by %.2e", differ, static_cast<double>(worst));
+          std::snprintf(text, sizeof text, ": %d pixels differ, worst by %.2e", d.differ, static_cast<double>(d.worst));
           return std::string(text);
         };
-        EXPECT_EQ(a.object, b.object) << what << apart(a.object, b.object);
-        EXPECT_EQ(a.distance, b.distance) << what << apart(a.distance, b.distance);
-        EXPECT_EQ(a.steps, b.steps) << what << apart(a.steps, b.steps);
-        EXPECT_EQ(a.px, b.px) << what << apart(a.px, b.px);
+        EXPECT_EQ(a.object, b.object) << what << told(a.object, b.object);
+        EXPECT_EQ(a.distance, b.distance) << what << told(a.distance, b.distance);
+        EXPECT_EQ(a.steps, b.steps) << what << told(a.steps, b.steps);
+        EXPECT_EQ(a.px, b.px) << what << told(a.px, b.px);
         ASSERT_EQ(a.rgba.size(), b.rgba.size());
-        float worst = 0.0f;
-        for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
-        EXPECT_LT(worst, 1e-5f) << what;
+        EXPECT_LT(apart(a.rgba, b.rgba).worst, 1e-5f) << what;
         int hits = 0;
         for (float o : a.object) hits += o > 0.0f;
         EXPECT_GT(hits, static_cast<int>(a.object.size()) / 20) << what << ": hits to shade";
