@@ -3,6 +3,7 @@
 // against the solver itself.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -319,6 +320,38 @@ TEST(Connection, RandomPairsNearAndFar) {
     const double period = straight ? std::sqrt(2.0) * std::numbers::pi : sol::ClosedFormGeodesic<double>(c.direction).period();
     EXPECT_LE(c.length, period * (1.0 + 1e-9));
   }
+}
+
+TEST(Connection, LogSeriesInvertsTheExponentialMap) {
+  // The logarithm's Taylor series (sol/log_series.h, derived from the
+  // geodesic equations by scripts/log_series.py) against the double closed
+  // form: for v = t·d, w = exp(v) = flow from the origin along d for t,
+  // log_series(w) is v. Within the series' reach (|w| < kLogSeriesReach) it
+  // is within 5e-5 (what header and docs/exact.md promise); for t <= 0.2,
+  // where the truncation (|w|/R)^12 is near double rounding, within 1e-11,
+  // so that a wrong coefficient of any order shows (one off by 1e-3 at
+  // degree 11 adds 2e-11 at t = 0.2). Directions random and stiff, lengths
+  // up to where w leaves the reach.
+  std::vector<glm::dvec3> dirs = sol::test::random_directions(3000, 31);
+  for (const glm::dvec3& d : sol::test::stiff_directions()) dirs.push_back(d);
+  double worst = 0.0, worst_near = 0.0;
+  int checked = 0;
+  for (const glm::dvec3& d : dirs) {
+    for (int i = 1; i <= 40; ++i) {
+      const double t = 0.025 * i;
+      const glm::dvec3 w = sol::flow({{0.0, 0.0, 0.0}, d}, t).position;
+      if (!(glm::length(w) < sol::kernel::kLogSeriesReach)) break;
+      const double error = glm::length(sol::log_series(w) - t * d);
+      worst = std::max(worst, error);
+      if (t <= 0.2) worst_near = std::max(worst_near, error);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 60000);
+  EXPECT_LT(worst, 5e-5);  // measured 3.8e-5
+  EXPECT_LT(worst_near, 1e-11);
+  std::printf("log_series: %d points, worst |log_series(exp v) - v| %.2e, for |v| <= 0.2 %.2e\n", checked, worst,
+              worst_near);
 }
 
 TEST(Connection, RejectsNonFiniteInput) {

@@ -339,6 +339,44 @@ TEST(Kernel, ExpJacobianMatchesDifferences) {
   expect_no_validation_errors();
 }
 
+// The kernel's series of the logarithm (sol_log_series in float, where its
+// exact balls' Newton solves start) at w = exp(v), the double flow from the
+// origin along random and stiff directions for lengths up to where w
+// leaves the series' reach: v again within the series' own 5e-5
+// (Connection.LogSeriesInvertsTheExponentialMap, in double) and the float
+// rounding of w and of about 250 products (1e-6), and within that rounding
+// of libsol's double evaluation of the same header.
+TEST(Kernel, LogSeriesInvertsTheExponentialMap) {
+  std::vector<dvec3> dirs = sol::test::stiff_directions();
+  for (const dvec3& d : sol::test::random_directions(400, 47)) dirs.push_back(d);
+  std::vector<glm::vec3> targets;
+  std::vector<dvec3> starts;
+  for (const dvec3& d : dirs) {
+    for (int i = 1; i <= 16; ++i) {
+      const double t = 0.05 * i;
+      const dvec3 w = sol::flow({dvec3(0.0), d}, t).position;
+      if (!(glm::length(w) < sol::kernel::kLogSeriesReach)) break;
+      targets.emplace_back(w);
+      starts.push_back(t * d);
+    }
+  }
+  ASSERT_GT(targets.size(), 4000u);
+  const std::vector<glm::vec3> got = sol::vk::evaluate_kernel_log_series(vk_context(), targets);
+  ASSERT_EQ(got.size(), targets.size());
+  double worst = 0.0, worst_rounding = 0.0;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const double error = glm::length(dvec3(got[i]) - starts[i]);
+    const double rounding = glm::length(dvec3(got[i]) - sol::log_series(dvec3(targets[i])));
+    worst = std::max(worst, error);
+    worst_rounding = std::max(worst_rounding, rounding);
+    EXPECT_LT(error, 5e-5 + 1e-6) << "v = (" << starts[i].x << ", " << starts[i].y << ", " << starts[i].z << ")";
+    EXPECT_LT(rounding, 1e-6) << i;
+  }
+  std::printf("kernel log series (float) at exp(v), %zu targets: worst |log - v| %.2e, against the double series %.2e\n",
+              targets.size(), worst, worst_rounding);
+  expect_no_validation_errors();
+}
+
 // The kernel against the CPU renderer (or another kernel render): colours
 // count as different beyond 2e-3 per channel.
 using Comparison = sol::test::ImageComparison;

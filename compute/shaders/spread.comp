@@ -4,18 +4,22 @@
 // sol::sphere_area_density (tests/kernel_test.cpp); or (VALUE 1) the
 // Jacobian of the exponential map at v = direction * arc length
 // (sol_exp_jacobian, in frame components at its end point), held to
-// differences of the double flow.
+// differences of the double flow; or (VALUE 2) the logarithm's series at
+// w = the query's xyz (sol_log_series, sol/log_series.h: the exact balls'
+// Newton starts), held to the double exponential map.
 #extension GL_GOOGLE_include_directive : require
 
+#include "sol/log_series.h"
 #include "sol_spreading.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // 0: J, one float per query; 1: the exponential map's Jacobian, nine
-// floats per query (column-major).
+// floats per query (column-major); 2: the logarithm's series, three floats
+// per query.
 layout(constant_id = 0) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
-  vec4 queries[];  // xyz: direction (frame components), w: arc length
+  vec4 queries[];  // xyz: direction (frame components), w: arc length; VALUE 2: xyz the target w
 };
 layout(std430, set = 0, binding = 1) writeonly buffer Results {
   float results[];  // J, or the Jacobians
@@ -33,6 +37,11 @@ void main() {
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) results[9 * i + uint(3 * c + r)] = J[c][r];
     }
+    return;
+  }
+  if (VALUE == 2) {
+    const vec3 v = sol_log_series(queries[i].xyz);
+    for (int c = 0; c < 3; ++c) results[3 * i + uint(c)] = v[c];
     return;
   }
   results[i] = sol_sphere_area_density(queries[i].xyz, queries[i].w);

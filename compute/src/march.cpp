@@ -827,11 +827,12 @@ std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector
 
 namespace {
 
-// spread.comp over the queries: J (value 0, one float each) or the
-// exponential map's Jacobian (value 1, nine floats each).
+// spread.comp over the queries: J (value 0, one float each), the
+// exponential map's Jacobian (value 1, nine floats each) or the
+// logarithm's series (value 2, three floats each).
 std::vector<float> run_spread(Context& context, const std::vector<glm::vec4>& queries, int value) {
   if (queries.empty()) return {};
-  const std::size_t per_query = value == 1 ? 9 : 1;
+  const std::size_t per_query = value == 1 ? 9 : (value == 2 ? 3 : 1);
   Buffer in(context, queries.size() * sizeof(glm::vec4)), out(context, queries.size() * per_query * sizeof(float));
   in.write(queries);
   ComputePipeline pipeline(context, {.name = "spread",
@@ -867,6 +868,16 @@ std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std
       for (int r = 0; r < 3; ++r) out[i][c][r] = raw[9 * i + static_cast<std::size_t>(3 * c + r)];
     }
   }
+  return out;
+}
+
+std::vector<glm::vec3> evaluate_kernel_log_series(Context& context, const std::vector<glm::vec3>& targets) {
+  std::vector<glm::vec4> queries;
+  queries.reserve(targets.size());
+  for (const glm::vec3& w : targets) queries.emplace_back(w, 0.0f);
+  const std::vector<float> raw = run_spread(context, queries, 2);
+  std::vector<glm::vec3> out(targets.size());
+  for (std::size_t i = 0; i < targets.size(); ++i) out[i] = {raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]};
   return out;
 }
 

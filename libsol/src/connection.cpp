@@ -573,6 +573,12 @@ double distance(const glm::dvec3& p, const glm::dvec3& q, const ConnectionOption
   return reduced_minimisers(reduce(p, q).q, options).front().t;
 }
 
+glm::dvec3 log_series(const glm::dvec3& w) {
+  const double p = w.x * w.x, q = w.y * w.y;
+  return {w.x * kernel::sol_log_series_f(p, q, w.z), w.y * kernel::sol_log_series_f(q, p, -w.z),
+          kernel::sol_log_series_h(p, q, w.z)};
+}
+
 double distance(const glm::dvec3& p, const glm::dvec3& q) { return distance(p, q, ConnectionOptions{}); }
 
 std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dvec3& q,

@@ -71,6 +71,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/kernel_constants.h"
+#include "sol/log_series.h"
 
 namespace sol {
 
@@ -109,6 +110,16 @@ std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3&
 /// scan for longer ones: what distance() computes.
 std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dvec3& q,
                                              const ConnectionOptions& options = {});
+
+/// Sol's logarithm at the origin by its Taylor series (sol/log_series.h,
+/// order kernel::kLogSeriesOrder): the initial vector v (coordinates at
+/// the origin, |v| the length) of the geodesic from the origin that ends
+/// at w, for |w| < kernel::kLogSeriesReach, where it is within 5e-5 of the
+/// shortest (test Connection.LogSeriesInvertsTheExponentialMap). By left
+/// invariance log_series(p⁻¹q) starts a solve for the geodesic from p to
+/// q. What the kernels' exact balls start Newton from (docs/exact.md).
+/// Outside its reach the series diverges; no check here.
+glm::dvec3 log_series(const glm::dvec3& w);
 
 /// Where exact balls switch from the bound to the exact distance: sphere
 /// tracing steps by distance_lower_bound(q, centre) - radius while that

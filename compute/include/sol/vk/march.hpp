@@ -254,6 +254,12 @@ std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector
 /// steps). For tests.
 std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries);
 
+/// The kernel's series of Sol's logarithm at the origin at each target w
+/// (sol_log_series, sol/log_series.h, in float: where the exact balls'
+/// Newton solves start), the initial vector of the geodesic from the
+/// origin that ends at w; for |w| < kLogSeriesReach. For tests.
+std::vector<glm::vec3> evaluate_kernel_log_series(Context& context, const std::vector<glm::vec3>& targets);
+
 /// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
 /// the exact point lights' directions) returns for one target.
 struct KernelConnections {
