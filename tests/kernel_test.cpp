@@ -571,7 +571,8 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
 // render the image of the one dispatch. The march is the same (the resume
 // pass starts from the arc length, step and cutout state the march pass
 // left; in the quotient one dispatch takes each ray's positions as its
-// pass would), so the AOVs are equal to the bit; the colour within
+// pass would), so on a CPU device (lavapipe) the AOVs are equal to the bit
+// (a GPU: tolerances, below); the colour within
 // 1e-5: the normal travels through the list as its octahedral code, exact up
 // to float rounding (1e-7), which the shading carries into the colour; a
 // hit shaded with another point, normal, eye or object changes it by 1e-2
@@ -582,6 +583,7 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
 // (its hits shaded deferred), and record() (spheres).
 TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
   sol::vk::MarchRenderer deferred(vk_context()), single(vk_context(), {.deferred = false});
+  const bool cpu = vk_context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   struct Case {
     std::string name;
     sol::Scene scene;
@@ -648,12 +650,31 @@ TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
           std::snprintf(text, sizeof text, ": %d pixels differ, worst by %.2e", d.differ, static_cast<double>(d.worst));
           return std::string(text);
         };
-        EXPECT_EQ(a.object, b.object) << what << told(a.object, b.object);
-        EXPECT_EQ(a.distance, b.distance) << what << told(a.distance, b.distance);
-        EXPECT_EQ(a.steps, b.steps) << what << told(a.steps, b.steps);
-        EXPECT_EQ(a.px, b.px) << what << told(a.px, b.px);
         ASSERT_EQ(a.rgba.size(), b.rgba.size());
-        EXPECT_LT(apart(a.rgba, b.rgba).worst, 1e-5f) << what;
+        if (cpu) {
+          EXPECT_EQ(a.object, b.object) << what << told(a.object, b.object);
+          EXPECT_EQ(a.distance, b.distance) << what << told(a.distance, b.distance);
+          EXPECT_EQ(a.steps, b.steps) << what << told(a.steps, b.steps);
+          EXPECT_EQ(a.px, b.px) << what << told(a.px, b.px);
+          EXPECT_LT(apart(a.rgba, b.rgba).worst, 1e-5f) << what;
+        } else {
+          // A GPU compiles the one-dispatch pipeline apart from the passes'
+          // with contractions of its own (on the H200: AOVs 1.2e-6 apart in
+          // Sol, up to 2e-3 in the quotient, carried through its
+          // teleports): the tolerances of float against double
+          // (PresetsMatchTheCpuRenderer), arc lengths apart by more than
+          // 1e-3 at grazing pixels only.
+          const Comparison d = compare(a, b);
+          int grazing = 0;
+          for (std::size_t k = 0; k < a.object.size(); ++k) {
+            grazing += a.object[k] != 0.0f && a.object[k] == b.object[k] && std::abs(a.distance[k] - b.distance[k]) > 1e-3f;
+          }
+          std::printf("%s: mask differs at %d of %d pixels, colour at %d, arc lengths by %.2e (%d beyond 1e-3)\n",
+                      what.c_str(), d.mask_differs, d.pixels, d.color_differs, d.distance, grazing);
+          EXPECT_LE(d.mask_differs, d.pixels / 100) << what;
+          EXPECT_LE(d.color_differs, d.pixels / 100) << what;
+          EXPECT_LE(grazing, d.pixels / 100) << what;
+        }
         int hits = 0;
         for (float o : a.object) hits += o > 0.0f;
         EXPECT_GT(hits, static_cast<int>(a.object.size()) / 20) << what << ": hits to shade";
