@@ -350,6 +350,8 @@ TEST(Connection, LogSeriesInvertsTheExponentialMap) {
   EXPECT_GT(checked, 60000);
   EXPECT_LT(worst, 5e-5);  // measured 3.8e-5
   EXPECT_LT(worst_near, 1e-11);
+  EXPECT_THROW(sol::log_series({0.9, 0.0, 0.0}), sol::InvalidArgument);
+  EXPECT_THROW(sol::log_series({std::nan(""), 0.0, 0.0}), sol::InvalidArgument);
   std::printf("log_series: %d points, worst |log_series(exp v) - v| %.2e, for |v| <= 0.2 %.2e\n", checked, worst,
               worst_near);
 }

@@ -22,7 +22,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Queries {
   vec4 queries[];  // xyz: direction (frame components), w: arc length; VALUE 2: xyz the target w
 };
 layout(std430, set = 0, binding = 1) writeonly buffer Results {
-  float results[];  // J, or the Jacobians
+  float results[];  // J, the Jacobians, or the series' vectors
 };
 layout(push_constant) uniform Count {
   uint count;

@@ -574,6 +574,11 @@ double distance(const glm::dvec3& p, const glm::dvec3& q, const ConnectionOption
 }
 
 glm::dvec3 log_series(const glm::dvec3& w) {
+  detail::require_finite(w, "sol::log_series", "w");
+  if (!(glm::length(w) < kernel::kLogSeriesReach)) {
+    throw InvalidArgument("sol::log_series: |w| = " + std::to_string(glm::length(w)) + " is not below the series' reach " +
+                          std::to_string(kernel::kLogSeriesReach));
+  }
   const double p = w.x * w.x, q = w.y * w.y;
   return {w.x * kernel::sol_log_series_f(p, q, w.z), w.y * kernel::sol_log_series_f(q, p, -w.z),
           kernel::sol_log_series_h(p, q, w.z)};

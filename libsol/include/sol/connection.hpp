@@ -118,7 +118,8 @@ std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dve
 /// shortest (test Connection.LogSeriesInvertsTheExponentialMap). By left
 /// invariance log_series(p⁻¹q) starts a solve for the geodesic from p to
 /// q. What the kernels' exact balls start Newton from (docs/exact.md).
-/// Outside its reach the series diverges; no check here.
+/// Throws InvalidArgument for a w that is not finite or not within the
+/// reach (beyond it the series diverges).
 glm::dvec3 log_series(const glm::dvec3& w);
 
 /// Where exact balls switch from the bound to the exact distance: sphere
