@@ -189,9 +189,11 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     module_info.pCode = code.data();
     check(vkCreateShaderModule(d.device, &module_info, nullptr, &module), "vkCreateShaderModule");
 
+    // (Folded constants are in the code already: nothing to hand the driver.)
     std::vector<VkSpecializationMapEntry> entries;
     std::vector<std::uint32_t> values;
-    for (const SpecializationConstant& constant : desc.specialization) {
+    for (const SpecializationConstant& constant : fold ? std::span<const SpecializationConstant>()
+                                                       : std::span<const SpecializationConstant>(desc.specialization)) {
       entries.push_back({constant.id, static_cast<std::uint32_t>(values.size() * sizeof(std::uint32_t)),
                          sizeof(std::uint32_t)});
       values.push_back(constant.value);
@@ -209,7 +211,7 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipeline_info.stage.module = module;
     pipeline_info.stage.pName = "main";
-    pipeline_info.stage.pSpecializationInfo = entries.empty() || fold ? nullptr : &specialization;
+    pipeline_info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
     pipeline_info.layout = m_layout;
     check(vkCreateComputePipelines(d.device, d.pipeline_cache, 1, &pipeline_info, nullptr, &m_pipeline),
           "vkCreateComputePipelines");
