@@ -266,12 +266,24 @@ def main():
     parser.add_argument("--reach", default=REACH)
     parser.add_argument("--check", metavar="FILE", help="exit 1 unless FILE is what the script writes")
     args = parser.parse_args()
+    if args.order < 2:
+        parser.error(f"--order must be at least 2, got {args.order}")
+    try:
+        if not 0.0 < float(args.reach) < 2.0:
+            raise ValueError
+    except ValueError:
+        parser.error(f"--reach must be a number in (0, 2), got '{args.reach}'")
     text = header(args.order, args.reach)
     if args.check:
-        with open(args.check, encoding="utf-8") as f:
-            if f.read() != text:
-                print(f"{args.check} differs from what scripts/log_series.py writes: regenerate it", file=sys.stderr)
-                return 1
+        try:
+            with open(args.check, encoding="utf-8") as f:
+                committed = f.read()
+        except OSError as e:
+            print(f"log_series.py: --check {args.check}: {e.strerror}", file=sys.stderr)
+            return 2
+        if committed != text:
+            print(f"{args.check} differs from what scripts/log_series.py writes: regenerate it", file=sys.stderr)
+            return 1
         return 0
     sys.stdout.write(text)
     return 0
