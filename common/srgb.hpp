@@ -1,6 +1,6 @@
 // The sRGB transfer function (IEC 61966-2-1) for 8-bit output: image files,
 // 8-bit XR swapchains. The kernels' twin is output_color in
-// compute/shaders/march.comp; both take their constants from
+// compute/shaders/march/camera.glsl; both take their constants from
 // sol/kernel_constants.h, and the test Kernel.UnormTargetHoldsTheSrgbEncodedColour
 // holds the two together.
 #pragma once

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The coefficients of sol_tan_quarter (compute/shaders/sol_geodesic.glsl).
+"""The coefficients of sol_tan_quarter (compute/shaders/sol_elliptic.glsl).
 
 The kernel's Jacobi functions need cot x and the sign of sin x for
 |x| <= pi/4 (jacobi_agm). tan x there is written x + x^3 P(x^2) with P of

@@ -2,7 +2,7 @@
 """How much float loses when a geodesic's x and y come from E(u) and sn(u).
 
 The kernel's positions take the time integrals of e^{±2w} by Carlson's
-R_D between two points (carlson_piece in compute/shaders/sol_geodesic.glsl),
+R_D between two points (carlson_piece in compute/shaders/sol_ray.glsl),
 which is exact in float but is the larger part of a quotient march step's
 cost (docs/renderer.md, "The quotient's rays off the plane regime"). A
 cheaper path would take them from the antiderivatives, with e^{w} =

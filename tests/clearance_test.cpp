@@ -249,7 +249,7 @@ TEST(Clearance, NeverReachesTheObjectAndOutrunsTheBoundBesideIt) {
 }
 
 // The kernel's exact balls step by the convexity of the distance from the
-// centre (march.comp, exact_ball_clearance): Sol's sectional curvatures are
+// centre (march/exact_balls.glsl, exact_ball_clearance): Sol's sectional curvatures are
 // at most 1, so by the Hessian comparison theorem d'' >= cot(d) |u⊥|² >=
 // min(0, cot d) along any geodesic, where d is below the cut time (at
 // least √2 π). Checked with the exact distance (sol::distance) by second

@@ -395,7 +395,7 @@ namespace {
 // Shadows (Light::shadows): the kernel's shadow march against the CPU
 // reference's, for a floor under a ball drawn with its bound, the same with
 // the ball exact, and in the quotient (the lattice's balls shadowing each
-// other under an exact light). Each scene's shadows must show (the
+// other under an exact light), with the ball drawn by its bound and exact. Each scene's shadows must show (the
 // shadowed CPU image differs from the unshadowed one in over 5% of pixels),
 // and the kernel follows the CPU within the exact lights' tolerances: a
 // shadow's edge is where a geodesic grazes the ball, and there float and
@@ -416,11 +416,14 @@ TEST(Kernel, ShadowsMatchTheCpuRenderer) {
   lattice.lights = {light};
   lattice.ambient = 0.1;
   lattice.max_distance = 6.0;
-  std::vector<std::string> names = {"floor and ball", "floor and exact ball", "quotient"};
+  sol::Scene exact_lattice = lattice;
+  std::get<sol::Ball>(exact_lattice.objects[1].shape).exact = true;
+  std::vector<std::string> names = {"floor and ball", "floor and exact ball", "quotient", "quotient, exact ball"};
   std::vector<sol::Scene> scenes;
   scenes.push_back(floor);
   scenes.push_back(exact);
   scenes.push_back(lattice);
+  scenes.push_back(exact_lattice);
   for (std::size_t n = 0; n < scenes.size(); ++n) {
     const sol::Scene& scene = scenes[n];
     const char* name = names[n].c_str();

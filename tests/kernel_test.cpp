@@ -850,7 +850,7 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
 }
 
 // The quotient march takes every ray off the plane regime
-// (sol_direction_off_plane_regime in sol_geodesic.glsl: μ = |ab| raised to
+// (sol_direction_off_plane_regime in sol_forward.glsl: μ = |ab| raised to
 // 2e-24, or a vertical line), so that its steps leave that regime's
 // position out. The rays of that regime are those in a plane x = const or
 // y = const through the eye: with an odd image size the middle column and
@@ -926,7 +926,7 @@ TEST(Kernel, QuotientRaysInPlanesXOrYConstMatchTheCpuRenderer) {
 }
 
 // A quotient world of several kinds (tubes, a plane z = c, a ball): the
-// kernel reads each image's code (march.comp's image_type, which a world of
+// kernel reads each image's code (march/quotient.glsl's image_type, which a world of
 // one kind does not read) and tells them apart as the CPU reference does.
 TEST(Kernel, QuotientWorldOfSeveralKindsMatchesTheCpuRenderer) {
   sol::vk::MarchRenderer renderer(vk_context());
@@ -1482,7 +1482,7 @@ CrossingErrors plane_crossing_errors(const sol::Scene& scene, int w, int h, doub
   e.images = compare(gpu, cpu);
   for (std::size_t k = 0; k < gpu.steps.size(); ++k) {
     e.mean_steps += gpu.steps[k] / static_cast<double>(gpu.steps.size());
-    if (gpu.steps[k] > 16.0f) {  // march.comp's kPlaneRootIterations
+    if (gpu.steps[k] > 16.0f) {  // march/plane_roots.glsl's kPlaneRootIterations
       ++e.unsettled;
       e.unsettled_hits += cpu.object[k] != 0.0f ? 1 : 0;
       e.unsettled_differ += gpu.object[k] != cpu.object[k] ? 1 : 0;
@@ -1521,7 +1521,7 @@ CrossingErrors plane_crossing_errors(const sol::Scene& scene, int w, int h, doub
 }  // namespace
 
 // Planes x = c and y = c are met as roots of the monotone x(t) - c, y(t) - c
-// (render.cpp first_plane_crossing, march.comp plane_xy_roots), not marched:
+// (render.cpp first_plane_crossing, march/plane_roots.glsl plane_xy_roots), not marched:
 // both renderers' hits against the crossing found by bisection in double,
 // for the sheets preset seen mono and as an ODS pair (rays from each
 // column's eye), and with a ball in front of the sheets (the march of the

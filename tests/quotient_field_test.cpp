@@ -279,7 +279,7 @@ TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
     const std::vector<std::uint32_t>& words = field.words();
     const std::size_t cells = static_cast<std::size_t>(k::kFieldLayers) * k::kFieldCells * k::kFieldCells;
     ASSERT_EQ(words.size(), 2 * cells);  // per cell its candidates, then its reach
-    // The layout march.comp reads (field_cell, field_candidates,
+    // The layout march/quotient.glsl reads (field_cell, field_candidates,
     // field_reach): cell (i, j, k) at (k kFieldCells + j) kFieldCells + i,
     // the same cell as the library's lookups at its centre.
     const sol::Lattice lattice = sol::Lattice::golden();

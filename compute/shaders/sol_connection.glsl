@@ -335,7 +335,7 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
 }
 
 // The shortest geodesic from the origin to w, as its initial vector v (|v|
-// the distance; for exact balls, march.comp). Newton (sol_newton) starts
+// the distance; for exact balls, march/exact_balls.glsl). Newton (sol_newton) starts
 // - within the reach of the logarithm's series (|w| < kLogSeriesReach,
 //   sol/log_series.h), from the series at w, within 5e-5 of the solution
 //   (float rounding is then one Newton step away, or none), and when `v`

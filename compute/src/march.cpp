@@ -40,7 +40,7 @@ namespace {
 // uniform layout) is sol/vk/march_interface.h, which march.comp includes too.
 using kernel::Eye;
 using kernel::Params;
-static_assert(kernel::kGroupSize == 8, "march.comp's group_pixel lays out an 8 x 8 workgroup");
+static_assert(kernel::kGroupSize == 8, "march/camera.glsl's group_pixel lays out an 8 x 8 workgroup");
 
 glm::vec4 vec4(const glm::dvec3& v, double w) { return glm::vec4(glm::dvec4(v, w)); }
 

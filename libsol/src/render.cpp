@@ -52,7 +52,7 @@ struct MarchLimits {
 // (lo past no plane, hi past some; bisection where Newton leaves it), to
 // double precision. A plane within the hit epsilon of the start is hit
 // there (as the march's first step), unless `skip` holds it (a shadow ray
-// leaving it). The kernel's twin: plane_xy_roots in march.comp, which stops
+// leaving it). The kernel's twin: plane_xy_roots in compute/shaders/march/plane_roots.glsl, which stops
 // at float precision.
 struct PlaneCrossing {
   bool solved = true;  ///< else (no convergence: non-finite positions far out) the planes are marched
@@ -288,7 +288,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
 // steps c, as without over-relaxation. Two sound pieces, so a proposal
 // never passes through an object; a ray that only grazes a surface (within
 // hit_epsilon without crossing it) may be stepped past where the plain
-// march would have stopped on it. The kernel (march.comp) marches the same
+// march would have stopped on it. The kernel (march_quotient in compute/shaders/march/march.glsl) marches the same
 // way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
                         const MarchLimits& limits = {}) {

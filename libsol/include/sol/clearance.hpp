@@ -37,7 +37,7 @@
 //    coefficients), so M = 1, and no less: along a vertical geodesic where
 //    c = 0, (asinh G)'' = −G/√(1 + G²) (docs/renderer.md).
 // The kinds give their terms (clearance_terms in sol/objects.hpp). The
-// kernel mirrors these (object_clearances in compute/shaders/march.comp).
+// kernel mirrors these (object_clearances in compute/shaders/march/objects.glsl).
 #pragma once
 
 #include <algorithm>

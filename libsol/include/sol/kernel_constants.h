@@ -101,7 +101,7 @@ SOL_CONSTANT(SOL_REAL, kNormalStep, 1e-3);
 /// the centre) and its clearance, so hits lie on the true sphere.
 SOL_CONSTANT(SOL_REAL, kExactShell, 0.025);
 /// The longest step by an exact ball's clearance (its exact distance's
-/// convexity along the ray, march.comp's exact_ball_clearance).
+/// convexity along the ray, march/exact_balls.glsl's exact_ball_clearance).
 SOL_CONSTANT(SOL_REAL, kExactClearanceCap, 0.5);
 
 // ---- sol::ConnectionTable: the seeds of the kernels' connection solver

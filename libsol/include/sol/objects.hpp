@@ -23,7 +23,7 @@
 // lattice_range and same_set (sol::quotient_images). A scene object is a
 // kind (`Shape`, a std::variant) with a colour and a pattern. Adding a kind:
 // its struct here, its functions in objects.cpp (geometry, checks, scene-
-// file keys), its distance and clearance in compute/shaders/march.comp, and
+// file keys), its distance and clearance in compute/shaders/march/objects.glsl, and
 // its tests.
 #pragma once
 
@@ -44,7 +44,7 @@ namespace sol {
 
 class Lattice;
 
-/// What the kernels read of an object (compute/shaders/march.comp).
+/// What the kernels read of an object (compute/shaders/march/objects.glsl).
 struct KernelShape {
   int code = 0;                   ///< kernel::kObject*
   glm::dvec4 geometry{0.0};       ///< planes (c, 0, 0, 0); balls (centre, 0); tubes (point of the axis, axis code)

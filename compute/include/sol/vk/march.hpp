@@ -230,7 +230,7 @@ std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std:
 
 /// The kernel's unit tangent (frame components; w 0) at the arc length w >= 0
 /// of each query's geodesic, as the quotient march takes it for its
-/// clearances (sol_forward in compute/shaders/sol_geodesic.glsl). For tests.
+/// clearances (sol_forward in compute/shaders/sol_forward.glsl). For tests.
 std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries);
 
 /// The same by Jacobi's zeta function (sol_forward_zeta), as the quotient

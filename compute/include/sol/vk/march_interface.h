@@ -73,7 +73,7 @@ SOL_CONSTANT(int, kPassResume, 1);
 SOL_CONSTANT(int, kPassShade, 2);
 
 /// The quotient march's positions: by Jacobi's zeta function
-/// (sol_forward_zeta in sol_geodesic.glsl) for rays of μ = |ab| at least
+/// (sol_forward_zeta in sol_forward.glsl) for rays of μ = |ab| at least
 /// this, whose float rounding, about 2e-7/μ relative to the scale of the
 /// position, is then below 2e-5; by Carlson's integrals (sol_forward) for
 /// the others (with the resume pass, in that pass).
@@ -92,7 +92,7 @@ SOL_CONSTANT(int, kMaxGpuLightImages, 4096);
 /// Most images a pixel solves connections to, per light, nearest (by the
 /// distance lower bound) first.
 SOL_CONSTANT(int, kMaxLightImageSolves, 16);
-/// The workgroup of march.comp: kGroupSize x kGroupSize pixels (8: its
+/// The workgroup of march.comp: kGroupSize x kGroupSize pixels (8: march/camera.glsl's
 /// group_pixel lays the invocations out in 2 x 4 blocks of an 8 x 8 group).
 SOL_CONSTANT(int, kGroupSize, 8);
 
@@ -148,7 +148,7 @@ struct Image {
   vec4 geometry;  ///< ball: centre; tube: (point of the axis, axis code); plane z = c: (c, 0, 0, 0)
   vec4 info;      ///< x: object code, y: radius, z: the scene object it images (0-based)
   vec4 heading;   ///< horizontal tubes: xy the axis's unit coordinate direction; zw: 0 (unused)
-  /// The object's bound as the march's candidates read it (march.comp's
+  /// The object's bound as the march's candidates read it (march/objects.glsl's
   /// image_clearances; four words, as each word a step reads at a per-lane
   /// index is a gather on lavapipe): balls (centre, radius); planes z = c
   /// (c, 0, 0, 0); tubes (vertical: (-radius, x0, y0, 0); horizontal along

@@ -1,0 +1,61 @@
+// Exact balls (kObjectExactBall) near their sphere: their exact distance by
+// the shortest geodesic from the centre (sol_connection.glsl), the true
+// sphere's normal, and the clearance that lets a step pass beside them.
+// Far from the sphere they are marched by their bound (objects.glsl).
+#ifndef SOL_MARCH_EXACT_BALLS_GLSL
+#define SOL_MARCH_EXACT_BALLS_GLSL
+
+// A march's last exact solve: the exact ball (object or image) `k` whose
+// shortest geodesic from its centre has the initial vector `v` and ends at
+// `end`, whether that is a solution to start the next solve from
+// (`known`), and the solve's Jacobian (sol_newton).
+struct ExactSolve {
+  int k;
+  vec3 v;
+  SolEnd end;
+  bool known;
+  mat3 J;
+};
+
+ExactSolve exact_solve_none() { return ExactSolve(-1, vec3(0.0), SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0)), false, mat3(1.0)); }
+
+// Exact balls near their sphere: the exact distance from the centre c to q
+// less the radius, from the shortest geodesic from c to q (sol_shortest,
+// started from the last solve of the same ball when there is one, and left
+// holding this one); where Newton does not land, the bound (safe, but the
+// hit then lies on the bound's surface) and the next solve starts afresh.
+float exact_ball_sdf(vec3 q, vec3 c, float radius, int k, inout ExactSolve x) {
+  if (x.k != k) x.known = false;
+  x.k = k;
+  const vec3 w = vec3((q.x - c.x) * exp(-c.z), (q.y - c.y) * exp(c.z), q.z - c.z);
+  const float residual = sol_shortest(w, x.v, x.end, x.known, x.J);
+  if (residual < 2e-4) return length(x.v) - radius;
+  x.known = false;
+  return distance_lower_bound(q, c) - radius;
+}
+
+// The true sphere's outward normal at the end of the geodesic from its
+// centre (the last solve's end): that geodesic's tangent there (frame
+// components), as sol::sdf_ball_exact_gradient.
+vec3 exact_ball_normal(SolEnd end) { return normalize(end.tangent); }
+
+// The clearance of an exact ball from q (the kernel's own: the CPU steps by
+// the exact distance; derivation in docs/exact.md), where its exact
+// distance is f = d - r (d the distance from the centre) and f' = slope
+// along the ray, for steps of at most kExactClearanceCap. Sol's
+// sectional curvatures are at most 1 (its curvature operator is diagonal
+// in the frame, +1, -1, -1), so by the Hessian comparison theorem
+// Hess d >= cot(d) (g - ∇d ∇d) where d < π, before any conjugate or cut
+// point (those lie at least √2 π away): along the ray f'' >= min(0, cot d),
+// and over the step d stays below D = d + cap. So f'' >= -M with M = 0
+// where D <= π/2 (f convex: a Newton step never passes its root), -cot D
+// up to π - 0.1, and no clearance beyond. Aimed at f = hit_epsilon/2, so
+// that float rounding of the slope does not carry the step into the ball.
+float exact_ball_clearance(float f, float d, float slope, float eps) {
+  const float D = d + kExactClearanceCap;
+  const float bend = D <= 1.5707963 ? 1e-6 : -cos(D) / sin(D);
+  const float s = min(clearance_root(f - 0.5 * eps, slope, bend), kExactClearanceCap);
+  return D < 3.0415927 ? max(f, s) : f;
+}
+
+#endif  // SOL_MARCH_EXACT_BALLS_GLSL

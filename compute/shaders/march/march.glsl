@@ -1,0 +1,543 @@
+// The march: one function, march(), advances every ray of the kernel from
+// its start to the first object it meets (docs/renderer.md "The march"),
+// whatever the ray is for: a camera ray, or a shadow ray from a hit point
+// towards a light. Its purpose is a constant at each call, so that each
+// inlined copy keeps only its own branches. In Sol the ray is the
+// closed-form geodesic evaluated at the accumulated arc length (or RK4 for
+// camera rays, for comparison) through the objects relative to the eye;
+// in the quotient it lives in D, teleported back when a step leaves it,
+// and steps by the distance field's candidates. The GLSL twin of
+// march_cover and march_quotient in libsol/src/render.cpp.
+#ifndef SOL_MARCH_MARCH_GLSL
+#define SOL_MARCH_MARCH_GLSL
+
+// What a march is for.
+const int kMarchCamera = 0;  // from an eye (or an ODS column's eye) to the first object
+const int kMarchShadow = 1;  // from a hit point towards a light: passes the surface it starts on
+
+// Where a march picks a ray up: at arc length t, march step `step`,
+// passing the objects of the mask `passing` (cutout planes between their
+// discs, the surface a shadow ray leaves). A new ray starts at zero; the
+// resume pass goes on from the march pass's record (defer_exact).
+struct MarchResume {
+  float t;
+  uint passing;
+  int step;
+};
+
+const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0);
+
+// What a march found.
+struct MarchHit {
+  int k;       // the object hit: the scene object in Sol, the image in the quotient; -1 for none
+  float t;     // the arc length marched (to the hit)
+  vec3 q;      // the point reached, in the march's coordinates
+  vec3 from;   // the start of the ray's last segment (planes face its side)
+  int steps;   // positions evaluated
+  // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
+  int exact_k;
+  SolEnd exact_end;
+  // The march pass left the ray to the resume pass, from `resume`.
+  bool deferred;
+  MarchResume resume;
+};
+
+MarchHit march_hit_none(MarchResume resume) {
+  MarchHit h;
+  h.k = -1;
+  h.t = resume.t;
+  h.q = vec3(0.0);
+  h.from = vec3(0.0);
+  h.steps = 0;
+  h.exact_k = -1;
+  h.exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
+  h.deferred = false;
+  h.resume = resume;
+  return h;
+}
+
+// ---- RK4 (camera rays with INTEGRATOR = 1, for comparison): the geodesic
+// ODE in frame components, x' = e^{z}u1, y' = e^{-z}u2, z' = u3,
+// u1' = u1 u3, u2' = -u2 u3, u3' = u2² - u1², advanced from the last
+// step's state, so that its error accumulates (what the bench measures).
+void geodesic_rhs(vec3 p, vec3 u, out vec3 dp, out vec3 du) {
+  float ez = exp(p.z);
+  dp = vec3(ez * u.x, u.y / ez, u.z);
+  du = vec3(u.x * u.z, -u.y * u.z, u.y * u.y - u.x * u.x);
+}
+
+void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
+  int n = max(1, int(ceil(length / step)));
+  float h = length / float(n);
+  for (int i = 0; i < n; ++i) {
+    vec3 p1, u1, p2, u2, p3, u3, p4, u4;
+    geodesic_rhs(p, u, p1, u1);
+    geodesic_rhs(p + 0.5 * h * p1, u + 0.5 * h * u1, p2, u2);
+    geodesic_rhs(p + 0.5 * h * p2, u + 0.5 * h * u2, p3, u3);
+    geodesic_rhs(p + h * p3, u + h * u3, p4, u4);
+    p += h / 6.0 * (p1 + 2.0 * p2 + 2.0 * p3 + p4);
+    u += h / 6.0 * (u1 + 2.0 * u2 + 2.0 * u3 + u4);
+  }
+}
+
+// ---- The march in Sol
+
+// The end of a march step whose nearest object (for a hit) is nearest_k at
+// nearest_hit and whose step is `nearest`: a hit (`hit` set), a pass
+// between a cutout plane's discs, or the advance (at least 2 hit_epsilon
+// while `passes` and the ray passes an object). Returns whether the march
+// goes on.
+bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, float hit_epsilon, float limit,
+                    const bool passes, inout uint passing, inout float t, inout int hit) {
+  if (nearest_hit < hit_epsilon) {
+    if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
+      const vec2 uv = plane_coordinates(g_types[nearest_k], q, g_eye_camera, g_eye_frac);  // full positions whenever the scene has cutouts
+      if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
+        passing |= 1u << uint(nearest_k);  // between the discs: go through
+        t += max(nearest, 2.0 * hit_epsilon);
+        return !(t > limit);
+      }
+    }
+    hit = nearest_k + 1;
+    return false;
+  }
+  t += (passes && passing != 0u) ? max(nearest, 2.0 * hit_epsilon) : nearest;
+  return !(t > limit);
+}
+
+// One step's findings over the objects (march_objects): the least distance
+// (`nearest`, of object `nearest_any`) and the least to the others
+// (`others`); the nearest candidate hit (`nearest_hit`, `nearest_k`: not an
+// object being passed) and, with exact balls, the runner-up (`second_hit`,
+// `second_k`), for when the nearest is an exact ball.
+struct MarchStep {
+  float nearest, nearest_hit, others, second_hit;
+  int nearest_k, nearest_any, second_k;
+};
+
+MarchStep march_step_none() { return MarchStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0); }
+
+// The objects' distances from q at arc length t (hz: q.z's half
+// exponentials), updating the mask of objects being passed. Planes x = c,
+// y = c whose crossing is solved (`xy`) answer the arc length left to it.
+MarchStep march_objects(vec3 q, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
+                        PlaneRoot xy, inout uint passing) {
+  MarchStep s = march_step_none();
+  int k = 0;
+  if (g_count > 0) do {  // (tested at its end: see march.comp)
+    float d = heights_only ? abs(q.z - g_constants[k])
+                           : object_distance(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
+    if (HAS_PLANES_XY && xy.solved && (g_types[k] == kObjectPlaneX || g_types[k] == kObjectPlaneY)) {
+      d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
+    }
+    if (HAS_CUTOUT && g_cutouts[k] != 0) {
+      d = max(d, cutout_gap_bound(g_cutouts[k], plane_coordinates(2, q, g_eye_camera, g_eye_frac), g_eye_camera.w * exp(q.z)));
+    }
+    // Objects being passed (cutout planes between their discs, the surface
+    // a shadow ray leaves) are not hits until the ray is 2 hit_epsilon away
+    // again (as the CPU reference).
+    const uint bit = 1u << uint(k);
+    if (passes && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
+    if (d < s.nearest) {
+      s.others = s.nearest;
+      s.nearest_any = k;
+    } else {
+      s.others = min(s.others, d);
+    }
+    s.nearest = min(s.nearest, d);
+    if ((!passes || (passing & bit) == 0u) && d < s.nearest_hit) {
+      if (HAS_EXACT_BALLS) {
+        s.second_hit = s.nearest_hit;
+        s.second_k = s.nearest_k;
+      }
+      s.nearest_hit = d;
+      s.nearest_k = k;
+    } else if (HAS_EXACT_BALLS && (!passes || (passing & bit) == 0u) && d < s.second_hit) {
+      s.second_hit = d;
+      s.second_k = k;
+    }
+  } while (++k < g_count);
+  return s;
+}
+
+// Exact culling for planes z = c (as the CPU reference): whether the
+// z-range of the whole ray, from a start at height z0, comes within
+// hit_epsilon of a plane; a ray that does not never hits.
+bool planes_z_reachable(SolRay ray, float z0, float hit_epsilon) {
+  vec2 range = sol_height_range(ray) + z0 + vec2(-hit_epsilon, hit_epsilon);
+  bool reachable = false;
+  for (int k = 0; k < g_count; ++k) reachable = reachable || (g_constants[k] >= range.x && g_constants[k] <= range.y);
+  return reachable;
+}
+
+// A step of the Sol march that came within kExactShell of an exact ball
+// (s.nearest_k), finished by its exact distance (steps, and hits on the
+// true sphere) against the least distance to every other object: the
+// step beyond the exact distance by the ball's clearance along the ray (its
+// rate from the sphere's normal, the gradient of d). Returns whether the
+// march goes on (march_step_end).
+bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, inout MarchStep s,
+                      inout ExactSolve x, inout uint passing, inout float t, inout int hit) {
+  const float exact = exact_ball_sdf(q, g_relative[s.nearest_k].xyz, g_radii[s.nearest_k], s.nearest_k, x);
+  float exact_step = exact;
+  if (x.known && exact > hit_epsilon) {
+    const float slope = dot(x.end.tangent, u);
+    exact_step = exact_ball_clearance(exact, length(x.v), slope, hit_epsilon);
+  }
+  s.nearest = min(s.nearest_any == s.nearest_k ? s.others : s.nearest, exact_step);
+  if (exact <= s.second_hit) {
+    s.nearest_hit = exact;
+  } else {
+    s.nearest_hit = s.second_hit;
+    s.nearest_k = s.second_k;
+  }
+  return march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, passes, passing, t, hit);
+}
+
+// The march through the objects (g_*, load_objects) of a ray from `origin`
+// (relative to the eye; a camera ray's is 0 but for an ODS column's eye)
+// with unit direction `direction` (frame components there), up to arc
+// length `limit`, picked up at `resume`. With exact balls it runs in
+// rounds: the inner loop marches by the objects' distances (exact balls by
+// their bound) until the ray comes within kExactShell of an exact ball;
+// that step is finished after the inner loop by the exact distance
+// (exact_ball_sdf), and the next round goes on. lavapipe executes the body
+// of every if, and of every loop at least once, for all its lanes, masked,
+// whichever way they go: inside the loop the exact solve (a Newton loop
+// around the closed form) would cost every step of every ray; here once a
+// round. A camera ray's march pass of a deferred world stops at the first
+// exact ball's shell (`deferred`), leaving the rest to the resume pass.
+MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume, const int purpose) {
+  const bool camera = purpose == kMarchCamera;
+  const float hit_epsilon = params.limits.y;
+  const int max_steps = int(params.limits.w);
+  // Camera rays take the world's short cuts; shadow rays the closed form's
+  // full positions, from their start on a surface.
+  const bool rk4 = camera && INTEGRATOR == 1;
+  const bool heights_only = camera && HEIGHTS_ONLY;
+  const bool planes_xy_only = camera && PLANES_XY_ONLY;
+  const bool zeta = camera && SOL_ZETA, zeta_only = camera && SOL_ZETA_ONLY;
+  const bool translated = !camera || HAS_ODS;  // positions from a start other than the eye
+  // Whether objects can be passed: cutout planes, and the surface a shadow ray leaves.
+  const bool passes = !camera || HAS_CUTOUT;
+  MarchHit h = march_hit_none(resume);
+  h.from = origin;
+
+  SolRay ray;
+  bool zeta_round = false;  // this round's positions by the zeta function (SOL_ZETA)
+  if (!rk4) {
+    ray = sol_ray(direction);
+    zeta_round = zeta && ray.mu >= kZetaLeastMu;
+    if (zeta_only && !zeta_round) {  // this ray in the resume pass, by Carlson's integrals
+      h.deferred = true;
+      return h;
+    }
+    if (!heights_only || HAS_CUTOUT) sol_ray_integrals(ray);
+    if (zeta) sol_ray_zeta(ray);
+  }
+  vec3 rk_p = vec3(0.0), rk_u = direction;
+  float rk_t = 0.0;
+
+  int hit = 0, steps = 0;
+  uint passing = resume.passing;
+  if (!camera) {  // the surfaces it starts on
+    for (int k = 0; k < g_count; ++k) {
+      if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) passing |= 1u << uint(k);
+    }
+  }
+  ExactSolve exact = exact_solve_none();
+  float t = resume.t;
+  vec3 q = vec3(0.0);
+  const bool reachable = !(heights_only && INTEGRATOR == 0) || planes_z_reachable(ray, origin.z, hit_epsilon);
+  // Planes x = c, y = c: a camera ray's first crossing solved
+  // (plane_xy_roots); the march then takes the other objects up to it, or
+  // is not needed.
+  PlaneRoot xy;
+  xy.solved = false;
+  xy.k = -1;
+  int root_steps = 0;
+  if (camera && HAS_PLANES_XY && INTEGRATOR == 0) {
+    xy = plane_xy_roots(ray, origin, g_count, g_types, g_constants, limit, hit_epsilon, max_steps, root_steps);
+    if (planes_xy_only) {
+      steps = root_steps;
+      if (xy.k >= 0) {
+        hit = xy.k + 1;
+        t = xy.t;
+        q = xy.q;
+      }
+    }
+  }
+  bool alive = reachable && !planes_xy_only;
+  int step = resume.step;
+  MarchStep s = march_step_none();
+  bool shell = false;  // the step's nearest is an exact ball within kExactShell: finished exactly
+  vec3 u = vec3(0.0);  // the ray's tangent at q (frame components), for the clearances
+  // (Without exact balls one round, a loop the compiler unrolls; with
+  // PLANES_XY_ONLY none: the roots did all, and a loop whose condition is
+  // not a constant would run its body once. The march pass of a deferred
+  // world stops at the first exact ball's shell: one round, its exact block
+  // left to the resume pass. Loops tested at their end: see march.comp.)
+  const bool defer_shell = camera && DEFER_EXACT && PASS == kPassMarch;
+  const bool rounds = HAS_EXACT_BALLS && !defer_shell;
+  int round = 0;
+  if (!planes_xy_only) do {
+    if (step < max_steps && alive) do {
+      if (!rk4) {
+        // Cutout planes need the full position for their gap bounds.
+        if (HAS_BALLS || !camera) {
+          const SolForward forward = zeta_only ? sol_forward_zeta(ray, t)
+                                     : (zeta && zeta_round ? sol_forward_zeta(ray, t) : sol_forward(ray, t));
+          q = forward.position;
+          u = forward.direction;
+        } else {
+          q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
+        }
+      } else {
+        rk4_advance(rk_p, rk_u, t - rk_t, g_rk4_step);
+        rk_t = t;
+        q = rk_p;
+        u = rk_u;
+      }
+      if (translated) q = sol_translate(origin, q);
+      const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
+      s = march_objects(q, hz, t, hit_epsilon, heights_only, passes, xy, passing);
+      // The nearest object, where it is a ball or a tube, lets a camera
+      // ray's step be its clearance along the ray (object_clearance) up to
+      // the others' least distance (as the CPU's march_cover: one clearance
+      // a step). (Shadow rays step by the bound: inside the light's loop
+      // over its geodesics one clearance a step made shadowed scenes 10-25 %
+      // slower on lavapipe though the steps fell tenfold.)
+      if (camera && HAS_BALLS && g_types[s.nearest_any] >= kObjectBall) {
+        s.nearest = min(s.others, object_clearance(g_types[s.nearest_any], q, u, g_relative[s.nearest_any],
+                                                   g_headings[s.nearest_any], g_radii[s.nearest_any], hz,
+                                                   g_half_exp_z[s.nearest_any]).y);
+      }
+      shell = HAS_EXACT_BALLS && g_types[s.nearest_k] == kObjectExactBall && s.nearest_hit < kExactShell;
+      if (shell) break;  // finished below
+      steps = root_steps + step + 1;
+      alive = march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, passes, passing, t, hit);
+    } while (++step < max_steps && alive);
+    if (defer_shell) {
+      if (shell && alive) {  // the rest of this ray in the resume pass
+        h.deferred = true;
+        h.resume = MarchResume(t, passing, step);
+        return h;
+      }
+    } else if (zeta && zeta_round && shell && alive) {
+      zeta_round = false;  // this step again, by Carlson's integrals (as the resume pass)
+      shell = false;
+    } else if (HAS_EXACT_BALLS && shell && alive) {
+      steps = root_steps + step + 1;
+      alive = march_exact_step(q, u, hit_epsilon, limit, passes, s, exact, passing, t, hit);
+      shell = false;
+      ++step;
+    }
+    alive = alive && step < max_steps;
+  } while (rounds && ++round < max_steps && alive);
+
+  // A camera ray that marched by heights alone takes its full position at the hit.
+  if (hit != 0 && INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
+    sol_ray_integrals(ray);
+    q = sol_position_forward(ray, t);
+    if (HAS_ODS) q = sol_translate(origin, q);
+  }
+  h.k = hit - 1;
+  h.t = t;
+  h.q = q;
+  h.steps = steps;
+  h.exact_k = exact.k;
+  h.exact_end = exact.end;
+  return h;
+}
+
+// ---- The march in the quotient (march_quotient in libsol/src/render.cpp)
+
+// The quotient camera march's positions (sol_forward_zeta where the ray's
+// μ is at least kZetaLeastMu, `by_zeta`, else sol_forward), its set-up
+// and its restarts. With the resume pass (DEFER_SMALL_MU) each pass holds
+// one of the two alone (constants); in one dispatch both are there and
+// each ray takes its own.
+const bool QUOTIENT_ZETA_ONLY = DEFER_SMALL_MU && PASS == kPassMarch;
+const bool QUOTIENT_CARLSON_ONLY = DEFER_SMALL_MU && PASS == kPassResume;
+
+void quotient_ray_prepared(inout SolRay g) {
+  if (!QUOTIENT_CARLSON_ONLY) sol_ray_zeta(g);
+  if (!QUOTIENT_ZETA_ONLY) sol_ray_integrals(g);
+}
+
+SolForward quotient_forward(SolRay g, float t, bool by_zeta) {
+  if (QUOTIENT_ZETA_ONLY) return sol_forward_zeta(g, t);
+  if (QUOTIENT_CARLSON_ONLY) return sol_forward(g, t, false);
+  return by_zeta ? sol_forward_zeta(g, t) : sol_forward(g, t, false);
+}
+
+SolRay quotient_ray_restarted(SolRay g, float t0, SolForward f, bool by_zeta) {
+  if (QUOTIENT_ZETA_ONLY) return sol_ray_restarted_zeta(g, f);
+  if (QUOTIENT_CARLSON_ONLY) return sol_ray_restarted(g, t0, f, false);
+  return by_zeta ? sol_ray_restarted_zeta(g, f) : sol_ray_restarted(g, t0, f, false);
+}
+
+// Rays in D, teleported back when a step ends outside. Each step is the
+// least clearance along the ray (object_clearances) of the cell's candidate
+// images (sol::QuotientField: every image that can be nearer than
+// kFieldNear there, or else the nearest), capped at the cell's reach
+// (field_reach: every other image is farther; one read instead of every
+// image's bound), and the candidate that comes within hit_epsilon is the
+// image hit. Steps stay within the world's longest step
+// (sol::quotient_max_step), the reach of the listed images, which the
+// reaches are capped at. Camera rays over-relax (march_quotient's): where
+// the reach, not a candidate, limits a step, a longer proposal is kept
+// where the clearance back from its end covers what the reach did not.
+// Shadow rays take Carlson's positions and pass the images they start on.
+MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purpose) {
+  const bool camera = purpose == kMarchCamera;
+  const float hit_epsilon = params.limits.y;
+  const int max_steps = int(params.limits.w);
+  const int image_count = min(params.counts.x, kMaxGpuImages);
+  MarchHit h = march_hit_none(kMarchFromStart);
+  vec2 origin_scale = vec2(exp(origin.z), exp(-origin.z));  // sol_translate's, kept with origin
+  // The ray's direction off the plane regime (sol_direction_off_plane_regime,
+  // a change far below float rounding), so that no step evaluates that
+  // regime's position for every ray.
+  SolRay qray = sol_ray(sol_direction_off_plane_regime(direction));
+  // A camera ray's positions by the zeta function, or by Carlson's
+  // integrals where μ is small (quotient_forward); those rays left to the
+  // resume pass.
+  const bool by_zeta = camera && qray.mu >= kZetaLeastMu;
+  if (camera && DEFER_SMALL_MU && PASS == kPassMarch && !by_zeta) {
+    h.deferred = true;  // this ray in the resume pass, by Carlson's integrals
+    return h;
+  }
+  if (camera) {
+    quotient_ray_prepared(qray);
+  } else {
+    sol_ray_integrals(qray);
+  }
+  float t = 0.0, local_t = 0.0;
+  int hit_image = -1, steps = 0;
+  vec3 q = origin;
+  ExactSolve exact = exact_solve_none();
+  // A shadow ray's images it leaves: up to four, by index.
+  ivec4 passing = ivec4(-1);
+  if (!camera) {
+    const uint word = field_candidates(field_cell(q));
+    const bool all = word == kFieldAllImages;
+    int held = 0;
+    for (int s = 0; s < (all ? image_count : kFieldCandidates); ++s) {
+      const int i = all ? s : int((word >> uint(8 * s)) & 255u);
+      if (i == kFieldEmpty || held == 4) continue;
+      const Image m = images[i];
+      if (image_distance(image_type(m), q, m.bound) < 2.0 * hit_epsilon) passing[held++] = i;
+    }
+  }
+  // Over-relaxation: `proposal` is the step from q, the last point the
+  // march moved to, and `covered` the part of it q's own bounds clear.
+  float proposal = 0.0, covered = 0.0;
+  for (int step = 0; step < max_steps; ++step) {
+    const SolForward forward = camera ? quotient_forward(qray, local_t + proposal, by_zeta)
+                                      : sol_forward(qray, local_t + proposal, false);
+    vec3 e = sol_translate(origin, origin_scale, forward.position);
+    const bool outside = !in_domain(e);
+    if (outside) e = teleport(e, true);
+    const int cell = field_cell(e);
+    steps = step + 1;
+    const uint word = field_candidates(cell);
+    const bool all = word == kFieldAllImages;
+    const vec2 hz = half_exp(e.z);  // shared by the candidates' clearances
+    float nearest = 1e30;
+    int nearest_i = -1;
+    float second = 1e30;  // the least distance but the nearest's, and its image
+    int second_i = -1;
+    // The clearances (object_clearances) of the nearest and the least of
+    // the others' ahead, and the least back.
+    float clear_nearest = 1e30, clear_rest = 1e30, back = 1e30;
+    // (A do-while, tested at its end: see march.comp and candidate_clearances.)
+    const int listed = all ? image_count : field_candidate_count(word);
+    int s = 0;
+    do {
+      int i;
+      Image m;
+      const vec3 dc = candidate_clearances(word, all, s, listed, e, forward.direction, hz, i, m);
+      const float d = dc.x;
+      bool leaving = false;  // an image a shadow ray leaves, until it is 2 hit_epsilon away
+      if (!camera) {
+        for (int p = 0; p < 4; ++p) {
+          if (passing[p] == i) {
+            if (d > 2.0 * hit_epsilon) passing[p] = -1;
+            else leaving = true;
+          }
+        }
+      }
+      back = min(back, dc.z);
+      if (!leaving && d < nearest) {
+        second = nearest;
+        second_i = nearest_i;
+        nearest = d;
+        nearest_i = i;
+        clear_rest = min(clear_rest, clear_nearest);
+        clear_nearest = dc.y;
+      } else {
+        clear_rest = min(clear_rest, dc.y);
+        if (!leaving && d < second) {
+          second = d;
+          second_i = i;
+        }
+      }
+    } while (++s < listed);
+    if (HAS_EXACT_BALLS && nearest_i >= 0 && image_type(images[nearest_i]) == kObjectExactBall && nearest < kExactShell) {
+      // Near an exact ball's image: its exact distance (as in Sol).
+      const float d = exact_ball_sdf(e, images[nearest_i].bound.xyz, images[nearest_i].bound.w, nearest_i, exact);
+      nearest_i = d <= second ? nearest_i : second_i;
+      nearest = min(d, second);
+      clear_nearest = max(clear_nearest, d);
+    }
+    const float reach = field_reach(cell);
+    if (camera && proposal > covered && covered + min(back, reach) < proposal) {
+      proposal = covered;  // not covered: the plain step instead
+      continue;
+    }
+    // The march moves to e. The same geodesic goes on from a teleported
+    // point, restarted from what the positions found there.
+    t += proposal;
+    if (outside) {
+      origin = e;
+      origin_scale = hz * hz;  // e^{±z} of e
+      qray = camera ? quotient_ray_restarted(qray, local_t + proposal, forward, by_zeta)
+                    : sol_ray_restarted(qray, local_t + proposal, forward, false);
+      local_t = 0.0;
+    } else {
+      local_t += proposal;
+    }
+    q = e;
+    if (nearest < hit_epsilon) {
+      hit_image = nearest_i;
+      break;
+    }
+    const float clear = min(clear_nearest, clear_rest);
+    float step_length = min(clear, reach);
+    if (!camera && any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * hit_epsilon);
+    if (t + step_length > limit) break;
+    covered = step_length;
+    proposal = camera && reach < clear ? min(max(step_length, min(kQuotientOverRelax * step_length, kQuotientMaxStep)), limit - t)
+                                       : step_length;
+  }
+  h.k = hit_image;
+  h.t = t;
+  h.q = q;
+  h.from = origin;
+  h.steps = steps;
+  h.exact_k = exact.k;
+  h.exact_end = exact.end;
+  return h;
+}
+
+// The march of any ray: from `origin` (march coordinates: relative to the
+// eye in Sol, world coordinates in D in the quotient) along the unit
+// `direction` up to arc length `limit`, picked up at `resume` (Sol; the
+// quotient's deferred rays start afresh).
+MarchHit march(vec3 origin, vec3 direction, float limit, MarchResume resume, const int purpose) {
+  if (QUOTIENT) return march_quotient(origin, direction, limit, purpose);
+  return march_sol(origin, direction, limit, resume, purpose);
+}
+
+#endif  // SOL_MARCH_MARCH_GLSL

@@ -1,0 +1,89 @@
+// The compact quotient Γ\Sol of the golden lattice (sol::Lattice::golden,
+// docs/mathematics.md): lattice coordinates, the fundamental domain D and
+// the teleport back into it, the distance field over D
+// (sol::QuotientField) with each cell's candidate images, and the
+// positions of the quotient march (by Jacobi's zeta function or by
+// Carlson's integrals, split between the march and resume passes).
+#ifndef SOL_MARCH_QUOTIENT_GLSL
+#define SOL_MARCH_QUOTIENT_GLSL
+
+// (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ): a point's lattice
+// coordinates (multiplied by the constant 1/(φ² + 1): no division per step).
+const float kInverseDet = 1.0 / (kPhi * kPhi + 1.0);
+vec2 lattice_coordinates(vec3 p) { return vec2(kPhi * p.x - p.y, p.x + kPhi * p.y) * kInverseDet; }
+
+bool in_domain(vec3 p) {
+  const vec2 sr = lattice_coordinates(p);
+  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0 && p.z >= 0.0 && p.z < kLatticeHeight;
+}
+
+// The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
+// y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram. With
+// `step_end` (a constant at each call), p is the end of a march step from a
+// point of D, less than kLatticeHeight long, so n is -1, 0 or 1 and φ^{±2n}
+// a choice between constants (the march runs this at every step, masked:
+// no pow there); else any n.
+vec3 teleport(vec3 p, const bool step_end) {
+  const float n = -floor(p.z / kLatticeHeight);
+  const float phi2 = kPhi * kPhi;
+  const float up = n > 0.5 ? phi2 : (n < -0.5 ? 1.0 / phi2 : 1.0);
+  const float down = n > 0.5 ? 1.0 / phi2 : (n < -0.5 ? phi2 : 1.0);
+  const float scale = step_end ? up : pow(kPhi, 2.0 * n);
+  const float inverse_scale = step_end ? down : 1.0 / scale;
+  vec3 q = vec3(scale * p.x, p.y * inverse_scale, p.z + n * kLatticeHeight);
+  q.z = min(max(q.z, 0.0), kLatticeHeight * 0.9999999);
+  const vec2 f = floor(lattice_coordinates(q));
+  const float fs = f.x, fr = f.y;
+  q.x -= fs * kPhi + fr;
+  q.y -= -fs + fr * kPhi;
+  return q;
+}
+
+// The field's cell of a point of D, as its index (sol::QuotientField::cell_of).
+int field_cell(vec3 p) {
+  const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * (1.0 / kLatticeHeight)), 0.0, 1.0);
+  const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
+  const int i = min(int(g.x), kFieldCells - 1), j = min(int(g.y), kFieldCells - 1), k = min(int(g.z), kFieldLayers - 1);
+  return (k * kFieldCells + j) * kFieldCells + i;
+}
+
+// The cell's candidate images (8 bits each), or kFieldAllImages.
+uint field_candidates(int cell) { return field_words[2 * cell]; }
+
+// How many of a cell's candidate slots (not kFieldAllImages) are filled:
+// they fill from the lowest byte.
+int field_candidate_count(uint word) {
+  int n = 0;
+  for (int s = 0; s < kFieldCandidates; ++s) n += ((word >> uint(8 * s)) & 255u) != uint(kFieldEmpty) ? 1 : 0;
+  return n;
+}
+
+// The cell's reach (sol::QuotientField::reach): no image but its
+// candidates is within it of any point of the cell.
+float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]); }
+
+// An image's kind (object code). A quotient world of one kind of object
+// (specialisation constants): every image's code is that kind's, and is not
+// read (on lavapipe each word a step reads at a per-lane index is a gather
+// of 8 loads). The quotient's marches and shading read the kind only here.
+const bool ONE_KIND = (HAS_BOUND_BALLS ? 1 : 0) + (HAS_EXACT_BALLS ? 1 : 0) + (HAS_TUBES ? 1 : 0) + (HAS_PLANES_Z ? 1 : 0) == 1;
+const int ONLY_KIND = HAS_BOUND_BALLS ? kObjectBall : (HAS_EXACT_BALLS ? kObjectExactBall : (HAS_TUBES ? kObjectTube : kObjectPlaneZ));
+int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
+
+// The s-th of a cell's `listed` candidates (its word, or every image when
+// `all`; field_candidate_count): its image index `i`, its record `m` and
+// its object_clearances from q along u (hz: q.z's half exponentials). Past
+// the listed ones (a cell listing none: the one masked pass of the
+// marches' do-while over the candidates) `m` is the first record and no
+// object answers (1e30).
+vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u, vec2 hz, out int i, out Image m) {
+  i = all ? s : int((word >> uint(8 * s)) & 255u);
+  m = images[s < listed ? i : 0];
+  // Its bound record alone (Image::bound); a ball's centre's half
+  // exponentials taken here: two exponentials cost lavapipe less than two
+  // more words read (docs/renderer.md).
+  const vec3 dc = image_clearances(image_type(m), q, u, m.bound, hz);
+  return s < listed ? dc : vec3(1e30);
+}
+
+#endif  // SOL_MARCH_QUOTIENT_GLSL

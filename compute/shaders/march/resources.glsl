@@ -1,0 +1,139 @@
+// The march kernel's resources: its workgroup, its specialisation constants
+// (what a world uses is compiled in, the rest folded away) and the
+// constants derived from them, and its bindings. The numbers are those of
+// sol/vk/march_interface.h, which the host (compute/src/march.cpp) shares.
+// Included first by every entry file of the kernel (march.comp).
+#ifndef SOL_MARCH_RESOURCES_GLSL
+#define SOL_MARCH_RESOURCES_GLSL
+
+// Bindings, specialisation-constant ids, limits, codes and the uniform
+// layout: sol/vk/march_interface.h, shared with the host (compute/src/march.cpp).
+layout(local_size_x = kGroupSize, local_size_y = kGroupSize, local_size_z = 1) in;
+layout(constant_id = kSpecIntegrator) const int INTEGRATOR = 0;
+// Every object a plane z = c: the march needs heights only. A specialisation
+// constant, not a uniform: lavapipe evaluates both sides of every branch, so
+// only a compile-time branch saves the other side's cost.
+layout(constant_id = kSpecHeightsOnly) const bool HEIGHTS_ONLY = false;
+// What else the scene uses: the compiler folds away what it does not.
+layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;  // balls or tubes
+layout(constant_id = kSpecBoundBalls) const bool HAS_BOUND_BALLS = true;
+layout(constant_id = kSpecTubes) const bool HAS_TUBES = true;
+layout(constant_id = kSpecPlanesZ) const bool HAS_PLANES_Z = true;
+layout(constant_id = kSpecPlanesXY) const bool HAS_PLANES_XY = true;
+// Every object a plane x = c or y = c (sol::MarchFeatures::planes_xy_only):
+// their crossing solved (plane_xy_roots) is the whole march.
+layout(constant_id = kSpecPlanesXYOnly) const bool PLANES_XY_ONLY_WORLD = false;
+// (The roots need the closed form: with RK4 such a world is marched.)
+const bool PLANES_XY_ONLY = PLANES_XY_ONLY_WORLD && INTEGRATOR == 0;
+layout(constant_id = kSpecPointLights) const bool HAS_POINT_LIGHTS = true;
+layout(constant_id = kSpecFog) const bool HAS_FOG = true;
+layout(constant_id = kSpecCutout) const bool HAS_CUTOUT = true;
+// The compact quotient Γ\Sol (see march_quotient below).
+layout(constant_id = kSpecQuotient) const bool QUOTIENT = false;
+// Write the AOV images (bindings kBindingHit, kBindingPoint); off for
+// presenters, which take the colour alone (MarchRenderer::record) and bind
+// the colour image there too.
+layout(constant_id = kSpecWriteAovs) const bool WRITE_AOVS = true;
+// Exact balls (kObjectExactBall): the exact distance near their sphere (sol_shortest).
+layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
+// Exact point lights (kLightExactPoint): directions along the geodesics to
+// the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
+layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
+// Exact point lights with a reach (the longer connections): only they look
+// for the partners of connections near a fold (sol_connections), code that
+// costs the kernel even where it never runs.
+layout(constant_id = kSpecLightReach) const bool HAS_LIGHT_REACH = false;
+#define SOL_FOLD_PARTNERS HAS_LIGHT_REACH
+// Without a reach a light's search keeps the minimisers (4 slots), with one
+// every connection found (sol_connection.glsl): a separate build of this
+// kernel for lights with a reach (SOL_LIGHT_REACH_BUILD, march_reach_*),
+// whose pipelines set HAS_LIGHT_REACH.
+#ifdef SOL_LIGHT_REACH_BUILD
+#define SOL_FOUND_SLOTS kSeedSlots
+#else
+#define SOL_FOUND_SLOTS 4
+#endif
+// Equirectangular or fisheye eyes (a uniform says which): compiled in only
+// for them, so the perspective kernels keep their cost.
+layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
+// Omnidirectional stereo eyes: each column's rays start at its own eye
+// (kBindingColumns); compiled in only for them.
+layout(constant_id = kSpecOds) const bool HAS_ODS = false;
+// Shadows of exact point lights (params.light_shadows): compiled in only for them.
+layout(constant_id = kSpecShadows) const bool HAS_SHADOWS = false;
+// The deferred passes (sol/vk/march_interface.h, docs/renderer.md): which
+// pass this pipeline runs, and what its march pass leaves to the others.
+layout(constant_id = kSpecPass) const int PASS = kPassMarch;
+layout(constant_id = kSpecDeferShading) const bool DEFER_SHADING = false;
+layout(constant_id = kSpecResume) const bool RESUME_WORLD = false;
+// (Only the Sol march, with the closed form, stops at exact balls' shells.)
+const bool DEFER_EXACT = RESUME_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0;
+// The quotient's march pass leaves the rays of μ below kZetaLeastMu to the
+// resume pass: it marches the others with the zeta function's positions
+// alone, the resume pass those with Carlson's integrals alone
+// (quotient_forward).
+const bool DEFER_SMALL_MU = RESUME_WORLD && QUOTIENT;
+// The same in Sol for worlds of exact balls (the closed form): a ray of μ
+// >= kZetaLeastMu takes the zeta function's positions up to its first
+// exact shell, and from there on, as every other ray, Carlson's integrals.
+// The march pass stops there (or, for the others, before the first step):
+// the resume pass takes Carlson's alone. In one dispatch a ray's first
+// round (`zeta_round`) ends where the march pass would stop and the next
+// takes that step again by Carlson's integrals, so that both render the
+// same image.
+const bool SOL_ZETA = HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0 && PASS == kPassMarch;
+const bool SOL_ZETA_ONLY = SOL_ZETA && DEFER_EXACT;
+
+layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
+  Params params;
+};
+
+#ifdef SOL_OUTPUT_SRGB_UNORM
+// The presenters' 8-bit output (a separate SPIR-V build, march_srgb_unorm;
+// MarchRenderer::record with a UnormTarget): the colour, sRGB-encoded, into
+// an R8G8B8A8 or B8G8R8A8 UNORM image such as a storage-capable swapchain
+// image. No format qualifier, as GLSL names no BGRA format: this needs the
+// shaderStorageImageWriteWithoutFormat feature, so it stays out of the
+// default build.
+layout(set = 0, binding = kBindingColor) uniform writeonly image2D color_image;
+#else
+// Read as well as written: anti-aliasing accumulates its samples here (accumulate()).
+layout(set = 0, binding = kBindingColor, rgba32f) uniform image2D color_image;
+#endif
+layout(set = 0, binding = kBindingHit, rgba32f) uniform writeonly image2D aov_hit;      // object, distance, steps, 0
+layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
+// Quotient scenes: the images of the objects around D, in world coordinates
+// (sol::quotient_images).
+layout(std430, set = 0, binding = kBindingImages) readonly buffer Images {
+  Image images[];
+};
+
+// sol::QuotientField: the quotient world's field over D, each cell's
+// candidate images and reach (layout in sol/quotient_field.hpp).
+layout(std430, set = 0, binding = kBindingField) readonly buffer QuotientField {
+  uint field_words[];
+};
+
+// Omnidirectional stereo: each eye's columns (sol::column_eye), eye e's
+// column i at e × width + i.
+layout(std430, set = 0, binding = kBindingColumns) readonly buffer Columns {
+  Column columns[];
+};
+
+// The quotient: the images of its exact point lights (sol::quotient_light_images).
+layout(std430, set = 0, binding = kBindingLightImages) readonly buffer LightImages {
+  vec4 light_images[];
+};
+
+// sol::ConnectionTable: the seeds of the connection solver (exact point lights).
+layout(std430, set = 0, binding = kBindingSeeds) readonly buffer ConnectionSeeds {
+  vec4 connection_seeds[];
+};
+
+// The deferred passes' lists (QueueHeader, then the records).
+layout(std430, set = 0, binding = kBindingQueue) buffer Queue {
+  QueueHeader queue;
+  uvec4 queue_records[];
+};
+
+#endif  // SOL_MARCH_RESOURCES_GLSL

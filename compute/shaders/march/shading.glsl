@@ -1,0 +1,194 @@
+// Shading: the light a hit receives (sol::lights_at: directional and point
+// lights, exact point lights along each geodesic to the light and, in the
+// quotient, to each of its images, with their falloff and shadows), the
+// surface's colour and pattern, and fog; and the shade pass, which shades
+// the hits the march pass listed.
+#ifndef SOL_MARCH_SHADING_GLSL
+#define SOL_MARCH_SHADING_GLSL
+
+// The quotient (sol::lights_at with the light's images): the connections
+// from q (world, in D) to light i's images of length up to d + reach, d the
+// least distance to any image. Images are taken in order of their distance
+// lower bound from q while that is within the least length found + reach
+// (at most kMaxLightImageSolves of them), their connections solved and
+// kept (the shortest SOL_FOUND_SLOTS), then those longer than the least + reach
+// dropped (with 2e-3 of it for the float lengths).
+int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL_FOUND_SLOTS]) {
+  const int first = params.light_image_first[light], count = params.light_image_count[light];
+  float best = 1e30, last = -1.0;
+  int last_k = -1, n = 0;
+  const vec2 hq = half_exp(q.z);  // shared by the images' bounds
+  for (int round = 0; round < kMaxLightImageSolves; ++round) {
+    // The next image by (lower bound, index) after the last one solved.
+    float lo = 1e30;
+    int lo_k = -1;
+    for (int k = 0; k < count; ++k) {
+      const vec3 image = light_images[first + k].xyz;
+      const float b = distance_lower_bound(q, image, hq, half_exp(image.z));
+      const bool after = b > last || (b == last && k > last_k);
+      if (after && b < lo) {
+        lo = b;
+        lo_k = k;
+      }
+    }
+    if (lo_k < 0 || lo > best + reach) break;
+    last = lo;
+    last_k = lo_k;
+    const vec3 d = light_images[first + lo_k].xyz - q;
+    vec4 found[SOL_FOUND_SLOTS];
+    const int paths = sol_connections(vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z), reach, found);
+    for (int j = 0; j < paths; ++j) {
+      best = min(best, found[j].w);
+      if (n < SOL_FOUND_SLOTS) {
+        kept[n++] = found[j];
+      } else {  // full: replace the longest if this one is shorter
+        int longest = 0;
+        for (int m = 1; m < SOL_FOUND_SLOTS; ++m) longest = kept[m].w > kept[longest].w ? m : longest;
+        if (found[j].w < kept[longest].w) kept[longest] = found[j];
+      }
+    }
+  }
+  int m = 0;
+  for (int j = 0; j < n; ++j) {
+    if (kept[j].w <= best + reach + 2e-3 * max(1.0, best)) kept[m++] = kept[j];
+  }
+  return m;
+}
+
+// Whether the geodesic from q (a hit point, in the march's coordinates)
+// along `direction` meets an object within `len` (sol::Light::shadows; the
+// CPU's `blocked` in libsol/src/render.cpp): the shadow ray's march,
+// passing the objects within 2 hit_epsilon of q (the surface it leaves)
+// until it is 2 hit_epsilon away from them.
+bool shadow_blocked(vec3 q, vec3 direction, float len) {
+  return march(q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow).k >= 0;
+}
+
+// Colour of a hit on object k with unit normal n (frame components), plane
+// coordinates uv, arc length t; q and the eye's light positions are in the
+// same coordinates (camera-relative in Sol, world in the quotient). Lights
+// as sol::lights_at: point lights by the coordinate difference in frame
+// components at the hit and 1/(1 + r²) on the distance bound; exact point
+// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
+// each geodesic from q to the light up to the shortest + reach, each with
+// 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
+// light where none is found; with shadows, each geodesic marched to the
+// light first (shadow_blocked).
+vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
+  const float ambient = params.shading.x;
+  const int light_count = min(int(params.shading.z), kMaxLights);
+  vec3 light = vec3(0.0);
+  int i = 0;
+  if (light_count > 0) do {  // (tested at its end, as the paths': see the top of this file)
+    const vec4 lc = params.light_color[i];
+    const vec4 lp = params.eyes[eye].lights[i];
+    vec3 l = lp.xyz;
+    float attenuation = 1.0;
+    if (HAS_POINT_LIGHTS) {
+      const vec3 diff = lp.xyz - q;
+      // q⁻¹·light: the light seen from q, in frame components at q.
+      const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
+      if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
+        vec4 found[SOL_FOUND_SLOTS];
+        const int paths = QUOTIENT ? quotient_light_connections(i, q, lp.w, found) : sol_connections(towards, lp.w, found);
+        int j = 0;
+        if (paths > 0) do {
+          // found[j]: the geodesic's direction at q and its length; its J seen
+          // from q is its J seen from the light (reciprocity).
+          const float cosine = max(0.0, dot(n, found[j].xyz));
+          if (cosine == 0.0) continue;
+          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w)) continue;
+          const float spread = lc.w == float(kLightExactGeodesic)
+                                   ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
+                                   : 1.0 + found[j].w * found[j].w;
+          light += lc.rgb * (cosine / spread);
+        } while (++j < paths);
+        if (paths > 0) continue;
+      }
+      const float r = distance_lower_bound(q, lp.xyz);
+      const bool directional = lc.w == float(kLightDirectional);
+      l = directional ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
+      attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
+    }
+    light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
+  } while (++i < light_count);
+  const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
+                       (ambient + (1.0 - ambient) * light);
+  const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
+  return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
+}
+
+// What a camera ray's hit shows: the scene object, the surface normal
+// (frame components), the pattern's coordinates and the world point (the
+// AOV's). Planes face the side of the ray's last segment's start; the
+// bounds of balls and tubes are left-invariant, so in the quotient their
+// gradients along the frame are taken in world coordinates.
+struct Surface {
+  int object;
+  vec3 n;
+  vec2 uv;
+  vec3 world;
+};
+
+Surface surface_at(MarchHit h) {
+  Surface f;
+  const vec3 q = h.q;
+  if (QUOTIENT) {
+    const vec4 geom = images[h.k].geometry, info = images[h.k].info;
+    const vec2 heading = images[h.k].heading.xy;
+    const int type = image_type(images[h.k]);
+    f.object = int(info.z);
+    f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == h.k
+              ? exact_ball_normal(h.exact_end)
+              : plane_normal(type, q, geom.x, geom, heading, info.y, h.from);
+    // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
+    f.uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
+    f.world = q;
+    return f;
+  }
+  const int k = h.k, type = g_types[k];
+  f.object = k;
+  f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == k
+            ? exact_ball_normal(h.exact_end)
+            : plane_normal(type, q, g_constants[k], g_relative[k], g_headings[k], g_radii[k], h.from);
+  f.uv = (HAS_BALLS && type >= kObjectBall) ? solid_coordinates(type, q, g_relative[k], g_headings[k], g_radii[k])
+                                            : plane_coordinates(type, q, g_eye_camera, g_eye_frac);
+  // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z).
+  f.world = g_eye_camera.xyz + vec3(g_eye_camera.w * q.x, g_eye_frac.w * q.y, q.z);
+  return f;
+}
+
+// The shade pass: the hits the march pass listed (defer_shading), shaded
+// into their pixels as the march would have (shade_hit; the pattern's
+// coordinates from the hit point, as main()).
+void shade_pass() {
+  const int slot = queue_slot();
+  if (slot >= queue.shade.w) return;
+  const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
+  const uvec4 a = queue_records[at], b = queue_records[at + 1];
+  const ivec2 pixel = unpack_pixel(b.z);
+  const int eye = pixel.x >= params.counts.y ? 1 : 0;
+  const vec3 q = uintBitsToFloat(a.xyz);
+  const float t = uintBitsToFloat(a.w);
+  const vec3 n = octahedral_decode(uintBitsToFloat(b.xy));
+  const int index = int(b.w);
+  int k = index;
+  vec2 uv;
+  if (QUOTIENT) {
+    const Image m = images[index];
+    const int type = image_type(m);
+    k = int(m.info.z);
+    uv = type >= kObjectBall ? solid_coordinates(type, q, m.geometry, m.heading.xy, m.info.y) : q.xy;
+  } else {
+    const int type = int(params.objects[k].plane.x);
+    uv = (HAS_BALLS && type >= kObjectBall)
+             ? solid_coordinates(type, q, params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy,
+                                 params.objects[k].plane.y)
+             : plane_coordinates(type, q, params.eyes[eye].camera, params.eyes[eye].camera_frac);
+    if (HAS_SHADOWS) load_objects(eye);
+  }
+  const vec4 color = shade_hit(k, n, uv, t, q, eye);
+  imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+}
+
+#endif  // SOL_MARCH_SHADING_GLSL
