@@ -39,22 +39,15 @@ bool object_controls(SceneObject& o) {
     o.pattern = static_cast<Pattern>(pattern);
     changed = true;
   }
-  std::visit(
-      [&](auto& kind) {
-        using Kind = std::decay_t<decltype(kind)>;
-        if constexpr (std::is_same_v<Kind, Ball>) {
-          changed |= input_vec3("centre", kind.center);
-          changed |= drag_double("radius", kind.radius, 0.005, 0.01, 5.0);
-          changed |= ImGui::Checkbox("exact (the true geodesic sphere)", &kind.exact);
-        } else if constexpr (std::is_same_v<Kind, Tube>) {
-          changed |= input_vec3("through", kind.through);
-          changed |= drag_double("radius", kind.radius, 0.005, 0.01, 5.0);
-        } else {
-          changed |= drag_double("c", kind.c, 0.01, -80.0, 80.0);
-          if constexpr (std::is_same_v<Kind, PlaneZ>) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
-        }
-      },
-      o.shape);
+  // The kind's own parameters, as it lists them (visit_fields).
+  struct FieldControls {
+    bool& changed;
+    void operator()(const char* name, glm::dvec3& v) { changed |= input_vec3(name, v); }
+    void operator()(const char* name, double& v, const FieldRange& r) { changed |= drag_double(name, v, r.speed, r.lo, r.hi); }
+    void operator()(const char* name, bool& v) { changed |= ImGui::Checkbox(name, &v); }
+  };
+  std::visit([&](auto& kind) { kind.visit_fields(FieldControls{changed}); }, o.shape);
+  if (!is_solid(o.shape)) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
   return changed;
 }
 

@@ -133,17 +133,6 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   return e;
 }
 
-// An image's bound record (kernel::Image::bound), in double.
-glm::dvec4 image_bound(const KernelShape& shape) {
-  if (shape.code != kernel::kObjectTube) return {glm::dvec3(shape.geometry), shape.radius};
-  const glm::dvec3 through(shape.geometry);
-  if (static_cast<int>(shape.geometry.w) == kernel::kTubeVertical) return {-shape.radius, through.x, through.y, 0.0};
-  const double k = (shape.heading.x < 0.0 ? -shape.radius : shape.radius) /
-                   (std::abs(shape.heading.x) + std::abs(shape.heading.y));
-  const glm::dvec2 h = k * shape.heading;
-  return {h.x, h.y, h.y * through.x - h.x * through.y, through.z};
-}
-
 // The quotient images (sol::quotient_images, shared with the CPU reference)
 // as the kernel's Image records (binding kBindingImages); a stub otherwise.
 std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
@@ -158,7 +147,7 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   for (const MarchObject& m : images) {
     const KernelShape shape = kernel_shape(m.shape);
     out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
-                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0), glm::vec4(image_bound(shape))});
+                   glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0), glm::vec4(shape.bound)});
   }
   // The kernel reads a first record even where a cell lists no candidate
   // (its loop is tested at the end, masked): never an empty buffer.
@@ -190,21 +179,23 @@ void require_size(int value, const char* name) {
 }
 
 // One build of march.comp: the world's features (each a specialisation
-// constant, so a world's kernel contains only what it needs) and the output.
+// constant, so a world's kernel contains only what it needs), the variant's
+// flags (sol/vk/march_interface.h) and the output.
 struct KernelVariant {
   MarchFeatures features;
-  bool aovs = true;         // write the AOV images (render); off for record
+#define SOL_VARIANT_MEMBER(member, constant, id) bool member = false;
+  SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_MEMBER)
+#undef SOL_VARIANT_MEMBER
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
-  bool projections = false;  // an eye is not perspective (a camera's property: the frame's eyes decide)
-  bool ods = false;          // an eye is omnidirectional stereo (Camera::eye_offset)
-  bool defer_shading = false;  // hits shaded by the shade pass (defer_passes)
-  bool resume = false;         // the resume pass: rays that reach an exact ball (Sol), of small μ (the quotient)
+  // A bit per flag: the features', the variant's, the build's.
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
-    for (bool b : {f.heights_only, f.solids, f.point_lights, f.fog, f.cutout, f.quotient, !aovs, f.exact_balls,
-                   srgb_unorm, f.exact_lights, f.bound_balls, f.tubes, f.planes_xy, projections, ods, f.shadows,
-                   f.planes_xy_only, f.light_reach, defer_shading, resume, f.planes_z}) {
+#define SOL_FLAG_OF_FEATURES(member, constant, id) f.member,
+#define SOL_FLAG_OF_VARIANT(member, constant, id) member,
+    for (bool b : {SOL_MARCH_FEATURES(SOL_FLAG_OF_FEATURES) SOL_KERNEL_VARIANT_FLAGS(SOL_FLAG_OF_VARIANT) srgb_unorm}) {
+#undef SOL_FLAG_OF_FEATURES
+#undef SOL_FLAG_OF_VARIANT
       if (b) k |= bit;
       bit <<= 1;
     }
@@ -217,21 +208,14 @@ struct KernelVariant {
 // bound only when the world has them, so those stay the world's).
 MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
   if (!all_features) return world;
-  return {.quotient = world.quotient,
-          .heights_only = false,
-          .solids = true,
-          .bound_balls = true,
-          .tubes = true,
-          .planes_z = true,
-          .planes_xy = !world.quotient,
-          .point_lights = true,
-          .fog = true,
-          .cutout = true,
-          .cutout_gaps = true,
-          .exact_balls = world.exact_balls,
-          .exact_lights = world.exact_lights,
-          .light_reach = world.exact_lights,
-          .shadows = world.shadows};
+  MarchFeatures f = world;
+  f.heights_only = false;
+  f.solids = f.bound_balls = f.tubes = f.planes_z = true;
+  f.planes_xy = !world.quotient;
+  f.planes_xy_only = false;
+  f.point_lights = f.fog = f.cutout = f.cutout_gaps = true;
+  f.light_reach = world.exact_lights;
+  return f;
 }
 
 // The build of march.comp for the variant: 8-bit sRGB output or linear,
@@ -257,9 +241,24 @@ void defer_passes(KernelVariant& v, const MarchOptions& o) {
   v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 
+// The specialisation constants of a variant's pipeline for one pass: the
+// integrator, the pass, every feature and every variant flag.
+std::vector<SpecializationConstant> specialization(const MarchOptions& o, const KernelVariant& v, int pass) {
+  std::vector<SpecializationConstant> values = {
+      {kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
+      {kernel::kSpecPass, static_cast<std::uint32_t>(pass)}};
+  const MarchFeatures& f = v.features;
+#define SOL_FEATURE_VALUE(member, constant, id) values.push_back({id, f.member ? 1u : 0u});
+#define SOL_VARIANT_VALUE(member, constant, id) values.push_back({id, v.member ? 1u : 0u});
+  SOL_MARCH_FEATURES(SOL_FEATURE_VALUE)
+  SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_VALUE)
+#undef SOL_FEATURE_VALUE
+#undef SOL_VARIANT_VALUE
+  return values;
+}
+
 // The variant's pipeline for one pass (kernel::kPass*).
 ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v, int pass) {
-  const MarchFeatures& f = v.features;
   return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ", pass " + std::to_string(pass) + ")",
                              .spirv = march_spirv(v),
                              .bindings = {{kernel::kBindingParams, DescriptorType::UniformBuffer},
@@ -273,28 +272,7 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingLightImages, DescriptorType::StorageBuffer},
                                           {kernel::kBindingQueue, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
-                             .specialization = {{kernel::kSpecIntegrator, o.integrator == Integrator::RK4 ? 1u : 0u},
-                                                {kernel::kSpecHeightsOnly, f.heights_only ? 1u : 0u},
-                                                {kernel::kSpecBalls, f.solids ? 1u : 0u},
-                                                {kernel::kSpecPointLights, f.point_lights ? 1u : 0u},
-                                                {kernel::kSpecFog, f.fog ? 1u : 0u},
-                                                {kernel::kSpecCutout, f.cutout ? 1u : 0u},
-                                                {kernel::kSpecQuotient, f.quotient ? 1u : 0u},
-                                                {kernel::kSpecWriteAovs, v.aovs ? 1u : 0u},
-                                                {kernel::kSpecExactBalls, f.exact_balls ? 1u : 0u},
-                                                {kernel::kSpecExactLights, f.exact_lights ? 1u : 0u},
-                                                {kernel::kSpecBoundBalls, f.bound_balls ? 1u : 0u},
-                                                {kernel::kSpecTubes, f.tubes ? 1u : 0u},
-                                                {kernel::kSpecPlanesZ, f.planes_z ? 1u : 0u},
-                                                {kernel::kSpecPlanesXY, f.planes_xy ? 1u : 0u},
-                                                {kernel::kSpecProjections, v.projections ? 1u : 0u},
-                                                {kernel::kSpecOds, v.ods ? 1u : 0u},
-                                                {kernel::kSpecShadows, f.shadows ? 1u : 0u},
-                                                {kernel::kSpecPlanesXYOnly, f.planes_xy_only ? 1u : 0u},
-                                                {kernel::kSpecLightReach, f.light_reach ? 1u : 0u},
-                                                {kernel::kSpecPass, static_cast<std::uint32_t>(pass)},
-                                                {kernel::kSpecDeferShading, v.defer_shading ? 1u : 0u},
-                                                {kernel::kSpecResume, v.resume ? 1u : 0u}},
+                             .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding});
 }
 
@@ -564,7 +542,11 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   m.params.write(std::span<const Params>(&g, 1));
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
-  KernelVariant variant{kernel_features(prepared.features(), m.options.all_features), aovs, srgb_unorm, projections, ods};
+  KernelVariant variant{kernel_features(prepared.features(), m.options.all_features)};
+  variant.aovs = aovs;
+  variant.srgb_unorm = srgb_unorm;
+  variant.projections = projections;
+  variant.ods = ods;
   defer_passes(variant, m.options);
   // The lists hold a record per pixel of a dispatch, at most the whole
   // image; a frame whose lists one indirect dispatch or one storage buffer

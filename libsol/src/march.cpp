@@ -51,10 +51,10 @@ bool same_image(const MarchObject& a, const MarchObject& b) {
   return std::visit(
       [&](const auto& kind) {
         using Kind = std::decay_t<decltype(kind)>;
-        if constexpr (std::is_same_v<Kind, PlaneX> || std::is_same_v<Kind, PlaneY>) {
-          return false;  // not in the quotient (sol::validate)
-        } else {
+        if constexpr (ClosesInQuotient<Kind>) {
           return kind.same_set(std::get<Kind>(b.shape));
+        } else {
+          return false;  // not in the quotient (sol::validate)
         }
       },
       a.shape);
@@ -98,7 +98,7 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
     std::visit(
         [&](const auto& kind) {
           using Kind = std::decay_t<decltype(kind)>;
-          if constexpr (!std::is_same_v<Kind, PlaneX> && !std::is_same_v<Kind, PlaneY>) {
+          if constexpr (ClosesInQuotient<Kind>) {
             const MarchObject base{kind.into_domain(lattice), i};
             const int range = kind.lattice_range();
             for (int c = -2; c <= 2; ++c) {
@@ -143,18 +143,18 @@ MarchFeatures features_of(const World& world) {
   f.heights_only = !f.quotient;
   f.planes_xy_only = !world.objects.empty();
   for (const SceneObject& o : world.objects) {
-    const bool plane_z = std::holds_alternative<PlaneZ>(o.shape);
+    // Each kind sets its feature (sol/object_kinds.h); solids set `solids`.
+    const int code = kernel_shape(o.shape).code;
+#define SOL_KIND_FEATURE(Type, code_name, code_value, prefix, feature, solid) \
+  if (code == kernel::code_name) f.feature = true;
+    SOL_OBJECT_KINDS(SOL_KIND_FEATURE)
+#undef SOL_KIND_FEATURE
+    f.solids = f.solids || is_solid(o.shape);
+    const bool plane_z = code == kernel::kObjectPlaneZ;
     f.heights_only = f.heights_only && plane_z;
-    f.planes_xy_only = f.planes_xy_only && (std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape));
-    f.solids = f.solids || std::holds_alternative<Ball>(o.shape) || std::holds_alternative<Tube>(o.shape);
-    f.tubes = f.tubes || std::holds_alternative<Tube>(o.shape);
-    f.planes_z = f.planes_z || plane_z;
-    f.planes_xy = f.planes_xy || std::holds_alternative<PlaneX>(o.shape) || std::holds_alternative<PlaneY>(o.shape);
+    f.planes_xy_only = f.planes_xy_only && (code == kernel::kObjectPlaneX || code == kernel::kObjectPlaneY);
     f.cutout = f.cutout || o.cutout;
     f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);
-    const Ball* ball = std::get_if<Ball>(&o.shape);
-    f.exact_balls = f.exact_balls || (ball && ball->exact);
-    f.bound_balls = f.bound_balls || (ball && !ball->exact);
   }
   f.point_lights = std::any_of(world.lights.begin(), world.lights.end(),
                                [](const Light& l) { return l.type == LightType::Point; });

@@ -235,7 +235,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       }
     }
     const Shape& nearest_shape = objects[nearest_k].shape;
-    if (solids && others && (std::holds_alternative<Ball>(nearest_shape) || std::holds_alternative<Tube>(nearest_shape))) {
+    if (solids && others && is_solid(nearest_shape)) {
       nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, ray.direction_at(t))));
     }
     hit.steps = crossing.steps + step + 1;

@@ -37,7 +37,7 @@ float exact_ball_sdf(vec3 q, vec3 c, float radius, int k, inout ExactSolve x) {
 // The true sphere's outward normal at the end of the geodesic from its
 // centre (the last solve's end): that geodesic's tangent there (frame
 // components), as sol::sdf_ball_exact_gradient.
-vec3 exact_ball_normal(SolEnd end) { return normalize(end.tangent); }
+vec3 exact_sphere_normal(SolEnd end) { return normalize(end.tangent); }
 
 // The clearance of an exact ball from q (the kernel's own: the CPU steps by
 // the exact distance; derivation in docs/exact.md), where its exact

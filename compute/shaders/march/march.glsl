@@ -91,7 +91,9 @@ bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, flo
                     const bool passes, inout uint passing, inout float t, inout int hit) {
   if (nearest_hit < hit_epsilon) {
     if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
-      const vec2 uv = plane_coordinates(g_types[nearest_k], q, g_eye_camera, g_eye_frac);  // full positions whenever the scene has cutouts
+      // (Full positions whenever the scene has cutouts.)
+      const vec2 uv = object_pattern_uv(g_types[nearest_k], q, pattern_phase(q, g_eye_camera, g_eye_frac),
+                                        g_relative[nearest_k], g_headings[nearest_k], g_radii[nearest_k]);
       if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
         passing |= 1u << uint(nearest_k);  // between the discs: go through
         t += max(nearest, 2.0 * hit_epsilon);
@@ -131,7 +133,7 @@ MarchStep march_objects(vec3 q, vec2 hz, float t, float hit_epsilon, const bool 
       d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
     }
     if (HAS_CUTOUT && g_cutouts[k] != 0) {
-      d = max(d, cutout_gap_bound(g_cutouts[k], plane_coordinates(2, q, g_eye_camera, g_eye_frac), g_eye_camera.w * exp(q.z)));
+      d = max(d, cutout_gap_bound(g_cutouts[k], pattern_phase(q, g_eye_camera, g_eye_frac).xy, g_eye_camera.w * exp(q.z)));
     }
     // Objects being passed (cutout planes between their discs, the surface
     // a shadow ray leaves) are not hits until the ray is 2 hit_epsilon away
@@ -284,7 +286,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
     if (step < max_steps && alive) do {
       if (!rk4) {
         // Cutout planes need the full position for their gap bounds.
-        if (HAS_BALLS || !camera) {
+        if (HAS_SOLIDS || !camera) {
           const SolForward forward = zeta_only ? sol_forward_zeta(ray, t)
                                      : (zeta && zeta_round ? sol_forward_zeta(ray, t) : sol_forward(ray, t));
           q = forward.position;
@@ -307,7 +309,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
       // a step). (Shadow rays step by the bound: inside the light's loop
       // over its geodesics one clearance a step made shadowed scenes 10-25 %
       // slower on lavapipe though the steps fell tenfold.)
-      if (camera && HAS_BALLS && g_types[s.nearest_any] >= kObjectBall) {
+      if (camera && object_is_solid(g_types[s.nearest_any])) {
         s.nearest = min(s.others, object_clearance(g_types[s.nearest_any], q, u, g_relative[s.nearest_any],
                                                    g_headings[s.nearest_any], g_radii[s.nearest_any], hz,
                                                    g_half_exp_z[s.nearest_any]).y);
@@ -427,7 +429,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       const int i = all ? s : int((word >> uint(8 * s)) & 255u);
       if (i == kFieldEmpty || held == 4) continue;
       const Image m = images[i];
-      if (image_distance(image_type(m), q, m.bound) < 2.0 * hit_epsilon) passing[held++] = i;
+      if (image_distance(image_type(m), q, m) < 2.0 * hit_epsilon) passing[held++] = i;
     }
   }
   // Over-relaxation: `proposal` is the step from q, the last point the

@@ -1,7 +1,11 @@
-// The objects as the march sees them, in float: distances (exact for planes,
-// the lower bound of sol/distance.hpp for balls and tubes), clearances
-// along a ray (sol/clearance.hpp), normals, pattern coordinates and the
-// gaps of cutout planes. The GLSL twin of libsol's objects.cpp; the
+// The objects as the march sees them, in float: each kind's distance
+// (exact for planes, a lower bound for solids: sol/distance.hpp), its
+// clearances along a ray (sol/clearance.hpp), normal and pattern
+// coordinates, in its own file under compute/shaders/kinds/, and here what
+// they share and the dispatch by kind, generated from the list of kinds
+// (sol/object_kinds.h): a kind listed there without its functions does not
+// compile. Also the patterns, the gaps of cutout planes, and the objects of
+// a world relative to an eye. The GLSL twin of libsol's objects; the
 // kernel's codes and constants come from sol/kernel_constants.h.
 #ifndef SOL_MARCH_OBJECTS_GLSL
 #define SOL_MARCH_OBJECTS_GLSL
@@ -31,44 +35,6 @@ float distance_lower_bound(vec3 p, vec3 q, vec2 hp, vec2 hq) {
 
 float distance_lower_bound(vec3 p, vec3 q) { return distance_lower_bound(p, q, half_exp(p.z), half_exp(q.z)); }
 
-// Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
-// containing it) and sol::sdf_tube_horizontal (a horizontal line along the
-// unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
-float tube_distance(vec3 q, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
-  const vec3 d = q - through;
-  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
-  if (axis == kTubeVertical) return max(asinh(abs(d.x) * iez), asinh(abs(d.y) * ez)) - radius;
-  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) * iez + abs(h.y) * ez);
-  return max(asinh(across), abs(d.z)) - radius;
-}
-
-// Distance (planes: exact; balls, tubes: the bound minus the radius) to an
-// object given in the coordinates of q (camera-relative, or world in the quotient).
-// With the half exponentials (half_exp) of q.z (`hz`) and, for balls, of
-// rel.z (`hc`) given: a march step shares them among its objects.
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  // Each kind only when the world has it: lavapipe evaluates every branch.
-  // Exact balls are approached by the bound too (the true sphere lies inside
-  // the bound's), and within kExactShell of it marched by their exact
-  // distance (exact_ball_sdf) and its clearance (exact_ball_clearance).
-  // (Until 2026-11 a table of d(0, ·) tightened their approach within 0.25
-  // of the sphere: its eight reads per ball and step cost more than the
-  // exact solves it saved, docs/exact.md.)
-  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return distance_lower_bound(q, rel.xyz, hz, hc) - radius;
-  }
-  if (HAS_TUBES && type == kObjectTube) return tube_distance(q, rel.xyz, int(rel.w), heading, radius, hz);
-  float c = rel.x;
-  if (HAS_PLANES_XY && type == kObjectPlaneX) return asinh(abs(q.x - c) * hz.y * hz.y);
-  if (HAS_PLANES_XY && type == kObjectPlaneY) return asinh(abs(q.y - c) * hz.x * hz.x);
-  return abs(q.z - c);
-}
-
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  const bool ball = (HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall);
-  return object_distance(type, q, rel, heading, radius, half_exp(q.z), ball ? half_exp(rel.z) : vec2(1.0));
-}
-
 // ---- Clearances (sol/clearance.hpp): how far the geodesic from q with unit
 // tangent u goes before it can reach an object, to second order. Each term h
 // of a bound (a maximum of terms) with h' = slope and h'' >= -curvature
@@ -91,144 +57,113 @@ vec2 clearance_roots(float h, float slope) {
   return h > 0.0 ? s : vec2(0.0);
 }
 
-// A ball's bound (sol::ball_terms): the terms d_xz - r, d_yz - r with
-// S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
-// clearance along u, clearance back along -u). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
-// the caller (the quotient march takes q's once a step for all its
-// candidates, and each candidate's centre's; the Sol march keeps each
-// ball's per ray): no exponential and no division here but the slopes'.
-vec3 ball_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
-  const float dx = q.x - c.x, dy = q.y - c.y;
-  const vec2 e = hz * hc, ec = hc * hc;  // e^{±(q.z + c.z)/2}, e^{±c.z}
-  const float e2 = e.x * e.x, ie2 = e.y * e.y;  // e^{q.z + c.z}, its inverse
-  const float sh = 0.5 * (hz.x * hc.y - hz.y * hc.x), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
-  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx * ie2, sh2 + 0.25 * dy * dy * e2);
-  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x * ec.y - 0.25 * dx * dx * ie2 * u.z,
-                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec.x + 0.25 * dy * dy * e2 * u.z);
-  const vec2 s = sqrt(s2), root = sqrt(1.0 + s2);
-  const vec2 h = 2.0 * log(s + root) - radius;  // 2 asinh s
-  const vec2 slope = rate / max(s * root, 1e-30);
-  const float distance = max(h.x, h.y);
-  return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
+// The dispatch by kind, defined below the kinds; declared here for them.
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius);
+
+// A solid's normal at q: the gradient of its bound by central differences
+// along E1, E2, E3 (kNormalStep; as the CPU reference).
+vec3 solid_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  float h = kNormalStep, ez = exp(q.z);
+  vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
+  vec3 g = vec3(object_distance(type, q + e1, rel, heading, radius) - object_distance(type, q - e1, rel, heading, radius),
+                object_distance(type, q + e2, rel, heading, radius) - object_distance(type, q - e2, rel, heading, radius),
+                object_distance(type, q + e3, rel, heading, radius) - object_distance(type, q - e3, rel, heading, radius));
+  return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
 }
 
-// A tube's bound (sol::tube_terms): vertical, the slabs around x = x0 and
-// y = y0; horizontal along h, the z slab and the across term asinh|G|,
-// G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
-// y); every term bends by at most 1. Returns (distance bound, clearance
-// along u, clearance back along -u).
-vec3 tube_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
-  // Both forms have two terms; the first is asinh(w) - r for either (w the
-  // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
-  // serves both: the inputs are chosen first (lavapipe runs both sides of
-  // every choice, so a shared evaluation is cheaper than two).
-  const bool vertical = axis == kTubeVertical;
-  const vec3 d = q - through;
-  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}, from the caller's half exponentials
-  const float inv_D = 1.0 / (abs(h.x) * iez + abs(h.y) * ez);
-  const float G = (h.y * d.x - h.x * d.y) * inv_D;
-  const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) * inv_D;
-  const float wx = abs(d.x) * iez, rate_wx = (d.x >= 0.0 ? u.x : -u.x) - wx * u.z;
-  const float wa = vertical ? wx : abs(G), rate_a = vertical ? rate_wx : (G >= 0.0 ? rate_G : -rate_G);
-  const float wy = abs(d.y) * ez, rate_wy = (d.y >= 0.0 ? u.y : -u.y) + wy * u.z;
-  const vec2 w = vec2(wa, wy);  // >= 0
-  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
-  const vec2 hw = log(w + root) - radius;
-  const vec2 sw = vec2(rate_a, rate_wy) / root;
-  // The second term: the slab around y = y0 (vertical), or |Δz| - r.
-  const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
-  const float distance = max(hw.x, hb);
-  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+// w = rel⁻¹·q: the point q relative to a solid's centre (axis point) `rel`,
+// where its pattern's coordinates are taken.
+vec3 solid_relative(vec3 q, vec4 rel) {
+  const float ez = exp(rel.z);
+  return vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
 }
 
-// A quotient image's tube bound from its record (Image::bound: the radius
-// in the scale of h, the axis in the first word's sign). Both forms are
-// two terms, the first asinh|G| - r, G = (h_y x - h_x y - c)/(|h_x| e^{-z}
-// + |h_y| e^{z}): a vertical tube's slab around x = x0 is that term with
-// h = (0, 1), c = x0, its second the slab around y = y0; a horizontal
-// tube's second is |z - z0| - r. As tube_clearances, in four words.
-vec3 tube_record_clearances(vec3 q, vec3 u, vec4 b, vec2 hz) {
-  const bool vertical = b.x < 0.0;
-  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}
-  const float hx = vertical ? 0.0 : b.x, hy = vertical ? 1.0 : b.y, c = vertical ? b.y : b.z;  // hx >= 0
-  const float radius = vertical ? -b.x : b.x + abs(b.y);
-  const float inv_D = 1.0 / (hx * iez + abs(hy) * ez);
-  const float G = (hy * q.x - hx * q.y - c) * inv_D;
-  const float rate_G = ((hy * ez * u.x - hx * iez * u.y) - G * (abs(hy) * ez - hx * iez) * u.z) * inv_D;
-  const float dy = q.y - b.z;  // vertical: the slab around y = y0
-  const float wy = abs(dy) * ez, rate_wy = (dy >= 0.0 ? u.y : -u.y) + wy * u.z;
-  const vec2 w = vec2(abs(G), wy);
-  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
-  const vec2 hw = log(w + root) - radius;
-  const vec2 sw = vec2(G >= 0.0 ? rate_G : -rate_G, rate_wy) / root;
-  const float dz = q.z - b.w;
-  const float hb = vertical ? hw.y : abs(dz) - radius, sb = vertical ? sw.y : (dz >= 0.0 ? u.z : -u.z);
-  const float distance = max(hw.x, hb);
-  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+#include "../kinds/kinds.glsl"
+
+// ---- The dispatch by kind. Each kind only when the world has it (its
+// feature's specialisation constant): lavapipe evaluates every branch.
+// An object's record: `rel` (planes (c, 0, 0, 0); solids their centre or
+// axis point), `heading`, `radius`, in the coordinates of q (relative to
+// the eye in Sol, world coordinates in the quotient); hz, hc: the half
+// exponentials (half_exp) of q.z and rel.z, which a march step shares
+// among its objects.
+
+// Distance (planes: exact; solids: the bound). Exact balls are approached
+// by their bound too (the true sphere lies inside the bound's), and within
+// kExactShell of it marched by their exact distance (exact_ball_sdf) and
+// its clearance (exact_ball_clearance).
+#define SOL_KIND_DISTANCE(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_distance(q, rel, heading, radius, hz, hc);
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  SOL_OBJECT_KINDS(SOL_KIND_DISTANCE)
+  return 1e30;  // no kind of this world's
+}
+#undef SOL_KIND_DISTANCE
+
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  return object_distance(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
 }
 
-// The object's distance (object_distance) and clearance, the larger of it
-// and the second-order step of its bound (exact balls: the bound's ball,
-// which holds the exact one, as object_distance). The objects of the
-// quotient: planes z = c, balls and tubes. hz, hc: the half exponentials
-// of q.z and (balls only) rel.z.
-// object_clearances: the same with the clearance back along -u third (the
-// quotient march's check of an over-relaxed step).
+// The object's distance and clearances: (distance, clearance along u,
+// clearance back along -u), each clearance the larger of the distance and
+// the second-order step of its bound (exact balls: the bound's ball, which
+// holds the exact one, as object_distance); the clearance back is the
+// quotient march's check of an over-relaxed step.
+#define SOL_KIND_CLEARANCES(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_clearances(q, u, rel, heading, radius, hz, hc);
 vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return ball_clearances(q, u, rel.xyz, radius, hz, hc);
-  }
-  if (HAS_TUBES && type == kObjectTube) return tube_clearances(q, u, rel.xyz, int(rel.w), heading, radius, hz);
-  const float d = object_distance(type, q, rel, heading, radius);
-  const float rate = q.z >= rel.x ? u.z : -u.z;
-  const vec2 plane_z = max(vec2(d), clearance_roots(d, rate));
-  return type == kObjectPlaneZ ? vec3(d, plane_z) : vec3(d);
+  SOL_OBJECT_KINDS(SOL_KIND_CLEARANCES)
+  return vec3(1e30);
 }
+#undef SOL_KIND_CLEARANCES
 
 vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return object_clearances(type, q, u, rel, heading, radius, hz, hc).xy;
 }
 
-// object_clearances of a quotient image from its bound record
-// (Image::bound): balls (centre, radius), tubes (tube_record_clearances),
-// planes z = c (c, ...).
-vec3 image_clearances(int type, vec3 q, vec3 u, vec4 b, vec2 hz) {
-  if ((HAS_BOUND_BALLS && type == kObjectBall) || (HAS_EXACT_BALLS && type == kObjectExactBall)) {
-    return ball_clearances(q, u, b.xyz, b.w, hz, half_exp(b.z));
-  }
-  if (HAS_TUBES && type == kObjectTube) return tube_record_clearances(q, u, b, hz);
-  return object_clearances(type, q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));  // planes z = c: the record is (c, ...)
+// object_clearances of a quotient image from its record: its bound
+// (Image::bound, sol::KernelShape::bound: four words, as each word a step
+// reads at a per-lane index is a gather on lavapipe; a kind that needs more
+// reads its heading word too, and only its worlds load it).
+#define SOL_KIND_RECORD(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_record_clearances(q, u, m, hz);
+vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
+  SOL_OBJECT_KINDS(SOL_KIND_RECORD)
+  return vec3(1e30);
 }
+#undef SOL_KIND_RECORD
 
 // A quotient image's distance (its bound's, image_clearances' first
 // component, which the direction does not enter).
-float image_distance(int type, vec3 q, vec4 b) { return image_clearances(type, q, vec3(0.0), b, half_exp(q.z)).x; }
+float image_distance(int type, vec3 q, Image m) { return image_clearances(type, q, vec3(0.0), m, half_exp(q.z)).x; }
 
-// Unit gradient of the distance (sol/distance.hpp) at the hit q, facing the
-// camera's side (the origin): the march stops within hit_epsilon, possibly
-// just across the plane. Mirrors object_normal in libsol/src/render.cpp.
-// The surface normal at q (frame components); planes face the side of `from`, the ray's origin.
-vec3 plane_normal(int type, vec3 q, float c, vec4 rel, vec2 heading, float radius, vec3 from) {
-  if (HAS_BALLS && type >= kObjectBall) {  // balls, tubes: central differences along E1, E2, E3 (as the CPU reference)
-    float h = kNormalStep, ez = exp(q.z);
-    vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-    vec3 g = vec3(object_distance(type, q + e1, rel, heading, radius) - object_distance(type, q - e1, rel, heading, radius),
-                  object_distance(type, q + e2, rel, heading, radius) - object_distance(type, q - e2, rel, heading, radius),
-                  object_distance(type, q + e3, rel, heading, radius) - object_distance(type, q - e3, rel, heading, radius));
-    return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
-  }
-  const float own = type == kObjectPlaneX ? from.x : (type == kObjectPlaneY ? from.y : from.z);
-  float side = own >= c ? 1.0 : -1.0;
-  if (type == kObjectPlaneX) {
-    float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
-    return vec3(side * r, 0.0, -w * r);
-  }
-  if (type == kObjectPlaneY) {
-    float w = abs(q.y - c) * exp(q.z), r = inversesqrt(1.0 + w * w);
-    return vec3(0.0, side * r, w * r);
-  }
-  return vec3(0.0, 0.0, side);
+// The surface normal at a hit q (frame components); planes face the side
+// of `from`, the start of the ray's segment.
+#define SOL_KIND_NORMAL(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_normal(q, rel, heading, radius, from);
+vec3 object_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  SOL_OBJECT_KINDS(SOL_KIND_NORMAL)
+  return vec3(0.0, 0.0, 1.0);
 }
+#undef SOL_KIND_NORMAL
+
+// The coordinates the object's pattern is drawn in at q: planes their own
+// coordinates of the world point (`phase`, pattern_phase), solids those of
+// q relative to them.
+#define SOL_KIND_PATTERN_UV(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_pattern_uv(q, phase, rel, heading, radius);
+vec2 object_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  SOL_OBJECT_KINDS(SOL_KIND_PATTERN_UV)
+  return vec2(0.0);
+}
+#undef SOL_KIND_PATTERN_UV
+
+// Whether the object is a solid (sol/object_kinds.h).
+#define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) || (solid && feature_##feature && type == code_name)
+bool object_is_solid(int type) { return false SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
+#undef SOL_KIND_SOLID
+
+// ---- Patterns
 
 float pattern_factor(int pattern, float u, float v) {
   if (pattern == kPatternCircles) {
@@ -239,18 +174,11 @@ float pattern_factor(int pattern, float u, float v) {
   return 1.0;
 }
 
-// Pattern coordinates on a ball or tube (sol::Ball::pattern_uv, sol::Tube::pattern_uv) of a point
-// q given in the coordinates of the centre (axis point) `rel`: with
-// w = rel⁻¹·q, balls (4/π)(longitude, latitude); tubes (4/π)(angle around
-// the axis, coordinate along it / radius).
-vec2 solid_coordinates(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  const float cells = kPatternCellsPerRadian;
-  const float ez = exp(rel.z);
-  const vec3 w = vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
-  if (type == kObjectBall || type == kObjectExactBall) return cells * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
-  if (int(rel.w) == kTubeVertical) return cells * vec2(atan(w.y, w.x), w.z / radius);
-  const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
-  return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
+// The world point of a camera-relative point q, modulo 2 (the common period
+// of the circles, 1, and the checkerboard's parity, 2): world = camera * q,
+// with the camera position modulo 2 from double.
+vec3 pattern_phase(vec3 q, vec4 eye_camera, vec4 eye_frac) {
+  return eye_frac.xyz + vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
 }
 
 // sol::cutout_gap_bound: a lower bound of the distance to the solid part of
@@ -266,13 +194,6 @@ float cutout_gap_bound(int pattern, vec2 uv, float ez) {
   const float boxes = max(max(0.0, d.x - kCircleRadius) / ez, max(0.0, d.y - kCircleRadius) * ez);
   const float gap = max(0.0, length(d) - kCircleRadius);
   return asinh(max(boxes, min(ez, 1.0 / ez) * gap * 0.70710678));
-}
-
-// The plane's own world coordinates of a camera-relative point q: world =
-// camera * q; the pattern takes the camera position modulo 2 (exact, from double).
-vec2 plane_coordinates(int type, vec3 q, vec4 eye_camera, vec4 eye_frac) {
-  const vec3 phase = eye_frac.xyz + vec3(eye_camera.w * q.x, eye_frac.w * q.y, q.z);
-  return type == kObjectPlaneX ? phase.yz : (type == kObjectPlaneY ? phase.xz : phase.xy);
 }
 
 // ---- The objects of a world in Sol, relative to one eye (its uniforms
@@ -300,7 +221,7 @@ void load_objects(int eye) {
     g_relative[k] = params.eyes[eye].relative[k];
     g_headings[k] = params.eyes[eye].heading[k].xy;
     g_constants[k] = g_relative[k].x;
-    g_half_exp_z[k] = HAS_BALLS ? half_exp(g_relative[k].z) : vec2(1.0);
+    g_half_exp_z[k] = HAS_SOLIDS ? half_exp(g_relative[k].z) : vec2(1.0);
   }
   g_eye_camera = params.eyes[eye].camera;
   g_eye_frac = params.eyes[eye].camera_frac;

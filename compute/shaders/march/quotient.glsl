@@ -66,8 +66,12 @@ float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]);
 // (specialisation constants): every image's code is that kind's, and is not
 // read (on lavapipe each word a step reads at a per-lane index is a gather
 // of 8 loads). The quotient's marches and shading read the kind only here.
-const bool ONE_KIND = (HAS_BOUND_BALLS ? 1 : 0) + (HAS_EXACT_BALLS ? 1 : 0) + (HAS_TUBES ? 1 : 0) + (HAS_PLANES_Z ? 1 : 0) == 1;
-const int ONLY_KIND = HAS_BOUND_BALLS ? kObjectBall : (HAS_EXACT_BALLS ? kObjectExactBall : (HAS_TUBES ? kObjectTube : kObjectPlaneZ));
+#define SOL_KIND_COUNT(Type, code_name, code, prefix, feature, solid) +(feature_##feature ? 1 : 0)
+#define SOL_KIND_ONLY(Type, code_name, code, prefix, feature, solid) feature_##feature ? code_name:
+const bool ONE_KIND = (0 SOL_OBJECT_KINDS(SOL_KIND_COUNT)) == 1;
+const int ONLY_KIND = SOL_OBJECT_KINDS(SOL_KIND_ONLY) -1;
+#undef SOL_KIND_COUNT
+#undef SOL_KIND_ONLY
 int image_type(Image m) { return ONE_KIND ? ONLY_KIND : int(m.info.x); }
 
 // The s-th of a cell's `listed` candidates (its word, or every image when
@@ -82,7 +86,7 @@ vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u
   // Its bound record alone (Image::bound); a ball's centre's half
   // exponentials taken here: two exponentials cost lavapipe less than two
   // more words read (docs/renderer.md).
-  const vec3 dc = image_clearances(image_type(m), q, u, m.bound, hz);
+  const vec3 dc = image_clearances(image_type(m), q, u, m, hz);
   return s < listed ? dc : vec3(1e30);
 }
 

@@ -10,39 +10,31 @@
 // layout: sol/vk/march_interface.h, shared with the host (compute/src/march.cpp).
 layout(local_size_x = kGroupSize, local_size_y = kGroupSize, local_size_z = 1) in;
 layout(constant_id = kSpecIntegrator) const int INTEGRATOR = 0;
-// Every object a plane z = c: the march needs heights only. A specialisation
-// constant, not a uniform: lavapipe evaluates both sides of every branch, so
-// only a compile-time branch saves the other side's cost.
-layout(constant_id = kSpecHeightsOnly) const bool HEIGHTS_ONLY = false;
-// What else the scene uses: the compiler folds away what it does not.
-layout(constant_id = kSpecBalls) const bool HAS_BALLS = true;  // balls or tubes
-layout(constant_id = kSpecBoundBalls) const bool HAS_BOUND_BALLS = true;
-layout(constant_id = kSpecTubes) const bool HAS_TUBES = true;
-layout(constant_id = kSpecPlanesZ) const bool HAS_PLANES_Z = true;
-layout(constant_id = kSpecPlanesXY) const bool HAS_PLANES_XY = true;
-// Every object a plane x = c or y = c (sol::MarchFeatures::planes_xy_only):
-// their crossing solved (plane_xy_roots) is the whole march.
-layout(constant_id = kSpecPlanesXYOnly) const bool PLANES_XY_ONLY_WORLD = false;
-// (The roots need the closed form: with RK4 such a world is marched.)
+// The deferred passes (sol/vk/march_interface.h, docs/renderer.md): which
+// pass this pipeline runs.
+layout(constant_id = kSpecPass) const int PASS = kPassMarch;
+// What the world uses (sol/march_features.h), each a boolean
+// specialisation constant, not a uniform: lavapipe evaluates both sides of
+// every branch, so only a compile-time branch saves the other side's cost.
+// Each is also `feature_<member>`, the name the kinds' list
+// (sol/object_kinds.h) gives it. The host sets them all.
+#define SOL_FEATURE_CONSTANT(member, constant, id) \
+  layout(constant_id = id) const bool constant = false; \
+  const bool feature_##member = constant;
+SOL_MARCH_FEATURES(SOL_FEATURE_CONSTANT)
+#undef SOL_FEATURE_CONSTANT
+// The variant's flags (SOL_KERNEL_VARIANT_FLAGS): the outputs, the eyes'
+// projections and ODS columns, what the march pass leaves to the others.
+#define SOL_VARIANT_CONSTANT(member, constant, id) layout(constant_id = id) const bool constant = false;
+SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_CONSTANT)
+#undef SOL_VARIANT_CONSTANT
+// Every object a plane x = c or y = c: their crossing solved
+// (plane_xy_roots) is the whole march. (The roots need the closed form:
+// with RK4 such a world is marched.)
 const bool PLANES_XY_ONLY = PLANES_XY_ONLY_WORLD && INTEGRATOR == 0;
-layout(constant_id = kSpecPointLights) const bool HAS_POINT_LIGHTS = true;
-layout(constant_id = kSpecFog) const bool HAS_FOG = true;
-layout(constant_id = kSpecCutout) const bool HAS_CUTOUT = true;
-// The compact quotient Γ\Sol (see march_quotient below).
-layout(constant_id = kSpecQuotient) const bool QUOTIENT = false;
-// Write the AOV images (bindings kBindingHit, kBindingPoint); off for
-// presenters, which take the colour alone (MarchRenderer::record) and bind
-// the colour image there too.
-layout(constant_id = kSpecWriteAovs) const bool WRITE_AOVS = true;
-// Exact balls (kObjectExactBall): the exact distance near their sphere (sol_shortest).
-layout(constant_id = kSpecExactBalls) const bool HAS_EXACT_BALLS = false;
-// Exact point lights (kLightExactPoint): directions along the geodesics to
-// the light from sol_connection.glsl, seeded by the table in kBindingSeeds.
-layout(constant_id = kSpecExactLights) const bool HAS_EXACT_LIGHTS = false;
 // Exact point lights with a reach (the longer connections): only they look
 // for the partners of connections near a fold (sol_connections), code that
 // costs the kernel even where it never runs.
-layout(constant_id = kSpecLightReach) const bool HAS_LIGHT_REACH = false;
 #define SOL_FOLD_PARTNERS HAS_LIGHT_REACH
 // Without a reach a light's search keeps the minimisers (4 slots), with one
 // every connection found (sol_connection.glsl): a separate build of this
@@ -53,19 +45,6 @@ layout(constant_id = kSpecLightReach) const bool HAS_LIGHT_REACH = false;
 #else
 #define SOL_FOUND_SLOTS 4
 #endif
-// Equirectangular or fisheye eyes (a uniform says which): compiled in only
-// for them, so the perspective kernels keep their cost.
-layout(constant_id = kSpecProjections) const bool HAS_PROJECTIONS = false;
-// Omnidirectional stereo eyes: each column's rays start at its own eye
-// (kBindingColumns); compiled in only for them.
-layout(constant_id = kSpecOds) const bool HAS_ODS = false;
-// Shadows of exact point lights (params.light_shadows): compiled in only for them.
-layout(constant_id = kSpecShadows) const bool HAS_SHADOWS = false;
-// The deferred passes (sol/vk/march_interface.h, docs/renderer.md): which
-// pass this pipeline runs, and what its march pass leaves to the others.
-layout(constant_id = kSpecPass) const int PASS = kPassMarch;
-layout(constant_id = kSpecDeferShading) const bool DEFER_SHADING = false;
-layout(constant_id = kSpecResume) const bool RESUME_WORLD = false;
 // (Only the Sol march, with the closed form, stops at exact balls' shells.)
 const bool DEFER_EXACT = RESUME_WORLD && HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0;
 // The quotient's march pass leaves the rays of μ below kZetaLeastMu to the

@@ -133,28 +133,33 @@ struct Surface {
 Surface surface_at(MarchHit h) {
   Surface f;
   const vec3 q = h.q;
-  if (QUOTIENT) {
-    const vec4 geom = images[h.k].geometry, info = images[h.k].info;
-    const vec2 heading = images[h.k].heading.xy;
-    const int type = image_type(images[h.k]);
-    f.object = int(info.z);
-    f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == h.k
-              ? exact_ball_normal(h.exact_end)
-              : plane_normal(type, q, geom.x, geom, heading, info.y, h.from);
-    // Planes z = c: their own coordinates are (x, y); balls, tubes: the image's own.
-    f.uv = type >= kObjectBall ? solid_coordinates(type, q, geom, heading, info.y) : q.xy;
+  int type;
+  vec4 rel;
+  vec2 heading;
+  float radius;
+  vec3 phase;
+  if (QUOTIENT) {  // the image's record, in world coordinates
+    const Image m = images[h.k];
+    type = image_type(m);
+    rel = m.geometry;
+    heading = m.heading.xy;
+    radius = m.info.y;
+    phase = q;
+    f.object = int(m.info.z);
     f.world = q;
-    return f;
+  } else {  // the object's, relative to the eye
+    type = g_types[h.k];
+    rel = g_relative[h.k];
+    heading = g_headings[h.k];
+    radius = g_radii[h.k];
+    phase = pattern_phase(q, g_eye_camera, g_eye_frac);
+    f.object = h.k;
+    // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z).
+    f.world = g_eye_camera.xyz + vec3(g_eye_camera.w * q.x, g_eye_frac.w * q.y, q.z);
   }
-  const int k = h.k, type = g_types[k];
-  f.object = k;
-  f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == k
-            ? exact_ball_normal(h.exact_end)
-            : plane_normal(type, q, g_constants[k], g_relative[k], g_headings[k], g_radii[k], h.from);
-  f.uv = (HAS_BALLS && type >= kObjectBall) ? solid_coordinates(type, q, g_relative[k], g_headings[k], g_radii[k])
-                                            : plane_coordinates(type, q, g_eye_camera, g_eye_frac);
-  // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z).
-  f.world = g_eye_camera.xyz + vec3(g_eye_camera.w * q.x, g_eye_frac.w * q.y, q.z);
+  f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == h.k ? exact_sphere_normal(h.exact_end)
+                                                                         : object_normal(type, q, rel, heading, radius, h.from);
+  f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;
 }
 
@@ -176,15 +181,12 @@ void shade_pass() {
   vec2 uv;
   if (QUOTIENT) {
     const Image m = images[index];
-    const int type = image_type(m);
     k = int(m.info.z);
-    uv = type >= kObjectBall ? solid_coordinates(type, q, m.geometry, m.heading.xy, m.info.y) : q.xy;
+    uv = object_pattern_uv(image_type(m), q, q, m.geometry, m.heading.xy, m.info.y);
   } else {
-    const int type = int(params.objects[k].plane.x);
-    uv = (HAS_BALLS && type >= kObjectBall)
-             ? solid_coordinates(type, q, params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy,
-                                 params.objects[k].plane.y)
-             : plane_coordinates(type, q, params.eyes[eye].camera, params.eyes[eye].camera_frac);
+    uv = object_pattern_uv(int(params.objects[k].plane.x), q,
+                           pattern_phase(q, params.eyes[eye].camera, params.eyes[eye].camera_frac),
+                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, params.objects[k].plane.y);
     if (HAS_SHADOWS) load_objects(eye);
   }
   const vec4 color = shade_hit(k, n, uv, t, q, eye);

@@ -9,6 +9,8 @@
 #ifndef SOL_KERNEL_CONSTANTS_H
 #define SOL_KERNEL_CONSTANTS_H
 
+#include "sol/object_kinds.h"
+
 #ifdef __cplusplus
 #define SOL_CONSTANT(type, name, value) inline constexpr type name = value
 #define SOL_REAL double
@@ -59,12 +61,10 @@ SOL_CONSTANT(SOL_REAL, kQuotientOverRelax, 1.6);
 SOL_CONSTANT(SOL_REAL, kFieldRounding, 1e-4);
 
 // ---- Object, pattern and light codes of the kernels' scene description
-SOL_CONSTANT(int, kObjectPlaneX, 0);
-SOL_CONSTANT(int, kObjectPlaneY, 1);
-SOL_CONSTANT(int, kObjectPlaneZ, 2);
-SOL_CONSTANT(int, kObjectBall, 3);       ///< a ball drawn with its distance bound
-SOL_CONSTANT(int, kObjectTube, 4);
-SOL_CONSTANT(int, kObjectExactBall, 5);  ///< a ball drawn as the true geodesic sphere
+// The objects' codes: kObjectPlaneX, ..., one per line of SOL_OBJECT_KINDS.
+#define SOL_KIND_CODE(Type, code_name, code, prefix, feature, solid) SOL_CONSTANT(int, code_name, code);
+SOL_OBJECT_KINDS(SOL_KIND_CODE)
+#undef SOL_KIND_CODE
 /// The axis code of a vertical tube (any other code: horizontal, along its heading).
 SOL_CONSTANT(int, kTubeVertical, 2);
 

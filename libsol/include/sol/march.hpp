@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/kernel_constants.h"
+#include "sol/march_features.h"
 #include "sol/objects.hpp"
 #include "sol/scene.hpp"
 
@@ -95,24 +96,13 @@ std::vector<MarchObject> quotient_images(const World& world);
 double quotient_max_step(const World& world);
 
 /// What a world uses, for the march's short cuts and the kernels'
-/// specialisation constants.
+/// specialisation constants: a flag per line of SOL_MARCH_FEATURES
+/// (sol/march_features.h, which says what each means), and the CPU's own.
 struct MarchFeatures {
-  bool quotient = false;      ///< the compact quotient Γ\Sol
-  bool heights_only = false;  ///< every object a plane z = c (not in the quotient): the march needs z alone
-  bool solids = false;        ///< balls or tubes
-  bool bound_balls = false;   ///< balls drawn with their bound (not exact)
-  bool tubes = false;
-  bool planes_z = false;      ///< planes z = c
-  bool planes_xy = false;     ///< planes x = c or y = c
-  bool planes_xy_only = false;  ///< every object a plane x = c or y = c: once their crossing is solved, nothing to march
-  bool point_lights = false;
-  bool fog = false;
-  bool cutout = false;        ///< cutout planes
-  bool cutout_gaps = false;   ///< cutout planes z = c: their gap bounds need the full position
-  bool exact_balls = false;
-  bool exact_lights = false;
-  bool light_reach = false;   ///< exact point lights with a reach: the longer connections (and the kernel's fold partners)
-  bool shadows = false;       ///< exact point lights with shadows
+#define SOL_FEATURE_MEMBER(member, constant, id) bool member = false;
+  SOL_MARCH_FEATURES(SOL_FEATURE_MEMBER)
+#undef SOL_FEATURE_MEMBER
+  bool cutout_gaps = false;  ///< cutout planes z = c: their gap bounds need the full position (the CPU's march)
 };
 MarchFeatures features_of(const World& world);
 

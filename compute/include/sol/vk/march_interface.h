@@ -12,6 +12,7 @@
 #define SOL_MARCH_INTERFACE_H
 
 #include "sol/kernel_constants.h"
+#include "sol/march_features.h"
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -35,29 +36,22 @@ SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' C
 SOL_CONSTANT(int, kBindingLightImages, 9);  ///< storage buffer: the quotient's light images (vec4, xyz world)
 SOL_CONSTANT(int, kBindingQueue, 10);       ///< storage buffer: the deferred passes' lists (QueueHeader, then records)
 
-// ---- Specialisation constants: what a scene uses is compiled in, the rest folded away
+// ---- Specialisation constants: what a scene uses is compiled in, the rest
+// folded away. The world's features are sol/march_features.h (their ids
+// there); these choose the kernel's variant per frame (its outputs, its
+// eyes, its passes).
 SOL_CONSTANT(int, kSpecIntegrator, 0);      ///< int: 0 the closed form, 1 RK4
-SOL_CONSTANT(int, kSpecHeightsOnly, 1);     ///< bool: every object a plane z = c
-SOL_CONSTANT(int, kSpecBalls, 2);           ///< bool: balls or tubes (the solids' shading)
-SOL_CONSTANT(int, kSpecPointLights, 3);     ///< bool
-SOL_CONSTANT(int, kSpecFog, 4);             ///< bool
-SOL_CONSTANT(int, kSpecCutout, 5);          ///< bool: cutout planes
-SOL_CONSTANT(int, kSpecQuotient, 6);        ///< bool: the compact quotient Γ\Sol
-SOL_CONSTANT(int, kSpecWriteAovs, 7);       ///< bool: write bindings 2 and 3
-SOL_CONSTANT(int, kSpecExactBalls, 8);      ///< bool: exact balls (binding 5)
-SOL_CONSTANT(int, kSpecExactLights, 9);     ///< bool: exact point lights (binding 6)
-SOL_CONSTANT(int, kSpecBoundBalls, 10);     ///< bool: balls drawn with their bound
-SOL_CONSTANT(int, kSpecTubes, 11);          ///< bool: tubes
-SOL_CONSTANT(int, kSpecPlanesXY, 12);       ///< bool: planes x = c or y = c
-SOL_CONSTANT(int, kSpecProjections, 13);    ///< bool: an eye's projection is equirectangular or fisheye
-SOL_CONSTANT(int, kSpecOds, 14);            ///< bool: omnidirectional stereo eyes (binding 8)
-SOL_CONSTANT(int, kSpecShadows, 15);        ///< bool: exact point lights with shadows (Params::light_shadows)
-SOL_CONSTANT(int, kSpecPlanesXYOnly, 16);   ///< bool: every object a plane x = c or y = c (needs kSpecPlanesXY)
-SOL_CONSTANT(int, kSpecLightReach, 17);     ///< bool: exact point lights with a reach (needs kSpecExactLights)
 SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline runs (kPass*)
-SOL_CONSTANT(int, kSpecDeferShading, 19);   ///< bool: hits are shaded by the shade pass (exact lights)
-SOL_CONSTANT(int, kSpecResume, 20);         ///< bool: the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient)
-SOL_CONSTANT(int, kSpecPlanesZ, 21);        ///< bool: planes z = c
+/// The variant's flags, each X(member of the host's KernelVariant, the
+/// kernel's boolean constant, its id), as SOL_MARCH_FEATURES.
+// clang-format off
+#define SOL_KERNEL_VARIANT_FLAGS(X)                                                                     \
+  X(aovs,          WRITE_AOVS,      7)  /* write the AOV images (bindings 2, 3); off for presenters */      \
+  X(projections,   HAS_PROJECTIONS, 13) /* an eye's projection is equirectangular or fisheye */             \
+  X(ods,           HAS_ODS,         14) /* omnidirectional stereo eyes (binding 8) */                       \
+  X(defer_shading, DEFER_SHADING,   19) /* hits shaded by the shade pass (exact lights) */                  \
+  X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */
+// clang-format on
 
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
 // everything. With it (docs/renderer.md "Deferred passes"), the march pass
@@ -183,6 +177,21 @@ struct Column {
 };
 
 #ifdef __cplusplus
+/// Every specialisation constant's id, the features' and the variant's.
+inline constexpr int kSpecIds[] = {
+#define SOL_SPEC_ID(member, constant, id) id,
+    SOL_MARCH_FEATURES(SOL_SPEC_ID) SOL_KERNEL_VARIANT_FLAGS(SOL_SPEC_ID)
+#undef SOL_SPEC_ID
+        kSpecIntegrator, kSpecPass};
+constexpr bool distinct_spec_ids() {
+  for (int a : kSpecIds) {
+    int n = 0;
+    for (int b : kSpecIds) n += a == b ? 1 : 0;
+    if (n != 1) return false;
+  }
+  return true;
+}
+static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
 static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
               "vec4 records");

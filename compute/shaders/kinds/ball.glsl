@@ -1,0 +1,78 @@
+// Balls in the kernels (libsol: sol/objects/ball.hpp): drawn with their
+// distance bound (ball) or as the true geodesic sphere (exact_ball, which
+// the march approaches by the same bound and finishes by its exact distance
+// within kExactShell: march/exact_balls.glsl). A ball's record: rel =
+// (centre, 0), radius; a quotient image's bound (centre, radius).
+#ifndef SOL_KINDS_BALL_GLSL
+#define SOL_KINDS_BALL_GLSL
+
+// A ball's bound (sol::ball_terms): the terms d_xz - r, d_yz - r with
+// S = sinh(d/2), d' = (S²)'/(S √(1 + S²)). Returns (distance bound,
+// clearance along u, clearance back along -u). The half exponentials of q.z (`hz`) and c.z (`hc`) come from
+// the caller (the quotient march takes q's once a step for all its
+// candidates, and each candidate's centre's; the Sol march keeps each
+// ball's per ray): no exponential and no division here but the slopes'.
+vec3 ball_bound_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
+  const float dx = q.x - c.x, dy = q.y - c.y;
+  const vec2 e = hz * hc, ec = hc * hc;  // e^{±(q.z + c.z)/2}, e^{±c.z}
+  const float e2 = e.x * e.x, ie2 = e.y * e.y;  // e^{q.z + c.z}, its inverse
+  const float sh = 0.5 * (hz.x * hc.y - hz.y * hc.x), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
+  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx * ie2, sh2 + 0.25 * dy * dy * e2);
+  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x * ec.y - 0.25 * dx * dx * ie2 * u.z,
+                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec.x + 0.25 * dy * dy * e2 * u.z);
+  const vec2 s = sqrt(s2), root = sqrt(1.0 + s2);
+  const vec2 h = 2.0 * log(s + root) - radius;  // 2 asinh s
+  const vec2 slope = rate / max(s * root, 1e-30);
+  const float distance = max(h.x, h.y);
+  return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
+}
+
+// ---- ball: sol::sdf_ball, the distance lower bound to the centre less the radius
+
+float ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return distance_lower_bound(q, rel.xyz, hz, hc) - radius;
+}
+
+vec3 ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return ball_bound_clearances(q, u, rel.xyz, radius, hz, hc);
+}
+
+vec3 ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  return ball_bound_clearances(q, u, b.xyz, b.w, hz, half_exp(b.z));
+}
+
+// The bound's gradient by central differences (as the CPU reference).
+vec3 ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  return solid_normal(kObjectBall, q, rel, heading, radius);
+}
+
+// With w = centre⁻¹·q, (4/π)(longitude atan2(w_y, w_x), latitude atan2(w_z, |w_xy|)).
+vec2 ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  const vec3 w = solid_relative(q, rel);
+  return kPatternCellsPerRadian * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
+}
+
+// ---- exact_ball: approached as a ball; its exact distance, normal and
+// clearance near the sphere are march/exact_balls.glsl's
+
+float exact_ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return ball_distance(q, rel, heading, radius, hz, hc);
+}
+
+vec3 exact_ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return ball_clearances(q, u, rel, heading, radius, hz, hc);
+}
+
+vec3 exact_ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) { return ball_record_clearances(q, u, m, hz); }
+
+// Where the march's last exact solve did not reach this ball: the bound's.
+vec3 exact_ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  return solid_normal(kObjectExactBall, q, rel, heading, radius);
+}
+
+vec2 exact_ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  return ball_pattern_uv(q, phase, rel, heading, radius);
+}
+
+#endif  // SOL_KINDS_BALL_GLSL

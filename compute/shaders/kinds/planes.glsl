@@ -1,0 +1,84 @@
+// The planes x = c, y = c and z = c in the kernels (libsol: sol/objects/planes.hpp).
+// Each kind's functions, as compute/shaders/kinds/kinds.glsl lists them;
+// a plane's record holds c in its first word (rel, and a quotient image's
+// bound: (c, 0, 0, 0)).
+#ifndef SOL_KINDS_PLANES_GLSL
+#define SOL_KINDS_PLANES_GLSL
+
+// ---- plane_x: asinh(|x - c| e^{-z}), a totally geodesic hyperbolic plane
+
+float plane_x_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return asinh(abs(q.x - rel.x) * hz.y * hz.y);
+}
+
+// (The march solves its crossing instead, plane_roots.glsl: its distance alone.)
+vec3 plane_x_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return vec3(plane_x_distance(q, rel, heading, radius, hz, hc));
+}
+
+vec3 plane_x_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  return plane_x_clearances(q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));
+}
+
+// The unit gradient of the distance at the hit q, facing the side of
+// `from`, the ray's (segment's) start: the march stops within hit_epsilon,
+// possibly just across the plane. Mirrors sol::PlaneX::normal.
+vec3 plane_x_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  const float c = rel.x;
+  float side = from.x >= c ? 1.0 : -1.0;
+  float w = abs(q.x - c) * exp(-q.z), r = inversesqrt(1.0 + w * w);
+  return vec3(side * r, 0.0, -w * r);
+}
+
+// Its own coordinates (y, z) of the world point (`phase`: modulo 2).
+vec2 plane_x_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.yz; }
+
+// ---- plane_y: asinh(|y - c| e^{z})
+
+float plane_y_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return asinh(abs(q.y - rel.x) * hz.x * hz.x);
+}
+
+vec3 plane_y_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return vec3(plane_y_distance(q, rel, heading, radius, hz, hc));
+}
+
+vec3 plane_y_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  return plane_y_clearances(q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));
+}
+
+vec3 plane_y_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  const float c = rel.x;
+  float side = from.y >= c ? 1.0 : -1.0;
+  float w = abs(q.y - c) * exp(q.z), r = inversesqrt(1.0 + w * w);
+  return vec3(0.0, side * r, w * r);
+}
+
+vec2 plane_y_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.xz; }
+
+// ---- plane_z: |z - c|, flat
+
+float plane_z_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) { return abs(q.z - rel.x); }
+
+// Its one term |z - c| bends by at most 1 along a geodesic (z'' = u2² - u1²):
+// clearance_roots of it, ahead and back.
+vec3 plane_z_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  const float d = plane_z_distance(q, rel, heading, radius, hz, hc);
+  const float rate = q.z >= rel.x ? u.z : -u.z;
+  return vec3(d, max(vec2(d), clearance_roots(d, rate)));
+}
+
+vec3 plane_z_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  return plane_z_clearances(q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));
+}
+
+vec3 plane_z_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  return vec3(0.0, 0.0, from.z >= rel.x ? 1.0 : -1.0);
+}
+
+vec2 plane_z_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.xy; }
+
+#endif  // SOL_KINDS_PLANES_GLSL

@@ -1,0 +1,99 @@
+// Tubes in the kernels (libsol: sol/objects/tube.hpp): the points within
+// a radius of a vertical line or of a horizontal one along a unit
+// coordinate direction h. A tube's record: rel = (point of the axis, axis
+// code: kTubeVertical or not), heading = h, radius; a quotient image's
+// bound the four words of tube_record_clearances.
+#ifndef SOL_KINDS_TUBE_GLSL
+#define SOL_KINDS_TUBE_GLSL
+
+// Tubes: the bounds of sol::sdf_tube (axis z: the two coordinate planes
+// containing it) and sol::sdf_tube_horizontal (a horizontal line along the
+// unit coordinate direction h: max(|Δz|, asinh(|h_y Δx - h_x Δy| / (|h_x| e^{-z} + |h_y| e^{z})))).
+float tube_bound(vec3 q, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
+  const vec3 d = q - through;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
+  if (axis == kTubeVertical) return max(asinh(abs(d.x) * iez), asinh(abs(d.y) * ez)) - radius;
+  const float across = abs(h.y * d.x - h.x * d.y) / (abs(h.x) * iez + abs(h.y) * ez);
+  return max(asinh(across), abs(d.z)) - radius;
+}
+
+// A tube's bound (sol::tube_terms): vertical, the slabs around x = x0 and
+// y = y0; horizontal along h, the z slab and the across term asinh|G|,
+// G = (h_y Δx - h_x Δy)/(|h_x| e^{-z} + |h_y| e^{z}) (a slab's along x or
+// y); every term bends by at most 1. Returns (distance bound, clearance
+// along u, clearance back along -u).
+vec3 tube_bound_clearances(vec3 q, vec3 u, vec3 through, int axis, vec2 h, float radius, vec2 hz) {
+  // Both forms have two terms; the first is asinh(w) - r for either (w the
+  // slab's |Δx| e^{-z}, or |G|), its slope w'/√(1 + w²), so one asinh
+  // serves both: the inputs are chosen first (lavapipe runs both sides of
+  // every choice, so a shared evaluation is cheaper than two).
+  const bool vertical = axis == kTubeVertical;
+  const vec3 d = q - through;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}, from the caller's half exponentials
+  const float inv_D = 1.0 / (abs(h.x) * iez + abs(h.y) * ez);
+  const float G = (h.y * d.x - h.x * d.y) * inv_D;
+  const float rate_G = ((h.y * ez * u.x - h.x * iez * u.y) - G * (abs(h.y) * ez - abs(h.x) * iez) * u.z) * inv_D;
+  const float wx = abs(d.x) * iez, rate_wx = (d.x >= 0.0 ? u.x : -u.x) - wx * u.z;
+  const float wa = vertical ? wx : abs(G), rate_a = vertical ? rate_wx : (G >= 0.0 ? rate_G : -rate_G);
+  const float wy = abs(d.y) * ez, rate_wy = (d.y >= 0.0 ? u.y : -u.y) + wy * u.z;
+  const vec2 w = vec2(wa, wy);  // >= 0
+  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
+  const vec2 hw = log(w + root) - radius;
+  const vec2 sw = vec2(rate_a, rate_wy) / root;
+  // The second term: the slab around y = y0 (vertical), or |Δz| - r.
+  const float hb = vertical ? hw.y : abs(d.z) - radius, sb = vertical ? sw.y : (d.z >= 0.0 ? u.z : -u.z);
+  const float distance = max(hw.x, hb);
+  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+}
+
+// A quotient image's tube bound from its record (Image::bound: the radius
+// in the scale of h, the axis in the first word's sign). Both forms are
+// two terms, the first asinh|G| - r, G = (h_y x - h_x y - c)/(|h_x| e^{-z}
+// + |h_y| e^{z}): a vertical tube's slab around x = x0 is that term with
+// h = (0, 1), c = x0, its second the slab around y = y0; a horizontal
+// tube's second is |z - z0| - r. As tube_clearances, in four words.
+vec3 tube_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  const bool vertical = b.x < 0.0;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}
+  const float hx = vertical ? 0.0 : b.x, hy = vertical ? 1.0 : b.y, c = vertical ? b.y : b.z;  // hx >= 0
+  const float radius = vertical ? -b.x : b.x + abs(b.y);
+  const float inv_D = 1.0 / (hx * iez + abs(hy) * ez);
+  const float G = (hy * q.x - hx * q.y - c) * inv_D;
+  const float rate_G = ((hy * ez * u.x - hx * iez * u.y) - G * (abs(hy) * ez - hx * iez) * u.z) * inv_D;
+  const float dy = q.y - b.z;  // vertical: the slab around y = y0
+  const float wy = abs(dy) * ez, rate_wy = (dy >= 0.0 ? u.y : -u.y) + wy * u.z;
+  const vec2 w = vec2(abs(G), wy);
+  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w = log(w + root) and its slope
+  const vec2 hw = log(w + root) - radius;
+  const vec2 sw = vec2(G >= 0.0 ? rate_G : -rate_G, rate_wy) / root;
+  const float dz = q.z - b.w;
+  const float hb = vertical ? hw.y : abs(dz) - radius, sb = vertical ? sw.y : (dz >= 0.0 ? u.z : -u.z);
+  const float distance = max(hw.x, hb);
+  return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
+}
+
+float tube_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return tube_bound(q, rel.xyz, int(rel.w), heading, radius, hz);
+}
+
+vec3 tube_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return tube_bound_clearances(q, u, rel.xyz, int(rel.w), heading, radius, hz);
+}
+
+// The bound's gradient by central differences (as the CPU reference).
+vec3 tube_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  return solid_normal(kObjectTube, q, rel, heading, radius);
+}
+
+// With w = through⁻¹·q, (4/π)(angle around the axis, coordinate along it / radius).
+vec2 tube_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  const float cells = kPatternCellsPerRadian;
+  const float ez = exp(rel.z);
+  const vec3 w = solid_relative(q, rel);
+  if (int(rel.w) == kTubeVertical) return cells * vec2(atan(w.y, w.x), w.z / radius);
+  const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
+  return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
+}
+
+#endif  // SOL_KINDS_TUBE_GLSL

@@ -1,0 +1,93 @@
+#include "sol/objects/ball.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include <glm/geometric.hpp>
+
+#include "../field_error.hpp"
+#include "../objects_internal.hpp"
+#include "sol/clearance.hpp"
+#include "sol/distance.hpp"
+#include "sol/group.hpp"
+#include "sol/kernel_constants.h"
+#include "sol/lattice.hpp"
+#include "sol/connection.hpp"
+
+namespace sol {
+
+using namespace detail;
+
+// ---- Ball ----------------------------------------------------------------
+
+double Ball::distance(const glm::dvec3& q) const {
+  return exact ? sdf_ball_exact(q, center, radius) : sdf_ball(q, center, radius);
+}
+
+// The exact ball lies inside the bound's ball: its clearance serves both.
+std::array<BoundTerm, 2> Ball::clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return ball_terms(q, u, center, radius);
+}
+
+glm::dvec3 Ball::normal(const glm::dvec3& q) const {
+  if (exact) {
+    try {
+      return sdf_ball_exact_gradient(q, center);  // the true sphere's normal
+    } catch (const OutOfRange&) {
+    }
+  }
+  return gradient_normal(*this, q);
+}
+
+glm::dvec2 Ball::pattern_uv(const glm::dvec3& q) const {
+  constexpr double kCells = kernel::kPatternCellsPerRadian;  // 8 cells per turn
+  const glm::dvec3 w = multiply(inverse(center), q);
+  return {kCells * std::atan2(w.y, w.x), kCells * std::atan2(w.z, std::hypot(w.x, w.y))};
+}
+
+Ball Ball::seen_from(const glm::dvec3& p) const { return {multiply(inverse(p), center), radius, exact}; }
+
+KernelShape Ball::kernel_shape() const {
+  return {.code = exact ? kernel::kObjectExactBall : kernel::kObjectBall,
+          .geometry = {center, 0.0},
+          .radius = radius,
+          .bound = {center, radius}};
+}
+
+Ball Ball::into_domain(const Lattice& lattice) const { return {lattice.teleport(center).point, radius, exact}; }
+
+double Ball::least_distance_over_domain(const Lattice& lattice) const {
+  return least_solid_bound(Solid::Ball, center, {0.0, 0.0}, lattice) - radius;
+}
+
+int Ball::lattice_range() const { return kQuotientLatticeRange; }
+
+bool Ball::same_set(const Ball& other) const { return glm::length(center - other.center) < kSameSetTolerance; }
+
+// ---- Checks and scene-file keys
+
+namespace detail {
+
+void check_kind(const Ball& b, const std::string& at, bool quotient) {
+  check_position(b.center, at + ".center");
+  check_radius(b.radius, at, quotient);
+}
+
+void read_kind(Ball& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at) {
+  const std::string what = at + " (a ball)";
+  r.require_known_keys(o, {"type", "center", "radius", "color", "pattern", "exact"}, what, at);
+  r.require_key(o, "center", what, "a 'center'", at);
+  r.require_key(o, "radius", what, "a 'radius'", at);
+  b.center = r.vec3(o["center"], at + ".center");
+  b.radius = r.number(o["radius"], at + ".radius");
+  if (o.contains("exact")) b.exact = r.boolean(o["exact"], at + ".exact");
+}
+
+json write_kind(const Ball& b, const SceneObject&) {
+  return {{"center", to_json(b.center)}, {"radius", b.radius}, {"exact", b.exact}};
+}
+
+}  // namespace detail
+}  // namespace sol
