@@ -51,7 +51,10 @@ render() {  # NAME, then solrender's arguments
     failed=1
   fi
 }
-scenes=(plane sandwich sheets lattice-balls lattice-pillars spheres)
+# The build's presets, as its --help lists them ("a preset (plane, sandwich, ...)").
+presets=$("$solrender" --help | sed -n 's/.*a preset (\([^)]*\)).*/\1/p' | head -n 1 | tr -d ',')
+[ -n "$presets" ] || { echo "render_reference: no presets in $solrender --help" >&2; exit 2; }
+scenes=($presets)
 while IFS= read -r f; do scenes+=("$f"); done < <(cd "$root" && find docs -name '*.json' ! -path 'docs/paths/*' | sort)
 for s in "${scenes[@]}"; do
   name=$(echo "$s" | tr '/' '-')
@@ -63,7 +66,7 @@ for s in "${scenes[@]}"; do
   done
 done
 # The kernel's other modes, on the presets.
-for s in plane sandwich sheets lattice-balls lattice-pillars spheres; do
+for s in $presets; do
   render "$s.stereo" --scene "$s" --device vulkan --width "$w" --height "$h" --stereo
   render "$s.panorama" --scene "$s" --device vulkan --width $((2 * h)) --height "$h" --projection equirectangular
   render "$s.ods" --scene "$s" --device vulkan --width $((2 * h)) --height "$h" --projection equirectangular --stereo

@@ -23,7 +23,7 @@
 namespace {
 
 using glm::dvec3;
-using Terms = std::array<sol::BoundTerm, 2>;
+using Terms = std::vector<sol::BoundTerm>;
 using Reference = sol::test::ReferenceGeodesic<double>;
 
 // An object's bound as sol/distance.hpp writes it, and the clearance's terms.
@@ -34,16 +34,33 @@ struct Solid {
   std::function<Terms(const dvec3&, const dvec3&)> terms;
 };
 
+template <std::size_t N>
+Terms as_terms(const std::array<sol::BoundTerm, N>& terms) {
+  return Terms(terms.begin(), terms.end());
+}
+
+// sol::clearance of the terms (whatever their number).
+double clearance_of(const Terms& terms) {
+  switch (terms.size()) {
+    case 2:
+      return sol::clearance(std::array<sol::BoundTerm, 2>{terms[0], terms[1]});
+    case 3:
+      return sol::clearance(std::array<sol::BoundTerm, 3>{terms[0], terms[1], terms[2]});
+  }
+  ADD_FAILURE() << terms.size() << " terms";
+  return 0.0;
+}
+
 std::vector<Solid> solids() {
   std::vector<Solid> out;
   for (const auto& [centre, r] : {std::pair{dvec3(0.3, -0.2, 0.4), 0.25}, std::pair{dvec3(1.0, 2.0, -1.0), 0.6},
                                   std::pair{dvec3(-0.5, 0.7, 1.5), 0.05}}) {
     out.push_back({"ball r " + std::to_string(r), centre, [=](const dvec3& p) { return sol::sdf_ball(p, centre, r); },
-                   [=](const dvec3& p, const dvec3& u) { return sol::ball_terms(p, u, centre, r); }});
+                   [=](const dvec3& p, const dvec3& u) { return as_terms(sol::ball_terms(p, u, centre, r)); }});
   }
   const dvec3 through(0.2, 0.1, 0.3);
   out.push_back({"vertical tube", through, [=](const dvec3& p) { return sol::sdf_tube(p, through, 2, 0.06); },
-                 [=](const dvec3& p, const dvec3& u) { return sol::tube_terms(p, u, through, true, {0, 0}, 0.06); }});
+                 [=](const dvec3& p, const dvec3& u) { return as_terms(sol::tube_terms(p, u, through, true, {0, 0}, 0.06)); }});
   const double phi = sol::kernel::kPhi;
   for (const auto& [name, h] : {std::pair{"tube along x", glm::dvec2(1, 0)}, std::pair{"tube along y", glm::dvec2(0, -1)},
                                 std::pair{"tube along gamma1", glm::normalize(glm::dvec2(phi, -1))},
@@ -51,8 +68,15 @@ std::vector<Solid> solids() {
     for (const double r : {0.06, 0.3}) {
       out.push_back({std::string(name) + " r " + std::to_string(r), through,
                      [=](const dvec3& p) { return sol::sdf_tube_horizontal(p, through, h, r); },
-                     [=](const dvec3& p, const dvec3& u) { return sol::tube_terms(p, u, through, false, h, r); }});
+                     [=](const dvec3& p, const dvec3& u) { return as_terms(sol::tube_terms(p, u, through, false, h, r)); }});
     }
+  }
+  // Boxes: three slabs' terms (sol::Box::clearance_terms), their maximum the
+  // bound sol::Box::distance, checked against sol::distance in box_test.cpp.
+  for (const sol::Box& box : {sol::Box{through, {0.25, 0.15, 0.2}}, sol::Box{dvec3(1.0, 2.0, -1.2), {0.6, 0.1, 0.35}},
+                              sol::Box{dvec3(-0.5, 0.7, 1.5), {0.05, 0.4, 0.1}}}) {
+    out.push_back({"box at z " + std::to_string(box.center.z), box.center, [=](const dvec3& p) { return box.distance(p); },
+                   [=](const dvec3& p, const dvec3& u) { return as_terms(box.clearance_terms(p, u)); }});
   }
   // Planes: one term each (the second a copy, so the maximum is the same).
   out.push_back({"plane z", through, [=](const dvec3& p) { return sol::sdf_plane_z(p, through.z); },
@@ -113,12 +137,14 @@ TEST(Clearance, TermsAreTheBoundWithTheirRatesAndBends) {
     for (int n = 0; n < 400; ++n) {
       const dvec3 p = random_point(rng, solid.near, 0.8), u = random_unit(rng);
       const Terms terms = solid.terms(p, u);
-      worst_value = std::max(worst_value, std::abs(std::max(terms[0].value, terms[1].value) - solid.bound(p)));
+      double largest = terms[0].value;
+      for (const sol::BoundTerm& h : terms) largest = std::max(largest, h.value);
+      worst_value = std::max(worst_value, std::abs(largest - solid.bound(p)));
       // The terms at ±δ and ±2δ along the reference geodesic through p.
       Reference geodesic(p, u, false, 1e-13);
       std::array<Terms, 5> at;
       for (int k = -2; k <= 2; ++k) at[k + 2] = solid.terms(geodesic.at(k * kDelta).position, u);
-      for (int i = 0; i < 2; ++i) {
+      for (std::size_t i = 0; i < terms.size(); ++i) {
         const double m2 = at[0][i].value, m1 = at[1][i].value, c = at[2][i].value, p1 = at[3][i].value,
                      p2 = at[4][i].value;
         // Skip a kink of |.| within the stencil (the two one-sided rates disagree).
@@ -227,7 +253,7 @@ TEST(Clearance, NeverReachesTheObjectAndOutrunsTheBoundBesideIt) {
                       (solid.bound(p + dvec3(0, 0, h)) - b) / h);
         if (glm::length(g) > 0.0) u = glm::normalize(u - glm::dot(u, g) / glm::dot(g, g) * g);
       }
-      const double clear = sol::clearance(solid.terms(p, u));
+      const double clear = clearance_of(solid.terms(p, u));
       ASSERT_GE(clear, b - 1e-15) << solid.name;
       ++samples;
       longer += clear > 2.0 * b;
@@ -304,6 +330,7 @@ TEST(Clearance, BothWaysAreTheClearancesAlongTheTangentAndItsReverse) {
       {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.06)},
       {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.06)},
       {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3)},
+      {"box", sol::Box{through, {0.25, 0.15, 0.2}}},
   };
   for (const auto& [name, shape] : shapes) {
     int differ = 0;  // back and ahead differ: the test sees two directions

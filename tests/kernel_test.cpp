@@ -17,6 +17,7 @@
 #include <sol/vk/march_interface.h>
 
 #include "srgb.hpp"
+#include "support/boxes.hpp"
 #include "support/directions.hpp"
 #include "support/extremes.hpp"
 #include "support/kernel.hpp"
@@ -544,6 +545,45 @@ TEST(Kernel, FoldedSpecialisationRendersTheDriversImage) {
     int hits = 0;
     for (float o : a.object) hits += o > 0.0f;
     EXPECT_GT(hits, static_cast<int>(a.object.size()) / 10) << name << ": a picture to compare";
+  }
+  expect_no_validation_errors();
+}
+
+// Boxes (sol::Box) in the kernel: in Sol (seen from beside the box and
+// from inside the slab of its x faces) and in the quotient (lattice-boxes),
+// every hit lies on a face of the coordinate box [x0 ± a e^{z0}] x
+// [y0 ± b e^{-z0}] x [z0 ± c] within 1e-4 in Sol distance (hit_epsilon
+// 5e-5, up to √3 times that near an edge, and float rounding of the hit
+// point), and the kernel's image is the CPU renderer's within the
+// tolerances of float against double (a silhouette or pattern-edge pixel
+// may go either way: at most 1% of pixels).
+TEST(Kernel, BoxesLieOnTheirFacesAndMatchTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Scene lattice = sol::preset_scene("lattice-boxes");
+  const struct {
+    const char* name;
+    sol::Scene scene;
+    std::vector<sol::Box> boxes;
+  } cases[] = {
+      {"box", sol::test::box_scene(), {std::get<sol::Box>(sol::test::box_scene().objects[0].shape)}},
+      {"box from its slab", sol::test::box_scene_from_its_slab(),
+       {std::get<sol::Box>(sol::test::box_scene_from_its_slab().objects[0].shape)}},
+      {"lattice-boxes", lattice, sol::test::box_images(lattice)},
+  };
+  for (const auto& [name, scene, boxes] : cases) {
+    sol::RenderSettings settings;
+    settings.width = 40;
+    settings.height = 30;
+    const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+    const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+    const sol::test::FaceHits f = sol::test::hits_on_faces(gpu, boxes);
+    const Comparison c = compare(gpu, cpu);
+    std::printf("%s: kernel hits %d, farthest from a face %.2e; against the CPU: mask differs at %d of %d, colour at %d\n",
+                name, f.hits, f.farthest, c.mask_differs, c.pixels, c.color_differs);
+    EXPECT_GT(f.hits, c.pixels / 20) << name;
+    EXPECT_LT(f.farthest, 1e-4) << name;
+    EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+    EXPECT_LE(c.color_differs, c.pixels / 100) << name;
   }
   expect_no_validation_errors();
 }

@@ -210,7 +210,7 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
   if (!all_features) return world;
   MarchFeatures f = world;
   f.heights_only = false;
-  f.solids = f.bound_balls = f.tubes = f.planes_z = true;
+  f.solids = f.bound_balls = f.tubes = f.boxes = f.planes_z = true;
   f.planes_xy = !world.quotient;
   f.planes_xy_only = false;
   f.point_lights = f.fog = f.cutout = f.cutout_gaps = true;

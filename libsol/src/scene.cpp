@@ -67,7 +67,7 @@ bool uses_exact(const World& world) {
 }
 
 std::vector<std::string> preset_names() {
-  return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars", "spheres"};
+  return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars", "lattice-boxes", "spheres"};
 }
 
 Scene preset_scene(std::string_view name) {
@@ -108,6 +108,16 @@ Scene preset_scene(std::string_view name) {
     }
     s.fog_density = 1.0 / 5.0;
     s.max_distance = 10.0;
+    s.max_steps = 400;
+  } else if (name == "lattice-boxes") {
+    // A cube at the base point of M: in the cover, a cube at every point of
+    // Γ·o, the cube lattices other Sol renderers show, here one box.
+    // Looking along x + y, a little down, from inside the domain.
+    s.quotient = Quotient::Golden;
+    s.camera = {{0.9, 0.3, 0.45}, {1.0, 0.8, -0.3}, {0.0, 0.0, 1.0}, 90.0};
+    s.objects = {{Box{{0.0, 0.0, 0.0}, {0.15, 0.15, 0.15}}, {0.35, 0.65, 0.9}, Pattern::Checker}};
+    s.fog_density = 1.0 / 10.0;
+    s.max_distance = 12.0;
     s.max_steps = 400;
   } else if (name == "spheres") {
     // True geodesic spheres (exact balls) of radii 0.3 to 0.6 on, above and

@@ -21,5 +21,6 @@
 #include "planes.glsl"
 #include "ball.glsl"
 #include "tube.glsl"
+#include "box.glsl"
 
 #endif  // SOL_KINDS_GLSL

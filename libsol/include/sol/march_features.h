@@ -26,6 +26,7 @@
   X(bound_balls,    HAS_BOUND_BALLS,      10) /* balls drawn with their distance bound */                     \
   X(exact_balls,    HAS_EXACT_BALLS,      8)  /* balls drawn as the true geodesic sphere */                   \
   X(tubes,          HAS_TUBES,            11)                                                               \
+  X(boxes,          HAS_BOXES,            22)                                                               \
   X(planes_z,       HAS_PLANES_Z,         21) /* planes z = c */                                              \
   X(planes_xy,      HAS_PLANES_XY,        12) /* planes x = c or y = c */                                     \
   X(planes_xy_only, PLANES_XY_ONLY_WORLD, 16) /* every object a plane x = c or y = c: their crossing solved is the march */ \

@@ -37,7 +37,8 @@
   X(PlaneZ, kObjectPlaneZ,    2, plane_z,    planes_z,    false)              \
   X(Ball,   kObjectBall,      3, ball,       bound_balls, true)               \
   X(Tube,   kObjectTube,      4, tube,       tubes,       true)               \
-  X(Ball,   kObjectExactBall, 5, exact_ball, exact_balls, true)
+  X(Ball,   kObjectExactBall, 5, exact_ball, exact_balls, true)               \
+  X(Box,    kObjectBox,       6, box,        boxes,       true)
 // clang-format on
 
 #endif  // SOL_OBJECT_KINDS_H

@@ -14,6 +14,7 @@
 
 #include "sol/object_kinds.h"
 #include "sol/objects/ball.hpp"
+#include "sol/objects/box.hpp"
 #include "sol/objects/kind.hpp"
 #include "sol/objects/planes.hpp"
 #include "sol/objects/tube.hpp"
@@ -71,7 +72,7 @@ struct SceneObject {
 };
 
 /// The kinds that close up in the compact quotient (planes z = c, balls,
-/// tubes along γ1, γ2, γ3): those sol::quotient_images moves by Γ.
+/// tubes along γ1, γ2, γ3, boxes): those sol::quotient_images moves by Γ.
 template <class Kind>
 concept ClosesInQuotient = requires(const Kind& kind, const Lattice& lattice) {
   { kind.into_domain(lattice) } -> std::same_as<Kind>;
@@ -80,7 +81,8 @@ concept ClosesInQuotient = requires(const Kind& kind, const Lattice& lattice) {
   { kind.same_set(kind) } -> std::convertible_to<bool>;
 };
 
-/// Largest radius of a solid in a quotient scene: the proof that
+/// Largest radius of a solid in a quotient scene (boxes: the sum of their
+/// half sizes, which bounds the distance from the centre to every point): the proof that
 /// sol::quotient_images lists every image a step can reach assumes it
 /// (lattice words γ3^c with |c| <= 2 only, which holds while 2h - radius
 /// exceeds the longest quotient step, 0.9; and the widths of its search).

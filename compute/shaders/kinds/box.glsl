@@ -1,0 +1,59 @@
+// Boxes in the kernels (libsol: sol/objects/box.hpp): center · ([-a, a] x
+// [-b, b] x [-c, c]), the coordinate box [x0 ± A] x [y0 ± B] x [z0 ± c] with
+// A = a e^{z0}, B = b e^{-z0}. Its bound is the largest of the signed exact
+// distances to its three slabs, asinh(s_x e^{-z}), asinh(s_y e^{z}) and
+// s_z (s = |Δ| - half width), each the distance to a plane where positive,
+// which bends by at most 1 (sol/clearance.hpp). A box's record: rel =
+// (centre, c), heading = (A, B) in the record's coordinates (from double),
+// radius 0; a quotient image's bound (centre, c), its heading word (A, B).
+#ifndef SOL_KINDS_BOX_GLSL
+#define SOL_KINDS_BOX_GLSL
+
+// The bound's terms at q about `center` with half widths (A, B, c): (the
+// bound, its clearance along u, its clearance back along -u).
+vec3 box_bound_clearances(vec3 q, vec3 u, vec3 center, vec3 half_width, vec2 hz) {
+  const vec3 d = q - center;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;  // e^{±q.z}
+  const vec2 w = vec2((abs(d.x) - half_width.x) * iez, (abs(d.y) - half_width.y) * ez);
+  const vec2 root = sqrt(1.0 + w * w);  // shared by asinh w and its slope
+  const vec2 hw = sign(w) * log(abs(w) + root);  // asinh w, odd: no cancellation inside the slab
+  const vec2 sw = vec2((d.x >= 0.0 ? u.x : -u.x) - w.x * u.z, (d.y >= 0.0 ? u.y : -u.y) + w.y * u.z) / root;
+  const float hz_term = abs(d.z) - half_width.z, sz = d.z >= 0.0 ? u.z : -u.z;
+  const float distance = max(max(hw.x, hw.y), hz_term);
+  return vec3(distance, max(vec2(distance), max(max(clearance_roots(hw.x, sw.x), clearance_roots(hw.y, sw.y)),
+                                                  clearance_roots(hz_term, sz))));
+}
+
+float box_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return box_bound_clearances(q, vec3(0.0), rel.xyz, vec3(heading, rel.w), hz).x;
+}
+
+vec3 box_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return box_bound_clearances(q, u, rel.xyz, vec3(heading, rel.w), hz);
+}
+
+vec3 box_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  return box_bound_clearances(q, u, m.bound.xyz, vec3(m.heading.xy, m.bound.w), hz);
+}
+
+// The bound's gradient by central differences (as the CPU reference).
+vec3 box_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  return solid_normal(kObjectBox, q, rel, heading, radius);
+}
+
+// On the face nearest q (the slab whose term is largest, in the box's own
+// frame w = centre⁻¹·q, where its half widths are a, b, c), the two
+// coordinates of w along it, in cells of half the smallest half size.
+vec2 box_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  const vec3 w = solid_relative(q, rel);
+  const vec3 half_size = vec3(heading.x * exp(-rel.z), heading.y * exp(rel.z), rel.w);
+  const float tx = asinh((abs(w.x) - half_size.x) * exp(-w.z));
+  const float ty = asinh((abs(w.y) - half_size.y) * exp(w.z));
+  const float tz = abs(w.z) - half_size.z;
+  const float cells = 2.0 / min(min(half_size.x, half_size.y), half_size.z);
+  if (tx >= ty && tx >= tz) return cells * w.yz;
+  if (ty >= tz) return cells * w.xz;
+  return cells * w.xy;
+}
+
+#endif  // SOL_KINDS_BOX_GLSL
