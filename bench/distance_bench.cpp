@@ -113,7 +113,7 @@ void bench_render(benchmark::State& state, bool exact_balls, bool exact_light) {
   sol::Scene scene = sol::preset_scene("spheres");
   for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = exact_balls;
   scene.lights[0].exact = exact_light;
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 24;
   settings.threads = 1;

@@ -154,13 +154,12 @@ int main(int argc, char** argv) {
       std::vector<sol::RenderResult> results(names.size());
       for (const sol::Scene& scene : scenes) {
         renderers.push_back(std::make_unique<sol::vk::MarchRenderer>(context));
-        renderers.back()->render(scene, size, size);  // warm-up: shader compilation and caches
+        sol::render_scene(*renderers.back(), scene, {.width = size, .height = size});  // warm-up: shader compilation and caches
       }
       for (int k = 0; k < repeats; ++k) {
         for (std::size_t i = 0; i < names.size(); ++i) {
-          double ms = 0;
-          results[i] = renderers[i]->render(scenes[i], size, size, &ms);
-          bests[i] = std::min(bests[i], ms);
+          results[i] = sol::render_scene(*renderers[i], scenes[i], {.width = size, .height = size});
+          bests[i] = std::min(bests[i], results[i].device_ms);
         }
       }
       for (std::size_t i = 0; i < names.size(); ++i) {
@@ -170,11 +169,9 @@ int main(int argc, char** argv) {
         const sol::RenderResult& r = results[i];
         const double rays = static_cast<double>(size) * size;
         double best_general = 1e300;
-        if (!kernel_only) general.render(scene, size, size);  // warm-up
+        if (!kernel_only) sol::render_scene(general, scene, {.width = size, .height = size});  // warm-up
         for (int k = 0; k < (kernel_only ? 0 : repeats); ++k) {
-          double ms = 0;
-          general.render(scene, size, size, &ms);
-          best_general = std::min(best_general, ms);
+          best_general = std::min(best_general, sol::render_scene(general, scene, {.width = size, .height = size}).device_ms);
         }
         char line[512];
         if (!kernel_only) {
@@ -187,7 +184,7 @@ int main(int argc, char** argv) {
         throughput += line;
         std::fprintf(stderr, "%s", line);
         if (kernel_only || sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
-        sol::RenderSettings settings;
+        sol::RenderOptions settings;
         settings.width = settings.height = size;
         const auto begin = std::chrono::steady_clock::now();
         const sol::RenderResult c = sol::render_cpu(scene, settings);
@@ -209,7 +206,7 @@ int main(int argc, char** argv) {
         // A hit epsilon near float resolution, so that the march's own stopping
         // tolerance does not hide the flow's error.
         scene.hit_epsilon = 2e-6;
-        sol::RenderSettings settings;
+        sol::RenderOptions settings;
         settings.width = settings.height = error_size;
         const sol::RenderResult reference = sol::render_cpu(scene, settings);
         struct Variant {
@@ -224,13 +221,12 @@ int main(int argc, char** argv) {
             options.rk4_step = v.step;
           }
           sol::vk::MarchRenderer r(context, options);
-          r.render(scene, error_size, error_size);  // warm-up
+          sol::render_scene(r, scene, {.width = error_size, .height = error_size});  // warm-up
           double best = 1e300;
           sol::RenderResult image;
           for (int k = 0; k < std::min(repeats, 3); ++k) {
-            double ms = 0;
-            image = r.render(scene, error_size, error_size, &ms);
-            best = std::min(best, ms);
+            image = sol::render_scene(r, scene, {.width = error_size, .height = error_size});
+            best = std::min(best, image.device_ms);
           }
           const ImageError e = compare(image, reference);
           char line[512];
@@ -271,13 +267,9 @@ int main(int argc, char** argv) {
           l.falloff = v.falloff;
           l.shadows = v.shadows;
         }
-        renderer.render(scene, w, h);  // warm-up: tables, shader compilation
+        sol::render_scene(renderer, scene, {.width = w, .height = h});  // warm-up: tables, shader compilation
         double best = 1e300;
-        for (int k = 0; k < repeats; ++k) {
-          double ms = 0;
-          renderer.render(scene, w, h, &ms);
-          best = std::min(best, ms);
-        }
+        for (int k = 0; k < repeats; ++k) best = std::min(best, sol::render_scene(renderer, scene, {.width = w, .height = h}).device_ms);
         if (!v.exact_balls && !v.exact_light) bound_ms = best;
         char light[32];
         std::snprintf(light, sizeof light, v.exact_light ? "exact reach %g" : "coordinate", v.reach);
@@ -362,10 +354,13 @@ int main(int argc, char** argv) {
         for (const bool fold : {true, false}) {
           const sol::vk::SpecializationFolding folding =
               fold ? sol::vk::SpecializationFolding::Folded : sol::vk::SpecializationFolding::Driver;
-          sol::vk::MarchRenderer(context, {.specialization_folding = folding}).render(scene, 16, 16);  // warms the driver's cache
+          {
+            sol::vk::MarchRenderer warm(context, {.specialization_folding = folding});
+            sol::render_scene(warm, scene, {.width = 16, .height = 16});  // warms the driver's cache
+          }
           sol::vk::MarchRenderer renderer(context, {.specialization_folding = folding});
           const auto start = std::chrono::steady_clock::now();
-          renderer.render(scene, 16, 16);
+          sol::render_scene(renderer, scene, {.width = 16, .height = 16});
           seconds[fold ? 0 : 1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
         char line[256];

@@ -67,6 +67,39 @@ py::array_t<float> image(const std::vector<float>& values, int height, int width
   return out;
 }
 
+// A render's images as the Python module hands them out: a dict of float32
+// arrays (rgba, object, distance, point, steps).
+py::dict render_dict(const sol::RenderResult& r) {
+  std::vector<float> point(3 * r.px.size());
+  for (std::size_t i = 0; i < r.px.size(); ++i) {
+    point[3 * i] = r.px[i];
+    point[3 * i + 1] = r.py[i];
+    point[3 * i + 2] = r.pz[i];
+  }
+  py::dict out;
+  out["rgba"] = image(r.rgba, r.height, r.width, 4);
+  out["object"] = image(r.object, r.height, r.width, 1);
+  out["distance"] = image(r.distance, r.height, r.width, 1);
+  out["point"] = image(point, r.height, r.width, 3);
+  out["steps"] = image(r.steps, r.height, r.width, 1);
+  return out;
+}
+
+// sol.CpuRenderer: the renderer with its world prepared once and the
+// scene's camera it renders from (the module has no cameras of its own).
+struct PyCpuRenderer {
+  sol::CpuRenderer renderer;
+  sol::Camera camera;
+  void set_scene(const sol::Scene& scene) {
+    renderer.set_world(scene);
+    camera = scene.camera;
+  }
+  sol::RenderResult render(const sol::RenderOptions& options) {
+    py::gil_scoped_release release;  // the rows render on threads of their own
+    return renderer.render(camera, options);
+  }
+};
+
 }  // namespace
 
 PYBIND11_MODULE(sol, m) {
@@ -261,34 +294,32 @@ PYBIND11_MODULE(sol, m) {
       "shoots it: an (H, W, 3) array.");
   m.def("parse_scene", [](const std::string& text) { return sol::parse_scene(text); }, py::arg("text"),
         "A scene from JSON text.");
+  py::class_<PyCpuRenderer>(m, "CpuRenderer",
+                            "The CPU reference renderer with a scene's world prepared once (validation, features, the "
+                            "quotient's images): every render() then reuses it, from the scene's camera.")
+      .def(py::init([](const sol::Scene& scene) {
+             auto r = std::make_unique<PyCpuRenderer>();
+             r->set_scene(scene);
+             return r;
+           }),
+           py::arg("scene"), "Prepares the scene's world.")
+      .def("set_scene", &PyCpuRenderer::set_scene, py::arg("scene"), "Prepares another scene's world (and takes its camera).")
+      .def(
+          "render",
+          [](PyCpuRenderer& r, int width, int height, int samples, unsigned threads) {
+            return render_dict(r.render({.width = width, .height = height, .samples = samples, .threads = threads}));
+          },
+          py::arg("width") = 256, py::arg("height") = 192, py::arg("samples") = 1, py::arg("threads") = 0,
+          "Renders the prepared world from the scene's camera: a dict of float32 arrays as render_cpu's.");
   m.def(
       "render_cpu",
       [](const sol::Scene& scene, int width, int height, int samples, unsigned threads) {
-        sol::RenderSettings settings;
-        settings.width = width;
-        settings.height = height;
-        settings.samples = samples;
-        settings.threads = threads;
-        sol::RenderResult r;
-        {
-          py::gil_scoped_release release;
-          r = sol::render_cpu(scene, settings);
-        }
-        std::vector<float> point(3 * r.px.size());
-        for (std::size_t i = 0; i < r.px.size(); ++i) {
-          point[3 * i] = r.px[i];
-          point[3 * i + 1] = r.py[i];
-          point[3 * i + 2] = r.pz[i];
-        }
-        py::dict out;
-        out["rgba"] = image(r.rgba, r.height, r.width, 4);
-        out["object"] = image(r.object, r.height, r.width, 1);
-        out["distance"] = image(r.distance, r.height, r.width, 1);
-        out["point"] = image(point, r.height, r.width, 3);
-        out["steps"] = image(r.steps, r.height, r.width, 1);
-        return out;
+        PyCpuRenderer r;
+        r.set_scene(scene);
+        return render_dict(r.render({.width = width, .height = height, .samples = samples, .threads = threads}));
       },
       py::arg("scene"), py::arg("width") = 256, py::arg("height") = 192, py::arg("samples") = 1, py::arg("threads") = 0,
-      "Renders the scene on the CPU; returns a dict of float32 arrays: rgba (H, W, 4, linear), object (H, W; "
-      "0 = no hit, k = k-th object), distance (H, W), point (H, W, 3; world coordinates) and steps (H, W).");
+      "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many); returns "
+      "a dict of float32 arrays: rgba (H, W, 4, linear), object (H, W; 0 = no hit, k = k-th object), distance (H, W), "
+      "point (H, W, 3; world coordinates) and steps (H, W).");
 }

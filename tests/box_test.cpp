@@ -138,7 +138,7 @@ void expect_hits_on_faces(const sol::RenderResult& r, const std::vector<sol::Box
 }
 
 sol::RenderResult render_small(const sol::Scene& scene) {
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 40;
   settings.height = 30;
   return sol::render_cpu(scene, settings);

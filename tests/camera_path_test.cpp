@@ -43,23 +43,23 @@ TEST(CameraPath, FramesAreTheObserverAfterTheSameMoves) {
     EXPECT_LT(diff(c.up, o.up()), 1e-12) << t;
   };
   {  // t = 0: the start (with the path's fov)
-    const sol::Camera c = path.at(0.0, scene, false);
+    const sol::Camera c = path.at(0.0, scene, std::nullopt);
     expect_same(c, observer(), 0.0);
     EXPECT_EQ(c.fov, 70.0);
   }
   {  // t = 3: three quarters of the first walk
     sol::Observer o = observer();
     o.move({0, 0, 1}, 1.5);
-    expect_same(path.at(3.0, scene, false), o, 3.0);
+    expect_same(path.at(3.0, scene, std::nullopt), o, 3.0);
   }
   {  // t = 5: the walk, half the yaw
     sol::Observer o = observer();
     o.move({0, 0, 1}, 2.0);
     o.yaw(45 * deg);
-    expect_same(path.at(5.0, scene, false), o, 5.0);
+    expect_same(path.at(5.0, scene, std::nullopt), o, 5.0);
   }
   {  // t = 7 (in the hold) equals t = 6 (its start)
-    const sol::Camera a = path.at(6.0, scene, false), b = path.at(7.0, scene, false);
+    const sol::Camera a = path.at(6.0, scene, std::nullopt), b = path.at(7.0, scene, std::nullopt);
     EXPECT_EQ(a.position, b.position);
     EXPECT_EQ(a.forward, b.forward);
   }
@@ -71,8 +71,8 @@ TEST(CameraPath, FramesAreTheObserverAfterTheSameMoves) {
     o.pitch(-30 * deg);
     o.move({-1, 0, 0}, 1.0);
     o.roll(45 * deg);
-    expect_same(path.at(10.5, scene, false), o, 10.5);
-    expect_same(path.at(99.0, scene, false), o, 99.0);
+    expect_same(path.at(10.5, scene, std::nullopt), o, 10.5);
+    expect_same(path.at(99.0, scene, std::nullopt), o, 99.0);
   }
 }
 
@@ -84,14 +84,14 @@ TEST(CameraPath, TheQuotientKeepsTheCameraInTheDomain) {
   const sol::Lattice lattice = sol::Lattice::golden();
   sol::Observer free_walker(scene.camera.position, scene.camera.forward, scene.camera.up);
   for (long k = 0; k < path.frame_count(4.0); ++k) {
-    const sol::Camera c = path.at(static_cast<double>(k) / 4.0, scene.camera, true);
+    const sol::Camera c = path.at(static_cast<double>(k) / 4.0, scene.camera, sol::Lattice::golden());
     ASSERT_TRUE(lattice.contains(c.position)) << k;
   }
   // The end is the unbound walk's end, teleported (up to the domain's wrap).
   free_walker.move({0, 0, 1}, 6.0);
   free_walker.pitch(80 * std::numbers::pi / 180.0);
   free_walker.move({0, 0, 1}, 4.0);
-  const sol::Camera end = path.at(11.0, scene.camera, true);
+  const sol::Camera end = path.at(11.0, scene.camera, sol::Lattice::golden());
   const dvec3 expected = lattice.teleport(free_walker.position()).point;
   EXPECT_LT(diff(end.position, expected), 1e-8);
   EXPECT_LT(diff(end.forward, free_walker.forward()), 1e-9);

@@ -46,7 +46,7 @@ double sphere_error(const sol::RenderResult& r, const sol::SceneObject& object, 
 }
 
 TEST(ExactBall, HitPointsLieOnTheGeodesicSphere) {
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 20;
   settings.height = 16;
   const sol::Scene exact = one_ball(true);

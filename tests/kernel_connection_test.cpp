@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/kernel_probes.hpp>
 #include <sol/vk/march.hpp>
 
 #include "support/kernel.hpp"
@@ -172,18 +173,18 @@ struct Renders {
 };
 
 Renders render_both(const sol::Scene& scene, int width, int height) {
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = width;
   settings.height = height;
   sol::vk::MarchRenderer renderer(vk_context());
-  return {sol::render_cpu(scene, settings), renderer.render(scene, width, height)};
+  return {sol::render_cpu(scene, settings), sol::test::render(renderer, scene, width, height)};
 }
 
 void expect_kernel_matches_cpu_lights(double reach, int width, int height, sol::Falloff falloff) {
   sol::Scene scene = exact_light_scene(reach);
   scene.lights[0].falloff = falloff;
   const char* law = falloff == sol::Falloff::Geodesic ? "geodesic" : "inverse-square";
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = width;
   settings.height = height;
   const Renders both = render_both(scene, width, height);
@@ -308,7 +309,7 @@ TEST(Kernel, ExactLightsInTheQuotientMatchTheCpuRenderer) {
   light.exact = true;
   light.falloff = falloff;
   scene.lights.push_back(light);
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 24;
   const Renders both = render_both(scene, settings.width, settings.height);
@@ -338,7 +339,7 @@ TEST(Kernel, RefusesLightsBeyondTheTablesReach) {
   sol::Scene far = exact_light_scene(0.0);
   far.lights[0].reach = 5.0;  // beyond the seed table's sol::ConnectionTable::kReach
   EXPECT_FALSE(sol::vk::MarchRenderer::supports(far));
-  EXPECT_THROW(renderer.render(far, 8, 8), sol::NotImplemented);
+  EXPECT_THROW(sol::test::render(renderer, far, 8, 8), sol::NotImplemented);
   expect_no_validation_errors();
 }
 
@@ -354,7 +355,7 @@ TEST(Kernel, ExactBallsInTheQuotientMatchTheCpuRenderer) {
     }
   }
   ASSERT_GT(balls, 0);
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 24;
   const Renders both = render_both(scene, settings.width, settings.height);
@@ -427,7 +428,7 @@ TEST(Kernel, ShadowsMatchTheCpuRenderer) {
   for (std::size_t n = 0; n < scenes.size(); ++n) {
     const sol::Scene& scene = scenes[n];
     const char* name = names[n].c_str();
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 40;
     settings.height = 30;
     const Renders both = render_both(scene, settings.width, settings.height);

@@ -13,6 +13,7 @@
 #include <sol/sol.hpp>
 #include <sol/vk/context.hpp>
 #include <sol/vk/image.hpp>
+#include <sol/vk/kernel_probes.hpp>
 #include <sol/vk/march.hpp>
 #include <sol/vk/march_interface.h>
 
@@ -402,11 +403,11 @@ TEST(Kernel, PresetsMatchTheCpuRenderer) {
     const sol::Scene scene = sol::preset_scene(name);
     // Exact balls (the kernel's table) and lights: tests ExactBalls* and ExactLights*.
     if (sol::uses_exact(scene)) continue;
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 48;
     settings.height = 32;
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-    const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, settings.width, settings.height);
     for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v)) << name;
     const Comparison c = compare(gpu, cpu);
     std::printf("%s: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
@@ -476,12 +477,12 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   scene.lights.push_back(point);
   scene.fog_color = {0.2, 0.25, 0.3};
   scene.fog_density = 0.08;
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 40;
   settings.height = 30;
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+  const sol::RenderResult gpu = sol::test::render(renderer, scene, settings.width, settings.height);
   const Comparison c = compare(gpu, cpu);
   int tubes = 0;
   for (float o : gpu.object) tubes += o == 3.0f;
@@ -527,7 +528,7 @@ TEST(Kernel, FoldedSpecialisationRendersTheDriversImage) {
   const bool cpu = vk_context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   for (const std::string name : {"plane", "lattice-balls", "spheres"}) {
     const sol::Scene scene = sol::preset_scene(name);
-    const sol::RenderResult a = folded.render(scene, 40, 28), b = by_driver.render(scene, 40, 28);
+    const sol::RenderResult a = sol::test::render(folded, scene, 40, 28), b = sol::test::render(by_driver, scene, 40, 28);
     if (cpu) {
       EXPECT_EQ(a.object, b.object) << name;
       EXPECT_EQ(a.distance, b.distance) << name;
@@ -571,11 +572,11 @@ TEST(Kernel, BoxesLieOnTheirFacesAndMatchTheCpuRenderer) {
       {"lattice-boxes", lattice, sol::test::box_images(lattice)},
   };
   for (const auto& [name, scene, boxes] : cases) {
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 40;
     settings.height = 30;
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-    const sol::RenderResult gpu = renderer.render(scene, settings.width, settings.height);
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, settings.width, settings.height);
     const sol::test::FaceHits f = sol::test::hits_on_faces(gpu, boxes);
     const Comparison c = compare(gpu, cpu);
     std::printf("%s: kernel hits %d, farthest from a face %.2e; against the CPU: mask differs at %d of %d, colour at %d\n",
@@ -597,7 +598,7 @@ TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   for (const std::string& name : sol::preset_names()) {
     const sol::Scene scene = sol::preset_scene(name);
     if (sol::uses_exact(scene)) continue;  // exact scenes: tests ExactBalls* and ExactLights*
-    const Comparison c = compare(specialised.render(scene, 40, 30), general.render(scene, 40, 30));
+    const Comparison c = compare(sol::test::render(specialised, scene, 40, 30), sol::test::render(general, scene, 40, 30));
     EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
     EXPECT_LE(c.color_differs, c.pixels / 100) << name;
     EXPECT_LT(c.distance, 1e-3) << name;
@@ -664,11 +665,10 @@ TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
     const sol::Camera eyes[] = {c.scene.camera, sol::stereo_eyes(c.scene.camera, 0.1).right};
     for (int n : {1, 2}) {
       for (int samples : {1, 3}) {
-        sol::vk::RenderOptions options;
-        options.samples = samples;
+        sol::RenderOptions options{.width = w, .height = h, .samples = samples};
         if (samples > 1) options.max_dispatch_ms = 1e-6;  // tiles of 8 x 8 pixels
-        const sol::RenderResult a = deferred.render(std::span(eyes, static_cast<std::size_t>(n)), w, h, options);
-        const sol::RenderResult b = single.render(std::span(eyes, static_cast<std::size_t>(n)), w, h, options);
+        const sol::RenderResult a = deferred.render(std::span(eyes, static_cast<std::size_t>(n)), options);
+        const sol::RenderResult b = single.render(std::span(eyes, static_cast<std::size_t>(n)), options);
         const std::string what = c.name + ", " + std::to_string(n) + " eyes, " + std::to_string(samples) + " samples";
         // On a failure, how far apart (a GPU compiles the two pipelines
         // with its own contractions; lavapipe's are bitwise equal).
@@ -723,7 +723,7 @@ TEST(Kernel, DeferredPassesRenderTheOneDispatchImage) {
     // The presenters' recorded frame: the render's colour (one world: each
     // compiles three more pipelines, seconds on lavapipe).
     if (c.name != "spheres") continue;
-    const sol::RenderResult ref = deferred.render(c.scene, w, h);
+    const sol::RenderResult ref = sol::test::render(deferred, c.scene, w, h);
     sol::vk::StorageImage target(vk_context(), w, h);
     vk_context().submit_and_wait([&](VkCommandBuffer cb) { deferred.record(cb, std::span(eyes, 1), w, h, target); });
     EXPECT_EQ(target.download(), ref.rgba) << c.name << ": record()";
@@ -777,8 +777,8 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
   for (const Case& c : cases) {
     const sol::Ball ball = std::get<sol::Ball>(c.scene.objects[0].shape);
     const bool quotient = c.scene.quotient != sol::Quotient::None;
-    const sol::RenderResult gpu = renderer.render(c.scene, 24, 18);
-    sol::RenderSettings settings;
+    const sol::RenderResult gpu = sol::test::render(renderer, c.scene, 24, 18);
+    sol::RenderOptions settings;
     settings.width = 24;
     settings.height = 18;
     const sol::RenderResult cpu = sol::render_cpu(c.scene, settings);
@@ -813,7 +813,7 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
   std::get<sol::Ball>(larger.objects[0].shape).radius = 2.01;
   EXPECT_FALSE(sol::vk::MarchRenderer::supports(larger));
   EXPECT_NE(sol::vk::MarchRenderer::unsupported(larger).find("objects[0].radius"), std::string::npos);
-  EXPECT_THROW(renderer.render(larger, 8, 8), sol::NotImplemented);
+  EXPECT_THROW(sol::test::render(renderer, larger, 8, 8), sol::NotImplemented);
   expect_no_validation_errors();
 }
 
@@ -825,7 +825,7 @@ TEST(Kernel, NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges) {
     for (const glm::dvec3& p : sol::test::extreme_positions()) {
       sol::Scene scene = sol::preset_scene(name);
       scene.camera.position = p;
-      EXPECT_EQ(sol::test::non_finite_values(renderer.render(scene, 12, 8)), 0)
+      EXPECT_EQ(sol::test::non_finite_values(sol::test::render(renderer, scene, 12, 8)), 0)
           << name << " from (" << p.x << ", " << p.y << ", " << p.z << ")";
     }
   }
@@ -839,12 +839,12 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
   floor.shape = sol::PlaneZ{-1.0};
   floor.pattern = sol::Pattern::Checker;
   scene.objects.push_back(floor);
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 48;
   settings.height = 48;
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::RenderResult gpu = renderer.render(scene, 48, 48);
+  const sol::RenderResult gpu = sol::test::render(renderer, scene, 48, 48);
   const Comparison c = compare(gpu, cpu);
   std::printf("cutout: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n",
               c.mask_differs, c.pixels, c.color_differs, c.distance);
@@ -861,11 +861,11 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   for (const char* name : {"lattice-balls", "lattice-pillars"}) {
     sol::Scene scene = sol::preset_scene(name);
     scene.max_distance = 6.0;
-    const sol::RenderResult here = renderer.render(scene, 24, 18);
+    const sol::RenderResult here = sol::test::render(renderer, scene, 24, 18);
     for (const dvec3& g : {lattice.element(0, 0, 1), lattice.element(3, -2, -2), lattice.element(400000, -300000, 0)}) {
       sol::Scene moved = scene;
       moved.camera.position = sol::multiply(g, scene.camera.position);
-      const Comparison c = compare(renderer.render(moved, 24, 18), here);
+      const Comparison c = compare(sol::test::render(renderer, moved, 24, 18), here);
       EXPECT_LE(c.mask_differs, 2) << name;  // the eye is teleported in double: same float input up to rounding
       EXPECT_LT(c.distance, 1e-4) << name;
     }
@@ -879,10 +879,10 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
     thin.max_distance = 8.0;
     thin.max_steps = 400;
     thin.objects = {{sol::PlaneZ{c}}};
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 24;
     settings.height = 18;
-    const Comparison d = compare(renderer.render(thin, 24, 18), sol::render_cpu(thin, settings));
+    const Comparison d = compare(sol::test::render(renderer, thin, 24, 18), sol::render_cpu(thin, settings));
     EXPECT_LE(d.mask_differs, d.pixels / 100) << c;
     EXPECT_LT(d.distance, 1e-3) << c;  // float over several teleports
   }
@@ -922,11 +922,11 @@ TEST(Kernel, QuotientRaysInPlanesXOrYConstMatchTheCpuRenderer) {
       const dvec3 d = sol::camera_ray(scene.camera, i, j, width, height);
       ASSERT_EQ(d.x * d.y, 0.0) << i << ", " << j;
     }
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = width;
     settings.height = height;
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-    const sol::RenderResult gpu = renderer.render(scene, width, height);
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, width, height);
     const sol::MarchWorld world(scene);
     int hits = 0, mask_differs = 0, grazing = 0;
     double worst = 0.0;
@@ -974,7 +974,7 @@ TEST(Kernel, QuotientWorldOfSeveralKindsMatchesTheCpuRenderer) {
   sol::Scene mixed = sol::preset_scene("lattice-pillars");
   mixed.objects.push_back({sol::PlaneZ{0.2 * lattice.height()}, {0.8, 0.8, 0.8}, sol::Pattern::Checker});
   mixed.objects.push_back({sol::Ball{{0.9, 0.9, 0.6}, 0.15}, {0.9, 0.5, 0.3}});
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 24;
   const sol::RenderResult mixed_cpu = sol::render_cpu(mixed, settings);
@@ -986,7 +986,7 @@ TEST(Kernel, QuotientWorldOfSeveralKindsMatchesTheCpuRenderer) {
   }
   std::printf("mixed quotient world: %d tube, %d plane, %d ball pixels\n", tube, plane, ball);
   EXPECT_GT(std::min({tube, plane, ball}), 10);  // each kind is seen
-  const Comparison m = compare(renderer.render(mixed, 32, 24), mixed_cpu);
+  const Comparison m = compare(sol::test::render(renderer, mixed, 32, 24), mixed_cpu);
   EXPECT_LE(m.mask_differs, m.pixels / 100);
   EXPECT_LE(m.color_differs, m.pixels / 100);
   EXPECT_LT(m.distance, 2e-3);  // as PresetsMatchTheCpuRenderer's quotient presets
@@ -1015,7 +1015,7 @@ TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
                    {sol::make_tube(sol::TubeAxis::Gamma2, {0.4, 0.2, 0.1}, 0.09), {0.9, 0.8, 0.2}, sol::Pattern::Checker},
                    {sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, 0, 0), dvec3(0.0)), 0.1), {0.35, 0.5, 0.95},
                     sol::Pattern::Checker}};
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 24;
   const sol::RenderResult cpu = sol::render_cpu(tubes, settings);
@@ -1026,7 +1026,7 @@ TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
   std::printf("quotient tubes along -gamma1, -gamma2, gamma2 and z: %d, %d, %d, %d pixels\n", seen[0], seen[1], seen[2],
               seen[3]);
   EXPECT_GT(*std::min_element(seen.begin(), seen.end()), 10);  // each record's case is seen
-  const Comparison c = compare(renderer.render(tubes, 32, 24), cpu);
+  const Comparison c = compare(sol::test::render(renderer, tubes, 32, 24), cpu);
   std::printf("hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", c.mask_differs,
               c.pixels, c.color_differs, c.distance);
   EXPECT_LE(c.mask_differs, c.pixels / 100);
@@ -1038,7 +1038,7 @@ TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
 TEST(Kernel, PlaneAovsLieOnThePlane) {
   sol::vk::MarchRenderer renderer(vk_context());
   // Full size: hits that stop just below z = 0 in float occur near the centre rows.
-  const sol::RenderResult r = renderer.render(sol::preset_scene("plane"), 512, 512);
+  const sol::RenderResult r = sol::test::render(renderer, sol::preset_scene("plane"), 512, 512);
   int hits = 0, unlit = 0;
   for (std::size_t k = 0; k < r.object.size(); ++k) {
     if (r.object[k] == 1.0f) {
@@ -1058,9 +1058,9 @@ TEST(Kernel, PlaneAovsLieOnThePlane) {
 TEST(Kernel, FarObserverSeesTheSameImage) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
-  const sol::RenderResult here = renderer.render(scene, 32, 32);
+  const sol::RenderResult here = sol::test::render(renderer, scene, 32, 32);
   scene.camera.position = dvec3(1e6, -1e6, 1.5);  // (X, Y, 0) * (0, 0, 1.5): a symmetry of `plane`
-  const sol::RenderResult there = renderer.render(scene, 32, 32);
+  const sol::RenderResult there = sol::test::render(renderer, scene, 32, 32);
   EXPECT_EQ(here.object, there.object);
   EXPECT_EQ(here.rgba, there.rgba);  // the kernel sees identical camera-relative input
   EXPECT_EQ(here.distance, there.distance);
@@ -1070,15 +1070,15 @@ TEST(Kernel, OffAxisWindowMatchesTheCpuRenderer) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("sandwich");
   scene.camera.frustum = sol::Frustum{-1.3, 0.7, -0.9, 0.4};
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 40;
   settings.height = 24;
-  const Comparison c = compare(renderer.render(scene, 40, 24), sol::render_cpu(scene, settings));
+  const Comparison c = compare(sol::test::render(renderer, scene, 40, 24), sol::render_cpu(scene, settings));
   EXPECT_LE(c.mask_differs, c.pixels / 100);  // as for the presets
   EXPECT_LE(c.color_differs, c.pixels / 100);
   sol::Scene centred = scene;
   centred.camera.frustum.reset();
-  EXPECT_GT(compare(renderer.render(centred, 40, 24), sol::render_cpu(scene, settings)).color_differs, c.pixels / 10);
+  EXPECT_GT(compare(sol::test::render(renderer, centred, 40, 24), sol::render_cpu(scene, settings)).color_differs, c.pixels / 10);
   expect_no_validation_errors();
 }
 
@@ -1095,7 +1095,7 @@ TEST(Kernel, SwapSymmetry) {
   b.objects[0].shape = sol::PlaneZ{-1.0};
   b.lights[0].direction = sigma(a.lights[0].direction);
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::RenderResult ra = renderer.render(a, 40, 30), rb = renderer.render(b, 40, 30);
+  const sol::RenderResult ra = sol::test::render(renderer, a, 40, 30), rb = sol::test::render(renderer, b, 40, 30);
   const Comparison c = compare(ra, rb);
   // Float rounding differs between the mirrored rays (their a and b swap
   // roles in the kernel), so a disc edge may flip a pixel or two.
@@ -1112,13 +1112,13 @@ TEST(Kernel, SwapSymmetry) {
 TEST(Kernel, StereoInOneDispatchEqualsEachEyesMonoRender) {
   sol::vk::MarchRenderer renderer(vk_context());
   const sol::Scene scene = sol::preset_scene("sheets");
-  const sol::RenderResult both = renderer.render_stereo(scene, 20, 12, 0.4);
+  const sol::RenderResult both = sol::test::render_stereo(renderer, scene, 20, 12, 0.4);
   ASSERT_EQ(both.width, 40);
   const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.4);
   sol::Scene left = scene, right = scene;
   left.camera = eyes.left;
   right.camera = eyes.right;
-  const sol::RenderResult l = renderer.render(left, 20, 12), r = renderer.render(right, 20, 12);
+  const sol::RenderResult l = sol::test::render(renderer, left, 20, 12), r = sol::test::render(renderer, right, 20, 12);
   int differ = 0;
   for (int j = 0; j < 12; ++j) {
     for (int i = 0; i < 20; ++i) {
@@ -1148,7 +1148,7 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
     for (int n : {1, 2}) {
       const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
                                                    : std::vector<sol::Camera>{eyes.left, eyes.right};
-      const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
+      const sol::RenderResult ref = n == 1 ? sol::test::render(renderer, scene, w, h) : sol::test::render_stereo(renderer, scene, w, h, 0.2);
       sol::vk::StorageImage target(vk_context(), static_cast<std::uint32_t>(n * w + 3), h + 2);
       vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, cams, w, h, target); });
       const std::vector<float> got = target.download();
@@ -1215,7 +1215,7 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
       for (int n : {1, 2}) {
         const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
                                                      : std::vector<sol::Camera>{eyes.left, eyes.right};
-        const sol::RenderResult ref = n == 1 ? renderer.render(scene, w, h) : renderer.render_stereo(scene, w, h, 0.2);
+        const sol::RenderResult ref = n == 1 ? sol::test::render(renderer, scene, w, h) : sol::test::render_stereo(renderer, scene, w, h, 0.2);
         const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
         sol::vk::StorageImage target(vk_context(), tw, th, format);
         const sol::vk::UnormTarget unorm{target.view(), format, tw, th};
@@ -1270,7 +1270,7 @@ TEST(Kernel, Rk4IntegratorAgreesAtSmallSteps) {
   // their crossings and has no march loop; with RK4 it is marched.
   for (const char* name : {"sandwich", "sheets"}) {
     const sol::Scene scene = sol::preset_scene(name);
-    const sol::RenderResult a = closed.render(scene, 24, 16), b = rk4.render(scene, 24, 16);
+    const sol::RenderResult a = sol::test::render(closed, scene, 24, 16), b = sol::test::render(rk4, scene, 24, 16);
     const Comparison c = compare(b, a);
     int hits = 0;
     for (float o : a.object) hits += o != 0.0f ? 1 : 0;
@@ -1293,15 +1293,15 @@ TEST(Kernel, PreparedWorldRendersAnyCamera) {
       sol::Scene moved = scene;
       moved.camera.position += offset;
       moved.camera.forward = glm::normalize(moved.camera.forward + 0.2 * offset);
-      const sol::RenderResult prepared = renderer.render(moved.camera, 16, 12);
+      const sol::RenderResult prepared = renderer.render(moved.camera, {.width = 16, .height = 12});
       sol::vk::MarchRenderer fresh(vk_context());
-      const sol::RenderResult reference = fresh.render(moved, 16, 12);
+      const sol::RenderResult reference = sol::test::render(fresh, moved, 16, 12);
       EXPECT_EQ(prepared.rgba, reference.rgba) << name;
       EXPECT_EQ(prepared.object, reference.object) << name;
     }
   }
   sol::vk::MarchRenderer empty(vk_context());
-  EXPECT_THROW((void)empty.render(sol::Camera{}, 8, 8), std::logic_error);
+  EXPECT_THROW((void)empty.render(sol::Camera{}, {.width = 8, .height = 8}), std::logic_error);
   expect_no_validation_errors();
 }
 
@@ -1313,14 +1313,14 @@ TEST(Kernel, SupersamplingMatchesTheCpuRenderer) {
   for (const char* name : {"plane", "lattice-balls"}) {
     const sol::Scene scene = sol::preset_scene(name);
     renderer.set_world(scene);
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 48;
     settings.height = 32;
     settings.samples = 8;
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-    const sol::RenderResult gpu = renderer.render(std::span(&scene.camera, 1), 48, 32, nullptr, 8);
-    const sol::RenderResult plain = renderer.render(scene.camera, 48, 32);
-    const sol::RenderResult one = renderer.render(std::span(&scene.camera, 1), 48, 32, nullptr, 1);
+    const sol::RenderResult gpu = renderer.render(std::span(&scene.camera, 1), {.width = 48, .height = 32, .samples = 8});
+    const sol::RenderResult plain = renderer.render(scene.camera, {.width = 48, .height = 32});
+    const sol::RenderResult one = renderer.render(std::span(&scene.camera, 1), {.width = 48, .height = 32, .samples = 1});
     EXPECT_EQ(one.rgba, plain.rgba) << name;
     EXPECT_EQ(gpu.object, plain.object) << name;
     EXPECT_EQ(gpu.distance, plain.distance) << name;
@@ -1342,7 +1342,7 @@ TEST(Kernel, SupersamplingMatchesTheCpuRenderer) {
     EXPECT_LT(mean, 2e-3) << name;
   }
   const sol::Camera camera = sol::preset_scene("plane").camera;
-  EXPECT_THROW(renderer.render(std::span(&camera, 1), 8, 8, nullptr, 0), sol::InvalidArgument);
+  EXPECT_THROW(renderer.render(std::span(&camera, 1), {.width = 8, .height = 8, .samples = 0}), sol::InvalidArgument);
   expect_no_validation_errors();
 }
 
@@ -1358,7 +1358,7 @@ TEST(Kernel, ProjectionsMatchTheCpuRenderer) {
       scene.camera.fisheye_fov = 200.0;
       const int w = 64, h = projection == sol::Projection::Equirectangular ? 32 : 48;
       const sol::RenderResult cpu = sol::render_cpu(scene, {w, h});
-      const sol::RenderResult gpu = renderer.render(scene, w, h);
+      const sol::RenderResult gpu = sol::test::render(renderer, scene, w, h);
       const Comparison c = compare(gpu, cpu);
       std::printf("%s, %s: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", name,
                   projection == sol::Projection::Fisheye ? "fisheye 200" : "equirectangular", c.mask_differs, c.pixels,
@@ -1392,11 +1392,11 @@ TEST(Kernel, OmnidirectionalStereoMatchesTheCpuRenderer) {
     scene.camera.projection = sol::Projection::Equirectangular;
     const int w = 48, h = 24;
     const double ipd = 0.3;
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = w;
     settings.height = h;
     const sol::RenderResult cpu = sol::render_cpu_stereo(scene, settings, ipd);
-    const sol::RenderResult gpu = renderer.render_stereo(scene, w, h, ipd);
+    const sol::RenderResult gpu = sol::test::render_stereo(renderer, scene, w, h, ipd);
     ASSERT_EQ(gpu.width, 2 * w);
     const Comparison c = compare(gpu, cpu);
     std::printf("%s ODS: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", name,
@@ -1426,13 +1426,12 @@ TEST(Kernel, TiledRenderEqualsOneDispatch) {
   renderer.set_world(scene);
   const sol::Camera eyes[] = {scene.camera, sol::stereo_eyes(scene.camera, 0.1).right};
   for (int samples : {1, 3}) {
-    const sol::RenderResult whole = renderer.render(std::span(eyes, 2), 40, 28, nullptr, samples);
-    sol::vk::RenderOptions options;
-    options.samples = samples;
+    const sol::RenderResult whole = renderer.render(std::span(eyes, 2), {.width = 40, .height = 28, .samples = samples});
+    sol::RenderOptions options{.width = 40, .height = 28, .samples = samples};
     options.max_dispatch_ms = 1e-6;  // tiles of 8 x 8 pixels (the smallest)
     std::vector<double> seen;
     options.progress = [&](double f) { seen.push_back(f); };
-    const sol::RenderResult tiled = renderer.render(std::span(eyes, 2), 40, 28, options);
+    const sol::RenderResult tiled = renderer.render(std::span(eyes, 2), options);
     EXPECT_EQ(tiled.rgba, whole.rgba) << samples;
     EXPECT_EQ(tiled.object, whole.object) << samples;
     EXPECT_EQ(tiled.distance, whole.distance) << samples;
@@ -1443,7 +1442,7 @@ TEST(Kernel, TiledRenderEqualsOneDispatch) {
     EXPECT_EQ(seen.back(), 1.0);
   }
   std::atomic<bool> stop{false};
-  sol::vk::RenderOptions options;
+  sol::RenderOptions options{.width = 40, .height = 28};
   options.max_dispatch_ms = 1e-6;
   options.cancel = &stop;
   int rows_done = 0;
@@ -1451,7 +1450,7 @@ TEST(Kernel, TiledRenderEqualsOneDispatch) {
     ++rows_done;
     stop = true;  // asked to stop after the first row of tiles
   };
-  EXPECT_THROW(renderer.render(std::span(eyes, 1), 40, 28, options), sol::Cancelled);
+  EXPECT_THROW(renderer.render(std::span(eyes, 1), options), sol::Cancelled);
   EXPECT_EQ(rows_done, 1);
   expect_no_validation_errors();
 }
@@ -1459,9 +1458,9 @@ TEST(Kernel, TiledRenderEqualsOneDispatch) {
 TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
-  EXPECT_THROW(renderer.render(scene, 0, 10), sol::InvalidArgument);
+  EXPECT_THROW(sol::test::render(renderer, scene, 0, 10), sol::InvalidArgument);
   scene.objects.resize(9, scene.objects[0]);
-  EXPECT_THROW(renderer.render(scene, 8, 8), sol::InvalidArgument);
+  EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::InvalidArgument);
   EXPECT_THROW(sol::vk::MarchRenderer(vk_context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.0}),
                sol::InvalidArgument);
 }
@@ -1510,12 +1509,12 @@ struct CrossingErrors {
 // the exact crossing of its ray from its eye.
 CrossingErrors plane_crossing_errors(const sol::Scene& scene, int w, int h, double ipd) {
   sol::vk::MarchRenderer renderer(vk_context());
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = w;
   settings.height = h;
   const bool stereo = ipd > 0.0;
   const sol::RenderResult cpu = stereo ? sol::render_cpu_stereo(scene, settings, ipd) : sol::render_cpu(scene, settings);
-  const sol::RenderResult gpu = stereo ? renderer.render_stereo(scene, w, h, ipd) : renderer.render(scene, w, h);
+  const sol::RenderResult gpu = stereo ? sol::test::render_stereo(renderer, scene, w, h, ipd) : sol::test::render(renderer, scene, w, h);
   EXPECT_EQ(gpu.width, cpu.width);
   const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, ipd);
   CrossingErrors e;

@@ -106,7 +106,7 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
     const double max_step = sol::quotient_max_step(worlds[w]);
     EXPECT_EQ(max_step, w < 2 ? sol::kQuotientMaxStep : sol::kQuotientShortStep) << "world " << w;
     const std::vector<sol::MarchObject> listed = sol::quotient_images(worlds[w], max_step);
-    const sol::QuotientField field(listed, max_step);
+    const sol::QuotientField field(listed, max_step, sol::Lattice::golden());
     EXPECT_EQ(field.max_step(), max_step);
     const std::vector<sol::MarchObject> reference = wide_images(worlds[w], centre, spread + max_step);
     double reach_sum = 0.0, tightest = 1e300;  // the least gap between the reach and a non-candidate's bound
@@ -275,7 +275,7 @@ TEST(QuotientField, CandidatesFillTheSlotsFromTheFirst) {
   for (const char* name : {"lattice-balls", "lattice-pillars"}) {
     const sol::Scene scene = sol::preset_scene(name);
     const std::vector<sol::MarchObject> listed = sol::quotient_images(scene);
-    const sol::QuotientField field(listed, sol::quotient_max_step(scene));
+    const sol::QuotientField field(listed, sol::quotient_max_step(scene), sol::Lattice::golden());
     const std::vector<std::uint32_t>& words = field.words();
     const std::size_t cells = static_cast<std::size_t>(k::kFieldLayers) * k::kFieldCells * k::kFieldCells;
     ASSERT_EQ(words.size(), 2 * cells);  // per cell its candidates, then its reach
@@ -330,8 +330,8 @@ TEST(QuotientField, LongestStepOutsideItsRangeIsRefused) {
   const sol::Scene scene = sol::preset_scene("lattice-balls");
   for (const double step : {0.0, -0.5, sol::kQuotientMaxStep + 0.01, std::nan("")}) {
     EXPECT_THROW((void)sol::quotient_images(scene, step), std::invalid_argument) << step;
-    EXPECT_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), step), std::invalid_argument)
+    EXPECT_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), step, sol::Lattice::golden()), std::invalid_argument)
         << step;
   }
-  EXPECT_NO_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), sol::kQuotientShortStep));
+  EXPECT_NO_THROW(sol::QuotientField(sol::quotient_images(scene, sol::kQuotientShortStep), sol::kQuotientShortStep, sol::Lattice::golden()));
 }

@@ -99,7 +99,7 @@ TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
   const sol::Scene scene = sol::preset_scene("plane");
   sol::CpuRenderer renderer(scene);
   auto render = [&](int samples) {
-    sol::RenderSettings s;
+    sol::RenderOptions s;
     s.width = 48;
     s.height = 32;
     s.samples = samples;
@@ -127,7 +127,7 @@ TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
   EXPECT_EQ(s16.object, plain.object);
   EXPECT_EQ(s16.distance, plain.distance);
   EXPECT_EQ(s16.steps, plain.steps);
-  sol::RenderSettings bad;
+  sol::RenderOptions bad;
   bad.samples = 0;
   EXPECT_THROW(renderer.render(scene.camera, bad), sol::InvalidArgument);
 }
@@ -206,7 +206,7 @@ TEST(Render, OmnidirectionalStereoColumnsAreTheTurnedCamerasEyes) {
     EXPECT_EQ(ods.left.eye_offset, -0.2);
     EXPECT_EQ(ods.right.eye_offset, 0.2);
     EXPECT_EQ(ods.left.position, pano.position);
-    const sol::RenderResult both = renderer.render_stereo(pano, {W, H}, ipd);
+    const sol::RenderResult both = renderer.render_stereo(pano, ipd, {W, H});
     ASSERT_EQ(both.width, 2 * W);
     const sol::CameraBasis b = sol::camera_basis(pano);
     int compared = 0;
@@ -250,7 +250,7 @@ TEST(Render, OmnidirectionalStereoColumnsAreTheTurnedCamerasEyes) {
     EXPECT_GT(differ, W * H / 10) << name;
     // No separation: both eyes are the mono panorama, bit for bit.
     const sol::RenderResult mono = renderer.render(pano, {W, H});
-    const sol::RenderResult zero = renderer.render_stereo(pano, {W, H}, 0.0);
+    const sol::RenderResult zero = renderer.render_stereo(pano, 0.0, {W, H});
     for (int j = 0; j < H; ++j) {
       for (int i = 0; i < W; ++i) {
         const std::size_t k = static_cast<std::size_t>(j * W + i), kl = static_cast<std::size_t>(j * 2 * W + i);
@@ -269,7 +269,7 @@ TEST(Render, OmnidirectionalStereoColumnsAreTheTurnedCamerasEyes) {
     // like e^t, so far hits need a far smaller s). Measured: difference
     // ratios 2.0, error ratios 3.8 (sandwich) and 4.3 (lattice-balls); the
     // hit epsilon's noise (5e-5 per pixel) stays 100x below the sums.
-    const sol::RenderResult s2 = renderer.render_stereo(pano, {W, H}, 0.02), s1 = renderer.render_stereo(pano, {W, H}, 0.01);
+    const sol::RenderResult s2 = renderer.render_stereo(pano, 0.02, {W, H}), s1 = renderer.render_stereo(pano, 0.01, {W, H});
     double mean_error[2] = {0.0, 0.0}, eye_difference[2] = {0.0, 0.0};
     for (int j = 0; j < H; ++j) {
       for (int i = 0; i < W; ++i) {
@@ -317,7 +317,7 @@ TEST(Render, CancelStopsTheRender) {
   const sol::Scene scene = sol::preset_scene("lattice-balls");
   sol::CpuRenderer renderer(scene);
   std::atomic<bool> stop{true};
-  sol::RenderSettings s;
+  sol::RenderOptions s;
   s.width = 16;
   s.height = 12;
   s.cancel = &stop;
@@ -348,7 +348,7 @@ TEST(Render, ExactDistancesAreDistances) {
 // are rays whose flow never reaches z = 0 within max_distance.
 TEST(Render, PlaneAovsAgreeWithTheFlow) {
   const sol::Scene scene = sol::preset_scene("plane");
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 24;
   settings.height = 20;
   const sol::RenderResult r = sol::render_cpu(scene, settings);
@@ -392,7 +392,7 @@ TEST(Render, TranslationInvariance) {
   // The circles have period 1 in x and y, so (X, Y, 0) with integers X, Y is
   // a symmetry of `plane`: the image must not change, however far away.
   sol::Scene scene = sol::preset_scene("plane");
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 32;
   settings.height = 32;
   const sol::RenderResult here = sol::render_cpu(scene, settings);
@@ -429,7 +429,7 @@ TEST(Render, SwapSymmetry) {
   b.objects[0].shape = sol::PlaneZ{-1.0};
   b.lights[0].direction = sigma(a.lights[0].direction);
   b.lights[1].position = sigma(a.lights[1].position);
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 24;
   settings.height = 24;
   const sol::RenderResult ra = sol::render_cpu(a, settings), rb = sol::render_cpu(b, settings);
@@ -555,7 +555,7 @@ TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
   const sol::Ball ball{{2.0, 0.6, 0.2}, 0.6};
   const sol::Tube tube = sol::make_tube(sol::TubeAxis::Z, {1.6, -0.7, 0.3}, 0.25);
   scene.objects = {{ball}, {tube}};
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 40;
   settings.height = 30;
   const sol::RenderResult plain = sol::render_cpu(scene, settings);
@@ -589,7 +589,7 @@ TEST(Render, BallHitsLieOnTheBoundSurface) {
   scene.camera = {{0, 0, 0}, {1, 0.2, 0.1}, {0, 0, 1}, 60.0};
   const sol::Ball ball{{2.0, 0.5, 0.2}, 0.6};
   scene.objects = {{ball, {0.3, 0.8, 0.4}}};
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 24;
   settings.height = 18;
   const sol::RenderResult r = sol::render_cpu(scene, settings);
@@ -617,7 +617,7 @@ sol::Scene cutout_scene() {
 
 TEST(Render, CutoutPlanesAreSolidOnlyOnTheirDiscs) {
   const sol::Scene scene = cutout_scene();
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 48;
   settings.height = 48;
   const sol::RenderResult r = sol::render_cpu(scene, settings);
@@ -671,7 +671,7 @@ TEST(Render, CutoutGapBoundNeverExceedsPathLengthsToTheSolidPart) {
 TEST(Render, CutoutGrazingRaysDoNotRunOutOfSteps) {
   sol::Scene scene = cutout_scene();
   scene.camera = {{0, 0, 1.5}, {0.3, 0.2, -1}, {0, 1, 0}, 90.0};
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 64;
   settings.height = 48;
   const sol::RenderResult r = sol::render_cpu(scene, settings);
@@ -700,7 +700,7 @@ TEST(Render, StereoEyesAreOneGeodesicApart) {
 
 TEST(Render, StereoHalvesAreTheEyesMonoRenders) {
   const sol::Scene scene = sol::preset_scene("sandwich");
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 12;
   settings.height = 8;
   const sol::RenderResult both = sol::render_cpu_stereo(scene, settings, 0.5);
@@ -721,7 +721,7 @@ TEST(Render, StereoHalvesAreTheEyesMonoRenders) {
 
 TEST(Render, EveryPresetRendersWithoutNaN) {
   for (const std::string& name : sol::preset_names()) {
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 16;
     settings.height = 12;
     const sol::RenderResult r = sol::render_cpu(sol::preset_scene(name), settings);
@@ -731,7 +731,7 @@ TEST(Render, EveryPresetRendersWithoutNaN) {
     for (float v : r.object) hits += v > 0;
     EXPECT_GT(hits, 0) << name;
   }
-  sol::RenderSettings bad;
+  sol::RenderOptions bad;
   bad.width = 0;
   EXPECT_THROW(sol::render_cpu(sol::preset_scene("plane"), bad), sol::InvalidArgument);
 }
@@ -785,8 +785,8 @@ TEST(Render, FeaturesSayWhenEveryObjectIsAPlaneXOrY) {
 TEST(Render, PreparedWorldRendersAnyCamera) {
   for (const char* name : {"sandwich", "sheets", "lattice-pillars"}) {
     const sol::Scene scene = sol::preset_scene(name);
-    const sol::CpuRenderer renderer(scene);
-    sol::RenderSettings settings;
+    sol::CpuRenderer renderer(scene);
+    sol::RenderOptions settings;
     settings.width = 16;
     settings.height = 12;
     for (const dvec3& offset : {dvec3(0.0), dvec3(0.3, -0.2, 0.1), dvec3(-1.7, 2.2, -0.4)}) {
@@ -801,12 +801,12 @@ TEST(Render, PreparedWorldRendersAnyCamera) {
     }
   }
   sol::CpuRenderer empty;
-  EXPECT_THROW((void)empty.render(sol::Camera{}, sol::RenderSettings{}), std::logic_error);
+  EXPECT_THROW((void)empty.render(sol::Camera{}, sol::RenderOptions{}), std::logic_error);
   // A bad camera is refused, naming the field.
   sol::Camera parallel;
   parallel.up = parallel.forward;
   try {
-    (void)sol::CpuRenderer(sol::preset_scene("plane")).render(parallel, sol::RenderSettings{});
+    (void)sol::CpuRenderer(sol::preset_scene("plane")).render(parallel, sol::RenderOptions{});
     ADD_FAILURE() << "accepted a camera whose up is its forward";
   } catch (const sol::InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("camera.forward and camera.up must not be parallel"), std::string::npos) << e.what();
@@ -819,7 +819,7 @@ TEST(Render, PreparedWorldRendersAnyCamera) {
 TEST(Render, NoNonFiniteValuesAtTheEdgesOfTheAcceptedRanges) {
   // Every preset seen from the corners of the accepted coordinates and
   // heights: colours and AOVs stay finite (validation refuses what would not).
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 12;
   settings.height = 8;
   for (const std::string& name : sol::preset_names()) {
@@ -853,7 +853,7 @@ TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
   }
   // A progress callback that throws (on the calling thread, while workers
   // run) also reaches the caller after they join.
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 64;
   settings.height = 64;
   settings.threads = 2;
@@ -901,7 +901,7 @@ INSTANTIATE_TEST_SUITE_P(Quotient, QuotientPresets, ::testing::Values("lattice-b
 TEST_P(QuotientPresets, ObserverAtPAndGpSeeTheSameImage) {
   sol::Scene scene = sol::preset_scene(GetParam());
   scene.max_distance = 6.0;
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = 20;
   settings.height = 16;
   const sol::RenderResult here = sol::render_cpu(scene, settings);
@@ -945,7 +945,7 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
       plane.shape = sol::PlaneZ{c + k * h};
       cover.objects.push_back(plane);
     }
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 24;
     settings.height = 18;
     const sol::RenderResult a = sol::render_cpu(quotient, settings), b = sol::render_cpu(cover, settings);

@@ -168,7 +168,7 @@ TEST(SceneFuzz, MutantsAreRefusedCleanlyOrRenderFinite) {
     EXPECT_NO_THROW(sol::validate(scene)) << shown(text);
     if (m % 4 != 0) continue;
     scene.max_steps = std::min(scene.max_steps, 400);
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 4;
     settings.height = 3;
     settings.threads = 1;

@@ -76,7 +76,7 @@ void expect_shadows_match_sampling(const sol::Scene& scene, int width, int heigh
   sol::Scene unshadowed = scene, dark = scene;
   unshadowed.lights[0].shadows = false;
   dark.lights[0].intensity = 0.0;
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = width;
   settings.height = height;
   const sol::RenderResult with = sol::render_cpu(scene, settings), without = sol::render_cpu(unshadowed, settings),
@@ -131,7 +131,7 @@ TEST(Shadows, RemovingTheBallRemovesTheShadow) {
     sol::Scene scene = shadow_scene();
     sol::Scene unshadowed = scene;
     unshadowed.lights[0].shadows = false;
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 32;
     settings.height = 24;
     int darker = 0;
@@ -160,7 +160,7 @@ TEST(Shadows, NoShadowAcneOnALoneBall) {
     scene.lights = {light};
     sol::Scene unshadowed = scene;
     unshadowed.lights[0].shadows = false;
-    sol::RenderSettings settings;
+    sol::RenderOptions settings;
     settings.width = 24;
     settings.height = 24;
     const sol::RenderResult with = sol::render_cpu(scene, settings), without = sol::render_cpu(unshadowed, settings);
@@ -228,10 +228,10 @@ TEST(QuotientLight, EveryImageWithinReachAndNoOther) {
     light.exact = true;
     light.reach = reach;
     light.position = point_in_domain();
-    const std::vector<dvec3> images = sol::quotient_light_images(light);
+    const std::vector<dvec3> images = sol::quotient_light_images(light, lattice);
     sol::Light moved = light;
     moved.position = sol::multiply(lattice.element(2, -1, 1), light.position);
-    const std::vector<dvec3> moved_images = sol::quotient_light_images(moved);
+    const std::vector<dvec3> moved_images = sol::quotient_light_images(moved, lattice);
     int ways = 0;
     for (int k = 0; k < 12; ++k) {
       const dvec3 p = point_in_domain();

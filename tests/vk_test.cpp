@@ -556,10 +556,11 @@ TEST(SolVkInfo, PrintsTheDeviceAndFailsCleanly) {
   EXPECT_EQ(run_solvkinfo("--help", out), 0) << out;
   EXPECT_NE(out.find("usage: solvkinfo"), std::string::npos) << out;
   out.clear();
-  EXPECT_EQ(run_solvkinfo("--device tpu", out), 1) << out;
+  // Bad usage: exit status 2, the programs' wording.
+  EXPECT_EQ(run_solvkinfo("--device tpu", out), 2) << out;
   EXPECT_NE(out.find("solvkinfo: option --device expects auto, gpu or cpu, got 'tpu'"), std::string::npos) << out;
   out.clear();
-  EXPECT_EQ(run_solvkinfo("--frobnicate", out), 1) << out;
+  EXPECT_EQ(run_solvkinfo("--frobnicate", out), 2) << out;
   EXPECT_NE(out.find("unknown option '--frobnicate'"), std::string::npos) << out;
 }
 #endif

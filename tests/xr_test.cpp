@@ -100,7 +100,7 @@ int differing_pixels(const Image& xr, const sol::RenderResult& cpu, float tolera
 
 sol::RenderResult cpu_render(sol::Scene scene, const sol::Camera& eye, int width, int height) {
   scene.camera = eye;
-  sol::RenderSettings settings;
+  sol::RenderOptions settings;
   settings.width = width;
   settings.height = height;
   return sol::render_cpu(scene, settings);

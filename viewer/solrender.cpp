@@ -13,21 +13,17 @@
 #include <optional>
 #include <string>
 #include <thread>
-#include <functional>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
 #include <sol/sol.hpp>
-#ifdef SOL_HAVE_VULKAN
-#include <sol/vk/context.hpp>
-#include <sol/vk/march.hpp>
-#endif
 
 #include "command_line.hpp"
 #include "image_file.hpp"
 #include "output_file.hpp"
+#include "renderers.hpp"
 
 namespace {
 
@@ -316,68 +312,36 @@ int main(int argc, char** argv) {
   sol::programs::install_signal_cleanup();
   try {
     // The renderer, made once (a film's frames share it): the kernel, or the CPU.
-    std::string where;
-    std::function<sol::RenderResult(const sol::Camera&, double*)> render_camera;
-#ifdef SOL_HAVE_VULKAN
-    std::optional<sol::vk::Context> context;
-    std::optional<sol::vk::MarchRenderer> renderer;
-    if (const std::string why = sol::vk::MarchRenderer::unsupported(scene); device == "auto" && !why.empty()) {
-      std::fprintf(stderr, "solrender: %s; rendering on the CPU\n", why.c_str());
-    } else if (device != "cpu") {
-      try {
-        sol::vk::ContextOptions context_options;
-        context_options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
+    sol::programs::RendererChoice choice;
+    choice.device = device == "vulkan" ? sol::programs::Device::Vulkan
+                    : device == "cpu"  ? sol::programs::Device::Cpu
+                                       : sol::programs::Device::Auto;
+    choice.rk4 = integrator == "rk4";
+    choice.rk4_step = rk_step;
 #ifndef NDEBUG
-        context_options.validation = true;  // validation layers in debug builds
+    choice.validation = true;  // validation layers in debug builds
 #endif
-        context.emplace(context_options);
-      } catch (const std::exception& e) {
-        if (device == "vulkan") throw;
-        std::fprintf(stderr, "solrender: no Vulkan device (%s); rendering on the CPU\n", e.what());
-      }
-      if (context) {
-        sol::vk::MarchOptions options;
-        options.integrator = integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
-        options.rk4_step = rk_step;
-        renderer.emplace(*context, options);
-        renderer->set_world(scene);
-        where = "vulkan '" + context->device_name() + "'";
-        render_camera = [&](const sol::Camera& camera, double* device_ms) {
-          std::vector<sol::Camera> eyes{camera};
-          if (stereo) {
-            const sol::StereoEyes pair = sol::stereo_eyes(camera, ipd);
-            eyes = {pair.left, pair.right};
-          }
-          // In tiles of at most about 100 ms on the device (a display's watchdog; progress).
-          sol::vk::RenderOptions render_options;
-          render_options.samples = spp;
-          if (show_progress) render_options.progress = report;
-          const sol::RenderResult both = renderer->render(eyes, width, height, render_options, device_ms);
-          return anaglyph ? to_anaglyph(both) : both;
-        };
-      }
+    if (choice.device == sol::programs::Device::Vulkan && !sol::programs::has_vulkan()) {
+      cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
     }
-#else
-    if (device == "vulkan") cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
-#endif
-    std::optional<sol::CpuRenderer> cpu;
-    if (!render_camera) {
-      if (integrator == "rk4") cl.fail("--integrator rk4 needs the Vulkan kernel");
-      cpu.emplace(scene);
-      const unsigned used_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-      where = "cpu (" + std::to_string(used_threads) + " threads)";
-      render_camera = [&](const sol::Camera& camera, double*) {
-        sol::RenderSettings settings;
-        settings.width = width;
-        settings.height = height;
-        settings.threads = threads;
-        settings.samples = spp;
-        if (show_progress) settings.progress = report;
-        if (!stereo) return cpu->render(camera, settings);
-        const sol::RenderResult both = cpu->render_stereo(camera, settings, ipd);
-        return anaglyph ? to_anaglyph(both) : both;
-      };
-    }
+    const std::unique_ptr<sol::Renderer> renderer = sol::programs::make_renderer(
+        choice, scene, [](const std::string& note) { std::fprintf(stderr, "solrender: %s\n", note.c_str()); });
+    const bool cpu = dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr;
+    if (cpu && integrator == "rk4") cl.fail("--integrator rk4 needs the Vulkan kernel");
+    std::string where = renderer->description();
+    if (cpu && threads) where = "cpu (" + std::to_string(threads) + " threads)";
+    sol::RenderOptions render_options;
+    render_options.width = width;
+    render_options.height = height;
+    render_options.samples = spp;
+    render_options.threads = threads;
+    render_options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
+    if (show_progress) render_options.progress = report;
+    auto render_camera = [&](const sol::Camera& camera) {
+      const sol::RenderResult both =
+          stereo ? renderer->render_stereo(camera, ipd, render_options) : renderer->render(camera, render_options);
+      return anaglyph ? to_anaglyph(both) : both;
+    };
 
     if (camera_path) {
       // A film: frames first_frame..end_frame-1, each its own complete file;
@@ -385,20 +349,20 @@ int main(int argc, char** argv) {
       // so a stopped run goes on where it was.
       long rendered = 0, skipped = 0;
       const auto film_started = std::chrono::steady_clock::now();
-      const bool quotient = scene.quotient != sol::Quotient::None;
+      const std::optional<sol::Lattice> lattice = scene.lattice();
       for (long k = first_frame; k < end_frame; ++k) {
         const std::string name = frame_name(output, k);
         if (std::filesystem::exists(name)) {
           ++skipped;
           continue;
         }
-        const sol::Camera camera = camera_path->at(static_cast<double>(k) / fps, scene.camera, quotient);
+        const sol::Camera camera = camera_path->at(static_cast<double>(k) / fps, scene.camera, lattice);
         char prefix[96];
         std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld): ", k, k - first_frame + 1, end_frame - first_frame);
         progress_prefix = prefix;
         started = std::chrono::steady_clock::now();
         last_tenth = -1;
-        const sol::RenderResult r = render_camera(camera, nullptr);
+        const sol::RenderResult r = render_camera(camera);
         if (tty) std::fprintf(stderr, "\r");
         sol::programs::OutputFile image(name);
         const std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
@@ -415,13 +379,12 @@ int main(int argc, char** argv) {
     }
 
     const auto begin = std::chrono::steady_clock::now();
-    double device_ms = 0;
-    sol::RenderResult r = render_camera(scene.camera, &device_ms);
+    sol::RenderResult r = render_camera(scene.camera);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     if (tty) std::fprintf(stderr, "\r");
     if (!cpu) {
       char buf[64];
-      std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", device_ms);
+      std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", r.device_ms);
       where += buf;
     }
     // Both files complete before either replaces what was there: a failure

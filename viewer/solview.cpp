@@ -126,12 +126,6 @@ sol::Scene load(const std::string& arg) {
   return scene;
 }
 
-sol::Observer observer_for(const sol::Scene& scene) {
-  sol::Observer o(scene.camera.position, scene.camera.forward, scene.camera.up);
-  if (scene.quotient != sol::Quotient::None) o.bind(sol::Lattice::golden());  // stays in D
-  return o;
-}
-
 std::optional<Key> key_of(int glfw_key) {
   switch (glfw_key) {
     case GLFW_KEY_W: return Key::W;
@@ -212,7 +206,7 @@ struct App {
     scene = load(name);
     good_world = scene;
     scene_name = name;
-    observer = observer_for(scene);
+    observer = sol::observer_at(scene);
     world_changed = true;
     ++world_version;
     watch(name);
@@ -254,7 +248,7 @@ struct App {
       good_world = scene;
       world_changed = true;
       ++world_version;
-      if (camera_moved || quotient_changed) observer = observer_for(scene);
+      if (camera_moved || quotient_changed) observer = sol::observer_at(scene);
       message = "reloaded " + scene_name;
       std::fprintf(stderr, "solview: reloaded %s\n", scene_name.c_str());
     } catch (const std::exception& e) {
@@ -280,9 +274,7 @@ struct App {
     }
     // The observer follows a change of quotient (bound to the lattice or not).
     const bool bound = observer.lattice().has_value();
-    if (bound != (scene.quotient != sol::Quotient::None)) {
-      observer.bind(scene.quotient != sol::Quotient::None ? std::optional(sol::Lattice::golden()) : std::nullopt);
-    }
+    if (bound != scene.lattice().has_value()) observer.bind(scene.lattice());
   }
 
   // What the panel asked for besides its edits in place.
@@ -297,7 +289,7 @@ struct App {
         std::fprintf(stderr, "solview: %s\n", e.what());
       }
     }
-    if (a.reset) observer = observer_for(scene);
+    if (a.reset) observer = sol::observer_at(scene);
     if (a.screenshot) want_screenshot = true;
     if (a.toggle_recording) {
       if (!recording) {
@@ -407,7 +399,7 @@ struct App {
   // Keys with an effect on press (the held ones act in Controls::step).
   void press(Key k) {
     switch (k) {
-      case Key::Home: observer = observer_for(scene); break;
+      case Key::Home: observer = sol::observer_at(scene); break;
       case Key::Tab: {
         auto it = std::find(presets.begin(), presets.end(), scene_name);
         const std::size_t next = it == presets.end() ? 0 : (static_cast<std::size_t>(it - presets.begin()) + 1) % presets.size();
@@ -769,7 +761,7 @@ int run(App& app) {
     // The panel's mean march steps: a small render with its AOVs once a second.
     if (app.overlay_visible && std::chrono::steady_clock::now() - last_steps > std::chrono::seconds(1)) {
       presenter.wait_for_frame();  // the frame in flight reads the renderer's uniforms
-      const sol::RenderResult probe = renderer.render(cameras[0], 64, std::max(1, 64 * eye_h / std::max(1, eye_w)));
+      const sol::RenderResult probe = renderer.render(cameras[0], {.width = 64, .height = std::max(1, 64 * eye_h / std::max(1, eye_w))});
       double sum = 0;
       for (float v : probe.steps) sum += v;
       mean_steps = probe.steps.empty() ? -1.0 : sum / static_cast<double>(probe.steps.size());

@@ -547,9 +547,9 @@ void render_on_device(App& app, Eye& eye, const sol::Camera& camera, std::uint32
 void render_through_host(App& app, Eye& eye, const sol::Camera& camera, std::int64_t format, std::uint32_t width,
                          std::uint32_t height, Timing& timing) {
   const auto begin = std::chrono::steady_clock::now();
-  double kernel_ms = 0;
   const sol::RenderResult image =
-      app.renderer->render(camera, static_cast<int>(width), static_cast<int>(height), &kernel_ms);
+      app.renderer->render(camera, {.width = static_cast<int>(width), .height = static_cast<int>(height)});
+  const double kernel_ms = image.device_ms;
   const auto rendered = std::chrono::steady_clock::now();
 
     // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
@@ -645,8 +645,7 @@ int run(const Options& o, const sol::Scene& scene) {
   std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain\n", app.eyes.size(), width, height,
                device_copy ? "device" : "host");
 
-  sol::Observer base(scene.camera.position, scene.camera.forward, scene.camera.up);
-  if (scene.quotient != sol::Quotient::None) base.bind(sol::Lattice::golden());
+  sol::Observer base = sol::observer_at(scene);
 
   bool running = false, quit = false, exit_requested = false, announced = false;
   long frames = 0;

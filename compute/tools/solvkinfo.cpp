@@ -5,28 +5,14 @@
 //   solvkinfo --device cpu      SOL_VK_DEVICE=cpu does the same for every Sol program
 #include <cstdio>
 #include <cstdint>
-#include <cstdlib>
 #include <exception>
 #include <string>
 
 #include <sol/vk/vk.hpp>
 
+#include "command_line.hpp"
+
 namespace {
-
-void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: solvkinfo [--device auto|gpu|cpu] [--validation]\n"
-               "Prints the Vulkan device Sol's compute library selects.\n\n"
-               "  --device D     auto (default: a GPU when present, else the CPU device), gpu or cpu;\n"
-               "                 without it the environment variable SOL_VK_DEVICE decides\n"
-               "  --validation   enable VK_LAYER_KHRONOS_validation and report its errors\n"
-               "  --help         this text\n");
-}
-
-[[noreturn]] void fail(const std::string& message) {
-  std::fprintf(stderr, "solvkinfo: %s\nTry 'solvkinfo --help'.\n", message.c_str());
-  std::exit(1);
-}
 
 std::string version_string(std::uint32_t version) {
   char text[32];
@@ -39,22 +25,17 @@ std::string version_string(std::uint32_t version) {
 
 int main(int argc, char** argv) {
   sol::vk::ContextOptions options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      print_usage(stdout);
-      return 0;
-    } else if (arg == "--device") {
-      if (i + 1 >= argc) fail("option --device expects auto, gpu or cpu");
-      const auto preference = sol::vk::parse_device_preference(argv[++i]);
-      if (!preference) fail(std::string("option --device expects auto, gpu or cpu, got '") + argv[i] + "'");
-      options.preference = *preference;
-    } else if (arg == "--validation") {
-      options.validation = true;
-    } else {
-      fail("unknown option '" + arg + "'");
-    }
-  }
+  std::string device;
+  bool validation = false;
+  sol::cli::CommandLine cl("solvkinfo", "[options]", "Prints the Vulkan device Sol's compute library selects.");
+  cl.add_choice("--device", device, {"auto", "gpu", "cpu"},
+                "auto (a GPU when present, else the CPU device), gpu or cpu; without it the environment variable "
+                "SOL_VK_DEVICE decides");
+  cl.add_flag("--validation", validation, "enable VK_LAYER_KHRONOS_validation and report its errors");
+  cl.set_footer("Exit status 2 for bad usage, 1 when no device opens or validation reports errors.");
+  cl.parse(argc, argv);
+  if (!device.empty()) options.preference = *sol::vk::parse_device_preference(device);
+  options.validation = validation;
   try {
     const sol::vk::Context context(options);
     std::printf("device: %s\n", context.device_name().c_str());

@@ -99,7 +99,7 @@ long CameraPath::frame_count(double fps) const {
   return static_cast<long>(std::floor(duration() * fps + 1e-9)) + 1;
 }
 
-Camera CameraPath::at(double t, const Camera& scene_camera, bool quotient) const {
+Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<Lattice>& lattice) const {
   Camera c = scene_camera;
   if (position) c.position = *position;
   if (forward) c.forward = *forward;
@@ -107,7 +107,7 @@ Camera CameraPath::at(double t, const Camera& scene_camera, bool quotient) const
   if (fov) c.fov = *fov;
   validate(c);
   Observer o(c.position, c.forward, c.up);
-  if (quotient) o.bind(Lattice::golden());
+  if (lattice) o.bind(*lattice);
   double begin = 0.0;
   for (const PathSegment& s : segments) {
     if (t <= begin) break;

@@ -89,9 +89,8 @@ std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p) {
   return out;
 }
 
-std::vector<glm::dvec3> quotient_light_images(const Light& light) {
+std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice& lattice) {
   if (light.type != LightType::Point || !light.exact) return {};
-  const Lattice lattice = Lattice::golden();
   const glm::dvec3 l0 = lattice.teleport(light.position).point;
   // C: the largest over a 7³ grid of D of the least distance to the nearby
   // images (an upper bound of the least distance to all of them), plus the

@@ -92,7 +92,9 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::quotient_images: max_step must be in (0, kQuotientMaxStep]");
   }
-  const Lattice lattice = Lattice::golden();
+  const std::optional<Lattice> world_lattice = world.lattice();
+  if (!world_lattice) throw std::invalid_argument("sol::quotient_images: the world is Sol itself, not a quotient");
+  const Lattice& lattice = *world_lattice;
   std::vector<MarchObject> images;
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     std::visit(
@@ -170,10 +172,11 @@ MarchFeatures features_of(const World& world) {
 MarchWorld::MarchWorld(const World& world) : m_world(world) {
   validate(world);
   m_features = features_of(world);
-  if (m_features.quotient) {
+  m_lattice = world.lattice();
+  if (m_lattice) {
     std::tie(m_objects, m_max_step) = listed_images(world);
-    m_field = std::make_shared<const QuotientField>(m_objects, m_max_step);
-    for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l));
+    m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
+    for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l, *m_lattice));
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
   }

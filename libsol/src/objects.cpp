@@ -132,7 +132,7 @@ double pattern_factor(Pattern pattern, double u, double v) {
 
 namespace detail {
 
-void check_radius(double radius, const std::string& at, bool quotient) {
+void check_radius(double radius, const std::string& at, const Lattice* quotient) {
   if (!(radius > 0.0) || !std::isfinite(radius)) field_error(at + ".radius", at + ".radius must be finite and > 0");
   if (quotient && radius > kMaxQuotientRadius) {
     field_error(at + ".radius",
@@ -172,7 +172,7 @@ Pattern read_pattern(const json& value, const SceneFileReader& r, const std::str
 
 }  // namespace
 
-void check_object(const SceneObject& o, const std::string& at, bool quotient) {
+void check_object(const SceneObject& o, const std::string& at, const Lattice* quotient) {
   std::visit([&](const auto& kind) { check_kind(kind, at, quotient); }, o.shape);
   if (o.cutout && (is_solid(o.shape) || o.pattern == Pattern::None)) {
     field_error(at + ".cutout", at + ".cutout needs a plane with a pattern (circles or checker)");

@@ -64,23 +64,23 @@ double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& hea
 
 /// A radius finite and > 0, and in the quotient at most kMaxQuotientRadius
 /// (FieldError at `at`.radius).
-void check_radius(double radius, const std::string& at, bool quotient);
+void check_radius(double radius, const std::string& at, const Lattice* quotient);
 
 json to_json(const glm::dvec3& v);
 
-// Each kind's checks of scene object `at` ("objects[2]"; with `quotient`
-// those of the compact quotient; throws FieldError), its own keys read from
+// Each kind's checks of scene object `at` ("objects[2]"; with `quotient`,
+// the world's lattice, those of its compact quotient; throws FieldError), its own keys read from
 // the object's JSON `o` into `kind` (and the object), and written back.
 #define SOL_KIND_FILE_FUNCTIONS(Type, code_name, code, prefix, feature, solid)                                 \
-  void check_kind(const Type& kind, const std::string& at, bool quotient);                                   \
+  void check_kind(const Type& kind, const std::string& at, const Lattice* quotient);                                   \
   void read_kind(Type& kind, SceneObject& object, const json& o, const SceneFileReader& reader, const std::string& at); \
   json write_kind(const Type& kind, const SceneObject& object);
 SOL_OBJECT_KINDS(SOL_KIND_FILE_FUNCTIONS)
 #undef SOL_KIND_FILE_FUNCTIONS
 
-/// The checks of scene object `at` ("objects[2]"), and with `quotient`
-/// those of the compact quotient; throws FieldError.
-void check_object(const SceneObject& object, const std::string& at, bool quotient);
+/// The checks of scene object `at` ("objects[2]"), and with `quotient` (the
+/// world's lattice) those of its compact quotient; throws FieldError.
+void check_object(const SceneObject& object, const std::string& at, const Lattice* quotient);
 
 /// A scene object from its JSON at path `at`.
 SceneObject read_object(const json& value, const SceneFileReader& reader, const std::string& at);

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "check.hpp"
+#include "sol/scene.hpp"
 
 namespace sol {
 
@@ -102,6 +103,12 @@ void Observer::set_flow_options(const FlowOptions& options) {
     throw InvalidArgument("sol::Observer::set_flow_options: rk4_step and tolerance must be finite and > 0");
   }
   m_options = options;
+}
+
+Observer observer_at(const Scene& scene) {
+  Observer o(scene.camera.position, scene.camera.forward, scene.camera.up);
+  o.bind(scene.lattice());
+  return o;
 }
 
 }  // namespace sol

@@ -53,15 +53,14 @@ void parallel_for(int count, F&& f) {
 
 }  // namespace
 
-QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_step)
-    : m_image_count(images.size()), m_max_step(max_step) {
+QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_step, const Lattice& lattice)
+    : m_lattice(lattice), m_image_count(images.size()), m_max_step(max_step) {
   if (images.size() > 254) {
     throw std::invalid_argument("sol::QuotientField: at most 254 images, got " + std::to_string(images.size()));
   }
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::QuotientField: max_step must be in (0, kQuotientMaxStep]");
   }
-  const Lattice lattice = Lattice::golden();
   const double h = lattice.height();
   m_words.assign(2 * kCellCount, 0u);
   // Per layer, the cells' diameter (at most, over the layer's heights).
@@ -127,7 +126,7 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
 }
 
 QuotientField::Cell QuotientField::cell_of(const glm::dvec3& q) const {
-  const Lattice lattice = Lattice::golden();
+  const Lattice& lattice = m_lattice;
   const glm::dvec2 sr = lattice.lattice_coordinates(q.x, q.y);
   const glm::dvec3 g(std::clamp(sr.x, 0.0, 1.0) * kN, std::clamp(sr.y, 0.0, 1.0) * kN,
                      std::clamp(q.z / lattice.height(), 0.0, 1.0) * kNz);

@@ -25,13 +25,6 @@
 namespace sol {
 namespace {
 
-void require_size(int value, const char* name) {
-  if (value < 1 || value > 16384) {
-    throw InvalidArgument(std::string("sol::render_cpu: ") + name + " must be in [1, 16384], got " +
-                          std::to_string(value));
-  }
-}
-
 // How far a march goes, and whether it starts on a surface it leaves: a
 // shadow ray from a hit point towards a light passes the objects within
 // 2 hit_epsilon of its start (the surface it was found on) until it is
@@ -294,7 +287,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
                         const MarchLimits& limits = {}) {
   const World& world = prepared.world();
   const QuotientField& field = *prepared.field();
-  const Lattice lattice = Lattice::golden();
+  const Lattice& lattice = *prepared.lattice();
   const std::vector<MarchObject>& images = prepared.objects();
   glm::dvec3 origin = lattice.teleport(camera).point;
   auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
@@ -434,15 +427,30 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   return world.fog_color + (surface - world.fog_color) * transmittance;
 }
 
-// Both halves side by side: x on the left, y on the right, `channels` floats per pixel.
-std::vector<float> side_by_side(const std::vector<float>& x, const std::vector<float>& y, int w, int h, int channels) {
-  std::vector<float> out(static_cast<std::size_t>(2 * w) * h * channels);
-  const std::size_t row = static_cast<std::size_t>(w) * channels;
-  for (int j = 0; j < h; ++j) {
-    std::copy_n(x.begin() + static_cast<std::ptrdiff_t>(j * row), row, out.begin() + static_cast<std::ptrdiff_t>(2 * j * row));
-    std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(j * row), row, out.begin() + static_cast<std::ptrdiff_t>((2 * j + 1) * row));
-  }
-  return out;
+// Two images of the same height side by side, `left` on the left, with their AOVs.
+RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
+  const int h = left.height;
+  auto join = [&](const std::vector<float>& a, const std::vector<float>& b, int channels) {
+    std::vector<float> out;
+    out.reserve(a.size() + b.size());
+    const std::size_t ra = static_cast<std::size_t>(left.width) * channels, rb = static_cast<std::size_t>(right.width) * channels;
+    for (int j = 0; j < h; ++j) {
+      out.insert(out.end(), a.begin() + static_cast<std::ptrdiff_t>(j * ra), a.begin() + static_cast<std::ptrdiff_t>((j + 1) * ra));
+      out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(j * rb), b.begin() + static_cast<std::ptrdiff_t>((j + 1) * rb));
+    }
+    return out;
+  };
+  RenderResult r;
+  r.width = left.width + right.width;
+  r.height = h;
+  r.rgba = join(left.rgba, right.rgba, 4);
+  r.object = join(left.object, right.object, 1);
+  r.distance = join(left.distance, right.distance, 1);
+  r.px = join(left.px, right.px, 1);
+  r.py = join(left.py, right.py, 1);
+  r.pz = join(left.pz, right.pz, 1);
+  r.steps = join(left.steps, right.steps, 1);
+  return r;
 }
 
 }  // namespace
@@ -467,18 +475,29 @@ MarchHit CpuRenderer::march(const Camera& camera, const glm::dvec3& direction) c
 
 glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return shade_hit(world(), hit); }
 
-RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& settings) const {
+RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
+  (void)world();  // a world first (logic_error)
+  validate_render(eyes, options, "sol::CpuRenderer::render");
+  // Each eye on its own; the progress of all of them together.
+  RenderOptions eye_options = options;
+  RenderResult r;
+  for (std::size_t e = 0; e < eyes.size(); ++e) {
+    if (options.progress) {
+      eye_options.progress = [&, e](double f) { options.progress((static_cast<double>(e) + f) / static_cast<double>(eyes.size())); };
+    }
+    RenderResult eye = render_eye(eyes[e], eye_options);
+    r = e == 0 ? std::move(eye) : side_by_side(r, eye);
+  }
+  return r;
+}
+
+std::string CpuRenderer::description() const {
+  return "cpu (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+}
+
+// One eye (validated by render()).
+RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& settings) const {
   const MarchWorld& prepared = world();
-  validate(camera);
-  require_size(settings.width, "width");
-  require_size(settings.height, "height");
-  if (camera.projection == Projection::Equirectangular && settings.width != 2 * settings.height) {
-    throw InvalidArgument("sol::CpuRenderer::render: an equirectangular image needs width = 2 x height, got " +
-                          std::to_string(settings.width) + " x " + std::to_string(settings.height));
-  }
-  if (settings.samples < 1 || settings.samples > 4096) {
-    throw InvalidArgument("sol::CpuRenderer::render: samples must be in [1, 4096], got " + std::to_string(settings.samples));
-  }
   const int w = settings.width, h = settings.height;
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   RenderResult r;
@@ -546,35 +565,19 @@ RenderResult CpuRenderer::render(const Camera& camera, const RenderSettings& set
   return r;
 }
 
-RenderResult CpuRenderer::render_stereo(const Camera& camera, const RenderSettings& settings, double ipd) const {
-  const StereoEyes eyes = stereo_eyes(camera, ipd);
-  const RenderResult a = render(eyes.left, settings), b = render(eyes.right, settings);
-  const int w = settings.width, h = settings.height;
-  RenderResult r;
-  r.width = 2 * w;
-  r.height = h;
-  r.rgba = side_by_side(a.rgba, b.rgba, w, h, 4);
-  r.object = side_by_side(a.object, b.object, w, h, 1);
-  r.distance = side_by_side(a.distance, b.distance, w, h, 1);
-  r.px = side_by_side(a.px, b.px, w, h, 1);
-  r.py = side_by_side(a.py, b.py, w, h, 1);
-  r.pz = side_by_side(a.pz, b.pz, w, h, 1);
-  r.steps = side_by_side(a.steps, b.steps, w, h, 1);
-  return r;
-}
-
 MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   return CpuRenderer(scene).march(scene.camera, direction);
 }
 
 glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return shade_hit(MarchWorld(scene), hit); }
 
-RenderResult render_cpu(const Scene& scene, const RenderSettings& settings) {
-  return CpuRenderer(scene).render(scene.camera, settings);
+RenderResult render_cpu(const Scene& scene, const RenderOptions& options) {
+  CpuRenderer renderer;
+  return render_scene(renderer, scene, options);
 }
 
-RenderResult render_cpu_stereo(const Scene& scene, const RenderSettings& settings, double ipd) {
-  return CpuRenderer(scene).render_stereo(scene.camera, settings, ipd);
+RenderResult render_cpu_stereo(const Scene& scene, const RenderOptions& options, double ipd) {
+  return CpuRenderer(scene).render_stereo(scene.camera, ipd, options);
 }
 
 }  // namespace sol

@@ -20,8 +20,9 @@ void check_light(const Light& light, const std::string& at);  // light.cpp
 void check_world(const World& s) {
   if (s.objects.empty()) field_error("objects", "the scene has no objects");
   if (s.objects.size() > 64) field_error("objects", "at most 64 objects, got " + std::to_string(s.objects.size()));
+  const std::optional<Lattice> lattice = s.lattice();
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
-    check_object(s.objects[i], "objects[" + std::to_string(i) + "]", s.quotient == Quotient::Golden);
+    check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);
   }
   if (s.lights.size() > static_cast<std::size_t>(kMaxLights)) {
     field_error("lights", "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(s.lights.size()));
@@ -64,6 +65,11 @@ bool uses_exact(const World& world) {
                        return b && b->exact;
                      }) ||
          uses_exact_lights(world);
+}
+
+std::optional<Lattice> World::lattice() const {
+  if (quotient == Quotient::Golden) return Lattice::golden();
+  return std::nullopt;
 }
 
 std::vector<std::string> preset_names() {

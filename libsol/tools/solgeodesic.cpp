@@ -2,53 +2,24 @@
 // direction, with the first integrals of docs/mathematics.md as a check.
 //
 //   solgeodesic                          a few representative geodesics
-//   solgeodesic --direction 1 0.5 0.2 --length 10 --samples 11 --method rk4
+//   solgeodesic --direction 1,0.5,0.2 --length 10 --samples 11 --method rk4
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <sol/sol.hpp>
 
+#include "command_line.hpp"
+
 namespace {
 
 // Arc lengths solgeodesic follows: beyond |z| ~ 700 e^{±z} leaves double
 // anyway; the integrators' fixed steps make 1e8 a matter of minutes.
 constexpr double kLongest = 1e6, kLongestIntegrated = 1e3;
-
-void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: solgeodesic [options]\n"
-               "Prints geodesics of Thurston's Sol geometry (metric e^{-2z}dx^2 + e^{2z}dy^2 + dz^2).\n\n"
-               "  --from X Y Z        start point (default 0 0 0)\n"
-               "  --direction A B C   initial direction in frame components (normalised);\n"
-               "                      without it a few representative directions are printed\n"
-               "  --length L          arc length to follow (default 5; negative goes backwards;\n"
-               "                      |L| <= 1e6, 1e3 with rk4 or dopri)\n"
-               "  --samples N         rows per geodesic, N >= 2 (default 6)\n"
-               "  --method M          auto | rk4 | dopri | closed (default auto)\n"
-               "  --help              this text\n\n"
-               "Columns: t, position x y z, direction (frame components) u1 u2 u3, and the drift of\n"
-               "the first integrals e^{-z}u1 - a, e^{z}u2 - b, z' + a x - b y - c (relative to the start;\n"
-               "beyond |z| ~ 700 a component u1 or u2 below double's range reads 0, and the drift shows it).\n");
-}
-
-[[noreturn]] void fail(const std::string& message) {
-  std::fprintf(stderr, "solgeodesic: %s\nTry 'solgeodesic --help'.\n", message.c_str());
-  std::exit(2);
-}
-
-double parse_number(const char* text, const char* option) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(value)) {
-    fail(std::string("option ") + option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
 
 // u e^{w} without 0 · inf: u = 0 exactly (vertical and plane geodesics far
 // out) gives 0, and a tiny u meets a huge e^{w} in logarithms.
@@ -81,48 +52,36 @@ void print_geodesic(const sol::GeodesicState& start, double length, int samples,
 }  // namespace
 
 int main(int argc, char** argv) {
-  glm::dvec3 from(0.0);
+  std::optional<glm::dvec3> from;
   std::vector<glm::dvec3> directions;
   double length = 5.0;
   int samples = 6;
-  sol::Method method = sol::Method::Auto;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto need = [&](int n) {
-      if (i + n >= argc) fail("option " + arg + " needs " + std::to_string(n) + " value(s)");
-    };
-    if (arg == "--help" || arg == "-h") {
-      print_usage(stdout);
-      return 0;
-    } else if (arg == "--from") {
-      need(3);
-      for (int k = 0; k < 3; ++k) from[k] = parse_number(argv[++i], "--from");
-    } else if (arg == "--direction") {
-      need(3);
-      glm::dvec3 d;
-      for (int k = 0; k < 3; ++k) d[k] = parse_number(argv[++i], "--direction");
-      if (glm::length(d) == 0.0) fail("--direction must not be zero");
-      directions.push_back(d);
-    } else if (arg == "--length") {
-      need(1);
-      length = parse_number(argv[++i], "--length");
-    } else if (arg == "--samples") {
-      need(1);
-      const double n = parse_number(argv[++i], "--samples");
-      if (n < 2 || n > 1e6 || n != std::floor(n)) fail("--samples expects an integer from 2 to 1000000");
-      samples = static_cast<int>(n);
-    } else if (arg == "--method") {
-      need(1);
-      const std::string m = argv[++i];
-      if (m == "auto") method = sol::Method::Auto;
-      else if (m == "rk4") method = sol::Method::RK4;
-      else if (m == "dopri") method = sol::Method::DormandPrince;
-      else if (m == "closed") method = sol::Method::ClosedForm;
-      else fail("unknown method '" + m + "' (auto, rk4, dopri, closed)");
-    } else {
-      fail("unknown option '" + arg + "'");
-    }
-  }
+  std::string method_name = "auto";
+  sol::cli::CommandLine cl("solgeodesic", "[options]",
+                           "Prints geodesics of Thurston's Sol geometry (metric e^{-2z}dx^2 + e^{2z}dy^2 + dz^2).");
+  cl.add_vec3("--from", from, "X,Y,Z", "start point (default 0,0,0)");
+  cl.add_value("--direction", "A,B,C",
+               "initial direction in frame components (normalised); may be given more than once; without it a "
+               "few representative directions are printed",
+               [&](const std::string& text) {
+                 const glm::dvec3 d = cl.vec3(text, "--direction");
+                 if (glm::length(d) == 0.0) cl.fail("--direction must not be zero");
+                 directions.push_back(d);
+               });
+  cl.add_number("--length", length, "L",
+                "arc length to follow (default 5; negative goes backwards; |L| <= 1e6, 1e3 with rk4 or dopri)");
+  cl.add_integer("--samples", samples, 2, 1000000, "N", "rows per geodesic, 2..1000000 (default 6)");
+  cl.add_choice("--method", method_name, {"auto", "rk4", "dopri", "closed"}, "the flow's method (default auto)");
+  cl.set_footer(
+      "Columns: t, position x y z, direction (frame components) u1 u2 u3, and the drift of\n"
+      "the first integrals e^{-z}u1 - a, e^{z}u2 - b, z' + a x - b y - c (relative to the start;\n"
+      "beyond |z| ~ 700 a component u1 or u2 below double's range reads 0, and the drift shows it).\n"
+      "Exit status 2 for bad usage, 1 when a geodesic cannot be followed.");
+  cl.parse(argc, argv);
+  const sol::Method method = method_name == "rk4"      ? sol::Method::RK4
+                             : method_name == "dopri"  ? sol::Method::DormandPrince
+                             : method_name == "closed" ? sol::Method::ClosedForm
+                                                       : sol::Method::Auto;
   if (directions.empty()) {
     const double s = 1.0 / std::sqrt(2.0);
     directions = {{1, 0, 0}, {0, 0, 1}, {s, s, 0}, {0.6, 0.0, 0.8}, {0.48, 0.6, 0.64}, {0.01, 0.3, -0.95}};
@@ -133,11 +92,11 @@ int main(int argc, char** argv) {
   if (!(std::abs(length) <= longest)) {
     char limit[64];
     std::snprintf(limit, sizeof limit, "[-%g, %g]", longest, longest);
-    fail("--length must be in " + std::string(limit) + (integrated ? " with --method rk4 or dopri" : ""));
+    cl.fail("--length must be in " + std::string(limit) + (integrated ? " with --method rk4 or dopri" : ""));
   }
   std::printf("# libsol %s: Sol geodesics\n\n", SOL_VERSION_STRING);
   try {
-    for (const glm::dvec3& d : directions) print_geodesic({from, d}, length, samples, method);
+    for (const glm::dvec3& d : directions) print_geodesic({from.value_or(glm::dvec3(0.0)), d}, length, samples, method);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "solgeodesic: %s\n", e.what());
     return 1;

@@ -23,7 +23,8 @@ def test_group_law_and_inverse():
 
 def solgeodesic_end(start, direction, length):
     """The end of the geodesic as the C++ program solgeodesic prints it (8 decimals)."""
-    out = subprocess.run([os.environ["SOLGEODESIC"], "--from", *map(str, start), "--direction", *map(str, direction),
+    out = subprocess.run([os.environ["SOLGEODESIC"], "--from", ",".join(map(repr, start)),
+                          "--direction", ",".join(map(repr, direction)),
                           "--length", str(length), "--samples", "2"], check=True, capture_output=True, text=True).stdout
     rows = [line.split() for line in out.splitlines() if line.strip() and not line.startswith("#")]
     last = [float(v) for v in rows[-1]]
@@ -162,6 +163,24 @@ def test_render_matches_solrender():
         written = matplotlib.image.imread(png)[:, :, :3]
     # solrender's PNG is the same render sRGB-encoded to 8 bits: within rounding (half of 1/255, and a little).
     assert np.abs(srgb(result["rgba"][:, :, :3]) - written).max() < 0.6 / 255
+
+
+def test_cpu_renderer_keeps_its_world():
+    # A renderer prepares the world once and renders it again and again: each render is render_cpu's, to the bit,
+    # and set_scene moves it to another world.
+    lattice = sol.preset_scene("lattice-balls")
+    renderer = sol.CpuRenderer(lattice)
+    once = sol.render_cpu(lattice, 24, 16)
+    for _ in range(2):
+        again = renderer.render(24, 16)
+        for key in ("rgba", "object", "distance", "point", "steps"):
+            assert np.array_equal(again[key], once[key]), key
+    plane = sol.preset_scene("plane")
+    renderer.set_scene(plane)
+    assert np.array_equal(renderer.render(24, 16)["rgba"], sol.render_cpu(plane, 24, 16)["rgba"])
+    assert not np.array_equal(renderer.render(24, 16)["rgba"], once["rgba"])
+    with pytest.raises(ValueError, match="width"):
+        renderer.render(0, 16)
 
 
 def test_bad_arguments_raise_value_errors():

@@ -13,7 +13,7 @@ int main() {
   const bool lands = std::abs(end.position.z - 2.0) < 1e-9 && std::abs(end.position.x) < 1e-12;
   const bool minimises = std::abs(sol::distance(start.position, end.position) - 2.0) < 1e-9;
   const sol::Scene scene = sol::preset_scene("sandwich");
-  const sol::CpuRenderer renderer(scene);
+  sol::CpuRenderer renderer(scene);
   const sol::RenderResult image = renderer.render(scene.camera, {.width = 16, .height = 12});
   int hits = 0;
   for (float object : image.object) hits += object > 0.0f;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <sol/render.hpp>
+#include <sol/renderer.hpp>
 #include <sol/vk/context.hpp>
 
 namespace sol::test {
@@ -23,6 +24,17 @@ inline sol::vk::Context& vk_context() {
 /// Fails the running test for every validation error the context collected.
 inline void expect_no_validation_errors() {
   for (const std::string& e : vk_context().validation_errors()) ADD_FAILURE() << "validation: " << e;
+}
+
+/// A renderer's image of a scene, width x height (sol::render_scene).
+inline sol::RenderResult render(sol::Renderer& renderer, const sol::Scene& scene, int width, int height) {
+  return sol::render_scene(renderer, scene, {.width = width, .height = height});
+}
+
+/// Both eyes of sol::stereo_eyes(scene.camera, ipd), each width x height, side by side.
+inline sol::RenderResult render_stereo(sol::Renderer& renderer, const sol::Scene& scene, int width, int height, double ipd) {
+  renderer.set_world(scene);
+  return renderer.render_stereo(scene.camera, ipd, {.width = width, .height = height});
 }
 
 /// Two renders of one scene at one size, pixel by pixel.

@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/camera.hpp"
+#include "sol/lattice.hpp"
 
 namespace sol {
 
@@ -49,10 +50,10 @@ struct CameraPath {
   /// The camera at time t, clamped to [0, duration()]: the start (the
   /// scene's camera with this path's overrides) moved by every segment that
   /// ended by t and by the one under way in proportion to its elapsed time,
-  /// with sol::Observer (teleported into the golden lattice's domain when
-  /// `quotient`). Each segment starts where the last one ended, so the
+  /// with sol::Observer (teleported into the domain of `lattice`, the
+  /// world's, World::lattice, when there is one). Each segment starts where the last one ended, so the
   /// camera of a frame does not depend on which frames were made before.
-  Camera at(double t, const Camera& scene_camera, bool quotient) const;
+  Camera at(double t, const Camera& scene_camera, const std::optional<Lattice>& lattice) const;
 };
 
 /// Parses a path; `source` (a file name) prefixes every error, which names

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/kernel_constants.h"
+#include "sol/lattice.hpp"
 
 namespace sol {
 
@@ -93,7 +94,7 @@ std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
 /// largest over a 7³ grid of D of the least distance to the images with
 /// |a|, |b| <= 2, |c| <= 1, plus 0.87, the longest path from a point of D
 /// to its nearest grid node; docs/lighting.md).
-std::vector<glm::dvec3> quotient_light_images(const Light& light);
+std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice& lattice);
 
 /// lights_at in the quotient, p in D, `images` from quotient_light_images:
 /// the images in order of their distance lower bound from p, their exact

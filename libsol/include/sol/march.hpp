@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -119,6 +120,8 @@ class MarchWorld {
 
   const World& world() const { return m_world; }
   const MarchFeatures& features() const { return m_features; }
+  /// The quotient's lattice (World::lattice; none in Sol).
+  const std::optional<Lattice>& lattice() const { return m_lattice; }
   /// Sol: the objects in world coordinates, one per scene object; the
   /// quotient: their images around D in world coordinates.
   const std::vector<MarchObject>& objects() const { return m_objects; }
@@ -136,6 +139,7 @@ class MarchWorld {
  private:
   World m_world;
   MarchFeatures m_features;
+  std::optional<Lattice> m_lattice;
   std::vector<MarchObject> m_objects;
   std::shared_ptr<const QuotientField> m_field;
   double m_max_step = 0.0;

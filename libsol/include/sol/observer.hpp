@@ -75,4 +75,11 @@ class Observer {
   FlowOptions m_options;
 };
 
+struct Scene;
+
+/// An observer at the scene's camera, bound to its world's lattice
+/// (World::lattice) in a quotient, so that its walks stay in the domain:
+/// what every program walks a scene with.
+Observer observer_at(const Scene& scene);
+
 }  // namespace sol

@@ -25,7 +25,7 @@
 // field also sampled min(S, min_i b_i) at the grid's nodes, a point-wise
 // lower bound F the march stepped by where it was longer: at 8 % of the
 // steps, and so little longer that without it a ray takes 0.5 % more
-// steps, while it cost three more reads a step; docs/renderer.md.)
+// steps, while it cost three more reads a step; docs/renderer.md "The quotient".)
 #pragma once
 
 #include <cstdint>
@@ -34,6 +34,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/kernel_constants.h"
+#include "sol/lattice.hpp"
 #include "sol/march.hpp"
 
 namespace sol {
@@ -48,8 +49,9 @@ class QuotientField {
   /// The cells of the field for `images` (sol::quotient_images of a
   /// quotient world for the longest step `max_step`, at most 254 of them;
   /// std::invalid_argument beyond, or for a step outside (0,
-  /// kQuotientMaxStep]). About 131 000 cells times the images' bounds.
-  QuotientField(const std::vector<MarchObject>& images, double max_step);
+  /// kQuotientMaxStep]), over the fundamental domain of `lattice` (the
+  /// world's, World::lattice). About 131 000 cells times the images' bounds.
+  QuotientField(const std::vector<MarchObject>& images, double max_step, const Lattice& lattice);
 
   /// The reach of q's cell: no image but its candidates is within it of
   /// any point of the cell; in (kNear, max_step()].
@@ -82,6 +84,7 @@ class QuotientField {
   void candidates(const Cell& c, std::vector<int>& out) const;  // replaces out's contents
   std::uint32_t cell_candidates(int i, int j, int k) const;
 
+  Lattice m_lattice;
   std::vector<std::uint32_t> m_words;
   std::size_t m_image_count = 0;
   double m_max_step = kQuotientMaxStep;

@@ -8,6 +8,8 @@
 //   sol::CpuRenderer renderer(scene);                // a Scene is a World
 //   sol::RenderResult image = renderer.render(scene.camera, {.width = 256, .height = 256});
 //
+// It is a sol::Renderer (sol/renderer.hpp), as the Vulkan kernel's is.
+//
 // The march (one ray per pixel, sol/camera.hpp; sol/march.hpp describes it):
 //  1. The world is expressed relative to the camera (left-translation by the
 //     camera position's inverse), so every ray starts at the origin.
@@ -28,16 +30,16 @@
 // then exponential fog: mix(fog colour, colour, e^{-density t}). Misses are black.
 #pragma once
 
-#include <atomic>
-#include <functional>
 #include <memory>
-#include <vector>
+#include <span>
+#include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "sol/camera.hpp"
 #include "sol/march.hpp"
+#include "sol/renderer.hpp"
 #include "sol/scene.hpp"
 
 namespace sol {
@@ -52,46 +54,31 @@ struct MarchHit {
   int steps = 0;               ///< march steps used (0: culled by its height range)
 };
 
-struct RenderSettings {
-  int width = 512;
-  int height = 512;
-  unsigned threads = 0;  ///< 0: all hardware threads
-  /// Samples per pixel, >= 1: the colour is their mean (anti-aliasing, at
-  /// sol::pixel_sample 0, 1, ...; a box filter over the pixel); the AOVs
-  /// are the pixel centre's (sample 0).
-  int samples = 1;
-  /// Called now and then from the calling thread with the finished fraction in [0, 1].
-  std::function<void(double)> progress;
-  /// When set and true, the render stops within a row and throws sol::Cancelled.
-  const std::atomic<bool>* cancel = nullptr;
-};
-
-/// An image and its arbitrary output variables, row-major, row 0 at the top.
-struct RenderResult {
-  int width = 0, height = 0;
-  std::vector<float> rgba;      ///< 4 per pixel, linear RGB, alpha 1
-  std::vector<float> object;    ///< per pixel: 0 = no hit, k = k-th object (1-based)
-  std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
-  std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
-  std::vector<float> steps;     ///< march steps used
-};
-
-class CpuRenderer {
+/// The CPU reference renderer (sol::Renderer): double precision, the
+/// rows spread over threads.
+class CpuRenderer final : public Renderer {
  public:
   /// A renderer with no world yet (set_world before rendering).
   CpuRenderer();
   /// set_world(world).
   explicit CpuRenderer(const World& world);
-  ~CpuRenderer();
+  ~CpuRenderer() override;
   CpuRenderer(CpuRenderer&&) noexcept;
   CpuRenderer& operator=(CpuRenderer&&) noexcept;
 
   /// Prepares the world once for every later render: validates it
   /// (InvalidArgument naming the field), finds its features and, in the
   /// quotient, its objects' images around D.
-  void set_world(const World& world);
+  void set_world(const World& world) override;
   /// The prepared world (logic_error before set_world).
-  const MarchWorld& world() const;
+  const MarchWorld& world() const override;
+
+  /// Renders the world from each eye (sol::Renderer::render); any number of
+  /// eyes, each marched on its own and placed side by side.
+  RenderResult render(std::span<const Camera> eyes, const RenderOptions& options) override;
+  using Renderer::render;
+  /// "cpu (N threads)", N the hardware's (RenderOptions::threads may use fewer).
+  std::string description() const override;
 
   /// Marches the ray from the camera with unit direction `direction` (frame
   /// components at the camera). Validates the camera.
@@ -99,14 +86,8 @@ class CpuRenderer {
   /// Linear RGB of a hit (black for a miss).
   glm::dvec3 shade(const MarchHit& hit) const;
 
-  /// Renders the world from `camera`. Throws InvalidArgument for an invalid
-  /// camera or sizes outside [1, 16384].
-  RenderResult render(const Camera& camera, const RenderSettings& settings) const;
-  /// Both eyes of sol::stereo_eyes(camera, ipd) side by side in one image
-  /// of width 2 × settings.width (left eye on the left), AOVs likewise.
-  RenderResult render_stereo(const Camera& camera, const RenderSettings& settings, double ipd) const;
-
  private:
+  RenderResult render_eye(const Camera& camera, const RenderOptions& options) const;
   std::unique_ptr<MarchWorld> m_world;
 };
 
@@ -114,7 +95,9 @@ class CpuRenderer {
 /// the world each call: CpuRenderer(scene).march(scene.camera, direction), ...
 MarchHit march(const Scene& scene, const glm::dvec3& direction);
 glm::dvec3 shade(const Scene& scene, const MarchHit& hit);
-RenderResult render_cpu(const Scene& scene, const RenderSettings& settings);
-RenderResult render_cpu_stereo(const Scene& scene, const RenderSettings& settings, double ipd);
+/// render_scene(CpuRenderer, scene, options) (sol/renderer.hpp).
+RenderResult render_cpu(const Scene& scene, const RenderOptions& options);
+/// Both eyes of sol::stereo_eyes(scene.camera, ipd) side by side, on the CPU.
+RenderResult render_cpu_stereo(const Scene& scene, const RenderOptions& options, double ipd);
 
 }  // namespace sol

@@ -8,6 +8,7 @@
 // (docs/conventions.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/camera.hpp"
+#include "sol/lattice.hpp"
 #include "sol/light.hpp"
 #include "sol/objects.hpp"
 
@@ -36,6 +38,11 @@ struct World {
   double max_distance = 30.0;            ///< arc length after which a ray misses
   int max_steps = 200;                   ///< march steps after which a ray misses
   double hit_epsilon = 5e-5;             ///< a ray hits when the distance falls below this
+
+  /// The lattice Γ of the quotient the rays live in (sol/lattice.hpp), or
+  /// none in Sol itself: everything that teleports, lists images or binds an
+  /// observer to the domain takes the world's lattice from here.
+  std::optional<Lattice> lattice() const;
 };
 
 /// A world and the camera it is first seen from: what a scene file or a

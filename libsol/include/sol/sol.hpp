@@ -18,6 +18,7 @@
 #include "sol/observer.hpp"
 #include "sol/quotient_field.hpp"
 #include "sol/render.hpp"
+#include "sol/renderer.hpp"
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"
 #include "sol/shapes.hpp"

@@ -70,7 +70,7 @@ bool Ball::same_set(const Ball& other) const { return glm::length(center - other
 
 namespace detail {
 
-void check_kind(const Ball& b, const std::string& at, bool quotient) {
+void check_kind(const Ball& b, const std::string& at, const Lattice* quotient) {
   check_position(b.center, at + ".center");
   check_radius(b.radius, at, quotient);
 }

@@ -126,7 +126,7 @@ bool Box::same_set(const Box& other) const {
 
 namespace detail {
 
-void check_kind(const Box& b, const std::string& at, bool quotient) {
+void check_kind(const Box& b, const std::string& at, const Lattice* quotient) {
   check_position(b.center, at + ".center");
   const glm::dvec3& s = b.half_size;
   if (!finite3(s) || !(s.x > 0.0 && s.y > 0.0 && s.z > 0.0)) {

@@ -90,7 +90,7 @@ bool PlaneZ::same_set(const PlaneZ& other) const { return std::abs(c - other.c) 
 namespace detail {
 
 template <class Plane>
-void check_plane(const Plane& p, const std::string& at, bool quotient) {
+void check_plane(const Plane& p, const std::string& at, const Lattice* quotient) {
   if (!std::isfinite(p.c) || std::abs(p.c) > kMaxCoordinate) field_error(at + ".c", at + ".c must be finite and within 1e15");
   if (std::is_same_v<Plane, PlaneZ> && !(std::abs(p.c) <= kMaxHeight)) {
     field_error(at + ".c", at + ".c is a height: it must be within [-80, 80] (e^{±z} must stay finite in float)");
@@ -101,9 +101,9 @@ void check_plane(const Plane& p, const std::string& at, bool quotient) {
   }
 }
 
-void check_kind(const PlaneX& p, const std::string& at, bool quotient) { check_plane(p, at, quotient); }
-void check_kind(const PlaneY& p, const std::string& at, bool quotient) { check_plane(p, at, quotient); }
-void check_kind(const PlaneZ& p, const std::string& at, bool quotient) { check_plane(p, at, quotient); }
+void check_kind(const PlaneX& p, const std::string& at, const Lattice* quotient) { check_plane(p, at, quotient); }
+void check_kind(const PlaneY& p, const std::string& at, const Lattice* quotient) { check_plane(p, at, quotient); }
+void check_kind(const PlaneZ& p, const std::string& at, const Lattice* quotient) { check_plane(p, at, quotient); }
 
 void read_plane(const json& o, double& c, bool& cutout, const SceneFileReader& r, const std::string& at) {
   r.require_known_keys(o, {"type", "c", "color", "pattern", "cutout"}, at, at);

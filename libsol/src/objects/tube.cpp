@@ -149,7 +149,7 @@ namespace detail {
 
 bool parallel(const glm::dvec3& a, const glm::dvec3& b) { return glm::length(glm::cross(a, b)) < 1e-12; }
 
-void check_kind(const Tube& t, const std::string& at, bool quotient) {
+void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
   check_position(t.through, at + ".through");
   const glm::dvec3& d = t.direction;
   if (!finite3(d) || std::abs(glm::length(d) - 1.0) > 1e-12 || (d.z != 0.0 && !t.vertical())) {
@@ -160,7 +160,7 @@ void check_kind(const Tube& t, const std::string& at, bool quotient) {
   if (t.vertical()) {
     // A vertical line closes up (as the curve of γ3) when it passes through
     // a lattice point of ⟨γ1, γ2⟩, which γ3 maps into the lattice.
-    const glm::dvec2 st = Lattice::golden().lattice_coordinates(t.through.x, t.through.y);
+    const glm::dvec2 st = quotient->lattice_coordinates(t.through.x, t.through.y);
     if (std::abs(st.x - std::round(st.x)) > 1e-9 || std::abs(st.y - std::round(st.y)) > 1e-9) {
       field_error(at + ".through", at + ".through: a tube along z in the quotient must pass through a point (x, y) of the "
                                         "lattice ⟨γ1, γ2⟩ (then it is the closed curve of γ3)");

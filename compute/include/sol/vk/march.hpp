@@ -24,6 +24,7 @@
 #include <sol/camera.hpp>
 #include <sol/march.hpp>
 #include <sol/render.hpp>
+#include <sol/renderer.hpp>
 #include <sol/scene.hpp>
 
 #include "sol/vk/march_interface.h"
@@ -86,37 +87,22 @@ struct PixelSample {
   double weight = 1.0;
 };
 
-/// How MarchRenderer::render makes an image beyond its size.
-struct RenderOptions {
-  /// Samples per pixel (sol::pixel_sample 0, 1, ...): the colour is their
-  /// mean; the AOVs are the centre's (sample 0).
-  int samples = 1;
-  /// The image is dispatched in tiles, each (one sample of it) sized from the
-  /// previous ones' times to take about half of this on the device, never
-  /// more than the whole image: long renders then never hold the device in
-  /// one dispatch (a display's watchdog), report progress and can stop.
-  double max_dispatch_ms = 100.0;
-  /// Called after each row of tiles with the finished fraction in (0, 1].
-  std::function<void(double)> progress;
-  /// When set and true, the render stops after the current tile and throws sol::Cancelled.
-  const std::atomic<bool>* cancel = nullptr;
-};
-
-/// The ray-marcher on a Vulkan device. It holds one world at a time,
-/// prepared once by set_world (checks, features, the quotient's images and
-/// the exact objects' tables uploaded; the kernel for those features is
-/// built by the first frame that needs it and kept); every frame then only
-/// sends its cameras:
+/// The ray-marcher on a Vulkan device, a sol::Renderer (sol/renderer.hpp).
+/// It holds one world at a time, prepared once by set_world (checks,
+/// features, the quotient's images and the exact objects' tables uploaded;
+/// the kernel for those features is built by the first frame that needs it
+/// and kept); every frame then only sends its cameras:
 ///
 ///   sol::vk::MarchRenderer renderer(context);
 ///   renderer.set_world(scene);                       // once per world
-///   renderer.record(command_buffer, cameras, w, h, target);  // per frame
-class MarchRenderer {
+///   renderer.record(command_buffer, cameras, w, h, target);  // per frame (presenters)
+///   sol::RenderResult image = renderer.render(cameras, options);  // or with AOVs, read back
+class MarchRenderer final : public Renderer {
  public:
   /// Checks the options (InvalidArgument); builds no pipeline: each variant
   /// of the kernel is built when a frame first needs it (VulkanError there).
   explicit MarchRenderer(Context& context, const MarchOptions& options = {});
-  ~MarchRenderer();
+  ~MarchRenderer() override;
   MarchRenderer(MarchRenderer&&) noexcept;
   MarchRenderer& operator=(MarchRenderer&&) noexcept;
 
@@ -125,9 +111,9 @@ class MarchRenderer {
   /// quotient, more than kMaxGpuImages images; sol::NotImplemented for a
   /// world the kernel does not render (supports()). The caller must not
   /// change the world while a recorded dispatch still runs.
-  void set_world(const World& world);
+  void set_world(const World& world) override;
   /// The prepared world (std::logic_error before set_world).
-  const MarchWorld& world() const;
+  const MarchWorld& world() const override;
   /// How many deferred passes (MarchOptions::deferred) the world's frames
   /// take after the march pass: the shade pass (exact point lights) and the
   /// resume pass (exact balls, in Sol with the closed form; every quotient
@@ -137,27 +123,17 @@ class MarchRenderer {
   /// pixel, render in one dispatch too.) std::logic_error before set_world.
   int deferred_passes() const;
 
-  /// Renders the world from one or two eyes (side by side, each width ×
-  /// height in 1..16384, left eye first) with the AOVs, like
-  /// sol::CpuRenderer::render. `device_ms` receives the kernel's time on the
-  /// device. Throws sol::InvalidArgument for sizes out of range, an invalid
-  /// camera, or no world. With `samples` > 1 the colour is the mean of that
-  /// many samples per pixel (sol::pixel_sample 0, 1, ...: anti-aliasing, one
-  /// dispatch each, `device_ms` their sum); the AOVs are the pixel centre's
-  /// (sample 0).
-  RenderResult render(std::span<const Camera> eyes, int width, int height, double* device_ms = nullptr,
-                      int samples = 1);
-  /// The same with every option (tiles, progress, cancel); `device_ms` the
-  /// dispatches' sum. Tiles change no pixel: each is computed as in one dispatch.
-  RenderResult render(std::span<const Camera> eyes, int width, int height, const RenderOptions& options,
-                      double* device_ms = nullptr);
-  RenderResult render(const Camera& camera, int width, int height, double* device_ms = nullptr);
-  /// Both eyes of sol::stereo_eyes(camera, ipd) side by side in one dispatch.
-  RenderResult render_stereo(const Camera& camera, int width, int height, double ipd, double* device_ms = nullptr);
-
-  /// One-shot forms for a scene: set_world(scene), then its camera.
-  RenderResult render(const Scene& scene, int width, int height, double* device_ms = nullptr);
-  RenderResult render_stereo(const Scene& scene, int width, int height, double ipd, double* device_ms = nullptr);
+  /// Renders the world from one or two eyes (side by side, left eye first)
+  /// with the AOVs, read back: sol::Renderer::render. RenderResult::device_ms
+  /// is the dispatches' time on the device. With RenderOptions::samples > 1
+  /// one dispatch per sample; with a finite max_dispatch_ms in tiles (each
+  /// computed as in one dispatch: they change no pixel). Throws
+  /// sol::InvalidArgument for invalid options or cameras, more than two
+  /// eyes, or no world.
+  RenderResult render(std::span<const Camera> eyes, const RenderOptions& options) override;
+  using Renderer::render;
+  /// "vulkan 'DEVICE NAME'".
+  std::string description() const override;
 
   /// For presenters: records the kernel for one or two eyes (side by side,
   /// each width × height, left eye on the left) into the caller's command
@@ -213,67 +189,5 @@ class MarchRenderer {
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };
-
-/// Evaluates the kernel's closed-form geodesic (compute/shaders/flow.comp)
-/// for queries (direction xyz, arc length w); returns (position xyz, height
-/// from the height-only path w) per query. With `segments` > 1 the arc
-/// length is walked in that many equal segments, the ray restarted at each
-/// end (sol_ray_advanced, as the quotient march's teleports) and the
-/// positions composed: then w is the position's z. For tests and benchmarks.
-std::vector<glm::vec4> evaluate_kernel_flow(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
-
-/// The kernel's position (xyz; w 0) at the arc length w >= 0 of each query's
-/// geodesic by Jacobi's zeta function (sol_forward_zeta), as the quotient
-/// march's first pass takes it for rays of μ = |ab| >= kZetaLeastMu; walked
-/// in `segments` as evaluate_kernel_flow (sol_ray_restarted_zeta). For tests.
-std::vector<glm::vec4> evaluate_kernel_flow_by_zeta(Context& context, const std::vector<glm::vec4>& queries, int segments = 1);
-
-/// The kernel's unit tangent (frame components; w 0) at the arc length w >= 0
-/// of each query's geodesic, as the quotient march takes it for its
-/// clearances (sol_forward in compute/shaders/sol_forward.glsl). For tests.
-std::vector<glm::vec4> evaluate_kernel_tangents(Context& context, const std::vector<glm::vec4>& queries);
-
-/// The same by Jacobi's zeta function (sol_forward_zeta), as the quotient
-/// march's first pass takes it for rays of μ >= kZetaLeastMu. For tests.
-std::vector<glm::vec4> evaluate_kernel_tangents_by_zeta(Context& context, const std::vector<glm::vec4>& queries);
-
-/// The kernel's cut time of each direction (sol_cut_time, the z-period
-/// that certifies a minimiser; 1e30 where sol::cut_time is infinite). For tests.
-std::vector<float> evaluate_kernel_cut_times(Context& context, const std::vector<glm::vec3>& directions);
-
-/// Evaluates the kernel's J (compute/shaders/sol_spreading.glsl, the
-/// spreading of light along a geodesic) for queries (direction xyz, arc
-/// length w); the float counterpart of sol::sphere_area_density. For tests
-/// and benchmarks.
-std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries);
-
-/// The kernel's Jacobian of the exponential map at the origin, d exp(v)/dv
-/// at v = t·d for queries (direction d xyz, nonzero; length t >= 0 in w),
-/// in frame components at exp(v) (sol_exp_jacobian in
-/// compute/shaders/sol_spreading.glsl: the connection solver's Newton
-/// steps). For tests.
-std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries);
-
-/// The kernel's series of Sol's logarithm at the origin at each target w
-/// (sol_log_series, sol/log_series.h, in float: where the exact balls'
-/// Newton solves start), the initial vector of the geodesic from the
-/// origin that ends at w; for |w| < kLogSeriesReach. For tests.
-std::vector<glm::vec3> evaluate_kernel_log_series(Context& context, const std::vector<glm::vec3>& targets);
-
-/// What the kernel's connection solver (compute/shaders/sol_connection.glsl,
-/// the exact point lights' directions) returns for one target.
-struct KernelConnections {
-  int count = 0;
-  std::array<glm::vec4, 16> found{};  // sol::ConnectionTable::kSlots  ///< (unit direction at the origin, length), shortest first
-};
-
-/// Runs the kernel's connection solver (compute/shaders/connect.comp) for
-/// queries (w xyz: the target seen from the origin, reach w) with the seeds
-/// of sol::ConnectionTable::shared(longer), keeping every connection found
-/// with `longer` and the shortest 4 without (as the march kernel does for
-/// lights with and without a reach); the dispatch time in ms into
-/// *device_ms when given. For tests and benchmarks.
-std::vector<KernelConnections> evaluate_kernel_connections(Context& context, const std::vector<glm::vec4>& queries,
-                                                           bool longer, double* device_ms = nullptr);
 
 }  // namespace sol::vk

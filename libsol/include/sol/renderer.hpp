@@ -1,0 +1,97 @@
+// The one interface of Sol's renderers: the CPU reference
+// (sol::CpuRenderer, sol/render.hpp) and the Vulkan kernel
+// (sol::vk::MarchRenderer, compute/include/sol/vk/march.hpp) draw the same
+// pictures through it, and the programs (solrender, solview, solxr),
+// render_bench and the Python module choose one and use it alike:
+//
+//   std::unique_ptr<sol::Renderer> renderer = ...;       // CPU or Vulkan
+//   renderer->set_world(scene);                           // once per world
+//   sol::RenderResult image = renderer->render(scene.camera, {.width = 256, .height = 256});
+//   sol::RenderResult pair = renderer->render_stereo(scene.camera, 0.064, options);
+//
+// A world is prepared once (validation, features, the quotient's images,
+// and for the kernel its tables and pipelines); every render then takes
+// one or more eyes (cameras), each width × height, side by side in one
+// image, left eye first, and one options struct.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sol/camera.hpp"
+#include "sol/march.hpp"
+#include "sol/scene.hpp"
+
+namespace sol {
+
+/// How a renderer makes an image beyond its world and eyes.
+struct RenderOptions {
+  int width = 512;   ///< of each eye, in [1, 16384]
+  int height = 512;  ///< in [1, 16384]
+  /// Samples per pixel, in [1, 4096]: the colour is their mean
+  /// (anti-aliasing, at sol::pixel_sample 0, 1, ...; a box filter over the
+  /// pixel); the AOVs are the pixel centre's (sample 0).
+  int samples = 1;
+  /// The CPU renderer's threads (0: all hardware threads).
+  unsigned threads = 0;
+  /// Device renderers: each dispatch (one sample of a tile) is sized from
+  /// the earlier ones' times to take about half of this on the device, so
+  /// that long renders never hold it in one dispatch (a display's
+  /// watchdog), report progress and can stop. Infinite (the default): the
+  /// whole image in one dispatch per sample. Tiles change no pixel.
+  double max_dispatch_ms = std::numeric_limits<double>::infinity();
+  /// Called now and then with the finished fraction in (0, 1].
+  std::function<void(double)> progress;
+  /// When set and true, the render stops early and throws sol::Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// An image and its arbitrary output variables, row-major, row 0 at the top.
+struct RenderResult {
+  int width = 0, height = 0;
+  std::vector<float> rgba;      ///< 4 per pixel, linear RGB, alpha 1
+  std::vector<float> object;    ///< per pixel: 0 = no hit, k = k-th object (1-based)
+  std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
+  std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
+  std::vector<float> steps;     ///< march steps used
+  double device_ms = 0.0;       ///< a device renderer's time on the device (its dispatches'); 0 on the CPU
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+
+  /// Prepares `world` once for every later render: validates it
+  /// (InvalidArgument naming the field) and prepares what the renderer
+  /// needs of it; NotImplemented for a world this renderer does not draw.
+  virtual void set_world(const World& world) = 0;
+  /// The prepared world (std::logic_error before set_world).
+  virtual const MarchWorld& world() const = 0;
+
+  /// Renders the world from `eyes` (one or more cameras), each
+  /// options.width × options.height, side by side in one image (left eye
+  /// first). Throws InvalidArgument for invalid cameras or options.
+  virtual RenderResult render(std::span<const Camera> eyes, const RenderOptions& options) = 0;
+
+  /// Where it renders, for people: "cpu (2 threads)", "vulkan 'llvmpipe ...'".
+  virtual std::string description() const = 0;
+
+  /// One eye.
+  RenderResult render(const Camera& camera, const RenderOptions& options);
+  /// Both eyes of sol::stereo_eyes(camera, ipd) side by side.
+  RenderResult render_stereo(const Camera& camera, double ipd, const RenderOptions& options);
+};
+
+/// The checks every renderer makes of a render's eyes and options (sizes,
+/// samples, the equirectangular aspect, each camera): InvalidArgument
+/// naming `who` and the field.
+void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who);
+
+/// One-shot: renderer.set_world(scene), then the scene's camera.
+RenderResult render_scene(Renderer& renderer, const Scene& scene, const RenderOptions& options);
+
+}  // namespace sol
