@@ -85,7 +85,7 @@ vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u
   m = images[s < listed ? i : 0];
   // Its bound record alone (Image::bound); a ball's centre's half
   // exponentials taken here: two exponentials cost lavapipe less than two
-  // more words read (docs/renderer.md).
+  // more words read (docs/history.md, "Tubes in four words").
   const vec3 dc = image_clearances(image_type(m), q, u, m, hz);
   return s < listed ? dc : vec3(1e30);
 }
