@@ -210,6 +210,13 @@ CommandLine::Condition in_unit_interval() {
   return {[](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]"};
 }
 
+void IntegratorOptions::add_to(CommandLine& cl) {
+  cl.add_choice("--integrator", integrator, {"closed", "rk4"},
+                "the kernel's geodesic flow: the closed form, or RK4 from step to step for comparison (default "
+                "closed; the Vulkan kernel only)");
+  cl.add_number("--rk-step", rk_step, "H", "RK4 substep in arc length for --integrator rk4 (default 0.01)", positive());
+}
+
 void SceneOverrides::add_to(CommandLine& cl, const std::string& what, bool with_fov) {
   if (with_fov) cl.add_number("--fov", fov, "DEG", "vertical field of view in degrees, (0, 180)");
   cl.add_vec3("--position", position, "X,Y,Z", what + " position (Sol coordinates)");

@@ -118,6 +118,17 @@ CommandLine::Condition in_unit_interval();
 /// "in [lo, hi]" (bounds printed with %g).
 CommandLine::Condition in_range(double lo, double hi);
 
+/// The kernel's geodesic flow as the programs choose it: --integrator
+/// closed|rk4 (the closed form, or RK4 from step to step for comparison)
+/// and --rk-step H (RK4's substep in arc length, > 0).
+struct IntegratorOptions {
+  std::string integrator = "closed";
+  double rk_step = 0.01;
+
+  void add_to(CommandLine& command_line);
+  bool rk4() const { return integrator == "rk4"; }
+};
+
 /// The options that override a scene's camera and limits: --position,
 /// --forward, --up (frame components), --max-distance, --max-steps, and
 /// with `with_fov` --fov (solxr takes its field of view from the runtime).

@@ -36,6 +36,13 @@ class VulkanRenderer final : public sol::Renderer {
 }  // namespace
 
 bool has_vulkan() { return true; }
+
+vk::MarchOptions march_options(const RendererChoice& choice) {
+  vk::MarchOptions march;
+  march.integrator = choice.rk4 ? vk::Integrator::RK4 : vk::Integrator::ClosedForm;
+  march.rk4_step = choice.rk4_step;
+  return march;
+}
 #else
 bool has_vulkan() { return false; }
 #endif
@@ -54,12 +61,9 @@ std::unique_ptr<sol::Renderer> make_renderer(const RendererChoice& choice, const
       vk::ContextOptions options;
       options.pipeline_cache_dir = vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
       options.validation = choice.validation;
-      vk::MarchOptions march;
-      march.integrator = choice.rk4 ? vk::Integrator::RK4 : vk::Integrator::ClosedForm;
-      march.rk4_step = choice.rk4_step;
       std::unique_ptr<sol::Renderer> renderer;
       try {
-        renderer = std::make_unique<VulkanRenderer>(options, march);
+        renderer = std::make_unique<VulkanRenderer>(options, march_options(choice));
       } catch (const std::exception& e) {
         if (choice.device == Device::Vulkan || choice.rk4) throw;
         note(std::string("no Vulkan device (") + e.what() + "); rendering on the CPU");
@@ -71,6 +75,7 @@ std::unique_ptr<sol::Renderer> make_renderer(const RendererChoice& choice, const
     }
   }
 #else
+  (void)note;  // nothing to say: the CPU is all there is
   if (choice.device == Device::Vulkan || choice.rk4) {
     throw NotImplemented("this build has no Vulkan kernel (SOL_BUILD_VULKAN=OFF): use the CPU renderer");
   }

@@ -10,6 +10,9 @@
 #include <string>
 
 #include <sol/renderer.hpp>
+#ifdef SOL_HAVE_VULKAN
+#include <sol/vk/march.hpp>
+#endif
 
 namespace sol::programs {
 
@@ -29,6 +32,12 @@ struct RendererChoice {
 
 /// Whether this build has the Vulkan kernel.
 bool has_vulkan();
+
+#ifdef SOL_HAVE_VULKAN
+/// The kernel's options for a choice: its integrator and RK4 step (what
+/// make_renderer gives the kernel, and presenters that record it themselves).
+vk::MarchOptions march_options(const RendererChoice& choice);
+#endif
 
 /// A renderer for `world` (set_world done): with Device::Auto the Vulkan
 /// kernel when this build has it, a device opens and the kernel draws the

@@ -151,11 +151,12 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_arg = "plane", output, aov, device = "auto", integrator = "closed", path_file, frames, video;
+  std::string scene_arg = "plane", output, aov, device = "auto", path_file, frames, video;
   double fps = 24.0;
   std::string projection;
   std::optional<double> fisheye_fov;
-  double rk_step = 0.01, ipd = 0.064;
+  double ipd = 0.064;
+  sol::cli::IntegratorOptions flow;
   bool print_scene = false, progress = false;
   std::string stereo_mode;  // empty: mono
   int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
@@ -183,9 +184,7 @@ int main(int argc, char** argv) {
   cl.add_choice("--device", device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
-  cl.add_choice("--integrator", integrator, {"closed", "rk4"}, "the kernel's geodesic flow (default closed; vulkan only)");
-  cl.add_number("--rk-step", rk_step, "H", "RK4 substep in arc length for --integrator rk4 (default 0.01)",
-                sol::cli::positive());
+  flow.add_to(cl);
   cl.add_optional_choice("--stereo", stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
                          "both eyes: side by side (the default; image width 2 W) or as a red/cyan anaglyph (width W: "
                          "red from the left eye, green and blue from the right; the AOVs the left eye's); with "
@@ -244,7 +243,7 @@ int main(int argc, char** argv) {
     const auto a = std::filesystem::weakly_canonical(output, ec_output), b = std::filesystem::weakly_canonical(aov, ec_aov);
     if (!ec_output && !ec_aov && a == b) cl.fail("--aov " + aov + " is the same file as -o " + output + ": give two files");
   }
-  if (integrator == "rk4" && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
+  if (flow.rk4() && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 
   const bool tty = isatty(fileno(stderr));
   const bool show_progress = tty || progress;
@@ -316,8 +315,8 @@ int main(int argc, char** argv) {
     choice.device = device == "vulkan" ? sol::programs::Device::Vulkan
                     : device == "cpu"  ? sol::programs::Device::Cpu
                                        : sol::programs::Device::Auto;
-    choice.rk4 = integrator == "rk4";
-    choice.rk4_step = rk_step;
+    choice.rk4 = flow.rk4();
+    choice.rk4_step = flow.rk_step;
 #ifndef NDEBUG
     choice.validation = true;  // validation layers in debug builds
 #endif
@@ -327,7 +326,7 @@ int main(int argc, char** argv) {
     const std::unique_ptr<sol::Renderer> renderer = sol::programs::make_renderer(
         choice, scene, [](const std::string& note) { std::fprintf(stderr, "solrender: %s\n", note.c_str()); });
     const bool cpu = dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr;
-    if (cpu && integrator == "rk4") cl.fail("--integrator rk4 needs the Vulkan kernel");
+    if (cpu && flow.rk4()) cl.fail("--integrator rk4 needs the Vulkan kernel");
     std::string where = renderer->description();
     if (cpu && threads) where = "cpu (" + std::to_string(threads) + " threads)";
     sol::RenderOptions render_options;

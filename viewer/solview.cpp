@@ -34,36 +34,11 @@
 #include "overlay.hpp"
 #include "panel.hpp"
 #include "presenter.hpp"
+#include "viewer_state.hpp"
 
 namespace {
 
 using sol::viewer::Key;
-
-const char* kControls =
-    "controls:\n"
-    "  W / S          move forward / back along the geodesic you look along\n"
-    "  A / D          move left / right along the geodesic in that direction\n"
-    "  R / F          move up / down along the geodesic in that direction\n"
-    "  Shift          move 5x faster\n"
-    "  arrows, drag   turn (left mouse button held: drag to look around)\n"
-    "  Q / E          roll left / right\n"
-    "  Home           back to the scene's camera\n"
-    "  Tab            next preset scene\n"
-    "  T              stereo side by side on / off\n"
-    "  Y              vsync on / off\n"
-    "  + / -          render scale up / down (fixes the scale: adaptive off)\n"
-    "  G              adaptive render scale on / off\n"
-    "  P              screenshot to solview-NNNN.png (the frame as shown)\n"
-    "  F1             the overlay panel on / off: scene, camera and render settings\n"
-    "                 as live controls, fps and frame times, rays/s, mean steps, the\n"
-    "                 observer's position and frame (in the quotient the copy of D it\n"
-    "                 is in), screenshot, record, copy the camera as solrender options\n"
-    "                 or the scene as JSON, save the scene, reset\n"
-    "  F11            fullscreen on / off\n"
-    "  H              print these controls\n"
-    "  Esc            quit\n"
-    "The frame is parallel-transported along every move; in the quotient\n"
-    "(lattice-balls) the observer is teleported back into the fundamental domain.\n";
 
 struct Options {
   std::string scene = "plane";
@@ -115,15 +90,9 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
               "without --record it writes to solview-recording/)");
   cl.add_text("--state", o.state, "FILE", "at exit, write the observer's position and frame to FILE");
   cl.add_flag("--validation", o.validation, "enable the Vulkan validation layer; its errors make the exit status 3");
-  cl.set_footer(std::string(kControls) + "\nScript key names: " + sol::viewer::key_names() +
+  cl.set_footer(std::string(sol::viewer::kControls) + "\nScript key names: " + sol::viewer::key_names() +
                 ".\n\nExit status: 0 on success, 1 when no window can be opened (no display), 2 for bad options,\n"
                 "3 for validation errors, 4 for other failures.");
-}
-
-sol::Scene load(const std::string& arg) {
-  sol::Scene scene = sol::cli::scene_argument(arg);
-  sol::validate(scene);
-  return scene;
 }
 
 std::optional<Key> key_of(int glfw_key) {
@@ -163,271 +132,57 @@ std::optional<Key> key_of(int glfw_key) {
 std::string glfw_error;
 void on_glfw_error(int, const char* description) { glfw_error = description ? description : "unknown GLFW error"; }
 
-// The viewer's state that callbacks reach through the window's user pointer.
-struct App {
+// The viewer: its window-free state (viewer_state.hpp) and what the window
+// side holds, reached by the callbacks through the window's user pointer.
+struct App : sol::viewer::ViewerState {
+  App()
+      : ViewerState(
+            [] {  // the presets the kernel renders (MarchRenderer::supports)
+              std::vector<std::string> names;
+              for (const std::string& n : sol::preset_names()) {
+                if (sol::vk::MarchRenderer::supports(sol::preset_scene(n))) names.push_back(n);
+              }
+              return names;
+            }(),
+            [](const sol::World& world) { return sol::vk::MarchRenderer::unsupported(world); }) {}
+
   sol::cli::CommandLine command_line{"solview", "[options]",
                                      "Walks through Thurston's Sol geometry in a window: every pixel follows a Sol "
                                      "geodesic."};
   Options options;
-  std::vector<std::string> presets = [] {  // the presets the kernel renders (MarchRenderer::supports)
-    std::vector<std::string> names;
-    for (const std::string& n : sol::preset_names()) {
-      if (sol::vk::MarchRenderer::supports(sol::preset_scene(n))) names.push_back(n);
-    }
-    return names;
-  }();
-  sol::Scene scene;
-  sol::World good_world;  // the last world that validated: the panel's edits fall back to it
-  std::string scene_name;
-  bool world_changed = true;  // the renderer needs set_world(scene) before the next frame
-  long world_version = 0;     // counts the worlds shown (a change restarts refinement)
-  // The overlay panel (F1): shown, taken into screenshots (--overlay on), its text fields, its message line.
+  // The overlay panel (F1): shown, taken into screenshots (--overlay on), its text fields.
   sol::viewer::Overlay* overlay = nullptr;
   bool overlay_visible = false, overlay_in_capture = false;
   sol::viewer::PanelText panel_text;
-  std::string message;
-  double target_fps = 20.0;
-  bool recording = false;
-  std::string record_dir = "solview-recording";
   double fps = 0.0;
   std::vector<float> frame_ms;  // the last frames' times for the panel's graph
-  sol::Observer observer;
-  sol::viewer::Controls controls;
-  double scale = 1.0;
-  bool adaptive = false, stereo = false, vsync = true, fullscreen = false;
-  bool swapchain_dirty = false, want_screenshot = false, quit = false;
+  bool fullscreen = false;
   int screenshots = 0;
   bool dragging = false;
   double last_x = 0, last_y = 0;
   int windowed[4] = {0, 0, 640, 360};
   GLFWwindow* window = nullptr;
 
-  void set_scene(const std::string& name) {
-    scene = load(name);
-    good_world = scene;
-    scene_name = name;
-    observer = sol::observer_at(scene);
-    world_changed = true;
-    ++world_version;
-    watch(name);
-  }
-
-  // Hot reload: a scene given as a file is read again when it changes on disk.
-  std::optional<std::filesystem::file_time_type> watched;  // the file's time when last read (none: a preset)
-  std::chrono::steady_clock::time_point next_poll{};
-  void watch(const std::string& name) {
-    watched.reset();
-    std::error_code ec;
-    const bool preset = std::find(presets.begin(), presets.end(), name) != presets.end();
-    if (!preset && std::filesystem::is_regular_file(name, ec)) {
-      const auto time = std::filesystem::last_write_time(name, ec);
-      if (!ec) watched = time;
+  // The state's requests that need the window.
+  void carry_out_requests() {
+    if (want_fullscreen_toggle) {
+      want_fullscreen_toggle = false;
+      toggle_fullscreen();
     }
-  }
-  // Every 0.2 s: a new modification time re-reads the file. A good file
-  // replaces the world (the observer stays where it is unless the file's
-  // camera changed); a bad one leaves the last good scene on screen and
-  // says why (field, line and column) on stderr and in the panel. A file
-  // missing for a moment (an editor saving by rename) is waited for.
-  void poll_reload() {
-    if (!watched) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (now < next_poll) return;
-    next_poll = now + std::chrono::milliseconds(200);
-    std::error_code ec;
-    const auto time = std::filesystem::last_write_time(scene_name, ec);
-    if (ec || time == *watched) return;
-    watched = time;
-    try {
-      const sol::Scene fresh = load(scene_name);
-      if (const std::string why = sol::vk::MarchRenderer::unsupported(fresh); !why.empty()) throw std::runtime_error(why);
-      const bool camera_moved = fresh.camera.position != scene.camera.position ||
-                                fresh.camera.forward != scene.camera.forward || fresh.camera.up != scene.camera.up;
-      const bool quotient_changed = fresh.quotient != scene.quotient;
-      scene = fresh;
-      good_world = scene;
-      world_changed = true;
-      ++world_version;
-      if (camera_moved || quotient_changed) observer = sol::observer_at(scene);
-      message = "reloaded " + scene_name;
-      std::fprintf(stderr, "solview: reloaded %s\n", scene_name.c_str());
-    } catch (const std::exception& e) {
-      message = std::string(e.what()) + " (the last good scene stays)";
-      std::fprintf(stderr, "solview: %s\n", message.c_str());
-    }
-  }
-
-  // After an edit of the world (the panel, a script's set): prepared again
-  // when it validates, else the last good world comes back and the message says why.
-  void world_edited() {
-    try {
-      sol::validate(scene);
-      if (const std::string why = sol::vk::MarchRenderer::unsupported(scene); !why.empty()) throw std::runtime_error(why);
-      good_world = scene;
-      world_changed = true;
-      ++world_version;
-      message.clear();
-    } catch (const std::exception& e) {
-      static_cast<sol::World&>(scene) = good_world;
-      message = e.what();
-      std::fprintf(stderr, "solview: %s\n", e.what());
-    }
-    // The observer follows a change of quotient (bound to the lattice or not).
-    const bool bound = observer.lattice().has_value();
-    if (bound != scene.lattice().has_value()) observer.bind(scene.lattice());
-  }
-
-  // What the panel asked for besides its edits in place.
-  void act(const sol::viewer::PanelActions& a, int render_width, int render_height) {
-    if (a.world_changed) world_edited();
-    if (a.load) {
-      try {
-        set_scene(*a.load);
-        message.clear();
-      } catch (const std::exception& e) {
-        message = e.what();
-        std::fprintf(stderr, "solview: %s\n", e.what());
+    if (want_overlay_toggle) {
+      want_overlay_toggle = false;
+      if (overlay) {
+        overlay_visible = !overlay_visible;
+      } else {
+        std::fprintf(stderr, "solview: the overlay cannot be drawn on this window's surface\n");
       }
     }
-    if (a.reset) observer = sol::observer_at(scene);
-    if (a.screenshot) want_screenshot = true;
-    if (a.toggle_recording) {
-      if (!recording) {
-        std::error_code ec;
-        std::filesystem::create_directories(record_dir, ec);
-        if (ec || !std::filesystem::is_directory(record_dir)) {
-          message = record_dir + ": cannot create the directory";
-          return;
-        }
-      }
-      recording = !recording;
-      message = recording ? "recording to " + record_dir + "/" : "recording stopped";
-    }
-    if (a.copy_options || a.copy_json) {
-      const int eyes = stereo ? 2 : 1;
-      const std::string text = a.copy_options ? solrender_command(render_width / eyes, render_height) : scene_json();
-      if (window) glfwSetClipboardString(window, text.c_str());
-      std::printf("%s\n", text.c_str());
+    if (clipboard) {
+      if (window) glfwSetClipboardString(window, clipboard->c_str());
+      std::printf("%s\n", clipboard->c_str());
       std::fflush(stdout);
-      message = a.copy_options ? "solrender options copied (and printed)" : "scene JSON copied (and printed)";
+      clipboard.reset();
     }
-    if (a.save) {
-      try {
-        if (std::filesystem::is_directory(*a.save)) throw std::runtime_error(*a.save + ": it is a directory, not a file");
-        sol::programs::write_text_file(*a.save, scene_json());
-        message = "saved " + *a.save;
-      } catch (const std::exception& e) {
-        message = e.what();
-      }
-    }
-  }
-
-  // A script's `set NAME VALUE`: what the panel's control of that name does.
-  void set(sol::viewer::Setting setting, double value) {
-    using sol::viewer::Setting;
-    switch (setting) {
-      case Setting::Fov:
-        if (!(value > 0.0 && value < 180.0)) return refuse("set fov: must be in (0, 180)", value);
-        scene.camera.fov = value;
-        return;
-      case Setting::Scale:
-        if (!(value > 0.0 && value <= 1.0)) return refuse("set scale: must be in (0, 1]", value);
-        scale = value;
-        adaptive = false;
-        return;
-      case Setting::Ipd:
-        if (!(value >= 0.0 && value <= 10.0)) return refuse("set ipd: must be in [0, 10]", value);
-        options.ipd = value;
-        return;
-      case Setting::MaxDistance: scene.max_distance = value; break;
-      case Setting::MaxSteps:
-        if (value != std::floor(value) || value < 1 || value > 1e6) return refuse("set max-steps: must be an integer in [1, 1000000]", value);
-        scene.max_steps = static_cast<int>(value);
-        break;
-      case Setting::HitEpsilon: scene.hit_epsilon = value; break;
-    }
-    world_edited();
-  }
-  void refuse(const std::string& what, double value) {
-    message = what + ", got " + std::to_string(value);
-    std::fprintf(stderr, "solview: %s\n", message.c_str());
-  }
-
-  // What the frame shows, for progressive refinement: any change restarts it.
-  // (Not the render scale: a refined frame is at full resolution whatever it is.)
-  std::array<double, 16> view_key(VkExtent2D extent) const {
-    const glm::dvec3 p = observer.position(), f = observer.forward(), u = observer.up();
-    return {p.x, p.y, p.z, f.x, f.y, f.z, u.x, u.y, u.z, scene.camera.fov, stereo ? options.ipd : -1.0,
-            static_cast<double>(world_version), static_cast<double>(extent.width), static_cast<double>(extent.height),
-            0.0, 0.0};
-  }
-
-  // The current camera (the observer's, the scene's fov).
-  sol::Camera camera() const {
-    sol::Camera c = scene.camera;
-    c.position = observer.position();
-    c.forward = observer.forward();
-    c.up = observer.up();
-    return c;
-  }
-  // The current camera as solrender options, and the scene seen from it as JSON.
-  std::string solrender_command(int width, int height) const {
-    const sol::Camera c = camera();
-    char text[1024];
-    std::snprintf(text, sizeof text,
-                  "solrender --scene %s --width %d --height %d --fov %.17g --position %.17g,%.17g,%.17g "
-                  "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s -o solview.png",
-                  scene_name.c_str(), width, height, c.fov, c.position.x, c.position.y, c.position.z, c.forward.x,
-                  c.forward.y, c.forward.z, c.up.x, c.up.y, c.up.z, scene.max_distance, scene.max_steps,
-                  stereo ? (" --stereo --ipd " + std::to_string(options.ipd)).c_str() : "");
-    return text;
-  }
-  std::string scene_json() const {
-    sol::Scene s = scene;
-    s.camera = camera();
-    return sol::to_json(s);
-  }
-
-  // The cameras of this frame: the observer's (both eyes in stereo).
-  std::vector<sol::Camera> cameras() const {
-    const sol::Camera c = camera();
-    if (!stereo) return {c};
-    const sol::StereoEyes eyes = sol::stereo_eyes(c, options.ipd);
-    return {eyes.left, eyes.right};
-  }
-
-  // Keys with an effect on press (the held ones act in Controls::step).
-  void press(Key k) {
-    switch (k) {
-      case Key::Home: observer = sol::observer_at(scene); break;
-      case Key::Tab: {
-        auto it = std::find(presets.begin(), presets.end(), scene_name);
-        const std::size_t next = it == presets.end() ? 0 : (static_cast<std::size_t>(it - presets.begin()) + 1) % presets.size();
-        set_scene(presets[next]);
-        break;
-      }
-      case Key::T: stereo = !stereo; break;
-      case Key::Y: vsync = !vsync; swapchain_dirty = true; break;
-      case Key::G: adaptive = !adaptive; break;
-      case Key::Plus: adaptive = false; scale = std::min(1.0, scale * 1.25); break;
-      case Key::Minus: adaptive = false; scale = std::max(options.min_scale, scale / 1.25); break;
-      case Key::P: want_screenshot = true; break;
-      case Key::H: std::printf("%s", kControls); std::fflush(stdout); break;
-      case Key::F1:
-        if (overlay) {
-          overlay_visible = !overlay_visible;
-        } else {
-          std::fprintf(stderr, "solview: the overlay cannot be drawn on this window's surface\n");
-        }
-        break;
-      case Key::F11: toggle_fullscreen(); break;
-      case Key::Escape: quit = true; break;
-      default: break;
-    }
-  }
-  void key(Key k, bool down) {
-    if (down && !controls.held(k)) press(k);
-    controls.key(k, down);
   }
   void toggle_fullscreen() {
     if (!window) return;
@@ -441,7 +196,7 @@ struct App {
     } else {
       glfwSetWindowMonitor(window, nullptr, windowed[0], windowed[1], windowed[2], windowed[3], 0);
     }
-    swapchain_dirty = true;
+    want_swapchain = true;
   }
 };
 
@@ -608,7 +363,7 @@ int run(App& app) {
       a.last_y = y;
     });
   }
-  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).swapchain_dirty = true; });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).want_swapchain = true; });
 
   sol::viewer::Presenter presenter(context, window, app.vsync, opt.present == "auto", app.scale == 1.0);
   // The overlay, after the viewer's own callbacks (ImGui's GLFW backend chains to them).
@@ -652,8 +407,9 @@ int run(App& app) {
     }
     glfwPollEvents();
     app.poll_reload();
-    if (app.swapchain_dirty || presenter.out_of_date() || !presenter.ready()) {
-      app.swapchain_dirty = false;
+    app.carry_out_requests();
+    if (app.want_swapchain || presenter.out_of_date() || !presenter.ready()) {
+      app.want_swapchain = false;
       presenter.recreate(app.vsync);
       if (!presenter.ready()) {  // minimised
         glfwWaitEventsTimeout(0.1);  // (and look at signals and the scene file now and then)
@@ -712,7 +468,7 @@ int run(App& app) {
       const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * shown_scale / eyes_now))) * eyes_now;
       const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * shown_scale)));
       app.overlay->begin_frame(presenter.format());
-      sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.options.ipd, app.scale,
+      sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.ipd, app.scale,
                                     app.adaptive, app.target_fps, opt.min_scale, app.recording, app.observer,
                                     app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
                                     opt.refine, app.message};
@@ -733,7 +489,7 @@ int run(App& app) {
     // replay's time when replaying) is rendered at full resolution, then
     // sample by sample into a running mean, up to --refine samples; then
     // that image is shown as it is. Any change starts again.
-    const std::array<double, 16> key = app.view_key(extent);
+    const std::array<double, 16> key = app.view_key(static_cast<int>(extent.width), static_cast<int>(extent.height));
     if (key != last_key) {
       last_key = key;
       still_for = 0.0;
@@ -883,6 +639,8 @@ int main(int argc, char** argv) {
   app.adaptive = app.options.target_fps.has_value();
   app.stereo = app.options.stereo;
   app.vsync = app.options.vsync == "on";
+  app.ipd = app.options.ipd;
+  app.min_scale = app.options.min_scale;
   try {
     return run(app);
   } catch (const std::exception& e) {

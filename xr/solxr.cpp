@@ -36,13 +36,15 @@
 
 #include "command_line.hpp"
 #include "eye_pose.hpp"
+#include "renderers.hpp"
 #include "srgb.hpp"
 
 namespace {
 
 struct Options {
-  std::string scene = "plane", integrator = "closed", reference = "local";
-  double rk_step = 0.01, scale = 1.0, speed = 1.0, turn_rate = 90.0;
+  std::string scene = "plane", reference = "local";
+  double scale = 1.0, speed = 1.0, turn_rate = 90.0;
+  sol::cli::IntegratorOptions flow;
   int width = 0, height = 0;  // 0: the runtime's recommendation
   long frames = 0;            // 0: until the runtime ends the session
   bool stats = false, validation = false;
@@ -56,8 +58,7 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
               "a preset (" + sol::cli::preset_list() +
                   ") or a JSON scene file (default plane); quotient and lights come from the scene, as for solrender");
   o.overrides.add_to(cl, "base observer", false);
-  cl.add_choice("--integrator", o.integrator, {"closed", "rk4"}, "the kernel's geodesic flow (default closed)");
-  cl.add_number("--rk-step", o.rk_step, "H", "RK4 substep for --integrator rk4 (default 0.01)", sol::cli::positive());
+  o.flow.add_to(cl);
   cl.add_integer("--width", o.width, 1, 16384, "W", "per-eye image width, 1..16384 (default: the runtime's recommendation)");
   cl.add_integer("--height", o.height, 1, 16384, "H", "per-eye image height, 1..16384 (default: the runtime's recommendation)");
   cl.add_number("--scale", o.scale, "S", "Sol units per metre of head motion, [1e-6, 1e6] (default 1)",
@@ -627,10 +628,7 @@ int run(const Options& o, const sol::Scene& scene) {
   App app;
   create_instance(app);
   create_context(app, o.validation);
-  sol::vk::MarchOptions march;
-  march.integrator = o.integrator == "rk4" ? sol::vk::Integrator::RK4 : sol::vk::Integrator::ClosedForm;
-  march.rk4_step = o.rk_step;
-  app.renderer.emplace(*app.context, march);
+  app.renderer.emplace(*app.context, sol::programs::march_options({.rk4 = o.flow.rk4(), .rk4_step = o.flow.rk_step}));
   app.renderer->set_world(scene);  // prepared once: every frame only sends its eyes
   create_session(app, o);
   std::uint32_t width = 0, height = 0;

@@ -56,6 +56,21 @@ MarchHit march_hit_none(MarchResume resume) {
   return h;
 }
 
+// What a march found: object (image) k, or -1, at arc length t and point q,
+// its last segment from `from`, after `steps` positions, with its last
+// exact solve.
+MarchHit march_found(int k, float t, vec3 q, vec3 from, int steps, ExactSolve exact) {
+  MarchHit h = march_hit_none(kMarchFromStart);
+  h.k = k;
+  h.t = t;
+  h.q = q;
+  h.from = from;
+  h.steps = steps;
+  h.exact_k = exact.k;
+  h.exact_end = exact.end;
+  return h;
+}
+
 // ---- RK4 (camera rays with INTEGRATOR = 1, for comparison): the geodesic
 // ODE in frame components, x' = e^{z}u1, y' = e^{-z}u2, z' = u3,
 // u1' = u1 u3, u2' = -u2 u3, u3' = u2² - u1², advanced from the last
@@ -343,13 +358,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
     q = sol_position_forward(ray, t);
     if (HAS_ODS) q = sol_translate(origin, q);
   }
-  h.k = hit - 1;
-  h.t = t;
-  h.q = q;
-  h.steps = steps;
-  h.exact_k = exact.k;
-  h.exact_end = exact.end;
-  return h;
+  return march_found(hit - 1, t, q, origin, steps, exact);
 }
 
 // ---- The march in the quotient (march_quotient in libsol/src/render.cpp)
@@ -523,14 +532,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
     proposal = camera && reach < clear ? min(max(step_length, min(kQuotientOverRelax * step_length, kQuotientMaxStep)), limit - t)
                                        : step_length;
   }
-  h.k = hit_image;
-  h.t = t;
-  h.q = q;
-  h.from = origin;
-  h.steps = steps;
-  h.exact_k = exact.k;
-  h.exact_end = exact.end;
-  return h;
+  return march_found(hit_image, t, q, origin, steps, exact);
 }
 
 // The march of any ray: from `origin` (march coordinates: relative to the
