@@ -30,8 +30,8 @@ class NotImplemented : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
-/// Thrown by a render that was asked to stop (RenderSettings::cancel,
-/// sol::vk::RenderOptions::cancel) before it finished.
+/// Thrown by a render that was asked to stop (sol::RenderOptions::cancel)
+/// before it finished.
 class Cancelled : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -50,7 +50,7 @@ struct World {
 struct Scene : World {
   Camera camera;
   /// Anti-aliasing samples per pixel a render of the scene takes (in [1,
-  /// 4096]; RenderSettings::samples, solrender --spp overrides it).
+  /// 4096]; RenderOptions::samples, solrender --spp overrides it).
   int samples = 1;
 };
 
