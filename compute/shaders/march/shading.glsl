@@ -1,8 +1,7 @@
 // Shading: the light a hit receives (sol::lights_at: directional and point
 // lights, exact point lights along each geodesic to the light and, in the
 // quotient, to each of its images, with their falloff and shadows), the
-// surface's colour and pattern, and fog; and the shade pass, which shades
-// the hits the march pass listed.
+// surface's colour and pattern, and fog.
 #ifndef SOL_MARCH_SHADING_GLSL
 #define SOL_MARCH_SHADING_GLSL
 
@@ -161,36 +160,6 @@ Surface surface_at(MarchHit h) {
                                                                          : object_normal(type, q, rel, heading, radius, h.from);
   f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;
-}
-
-// The shade pass: the hits the march pass listed (defer_shading), shaded
-// into their pixels as the march would have (shade_hit; the pattern's
-// coordinates from the hit point, as main()).
-void shade_pass() {
-  const int slot = queue_slot();
-  if (slot >= queue.shade.w) return;
-  const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
-  const uvec4 a = queue_records[at], b = queue_records[at + 1];
-  const ivec2 pixel = unpack_pixel(b.z);
-  const int eye = pixel.x >= params.counts.y ? 1 : 0;
-  const vec3 q = uintBitsToFloat(a.xyz);
-  const float t = uintBitsToFloat(a.w);
-  const vec3 n = octahedral_decode(uintBitsToFloat(b.xy));
-  const int index = int(b.w);
-  int k = index;
-  vec2 uv;
-  if (QUOTIENT) {
-    const Image m = images[index];
-    k = int(m.info.z);
-    uv = object_pattern_uv(image_type(m), q, q, m.geometry, m.heading.xy, m.info.y);
-  } else {
-    uv = object_pattern_uv(int(params.objects[k].plane.x), q,
-                           pattern_phase(q, params.eyes[eye].camera, params.eyes[eye].camera_frac),
-                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, params.objects[k].plane.y);
-    if (HAS_SHADOWS) load_objects(eye);
-  }
-  const vec4 color = shade_hit(k, n, uv, t, q, eye);
-  imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
 }
 
 #endif  // SOL_MARCH_SHADING_GLSL

@@ -1,0 +1,116 @@
+// The kernel's passes (sol/vk/march_interface.h, docs/renderer.md "Deferred
+// passes"): the march pass takes an invocation's pixel, marches its camera
+// ray and writes its colour and AOVs (or lists the ray for the resume pass,
+// the hit for the shade pass); the resume pass goes on with a listed ray;
+// the shade pass shades a listed hit.
+#ifndef SOL_MARCH_PASSES_GLSL
+#define SOL_MARCH_PASSES_GLSL
+
+// The march and resume passes: a pixel's camera ray, marched (the resume
+// pass goes on with a ray the march pass listed), and its colour and AOVs
+// written, or its hit listed for the shade pass.
+void march_pass() {
+  // This dispatch's tile of the image (the whole image unless rendered in tiles).
+  const ivec4 tile = params.tile;
+  // The resume pass: the ray of a record of the march pass (defer_exact),
+  // which goes on from where that pass left it.
+  uvec4 resumed = uvec4(0u);
+  ivec2 pixel;
+  if (PASS == kPassResume) {
+    const int slot = queue_slot();
+    if (slot >= queue.resume.w) return;
+    resumed = queue_records[kQueueResumeRecord * slot];
+    pixel = unpack_pixel(resumed.x);
+  } else {
+    const ivec2 invocation = ivec2(gl_WorkGroupID.xy) * kGroupSize + group_pixel(int(gl_LocalInvocationIndex));
+    if (any(greaterThanEqual(invocation, tile.zw))) return;
+    pixel = tile.xy + invocation;
+  }
+  const int width = params.counts.y, height = params.counts.z;
+  if (pixel.x >= width * params.counts.w || pixel.y >= height) return;
+  const int eye = pixel.x >= width ? 1 : 0;
+  const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
+  // The point of the pixel this dispatch samples (the centre without anti-aliasing).
+  const vec4 sample_at = params.pixel_sample;
+  const bool write_aovs = WRITE_AOVS && sample_at.w != 0.0;
+  const CameraRay ray = camera_ray(eye, local, width, height, sample_at);
+  if (!ray.sees) {
+    imageStore(color_image, pixel, output_color(accumulate(pixel, vec4(0.0, 0.0, 0.0, 1.0), sample_at.z)));
+    if (write_aovs) {
+      imageStore(aov_hit, pixel, vec4(0.0));
+      imageStore(aov_point, pixel, vec4(0.0));
+    }
+    return;
+  }
+  // Where the march starts: in Sol relative to the eye (its camera, or an
+  // ODS column's eye); in the quotient the eye's point of D (from double),
+  // or the column's eye teleported into D.
+  vec3 origin = ray.start;
+  if (QUOTIENT) {
+    origin = params.eyes[eye].camera.xyz;
+    if (HAS_ODS) {
+      origin = sol_translate(origin, ray.start);
+      if (!in_domain(origin)) origin = teleport(origin, false);
+    }
+  } else {
+    load_objects(eye);
+  }
+  const MarchHit h = march(origin, ray.direction, params.limits.x,
+                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
+  if (h.deferred) {  // the rest of this ray in the resume pass
+    defer_exact(pixel, h.resume.t, h.resume.passing, h.resume.step);
+    return;
+  }
+  vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
+  vec4 hit_aov = vec4(0.0, 0.0, float(h.steps), 0.0);
+  vec4 point_aov = vec4(0.0);
+  if (h.k >= 0) {
+    const Surface f = surface_at(h);
+    if (DEFER_SHADING) {
+      defer_shading(pixel, h.q, h.t, f.n, h.k);
+    } else {
+      color = shade_hit(f.object, f.n, f.uv, h.t, h.q, eye);
+    }
+    hit_aov.x = float(f.object + 1);
+    hit_aov.y = h.t;
+    point_aov = vec4(f.world, 0.0);
+  }
+  // (A hit's colour comes from the shade pass.)
+  if (!DEFER_SHADING || h.k < 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
+  if (write_aovs) {
+    imageStore(aov_hit, pixel, hit_aov);
+    imageStore(aov_point, pixel, point_aov);
+  }
+}
+
+// The shade pass: the hits the march pass listed (defer_shading), shaded
+// into their pixels as the march would have (shade_hit; the pattern's
+// coordinates from the hit point, as main()).
+void shade_pass() {
+  const int slot = queue_slot();
+  if (slot >= queue.shade.w) return;
+  const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
+  const uvec4 a = queue_records[at], b = queue_records[at + 1];
+  const ivec2 pixel = unpack_pixel(b.z);
+  const int eye = pixel.x >= params.counts.y ? 1 : 0;
+  const vec3 q = uintBitsToFloat(a.xyz);
+  const float t = uintBitsToFloat(a.w);
+  const vec3 n = octahedral_decode(uintBitsToFloat(b.xy));
+  const int index = int(b.w);
+  int k = index;
+  vec2 uv;
+  if (QUOTIENT) {
+    const Image m = images[index];
+    k = int(m.info.z);
+    uv = object_pattern_uv(image_type(m), q, q, m.geometry, m.heading.xy, m.info.y);
+  } else {
+    uv = object_pattern_uv(int(params.objects[k].plane.x), q,
+                           pattern_phase(q, params.eyes[eye].camera, params.eyes[eye].camera_frac),
+                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, params.objects[k].plane.y);
+    if (HAS_SHADOWS) load_objects(eye);
+  }
+  const vec4 color = shade_hit(k, n, uv, t, q, eye);
+  imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+}
+
+#endif  // SOL_MARCH_PASSES_GLSL
