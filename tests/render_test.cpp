@@ -21,6 +21,7 @@
 #include "row_pool.hpp"  // libsol/src: the CPU renderer's thread pool
 #include "support/directions.hpp"
 #include "support/extremes.hpp"
+#include "support/sweep.hpp"
 
 namespace {
 
@@ -1105,8 +1106,8 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   std::vector<dvec3> samples;
   const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   auto in_d = [&](double s, double r, double z) { return s * g1 + r * g2 + dvec3(0, 0, z * h * (1 - 1e-12)); };
-  for (int i = 0; i < 3000; ++i) samples.push_back(in_d(unit(rng), unit(rng), unit(rng)));
-  for (int i = 0; i < 600; ++i) {  // faces and edges
+  for (int i = 0; i < sol::test::sweep_count(3000); ++i) samples.push_back(in_d(unit(rng), unit(rng), unit(rng)));
+  for (int i = 0; i < sol::test::sweep_count(600); ++i) {  // faces and edges
     const double s = unit(rng), r = unit(rng), z = unit(rng);
     for (const dvec3& f : {in_d(0, r, z), in_d(1, r, z), in_d(s, 0, z), in_d(s, 1, z), in_d(s, r, 0), in_d(s, r, 1),
                            in_d(0, 0, z), in_d(1, 1, z), in_d(0, r, 1), in_d(s, 1, 0)}) {
