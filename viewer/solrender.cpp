@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -148,264 +150,322 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
   std::fprintf(stderr, "solrender: encoded %s with ffmpeg\n", video.c_str());
 }
 
-}  // namespace
 
-int main(int argc, char** argv) {
-  std::string scene_arg = "plane", output, aov, device = "auto", path_file, frames, video;
-  double fps = 24.0;
-  std::string projection;
-  std::optional<double> fisheye_fov;
-  double ipd = 0.064;
-  sol::cli::IntegratorOptions flow;
-  bool print_scene = false, progress = false;
+// Renders one camera (both eyes, an anaglyph, as the options say).
+using Render = std::function<sol::RenderResult(const sol::Camera&)>;
+
+bool is_cpu(const sol::Renderer& renderer) { return dynamic_cast<const sol::CpuRenderer*>(&renderer) != nullptr; }
+
+// What the command line asks for.
+struct Options {
+  std::string scene = "plane", output, aov, device = "auto", path_file, frames, video, projection;
   std::string stereo_mode;  // empty: mono
-  int width = 512, height = 512, spp = 0;  // 0: the scene's "samples"
+  double fps = 24.0, ipd = 0.064;
+  std::optional<double> fisheye_fov;
+  sol::cli::IntegratorOptions flow;
+  sol::cli::SceneOverrides overrides;
+  bool print_scene = false, progress = false;
+  int width = 512, height = 512, spp = 0;  // spp 0: the scene's "samples"
   unsigned threads = 0;
-  sol::cli::SceneOverrides o;
-  sol::cli::CommandLine cl("solrender", "[options] -o OUT",
-                           "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol "
-                           "geodesic.");
-  cl.add_text("--scene", scene_arg, "NAME|FILE",
-              "a preset (" + sol::cli::preset_list() + ") or a JSON scene file (default plane)");
-  cl.add_text("-o,--output", output, "OUT", "image file; the format follows the extension (png, exr, jpg, tif, ...)");
-  cl.add_text("--aov", aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps");
-  cl.add_integer("--width", width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
-  cl.add_integer("--height", height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
-  o.add_to(cl, "camera");
-  cl.add_choice("--projection", projection, {"perspective", "equirectangular", "fisheye"},
+
+  bool stereo() const { return !stereo_mode.empty(); }
+  bool anaglyph() const { return stereo_mode == "anaglyph"; }
+};
+
+// The options, their help and the footer.
+void declare(sol::cli::CommandLine& cl, Options& o) {
+  cl.add_text("--scene", o.scene, "NAME|FILE", "a preset (" + sol::cli::preset_list() + ") or a JSON scene file (default plane)");
+  cl.add_text("-o,--output", o.output, "OUT", "image file; the format follows the extension (png, exr, jpg, tif, ...)");
+  cl.add_text("--aov", o.aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps");
+  cl.add_integer("--width", o.width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
+  cl.add_integer("--height", o.height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
+  o.overrides.add_to(cl, "camera");
+  cl.add_choice("--projection", o.projection, {"perspective", "equirectangular", "fisheye"},
                 "how pixels map to directions: perspective (the scene's fov), equirectangular (360 x 180 degrees, "
                 "width = 2 x height) or fisheye (equidistant, --fisheye-fov across the image circle)");
-  cl.add_number("--fisheye-fov", fisheye_fov, "DEG", "a fisheye's angle across its image circle, (0, 360] (default 180: a dome)",
+  cl.add_number("--fisheye-fov", o.fisheye_fov, "DEG", "a fisheye's angle across its image circle, (0, 360] (default 180: a dome)",
                 sol::cli::in_range(1e-3, 360.0));
-  cl.add_integer("--spp", spp, 1, 4096, "N",
+  cl.add_integer("--spp", o.spp, 1, 4096, "N",
                  "samples per pixel, 1..4096 (default: the scene's \"samples\", 1 unless it says): anti-aliasing, "
                  "the colour the mean of N rays through the pixel (an evenly spread sequence; sample 1 is the "
                  "centre); the AOVs stay the centre's");
-  cl.add_choice("--device", device, {"auto", "vulkan", "cpu"},
+  cl.add_choice("--device", o.device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
-  flow.add_to(cl);
-  cl.add_optional_choice("--stereo", stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
+  o.flow.add_to(cl);
+  cl.add_optional_choice("--stereo", o.stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
                          "both eyes: side by side (the default; image width 2 W) or as a red/cyan anaglyph (width W: "
                          "red from the left eye, green and blue from the right; the AOVs the left eye's); with "
                          "--projection equirectangular an omnidirectional stereo panorama (each column's eyes "
                          "on its own right vector)");
-  cl.add_number("--ipd", ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
+  cl.add_number("--ipd", o.ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
                 sol::cli::in_range(0.0, 10.0));
-  cl.add_integer("--threads", threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
-  cl.add_flag("--print-scene", print_scene, "print the effective scene as JSON and exit");
-  cl.add_text("--path", path_file, "FILE",
+  cl.add_integer("--threads", o.threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
+  cl.add_flag("--print-scene", o.print_scene, "print the effective scene as JSON and exit");
+  cl.add_text("--path", o.path_file, "FILE",
               "render a film along a camera path (JSON: a start and walk/turn/hold segments, docs/films.md): one "
               "image per frame, -o a pattern with a frame number (out/frame-%06d.png); frames already written are "
               "skipped, so a stopped run goes on where it was");
-  cl.add_number("--fps", fps, "F", "frames per second of --path, (0, 1000] (default 24)", sol::cli::in_range(1e-3, 1000.0));
-  cl.add_text("--frames", frames, "A:B", "with --path: frames A to B-1 only (either may be left out; default all)");
-  cl.add_text("--video", video, "FILE.mp4", "with --path: encode the frames with ffmpeg into FILE (.mp4, .mkv, .mov)");
-  cl.add_flag("--progress", progress,
+  cl.add_number("--fps", o.fps, "F", "frames per second of --path, (0, 1000] (default 24)", sol::cli::in_range(1e-3, 1000.0));
+  cl.add_text("--frames", o.frames, "A:B", "with --path: frames A to B-1 only (either may be left out; default all)");
+  cl.add_text("--video", o.video, "FILE.mp4", "with --path: encode the frames with ffmpeg into FILE (.mp4, .mkv, .mov)");
+  cl.add_flag("--progress", o.progress,
               "a progress line on stderr (percent, rays/s, time left; the default when stderr is a terminal)");
   cl.set_footer(
       "Camera options override the scene's. 8-bit formats get sRGB-encoded colours, float formats\n"
       "linear ones. On failure nothing is written and the exit status is non-zero (2 for bad usage).");
-  cl.parse(argc, argv);
-  const bool stereo = !stereo_mode.empty(), anaglyph = stereo_mode == "anaglyph";
+}
 
+// The scene with the command line's camera, projection and samples.
+sol::Scene scene_of(Options& o, const sol::cli::CommandLine& cl) {
   sol::Scene scene;
   try {
-    scene = sol::cli::scene_argument(scene_arg);
-    o.apply(scene);
-    if (projection == "perspective") scene.camera.projection = sol::Projection::Perspective;
-    if (projection == "equirectangular") scene.camera.projection = sol::Projection::Equirectangular;
-    if (projection == "fisheye") scene.camera.projection = sol::Projection::Fisheye;
-    if (fisheye_fov) scene.camera.fisheye_fov = *fisheye_fov;
+    scene = sol::cli::scene_argument(o.scene);
+    o.overrides.apply(scene);
+    if (o.projection == "perspective") scene.camera.projection = sol::Projection::Perspective;
+    if (o.projection == "equirectangular") scene.camera.projection = sol::Projection::Equirectangular;
+    if (o.projection == "fisheye") scene.camera.projection = sol::Projection::Fisheye;
+    if (o.fisheye_fov) scene.camera.fisheye_fov = *o.fisheye_fov;
     if (scene.camera.projection != sol::Projection::Perspective) scene.camera.frustum.reset();
     sol::validate(scene);
   } catch (const std::exception& e) {
     cl.fail(e.what());
   }
-  if (spp == 0) spp = scene.samples;
-  scene.samples = spp;  // what --print-scene shows
-  if (print_scene) {
-    std::printf("%s\n", sol::to_json(scene).c_str());
-    return 0;
+  if (o.spp == 0) o.spp = scene.samples;
+  scene.samples = o.spp;  // what --print-scene shows
+  return scene;
+}
+
+// Refuses an image size, output or AOV file that cannot be written, before any work.
+void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::CommandLine& cl) {
+  if (scene.camera.projection == sol::Projection::Equirectangular && o.width != 2 * o.height) {
+    cl.fail("an equirectangular image needs --width = 2 x --height (360 x 180 degrees), got " + std::to_string(o.width) +
+            " x " + std::to_string(o.height));
   }
-  if (scene.camera.projection == sol::Projection::Equirectangular && width != 2 * height) {
-    cl.fail("an equirectangular image needs --width = 2 x --height (360 x 180 degrees), got " + std::to_string(width) +
-            " x " + std::to_string(height));
-  }
-  if (output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
-  if (!sol::programs::can_write(output)) cl.fail(output + ": no image format for this file name extension");
-  if (!aov.empty() && std::filesystem::path(aov).extension() != ".exr") cl.fail("--aov needs an .exr file name, got " + aov);
-  for (const std::string& path : {output, aov}) {
+  if (o.output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
+  if (!sol::programs::can_write(o.output)) cl.fail(o.output + ": no image format for this file name extension");
+  if (!o.aov.empty() && std::filesystem::path(o.aov).extension() != ".exr") cl.fail("--aov needs an .exr file name, got " + o.aov);
+  for (const std::string& path : {o.output, o.aov}) {
     if (!path.empty() && std::filesystem::is_directory(path)) cl.fail(path + ": cannot write: it is a directory");
   }
-  if (!aov.empty()) {
+  if (!o.aov.empty()) {
     std::error_code ec_output, ec_aov;
-    const auto a = std::filesystem::weakly_canonical(output, ec_output), b = std::filesystem::weakly_canonical(aov, ec_aov);
-    if (!ec_output && !ec_aov && a == b) cl.fail("--aov " + aov + " is the same file as -o " + output + ": give two files");
+    const auto a = std::filesystem::weakly_canonical(o.output, ec_output), b = std::filesystem::weakly_canonical(o.aov, ec_aov);
+    if (!ec_output && !ec_aov && a == b) cl.fail("--aov " + o.aov + " is the same file as -o " + o.output + ": give two files");
   }
-  if (flow.rk4() && device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
+  if (o.flow.rk4() && o.device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
+}
 
-  const bool tty = isatty(fileno(stderr));
-  const bool show_progress = tty || progress;
-  const double eyes_count = stereo ? 2.0 : 1.0;
+// A film: its camera path, the frames to render and the encoder.
+struct Film {
+  sol::CameraPath path;
+  long first = 0, end = 0;  // frames first..end-1
+  std::string ffmpeg;       // with --video
+};
 
-  // Films: --path, its frames and their files.
-  std::optional<sol::CameraPath> camera_path;
-  long first_frame = 0, end_frame = 0;
-  if (!path_file.empty()) {
-    try {
-      camera_path = sol::load_camera_path(path_file);
-    } catch (const std::exception& e) {
-      cl.fail(e.what());
-    }
-    if (!aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
-    if (!frame_number_end(output)) {
-      cl.fail("-o " + output + ": with --path the name needs one frame number such as %06d (frame-%06d.png)");
-    }
-    const long count = camera_path->frame_count(fps);
-    first_frame = 0;
-    end_frame = count;
-    if (!frames.empty()) {
-      const auto colon = frames.find(':');
-      if (colon == std::string::npos) cl.fail("--frames expects A:B (frames A to B-1; either may be left out), got '" + frames + "'");
-      const std::string a = frames.substr(0, colon), b = frames.substr(colon + 1);
-      if (!a.empty()) first_frame = cl.integer(a, "--frames (first)", 0, count);
-      if (!b.empty()) end_frame = std::min(count, static_cast<long>(cl.integer(b, "--frames (end)", 0, 100000000)));
-      if (first_frame >= end_frame) {
-        cl.fail("--frames " + frames + ": no frames (the path has " + std::to_string(count) + " at " +
-                std::to_string(fps) + " fps: 0.." + std::to_string(count - 1) + ")");
-      }
-    }
-  } else if (!frames.empty() || !video.empty()) {
-    cl.fail(!frames.empty() ? "--frames needs --path FILE" : "--video needs --path FILE");
+// The film --path asks for (none without it), its frames and video checked.
+std::optional<Film> film_of(const Options& o, const sol::cli::CommandLine& cl) {
+  if (o.path_file.empty()) {
+    if (!o.frames.empty() || !o.video.empty()) cl.fail(!o.frames.empty() ? "--frames needs --path FILE" : "--video needs --path FILE");
+    return std::nullopt;
   }
-  std::string ffmpeg;
-  if (!video.empty()) {
-    ffmpeg = find_program("ffmpeg");
-    if (ffmpeg.empty()) {
+  Film film;
+  try {
+    film.path = sol::load_camera_path(o.path_file);
+  } catch (const std::exception& e) {
+    cl.fail(e.what());
+  }
+  if (!o.aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
+  if (!frame_number_end(o.output)) {
+    cl.fail("-o " + o.output + ": with --path the name needs one frame number such as %06d (frame-%06d.png)");
+  }
+  const long count = film.path.frame_count(o.fps);
+  film.end = count;
+  if (!o.frames.empty()) {
+    const auto colon = o.frames.find(':');
+    if (colon == std::string::npos) cl.fail("--frames expects A:B (frames A to B-1; either may be left out), got '" + o.frames + "'");
+    const std::string a = o.frames.substr(0, colon), b = o.frames.substr(colon + 1);
+    if (!a.empty()) film.first = cl.integer(a, "--frames (first)", 0, count);
+    if (!b.empty()) film.end = std::min(count, static_cast<long>(cl.integer(b, "--frames (end)", 0, 100000000)));
+    if (film.first >= film.end) {
+      cl.fail("--frames " + o.frames + ": no frames (the path has " + std::to_string(count) + " at " + std::to_string(o.fps) +
+              " fps: 0.." + std::to_string(count - 1) + ")");
+    }
+  }
+  if (!o.video.empty()) {
+    film.ffmpeg = find_program("ffmpeg");
+    if (film.ffmpeg.empty()) {
       cl.fail("--video needs ffmpeg, which is not installed (Debian: apt install ffmpeg); without --video the frames "
               "are written and 'ffmpeg -framerate F -i PATTERN -pix_fmt yuv420p out.mp4' encodes them");
     }
-    if (std::filesystem::is_directory(video)) cl.fail("--video " + video + ": it is a directory");
+    if (std::filesystem::is_directory(o.video)) cl.fail("--video " + o.video + ": it is a directory");
+  }
+  return film;
+}
+
+// The progress line: finished fraction, rays per second so far, time left
+// at that rate; rewritten in place on a terminal, one line per 10% otherwise.
+class ProgressLine {
+ public:
+  ProgressLine(bool tty, double rays) : tty_(tty), rays_(rays) {}
+
+  // A new image (a film's frame: `prefix` names it).
+  void start(std::string prefix = {}) {
+    prefix_ = std::move(prefix);
+    started_ = std::chrono::steady_clock::now();
+    last_tenth_ = -1;
   }
 
-  // The progress line: finished fraction, rays per second so far, time left
-  // at that rate; rewritten in place on a terminal, one line per 10% otherwise.
-  const double total_rays = static_cast<double>(width) * eyes_count * height * spp;
-  auto started = std::chrono::steady_clock::now();
-  int last_tenth = -1;
-  std::string progress_prefix;
-  auto report = [&](double fraction) {
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    const double rate = seconds > 0 ? fraction * total_rays / seconds : 0.0;
+  void report(double fraction) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    const double rate = seconds > 0 ? fraction * rays_ / seconds : 0.0;
     const double left = fraction > 0 ? seconds * (1.0 - fraction) / fraction : 0.0;
-    if (!tty) {
+    if (!tty_) {
       const int tenth = static_cast<int>(fraction * 10.0 + 1e-9);
-      if (tenth == last_tenth) return;
-      last_tenth = tenth;
+      if (tenth == last_tenth_) return;
+      last_tenth_ = tenth;
     }
-    std::fprintf(stderr, "%ssolrender: %s%3.0f%%  %.2f M rays/s  %.1f s left%s", tty ? "\r" : "", progress_prefix.c_str(),
-                 100.0 * fraction, rate * 1e-6, left, tty ? "   " : "\n");
-  };
+    std::fprintf(stderr, "%ssolrender: %s%3.0f%%  %.2f M rays/s  %.1f s left%s", tty_ ? "\r" : "", prefix_.c_str(),
+                 100.0 * fraction, rate * 1e-6, left, tty_ ? "   " : "\n");
+  }
+
+ private:
+  bool tty_;
+  double rays_;
+  std::string prefix_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  int last_tenth_ = -1;
+};
+
+// The renderer, made once (a film's frames share it): the kernel, or the CPU.
+std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& scene, const sol::cli::CommandLine& cl) {
+  sol::programs::RendererChoice choice;
+  choice.device = o.device == "vulkan" ? sol::programs::Device::Vulkan
+                  : o.device == "cpu"  ? sol::programs::Device::Cpu
+                                       : sol::programs::Device::Auto;
+  choice.rk4 = o.flow.rk4();
+  choice.rk4_step = o.flow.rk_step;
+#ifndef NDEBUG
+  choice.validation = true;  // validation layers in debug builds
+#endif
+  if (choice.device == sol::programs::Device::Vulkan && !sol::programs::has_vulkan()) {
+    cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
+  }
+  std::unique_ptr<sol::Renderer> renderer = sol::programs::make_renderer(
+      choice, scene, [](const std::string& note) { std::fprintf(stderr, "solrender: %s\n", note.c_str()); });
+  if (is_cpu(*renderer) && o.flow.rk4()) cl.fail("--integrator rk4 needs the Vulkan kernel");
+  return renderer;
+}
+
+// A film: frames first..end-1, each its own complete file; frames already
+// there (complete: files appear only whole) are skipped, so a stopped run
+// goes on where it was.
+void render_film(const Options& o, const sol::Scene& scene, const Film& film, const Render& render, ProgressLine& progress,
+                 bool tty, const std::string& where) {
+  long rendered = 0, skipped = 0;
+  const auto film_started = std::chrono::steady_clock::now();
+  const std::optional<sol::Lattice> lattice = scene.lattice();
+  for (long k = film.first; k < film.end; ++k) {
+    const std::string name = frame_name(o.output, k);
+    if (std::filesystem::exists(name)) {
+      ++skipped;
+      continue;
+    }
+    const sol::Camera camera = film.path.at(static_cast<double>(k) / o.fps, scene.camera, lattice);
+    char prefix[96];
+    std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld): ", k, k - film.first + 1, film.end - film.first);
+    progress.start(prefix);
+    const sol::RenderResult r = render(camera);
+    if (tty) std::fprintf(stderr, "\r");
+    sol::programs::OutputFile image(name);
+    const std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+    image.commit();
+    if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, name.c_str());
+    ++rendered;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
+  std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
+               o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
+               o.output.c_str());
+  if (!o.video.empty()) encode_video(film.ffmpeg, o.output, film.first, o.fps, o.video);
+}
+
+// One image and its AOVs: both files complete before either replaces what
+// was there, so a failure leaves the previous files as they were.
+void render_still(const Options& o, const sol::Scene& scene, const Render& render, bool tty, bool on_device,
+                  std::string where) {
+  const auto begin = std::chrono::steady_clock::now();
+  const sol::RenderResult r = render(scene.camera);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (tty) std::fprintf(stderr, "\r");
+  if (on_device) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", r.device_ms);
+    where += buf;
+  }
+  sol::programs::OutputFile image(o.output);
+  std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
+  std::optional<sol::programs::OutputFile> aovs;
+  if (!o.aov.empty()) {
+    aovs.emplace(o.aov);
+    non_finite += sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
+                                             interleave_aovs(r), false);
+  }
+  image.commit();
+  if (aovs) aovs->commit();
+  if (non_finite > 0) {
+    std::fprintf(stderr, "solrender: warning: %zu values were not finite and were written as 0 (a defect: please report "
+                 "the scene and options)\n", non_finite);
+  }
+  const std::string samples = o.spp > 1 ? ", " + std::to_string(o.spp) + " samples per pixel" : "";
+  std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
+               o.anaglyph() ? " (anaglyph)" : (o.stereo() ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,
+               r.width * static_cast<double>(r.height) * (o.anaglyph() ? 2 : 1) * o.spp / seconds * 1e-6, o.output.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  sol::cli::CommandLine cl("solrender", "[options] -o OUT",
+                           "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol "
+                           "geodesic.");
+  declare(cl, o);
+  cl.parse(argc, argv);
+  const sol::Scene scene = scene_of(o, cl);
+  if (o.print_scene) {
+    std::printf("%s\n", sol::to_json(scene).c_str());
+    return 0;
+  }
+  check_outputs(o, scene, cl);
+  const std::optional<Film> film = film_of(o, cl);
+
+  const bool tty = isatty(fileno(stderr));
+  ProgressLine progress(tty, static_cast<double>(o.width) * (o.stereo() ? 2.0 : 1.0) * o.height * o.spp);
   // A signal in any phase leaves no temporary behind (and no output).
   sol::programs::install_signal_cleanup();
   try {
-    // The renderer, made once (a film's frames share it): the kernel, or the CPU.
-    sol::programs::RendererChoice choice;
-    choice.device = device == "vulkan" ? sol::programs::Device::Vulkan
-                    : device == "cpu"  ? sol::programs::Device::Cpu
-                                       : sol::programs::Device::Auto;
-    choice.rk4 = flow.rk4();
-    choice.rk4_step = flow.rk_step;
-#ifndef NDEBUG
-    choice.validation = true;  // validation layers in debug builds
-#endif
-    if (choice.device == sol::programs::Device::Vulkan && !sol::programs::has_vulkan()) {
-      cl.fail("--device vulkan: this solrender was built without Vulkan (SOL_BUILD_VULKAN=OFF)");
-    }
-    const std::unique_ptr<sol::Renderer> renderer = sol::programs::make_renderer(
-        choice, scene, [](const std::string& note) { std::fprintf(stderr, "solrender: %s\n", note.c_str()); });
-    const bool cpu = dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr;
-    if (cpu && flow.rk4()) cl.fail("--integrator rk4 needs the Vulkan kernel");
+    const std::unique_ptr<sol::Renderer> renderer = renderer_for(o, scene, cl);
     std::string where = renderer->description();
-    if (cpu && threads) where = "cpu (" + std::to_string(threads) + " threads)";
-    sol::RenderOptions render_options;
-    render_options.width = width;
-    render_options.height = height;
-    render_options.samples = spp;
-    render_options.threads = threads;
-    render_options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
-    if (show_progress) render_options.progress = report;
-    auto render_camera = [&](const sol::Camera& camera) {
+    if (is_cpu(*renderer) && o.threads) where = "cpu (" + std::to_string(o.threads) + " threads)";
+    sol::RenderOptions options;
+    options.width = o.width;
+    options.height = o.height;
+    options.samples = o.spp;
+    options.threads = o.threads;
+    options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
+    if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
+    const Render render = [&](const sol::Camera& camera) {
       const sol::RenderResult both =
-          stereo ? renderer->render_stereo(camera, ipd, render_options) : renderer->render(camera, render_options);
-      return anaglyph ? to_anaglyph(both) : both;
+          o.stereo() ? renderer->render_stereo(camera, o.ipd, options) : renderer->render(camera, options);
+      return o.anaglyph() ? to_anaglyph(both) : both;
     };
-
-    if (camera_path) {
-      // A film: frames first_frame..end_frame-1, each its own complete file;
-      // frames already there (complete: files appear only whole) are skipped,
-      // so a stopped run goes on where it was.
-      long rendered = 0, skipped = 0;
-      const auto film_started = std::chrono::steady_clock::now();
-      const std::optional<sol::Lattice> lattice = scene.lattice();
-      for (long k = first_frame; k < end_frame; ++k) {
-        const std::string name = frame_name(output, k);
-        if (std::filesystem::exists(name)) {
-          ++skipped;
-          continue;
-        }
-        const sol::Camera camera = camera_path->at(static_cast<double>(k) / fps, scene.camera, lattice);
-        char prefix[96];
-        std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld): ", k, k - first_frame + 1, end_frame - first_frame);
-        progress_prefix = prefix;
-        started = std::chrono::steady_clock::now();
-        last_tenth = -1;
-        const sol::RenderResult r = render_camera(camera);
-        if (tty) std::fprintf(stderr, "\r");
-        sol::programs::OutputFile image(name);
-        const std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
-        image.commit();
-        if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, name.c_str());
-        ++rendered;
-      }
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
-      std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
-                   path_file.c_str(), first_frame, end_frame - 1, fps, where.c_str(), rendered, seconds, skipped,
-                   output.c_str());
-      if (!video.empty()) encode_video(ffmpeg, output, first_frame, fps, video);
-      return 0;
+    progress.start();
+    if (film) {
+      render_film(o, scene, *film, render, progress, tty, where);
+    } else {
+      render_still(o, scene, render, tty, !is_cpu(*renderer), where);
     }
-
-    const auto begin = std::chrono::steady_clock::now();
-    sol::RenderResult r = render_camera(scene.camera);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    if (tty) std::fprintf(stderr, "\r");
-    if (!cpu) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", r.device_ms);
-      where += buf;
-    }
-    // Both files complete before either replaces what was there: a failure
-    // leaves the previous files as they were.
-    sol::programs::OutputFile image(output);
-    std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
-    std::optional<sol::programs::OutputFile> aovs;
-    if (!aov.empty()) {
-      aovs.emplace(aov);
-      non_finite += sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
-                                               interleave_aovs(r), false);
-    }
-    image.commit();
-    if (aovs) aovs->commit();
-    if (non_finite > 0) {
-      std::fprintf(stderr, "solrender: warning: %zu values were not finite and were written as 0 (a defect: please report "
-                   "the scene and options)\n", non_finite);
-    }
-    const std::string samples = spp > 1 ? ", " + std::to_string(spp) + " samples per pixel" : "";
-    std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
-                 anaglyph ? " (anaglyph)" : (stereo ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,
-                 r.width * static_cast<double>(r.height) * (anaglyph ? 2 : 1) * spp / seconds * 1e-6, output.c_str());
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");
     cl.fail(e.what());

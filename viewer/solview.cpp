@@ -280,8 +280,10 @@ class AdaptiveScale {
   double m_smoothed_ms = 0;
 };
 
-int run(App& app) {
-  Options& opt = app.options;
+// Loads --script and refuses the files written at exit (or their folder),
+// before a window opens.
+std::vector<sol::viewer::ScriptEvent> prepare_files(App& app) {
+  const Options& opt = app.options;
   const sol::cli::CommandLine& cl = app.command_line;
   std::vector<sol::viewer::ScriptEvent> script;
   if (!opt.script.empty()) {
@@ -294,7 +296,6 @@ int run(App& app) {
   if (!opt.screenshot.empty() && !sol::programs::can_write(opt.screenshot)) {
     cl.fail("--screenshot " + opt.screenshot + ": no image format for this file name extension");
   }
-  // Files written at exit: refused now rather than after the session.
   for (const auto& [option, path] : {std::pair{"--screenshot", opt.screenshot}, std::pair{"--state", opt.state}}) {
     if (!path.empty() && std::filesystem::is_directory(path)) cl.fail(std::string(option) + " " + path + ": it is a directory, not a file");
   }
@@ -305,43 +306,63 @@ int run(App& app) {
     app.record_dir = opt.record;
     app.recording = true;
   }
+  return script;
+}
 
-  glfwSetErrorCallback(on_glfw_error);
-  if (!glfwInit()) {
-    cl.fail("cannot open a window: " + glfw_error +
-                (std::getenv("DISPLAY") ? "" : " (DISPLAY is not set: run under a display or xvfb-run)"),
-            1);
+// GLFW for the session; no display is exit status 1.
+struct GlfwSession {
+  explicit GlfwSession(const sol::cli::CommandLine& cl) {
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) {
+      cl.fail("cannot open a window: " + glfw_error +
+                  (std::getenv("DISPLAY") ? "" : " (DISPLAY is not set: run under a display or xvfb-run)"),
+              1);
+    }
+    if (!glfwVulkanSupported()) {
+      glfwTerminate();
+      cl.fail("cannot open a window: GLFW finds no Vulkan loader", 1);
+    }
   }
-  struct GlfwGuard {
-    ~GlfwGuard() { glfwTerminate(); }
-  } glfw_guard;
-  if (!glfwVulkanSupported()) cl.fail("cannot open a window: GLFW finds no Vulkan loader", 1);
+  ~GlfwSession() { glfwTerminate(); }
+  GlfwSession(const GlfwSession&) = delete;
+  GlfwSession& operator=(const GlfwSession&) = delete;
+};
 
-  sol::vk::ContextOptions context_options;
-  context_options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
-  context_options.validation = opt.validation;
+// The Vulkan context: the instance extensions GLFW presents with, a swapchain.
+sol::vk::ContextOptions context_options(const Options& opt, const sol::cli::CommandLine& cl) {
+  sol::vk::ContextOptions options;
+  options.pipeline_cache_dir = sol::vk::default_pipeline_cache_dir();  // compiled kernels kept between runs
+  options.validation = opt.validation;
   std::uint32_t n_ext = 0;
   const char** ext = glfwGetRequiredInstanceExtensions(&n_ext);
   if (!ext) cl.fail("cannot open a window: GLFW cannot present Vulkan images here (" + glfw_error + ")", 1);
-  for (std::uint32_t i = 0; i < n_ext; ++i) context_options.instance_extensions.emplace_back(ext[i]);
-  context_options.device_extensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-  sol::vk::Context context(context_options);
-  sol::vk::MarchRenderer renderer(context);
+  for (std::uint32_t i = 0; i < n_ext; ++i) options.instance_extensions.emplace_back(ext[i]);
+  options.device_extensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  return options;
+}
 
-  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-  GLFWwindow* window = glfwCreateWindow(opt.width, opt.height, "solview", nullptr, nullptr);
-  if (!window) cl.fail("cannot open a window: " + glfw_error, 1);
-  struct WindowGuard {
-    GLFWwindow* w;
-    ~WindowGuard() { glfwDestroyWindow(w); }
-  } window_guard{window};
-  app.window = window;
-  glfwSetWindowUserPointer(window, &app);
-  if (opt.fullscreen) app.toggle_fullscreen();
-  const bool replay = !opt.script.empty();
-  // During a replay live input is ignored: the script alone moves the observer.
-  if (!replay) {
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+// The window and its input. During a replay live input is ignored: the
+// script alone moves the observer.
+class Window {
+ public:
+  Window(App& app, bool replay) {
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(app.options.width, app.options.height, "solview", nullptr, nullptr);
+    if (!window_) app.command_line.fail("cannot open a window: " + glfw_error, 1);
+    app.window = window_;
+    glfwSetWindowUserPointer(window_, &app);
+    if (app.options.fullscreen) app.toggle_fullscreen();
+    if (!replay) take_input();
+    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { app_of(w).want_swapchain = true; });
+  }
+  ~Window() { glfwDestroyWindow(window_); }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  GLFWwindow* get() const { return window_; }
+
+ private:
+  void take_input() {
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
       App& a = app_of(w);
       // Typing into the panel's fields is not walking.
       const bool panel_typing = a.overlay && a.overlay_visible && a.overlay->wants_keyboard();
@@ -349,27 +370,269 @@ int run(App& app) {
         a.key(*k, action == GLFW_PRESS);
       }
     });
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
       if (button != GLFW_MOUSE_BUTTON_LEFT) return;
       App& a = app_of(w);
       if (action == GLFW_PRESS && a.overlay && a.overlay_visible && a.overlay->wants_mouse()) return;  // the panel's
       a.dragging = action == GLFW_PRESS;
       glfwGetCursorPos(w, &a.last_x, &a.last_y);
     });
-    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
       App& a = app_of(w);
       if (a.dragging) a.controls.mouse(x - a.last_x, y - a.last_y);
       a.last_x = x;
       a.last_y = y;
     });
   }
-  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w).want_swapchain = true; });
 
-  sol::viewer::Presenter presenter(context, window, app.vsync, opt.present == "auto", app.scale == 1.0);
+  GLFWwindow* window_ = nullptr;
+};
+
+// --script: its events carried out at their times, the replay stepping
+// fixed 1/60 s per frame (deterministic).
+class Replay {
+ public:
+  // `active`: --script was given (its events may be none).
+  Replay(std::vector<sol::viewer::ScriptEvent> script, bool active) : script_(std::move(script)), active_(active) {}
+  bool active() const { return active_; }
+
+  // The events up to frame `frame`'s time; `size` is the window's, for the panel's buttons.
+  void step(App& app, long frame, VkExtent2D size) {
+    const double t = static_cast<double>(frame) * sol::viewer::kScriptStep;
+    for (; next_ < script_.size() && script_[next_].time <= t + 1e-9; ++next_) {
+      const auto& e = script_[next_];
+      if (e.kind == sol::viewer::ScriptEvent::Kind::Mouse) {
+        app.controls.mouse(e.dx, e.dy);
+      } else if (e.kind == sol::viewer::ScriptEvent::Kind::Set) {
+        app.set(e.setting, e.value);
+      } else if (e.kind == sol::viewer::ScriptEvent::Kind::Button) {
+        // What the panel's button of that name does.
+        using sol::viewer::Button;
+        sol::viewer::PanelActions pressed;
+        pressed.screenshot = e.button == Button::Screenshot;
+        pressed.toggle_recording = e.button == Button::Record;
+        pressed.reset = e.button == Button::Reset;
+        pressed.copy_options = e.button == Button::CopyOptions;
+        pressed.copy_json = e.button == Button::CopyJson;
+        app.act(pressed, static_cast<int>(size.width), static_cast<int>(size.height));
+      } else {
+        app.key(e.key, e.kind == sol::viewer::ScriptEvent::Kind::Down);
+      }
+    }
+  }
+
+ private:
+  std::vector<sol::viewer::ScriptEvent> script_;
+  bool active_;
+  std::size_t next_ = 0;
+};
+
+// Progressive refinement: a view unchanged for kDelay (in the replay's
+// time when replaying) is rendered at full resolution, then sample by
+// sample into a running mean, up to --refine samples; then that image is
+// shown as it is. Any change starts again.
+class Refinement {
+ public:
+  static constexpr double kDelay = 0.25;
+  explicit Refinement(int samples) : samples_(samples) {}
+
+  // Samples accumulated; -1 while not refining.
+  int refined() const { return refined_; }
+
+  // This frame's view; false when it ended a refinement (the adaptive scale forgets the full-size frames).
+  bool update(const std::array<double, 16>& key, double dt, double scale) {
+    bool kept = true;
+    if (key != last_key_) {
+      last_key_ = key;
+      still_for_ = 0.0;
+      kept = refined_ < 0;
+      refined_ = -1;
+    } else {
+      still_for_ += dt;
+    }
+    if (refined_ < 0 && samples_ > 0 && still_for_ >= kDelay && (scale < 1.0 || samples_ > 1)) {
+      refined_ = 0;
+      began_ = std::chrono::steady_clock::now();
+    }
+    return kept;
+  }
+
+  // The frame's sample, or the last image shown again.
+  void set(sol::viewer::Presenter::FrameOptions& options) const {
+    if (refined_ >= 0 && refined_ < samples_) {
+      options.sample = sol::vk::PixelSample{sol::pixel_sample(refined_), 1.0 / (refined_ + 1)};
+    } else if (refined_ >= samples_) {
+      options.reuse = true;
+    }
+  }
+
+  // A frame was shown.
+  void shown() {
+    if (refined_ < 0 || refined_ >= samples_) return;
+    ++refined_;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
+    if (refined_ == 1) full_s_ = since;
+    if (refined_ == samples_) {
+      // Wall-clock time from the end of the pause to the frames shown, for docs/solview.md's table.
+      std::fprintf(stderr, "solview: refined: full resolution %.3f s and %d samples %.3f s after the %.2f s pause\n",
+                   full_s_, samples_, since, kDelay);
+    }
+  }
+
+ private:
+  int samples_;
+  std::array<double, 16> last_key_{};
+  double still_for_ = 0.0, full_s_ = 0.0;
+  int refined_ = -1;
+  std::chrono::steady_clock::time_point began_ = std::chrono::steady_clock::now();
+};
+
+// The run's figures, printed at exit: the mean frame rate, render scale and
+// host time after the first frames (pipeline builds, first allocations;
+// with --frames, the second half only: the adaptive scale has settled by
+// then), and which path presented the frames.
+class RunFigures {
+ public:
+  explicit RunFigures(long frames) : first_measured_(std::max(kWarmupFrames, frames / 2) + 1) {}
+
+  // Frame `frame` (counted from 1) was shown at `scale`, `w` x `h` pixels.
+  void shown(long frame, double scale, double host_ms, bool direct, int w, int h) {
+    frames_ = frame;
+    ++(direct ? direct_frames_ : blit_frames_);
+    shown_w_ = w;
+    shown_h_ = h;
+    if (frame == first_measured_ - 1) measure_start_ = std::chrono::steady_clock::now();
+    if (frame >= first_measured_) {
+      scale_sum_ += scale;
+      host_ms_sum_ += host_ms;
+    }
+  }
+
+  void report(const App& app, const sol::viewer::Presenter& presenter) const {
+    const long measured = frames_ - first_measured_ + 1;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start_).count();
+    if (measured > 0) {
+      std::fprintf(stderr, "solview: %s: %.2f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
+                   app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured_, frames_,
+                   scale_sum_ / static_cast<double>(measured));
+      // The host's share of a frame: the cameras, the world when it changed,
+      // and the recorded commands (no waits on the device).
+      std::fprintf(stderr, "solview: host %.3f ms per frame to prepare and record (mean over frames %ld..%ld)\n",
+                   host_ms_sum_ / static_cast<double>(measured), first_measured_, frames_);
+    }
+    std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frames_, app.scale, shown_w_,
+                 shown_h_, presenter.extent().width, presenter.extent().height);
+    // Which path presented the frames (docs/solview.md: How solview presents a frame).
+    std::fprintf(stderr, "solview: present: direct %ld frames, blit %ld frames (direct path %s)\n", direct_frames_,
+                 blit_frames_, presenter.direct_capable() ? "available" : "unavailable on this surface");
+  }
+
+ private:
+  static constexpr long kWarmupFrames = 5;
+  long first_measured_, frames_ = 0;
+  std::chrono::steady_clock::time_point measure_start_ = std::chrono::steady_clock::now();
+  double scale_sum_ = 0, host_ms_sum_ = 0;
+  long direct_frames_ = 0, blit_frames_ = 0;
+  int shown_w_ = 0, shown_h_ = 0;  // of the last frame's rendered image (both eyes)
+};
+
+// The window's title: the frame rate (also the panel's), twice a second.
+class Title {
+ public:
+  void frame(App& app) {
+    ++frames_;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - since_).count();
+    if (since < 0.5) return;
+    app.fps = static_cast<double>(frames_) / since;
+    frames_ = 0;
+    since_ = std::chrono::steady_clock::now();
+    const glm::dvec3 p = app.observer.position();
+    char title[256];
+    std::snprintf(title, sizeof title, "solview - %s - %.1f fps - scale %.2f%s - (%.3f, %.3f, %.3f) - H: help",
+                  app.scene_name.c_str(), app.fps, app.scale, app.adaptive ? " (adaptive)" : "", p.x, p.y, p.z);
+    glfwSetWindowTitle(app.window, title);
+  }
+
+ private:
+  long frames_ = 0;
+  std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
+};
+
+// The panel's mean march steps: a small render with its AOVs once a second.
+class StepsProbe {
+ public:
+  double mean() const { return mean_; }
+  void update(sol::viewer::Presenter& presenter, sol::vk::MarchRenderer& renderer, const sol::Camera& camera, int eye_w,
+              int eye_h) {
+    if (std::chrono::steady_clock::now() - last_ <= std::chrono::seconds(1)) return;
+    presenter.wait_for_frame();  // the frame in flight reads the renderer's uniforms
+    const sol::RenderResult probe = renderer.render(camera, {.width = 64, .height = std::max(1, 64 * eye_h / std::max(1, eye_w))});
+    double sum = 0;
+    for (float v : probe.steps) sum += v;
+    mean_ = probe.steps.empty() ? -1.0 : sum / static_cast<double>(probe.steps.size());
+    last_ = std::chrono::steady_clock::now();
+  }
+
+ private:
+  double mean_ = -1.0;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now() - std::chrono::seconds(10);
+};
+
+// The overlay panel: built now, drawn over the frame by present(); its
+// actions carried out.
+std::optional<sol::viewer::OverlayDraw> build_panel(App& app, const sol::viewer::Presenter& presenter, int refined,
+                                                    double mean_steps) {
+  if (!app.overlay || !app.overlay_visible) return std::nullopt;
+  const int eyes = app.stereo ? 2 : 1;
+  const VkExtent2D window_extent = presenter.extent();
+  const double shown_scale = refined >= 0 ? 1.0 : app.scale;  // refinement renders at full resolution
+  const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * shown_scale / eyes))) * eyes;
+  const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * shown_scale)));
+  app.overlay->begin_frame(presenter.format());
+  sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.ipd, app.scale,
+                                app.adaptive, app.target_fps, app.options.min_scale, app.recording, app.observer,
+                                app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
+                                app.options.refine, app.message};
+  const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
+  app.overlay->end_frame();
+  app.act(actions, rw, rh);
+  return sol::viewer::OverlayDraw{
+      [&app](VkCommandBuffer cb, VkImageView view, VkFormat format, std::uint32_t w, std::uint32_t h) {
+        app.overlay->record(cb, view, format, w, h);
+      },
+      app.overlay_in_capture};
+}
+
+// After the frame loop: --screenshot (the last frame shown, however the run
+// ended: --frames, Esc, closing the window), --state, and where the panel was.
+void finish(const App& app, sol::viewer::Presenter& presenter, long frames) {
+  const Options& opt = app.options;
+  if (!opt.screenshot.empty()) {
+    try {
+      presenter.save(opt.screenshot);
+    } catch (const std::runtime_error&) {
+      throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
+    }
+  }
+  if (!opt.state.empty()) write_state(opt.state, app.observer, frames);
+  if (app.overlay_visible) {  // where the panel was (tests compare the frame around it)
+    const std::array<float, 4>& r = app.panel_text.rect;
+    std::fprintf(stderr, "solview: overlay panel at %.0f,%.0f size %.0fx%.0f\n", r[0], r[1], r[2], r[3]);
+  }
+}
+
+int run(App& app) {
+  const Options& opt = app.options;
+  Replay replay(prepare_files(app), !opt.script.empty());
+  const GlfwSession glfw(app.command_line);
+  sol::vk::Context context(context_options(opt, app.command_line));
+  sol::vk::MarchRenderer renderer(context);
+  const Window window(app, replay.active());
+  sol::viewer::Presenter presenter(context, window.get(), app.vsync, opt.present == "auto", app.scale == 1.0);
   // The overlay, after the viewer's own callbacks (ImGui's GLFW backend chains to them).
   std::optional<sol::viewer::Overlay> overlay;
   if (presenter.overlay_capable()) {
-    overlay.emplace(context, window);
+    overlay.emplace(context, window.get());
     app.overlay = &*overlay;
   } else if (opt.overlay == "on") {
     std::fprintf(stderr, "solview: the overlay cannot be drawn on this window's surface (no colour-attachment use)\n");
@@ -377,30 +640,16 @@ int run(App& app) {
   app.overlay_visible = app.overlay && opt.overlay == "on";
   app.overlay_in_capture = opt.overlay == "on";
   if (opt.target_fps) app.target_fps = *opt.target_fps;
-  auto last_steps = std::chrono::steady_clock::now() - std::chrono::seconds(10);
-  // Progressive refinement: the view last seen, for how long, and the samples accumulated (-1: not refining).
-  constexpr double kRefineDelay = 0.25;
-  std::array<double, 16> last_key{};
-  double still_for = 0.0, refine_full_s = 0.0;
-  int refined = -1;
-  auto refine_began = std::chrono::steady_clock::now();
-  double mean_steps = -1.0;
   std::optional<AdaptiveScale> adaptive;
   if (opt.target_fps) adaptive.emplace(*opt.target_fps, opt.min_scale);
-  std::size_t next_event = 0;
+  Refinement refinement(opt.refine);
+  RunFigures figures(opt.frames);
+  Title title;
+  StepsProbe steps;
   long frame = 0;
   auto last = std::chrono::steady_clock::now();
-  auto title_time = last;
-  long title_frames = 0;
-  constexpr long kWarmupFrames = 5;
-  auto measure_start = std::chrono::steady_clock::now();
-  double scale_sum = 0;    // over the measured frames
-  double host_ms_sum = 0;  // host time to prepare and record a frame, over the measured frames
-  long direct_frames = 0, blit_frames = 0;
-  int shown_w = 0, shown_h = 0;  // of the last frame's rendered image (both eyes)
-  const long first_measured = std::max(kWarmupFrames, opt.frames / 2) + 1;
 
-  while (!glfwWindowShouldClose(window) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
+  while (!glfwWindowShouldClose(window.get()) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
     if (g_stop_signal != 0) {
       std::fprintf(stderr, "solview: signal %d: ending the session\n", static_cast<int>(g_stop_signal));
       break;
@@ -416,41 +665,20 @@ int run(App& app) {
         continue;
       }
     }
-    // Input: a replay steps fixed 1/60 s per frame (deterministic), live input by the clock.
+    // Input: a replay steps fixed 1/60 s per frame, live input by the clock.
     const auto now = std::chrono::steady_clock::now();
     const double frame_seconds = std::chrono::duration<double>(now - last).count();
     last = now;
     double dt = std::min(frame_seconds, 0.1);
-    if (replay) {
+    if (replay.active()) {
       dt = sol::viewer::kScriptStep;
-      const double t = static_cast<double>(frame) * sol::viewer::kScriptStep;
-      for (; next_event < script.size() && script[next_event].time <= t + 1e-9; ++next_event) {
-        const auto& e = script[next_event];
-        if (e.kind == sol::viewer::ScriptEvent::Kind::Mouse) {
-          app.controls.mouse(e.dx, e.dy);
-        } else if (e.kind == sol::viewer::ScriptEvent::Kind::Set) {
-          app.set(e.setting, e.value);
-        } else if (e.kind == sol::viewer::ScriptEvent::Kind::Button) {
-          // What the panel's button of that name does.
-          using sol::viewer::Button;
-          sol::viewer::PanelActions pressed;
-          pressed.screenshot = e.button == Button::Screenshot;
-          pressed.toggle_recording = e.button == Button::Record;
-          pressed.reset = e.button == Button::Reset;
-          pressed.copy_options = e.button == Button::CopyOptions;
-          pressed.copy_json = e.button == Button::CopyJson;
-          const VkExtent2D size = presenter.extent();
-          app.act(pressed, static_cast<int>(size.width), static_cast<int>(size.height));
-        } else {
-          app.key(e.key, e.kind == sol::viewer::ScriptEvent::Kind::Down);
-        }
-      }
+      replay.step(app, frame, presenter.extent());
     }
     if (app.quit) break;
     app.controls.step(app.observer, dt);
     if (app.adaptive && (!adaptive || adaptive->target() != app.target_fps)) adaptive.emplace(app.target_fps, opt.min_scale);
     // Refinement frames are full-size on purpose: they do not steer the adaptive scale.
-    if (adaptive && refined < 0) {
+    if (adaptive && refinement.refined() < 0) {
       const double next = adaptive->next(app.scale, frame, frame_seconds);
       if (app.adaptive) app.scale = next;
     }
@@ -458,51 +686,16 @@ int run(App& app) {
       app.frame_ms.push_back(static_cast<float>(frame_seconds * 1e3));
       if (app.frame_ms.size() > 120) app.frame_ms.erase(app.frame_ms.begin());
     }
-
-    // The overlay panel: built now, drawn over the frame by present().
-    std::optional<sol::viewer::OverlayDraw> overlay_draw;
-    if (app.overlay && app.overlay_visible) {
-      const int eyes_now = app.stereo ? 2 : 1;
-      const VkExtent2D window_extent = presenter.extent();
-      const double shown_scale = refined >= 0 ? 1.0 : app.scale;  // refinement renders at full resolution
-      const int rw = std::max(1, static_cast<int>(std::lround(window_extent.width * shown_scale / eyes_now))) * eyes_now;
-      const int rh = std::max(1, static_cast<int>(std::lround(window_extent.height * shown_scale)));
-      app.overlay->begin_frame(presenter.format());
-      sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.ipd, app.scale,
-                                    app.adaptive, app.target_fps, opt.min_scale, app.recording, app.observer,
-                                    app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
-                                    opt.refine, app.message};
-      const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
-      app.overlay->end_frame();
-      app.act(actions, rw, rh);
-      overlay_draw = sol::viewer::OverlayDraw{
-          [&app](VkCommandBuffer cb, VkImageView view, VkFormat format, std::uint32_t w, std::uint32_t h) {
-            app.overlay->record(cb, view, format, w, h);
-          },
-          app.overlay_in_capture};
-    }
+    const std::optional<sol::viewer::OverlayDraw> overlay_draw = build_panel(app, presenter, refinement.refined(), steps.mean());
     if (app.quit) break;
 
     const int eyes = app.stereo ? 2 : 1;
     const VkExtent2D extent = presenter.extent();
-    // Progressive refinement: a view unchanged for kRefineDelay (in the
-    // replay's time when replaying) is rendered at full resolution, then
-    // sample by sample into a running mean, up to --refine samples; then
-    // that image is shown as it is. Any change starts again.
-    const std::array<double, 16> key = app.view_key(static_cast<int>(extent.width), static_cast<int>(extent.height));
-    if (key != last_key) {
-      last_key = key;
-      still_for = 0.0;
-      if (refined >= 0 && adaptive) adaptive.emplace(app.target_fps, opt.min_scale);  // forget the full-size frames
-      refined = -1;
-    } else {
-      still_for += dt;
+    if (!refinement.update(app.view_key(static_cast<int>(extent.width), static_cast<int>(extent.height)), dt, app.scale) &&
+        adaptive) {
+      adaptive.emplace(app.target_fps, opt.min_scale);  // forget the full-size frames
     }
-    if (refined < 0 && opt.refine > 0 && still_for >= kRefineDelay && (app.scale < 1.0 || opt.refine > 1)) {
-      refined = 0;
-      refine_began = std::chrono::steady_clock::now();
-    }
-    const double render_scale = refined >= 0 ? 1.0 : app.scale;
+    const double render_scale = refinement.refined() >= 0 ? 1.0 : app.scale;
     const int eye_w = std::max(1, static_cast<int>(std::lround(extent.width * render_scale / eyes)));
     const int eye_h = std::max(1, static_cast<int>(std::lround(extent.height * render_scale)));
 
@@ -514,48 +707,20 @@ int run(App& app) {
       app.world_changed = false;
     }
     const std::vector<sol::Camera> cameras = app.cameras();
-    // The panel's mean march steps: a small render with its AOVs once a second.
-    if (app.overlay_visible && std::chrono::steady_clock::now() - last_steps > std::chrono::seconds(1)) {
-      presenter.wait_for_frame();  // the frame in flight reads the renderer's uniforms
-      const sol::RenderResult probe = renderer.render(cameras[0], {.width = 64, .height = std::max(1, 64 * eye_h / std::max(1, eye_w))});
-      double sum = 0;
-      for (float v : probe.steps) sum += v;
-      mean_steps = probe.steps.empty() ? -1.0 : sum / static_cast<double>(probe.steps.size());
-      last_steps = std::chrono::steady_clock::now();
-    }
+    if (app.overlay_visible) steps.update(presenter, renderer, cameras[0], eye_w, eye_h);
     const double prepare_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
     sol::viewer::Presenter::FrameOptions frame_options;
     frame_options.capture = app.recording || !opt.screenshot.empty() || app.want_screenshot;
     frame_options.vsync = app.vsync;
     frame_options.overlay = overlay_draw ? &*overlay_draw : nullptr;
-    if (refined >= 0 && refined < opt.refine) {
-      frame_options.sample = sol::vk::PixelSample{sol::pixel_sample(refined), 1.0 / (refined + 1)};
-    } else if (refined >= opt.refine) {
-      frame_options.reuse = true;
-    }
+    refinement.set(frame_options);
     const std::optional<sol::viewer::Presenter::Shown> shown =
         presenter.present(renderer, cameras, eye_w, eye_h, frame_options);
     if (!shown) continue;  // the swapchain went out of date: re-created at the top
-    if (refined >= 0 && refined < opt.refine) {
-      ++refined;
-      const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_began).count();
-      if (refined == 1) refine_full_s = since;
-      if (refined == opt.refine) {
-        // Wall-clock time from the end of the pause (the view still for
-        // kRefineDelay) to the frames shown, for docs/solview.md's table.
-        std::fprintf(stderr,
-                     "solview: refined: full resolution %.3f s and %d samples %.3f s after the %.2f s pause\n",
-                     refine_full_s, opt.refine, since, kRefineDelay);
-      }
-    }
+    refinement.shown();
     ++frame;
-    ++(shown->direct ? direct_frames : blit_frames);
-    shown_w = eye_w * eyes;
-    shown_h = eye_h;
-    // The run's mean frame rate leaves out the first frames (pipeline builds, first allocations).
-    // With --frames, the second half only: the adaptive scale has settled by then.
-    if (frame == first_measured - 1) measure_start = std::chrono::steady_clock::now();
+    figures.shown(frame, app.scale, prepare_ms + shown->record_ms, shown->direct, eye_w * eyes, eye_h);
 
     if (app.recording) presenter.save(frame_name(app.record_dir, frame - 1));
     if (app.want_screenshot) {
@@ -565,55 +730,11 @@ int run(App& app) {
       presenter.save(name);
       std::printf("solview: screenshot %s\n", name);
     }
-
-    if (frame >= first_measured) {
-      scale_sum += app.scale;
-      host_ms_sum += prepare_ms + shown->record_ms;
-    }
-    ++title_frames;
-    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - title_time).count();
-    if (since >= 0.5) {
-      const double fps = static_cast<double>(title_frames) / since;
-      app.fps = fps;
-      title_frames = 0;
-      title_time = std::chrono::steady_clock::now();
-      const glm::dvec3 p = app.observer.position();
-      char title[256];
-      std::snprintf(title, sizeof title, "solview - %s - %.1f fps - scale %.2f%s - (%.3f, %.3f, %.3f) - H: help",
-                    app.scene_name.c_str(), fps, app.scale, app.adaptive ? " (adaptive)" : "", p.x, p.y, p.z);
-      glfwSetWindowTitle(window, title);
-    }
+    title.frame(app);
   }
   context.wait_idle();
-  // --screenshot: the last frame shown, however the run ended (--frames, Esc, closing the window).
-  if (!opt.screenshot.empty()) {
-    try {
-      presenter.save(opt.screenshot);
-    } catch (const std::runtime_error&) {
-      throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
-    }
-  }
-  if (!opt.state.empty()) write_state(opt.state, app.observer, frame);
-  if (app.overlay_visible) {  // where the panel was (tests compare the frame around it)
-    const std::array<float, 4>& r = app.panel_text.rect;
-    std::fprintf(stderr, "solview: overlay panel at %.0f,%.0f size %.0fx%.0f\n", r[0], r[1], r[2], r[3]);
-  }
-  const long measured = frame - first_measured + 1;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
-  if (measured > 0) {
-    std::fprintf(stderr, "solview: %s: %.2f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
-                 app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured, frame,
-                 scale_sum / static_cast<double>(measured));
-    // The host's share of a frame: the cameras, the world when it changed,
-    // and the recorded commands (no waits on the device).
-    std::fprintf(stderr, "solview: host %.3f ms per frame to prepare and record (mean over frames %ld..%ld)\n",
-                 host_ms_sum / static_cast<double>(measured), first_measured, frame);
-  }
-  std::fprintf(stderr, "solview: %ld frames, render scale %.2f at the end (%dx%d of %ux%u)\n", frame, app.scale, shown_w,
-               shown_h, presenter.extent().width, presenter.extent().height);
-  // Which path presented the frames (docs/solview.md: How solview presents a frame).
-  std::fprintf(stderr, "solview: present: direct %ld frames, blit %ld frames (direct path %s)\n", direct_frames,
-               blit_frames, presenter.direct_capable() ? "available" : "unavailable on this surface");
+  finish(app, presenter, frame);
+  figures.report(app, presenter);
   if (context.validation_enabled()) {
     const std::vector<std::string> errors = context.validation_errors();
     for (const std::string& e : errors) std::fprintf(stderr, "solview: validation: %s\n", e.c_str());
