@@ -100,6 +100,7 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
   optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(values))
       .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
       .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+      .RegisterPass(spvtools::CreateCCPPass())  // `HAS_X && runtime` guards: OpLogicalAnd with a constant
       .RegisterPass(spvtools::CreateDeadBranchElimPass())
       .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
       .RegisterPass(spvtools::CreateAggressiveDCEPass());

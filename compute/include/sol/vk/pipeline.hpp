@@ -84,9 +84,12 @@ struct ComputePipelineDesc {
 
 /// The module with its specialisation constants given their values and
 /// frozen into constants, and the code those values rule out removed
-/// (SPIRV-Tools: frozen default values, folded constant expressions, dead
-/// branches, dead functions, aggressive dead-code elimination; no other
-/// rewriting). Constants the module does not declare are ignored, as
+/// (SPIRV-Tools: frozen default values, folded constant expressions,
+/// conditional constant propagation (a guard `HAS_X && runtime` is an
+/// OpLogicalAnd that only propagation folds), dead branches, dead
+/// functions, aggressive dead-code elimination; no inlining or other
+/// rewriting: inlined modules with merged returns were smaller, but
+/// lavapipe built them no faster). Constants the module does not declare are ignored, as
 /// Vulkan ignores them. Throws VulkanError where the words are not valid
 /// SPIR-V or the result does not validate.
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
