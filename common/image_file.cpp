@@ -4,7 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <string_view>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "srgb.hpp"
@@ -21,6 +23,21 @@ std::string lower_extension(const std::string& path) {
 bool float_format(const std::string& path) {
   const std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+}
+
+// The file just written at `temporary` reads back whole as `spec` says
+// (its writer's own writes were not checked); throws naming `target`.
+void check_readable(const std::string& temporary, const std::string& target, const OIIO::ImageSpec& spec) {
+  auto in = OIIO::ImageInput::open(temporary);
+  if (!in) throw std::runtime_error(target + ": cannot write: the written file does not read back (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& got = in->spec();
+  std::vector<float> pixels(static_cast<std::size_t>(got.width) * static_cast<std::size_t>(got.height) *
+                            static_cast<std::size_t>(std::max(got.nchannels, 1)));
+  const bool whole = got.width == spec.width && got.height == spec.height && got.nchannels == spec.nchannels &&
+                     in->read_image(0, 0, 0, got.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  const std::string reason = whole ? std::string() : in->geterror();
+  in->close();
+  if (!whole) throw std::runtime_error(target + ": cannot write: the written file is incomplete" + (reason.empty() ? "" : " (" + reason + ")"));
 }
 
 }  // namespace
@@ -57,11 +74,23 @@ std::size_t write_image(const OutputFile& file, int width, int height, const std
       if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = programs::srgb_encode(data[i]);
     }
   }
-  if (!out->open(file.path(), spec)) throw std::runtime_error(path + ": cannot write: " + out->geterror());
+  // Encoded in memory where the writer can (its own file writes are not all
+  // checked: a full disk left PNG files empty and said nothing), then
+  // written with every write checked; otherwise written by the writer and
+  // read back whole before the file may replace its target.
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
+  if (!out->open(in_memory ? path : file.path(), spec)) throw std::runtime_error(path + ": cannot write: " + out->geterror());
   const bool written = out->write_image(OIIO::TypeDesc::FLOAT, data.data());
   const std::string reason = written ? std::string() : out->geterror();
   const bool closed = out->close();
   if (!written || !closed) throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
+  if (in_memory) {
+    file.write(std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
+  } else {
+    check_readable(file.path(), path, spec);
+  }
   return non_finite;
 }
 

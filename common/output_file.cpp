@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -79,16 +80,44 @@ OutputFile::~OutputFile() {
   release_slot(m_slot);
 }
 
+void OutputFile::write(std::string_view bytes) const {
+  const int fd = ::open(m_temporary.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error(m_target + ": cannot write: " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = n < 0 ? std::strerror(errno) : "the disk took no more data";
+      ::close(fd);
+      throw std::runtime_error(m_target + ": cannot write: " + reason);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) throw std::runtime_error(m_target + ": cannot write: " + std::strerror(errno));
+}
+
+void OutputFile::discard_and_throw(const std::string& what) {
+  const std::string reason = std::strerror(errno);
+  ::unlink(m_temporary.c_str());
+  m_committed = true;  // nothing left to remove
+  release_slot(m_slot);
+  m_slot = -1;
+  throw std::runtime_error(m_target + ": " + what + reason);
+}
+
 void OutputFile::commit() {
   if (m_committed) return;
-  if (std::rename(m_temporary.c_str(), m_target.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(m_temporary.c_str());
-    m_committed = true;  // nothing left to remove
-    release_slot(m_slot);
-    m_slot = -1;
-    throw std::runtime_error(m_target + ": cannot move the finished file into place: " + reason);
+  const int fd = ::open(m_temporary.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) discard_and_throw("cannot write: ");
+  if (::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    errno = error;
+    discard_and_throw("cannot write: ");
   }
+  ::close(fd);
+  if (std::rename(m_temporary.c_str(), m_target.c_str()) != 0) discard_and_throw("cannot move the finished file into place: ");
   m_committed = true;
   release_slot(m_slot);
   m_slot = -1;
@@ -107,12 +136,20 @@ void install_signal_cleanup() {
   }
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
+  const fs::path x = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  if (ec) return a == b;
+  const fs::path y = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  if (ec) return a == b;
+  return x == y;
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   OutputFile file(path);
-  std::FILE* f = std::fopen(file.path().c_str(), "w");
-  if (!f) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !written) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+  file.write(text);
   file.commit();
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace sol::programs {
 
@@ -21,14 +22,24 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   const std::string& target() const { return m_target; }
-  /// The temporary to write to (until commit()).
+  /// The temporary to write to (until commit()), for writers that open
+  /// files themselves; those that encode into memory use write().
   const std::string& path() const { return m_temporary; }
-  /// Moves the temporary onto the target (atomic within a directory).
-  /// Throws std::runtime_error naming the target on failure, removing the
-  /// temporary.
+  /// Writes `bytes` to the temporary (replacing what it held), every write
+  /// checked. Throws std::runtime_error naming the target and the reason
+  /// (a full disk: "No space left on device").
+  void write(std::string_view bytes) const;
+  /// Flushes the temporary to the disk (fsync: where the file system only
+  /// finds out then that it has no room, that is an error here) and moves
+  /// it onto the target (atomic within a directory). Throws
+  /// std::runtime_error naming the target on failure, removing the
+  /// temporary; the target keeps what it held.
   void commit();
 
  private:
+  // Removes the temporary and throws "target: what" and errno's reason.
+  [[noreturn]] void discard_and_throw(const std::string& what);
+
   std::string m_target, m_temporary;
   int m_slot = -1;  // in the signal handler's list of temporaries
   bool m_committed = false;
@@ -38,6 +49,12 @@ class OutputFile {
 /// OutputFile's temporary and then end the program as the signal would
 /// have (default action, re-raised).
 void install_signal_cleanup();
+
+/// Whether two paths name one file, however spelled (./b.exr, b.exr,
+/// $PWD/b.exr, through a link): the same device and inode where both
+/// exist, else the same absolute path once the parts that exist are
+/// resolved.
+bool same_file(const std::string& a, const std::string& b);
 
 /// Writes `text` to `path` through an OutputFile. Throws std::runtime_error
 /// naming the file on failure.

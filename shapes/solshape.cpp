@@ -21,6 +21,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <sol/error.hpp>
 #include <sol/shapes.hpp>
@@ -57,16 +58,18 @@ aiMesh& single_mesh(aiScene& scene, aiPrimitiveType primitives) {
   return m;
 }
 
-// Writes `scene` to `path` in `format` through Assimp; `what` names it in the error.
-void export_scene(const aiScene& scene, const std::string& format, const std::string& path, const char* what) {
+// Writes `scene` into `file` in `format`: encoded by Assimp in memory,
+// written with every write checked (Assimp's own file writes are not: a
+// full disk left empty files); `what` names it in the error.
+void export_scene(const aiScene& scene, const std::string& format, const sol::programs::OutputFile& file, const char* what) {
   Assimp::Exporter exporter;
-  if (exporter.Export(&scene, format, path) != AI_SUCCESS) {
-    throw std::runtime_error(std::string("cannot write the ") + what + ": " + exporter.GetErrorString());
-  }
+  const aiExportDataBlob* blob = exporter.ExportToBlob(&scene, format);
+  if (!blob) throw std::runtime_error(std::string("cannot write the ") + what + ": " + exporter.GetErrorString());
+  file.write(std::string_view(static_cast<const char*>(blob->data), blob->size));
 }
 
 // Writes `mesh` (scaled by `scale`) to `path` in `format` through Assimp.
-void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, const std::string& path) {
+void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, const sol::programs::OutputFile& file) {
   aiScene scene;
   aiMesh& m = single_mesh(scene, aiPrimitiveType_TRIANGLE);
   m.mNumVertices = static_cast<unsigned int>(mesh.vertices.size());
@@ -83,12 +86,13 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
     f.mIndices = new unsigned int[3];
     for (int k = 0; k < 3; ++k) f.mIndices[k] = static_cast<unsigned int>(mesh.triangles[i][static_cast<std::size_t>(k)]);
   }
-  export_scene(scene, format, path, "mesh");
+  export_scene(scene, format, file, "mesh");
 }
 
 // Writes polylines as line segments (2-index faces: PLY faces of two
 // vertices, OBJ `l` lines) through Assimp. STL has no lines.
-void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const std::string& format, const std::string& path) {
+void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const std::string& format,
+                     const sol::programs::OutputFile& file) {
   aiScene scene;
   aiMesh& m = single_mesh(scene, aiPrimitiveType_LINE);
   std::size_t points = 0, segments = 0;
@@ -110,7 +114,7 @@ void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const st
       face.mIndices = new unsigned int[2]{static_cast<unsigned int>(v - 1), static_cast<unsigned int>(v)};
     }
   }
-  export_scene(scene, format, path, "curves");
+  export_scene(scene, format, file, "curves");
 }
 
 // The output checks shared by the curve commands: a known line format.
@@ -153,7 +157,7 @@ int geodesics(int argc, char** argv) {
   const std::string format = curve_format(cl, output);
   const auto lines = sol::geodesic_polylines(from.value_or(glm::dvec3(0.0)), spread_directions(directions), length, segments);
   sol::programs::OutputFile file(output);
-  write_polylines(lines, format, file.path());
+  write_polylines(lines, format, file);
   file.commit();
   std::fprintf(stderr, "solshape: %d geodesics of length %g -> %s\n", directions, length, output.c_str());
   return 0;
@@ -186,7 +190,7 @@ int cut_locus(int argc, char** argv) {
   const std::string format = curve_format(cl, output);
   const auto curves = sol::cut_locus_curves(center.value_or(glm::dvec3(0.0)), radii, samples);
   sol::programs::OutputFile file(output);
-  write_polylines(curves, format, file.path());
+  write_polylines(curves, format, file);
   file.commit();
   std::fprintf(stderr, "solshape: cut locus at %zu radii, %zu arcs -> %s\n", radii.size(), curves.size(), output.c_str());
   return 0;
@@ -233,7 +237,7 @@ int sphere(int argc, char** argv) {
     scale = *size_mm / std::max({extent.x, extent.y, extent.z});
   }
   sol::programs::OutputFile file(output);
-  write_mesh(mesh, scale, format, file.path());
+  write_mesh(mesh, scale, format, file);
   file.commit();
   std::fprintf(stderr, "solshape: sphere of radius %g: %zu vertices, %zu triangles -> %s\n", radius, mesh.vertices.size(),
                mesh.triangles.size(), output.c_str());

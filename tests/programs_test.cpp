@@ -1,15 +1,18 @@
 // What the programs share (Sol::programs, common/): output files that are
 // complete or absent, also when a signal ends the program.
 #include <cerrno>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -151,6 +154,96 @@ TEST(OutputFile, SignalsRemoveTheTemporaries) {
     EXPECT_EQ(entries(d), 1);
     fs::remove_all(d);
   }
+}
+
+// A full disk, as a writer sees it: every write past `bytes` fails (the
+// file size limit, RLIMIT_FSIZE, with SIGXFSZ ignored: write() returns
+// EFBIG as it returns ENOSPC on a full disk). The soft limit is lowered for
+// `write` alone and put back (a child process would inherit the locks of
+// OpenImageIO's threads). Answers 0 when `write` threw std::runtime_error,
+// 1 when it returned, 2 on another exception.
+int write_on_a_full_disk(const std::function<void()>& write, rlim_t bytes) {
+  rlimit before{};
+  if (::getrlimit(RLIMIT_FSIZE, &before) != 0) return -1;
+  const auto previous_handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit limited = before;
+  limited.rlim_cur = bytes;
+  if (::setrlimit(RLIMIT_FSIZE, &limited) != 0) return -1;
+  int status = 1;
+  try {
+    write();
+  } catch (const std::runtime_error&) {
+    status = 0;
+  } catch (...) {
+    status = 2;
+  }
+  ::setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, previous_handler);
+  return status;
+}
+
+// On a full disk every writer fails with an error, the target keeps what it
+// held and no temporary is left: text files, and images in the usual
+// formats (PNG and JPEG, whose writers left empty files there
+// and said nothing), EXR and TIFF. The images are 64 x 48 of noise:
+// larger than the 4 KB allowed in every format.
+TEST(OutputFile, AFullDiskKeepsTheTargetAndLeavesNoTemporary) {
+  std::vector<float> noise(64 * 48 * 4);
+  std::uint32_t state = 12345;
+  for (float& v : noise) {
+    state = state * 1664525u + 1013904223u;
+    v = static_cast<float>(state >> 8) / 16777216.0f;
+  }
+  for (const std::string name : {"out.txt", "out.png", "out.jpg", "out.exr", "out.tif"}) {
+    const fs::path d = fresh_directory("full-" + name);
+    const fs::path target = d / name;
+    std::ofstream(target) << "before";
+    const int status = write_on_a_full_disk(
+        [&] {
+          if (name == "out.txt") {
+            sol::programs::write_text_file(target.string(), std::string(64 * 1024, 'x'));
+          } else {
+            sol::programs::write_image(target.string(), 64, 48, {"R", "G", "B", "A"}, noise, true);
+          }
+        },
+        4096);
+    EXPECT_EQ(status, 0) << name << ": the write did not fail (1) or failed otherwise";
+    EXPECT_EQ(read(target), "before") << name;
+    EXPECT_EQ(entries(d), 1) << name << ": a temporary was left";
+    // With room, the same write succeeds (the limit was what failed it).
+    if (name == "out.txt") {
+      sol::programs::write_text_file(target.string(), "after");
+      EXPECT_EQ(read(target), "after");
+    } else {
+      sol::programs::write_image(target.string(), 64, 48, {"R", "G", "B", "A"}, noise, true);
+      EXPECT_GT(fs::file_size(target), 4096u) << name;
+    }
+    fs::remove_all(d);
+  }
+}
+
+// Two spellings of one file are one file; two files are two.
+TEST(OutputFile, SameFileWhateverTheSpelling) {
+  const fs::path d = fresh_directory("same");
+  const fs::path b = d / "b.exr";
+  fs::create_directories(d / "sub");
+  fs::create_directory_symlink(d, d / "link");
+  for (const bool exists : {false, true}) {
+    if (exists) std::ofstream(b) << "x";
+    EXPECT_TRUE(sol::programs::same_file(b.string(), (d / "." / "b.exr").string())) << exists;
+    EXPECT_TRUE(sol::programs::same_file(b.string(), (d / "sub" / ".." / "b.exr").string())) << exists;
+    EXPECT_TRUE(sol::programs::same_file(b.string(), (d / "link" / "b.exr").string())) << exists;
+    EXPECT_FALSE(sol::programs::same_file(b.string(), (d / "c.exr").string())) << exists;
+  }
+  const fs::path here = fs::current_path();
+  fs::current_path(d);
+  EXPECT_TRUE(sol::programs::same_file("b.exr", "./b.exr"));
+  EXPECT_TRUE(sol::programs::same_file("b.exr", b.string()));
+  EXPECT_TRUE(sol::programs::same_file("new.exr", "./new.exr"));  // neither exists
+  EXPECT_TRUE(sol::programs::same_file("new.exr", (d / "new.exr").string()));
+  EXPECT_FALSE(sol::programs::same_file("new.exr", "sub/new.exr"));
+  fs::current_path(here);
+  fs::remove_all(d);
 }
 
 // No NaN or infinity reaches a file: written as 0 and counted.

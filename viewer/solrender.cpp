@@ -248,10 +248,8 @@ void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::Co
   for (const std::string& path : {o.output, o.aov}) {
     if (!path.empty() && std::filesystem::is_directory(path)) cl.fail(path + ": cannot write: it is a directory");
   }
-  if (!o.aov.empty()) {
-    std::error_code ec_output, ec_aov;
-    const auto a = std::filesystem::weakly_canonical(o.output, ec_output), b = std::filesystem::weakly_canonical(o.aov, ec_aov);
-    if (!ec_output && !ec_aov && a == b) cl.fail("--aov " + o.aov + " is the same file as -o " + o.output + ": give two files");
+  if (!o.aov.empty() && sol::programs::same_file(o.output, o.aov)) {
+    cl.fail("--aov " + o.aov + " is the same file as -o " + o.output + ": give two files");
   }
   if (o.flow.rk4() && o.device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 }
