@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <sol/vk/vk.hpp>
 
@@ -435,6 +436,31 @@ TEST(VkContext, PipelineCacheIsKeptAndBadFilesAreIgnored) {
   std::vector<std::uint8_t> foreign = written;
   foreign[8] ^= 0xff;  // another vendor
   loads_with_warning(foreign, "written by another device or driver");
+  // Not a file at all: a directory (which also cannot be replaced at the
+  // end), a FIFO (reading it would block) and a link to /dev/zero (which
+  // never ends) are ignored with a warning that names the cache.
+  const auto ignored = [&](const std::string& why) {
+    testing::internal::CaptureStderr();
+    std::size_t loaded = 1;
+    EXPECT_NO_THROW({
+      Context context(options);
+      loaded = context.pipeline_cache_loaded_bytes();
+    }) << why;
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(loaded, 0u) << why;
+    EXPECT_NE(err.find("ignoring the pipeline cache " + path + ": " + why), std::string::npos) << err;
+    return err;
+  };
+  fs::remove(path);
+  fs::create_directory(path);
+  EXPECT_NE(ignored("it is a directory").find("cannot write the pipeline cache " + path), std::string::npos);
+  fs::remove_all(path);
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  ignored("it is not a regular file");
+  fs::remove(path);
+  fs::create_symlink("/dev/zero", path);
+  ignored("it is not a regular file");
+  fs::remove(path);
   // A cache directory under a regular file cannot be made: a warning at the end, no exception.
   std::ofstream(dir / "file") << "x";
   ContextOptions blocked;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "device.hpp"
@@ -19,6 +23,84 @@
 
 namespace sol::vk {
 namespace {
+
+// The pipeline cache file's bytes, or none (with a warning naming it) when
+// it is not a regular file (a directory, a FIFO that would block, a link to
+// a device such as /dev/zero that never ends), larger than any cache, or
+// unreadable: a cache is optional and never stops a render.
+std::vector<char> read_pipeline_cache(const std::string& path) {
+  constexpr std::size_t kLargest = std::size_t{1} << 30;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno != ENOENT) std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s\n", path.c_str(), std::strerror(errno));
+    return {};
+  }
+  struct stat st {};
+  const char* problem = nullptr;
+  if (::fstat(fd, &st) != 0) {
+    problem = std::strerror(errno);
+  } else if (S_ISDIR(st.st_mode)) {
+    problem = "it is a directory";
+  } else if (!S_ISREG(st.st_mode)) {
+    problem = "it is not a regular file";
+  } else if (static_cast<std::size_t>(st.st_size) > kLargest) {
+    problem = "it is larger than any pipeline cache (1 GiB)";
+  }
+  std::vector<char> data;
+  if (!problem) {
+    data.resize(static_cast<std::size_t>(st.st_size));
+    std::size_t done = 0;
+    while (done < data.size()) {
+      const ssize_t n = ::read(fd, data.data() + done, data.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        problem = n < 0 ? std::strerror(errno) : "it shrank while being read";
+        break;
+      }
+      done += static_cast<std::size_t>(n);
+    }
+  }
+  ::close(fd);
+  if (problem) {
+    std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s (the kernels are compiled again)\n",
+                 path.c_str(), problem);
+    return {};
+  }
+  return data;
+}
+
+// Mesa's drivers keep a shader cache of their own under $XDG_CACHE_HOME
+// (or ~/.cache) and write it through a memory map: on a full disk the
+// process dies of SIGBUS with no message. Where that folder's file system
+// has less than 64 MiB free, or cannot be written, the cache is turned off
+// for this process (MESA_SHADER_CACHE_DISABLE; other drivers ignore it),
+// with a note, unless the user chose a setting or a folder of their own.
+void guard_driver_shader_cache() {
+  if (std::getenv("MESA_SHADER_CACHE_DISABLE") || std::getenv("MESA_SHADER_CACHE_DIR") ||
+      std::getenv("MESA_GLSL_CACHE_DISABLE") || std::getenv("MESA_GLSL_CACHE_DIR")) {
+    return;
+  }
+  std::filesystem::path dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    dir = xdg;
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    dir = std::filesystem::path(home) / ".cache";
+  } else {
+    return;
+  }
+  // The nearest folder that exists: Mesa creates the rest.
+  std::error_code ec;
+  while (!dir.empty() && !std::filesystem::exists(dir, ec)) dir = dir.parent_path();
+  if (dir.empty()) return;
+  struct statvfs fs {};
+  constexpr unsigned long long kLeast = 64ull << 20;
+  const bool room = ::statvfs(dir.c_str(), &fs) == 0 &&
+                    static_cast<unsigned long long>(fs.f_bavail) * fs.f_frsize >= kLeast && ::access(dir.c_str(), W_OK) == 0;
+  if (room) return;
+  ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+  std::fprintf(stderr, "sol::vk: note: %s has under 64 MiB free or cannot be written: the driver's shader cache is off\n",
+               dir.c_str());
+}
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
@@ -410,6 +492,7 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   instance_info.ppEnabledExtensionNames = extensions.data();
   // Chained here too so that instance creation and destruction are validated.
   if (d.validation) instance_info.pNext = &messenger_info;
+  guard_driver_shader_cache();
   const VkResult created = options.create_instance ? options.create_instance(instance_info, &d.instance)
                                                    : vkCreateInstance(&instance_info, nullptr, &d.instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
@@ -508,9 +591,8 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
       std::snprintf(name, sizeof name, "pipelines-%04x-%04x-%08x.bin", d.properties.vendorID, d.properties.deviceID,
                     d.properties.driverVersion);
       d.pipeline_cache_path = (std::filesystem::path(options.pipeline_cache_dir) / name).string();
-      std::ifstream in(d.pipeline_cache_path, std::ios::binary);
-      if (in) {
-        initial.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      initial = read_pipeline_cache(d.pipeline_cache_path);
+      if (!initial.empty()) {
         // VkPipelineCacheHeaderVersionOne: header size, version, vendor, device, cache UUID (32 bytes).
         std::uint32_t header[4] = {};
         const bool sized = initial.size() >= 16 + VK_UUID_SIZE;
