@@ -118,11 +118,21 @@ void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const st
 }
 
 // The output checks shared by the curve commands: a known line format.
+// Refuses an output that cannot be written as bad usage (exit 2), before
+// any work: a directory, or a folder that does not exist.
+void check_output(const sol::cli::CommandLine& cl, const std::string& output) {
+  if (std::filesystem::is_directory(output)) cl.fail(output + ": cannot write: it is a directory");
+  const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+    cl.fail(output + ": cannot write: the folder " + folder.string() + " does not exist");
+  }
+}
+
 std::string curve_format(const sol::cli::CommandLine& cl, const std::string& output) {
   if (output.empty()) cl.fail("no output file: give -o FILE.ply|.obj");
   const std::string format = format_of(output);
   if (format.empty() || format == "stlb") cl.fail(output + ": unknown curve format (the name must end in .ply or .obj; STL holds no lines)");
-  if (std::filesystem::is_directory(output)) cl.fail(output + ": cannot write: it is a directory");
+  check_output(cl, output);
   return format;
 }
 
@@ -224,7 +234,7 @@ int sphere(int argc, char** argv) {
   if (output.empty()) cl.fail("no output file: give -o FILE.ply|.obj|.stl");
   const std::string format = format_of(output);
   if (format.empty()) cl.fail(output + ": unknown mesh format (the name must end in .ply, .obj or .stl)");
-  if (std::filesystem::is_directory(output)) cl.fail(output + ": cannot write: it is a directory");
+  check_output(cl, output);
   const sol::Mesh mesh = sol::geodesic_sphere(center.value_or(glm::dvec3(0.0)), radius, resolution);
   double scale = 1.0;
   if (size_mm) {

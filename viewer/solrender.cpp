@@ -3,6 +3,7 @@
 //
 //   solrender --scene plane -o plane.png
 //   solrender --scene my.json -o out.exr --aov aov.exr --width 256 --height 256
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -98,7 +99,8 @@ std::string frame_name(const std::string& pattern, long k) {
   std::vector<char> format(pattern.begin(), pattern.end());
   format.insert(format.begin() + static_cast<std::ptrdiff_t>(*frame_number_end(pattern)), 'l');  // %06d -> %06ld
   format.push_back('\0');
-  std::vector<char> out(format.size() + 32);
+  const int length = std::snprintf(nullptr, 0, format.data(), k);  // the whole name, however wide the number
+  std::vector<char> out(static_cast<std::size_t>(std::max(length, 0)) + 1);
   std::snprintf(out.data(), out.size(), format.data(), k);
   return out.data();
 }
@@ -262,7 +264,7 @@ struct Film {
 };
 
 // The film --path asks for (none without it), its frames and video checked.
-std::optional<Film> film_of(const Options& o, const sol::cli::CommandLine& cl) {
+std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol::cli::CommandLine& cl) {
   if (o.path_file.empty()) {
     if (!o.frames.empty() || !o.video.empty()) cl.fail(!o.frames.empty() ? "--frames needs --path FILE" : "--video needs --path FILE");
     return std::nullopt;
@@ -288,6 +290,19 @@ std::optional<Film> film_of(const Options& o, const sol::cli::CommandLine& cl) {
     if (film.first >= film.end) {
       cl.fail("--frames " + o.frames + ": no frames (the path has " + std::to_string(count) + " at " + std::to_string(o.fps) +
               " fps: 0.." + std::to_string(count - 1) + ")");
+    }
+  }
+  // Every frame's camera before any is rendered: a path that leaves the
+  // heights a camera may have fails now, naming the frame, not after
+  // writing the frames before it.
+  const std::optional<sol::Lattice> lattice = scene.lattice();
+  for (long k = film.first; k < film.end; ++k) {
+    try {
+      sol::validate(film.path.at(static_cast<double>(k) / o.fps, scene.camera, lattice));
+    } catch (const std::exception& e) {
+      char when[96];
+      std::snprintf(when, sizeof when, ": frame %ld (t = %g s): ", k, static_cast<double>(k) / o.fps);
+      cl.fail("--path " + o.path_file + when + e.what());
     }
   }
   if (!o.video.empty()) {
@@ -436,7 +451,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   check_outputs(o, scene, cl);
-  const std::optional<Film> film = film_of(o, cl);
+  const std::optional<Film> film = film_of(o, scene, cl);
 
   const bool tty = isatty(fileno(stderr));
   ProgressLine progress(tty, static_cast<double>(o.width) * (o.stereo() ? 2.0 : 1.0) * o.height * o.spp);

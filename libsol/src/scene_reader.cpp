@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -207,6 +208,18 @@ void check_json_text(std::string_view text, std::string_view source) {
 }
 
 std::string read_text_file(const std::string& path, const char* kind) {
+  // What is not a regular file is refused before it is read: a directory
+  // (not "malformed JSON"), a FIFO or a device (which could block or never end).
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::is_directory(status)) throw InvalidArgument(path + ": a directory, not a " + kind + " file");
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InvalidArgument(path + ": not a regular file, so not a " + kind + " file");
+  }
+  constexpr std::uintmax_t kLargest = 64u << 20;
+  if (!ec && std::filesystem::exists(status) && std::filesystem::file_size(path, ec) > kLargest && !ec) {
+    throw InvalidArgument(path + ": larger than 64 MiB, more than any " + std::string(kind) + " file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidArgument(path + ": cannot open " + kind + " file");
   std::ostringstream text;
