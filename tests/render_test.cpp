@@ -11,11 +11,13 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <sol/sol.hpp>
 
 #include "row_pool.hpp"  // libsol/src: the CPU renderer's thread pool
@@ -1180,3 +1182,26 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
 }
 
 }  // namespace
+
+// A render that cannot fit in memory is refused up front with both figures
+// (the largest accepted size needs 15-30 GB: failing late with bad_alloc
+// lost half a minute's work); one that fits is not. The available memory
+// is MemAvailable, never above the physical memory sysconf reports.
+TEST(Render, ARenderThatCannotFitInMemoryIsRefusedUpFront) {
+  const double available = sol::available_memory_bytes();
+  if (available <= 0.0) GTEST_SKIP() << "no /proc/meminfo here";
+  const double physical = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  EXPECT_LE(available, physical);
+  const sol::Camera camera = sol::preset_scene("plane").camera;
+  const sol::RenderOptions options{.width = 16384, .height = 8192};
+  const double pixels = 16384.0 * 8192.0;
+  try {
+    sol::validate_render(std::span(&camera, 1), options, "test", 2.0 * available / pixels);
+    ADD_FAILURE() << "twice the available memory was accepted";
+  } catch (const sol::InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("16384 x 8192 pixels x 1 eye(s) need about"), std::string::npos) << what;
+    EXPECT_NE(what.find("GiB are available"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(sol::validate_render(std::span(&camera, 1), options, "test", 0.5 * available / pixels));
+}

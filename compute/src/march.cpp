@@ -622,7 +622,10 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
 RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
   Impl& m = *m_impl;
   (void)world();  // a world first (logic_error)
-  validate_render(eyes, options, "sol::vk::MarchRenderer::render");
+  // Peak host memory per pixel, measured on lavapipe (whose device memory
+  // is the host's): 120 bytes (the images, their staging copies and the
+  // result), rounded up.
+  validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
   const int samples = options.samples, height = options.height;
   const Frame f = prepare_frame(eyes, options.width, height, true, false);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);

@@ -1,6 +1,8 @@
 #include "sol/renderer.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "sol/error.hpp"
@@ -17,7 +19,19 @@ RenderResult Renderer::render_stereo(const Camera& camera, double ipd, const Ren
   return render(both, options);
 }
 
-void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who) {
+double available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  std::string unit;
+  while (in >> key >> kib) {
+    std::getline(in, unit);
+    if (key == "MemAvailable:") return kib * 1024.0;
+  }
+  return 0.0;
+}
+
+void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who, double bytes_per_pixel) {
   const std::string at = std::string(who) + ": ";
   for (const auto& [value, name] : {std::pair{options.width, "width"}, std::pair{options.height, "height"}}) {
     if (value < 1 || value > 16384) {
@@ -29,6 +43,19 @@ void validate_render(std::span<const Camera> eyes, const RenderOptions& options,
   }
   if (!(options.max_dispatch_ms > 0.0)) throw InvalidArgument(at + "max_dispatch_ms must be > 0");
   if (eyes.empty()) throw InvalidArgument(at + "no eyes (one camera at least)");
+  if (bytes_per_pixel > 0.0) {
+    const double pixels = static_cast<double>(options.width) * options.height * static_cast<double>(eyes.size());
+    const double need = pixels * bytes_per_pixel, available = available_memory_bytes();
+    if (available > 0.0 && need > available) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "%d x %d pixels x %zu eye(s) need about %.1f GiB of memory (%.0f bytes a pixel); %.1f GiB are "
+                    "available: render a smaller image",
+                    options.width, options.height, eyes.size(), need / 1073741824.0, bytes_per_pixel,
+                    available / 1073741824.0);
+      throw InvalidArgument(at + text);
+    }
+  }
   for (const Camera& camera : eyes) {
     validate(camera);
     if (camera.projection == Projection::Equirectangular && options.width != 2 * options.height) {

@@ -88,8 +88,16 @@ class Renderer {
 
 /// The checks every renderer makes of a render's eyes and options (sizes,
 /// samples, the equirectangular aspect, each camera): InvalidArgument
-/// naming `who` and the field.
-void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who);
+/// naming `who` and the field. With `bytes_per_pixel` (the renderer's peak
+/// memory per pixel of all eyes), a render that needs more memory than the
+/// system has available (MemAvailable, where /proc/meminfo says) is
+/// refused up front with both figures, rather than failing late.
+void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who,
+                     double bytes_per_pixel = 0.0);
+
+/// Memory the system can give a process now without swapping (Linux:
+/// MemAvailable), in bytes; 0 where it cannot be told.
+double available_memory_bytes();
 
 /// One-shot: renderer.set_world(scene), then the scene's camera.
 RenderResult render_scene(Renderer& renderer, const Scene& scene, const RenderOptions& options);
