@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,10 @@ struct PyCpuRenderer {
     camera = scene.camera;
   }
   sol::RenderResult render(const sol::RenderOptions& options) {
+    // The CPU renderer's 64 bytes a pixel and the arrays it becomes here,
+    // 40 more (the result lives until they are made): refused up front
+    // where that cannot fit.
+    sol::validate_render(std::span(&camera, 1), options, "sol.CpuRenderer.render", 104.0);
     py::gil_scoped_release release;  // the rows render on threads of their own
     return renderer.render(camera, options);
   }
