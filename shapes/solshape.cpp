@@ -77,6 +77,11 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const glm::dvec3 v = scale * mesh.vertices[i];
     m.mVertices[i] = aiVector3D(static_cast<ai_real>(v.x), static_cast<ai_real>(v.y), static_cast<ai_real>(v.z));
+    // The file holds floats: a point beyond their range is refused, never written as inf.
+    const aiVector3D& f = m.mVertices[i];
+    if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(f.z)) {
+      throw std::runtime_error("the mesh's points overflow the file's floats (--size-mm or the center is too large)");
+    }
   }
   m.mNumFaces = static_cast<unsigned int>(mesh.triangles.size());
   m.mFaces = new aiFace[mesh.triangles.size()];
@@ -108,6 +113,10 @@ void write_polylines(const std::vector<std::vector<glm::dvec3>>& lines, const st
   for (const auto& line : lines) {
     for (std::size_t i = 0; i < line.size(); ++i, ++v) {
       m.mVertices[v] = aiVector3D(static_cast<ai_real>(line[i].x), static_cast<ai_real>(line[i].y), static_cast<ai_real>(line[i].z));
+      const aiVector3D& p = m.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        throw std::runtime_error("the curves' points overflow the file's floats (the start is too far from the origin)");
+      }
       if (i == 0) continue;
       aiFace& face = m.mFaces[f++];
       face.mNumIndices = 2;

@@ -119,3 +119,33 @@ TEST(Group, RejectsNonFiniteInput) {
 }
 
 }  // namespace
+
+// Finite arguments whose result overflows double are refused (OutOfRange,
+// naming the function) rather than answered with inf or NaN: the group
+// law past e^{709}, a geodesic from a start that far, the connection to a
+// point at 1e308, a sphere around a centre at height 1000 and the word of
+// a teleport whose integers double cannot hold exactly. Points just
+// inside stay answered, finite.
+TEST(Group, ResultsThatOverflowDoubleAreRefused) {
+  using glm::dvec3;
+  EXPECT_THROW(sol::multiply({0, 0, 800}, {1e300, 0, 0}), sol::OutOfRange);
+  EXPECT_THROW(sol::inverse({1e300, 0, -800}), sol::OutOfRange);
+  EXPECT_THROW(sol::velocity_from_frame({0, 0, 710}, {1, 0, 0}), sol::OutOfRange);
+  EXPECT_THROW(sol::frame_from_velocity({0, 0, -710}, {1, 0, 0}), sol::OutOfRange);
+  EXPECT_THROW(sol::flow({{0, 0, 1000}, {1, 0, 0}}, 1.0), sol::OutOfRange);
+  EXPECT_THROW(sol::minimising_geodesics({0, 0, 0}, {1e308, 0, 0}), sol::OutOfRange);
+  EXPECT_THROW(sol::geodesic_sphere({0, 0, 1000}, 1.0, 8), sol::OutOfRange);
+  EXPECT_THROW(sol::Lattice::golden().word_of(sol::Lattice::golden().teleport({1e30, 0, 0}).element), sol::OutOfRange);
+  try {
+    (void)sol::flow({{0, 0, 1000}, {1, 0, 0}}, 1.0);
+  } catch (const sol::OutOfRange& e) {
+    EXPECT_NE(std::string(e.what()).find("sol::flow"), std::string::npos) << e.what();
+  }
+  // Inside: finite answers.
+  const dvec3 p = sol::multiply({0, 0, 700}, {1, 0, 0});
+  EXPECT_TRUE(std::isfinite(p.x) && p.x > 1e303);
+  EXPECT_TRUE(std::isfinite(sol::flow({{0, 0, 500}, {1, 0, 0}}, 1.0).position.x));
+  for (const sol::Connection& c : sol::minimising_geodesics({0, 0, 0}, {1e6, 0, 0})) EXPECT_TRUE(std::isfinite(c.length));
+  const sol::Teleport t = sol::Lattice::golden().teleport({1e12, 0, 0});
+  EXPECT_TRUE(sol::Lattice::golden().contains(t.point));
+}

@@ -27,4 +27,18 @@ inline void require_finite(const glm::dvec3& v, const char* function, const char
   }
 }
 
+/// `v`, when every component is finite; otherwise OutOfRange naming
+/// `function`: finite arguments whose result overflows double (a height
+/// beyond ±709, where e^{±z} does, or coordinates near the largest double)
+/// are refused rather than answered with inf or NaN.
+inline glm::dvec3 finite_result(const glm::dvec3& v, const char* function, const char* what) {
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(v[i])) {
+      throw OutOfRange(std::string(function) + ": " + what +
+                       " overflows double (the arguments are too far from the origin)");
+    }
+  }
+  return v;
+}
+
 }  // namespace sol::detail

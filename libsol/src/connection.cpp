@@ -559,10 +559,16 @@ std::vector<Solution> reduced_minimisers(const glm::dvec3& q, const ConnectionOp
   return general_minimisers(q, options);
 }
 
-std::vector<Connection> to_connections(const std::vector<Solution>& list, const Reduction& r) {
+std::vector<Connection> to_connections(const std::vector<Solution>& list, const Reduction& r, const char* function) {
   std::vector<Connection> out;
   out.reserve(list.size());
-  for (const Solution& s : list) out.push_back({r.unreduce(s.v), s.t});
+  for (const Solution& s : list) {
+    out.push_back({r.unreduce(s.v), s.t});
+    if (!std::isfinite(s.t)) {
+      throw OutOfRange(std::string(function) + ": q is too far from p for double (the length overflows)");
+    }
+    detail::finite_result(out.back().direction, function, "the direction to q");
+  }
   return out;
 }
 
@@ -570,7 +576,9 @@ std::vector<Connection> to_connections(const std::vector<Solution>& list, const 
 
 double distance(const glm::dvec3& p, const glm::dvec3& q, const ConnectionOptions& options) {
   validate(p, q, options, "sol::distance");
-  return reduced_minimisers(reduce(p, q).q, options).front().t;
+  const double d = reduced_minimisers(reduce(p, q).q, options).front().t;
+  if (!std::isfinite(d)) throw OutOfRange("sol::distance: q is too far from p for double (the length overflows)");
+  return d;
 }
 
 glm::dvec3 log_series(const glm::dvec3& w) {
@@ -590,7 +598,7 @@ std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dve
                                              const ConnectionOptions& options) {
   validate(p, q, options, "sol::minimising_geodesics");
   const Reduction r = reduce(p, q);
-  return to_connections(reduced_minimisers(r.q, options), r);
+  return to_connections(reduced_minimisers(r.q, options), r, "sol::minimising_geodesics");
 }
 
 std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3& q, double max_length,
@@ -612,7 +620,7 @@ std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3&
   }
   std::erase_if(list, [&](const Solution& s) { return s.t > max_length + tolerance; });
   std::stable_sort(list.begin(), list.end(), [](const Solution& a, const Solution& b) { return a.t < b.t; });
-  return to_connections(list, r);
+  return to_connections(list, r, function);
 }
 
 std::vector<Connection> geodesics_between(const glm::dvec3& p, const glm::dvec3& q, double max_length) {

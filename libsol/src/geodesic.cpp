@@ -86,12 +86,24 @@ glm::dmat3 transport_along(const ClosedFormGeodesic<double>& geodesic, double t,
   return glm::dmat3(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8]);
 }
 
+// origin * p: the end point of the geodesic from `origin` whose end from
+// the origin is p (left invariance), refused naming `function` where it
+// overflows double.
+glm::dvec3 moved_end(const glm::dvec3& origin, const glm::dvec3& p, const char* function) {
+  try {
+    return multiply(origin, p);
+  } catch (const OutOfRange&) {
+    throw OutOfRange(std::string(function) + ": the end point overflows double (start.position " +
+                     "is too far from the origin)");
+  }
+}
+
 GeodesicState closed_form_state(const ClosedFormGeodesic<double>& geodesic, const glm::dvec3& origin, double t,
                                 const char* function) {
   const ClosedFormGeodesic<double>::State s = geodesic.at(t);
   const State<6> y{s.position.x, s.position.y, s.position.z, s.direction.x, s.direction.y, s.direction.z};
   require_finite_result(y, function);
-  return {multiply(origin, s.position), s.direction};
+  return {moved_end(origin, s.position, function), s.direction};
 }
 
 // Error control per component: u1 = a e^{z} and u2 = b e^{-z} decay
@@ -140,7 +152,7 @@ GeodesicState flow(const GeodesicState& start, double t, const FlowOptions& opti
   const State<6> y = integrate(geodesic_rhs, State<6>{0, 0, 0, u.x, u.y, u.z}, t, method, options);
   require_finite_result(y, function);
   // Left-invariance: the geodesic from p is p * (geodesic from the origin).
-  return {multiply(start.position, {y[0], y[1], y[2]}), {y[3], y[4], y[5]}};
+  return {moved_end(start.position, {y[0], y[1], y[2]}, function), {y[3], y[4], y[5]}};
 }
 
 glm::dmat3 transport(const GeodesicState& start, double t, Method method) {

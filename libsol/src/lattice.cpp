@@ -97,7 +97,14 @@ std::string LatticeWord::str() const {
 LatticeWord Lattice::word_of(const glm::dvec3& element) const {
   // element = (a γ1 + b γ2, c h): γ1^a γ2^b lies in z = 0 and γ3^c adds c h to z only.
   const glm::dvec2 ab = lattice_coordinates(element.x, element.y);
-  return {std::llround(ab.x), std::llround(ab.y), std::llround(element.z / height())};
+  const double c = element.z / height();
+  // Beyond 2^53 double holds no exact integer (and beyond 2^63 no long
+  // long): such a word could not be told, let alone map the point into D.
+  constexpr double kExact = 9007199254740992.0;
+  if (!(std::abs(ab.x) <= kExact && std::abs(ab.y) <= kExact && std::abs(c) <= kExact)) {
+    throw OutOfRange("sol::Lattice::word_of: the element is too far from the identity for its word to be exact in double");
+  }
+  return {std::llround(ab.x), std::llround(ab.y), std::llround(c)};
 }
 
 namespace {

@@ -311,7 +311,11 @@ Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) 
   }
   Mesh mesh = direction_octahedron(subdivisions);
   if (radius >= kSmoothSphereRadius) mesh = clip_and_zip(std::move(mesh), radius, subdivisions);
-  for (glm::dvec3& v : mesh.vertices) v = flow({center, v}, radius).position;
+  try {
+    for (glm::dvec3& v : mesh.vertices) v = flow({center, v}, radius).position;
+  } catch (const OutOfRange&) {
+    throw OutOfRange("sol::geodesic_sphere: its points overflow double (the center is too far from the origin)");
+  }
   return mesh;
 }
 
