@@ -10,6 +10,7 @@
 // complete (sol::programs::OutputFile).
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -68,6 +69,36 @@ void export_scene(const aiScene& scene, const std::string& format, const sol::pr
   file.write(std::string_view(static_cast<const char*>(blob->data), blob->size));
 }
 
+// STL stores a normal per facet, which slicers may trust: Assimp's writer
+// takes the mean of the facet's vertex normals (smoothed ones it makes when
+// the mesh has none, up to 167 degrees from the facet's own on the strongly
+// curved spheres of large radii). So each facet gets vertices of its own,
+// with the facet's normal: the unit cross product of its edges, in the
+// order of its vertices (outward, counter-clockwise).
+void give_facet_normals(aiMesh& m) {
+  const unsigned int faces = m.mNumFaces;
+  auto* vertices = new aiVector3D[3 * static_cast<std::size_t>(faces)];
+  auto* normals = new aiVector3D[3 * static_cast<std::size_t>(faces)];
+  for (unsigned int i = 0; i < faces; ++i) {
+    aiFace& f = m.mFaces[i];
+    const glm::dvec3 a(m.mVertices[f.mIndices[0]].x, m.mVertices[f.mIndices[0]].y, m.mVertices[f.mIndices[0]].z);
+    const glm::dvec3 b(m.mVertices[f.mIndices[1]].x, m.mVertices[f.mIndices[1]].y, m.mVertices[f.mIndices[1]].z);
+    const glm::dvec3 c(m.mVertices[f.mIndices[2]].x, m.mVertices[f.mIndices[2]].y, m.mVertices[f.mIndices[2]].z);
+    const glm::dvec3 cross = glm::cross(b - a, c - a);
+    const double length = glm::length(cross);
+    const glm::dvec3 n = length > 0.0 ? cross / length : glm::dvec3(0.0);
+    for (unsigned int k = 0; k < 3; ++k) {
+      vertices[3 * i + k] = m.mVertices[f.mIndices[k]];
+      normals[3 * i + k] = aiVector3D(static_cast<ai_real>(n.x), static_cast<ai_real>(n.y), static_cast<ai_real>(n.z));
+      f.mIndices[k] = 3 * i + k;
+    }
+  }
+  delete[] m.mVertices;
+  m.mVertices = vertices;
+  m.mNormals = normals;
+  m.mNumVertices = 3 * faces;
+}
+
 // Writes `mesh` (scaled by `scale`) to `path` in `format` through Assimp.
 void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, const sol::programs::OutputFile& file) {
   aiScene scene;
@@ -91,6 +122,7 @@ void write_mesh(const sol::Mesh& mesh, double scale, const std::string& format, 
     f.mIndices = new unsigned int[3];
     for (int k = 0; k < 3; ++k) f.mIndices[k] = static_cast<unsigned int>(mesh.triangles[i][static_cast<std::size_t>(k)]);
   }
+  if (format == "stlb") give_facet_normals(m);
   export_scene(scene, format, file, "mesh");
 }
 
