@@ -100,11 +100,11 @@ TEST(CameraPath, TheQuotientKeepsTheCameraInTheDomain) {
 TEST(CameraPath, ErrorsNameTheField) {
   const std::pair<const char*, const char*> bad[] = {
       {R"({"segments": []})", "'segments' must be a non-empty array"},
-      {R"({"segments": [{"walk": "sideways", "distance": 1, "duration": 1}]})", "'segments[0].walk' must be forward, back, left, right, up or down, got 'sideways'"},
+      {R"({"segments": [{"walk": "sideways", "distance": 1, "duration": 1}]})", "'segments[0].walk' must be forward, back, left, right, up or down, got \"sideways\""},
       {R"({"segments": [{"walk": "up", "duration": 1}]})", "needs a 'distance'"},
       {"{\"segments\": [{\"hold\": 1},\n {\"turn\": \"yaw\", \"degrees\": 10, \"duration\": 0}]}",
        "segments[1].duration must be in (0, 1e6] seconds (line 2, column"},
-      {R"({"segments": [{"turn": "spin", "degrees": 1, "duration": 1}]})", "'segments[0].turn' must be yaw, pitch or roll, got 'spin'"},
+      {R"({"segments": [{"turn": "spin", "degrees": 1, "duration": 1}]})", "'segments[0].turn' must be yaw, pitch or roll, got \"spin\""},
       {R"({"segments": [{"hold": 1, "walk": "up"}]})", "segments[0]"},
       {R"({"segments": [{"jump": 1}]})", "must be a walk, a turn or a hold"},
       {R"({"start": {"fov": 200}, "segments": [{"hold": 1}]})", "start.fov"},
@@ -112,6 +112,9 @@ TEST(CameraPath, ErrorsNameTheField) {
       {R"({"segments": [{"hold": 1}], "speed": 2})", "unknown key 'speed'"},
       {R"({"segments": [{"walk": "forward", "distance": 1e300, "duration": 1}]})", "segments[0].distance must be within"},
       {"[1, 2", "malformed JSON"},
+      // A string where a number belongs is shown as the string it is.
+      {R"({"segments": [{"walk": "forward", "distance": 1, "duration": "4"}]})",
+       "'segments[0].duration' must be a number, got \"4\""},
   };
   for (const auto& [text, expected] : bad) {
     try {

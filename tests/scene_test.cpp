@@ -69,12 +69,12 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
-  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden, got 'torus'");
-  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none or golden, got '7'");
+  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden, got \"torus\"");
+  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none or golden, got 7");
   expect_rejected(R"({"camera": {"projection": ["fisheye"]}, )" + objects + "}",
-                  "'camera.projection' must be perspective, equirectangular or fisheye, got '[\"fisheye\"]'");
+                  "'camera.projection' must be perspective, equirectangular or fisheye, got [\"fisheye\"]");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})",
-                  "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got w");
+                  "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got \"w\"");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": 2, "through": [0, 0, 0], "radius": 1}]})",
                   "'objects[0].axis' must be x, y, z, gamma1, gamma2 or gamma3, got 2");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "x", "radius": 1}]})", "needs 'through'");
@@ -93,7 +93,7 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0], "radius": 1}]})", "objects[0].center");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "c": 2}]})", "unknown key 'c'");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "pattern": "stripes"}]})",
-                  "'objects[0].pattern' must be none, circles or checker, got 'stripes'");
+                  "'objects[0].pattern' must be none, circles or checker, got \"stripes\"");
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0], "radius": 1, "cutout": true}]})",
                   "unknown key 'cutout'");
   // The quotient: only objects whose images under Γ stay finite near D.
@@ -289,7 +289,7 @@ TEST(Scene, HostileTextIsRefusedBriefly) {
   EXPECT_NE(long_key.find("... (5000000 bytes)"), std::string::npos) << long_key.substr(0, 200);
   EXPECT_LT(long_key.size(), 400u);
   const std::string long_value = rejection(R"({"objects": [{"type": ")" + std::string(5000000, 'b') + R"("}]})");
-  EXPECT_NE(long_value.find("got bbbb"), std::string::npos) << long_value.substr(0, 200);
+  EXPECT_NE(long_value.find("got \"bbbb"), std::string::npos) << long_value.substr(0, 200);
   EXPECT_LT(long_value.size(), 400u);
   std::string many = "1";
   for (int i = 0; i < 200000; ++i) many += ", 1";
@@ -300,13 +300,22 @@ TEST(Scene, HostileTextIsRefusedBriefly) {
   const std::string long_number = rejection(R"({"objects": [{"type": "plane_z", "c": )" + std::string(1000000, '1') + "}]}");
   EXPECT_NE(long_number.find("malformed JSON"), std::string::npos) << long_number.substr(0, 200);
   EXPECT_LT(long_number.size(), 500u);
+  // Bytes that are not UTF-8 (a UTF-16 byte-order mark, a Latin-1 é) are
+  // named in the message as \xNN: it stays text (Python raised a
+  // ValueError with an empty message where it could not decode it).
+  EXPECT_NE(rejection("\xff\xfe").find("last read: '\\xFF'"), std::string::npos) << rejection("\xff\xfe");
+  const std::string latin1 = rejection(R"({"objects": [{"type": "caf)" + std::string("\xe9") + R"("}]})");
+  EXPECT_NE(latin1.find("\\xE9"), std::string::npos) << latin1;
+  for (const std::string& message : {rejection("\xff\xfe"), latin1}) {
+    for (unsigned char c : message) EXPECT_LT(c, 0x80) << message;  // ASCII here: the bytes escaped
+  }
   // Cut at a character, not inside a UTF-8 sequence (é is two bytes).
   std::string accents;
   for (int i = 0; i < 100; ++i) accents += "\xc3\xa9";
   const std::string cut = rejection(R"({"objects": [{"type": "x)" + accents + R"("}]})");
-  const std::size_t got = cut.find("got x");
+  const std::size_t got = cut.find("got \"x");
   ASSERT_NE(got, std::string::npos) << cut;
-  const std::string shown = cut.substr(got + 4, cut.find("...", got) - got - 4);
+  const std::string shown = cut.substr(got + 5, cut.find("...", got) - got - 5);
   EXPECT_EQ(shown.size() % 2, 1u) << shown;  // "x" and whole "é"s
 }
 

@@ -37,7 +37,7 @@ void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (c.contains("frustum")) {
     const json& f = c["frustum"];
     if (!f.is_array() || f.size() != 4) {
-      r.fail("camera.frustum", "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + SceneFileReader::text(f));
+      r.fail("camera.frustum", "'camera.frustum' must be an array of 4 numbers [left, right, down, up], got " + SceneFileReader::json_text(f));
     }
     camera.frustum = Frustum{r.number(f[0], "camera.frustum[0]"), r.number(f[1], "camera.frustum[1]"),
                              r.number(f[2], "camera.frustum[2]"), r.number(f[3], "camera.frustum[3]")};
@@ -75,7 +75,7 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
       light.intensity = power / (4.0 * std::numbers::pi);
     }
   } else {
-    r.fail(at + ".type", "'" + at + ".type' must be directional or point, got " + type);
+    r.fail(at + ".type", "'" + at + ".type' must be directional or point, got " + SceneFileReader::json_text(l["type"]));
   }
   if (l.contains("shadows")) light.shadows = r.boolean(l["shadows"], at + ".shadows");
   if (l.contains("color")) light.color = r.vec3(l["color"], at + ".color");
@@ -143,14 +143,14 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("hit_epsilon")) s.hit_epsilon = r.number(root["hit_epsilon"], "hit_epsilon");
   if (root.contains("max_steps")) {
     const json& m = root["max_steps"];
-    if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + SceneFileReader::text(m));
+    if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + SceneFileReader::json_text(m));
     const auto v = m.get<long long>();
     if (v < 1 || v > 100000) r.fail("max_steps", "max_steps must be in [1, 100000]");
     s.max_steps = static_cast<int>(v);
   }
   if (root.contains("samples")) {
     const json& m = root["samples"];
-    if (!m.is_number_integer()) r.fail("samples", "'samples' must be an integer, got " + SceneFileReader::text(m));
+    if (!m.is_number_integer()) r.fail("samples", "'samples' must be an integer, got " + SceneFileReader::json_text(m));
     const auto v = m.get<long long>();
     if (v < 1 || v > 4096) r.fail("samples", "samples must be in [1, 4096]");
     s.samples = static_cast<int>(v);

@@ -2,9 +2,11 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "sol/error.hpp"
@@ -118,7 +120,53 @@ void SceneFileReader::fail(const std::string& path, const std::string& what) con
   throw InvalidArgument(std::string(m_source) + ": " + what);
 }
 
+namespace {
+
+// The length of the UTF-8 sequence at s[i] (1 to 4), or 0 where the bytes
+// there are not one (a stray continuation, an overlong form, a surrogate,
+// beyond U+10FFFF, cut short).
+std::size_t utf8_sequence(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  if (c < 0x80) return 1;
+  const std::size_t n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  }
+  const unsigned char second = byte(i + 1);
+  if ((c == 0xE0 && second < 0xA0) || (c == 0xED && second > 0x9F) || (c == 0xF0 && second < 0x90) ||
+      (c == 0xF4 && second > 0x8F)) {
+    return 0;
+  }
+  return n;
+}
+
+// s with every byte that is not part of a UTF-8 character, and every ASCII
+// control character but none, as \xNN.
+std::string printable(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t n = utf8_sequence(s, i);
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (n == 0 || (n == 1 && (c < 0x20 || c == 0x7F))) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
+      out += escaped;
+      ++i;
+    } else {
+      out.append(s.substr(i, n));
+      i += n;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string SceneFileReader::shown(std::string s, std::size_t limit) {
+  s = printable(s);
   if (s.size() <= limit) return s;
   const std::size_t total = s.size();
   s.resize(limit);
@@ -129,11 +177,15 @@ std::string SceneFileReader::shown(std::string s, std::size_t limit) {
 }
 
 std::string SceneFileReader::text(const json& value) {
-  return shown(value.is_string() ? value.get<std::string>() : value.dump());
+  return shown(value.is_string() ? value.get<std::string>() : json_text(value));
+}
+
+std::string SceneFileReader::json_text(const json& value) {
+  return shown(value.dump(-1, ' ', false, json::error_handler_t::replace));
 }
 
 double SceneFileReader::number(const json& value, const std::string& path) const {
-  if (!value.is_number()) fail(path, "'" + path + "' must be a number, got " + text(value));
+  if (!value.is_number()) fail(path, "'" + path + "' must be a number, got " + json_text(value));
   const double v = value.get<double>();
   if (!std::isfinite(v)) fail(path, "'" + path + "' must be finite");
   return v;
@@ -141,13 +193,13 @@ double SceneFileReader::number(const json& value, const std::string& path) const
 
 glm::dvec3 SceneFileReader::vec3(const json& value, const std::string& path) const {
   if (!value.is_array() || value.size() != 3) {
-    fail(path, "'" + path + "' must be an array of 3 numbers, got " + text(value));
+    fail(path, "'" + path + "' must be an array of 3 numbers, got " + json_text(value));
   }
   return {number(value[0], path + "[0]"), number(value[1], path + "[1]"), number(value[2], path + "[2]")};
 }
 
 bool SceneFileReader::boolean(const json& value, const std::string& path) const {
-  if (!value.is_boolean()) fail(path, "'" + path + "' must be true or false, got " + text(value));
+  if (!value.is_boolean()) fail(path, "'" + path + "' must be true or false, got " + json_text(value));
   return value.get<bool>();
 }
 

@@ -78,15 +78,19 @@ class SceneFileReader {
       names += option.first;
       ++i;
     }
-    fail(path, "'" + path + "' must be " + names + ", got '" + text(value) + "'");
+    fail(path, "'" + path + "' must be " + names + ", got " + json_text(value));
   }
 
-  /// A string value as it is, anything else as its JSON text (for messages
-  /// and names), shortened as shown().
+  /// A string value as it is, anything else as its JSON text (for names),
+  /// shortened as shown().
   static std::string text(const json& value);
-  /// `s` for a message: beyond `limit` bytes cut (at a UTF-8 character),
-  /// with its length ("abc... (5000000 bytes)"), so a huge value does not
-  /// flood the terminal.
+  /// The value as its JSON text for a message: a string quoted ("4", not
+  /// 4), bytes that are not UTF-8 as U+FFFD; shortened as shown().
+  static std::string json_text(const json& value);
+  /// `s` for a message: bytes that are not UTF-8 and control characters
+  /// written as \xNN (a message is text, whatever the file held); beyond
+  /// `limit` bytes cut (at a UTF-8 character), with its length ("abc...
+  /// (5000000 bytes)"), so a huge value does not flood the terminal.
   static std::string shown(std::string s, std::size_t limit = kShownBytes);
 
  private:

@@ -192,7 +192,7 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
     } else if (known != std::end(kTubeAxes)) {
       t.direction = tube_axis_direction(*known);
     } else {
-      r.fail(at + ".axis", "'" + at + ".axis' must be x, y, z, gamma1, gamma2 or gamma3, got " + name +
+      r.fail(at + ".axis", "'" + at + ".axis' must be x, y, z, gamma1, gamma2 or gamma3, got " + SceneFileReader::json_text(axis) +
                                " (or a vertical or horizontal direction [a, b, c])");
     }
   }
