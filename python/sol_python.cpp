@@ -9,7 +9,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +33,33 @@ py::array_t<double> array(const glm::dvec3& v) {
   auto o = out.mutable_unchecked<1>();
   for (py::ssize_t i = 0; i < 3; ++i) o(i) = v[static_cast<glm::length_t>(i)];
   return out;
+}
+
+// Ctrl-C in long work done with the GIL released: the calling thread (the
+// one Python's signal handlers run on) takes the GIL every 100 ms to run
+// them; what they raise (KeyboardInterrupt) stops the work and reaches the
+// caller as it is.
+class Interrupts {
+ public:
+  void check() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - m_last < std::chrono::milliseconds(100)) return;
+    m_last = now;
+    const py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+};
+
+// Refuses a call whose points exceed `limit` before any work, with the figure.
+void check_points(double points, double limit, const char* what) {
+  if (points > limit) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%s = %.3g points; at most %.0e in one call", what, points, limit);
+    throw sol::InvalidArgument(text);
+  }
 }
 
 // An (N, 3) array's rows (a single point is one row).
@@ -100,10 +131,26 @@ struct PyCpuRenderer {
     // 40 more (the result lives until they are made): refused up front
     // where that cannot fit.
     sol::validate_render(std::span(&camera, 1), options, "sol.CpuRenderer.render", 104.0);
+    Interrupts interrupts;
+    sol::RenderOptions interruptible = options;
+    interruptible.progress = [&interrupts](double) { interrupts.check(); };
     py::gil_scoped_release release;  // the rows render on threads of their own
-    return renderer.render(camera, options);
+    return renderer.render(camera, interruptible);
   }
 };
+
+// Raises `type` with a message: its bytes that are not UTF-8 (none are
+// meant to be) replaced rather than lost with the whole message.
+void set_error(PyObject* type, const char* what) {
+  PyObject* text = PyUnicode_DecodeUTF8(what, static_cast<Py_ssize_t>(std::strlen(what)), "replace");
+  if (!text) {
+    PyErr_Clear();
+    PyErr_SetString(type, "(an undecodable message)");
+    return;
+  }
+  PyErr_SetObject(type, text);
+  Py_DECREF(text);
+}
 
 }  // namespace
 
@@ -114,11 +161,11 @@ PYBIND11_MODULE(sol, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const sol::InvalidArgument& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      set_error(PyExc_ValueError, e.what());
     } catch (const sol::OutOfRange& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      set_error(PyExc_ValueError, e.what());
     } catch (const sol::Cancelled& e) {
-      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+      set_error(PyExc_KeyboardInterrupt, e.what());
     }
   });
   m.attr("__version__") = SOL_VERSION_STRING;
@@ -149,8 +196,10 @@ PYBIND11_MODULE(sol, m) {
         const auto* tv = static_cast<const double*>(tb.ptr);
         std::vector<glm::dvec3> positions(dirs.size()), ends(dirs.size());
         {
+          Interrupts interrupts;
           py::gil_scoped_release release;
           for (std::size_t i = 0; i < dirs.size(); ++i) {
+            interrupts.check();
             const sol::GeodesicState s = sol::flow({vec3(position), dirs[i]}, tv[nt == 1 ? 0 : i]);
             positions[i] = s.position;
             ends[i] = s.direction;
@@ -187,8 +236,12 @@ PYBIND11_MODULE(sol, m) {
         auto o = out.mutable_unchecked<1>();
         std::vector<double> d(qs.size());
         {
+          Interrupts interrupts;
           py::gil_scoped_release release;
-          for (std::size_t i = 0; i < qs.size(); ++i) d[i] = sol::distance(vec3(p), qs[i]);
+          for (std::size_t i = 0; i < qs.size(); ++i) {
+            interrupts.check();
+            d[i] = sol::distance(vec3(p), qs[i]);
+          }
         }
         for (std::size_t i = 0; i < d.size(); ++i) o(static_cast<py::ssize_t>(i)) = d[i];
         return out;
@@ -213,7 +266,11 @@ PYBIND11_MODULE(sol, m) {
   m.def(
       "geodesic_sphere",
       [](const std::array<double, 3>& center, double radius, int subdivisions) {
-        const sol::Mesh mesh = sol::geodesic_sphere(vec3(center), radius, subdivisions);
+        sol::Mesh mesh;
+        {
+          py::gil_scoped_release release;  // up to 8 x 512^2 triangles: seconds
+          mesh = sol::geodesic_sphere(vec3(center), radius, subdivisions);
+        }
         py::array_t<int> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
         auto t = triangles.mutable_unchecked<2>();
         for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
@@ -231,10 +288,25 @@ PYBIND11_MODULE(sol, m) {
   m.def(
       "geodesic_polylines",
       [](const std::array<double, 3>& from, const Points& directions, double length, int segments) {
-        py::list out;
-        for (const auto& line : sol::geodesic_polylines(vec3(from), rows(directions, "directions"), length, segments)) {
-          out.append(rows_array(line));
+        const std::vector<glm::dvec3> dirs = rows(directions, "directions");
+        char what[96];
+        std::snprintf(what, sizeof what, "sol.geodesic_polylines: %zu directions x %lld points", dirs.size(),
+                      static_cast<long long>(segments) + 1);
+        check_points(static_cast<double>(dirs.size()) * (segments + 1.0), sol::kMaxPolylinePoints, what);
+        // A direction at a time (the checks of the arguments with the first),
+        // Ctrl-C heard between them.
+        std::vector<std::vector<glm::dvec3>> lines;
+        {
+          Interrupts interrupts;
+          py::gil_scoped_release release;
+          for (std::size_t i = 0; i < std::max<std::size_t>(dirs.size(), 1); ++i) {
+            interrupts.check();
+            const std::vector<glm::dvec3> one = dirs.empty() ? dirs : std::vector<glm::dvec3>{dirs[i]};
+            for (auto& line : sol::geodesic_polylines(vec3(from), one, length, segments)) lines.push_back(std::move(line));
+          }
         }
+        py::list out;
+        for (const auto& line : lines) out.append(rows_array(line));
         return out;
       },
       py::arg("start"), py::arg("directions"), py::arg("length"), py::arg("segments") = 100,
@@ -243,8 +315,22 @@ PYBIND11_MODULE(sol, m) {
   m.def(
       "cut_locus_curves",
       [](const std::array<double, 3>& center, const std::vector<double>& radii, int samples) {
+        char what[96];
+        std::snprintf(what, sizeof what, "sol.cut_locus_curves: %zu radii x 4 arcs x %d samples", radii.size(), samples);
+        check_points(static_cast<double>(radii.size()) * 4.0 * samples, sol::kMaxCutLocusPoints, what);
+        // A radius at a time, Ctrl-C heard between them.
+        std::vector<std::vector<glm::dvec3>> curves;
+        {
+          Interrupts interrupts;
+          py::gil_scoped_release release;
+          for (std::size_t i = 0; i < std::max<std::size_t>(radii.size(), 1); ++i) {
+            interrupts.check();
+            const std::vector<double> one = radii.empty() ? radii : std::vector<double>{radii[i]};
+            for (auto& curve : sol::cut_locus_curves(vec3(center), one, samples)) curves.push_back(std::move(curve));
+          }
+        }
         py::list out;
-        for (const auto& curve : sol::cut_locus_curves(vec3(center), radii, samples)) out.append(rows_array(curve));
+        for (const auto& curve : curves) out.append(rows_array(curve));
         return out;
       },
       py::arg("center"), py::arg("radii"), py::arg("samples") = 64,

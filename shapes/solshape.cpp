@@ -205,6 +205,13 @@ int geodesics(int argc, char** argv) {
   cl.parse(argc, argv);
   if (directions == 0) cl.fail("--directions N is required");
   if (length == 0.0) cl.fail("--length L is required");
+  // Before any work: the points the curves would hold (sol::kMaxPolylinePoints).
+  if (static_cast<double>(directions) * (segments + 1.0) > sol::kMaxPolylinePoints) {
+    char text[200];
+    std::snprintf(text, sizeof text, "--directions %d x (--segments %d + 1) = %.3g points; at most %.0e (fewer directions or segments)",
+                  directions, segments, static_cast<double>(directions) * (segments + 1.0), sol::kMaxPolylinePoints);
+    cl.fail(text);
+  }
   const std::string format = curve_format(cl, output);
   const auto lines = sol::geodesic_polylines(from.value_or(glm::dvec3(0.0)), spread_directions(directions), length, segments);
   sol::programs::OutputFile file(output);
@@ -238,6 +245,12 @@ int cut_locus(int argc, char** argv) {
   cl.set_footer("Every point has two minimising geodesics from the centre (sol::cut_locus_curves). docs/shapes.md.");
   cl.parse(argc, argv);
   if (radii.empty()) cl.fail("--radii R1,R2,... is required");
+  if (static_cast<double>(radii.size()) * 4.0 * samples > sol::kMaxCutLocusPoints) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%zu --radii x 4 arcs x --samples %d = %.3g points; at most %.0e (fewer radii or samples)",
+                  radii.size(), samples, static_cast<double>(radii.size()) * 4.0 * samples, sol::kMaxCutLocusPoints);
+    cl.fail(text);
+  }
   const std::string format = curve_format(cl, output);
   const auto curves = sol::cut_locus_curves(center.value_or(glm::dvec3(0.0)), radii, samples);
   sol::programs::OutputFile file(output);

@@ -114,6 +114,40 @@ TEST(ExactLight, DirectionsAreGeodesicsReachingTheLight) {
   EXPECT_EQ(sol::lights_at(light, p).size(), 1u);
 }
 
+// In the quotient the reach is bounded by the images enumerated: a reach
+// that needs images beyond them (an incomplete list, and seconds a lit
+// point) is refused when the world is prepared, naming the field and the
+// largest reach the light allows; that largest is accepted.
+TEST(ExactLight, QuotientReachBeyondTheEnumeratedImagesIsRefused) {
+  sol::Scene scene = sol::preset_scene("lattice-balls");
+  sol::Light light;
+  light.type = sol::LightType::Point;
+  light.exact = true;
+  light.position = {0.3, 0.2, 0.4};
+  light.reach = 10.0;
+  scene.lights = {light};
+  sol::CpuRenderer renderer;
+  double allowed = 0.0;
+  try {
+    renderer.set_world(scene);
+    ADD_FAILURE() << "reach 10 accepted in the quotient";
+  } catch (const sol::InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("lights[0].reach: reach 10 in the quotient", 0), 0u) << what;
+    const std::size_t at = what.find("at most ");
+    ASSERT_NE(at, std::string::npos) << what;
+    allowed = std::stod(what.substr(at + 8));
+  }
+  // The edge of |a|, |b| <= 22 lies about 3.3 from D, C about 2.1 (docs/lighting.md).
+  EXPECT_GT(allowed, 1.0);
+  EXPECT_LT(allowed, 1.4);
+  scene.lights[0].reach = allowed;
+  EXPECT_NO_THROW(renderer.set_world(scene));
+  // The figure is the bound rounded down by 0.01 to 0.02: 0.02 more is beyond it.
+  scene.lights[0].reach = allowed + 0.02;
+  EXPECT_THROW(renderer.set_world(scene), sol::InvalidArgument);
+}
+
 void expect_rejected(const std::string& json, const std::string& words) {
   try {
     (void)sol::parse_scene(json, "bad.json");
@@ -148,7 +182,7 @@ TEST(ExactScene, KeysAreValidatedAndRoundTrip) {
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "falloff": "geodesic"}]})",
                   "lights[0].falloff geodesic needs \"exact\": true");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "exact": true, "falloff": "cubic"}]})",
-                  "'lights[0].falloff' must be geodesic or inverse-square, got 'cubic'");
+                  "'lights[0].falloff' must be geodesic or inverse-square, got \"cubic\"");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": 1, "intensity": 2}]})", "takes 'power' or 'intensity', not both");
   expect_rejected(R"({"objects": [)" + ball + light + R"(, "power": -1}]})", "lights[0].power must be in");
   expect_rejected(R"({"objects": [)" + ball + R"(}], "lights": [{"type": "directional", "falloff": "geodesic"}]})", "falloff");

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
@@ -246,6 +247,32 @@ TEST(Geodesic, RejectsBadInput) {
   EXPECT_EQ(sol::flow({{1, 1, 0}, {0, 0, 1}}, 1000.0).position, dvec3(1, 1, 1000));
   // An arc length beyond double's resolution of the period: a clear error.
   EXPECT_THROW(sol::flow({dvec3(0.0), {0.48, 0.6, 0.64}}, 1e300), sol::OutOfRange);
+}
+
+// An arc length that would take the integrators minutes, or forever (a
+// step below the rounding of s never advances it), is refused with the
+// function named and the step limit, at once for RK4 (whose count is known
+// before it starts) and after the limit's steps for Dormand–Prince.
+TEST(Geodesic, IntegrationsBeyondTheStepLimitAreRefused) {
+  auto refused = [](auto&& call, const char* function) {
+    try {
+      call();
+      ADD_FAILURE() << function << " answered";
+    } catch (const sol::OutOfRange& e) {
+      EXPECT_NE(std::string(e.what()).find(function), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("integration steps"), std::string::npos) << e.what();
+    }
+  };
+  const sol::GeodesicState start{dvec3(0.0), {1.0, 0.2, 0.3}};
+  refused([&] { sol::flow(start, 1e5, rk4(1e-3)); }, "sol::flow");  // 1e8 steps
+  refused([&] { sol::flow(start, 1e300, rk4(1e-3)); }, "sol::flow");
+  refused([&] { sol::transport(start, 1e9); }, "sol::transport");
+  refused([&] { sol::sphere_area_density(dvec3(1, 0, 0), 1e9); }, "sol::sphere_area_density");
+  refused([&] { sol::sphere_area_density(dvec3(1, 0, 0), 1e308); }, "sol::sphere_area_density");
+  refused([&] { sol::sphere_area_density(glm::vec3(1, 0, 0), 1e30f); }, "sol::sphere_area_density");
+  // Within the limits, as before.
+  EXPECT_NO_THROW(sol::flow(start, 100.0, rk4(1e-3)));
+  EXPECT_NO_THROW(sol::transport(start, 50.0));
 }
 
 }  // namespace

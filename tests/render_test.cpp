@@ -843,7 +843,7 @@ TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
   for (unsigned threads : {1u, 2u, 4u}) {
     std::atomic<int> rows_run{0};
     try {
-      sol::detail::for_each_row(40, threads, nullptr, [&](int j) {
+      sol::detail::for_each_row(40, threads, nullptr, [&](int j, const std::atomic<bool>&) {
         ++rows_run;
         if (j == 7) throw sol::OutOfRange("row 7 failed");
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -853,6 +853,28 @@ TEST(Render, ErrorsInWorkerThreadsReachTheCaller) {
       EXPECT_STREQ(e.what(), "row 7 failed");
     }
     EXPECT_LT(rows_run.load(), 40) << threads << " threads";  // stopped early
+  }
+  // A progress callback that throws stops the hand-out: the way a caller
+  // (Python's Ctrl-C) stops a render. It is called between the calling
+  // thread's own rows too, so one thread stops as early as several.
+  for (unsigned threads : {1u, 2u}) {
+    std::atomic<int> rows_run{0};
+    std::vector<double> fractions;
+    auto stop_once_started = [&](double fraction) {
+      fractions.push_back(fraction);
+      if (fraction > 0.0) throw sol::Cancelled("stopped");
+    };
+    // 200 rows of 5 ms: 1 s per thread; the first report after a row lands
+    // at 200 ms, so the hand-out stops near row 40 per thread.
+    EXPECT_THROW(sol::detail::for_each_row(200, threads, stop_once_started,
+                                           [&](int, const std::atomic<bool>&) {
+                                             ++rows_run;
+                                             std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                                           }),
+                 sol::Cancelled);
+    EXPECT_LT(rows_run.load(), 150) << threads << " threads";
+    ASSERT_FALSE(fractions.empty());
+    EXPECT_EQ(fractions.front(), 0.0);  // a first report before any row is done
   }
   // A progress callback that throws (on the calling thread, while workers
   // run) also reaches the caller after they join.

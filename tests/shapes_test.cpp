@@ -270,4 +270,24 @@ TEST(GeodesicPolylines, MatchTheIntegratedFlow) {
   }
 }
 
+// Calls whose points exceed the bounds are refused before any work, with
+// the figure; one just inside is made.
+TEST(Shapes, WorkBeyondThePointBoundsIsRefused) {
+  const std::vector<dvec3> many(100000, dvec3(1, 0, 0));
+  try {
+    (void)sol::geodesic_polylines(dvec3(0.0), many, 3.0, 100000);
+    ADD_FAILURE() << "10^10 points accepted";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("100000 directions x 100001 points = 1e+10 points"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sol::geodesic_polylines(dvec3(0.0), std::vector<dvec3>(2, dvec3(1, 0, 0)), 3.0, 1000000).size(), 2u);
+  try {
+    (void)sol::cut_locus_curves(dvec3(0.0), std::vector<double>(1000, 5.0), 64);
+    ADD_FAILURE() << "256000 cut locus points accepted";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("1000 radii x 4 arcs x 64 samples = 2.56e+05 points"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sol::cut_locus_curves(dvec3(0.0), std::vector<double>(2, 5.0), 16).size(), 8u);
+}
+
 }  // namespace

@@ -338,8 +338,18 @@ class ProgressLine {
       if (tenth == last_tenth_) return;
       last_tenth_ = tenth;
     }
-    std::fprintf(stderr, "%ssolrender: %s%3.0f%%  %.2f M rays/s  %.1f s left%s", tty_ ? "\r" : "", prefix_.c_str(),
-                 100.0 * fraction, rate * 1e-6, left, tty_ ? "   " : "\n");
+    // Nothing finished yet: no rate to go by, and no estimate pretends to one.
+    char speed[48], remaining[48];
+    if (fraction > 0) {
+      if (rate >= 1e5) std::snprintf(speed, sizeof speed, "%.2f M rays/s", rate * 1e-6);
+      else std::snprintf(speed, sizeof speed, "%.0f rays/s", rate);
+      std::snprintf(remaining, sizeof remaining, "%.1f s left", left);
+    } else {
+      std::snprintf(speed, sizeof speed, "-- rays/s");
+      std::snprintf(remaining, sizeof remaining, "time left unknown");
+    }
+    std::fprintf(stderr, "%ssolrender: %s%3.0f%%  %s  %s%s", tty_ ? "\r" : "", prefix_.c_str(), 100.0 * fraction, speed,
+                 remaining, tty_ ? "   " : "\n");
   }
 
  private:

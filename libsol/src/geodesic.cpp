@@ -67,7 +67,8 @@ Method resolve(Method method) { return method == Method::Auto ? Method::ClosedFo
 
 // Q' = -B(u(t)) Q with u(t) from the closed form, integrated by Dormand–Prince
 // (state: Q column-major, then t): the transport ODE alone, no geodesic ODE.
-glm::dmat3 transport_along(const ClosedFormGeodesic<double>& geodesic, double t, double tolerance) {
+glm::dmat3 transport_along(const ClosedFormGeodesic<double>& geodesic, double t, double tolerance,
+                            const char* function) {
   auto rhs = [&geodesic](const State<10>& s) {
     const glm::dvec3 u = geodesic.direction_at(s[9]);
     State<10> r;
@@ -82,7 +83,7 @@ glm::dmat3 transport_along(const ClosedFormGeodesic<double>& geodesic, double t,
   };
   State<10> absolute;
   absolute.fill(1.0);
-  const State<10> y = detail::integrate_dormand_prince(rhs, State<10>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0}, t, tolerance, absolute);
+  const State<10> y = detail::integrate_dormand_prince(rhs, State<10>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0}, t, tolerance, absolute, function);
   return glm::dmat3(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8]);
 }
 
@@ -119,10 +120,11 @@ State<N> absolute_weights() {
 }
 
 template <std::size_t N, class F>
-State<N> integrate(const F& f, const State<N>& y0, double t, Method method, const FlowOptions& options) {
+State<N> integrate(const F& f, const State<N>& y0, double t, Method method, const FlowOptions& options,
+                   const char* function) {
   return method == Method::RK4
-             ? detail::integrate_rk4(f, y0, t, options.rk4_step)
-             : detail::integrate_dormand_prince(f, y0, t, options.tolerance, absolute_weights<N>());
+             ? detail::integrate_rk4(f, y0, t, options.rk4_step, function)
+             : detail::integrate_dormand_prince(f, y0, t, options.tolerance, absolute_weights<N>(), function);
 }
 
 template <std::size_t N>
@@ -149,7 +151,7 @@ GeodesicState flow(const GeodesicState& start, double t, const FlowOptions& opti
   const Method method = resolve(options.method);
   const glm::dvec3 u = glm::normalize(start.direction);
   if (method == Method::ClosedForm) return closed_form_state(ClosedFormGeodesic<double>(u), start.position, t, function);
-  const State<6> y = integrate(geodesic_rhs, State<6>{0, 0, 0, u.x, u.y, u.z}, t, method, options);
+  const State<6> y = integrate(geodesic_rhs, State<6>{0, 0, 0, u.x, u.y, u.z}, t, method, options, function);
   require_finite_result(y, function);
   // Left-invariance: the geodesic from p is p * (geodesic from the origin).
   return {moved_end(start.position, {y[0], y[1], y[2]}, function), {y[3], y[4], y[5]}};
@@ -172,7 +174,7 @@ FlowTransport flow_with_transport(const GeodesicState& start, double t, const Fl
   const glm::dvec3 u = glm::normalize(start.direction);
   if (method == Method::ClosedForm) {
     const ClosedFormGeodesic<double> geodesic(u);
-    const glm::dmat3 q = transport_along(geodesic, t, options.tolerance);
+    const glm::dmat3 q = transport_along(geodesic, t, options.tolerance, function);
     const State<9> values{q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1], q[2][2]};
     require_finite_result(values, function);
     return {closed_form_state(geodesic, start.position, t, function), q};
@@ -180,7 +182,7 @@ FlowTransport flow_with_transport(const GeodesicState& start, double t, const Fl
   // Q depends only on the frame velocity u(t), which is left-invariant, so
   // the start position does not enter.
   const State<15> y = integrate(transport_rhs, State<15>{0, 0, 0, u.x, u.y, u.z, 1, 0, 0, 0, 1, 0, 0, 0, 1},
-                                t, method, options);
+                                t, method, options, function);
   require_finite_result(y, function);
   return {{multiply(start.position, {y[0], y[1], y[2]}), {y[3], y[4], y[5]}},
           glm::dmat3(y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13], y[14])};

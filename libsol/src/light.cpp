@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 #include <string>
@@ -126,14 +127,31 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
   const double radius = cover + 0.87 + light.reach;
   std::vector<glm::dvec3> images;
   const int layers = static_cast<int>(std::ceil(radius / lattice.height())) + 1;
+  // The words enumerated, as the objects' images (sol::quotient_images):
+  // an image on the edge of that square within R means others beyond it
+  // are too, and the list would be silently short. The nearest edge image
+  // bounds the reach that keeps it whole.
+  const int range = Ball{}.lattice_range();
+  double nearest_edge = std::numeric_limits<double>::infinity();
   for (int c = -layers; c <= layers; ++c) {
-    const int range = Ball{}.lattice_range();  // as the objects' images (sol::quotient_images)
     for (int a = -range; a <= range; ++a) {
       for (int b = -range; b <= range; ++b) {
         const glm::dvec3 q = multiply(lattice.element(a, b, c), l0);
-        if (Ball{q, 0.0}.least_distance_over_domain(lattice) <= radius) images.push_back(q);
+        const double d = Ball{q, 0.0}.least_distance_over_domain(lattice);
+        if (d <= radius) images.push_back(q);
+        if (std::abs(a) == range || std::abs(b) == range) nearest_edge = std::min(nearest_edge, d);
       }
     }
+  }
+  if (nearest_edge <= radius) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "reach %g in the quotient needs the light's images beyond the %d x %d lattice words enumerated "
+                  "(%zu images lie within %.2f of the domain, some on its edge, and each point of a surface would "
+                  "look for connections to many of them); this light allows a reach of at most %.2f",
+                  light.reach, 2 * range + 1, 2 * range + 1, images.size(), radius,
+                  std::max(0.0, std::floor(100.0 * (nearest_edge - cover - 0.87)) / 100.0 - 0.01));
+    throw InvalidArgument(text);
   }
   return images;
 }

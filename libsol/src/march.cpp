@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
 
+#include "field_error.hpp"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
 #include "sol/quotient_field.hpp"
@@ -176,7 +178,14 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   if (m_lattice) {
     std::tie(m_objects, m_max_step) = listed_images(world);
     m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
-    for (const Light& l : world.lights) m_light_images.push_back(quotient_light_images(l, *m_lattice));
+    for (std::size_t i = 0; i < world.lights.size(); ++i) {
+      try {
+        m_light_images.push_back(quotient_light_images(world.lights[i], *m_lattice));
+      } catch (const InvalidArgument& e) {
+        const std::string at = "lights[" + std::to_string(i) + "].reach";
+        detail::field_error(at, at + ": " + e.what());
+      }
+    }
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
   }

@@ -7,8 +7,26 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <string>
+
+#include "sol/error.hpp"
 
 namespace sol::detail {
+
+/// The most steps either integrator takes: about a second of work for these
+/// small systems on one core (RK4's count is known before the first step,
+/// Dormand–Prince's is counted as it goes). Beyond it, OutOfRange naming
+/// the caller: an arc length that would take minutes, or never end, is
+/// refused rather than followed.
+inline constexpr long long kMaxRk4Steps = 10'000'000;
+inline constexpr long long kMaxDormandPrinceSteps = 1'000'000;
+
+[[noreturn]] inline void too_many_steps(const char* function, long long limit, double t) {
+  char text[160];
+  std::snprintf(text, sizeof text, ": t = %g needs more than %lld integration steps; shorten t", t, limit);
+  throw OutOfRange(function + std::string(text));
+}
 
 template <std::size_t N>
 using State = std::array<double, N>;
@@ -20,11 +38,13 @@ inline State<N> axpy(const State<N>& y, double h, const State<N>& k) {
   return r;
 }
 
-/// Classical RK4 with ceil(|t| / max_step) equal steps.
+/// Classical RK4 with ceil(|t| / max_step) equal steps (at most kMaxRk4Steps,
+/// else OutOfRange naming `function`).
 template <std::size_t N, class F>
-State<N> integrate_rk4(const F& f, State<N> y, double t, double max_step) {
+State<N> integrate_rk4(const F& f, State<N> y, double t, double max_step, const char* function) {
   if (t == 0.0) return y;
   const double steps = std::max(1.0, std::ceil(std::abs(t) / max_step));
+  if (!(steps <= static_cast<double>(kMaxRk4Steps))) too_many_steps(function, kMaxRk4Steps, t);
   const auto n = static_cast<long long>(steps);
   const double h = t / steps;
   for (long long step = 0; step < n; ++step) {
@@ -43,10 +63,13 @@ State<N> integrate_rk4(const F& f, State<N> y, double t, double max_step) {
 /// absolute_i = 1 gives mixed control (absolute for small components,
 /// relative for large ones, as x grows like e^{2z}); absolute_i = 0 gives
 /// purely relative control, needed for components such as u1 = a e^{z} that
-/// decay exponentially but whose relative value carries the geodesic.
+/// decay exponentially but whose relative value carries the geodesic. At
+/// most kMaxDormandPrinceSteps trial steps, else OutOfRange naming
+/// `function` (also where a step no longer advances s: |t| beyond 2^53
+/// steps' worth of rounding).
 template <std::size_t N, class F>
-State<N> integrate_dormand_prince(const F& f, State<N> y, double t, double tolerance,
-                                  const State<N>& absolute) {
+State<N> integrate_dormand_prince(const F& f, State<N> y, double t, double tolerance, const State<N>& absolute,
+                                  const char* function) {
   if (t == 0.0) return y;
   constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
   constexpr double a21 = 1.0 / 5;
@@ -69,7 +92,8 @@ State<N> integrate_dormand_prince(const F& f, State<N> y, double t, double toler
   // Initial step: a 5th-order method with local error ~ h^5 meets the tolerance near h = tol^{1/5}.
   double h = std::min(length, 0.5 * std::pow(tolerance, 0.2));
   State<N> k1 = f(y);
-  while (done < length) {
+  for (long long trials = 0; done < length; ++trials) {
+    if (trials == kMaxDormandPrinceSteps) too_many_steps(function, kMaxDormandPrinceSteps, t);
     if (done + h >= length) h = length - done;
     const double hs = direction * h;
     State<N> tmp;
@@ -97,6 +121,7 @@ State<N> integrate_dormand_prince(const F& f, State<N> y, double t, double toler
     }
     if (!std::isfinite(error)) error = 1e10;  // overflow in a trial step: shrink
     if (error <= 1.0) {
+      if (done + h == done) too_many_steps(function, kMaxDormandPrinceSteps, t);  // s no longer advances
       done += h;
       y = next;
       k1 = k7;  // first same as last

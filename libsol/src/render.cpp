@@ -535,9 +535,12 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
   };
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
-  detail::for_each_row(h, threads, settings.progress, [&](int j) {
+  detail::for_each_row(h, threads, settings.progress, [&](int j, const std::atomic<bool>& stopping) {
     if (settings.cancel && settings.cancel->load()) throw Cancelled("sol::CpuRenderer::render: cancelled");
     for (int i = 0; i < w; ++i) {
+      // A row of many samples can take seconds: once the render stops (an
+      // error elsewhere, a cancelled progress), the rest of it is dropped.
+      if (stopping.load(std::memory_order_relaxed)) return;
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
@@ -587,33 +590,50 @@ RenderResult render_cpu_stereo(const Scene& scene, const RenderOptions& options,
 namespace sol::detail {
 
 void for_each_row(int rows, unsigned threads, const std::function<void(double)>& progress,
-                  const std::function<void(int)>& row) {
+                  const std::function<void(int, const std::atomic<bool>&)>& row) {
+  using Clock = std::chrono::steady_clock;
+  constexpr auto kInterval = std::chrono::milliseconds(200);
   std::atomic<int> next{0}, done{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
-  auto worker = [&] {
+  auto fail = [&] {
+    const std::lock_guard<std::mutex> lock(error_mutex);
+    if (!error) error = std::current_exception();
+    failed = true;
+  };
+  // The calling thread reports (and so may be stopped by `progress`) every
+  // kInterval, between its own rows once it takes rows too.
+  auto last_report = Clock::now();
+  auto report = [&] {
+    if (!progress || Clock::now() - last_report < kInterval) return;
+    last_report = Clock::now();
+    progress(static_cast<double>(done.load()) / rows);
+  };
+  auto worker = [&](bool reporter) {
     try {
       for (int j = next++; j < rows && !failed; j = next++) {
-        row(j);
+        row(j, failed);
         ++done;
+        if (reporter) report();
       }
     } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      failed = true;
+      fail();
     }
   };
   {
     std::vector<std::jthread> pool;
-    for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
-    if (progress && !pool.empty()) {
-      while (done.load() < rows && next.load() < rows && !failed) {
-        progress(static_cast<double>(done.load()) / rows);
-        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker, false);
+    try {
+      if (progress) progress(0.0);
+      while (progress && !pool.empty() && done.load() < rows && next.load() < rows && !failed) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        report();
       }
+    } catch (...) {
+      fail();  // the others stop at their next row
     }
-    worker();  // the calling thread takes the rows left
+    worker(true);  // the calling thread takes the rows left
   }  // joins the pool
   if (error) std::rethrow_exception(error);
   if (progress) progress(1.0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -328,6 +329,14 @@ std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, 
   if (segments < 1 || segments > 1000000) {
     throw InvalidArgument("sol::geodesic_polylines: segments must be in [1, 1000000], got " + std::to_string(segments));
   }
+  const double points = static_cast<double>(directions.size()) * (segments + 1.0);
+  if (points > kMaxPolylinePoints) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "sol::geodesic_polylines: %zu directions x %d points = %.3g points; at most %.0e in one call", directions.size(),
+                  segments + 1, points, kMaxPolylinePoints);
+    throw InvalidArgument(text);
+  }
   std::vector<std::vector<glm::dvec3>> lines;
   for (const glm::dvec3& d : directions) {
     if (!std::isfinite(d.x + d.y + d.z) || !(glm::length(d) > 0.0)) {
@@ -353,6 +362,14 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
   check_center(center, "sol::cut_locus_curves");
   if (samples < 2 || samples > 100000) {
     throw InvalidArgument("sol::cut_locus_curves: samples must be in [2, 100000], got " + std::to_string(samples));
+  }
+  const double points = static_cast<double>(radii.size()) * 4.0 * samples;
+  if (points > kMaxCutLocusPoints) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "sol::cut_locus_curves: %zu radii x 4 arcs x %d samples = %.3g points; at most %.0e in one call",
+                  radii.size(), samples, points, kMaxCutLocusPoints);
+    throw InvalidArgument(text);
   }
   std::vector<std::vector<glm::dvec3>> curves;
   for (double r : radii) {

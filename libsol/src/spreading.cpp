@@ -52,10 +52,9 @@ void variation_rhs(const Vec3<T>& u, const S& y, S& r, std::size_t o) {
   r[o + 5] = T(2) * (u.y * d2 - u.x * d1);
 }
 
-}  // namespace
-
-double jacobi_determinant(const glm::dvec3& direction, double t) {
-  const glm::dvec3 v = checked_direction(direction, t, "sol::jacobi_determinant");
+// jacobi_determinant, its errors naming `function`.
+double jacobi_determinant_of(const glm::dvec3& direction, double t, const char* function) {
+  const glm::dvec3 v = checked_direction(direction, t, function);
   if (t == 0.0) return 0.0;
   glm::dvec3 w1, w2;
   orthonormal_pair(v, w1, w2);
@@ -73,14 +72,22 @@ double jacobi_determinant(const glm::dvec3& direction, double t) {
   const double small = std::min(1.0, t);
   const State<13> weights{small, small, small, 1, 1, 1, small, small, small, 1, 1, 1, 1};
   const State<13> start{0, 0, 0, w1.x, w1.y, w1.z, 0, 0, 0, w2.x, w2.y, w2.z, 0};
-  const State<13> y = detail::integrate_dormand_prince(rhs, start, t, 1e-12, weights);
+  const State<13> y = detail::integrate_dormand_prince(rhs, start, t, 1e-12, weights, function);
   const glm::dvec3 y1(y[0], y[1], y[2]), y2(y[6], y[7], y[8]);
   const double d = glm::dot(glm::cross(y1, y2), geodesic.direction_at(t));
-  if (!std::isfinite(d)) throw OutOfRange("sol::jacobi_determinant: the Jacobi fields overflow; shorten t");
+  if (!std::isfinite(d)) throw OutOfRange(std::string(function) + ": the Jacobi fields overflow; shorten t");
   return d;
 }
 
-double sphere_area_density(const glm::dvec3& direction, double t) { return std::abs(jacobi_determinant(direction, t)); }
+}  // namespace
+
+double jacobi_determinant(const glm::dvec3& direction, double t) {
+  return jacobi_determinant_of(direction, t, "sol::jacobi_determinant");
+}
+
+double sphere_area_density(const glm::dvec3& direction, double t) {
+  return std::abs(jacobi_determinant_of(direction, t, "sol::sphere_area_density"));
+}
 
 float sphere_area_density(const glm::vec3& direction, float t) {
   // The kernel's method (compute/shaders/sol_spreading.glsl): u and both
@@ -99,7 +106,11 @@ float sphere_area_density(const glm::vec3& direction, float t) {
     return r;
   };
   std::array<float, 15> y{0, 0, 0, w1.x, w1.y, w1.z, 0, 0, 0, w2.x, w2.y, w2.z, v.x, v.y, v.z};
-  const int steps = std::max(1, static_cast<int>(std::ceil(t / static_cast<float>(kernel::kSpreadingStep))));
+  const float count = std::max(1.0f, std::ceil(t / static_cast<float>(kernel::kSpreadingStep)));
+  if (!(count <= static_cast<float>(detail::kMaxRk4Steps))) {
+    detail::too_many_steps("sol::sphere_area_density", detail::kMaxRk4Steps, t);
+  }
+  const int steps = static_cast<int>(count);
   const float h = t / static_cast<float>(steps);
   auto add = [](const std::array<float, 15>& a, float f, const std::array<float, 15>& k) {
     std::array<float, 15> r;

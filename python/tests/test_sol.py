@@ -2,6 +2,7 @@
 solrender) and libsol's own identities. Run by ctest (python.pytest), which
 puts the built module on PYTHONPATH and names the programs in SOLGEODESIC
 and SOLRENDER."""
+import json
 import math
 import os
 import subprocess
@@ -213,3 +214,54 @@ def test_camera_rays_follow_the_camera_convention():
     assert abs(end[2]) < 1e-4
     with pytest.raises(ValueError, match="width and height"):
         sol.camera_rays(scene, 0, 4)
+
+
+def test_messages_are_text_and_values_shown_as_written():
+    # Bytes that are not UTF-8 are named in the message, not lost with it.
+    with pytest.raises(ValueError, match=r"malformed JSON.*\\xFF"):
+        sol.parse_scene(b"\xff\xfe")
+    # A string where a number belongs is shown quoted.
+    with pytest.raises(ValueError, match=r"'camera.fov' must be a number, got \"4\""):
+        sol.parse_scene('{"camera": {"fov": "4"}, "objects": [{"type": "plane_z"}]}')
+
+
+def test_unbounded_work_is_refused_up_front():
+    # Arguments whose cost has no useful bound are refused at once with the figure (each would run for
+    # minutes, or forever).
+    with pytest.raises(ValueError, match="integration steps"):
+        sol.sphere_area_density((1, 0, 0), 1e9)
+    with pytest.raises(ValueError, match="integration steps"):
+        sol.sphere_area_density((1, 0, 0), 1e308)
+    with pytest.raises(ValueError, match=r"1000000 directions x 100001 points = 1e\+11 points; at most 1e\+07"):
+        sol.geodesic_polylines((0, 0, 0), np.tile((1.0, 0.0, 0.0), (1000000, 1)), 3.0, 100000)
+    with pytest.raises(ValueError, match=r"100000 radii x 4 arcs x 64 samples = 2.56e\+07 points"):
+        sol.cut_locus_curves((0, 0, 0), [5.0] * 100000, 64)
+    # An exact light's reach in the quotient that would need images beyond those enumerated.
+    scene = json.loads(sol.preset_scene("lattice-balls").to_json())
+    scene["lights"] = [{"type": "point", "position": [0.3, 0.2, 0.4], "exact": True, "reach": 10}]
+    with pytest.raises(ValueError, match=r"lights\[0\].reach: reach 10 in the quotient .* at most 1\.\d\d"):
+        sol.CpuRenderer(sol.parse_scene(json.dumps(scene)))
+
+
+@pytest.mark.parametrize("call", ["render", "polylines", "distances"])
+def test_long_calls_hear_ctrl_c(call):
+    # Ctrl-C (here _thread.interrupt_main, which raises SIGINT's KeyboardInterrupt in the main thread) stops a
+    # long call within a fraction of a second, where it used to run to its end (61 s for a render).
+    import _thread
+    import threading
+    import time
+
+    work = {
+        "render": lambda: sol.render_cpu(sol.preset_scene("spheres"), 2048, 2048, 16),  # minutes here
+        "polylines": lambda: sol.geodesic_polylines((0, 0, 0), np.tile((1.0, 0.2, 0.3), (10000, 1)), 3.0, 999),
+        "distances": lambda: sol.distances((0, 0, 0), np.tile((3.0, 1.0, 0.5), (2000000, 1))),
+    }[call]
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    started = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        work()
+        time.sleep(30)  # finished before the timer: the interrupt arrives here and the test fails on time
+    elapsed = time.monotonic() - started
+    timer.cancel()
+    assert elapsed < 5.0, f"{call} stopped {elapsed:.1f} s after it started (interrupted at 0.5 s)"

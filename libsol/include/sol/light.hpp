@@ -93,7 +93,9 @@ std::vector<LightAtPoint> lights_at(const Light& light, const glm::dvec3& p);
 /// distance from any point of D to its nearest image (computed: the
 /// largest over a 7³ grid of D of the least distance to the images with
 /// |a|, |b| <= 2, |c| <= 1, plus 0.87, the longest path from a point of D
-/// to its nearest grid node; docs/lighting.md).
+/// to its nearest grid node; docs/lighting.md). Throws InvalidArgument, with
+/// the largest reach the light allows, where images beyond the lattice
+/// words enumerated (those of the objects' images) would lie within R.
 std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice& lattice);
 
 /// lights_at in the quotient, p in D, `images` from quotient_light_images:

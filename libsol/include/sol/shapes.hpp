@@ -75,12 +75,19 @@ double cut_time(const glm::dvec3& direction);
 Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions);
 
 
+/// The most points geodesic_polylines makes in one call: directions ×
+/// (segments + 1) up to 10⁷, 240 MB of points and about 6 s on one core.
+inline constexpr double kMaxPolylinePoints = 1e7;
+/// The most points cut_locus_curves makes in one call: radii × 4 arcs ×
+/// samples up to 10⁵, each found by bisection (about 7 s on one core).
+inline constexpr double kMaxCutLocusPoints = 1e5;
+
 /// Geodesics from `from` along each of `directions` (frame components,
 /// normalised here) to arc length `length`, each as segments + 1 points
 /// evenly spaced in arc length (sol::flow: the closed form). Throws
-/// InvalidArgument for non-finite input, a zero direction, length <= 0 or
-/// segments outside [1, 10⁶]; OutOfRange where a point overflows double (as
-/// sol::flow).
+/// InvalidArgument for non-finite input, a zero direction, length <= 0,
+/// segments outside [1, 10⁶] or more than kMaxPolylinePoints points in all;
+/// OutOfRange where a point overflows double (as sol::flow).
 std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, const std::vector<glm::dvec3>& directions,
                                                         double length, int segments);
 
@@ -92,7 +99,8 @@ std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, 
 /// the rim cut_time = r, mapped by exp. Every point has two minimising
 /// geodesics from the centre, of length r (the direction and its mirror).
 /// The arcs lie in the horizontal plane through the centre; radii fill the
-/// cut locus out to the largest. Throws InvalidArgument for bad input.
+/// cut locus out to the largest. Throws InvalidArgument for bad input and
+/// for more than kMaxCutLocusPoints points in all.
 std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, const std::vector<double>& radii,
                                                       int samples);
 
