@@ -74,9 +74,10 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   return r;
 }
 
-// -o for a film: where its one printf frame number (%d, %06d: at most two
-// width digits) ends, the 'd'; none when there is not exactly one such
-// conversion or there is another (%% is a percent sign).
+// -o for a film: where its one printf frame number (%d, or zero-padded as
+// %06d: a 0 and at most two width digits; a width without the 0 pads with
+// spaces, names no one wants) ends, the 'd'; none when there is not
+// exactly one such conversion or there is another (%% is a percent sign).
 std::optional<std::size_t> frame_number_end(const std::string& pattern) {
   std::optional<std::size_t> found;
   for (std::size_t i = 0; i < pattern.size(); ++i) {
@@ -86,8 +87,14 @@ std::optional<std::size_t> frame_number_end(const std::string& pattern) {
       continue;
     }
     std::size_t j = i + 1;
+    const bool zero = j < pattern.size() && pattern[j] == '0';
+    if (zero) ++j;
+    const std::size_t width_start = j;
     while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
-    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2 || found) return std::nullopt;
+    const std::size_t width = j - width_start;
+    if (j >= pattern.size() || pattern[j] != 'd' || width > 2 || (width > 0 && !zero) || (zero && width == 0) || found) {
+      return std::nullopt;
+    }
     found = j;
     i = j;
   }
@@ -277,7 +284,7 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
   }
   if (!o.aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
   if (!frame_number_end(o.output)) {
-    cl.fail("-o " + o.output + ": with --path the name needs one frame number such as %06d (frame-%06d.png)");
+    cl.fail("-o " + o.output + ": with --path the name needs one frame number, %d or zero-padded such as %06d (frame-%06d.png)");
   }
   const long count = film.path.frame_count(o.fps);
   film.end = count;
