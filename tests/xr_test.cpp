@@ -63,6 +63,7 @@ void expect_clean(const SolxrRun& r) {
   EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
   EXPECT_FALSE(contains(r.err, "LEAK")) << r.err;
   EXPECT_FALSE(contains(r.err, "validation error")) << r.err;
+  EXPECT_FALSE(contains(r.err, "validation warning")) << r.err;  // performance warnings too (a blit from GENERAL)
 }
 
 struct Image {
@@ -389,6 +390,35 @@ TEST(XrSolxr, NoHeadsetIsAClearError) {
   const SolxrRun r = run_solxr("nohmd", R"({"mode": "no_hmd"})", "");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_TRUE(contains(r.err, "finds no headset")) << r.err;
+  EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
+}
+
+TEST(XrSolxr, RecommendedSizesOutOfRangeAreClearErrors) {
+  // A runtime that recommends an eye of 0 or 100000 pixels, or one more than
+  // solxr renders, is named (it crashed inside the runtime's swapchain
+  // creation, aborted, or went on to Vulkan); --width/--height override it.
+  for (const char* size : {"0", "100000", "16385"}) {
+    const SolxrRun r = run_solxr(std::string("recommended") + size,
+                                 std::string(R"({"width": )") + size + R"(, "height": 8, "frames": [{}]})", "--scene plane");
+    EXPECT_EQ(r.exit_code, 1) << size << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, std::string("the OpenXR runtime recommends an eye width of ") + size)) << r.err;
+    EXPECT_TRUE(contains(r.err, "give --width and --height")) << r.err;
+    EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
+  }
+  expect_clean(run_solxr("recommended_overridden",
+                         R"({"width": 0, "height": 0, "fov_angles": [-30, 30, -25, 25], "frames": [{}]})",
+                         "--scene plane --width 8 --height 6"));
+}
+
+TEST(XrSolxr, AnEyeBeyondTheHeightsIsAClearError) {
+  // The plane scene looks down (-z in Sol) and OpenXR's forward is -z: a head
+  // 1000 m forward puts the eye at z = -1000, where nothing can be rendered
+  // (it rendered black frames and exited 0).
+  const SolxrRun r = run_solxr("eye_too_low", R"({"width": 8, "height": 8, "ipd": 0, "frames": [{"position": [0, 0, -1000]}]})",
+                               "--scene plane");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "the head pose at (0, 0, -1000) m (--scale 1) puts the eye where solxr cannot render")) << r.err;
+  EXPECT_TRUE(contains(r.err, "height z within [-80, 80]")) << r.err;
   EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
 }
 

@@ -325,6 +325,30 @@ void create_session(App& app, const Options& o) {
   xr_check(xrCreateReferenceSpace(app.session, &space_info, &app.space), "xrCreateReferenceSpace");
 }
 
+/// The per-eye width or height: `option` where given, else the runtime's
+/// recommendation, checked against what solxr renders (1..16384), the
+/// runtime's largest and the device's largest 2D image: a runtime that
+/// recommends 0 or 100000 is named, not followed into its own or Vulkan's
+/// failure.
+std::uint32_t eye_size(int option, const char* flag, const char* what, std::uint32_t recommended, std::uint32_t runtime_max,
+                       std::uint32_t device_max) {
+  const std::uint32_t most = std::min({std::uint32_t{16384}, runtime_max, device_max});
+  const std::string limits = "at most " + std::to_string(most) + " (solxr 16384, the runtime " +
+                             std::to_string(runtime_max) + ", the device " + std::to_string(device_max) + ")";
+  if (option > 0) {
+    if (static_cast<std::uint32_t>(option) > most) {
+      throw XrError(std::string(flag) + " " + std::to_string(option) + ": the eye's " + what + " must be " + limits);
+    }
+    return static_cast<std::uint32_t>(option);
+  }
+  if (recommended < 1 || recommended > most) {
+    throw XrError("the OpenXR runtime recommends an eye " + std::string(what) + " of " + std::to_string(recommended) +
+                  ", which must be " + (recommended < 1 ? std::string("at least 1") : limits) +
+                  "; give --width and --height");
+  }
+  return recommended;
+}
+
 /// One swapchain per view, in the first format (the runtime's preference
 /// comes first) that solxr can fill; images are written by transfer.
 std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width, std::uint32_t& height) {
@@ -347,8 +371,12 @@ std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width,
     throw XrError("the OpenXR runtime offers no swapchain format solxr can fill (RGBA32F, RGBA8 sRGB, BGRA8 sRGB)");
   }
 
-  width = o.width > 0 ? static_cast<std::uint32_t>(o.width) : views[0].recommendedImageRectWidth;
-  height = o.height > 0 ? static_cast<std::uint32_t>(o.height) : views[0].recommendedImageRectHeight;
+  VkPhysicalDeviceProperties device{};
+  vkGetPhysicalDeviceProperties(app.context->physical_device(), &device);
+  width = eye_size(o.width, "--width", "width", views[0].recommendedImageRectWidth, views[0].maxImageRectWidth,
+                   device.limits.maxImageDimension2D);
+  height = eye_size(o.height, "--height", "height", views[0].recommendedImageRectHeight, views[0].maxImageRectHeight,
+                    device.limits.maxImageDimension2D);
   for (std::size_t v = 0; v < views.size(); ++v) {
     Eye& eye = app.eyes.emplace_back();
     auto info = xr_struct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
@@ -473,7 +501,11 @@ void locomote(App& app, sol::Observer& base, const Options& o, double seconds, b
   if (move && (move->x != 0.0 || move->y != 0.0)) {
     // Stick forward walks along the geodesic straight ahead, sideways strafes.
     const glm::dvec3 local(move->x, 0.0, move->y);
+    // The walk stops at the heights the renderer draws (|z| <= 80), with 1
+    // to spare for the head's own offsets: a step beyond is not taken.
+    const sol::Observer before = base;
     base.move(local, glm::length(local) * o.speed * seconds);
+    if (!(std::abs(base.position().z) <= 79.0)) base = before;
   }
 }
 
@@ -522,21 +554,24 @@ void render_on_device(App& app, Eye& eye, const sol::Camera& camera, std::uint32
   const double ms = with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
     app.renderer->record(cmd, std::span<const sol::Camera>(&camera, 1), static_cast<int>(width), static_cast<int>(height),
                          rendered);
-    // The kernel's writes must land before the blit reads them (the image stays GENERAL).
+    // The kernel's writes must land before the blit reads them, from the
+    // layout made for reading by transfers (GENERAL costs some devices a
+    // slower path, which the validation layers point out).
     sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                           VK_IMAGE_LAYOUT_GENERAL);
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     begin_transfer_to(cmd, target);
     VkImageBlit region{};
     region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.srcOffsets[1] = region.dstOffsets[1] = {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height), 1};
-    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_GENERAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                   &region, VK_FILTER_NEAREST);
+    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
     end_transfer_to(cmd, target);
-    // The next frame's kernel writes the image again only after this blit has read it.
+    // The next frame's kernel writes the image again (GENERAL, as the kernel
+    // takes it) only after this blit has read it.
     sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                           VK_IMAGE_LAYOUT_GENERAL);
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
   });
   const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
   timing.render_ms += elapsed;
@@ -606,6 +641,14 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
     // Per frame only the eyes change: the world was prepared once (run).
     sol::Camera camera = sol::xr::eye_camera(base, pose, o.scale, scene.camera);
     camera.frustum = frustum;
+    try {
+      sol::validate(camera);
+    } catch (const sol::InvalidArgument& e) {
+      char where[160];
+      std::snprintf(where, sizeof where, "view %zu: the head pose at (%g, %g, %g) m (--scale %g) puts the eye where solxr cannot render: ",
+                    v, pose.position.x, pose.position.y, pose.position.z, o.scale);
+      throw XrError(where + std::string(e.what()));
+    }
     if (eye.rendered) {
       render_on_device(app, eye, camera, width, height, timing);
     } else {
