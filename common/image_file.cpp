@@ -50,18 +50,31 @@ bool can_write(const std::string& path) {
 std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
                  const std::vector<float>& interleaved, bool srgb_for_8bit) {
   const std::string& path = file.target();
-  const int channels = static_cast<int>(channel_names.size());
-  if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+  const int given = static_cast<int>(channel_names.size());
+  if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * given) {
     throw std::runtime_error(path + ": internal error: pixel data size does not match the image");
   }
   // The writer is chosen from the target's name; it writes the temporary.
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error(path + ": no image format for this file name (" + OIIO::geterror() + ")");
+  // RGBA into a format without alpha (Radiance .hdr, .ppm: "can only
+  // support 3-channel images", after the whole render): RGB alone. The
+  // renders' alpha is 1 everywhere; nothing is lost.
+  const bool drop_alpha = given == 4 && channel_names[3] == "A" && !out->supports("alpha");
+  const int channels = drop_alpha ? 3 : given;
+  std::vector<float> data;
+  if (drop_alpha) {
+    data.reserve(interleaved.size() / 4 * 3);
+    for (std::size_t i = 0; i < interleaved.size(); ++i) {
+      if (i % 4 != 3) data.push_back(interleaved[i]);
+    }
+  } else {
+    data = interleaved;
+  }
   const bool as_float = float_format(path);
   OIIO::ImageSpec spec(width, height, channels, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  spec.channelnames = channel_names;
+  spec.channelnames.assign(channel_names.begin(), channel_names.begin() + channels);
   if (channels == 4 && channel_names[3] == "A") spec.alpha_channel = 3;
-  std::vector<float> data = interleaved;
   std::size_t non_finite = 0;
   for (float& v : data) {
     if (!std::isfinite(v)) {

@@ -1,6 +1,8 @@
 // What the programs share (Sol::programs, common/): output files that are
 // complete or absent, also when a signal ends the program.
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <csignal>
 #include <cstdio>
@@ -259,5 +261,41 @@ TEST(ImageFile, NonFiniteValuesAreWrittenAsZeroAndCounted) {
   ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, back.data()));
   const std::vector<float> expected = {0.5f, 0.0f, 0.25f, 1.0f, 0.0f, 0.125f, 0.0f, 1.0f};
   EXPECT_EQ(back, expected);
+  fs::remove_all(d);
+}
+
+// RGBA into formats without alpha (Radiance .hdr, .ppm) is written as RGB
+// (both refused the image after the render): the colour as written, within
+// each format's own precision (RGBE: an 8-bit mantissa shared by the
+// three, 2^-8 of the largest; 8-bit sRGB: half a step of 1/255 after the
+// encoding, compared here in the encoded values).
+TEST(ImageFile, RgbaIntoFormatsWithoutAlphaKeepsTheColour) {
+  const fs::path d = fresh_directory("noalpha");
+  const std::vector<float> pixels = {0.5f, 0.25f, 0.125f, 1.0f, 2.0f, 0.75f, 0.0625f, 1.0f};  // 2x1 RGBA, linear
+  for (const char* name : {"a.hdr", "a.ppm"}) {
+    const std::string path = (d / name).string();
+    ASSERT_NO_THROW(sol::programs::write_image(path, 2, 1, {"R", "G", "B", "A"}, pixels, true)) << name;
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << name;
+    ASSERT_EQ(in->spec().nchannels, 3) << name;
+    std::vector<float> back(6);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data())) << name;
+    const bool hdr = std::string(name) == "a.hdr";
+    for (int p = 0; p < 2; ++p) {
+      for (int c = 0; c < 3; ++c) {
+        const float written = pixels[static_cast<std::size_t>(4 * p + c)];
+        const float got = back[static_cast<std::size_t>(3 * p + c)];
+        if (hdr) {
+          const float largest = std::max({pixels[4 * p], pixels[4 * p + 1], pixels[4 * p + 2]});
+          EXPECT_NEAR(got, written, largest / 256.0f) << name << " " << p << " " << c;
+        } else {
+          // sRGB bytes, read back as value / 255: the encoding of the clamped colour.
+          const float v = std::min(written, 1.0f);
+          const float encoded = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+          EXPECT_NEAR(got, encoded, 0.5f / 255.0f + 1e-6f) << name << " " << p << " " << c;
+        }
+      }
+    }
+  }
   fs::remove_all(d);
 }
