@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <functional>
 #include <map>
 #include <string>
@@ -20,6 +21,7 @@
 #include <benchmark/benchmark.h>
 #include <sol/sol.hpp>
 
+#include "output_file.hpp"
 #include "support/directions.hpp"
 #include "support/reference_geodesic.hpp"
 
@@ -177,20 +179,21 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 
-  std::FILE* out = std::fopen((csv_path + ".part").c_str(), "w");
-  if (!out) {
-    std::fprintf(stderr, "flow_bench: cannot write %s\n", csv_path.c_str());
-    return 1;
-  }
-  std::fprintf(out, "method,setting,arc_length,max_error,ns_per_eval\n");
+  std::string csv = "method,setting,arc_length,max_error,ns_per_eval\n";
   for (const Row& r : rows) {
     const auto it = reporter.ns_per_iteration.find(r.name);
     if (it == reporter.ns_per_iteration.end()) continue;  // filtered out by --benchmark_filter
-    std::fprintf(out, "%s,%s,%g,%.3e,%.1f\n", r.setting->method.c_str(), r.setting->setting.c_str(), r.t,
-                 r.max_error, it->second);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%s,%g,%.3e,%.1f\n", r.setting->method.c_str(), r.setting->setting.c_str(), r.t,
+                  r.max_error, it->second);
+    csv += line;
   }
-  std::fclose(out);
-  std::rename((csv_path + ".part").c_str(), csv_path.c_str());  // no partial file on failure
+  try {
+    sol::programs::write_text_file(csv_path, csv);  // every write checked: complete or absent
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "flow_bench: %s\n", e.what());
+    return 1;
+  }
   std::fprintf(stderr, "flow_bench: wrote %s\n", csv_path.c_str());
   return 0;
 }
