@@ -11,9 +11,11 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <spawn.h>
@@ -21,6 +23,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <sol/sol.hpp>
 
 #include "command_line.hpp"
@@ -127,19 +130,23 @@ std::string find_program(const std::string& name) {
   return {};
 }
 
+// ffmpeg's container for a --video file name (.mp4, .mkv, .mov), or none.
+const char* video_format(const std::string& video) {
+  std::string ext = std::filesystem::path(video).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::pair<const char*, const char*> formats[] = {{".mp4", "mp4"}, {".mkv", "matroska"}, {".mov", "mov"}};
+  for (const auto& [e, f] : formats) {
+    if (ext == e) return f;
+  }
+  return nullptr;
+}
+
 // Encodes the film's frames (from first_frame on, the -o pattern) into
 // `video` with ffmpeg: H.264 in yuv420p (sizes padded to even numbers),
 // written to a temporary and moved onto `video` when ffmpeg succeeds.
 void encode_video(const std::string& ffmpeg, const std::string& pattern, long first_frame, double fps,
                   const std::string& video) {
-  std::string ext = std::filesystem::path(video).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const std::pair<const char*, const char*> formats[] = {{".mp4", "mp4"}, {".mkv", "matroska"}, {".mov", "mov"}};
-  const char* format = nullptr;
-  for (const auto& [e, f] : formats) {
-    if (ext == e) format = f;
-  }
-  if (!format) throw std::runtime_error("--video " + video + ": give a .mp4, .mkv or .mov file");
+  const char* format = video_format(video);  // checked before the first frame (film_of)
   sol::programs::OutputFile out(video);
   const std::string rate = std::to_string(fps), start = std::to_string(first_frame);
   std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", rate, "-start_number", start,
@@ -173,7 +180,7 @@ struct Options {
   std::optional<double> fisheye_fov;
   sol::cli::IntegratorOptions flow;
   sol::cli::SceneOverrides overrides;
-  bool print_scene = false, progress = false;
+  bool print_scene = false, progress = false, overwrite = false;
   int width = 512, height = 512, spp = 0;  // spp 0: the scene's "samples"
   unsigned threads = 0;
 
@@ -218,6 +225,9 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_number("--fps", o.fps, "F", "frames per second of --path, (0, 1000] (default 24)", sol::cli::in_range(1e-3, 1000.0));
   cl.add_text("--frames", o.frames, "A:B", "with --path: frames A to B-1 only (either may be left out; default all)");
   cl.add_text("--video", o.video, "FILE.mp4", "with --path: encode the frames with ffmpeg into FILE (.mp4, .mkv, .mov)");
+  cl.add_flag("--overwrite", o.overwrite,
+              "with --path: render every frame of --frames again, replacing those there, and record these settings "
+              "(without it, frames rendered with other settings are refused, not mixed in)");
   cl.add_flag("--progress", o.progress,
               "a progress line on stderr (percent, rays/s, time left; the default when stderr is a terminal)");
   cl.set_footer(
@@ -268,7 +278,88 @@ struct Film {
   sol::CameraPath path;
   long first = 0, end = 0;  // frames first..end-1
   std::string ffmpeg;       // with --video
+  std::string manifest;     // the settings' file beside the frames (film_manifest)
 };
+
+// The film's manifest file: beside the frames, named as the pattern with
+// its frame number replaced by "film" and the extension by .json
+// (out/frame-%06d.png: out/frame-film.json).
+std::string manifest_name(const std::string& pattern) {
+  const std::size_t d = *frame_number_end(pattern);
+  const std::size_t percent = pattern.rfind('%', d);
+  std::filesystem::path name = pattern.substr(0, percent) + "film" + pattern.substr(d + 1);
+  name.replace_extension(".json");
+  return name.string();
+}
+
+// What makes the frames what they are, as JSON: the effective scene (the
+// camera options applied), the path, the frame rate, the size, the
+// samples, stereo and the integrator. The device and --frames are not in
+// it: shards of one film on other machines write the same manifest.
+std::string film_manifest(const Options& o, const sol::Scene& scene) {
+  nlohmann::ordered_json m;
+  m["solrender_film"] = 1;
+  m["scene"] = nlohmann::ordered_json::parse(sol::to_json(scene));
+  std::ifstream in(o.path_file);  // read and checked by load_camera_path
+  std::stringstream text;
+  text << in.rdbuf();
+  m["path"] = nlohmann::ordered_json::parse(text.str());
+  m["fps"] = o.fps;
+  m["width"] = o.width;
+  m["height"] = o.height;
+  m["spp"] = o.spp;
+  m["stereo"] = o.stereo_mode.empty() ? "mono" : o.stereo_mode;
+  m["ipd"] = o.stereo() ? o.ipd : 0.0;
+  m["integrator"] = o.flow.rk4() ? "rk4 " + std::to_string(o.flow.rk_step) : "closed";
+  return m.dump(2) + "\n";
+}
+
+// Which of the manifest's top-level fields differ between `was` and `now`.
+std::string differing_fields(const std::string& was, const std::string& now) {
+  const auto a = nlohmann::ordered_json::parse(was, nullptr, false), b = nlohmann::ordered_json::parse(now);
+  if (a.is_discarded() || !a.is_object()) return "it is not a film manifest";
+  std::string fields;
+  for (const auto& [key, value] : b.items()) {
+    if (!a.contains(key) || a[key] != value) fields += (fields.empty() ? "" : ", ") + key;
+  }
+  if (fields.empty()) return "its text differs";
+  return fields + (fields.find(',') == std::string::npos ? " differs" : " differ");
+}
+
+// A film's frames are only ever one film's: the folder is made, and the
+// manifest there must be these settings' (written if there is none);
+// frames without one, or with another's, are refused unless --overwrite.
+void check_film_folder(const Options& o, const sol::Scene& scene, Film& film, const sol::cli::CommandLine& cl) {
+  const std::filesystem::path folder = std::filesystem::path(frame_name(o.output, film.first)).parent_path();
+  std::error_code ec;
+  if (!folder.empty()) std::filesystem::create_directories(folder, ec);
+  if (ec) cl.fail("-o " + o.output + ": cannot make the folder " + folder.string() + ": " + ec.message());
+  film.manifest = manifest_name(o.output);
+  const std::string now = film_manifest(o, scene);
+  if (std::filesystem::exists(film.manifest) && !o.overwrite) {
+    std::ifstream in(film.manifest);
+    std::stringstream was;
+    was << in.rdbuf();
+    if (was.str() != now) {
+      cl.fail("-o " + o.output + ": the frames there were rendered with other settings (" + film.manifest + ": " +
+              differing_fields(was.str(), now) + "); --overwrite renders them again with these, or give another -o");
+    }
+    return;
+  }
+  if (!o.overwrite) {
+    for (long k = film.first; k < film.end; ++k) {
+      if (std::filesystem::exists(frame_name(o.output, k))) {
+        cl.fail("-o " + o.output + ": " + frame_name(o.output, k) + " is there without a film manifest (" + film.manifest +
+                "), so its settings are unknown; --overwrite renders the frames again, or give another -o");
+      }
+    }
+  }
+  try {
+    sol::programs::write_text_file(film.manifest, now);
+  } catch (const std::exception& e) {
+    cl.fail(e.what());
+  }
+}
 
 // The film --path asks for (none without it), its frames and video checked.
 std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol::cli::CommandLine& cl) {
@@ -319,7 +410,9 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
               "are written and 'ffmpeg -framerate F -i PATTERN -pix_fmt yuv420p out.mp4' encodes them");
     }
     if (std::filesystem::is_directory(o.video)) cl.fail("--video " + o.video + ": it is a directory");
+    if (!video_format(o.video)) cl.fail("--video " + o.video + ": give a .mp4, .mkv or .mov file");
   }
+  check_film_folder(o, scene, film, cl);
   return film;
 }
 
@@ -395,15 +488,23 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   long rendered = 0, skipped = 0;
   const auto film_started = std::chrono::steady_clock::now();
   const std::optional<sol::Lattice> lattice = scene.lattice();
+  long to_render = 0;
+  for (long k = film.first; k < film.end; ++k) to_render += o.overwrite || !std::filesystem::exists(frame_name(o.output, k));
   for (long k = film.first; k < film.end; ++k) {
     const std::string name = frame_name(o.output, k);
-    if (std::filesystem::exists(name)) {
+    if (!o.overwrite && std::filesystem::exists(name)) {
       ++skipped;
       continue;
     }
     const sol::Camera camera = film.path.at(static_cast<double>(k) / o.fps, scene.camera, lattice);
-    char prefix[96];
-    std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld): ", k, k - film.first + 1, film.end - film.first);
+    // The film's time left at the frames' mean so far (none before the first is done).
+    char film_left[48] = "";
+    if (rendered > 0) {
+      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
+      std::snprintf(film_left, sizeof film_left, ", film %.0f s left", spent / static_cast<double>(rendered) * static_cast<double>(to_render - rendered));
+    }
+    char prefix[160];
+    std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld%s): ", k, rendered + 1, to_render, film_left);
     progress.start(prefix);
     const sol::RenderResult r = render(camera);
     if (tty) std::fprintf(stderr, "\r");
