@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
+  clang libclang-rt-dev  # the sanitizer build and its libFuzzer targets (tests/fuzz/)
   libglm-dev            # vectors and matrices
   libboost-dev          # header-only Boost.Math / Odeint / Multiprecision: independent test references
   libgtest-dev libgmock-dev googletest

@@ -53,8 +53,10 @@ double clearance_of(const Terms& terms) {
 
 std::vector<Solid> solids() {
   std::vector<Solid> out;
-  for (const auto& [centre, r] : {std::pair{dvec3(0.3, -0.2, 0.4), 0.25}, std::pair{dvec3(1.0, 2.0, -1.0), 0.6},
-                                  std::pair{dvec3(-0.5, 0.7, 1.5), 0.05}}) {
+  for (const auto& ball : {std::pair{dvec3(0.3, -0.2, 0.4), 0.25}, std::pair{dvec3(1.0, 2.0, -1.0), 0.6},
+                           std::pair{dvec3(-0.5, 0.7, 1.5), 0.05}}) {
+    const dvec3 centre = ball.first;  // (a lambda may not capture a structured binding before clang 16)
+    const double r = ball.second;
     out.push_back({"ball r " + std::to_string(r), centre, [=](const dvec3& p) { return sol::sdf_ball(p, centre, r); },
                    [=](const dvec3& p, const dvec3& u) { return as_terms(sol::ball_terms(p, u, centre, r)); }});
   }
@@ -62,9 +64,11 @@ std::vector<Solid> solids() {
   out.push_back({"vertical tube", through, [=](const dvec3& p) { return sol::sdf_tube(p, through, 2, 0.06); },
                  [=](const dvec3& p, const dvec3& u) { return as_terms(sol::tube_terms(p, u, through, true, {0, 0}, 0.06)); }});
   const double phi = sol::kernel::kPhi;
-  for (const auto& [name, h] : {std::pair{"tube along x", glm::dvec2(1, 0)}, std::pair{"tube along y", glm::dvec2(0, -1)},
-                                std::pair{"tube along gamma1", glm::normalize(glm::dvec2(phi, -1))},
-                                std::pair{"tube along gamma2", glm::normalize(glm::dvec2(1, phi))}}) {
+  for (const auto& tube : {std::pair{"tube along x", glm::dvec2(1, 0)}, std::pair{"tube along y", glm::dvec2(0, -1)},
+                           std::pair{"tube along gamma1", glm::normalize(glm::dvec2(phi, -1))},
+                           std::pair{"tube along gamma2", glm::normalize(glm::dvec2(1, phi))}}) {
+    const char* name = tube.first;
+    const glm::dvec2 h = tube.second;
     for (const double r : {0.06, 0.3}) {
       out.push_back({std::string(name) + " r " + std::to_string(r), through,
                      [=](const dvec3& p) { return sol::sdf_tube_horizontal(p, through, h, r); },
