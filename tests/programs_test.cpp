@@ -23,6 +23,7 @@
 
 #include "image_file.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 
 namespace fs = std::filesystem;
 
@@ -298,4 +299,33 @@ TEST(ImageFile, RgbaIntoFormatsWithoutAlphaKeepsTheColour) {
     }
   }
   fs::remove_all(d);
+}
+
+// The time-left estimate against the truth of a render whose start is slow
+// (a kernel compiled on a cold cache: 11.5 s before the first band of 4 %,
+// then 1 s for the rest, as on lavapipe) and one that runs evenly: after
+// 10 % done, within a factor 2 of the time truly left.
+TEST(ProgressEstimate, IsWithinAFactorTwoAfterTenPercent) {
+  struct Render {
+    double start_seconds;  // before the first report with work done
+    double work_seconds;   // the even work after it
+    double first_fraction;
+  };
+  for (const Render& r : {Render{11.5, 1.0, 0.04}, Render{0.0, 10.0, 0.01}, Render{0.3, 60.0, 0.05}}) {
+    sol::programs::ProgressEstimate estimate;
+    EXPECT_FALSE(estimate.report(0.0, 0.0));  // nothing done: no estimate
+    const double end = r.start_seconds + r.work_seconds;
+    for (double f = r.first_fraction; f < 1.0; f += 0.02) {
+      // The first band is done at start_seconds; the rest runs evenly from there.
+      const double t = r.start_seconds + r.work_seconds * (f - r.first_fraction) / (1.0 - r.first_fraction);
+      const std::optional<double> left = estimate.report(t, f);
+      ASSERT_TRUE(left);
+      const double truth = end - t;
+      if (f >= 0.1 && f <= 0.98) {
+        EXPECT_LE(*left, 2.0 * truth) << "at " << f << " of a render starting " << r.start_seconds << " s late";
+        EXPECT_GE(*left, 0.5 * truth) << "at " << f << " of a render starting " << r.start_seconds << " s late";
+      }
+    }
+    EXPECT_EQ(estimate.report(end, 1.0), 0.0);
+  }
 }

@@ -29,6 +29,7 @@
 #include "command_line.hpp"
 #include "image_file.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 #include "renderers.hpp"
 
 namespace {
@@ -417,7 +418,9 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
 }
 
 // The progress line: finished fraction, rays per second so far, time left
-// at that rate; rewritten in place on a terminal, one line per 10% otherwise.
+// (sol::programs::ProgressEstimate: at the rate since work was first seen
+// done); rewritten in place on a terminal, one line per 10% otherwise, the
+// first at once.
 class ProgressLine {
  public:
   ProgressLine(bool tty, double rays) : tty_(tty), rays_(rays) {}
@@ -427,12 +430,13 @@ class ProgressLine {
     prefix_ = std::move(prefix);
     started_ = std::chrono::steady_clock::now();
     last_tenth_ = -1;
+    estimate_ = {};
   }
 
   void report(double fraction) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     const double rate = seconds > 0 ? fraction * rays_ / seconds : 0.0;
-    const double left = fraction > 0 ? seconds * (1.0 - fraction) / fraction : 0.0;
+    const std::optional<double> left = estimate_.report(seconds, fraction);
     if (!tty_) {
       const int tenth = static_cast<int>(fraction * 10.0 + 1e-9);
       if (tenth == last_tenth_) return;
@@ -440,10 +444,10 @@ class ProgressLine {
     }
     // Nothing finished yet: no rate to go by, and no estimate pretends to one.
     char speed[48], remaining[48];
-    if (fraction > 0) {
+    if (left) {
       if (rate >= 1e5) std::snprintf(speed, sizeof speed, "%.2f M rays/s", rate * 1e-6);
       else std::snprintf(speed, sizeof speed, "%.0f rays/s", rate);
-      std::snprintf(remaining, sizeof remaining, "%.1f s left", left);
+      std::snprintf(remaining, sizeof remaining, "%.1f s left", *left);
     } else {
       std::snprintf(speed, sizeof speed, "-- rays/s");
       std::snprintf(remaining, sizeof remaining, "time left unknown");
@@ -458,6 +462,7 @@ class ProgressLine {
   std::string prefix_;
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   int last_tenth_ = -1;
+  sol::programs::ProgressEstimate estimate_;
 };
 
 // The renderer, made once (a film's frames share it): the kernel, or the CPU.

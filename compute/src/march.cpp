@@ -626,6 +626,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // is the host's): 120 bytes (the images, their staging copies and the
   // result), rounded up.
   validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
+  // At once, before the kernel is prepared (compiled on a cold cache: seconds).
+  if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
   const Frame f = prepare_frame(eyes, options.width, height, true, false);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
