@@ -2,9 +2,11 @@
 // directions are sequences of three floats (or NumPy arrays) in, NumPy
 // float64 arrays out; the vectorised entry points take arrays of shape
 // (N, 3) and return (N, 3) or (N,) arrays, looping in C++. libsol's
-// exceptions arrive as Python exceptions with the C++ message:
-// InvalidArgument and OutOfRange as ValueError, NotImplemented as
-// NotImplementedError. docs/python.md has the reference and an example.
+// exceptions arrive as Python exceptions with the C++ message, all
+// sol.SolError: InvalidArgument as sol.InvalidArgumentError and OutOfRange
+// as sol.OutOfRangeError (both ValueError too), NotImplemented as
+// sol.UnsupportedError (NotImplementedError too). The package around this
+// module is python/sol/; docs/python.md has the reference and examples.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -139,6 +141,21 @@ struct PyCpuRenderer {
   }
 };
 
+// The module's exception types (made in PYBIND11_MODULE).
+PyObject* g_invalid_argument = nullptr;
+PyObject* g_out_of_range = nullptr;
+PyObject* g_unsupported = nullptr;
+
+// A new exception type sol.<name> deriving from SolError and `also`.
+PyObject* exception_type(py::module_& m, const char* name, PyObject* sol_error, PyObject* also, const char* doc) {
+  PyObject* bases = also ? PyTuple_Pack(2, sol_error, also) : PyTuple_Pack(1, sol_error);
+  PyObject* type = PyErr_NewExceptionWithDoc((std::string("sol.") + name).c_str(), doc, bases, nullptr);
+  Py_DECREF(bases);
+  if (!type) throw py::error_already_set();
+  m.add_object(name, py::handle(type));  // the module holds a reference for the process's life
+  return type;
+}
+
 // Raises `type` with a message: its bytes that are not UTF-8 (none are
 // meant to be) replaced rather than lost with the whole message.
 void set_error(PyObject* type, const char* what) {
@@ -154,16 +171,28 @@ void set_error(PyObject* type, const char* what) {
 
 }  // namespace
 
-PYBIND11_MODULE(sol, m) {
+PYBIND11_MODULE(_sol, m) {
   m.doc() = "libsol: Thurston's Sol geometry (group law, geodesics, distances, the lattice, scenes, the CPU renderer)";
-  py::register_exception<sol::NotImplemented>(m, "NotImplemented", PyExc_NotImplementedError);
+  // Errors: all sol.SolError, and the builtin a caller may already catch
+  // (names that shadow no builtin under `from sol import *`).
+  PyObject* sol_error = PyErr_NewExceptionWithDoc("sol.SolError", "Every error sol raises.", PyExc_Exception, nullptr);
+  if (!sol_error) throw py::error_already_set();
+  m.add_object("SolError", py::handle(sol_error));
+  g_invalid_argument = exception_type(m, "InvalidArgumentError", sol_error, PyExc_ValueError,
+                                      "An argument or a scene field out of its domain; the message names it.");
+  g_out_of_range = exception_type(m, "OutOfRangeError", sol_error, PyExc_ValueError,
+                                  "A result beyond what double (or the renderer) can represent, or work beyond its bounds.");
+  g_unsupported = exception_type(m, "UnsupportedError", sol_error, PyExc_NotImplementedError,
+                                 "Something libsol does not do (yet).");
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const sol::InvalidArgument& e) {
-      set_error(PyExc_ValueError, e.what());
+      set_error(g_invalid_argument, e.what());
     } catch (const sol::OutOfRange& e) {
-      set_error(PyExc_ValueError, e.what());
+      set_error(g_out_of_range, e.what());
+    } catch (const sol::NotImplemented& e) {
+      set_error(g_unsupported, e.what());
     } catch (const sol::Cancelled& e) {
       set_error(PyExc_KeyboardInterrupt, e.what());
     }

@@ -1,0 +1,89 @@
+"""The package as users install it: `pip install .` into a fresh venv (offline, Debian's setuptools and NumPy
+through --system-site-packages), and clear errors when the interpreter cannot load the module (no NumPy, another
+Python version). ctest names the source tree in SOL_SOURCE_DIR and the CMake build folder to build in (the CI
+build's, configured for Debian's python3) in SOL_CMAKE_BUILD_DIR."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+import sol
+
+SOURCE = os.environ.get("SOL_SOURCE_DIR")
+BUILD = os.environ.get("SOL_CMAKE_BUILD_DIR")
+
+
+def run(*args, **kwargs):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True, **kwargs)
+
+
+@pytest.mark.skipif(not SOURCE or not BUILD, reason="needs SOL_SOURCE_DIR and SOL_CMAKE_BUILD_DIR (ctest sets them)")
+def test_pip_installs_the_package_into_a_fresh_venv():
+    with tempfile.TemporaryDirectory() as work:
+        work = Path(work)
+        # What the build reads of the tree (pip builds in the source folder: a copy keeps the repository clean).
+        src = work / "src"
+        for name in ("pyproject.toml", "setup.py", "CMakeLists.txt", "docs/python.md", "python/sol/__init__.py",
+                     "python/sol/_build.py.in"):
+            (src / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(Path(SOURCE) / name, src / name)
+        venv = work / "venv"
+        made = run(sys.executable, "-m", "venv", "--system-site-packages", venv)
+        assert made.returncode == 0, made.stderr
+        python = venv / "bin" / "python"
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        env["SOL_CMAKE_BUILD_DIR"] = BUILD
+        pip = run(python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--no-deps", src, env=env)
+        assert pip.returncode == 0, pip.stdout + pip.stderr
+        # The venv's sol, not the build folder's: a render and the version.
+        probe = ("import sol; print(sol.__file__); print(sol.__version__); "
+                 "r = sol.render_cpu(sol.preset_scene('plane'), 8, 6); print(r['rgba'].shape)")
+        used = run(python, "-c", probe, env=env)
+        assert used.returncode == 0, used.stderr
+        lines = used.stdout.split()
+        assert lines[0].startswith(str(venv)), lines[0]
+        assert lines[1] == sol.__version__
+        assert lines[2:] == ["(6,", "8,", "4)"]
+
+
+def test_another_python_version_is_named():
+    # The compiled module renamed as if built for another Python: the import names both interpreters.
+    with tempfile.TemporaryDirectory() as work:
+        package = Path(work) / "sol"
+        shutil.copytree(Path(sol.__file__).parent, package)
+        for module in package.glob("_sol*.so"):
+            module.rename(package / "_sol.cpython-399-x86_64-linux-gnu.so")
+        env = dict(os.environ, PYTHONPATH=work)
+        got = run(sys.executable, "-c", "import sol", env=env)
+        assert got.returncode != 0
+        running = f"{sys.version_info[0]}.{sys.version_info[1]}"
+        assert "sol's compiled module was built for Python" in got.stderr, got.stderr
+        assert f"this one (Python {running}" in got.stderr, got.stderr
+        assert "pip install --no-build-isolation ." in got.stderr, got.stderr
+
+
+def test_an_interpreter_without_numpy_is_told():
+    with tempfile.TemporaryDirectory() as work:
+        venv = Path(work) / "bare"
+        made = run(sys.executable, "-m", "venv", "--without-pip", venv)
+        assert made.returncode == 0, made.stderr
+        env = dict(os.environ, PYTHONPATH=str(Path(sol.__file__).parent.parent))
+        got = run(venv / "bin" / "python", "-c", "import sol", env=env)
+        assert got.returncode != 0
+        assert "sol needs NumPy in this interpreter" in got.stderr, got.stderr
+
+
+def test_errors_are_sol_errors_and_shadow_no_builtin():
+    import builtins
+
+    assert not {n for n in dir(sol) if not n.startswith("_")} & set(dir(builtins))
+    with pytest.raises(sol.InvalidArgumentError) as bad:
+        sol.flow((0, 0, 0), (0, 0, 0), 1.0)
+    assert isinstance(bad.value, sol.SolError) and isinstance(bad.value, ValueError)
+    with pytest.raises(sol.OutOfRangeError):
+        sol.sphere_area_density((1, 0, 0), 1e9)
+    assert issubclass(sol.UnsupportedError, NotImplementedError) and issubclass(sol.UnsupportedError, sol.SolError)
