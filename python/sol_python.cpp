@@ -16,11 +16,18 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <sol/sol.hpp>
+
+#ifdef SOL_PYTHON_IMAGES
+#include "image_file.hpp"  // Sol::programs: solrender's image writer and sRGB bytes
+#include "srgb.hpp"
+#endif
 
 namespace py = pybind11;
 
@@ -119,25 +126,31 @@ py::dict render_dict(const sol::RenderResult& r) {
   return out;
 }
 
-// sol.CpuRenderer: the renderer with its world prepared once and the
-// scene's camera it renders from (the module has no cameras of its own).
+// sol.CpuRenderer: the renderer with its world prepared once, the scene's
+// camera and samples its defaults.
 struct PyCpuRenderer {
   sol::CpuRenderer renderer;
   sol::Camera camera;
+  int samples = 1;
   void set_scene(const sol::Scene& scene) {
     renderer.set_world(scene);
     camera = scene.camera;
+    samples = scene.samples;
   }
-  sol::RenderResult render(const sol::RenderOptions& options) {
+  // A render from `eye` (the scene's camera when none), `samples` 0 the scene's.
+  sol::RenderResult render(int width, int height, int samples_given, unsigned threads, const std::optional<sol::Camera>& eye) {
+    const sol::Camera from = eye.value_or(camera);
+    const sol::RenderOptions options{
+        .width = width, .height = height, .samples = samples_given == 0 ? samples : samples_given, .threads = threads};
     // The CPU renderer's 64 bytes a pixel and the arrays it becomes here,
     // 40 more (the result lives until they are made): refused up front
     // where that cannot fit.
-    sol::validate_render(std::span(&camera, 1), options, "sol.CpuRenderer.render", 104.0);
+    sol::validate_render(std::span(&from, 1), options, "sol.CpuRenderer.render", 104.0);
     Interrupts interrupts;
     sol::RenderOptions interruptible = options;
     interruptible.progress = [&interrupts](double) { interrupts.check(); };
     py::gil_scoped_release release;  // the rows render on threads of their own
-    return renderer.render(camera, interruptible);
+    return renderer.render(from, interruptible);
   }
 };
 
@@ -307,7 +320,7 @@ PYBIND11_MODULE(_sol, m) {
         }
         return py::make_tuple(rows_array(mesh.vertices), triangles);
       },
-      py::arg("center"), py::arg("radius"), py::arg("subdivisions") = 16,
+      py::arg("center"), py::arg("radius"), py::arg("subdivisions") = 32,
       "A closed, outward-oriented triangle mesh of the geodesic sphere about center (radius up to 6; from sqrt(2) pi "
       "on with its creases on the cut locus): ((N, 3) vertices in Sol coordinates, (M, 3) vertex indices).");
   m.def(
@@ -385,10 +398,39 @@ PYBIND11_MODULE(_sol, m) {
           py::arg("p"), "The point of D equivalent to p and the word (a, b, c) of the element taking p there.");
 
   // ---- Scenes and the CPU renderer
-  py::class_<sol::Scene>(m, "Scene", "A scene: camera, objects, lights (docs/scene-format.md)")
-      .def("to_json", [](const sol::Scene& s) { return sol::to_json(s); }, "The scene as JSON text.")
-      .def_property_readonly("camera_position", [](const sol::Scene& s) { return array(s.camera.position); })
-      .def_property_readonly("object_count", [](const sol::Scene& s) { return s.objects.size(); });
+  py::class_<sol::Camera>(m, "Camera",
+                          "A camera (make one with sol.camera(...), or take a scene's: scene.camera): where it is, "
+                          "where it looks, how pixels map to directions (docs/scene-format.md).")
+      .def_property_readonly("position", [](const sol::Camera& c) { return array(c.position); },
+                             "Sol coordinates (x, y, z).")
+      .def_property_readonly("forward", [](const sol::Camera& c) { return array(c.forward); },
+                             "The view direction, frame components.")
+      .def_property_readonly("up", [](const sol::Camera& c) { return array(c.up); }, "Up, frame components.")
+      .def_property_readonly("fov", [](const sol::Camera& c) { return c.fov; },
+                             "The vertical field of view, degrees (perspective).")
+      .def("__repr__", [](const sol::Camera& c) {
+        char text[200];
+        std::snprintf(text, sizeof text, "sol.Camera(position=(%g, %g, %g), forward=(%g, %g, %g), fov=%g)", c.position.x,
+                      c.position.y, c.position.z, c.forward.x, c.forward.y, c.forward.z, c.fov);
+        return std::string(text);
+      });
+  py::class_<sol::Scene>(m, "Scene",
+                         "A scene: camera, objects, lights and the world's settings (docs/scene-format.md). Make one "
+                         "with sol.scene(...) or a preset, change it with scene.replace(...).")
+      .def("to_json", [](const sol::Scene& s) { return sol::to_json(s); }, "The scene as JSON text (a scene file).")
+      .def_property_readonly("camera", [](const sol::Scene& s) { return s.camera; }, "The scene's camera (a copy).")
+      .def_property_readonly("camera_position", [](const sol::Scene& s) { return array(s.camera.position); },
+                             "The camera's position, Sol coordinates.")
+      .def_property_readonly("object_count", [](const sol::Scene& s) { return s.objects.size(); },
+                             "How many objects the scene has.");
+  m.def(
+      "_scene_with_camera",
+      [](const sol::Camera& camera) {
+        sol::Scene s;
+        s.camera = camera;
+        return s;
+      },
+      py::arg("camera"), "(sol.scenes: a camera's fields as a scene file writes them.)");
   m.def("preset_names", &sol::preset_names, "The names of the built-in scenes.");
   m.def("preset_scene", [](const std::string& name) { return sol::preset_scene(name); }, py::arg("name"),
         "A built-in scene by name.");
@@ -412,8 +454,9 @@ PYBIND11_MODULE(_sol, m) {
       py::arg("scene"), py::arg("width"), py::arg("height"),
       "The unit direction (frame components at the camera) of the ray through each pixel's centre, as render_cpu "
       "shoots it: an (H, W, 3) array.");
-  m.def("parse_scene", [](const std::string& text) { return sol::parse_scene(text); }, py::arg("text"),
-        "A scene from JSON text.");
+  m.def("parse_scene", [](const std::string& text, const std::string& source) { return sol::parse_scene(text, source); },
+        py::arg("text"), py::arg("source") = "<scene>",
+        "A scene from JSON text (a scene file's); errors name `source` and the field.");
   py::class_<PyCpuRenderer>(m, "CpuRenderer",
                             "The CPU reference renderer with a scene's world prepared once (validation, features, the "
                             "quotient's images): every render() then reuses it, from the scene's camera.")
@@ -426,20 +469,73 @@ PYBIND11_MODULE(_sol, m) {
       .def("set_scene", &PyCpuRenderer::set_scene, py::arg("scene"), "Prepares another scene's world (and takes its camera).")
       .def(
           "render",
-          [](PyCpuRenderer& r, int width, int height, int samples, unsigned threads) {
-            return render_dict(r.render({.width = width, .height = height, .samples = samples, .threads = threads}));
+          [](PyCpuRenderer& r, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera) {
+            return render_dict(r.render(width, height, samples, threads, camera));
           },
-          py::arg("width") = 256, py::arg("height") = 192, py::arg("samples") = 1, py::arg("threads") = 0,
-          "Renders the prepared world from the scene's camera: a dict of float32 arrays as render_cpu's.");
+          py::arg("width") = 512, py::arg("height") = 512, py::arg("samples") = 0, py::arg("threads") = 0,
+          py::arg("camera") = py::none(),
+          "Renders the prepared world, width x height pixels (1..16384; solrender's 512 x 512 by default), from "
+          "`camera` (a sol.Camera; the scene's when None), `samples` rays per pixel (1..4096; 0: the scene's "
+          "\"samples\", as solrender's --spp), on `threads` threads (0: all): a dict of float32 arrays as render_cpu's.");
   m.def(
       "render_cpu",
-      [](const sol::Scene& scene, int width, int height, int samples, unsigned threads) {
+      [](const sol::Scene& scene, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera) {
         PyCpuRenderer r;
         r.set_scene(scene);
-        return render_dict(r.render({.width = width, .height = height, .samples = samples, .threads = threads}));
+        return render_dict(r.render(width, height, samples, threads, camera));
       },
-      py::arg("scene"), py::arg("width") = 256, py::arg("height") = 192, py::arg("samples") = 1, py::arg("threads") = 0,
-      "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many); returns "
-      "a dict of float32 arrays: rgba (H, W, 4, linear), object (H, W; 0 = no hit, k = k-th object), distance (H, W), "
-      "point (H, W, 3; world coordinates) and steps (H, W).");
+      py::arg("scene"), py::arg("width") = 512, py::arg("height") = 512, py::arg("samples") = 0, py::arg("threads") = 0,
+      py::arg("camera") = py::none(),
+      "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many), with "
+      "CpuRenderer.render's arguments and defaults; returns a dict of float32 arrays: rgba (H, W, 4; linear RGB, "
+      "alpha 1: sol.save writes it as solrender does), object (H, W; 0 = no hit, k = k-th object), distance (H, W; "
+      "arc length to the hit), point (H, W, 3; Sol coordinates of the hit) and steps (H, W; march steps).");
+#ifdef SOL_PYTHON_IMAGES
+  m.def(
+      "save",
+      [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& image) {
+        const py::buffer_info b = image.request();
+        if (b.ndim != 3 || (b.shape[2] != 3 && b.shape[2] != 4)) {
+          throw sol::InvalidArgument("sol.save: image must have shape (H, W, 3) or (H, W, 4), RGB(A) linear");
+        }
+        const auto height = static_cast<int>(b.shape[0]), width = static_cast<int>(b.shape[1]);
+        const auto channels = static_cast<std::size_t>(b.shape[2]);
+        const auto* data = static_cast<const float*>(b.ptr);
+        std::vector<float> pixels(data, data + static_cast<std::size_t>(b.size));
+        std::vector<std::string> names{"R", "G", "B"};
+        if (channels == 4) names.push_back("A");
+        std::size_t non_finite = 0;
+        {
+          py::gil_scoped_release release;
+          try {
+            non_finite = sol::programs::write_image(path, width, height, names, pixels, true);
+          } catch (const std::runtime_error& e) {
+            throw sol::InvalidArgument(std::string("sol.save: ") + e.what());
+          }
+        }
+        return non_finite;
+      },
+      py::arg("path"), py::arg("image"),
+      "Writes a linear RGB(A) image ((H, W, 3|4), a render's 'rgba') to `path` with solrender's writer: the format "
+      "from the extension (png, jpg, exr, tif, hdr, ...), 8-bit formats sRGB-encoded, float ones linear; complete or "
+      "not at all. Returns how many values were not finite (written as 0).");
+  m.def(
+      "srgb8",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& image) {
+        const py::buffer_info b = image.request();
+        std::vector<py::ssize_t> shape(b.shape.begin(), b.shape.end());
+        py::array_t<std::uint8_t> out(shape);
+        const auto* in = static_cast<const float*>(b.ptr);
+        auto* o = out.mutable_data();
+        const bool rgba = b.ndim == 3 && b.shape[2] == 4;
+        for (py::ssize_t i = 0; i < b.size; ++i) {
+          o[i] = rgba && i % 4 == 3 ? static_cast<std::uint8_t>(std::lround(std::clamp(in[i], 0.0f, 1.0f) * 255.0f))
+                                    : sol::programs::srgb_byte(in[i]);
+        }
+        return out;
+      },
+      py::arg("image"),
+      "A linear image as the 8-bit sRGB bytes solrender writes (alpha of an (H, W, 4) image scaled, not encoded): a "
+      "uint8 array of the same shape.");
+#endif
 }

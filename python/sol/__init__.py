@@ -31,4 +31,7 @@ except ImportError as _error:
         "'python3 -m pip install --no-build-isolation .' in the Sol repository (docs/python.md)"
     ) from _error
 
-__all__ = [_name for _name in dir(_sol) if not _name.startswith("_")]
+from . import scenes as _scenes  # noqa: E402
+from .scenes import *  # noqa: E402,F401,F403
+
+__all__ = [_name for _name in dir(_sol) if not _name.startswith("_")] + _scenes.__all__

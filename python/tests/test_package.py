@@ -28,7 +28,7 @@ def test_pip_installs_the_package_into_a_fresh_venv():
         # What the build reads of the tree (pip builds in the source folder: a copy keeps the repository clean).
         src = work / "src"
         for name in ("pyproject.toml", "setup.py", "CMakeLists.txt", "docs/python.md", "python/sol/__init__.py",
-                     "python/sol/_build.py.in"):
+                     "python/sol/scenes.py", "python/sol/_build.py.in"):
             (src / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(Path(SOURCE) / name, src / name)
         venv = work / "venv"

@@ -265,3 +265,77 @@ def test_long_calls_hear_ctrl_c(call):
     elapsed = time.monotonic() - started
     timer.cancel()
     assert elapsed < 5.0, f"{call} stopped {elapsed:.1f} s after it started (interrupted at 0.5 s)"
+
+
+def test_scenes_built_from_python_are_the_scene_files():
+    # A preset rebuilt from its own fields through sol.scene is the same scene (the same JSON), and the builders
+    # give the file's keys: the scene file's reader is the one source of names, defaults and checks.
+    for name in sol.preset_names():
+        fields = sol.preset_scene(name).to_dict()
+        objects = fields.pop("objects")
+        assert sol.scene(objects, **fields).to_json() == sol.preset_scene(name).to_json(), name
+    built = sol.scene([sol.plane_z(-1, pattern="checker"), sol.ball((1, 0, 0), 0.3, color=(0.9, 0.3, 0.2))],
+                      camera=sol.camera(position=(0, 0, 0.5), forward=(1, 0, -0.3), fov=70),
+                      lights=[sol.point_light((0, 0, 1), intensity=3)])
+    text = ('{"objects": [{"type": "plane_z", "c": -1, "pattern": "checker"},'
+            ' {"type": "ball", "center": [1, 0, 0], "radius": 0.3, "color": [0.9, 0.3, 0.2]}],'
+            ' "camera": {"position": [0, 0, 0.5], "forward": [1, 0, -0.3], "fov": 70},'
+            ' "lights": [{"type": "point", "position": [0, 0, 1], "intensity": 3}]}')
+    assert built.to_json() == sol.parse_scene(text).to_json()
+    # Errors name the field, as the file's would, and are ValueErrors.
+    with pytest.raises(sol.InvalidArgumentError, match=r"objects\[0\].radius must be finite and > 0"):
+        sol.scene([sol.ball((0, 0, 0), -1)])
+    with pytest.raises(ValueError, match=r"unknown key 'colour' in objects\[0\]"):
+        sol.scene([sol.ball((0, 0, 0), 1, colour=(1, 0, 0))])
+    with pytest.raises(ValueError, match=r"camera.fov must be in \(0, 180\)"):
+        sol.camera(fov=200)
+
+
+def test_replace_changes_only_what_it_names():
+    scene = sol.preset_scene("spheres")
+    moved = scene.replace(camera={"position": (0.2, 0.1, 0.3)})
+    before, after = scene.to_dict(), moved.to_dict()
+    assert after["camera"]["position"] == [0.2, 0.1, 0.3]
+    assert after["camera"]["forward"] == before["camera"]["forward"] and after["objects"] == before["objects"]
+    assert np.allclose(moved.camera.position, (0.2, 0.1, 0.3)) and np.allclose(moved.camera.forward, scene.camera.forward)
+    # A renderer of the first scene, from the moved scene's camera, renders the moved scene.
+    from_camera = sol.CpuRenderer(scene).render(24, 16, camera=moved.camera)
+    assert np.array_equal(from_camera["rgba"], sol.render_cpu(moved, 24, 16)["rgba"])
+    assert sol.scene(**{"objects": before["objects"]}).object_count == len(before["objects"])
+
+
+def test_defaults_are_the_programs():
+    # solrender renders 512 x 512 at the scene's "samples"; solshape meshes spheres at 32 subdivisions
+    # (8 * 32^2 triangles below sqrt(2) pi).
+    plane = sol.scene([sol.plane_z(-1, pattern="checker")], samples=2, camera=sol.camera(fov=120))
+    assert sol.render_cpu(plane)["rgba"].shape == (512, 512, 4)
+    once = sol.render_cpu(plane, 8, 6)
+    assert np.array_equal(once["rgba"], sol.render_cpu(plane, 8, 6, samples=2)["rgba"])
+    assert not np.array_equal(once["rgba"], sol.render_cpu(plane, 8, 6, samples=1)["rgba"])
+    vertices, triangles = sol.geodesic_sphere((0, 0, 0), 1.0)
+    assert len(triangles) == 8 * 32 ** 2
+
+
+@pytest.mark.skipif("SOLRENDER" not in os.environ, reason="solrender not built")
+def test_a_scene_built_in_python_saves_the_png_solrender_writes():
+    import matplotlib.image
+    scene = sol.scene([sol.plane_z(-1, pattern="checker"), sol.ball((1, 0.2, -0.4), 0.3, color=(0.9, 0.3, 0.2))],
+                      camera=sol.camera(position=(0, 0, 0.2), forward=(1, 0, -0.3), fov=70),
+                      lights=[sol.point_light((0.3, 0, 0.8), intensity=3)])
+    with tempfile.TemporaryDirectory() as tmp:
+        ours, theirs, scene_file = (os.path.join(tmp, n) for n in ("python.png", "solrender.png", "scene.json"))
+        image = sol.render_cpu(scene, 40, 30)
+        assert sol.save(ours, image["rgba"]) == 0
+        with open(scene_file, "w") as f:
+            f.write(scene.to_json())
+        subprocess.run([os.environ["SOLRENDER"], "--device", "cpu", "--scene", scene_file, "--width", "40", "--height",
+                        "30", "-o", theirs], check=True, capture_output=True)
+        a, b = matplotlib.image.imread(ours), matplotlib.image.imread(theirs)
+        # The same CPU render, the same writer: the same bytes per pixel.
+        assert a.shape == b.shape == (30, 40, 4) and np.array_equal(a, b)
+        # And srgb8 is those bytes (independently of the writer: the sRGB formula, within rounding).
+        bytes8 = sol.srgb8(image["rgba"])
+        assert np.array_equal(bytes8, np.round(a * 255).astype(np.uint8))
+        assert np.abs(bytes8[:, :, :3] / 255.0 - srgb(np.clip(image["rgba"][:, :, :3], 0, 1))).max() < 0.6 / 255
+    with pytest.raises(ValueError, match="shape"):
+        sol.save(os.path.join(tmp, "bad.png"), np.zeros((4, 4)))
