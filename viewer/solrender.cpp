@@ -204,8 +204,8 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
                 sol::cli::in_range(1e-3, 360.0));
   cl.add_integer("--spp", o.spp, 1, 4096, "N",
                  "samples per pixel, 1..4096 (default: the scene's \"samples\", 1 unless it says): anti-aliasing, "
-                 "the colour the mean of N rays through the pixel (an evenly spread sequence; sample 1 is the "
-                 "centre); the AOVs stay the centre's");
+                 "the colour the mean of N rays through the pixel (sol::pixel_sample 0..N-1, an evenly spread "
+                 "sequence; sample 0 is the centre); the AOVs stay the centre's");
   cl.add_choice("--device", o.device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");

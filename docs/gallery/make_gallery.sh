@@ -3,10 +3,14 @@
 # with 16 samples per pixel, and the projections. Each line below is the
 # command of one image; the lattice views, whose far copies do not compress,
 # are made as PNG and stored as JPEG (quality 85, oiiotool) to stay under 300 KB.
-#   docs/gallery/make_gallery.sh [BUILD_DIR]      (default build/ci; from the repository root)
+#   docs/gallery/make_gallery.sh OUT_DIR [BUILD_DIR]   (from the repository root; BUILD_DIR default
+#   build/release, the README's; docs/gallery as OUT_DIR replaces the pictures the docs show)
 set -euo pipefail
-r=${1:-build/ci}/viewer/solrender
-g=docs/gallery
+if [ $# -lt 1 ]; then echo "usage: docs/gallery/make_gallery.sh OUT_DIR [BUILD_DIR]" >&2; exit 2; fi
+g=$1
+r=${2:-build/release}/viewer/solrender
+s=docs/gallery  # the scene files the pictures are made of
+mkdir -p "$g"
 a=(--width 768 --height 576 --spp 16)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -21,7 +25,7 @@ $r --scene plane --position 0,0,3 "${a[@]}" -o $g/plane-h3.png
 $r --scene plane --position 0,0,0.3 --forward 1,1,0 --up 0,0,1 "${a[@]}" -o $g/walk-above.png
 $r --scene plane --position 0,0,0.02 --forward 1,1,0 --up 0,0,1 "${a[@]}" -o $g/walk-at.png
 $r --scene plane --position 0,0,-0.3 --forward 1,1,0 --up 0,0,1 "${a[@]}" -o $g/walk-below.png
-$r --scene $g/through-the-plane.json "${a[@]}" -o $g/through-the-plane.png
+$r --scene $s/through-the-plane.json "${a[@]}" -o $g/through-the-plane.png
 $r --scene sandwich --forward 1,0,0 "${a[@]}" -o $g/sandwich-x.png
 $r --scene sandwich --forward 0,1,0 "${a[@]}" -o $g/sandwich-y.png
 $r --scene sandwich "${a[@]}" -o $g/sandwich.png
@@ -38,11 +42,11 @@ $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 
 # ratio and the AOV distance L, at 384x288 (inferno, 0 to 2: 1, the Euclidean spreading, is red;
 # brighter where the geodesics focus, darker where they spread).
 for name in light-sandwich light-spheres; do
-  $r --scene $g/$name.json "${a[@]}" -o $g/$name.png
-  $r --scene $g/$name-inverse-square.json "${a[@]}" -o $g/$name-inverse-square.png
+  $r --scene $s/$name.json "${a[@]}" -o $g/$name.png
+  $r --scene $s/$name-inverse-square.json "${a[@]}" -o $g/$name-inverse-square.png
 done
-$r --scene $g/light-sandwich.json --width 384 --height 288 -o $tmp/geodesic.exr --aov $tmp/aov.exr
-$r --scene $g/light-sandwich-inverse-square.json --width 384 --height 288 -o $tmp/inverse-square.exr
+$r --scene $s/light-sandwich.json --width 384 --height 288 -o $tmp/geodesic.exr --aov $tmp/aov.exr
+$r --scene $s/light-sandwich-inverse-square.json --width 384 --height 288 -o $tmp/inverse-square.exr
 oiiotool $tmp/aov.exr --ch distance --dup --mul -o $tmp/l2.exr
 oiiotool $tmp/l2.exr --addc 1 -o $tmp/l2p1.exr
 oiiotool $tmp/geodesic.exr --ch R $tmp/inverse-square.exr --ch R --div $tmp/l2.exr --mul $tmp/l2p1.exr --div \

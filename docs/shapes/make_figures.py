@@ -5,7 +5,8 @@ radius 1 to 4 and beyond sqrt(2) pi (with the cut locus on their creases)
 as shaded meshes, the rays of the plane scene coloured by hit or miss beside
 the renderer's image, and an exact ball seen from inside beside its mesh.
 
-    PYTHONPATH=build/ci/python/package python3 docs/shapes/make_figures.py [OUT_DIR]   (default docs/shapes)
+    PYTHONPATH=build/release/python/package python3 docs/shapes/make_figures.py OUT_DIR
+(docs/shapes as OUT_DIR replaces the figures the docs show)
 """
 import json
 import os
@@ -20,7 +21,10 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 import sol  # noqa: E402
 
-out = sys.argv[1] if len(sys.argv) > 1 else os.path.join("docs", "shapes")
+if len(sys.argv) != 2:
+    sys.exit("usage: PYTHONPATH=build/release/python/package python3 docs/shapes/make_figures.py OUT_DIR")
+out = sys.argv[1]
+os.makedirs(out, exist_ok=True)
 
 
 def geodesics_from_the_origin(path):
