@@ -260,13 +260,47 @@ int cut_locus(int argc, char** argv) {
   return 0;
 }
 
+// The printability report of a mesh printed at `scale` millimetres per unit:
+// the thinnest part (sol::vertex_thickness, looked for up to twice the
+// least feature) and the share of vertices where it is thinner than that.
+void report_printability(const sol::Mesh& mesh, double scale, double size_mm, double min_feature_mm) {
+  const double reach_mm = 2.0 * min_feature_mm;
+  const std::vector<double> thickness = sol::vertex_thickness(mesh, reach_mm / scale);
+  double least = std::numeric_limits<double>::infinity();
+  std::size_t at = 0, thin = 0;
+  for (std::size_t k = 0; k < thickness.size(); ++k) {
+    if (thickness[k] < least) {
+      least = thickness[k];
+      at = k;
+    }
+    thin += thickness[k] * scale < min_feature_mm;
+  }
+  if (!std::isfinite(least)) {
+    std::fprintf(stderr, "solshape: printable at %g mm: no part is thinner than %g mm\n", size_mm, reach_mm);
+    return;
+  }
+  const double least_mm = least * scale;
+  const glm::dvec3 where = mesh.vertices[at] * scale;
+  if (thin == 0) {
+    std::fprintf(stderr, "solshape: printable at %g mm: the thinnest part is %.2f mm (at %.1f, %.1f, %.1f mm), above "
+                 "--min-feature-mm %g\n", size_mm, least_mm, where.x, where.y, where.z, min_feature_mm);
+    return;
+  }
+  std::fprintf(stderr,
+               "solshape: warning: at %g mm the thinnest part is %.2f mm (at %.1f, %.1f, %.1f mm), and %.1f %% of the "
+               "vertices lie where the mesh is thinner than --min-feature-mm %g: a printer may leave them out (print "
+               "it larger, or a smaller radius)\n",
+               size_mm, least_mm, where.x, where.y, where.z, 100.0 * static_cast<double>(thin) / static_cast<double>(thickness.size()),
+               min_feature_mm);
+}
+
 int sphere(int argc, char** argv) {
   sol::cli::CommandLine cl("solshape sphere", "--radius R [options] -o FILE.ply|.obj|.stl",
                            "Writes a mesh of the geodesic sphere {p : d(center, p) = R} in Sol coordinates.");
   double radius = 0.0;
   std::optional<glm::dvec3> center;
   int resolution = 32;
-  std::optional<double> size_mm;
+  std::optional<double> size_mm, min_feature_mm;
   std::string output;
   cl.add_number("--radius", radius, "R",
                 "the sphere's radius (Sol units), in (0, 6]; from sqrt(2) pi = 4.4429 on it meets the cut locus of "
@@ -281,10 +315,17 @@ int sphere(int argc, char** argv) {
                 "scale the mesh so that its largest extent is S millimetres (STL's unit, for printing); without "
                 "it, coordinates are Sol units",
                 sol::cli::positive());
+  cl.add_number("--min-feature-mm", min_feature_mm, "T",
+                "with --size-mm: the thinnest part a printer makes (default 0.8, a 0.4 mm nozzle's two lines); the "
+                "printability report warns where the mesh is thinner",
+                sol::cli::positive());
   cl.add_text("-o,--output", output, "FILE", "the mesh file: .ply (ASCII), .obj or .stl (binary)");
-  cl.set_footer("Meshes are written with Assimp. docs/shapes.md has the construction and its accuracy.");
+  cl.set_footer("Meshes are written with Assimp. With --size-mm a printability report follows: the thinnest part\n"
+                "(the mesh's thickness along each vertex's inward normal) and how much is thinner than\n"
+                "--min-feature-mm. docs/shapes.md has the construction and its accuracy.");
   cl.parse(argc, argv);
   if (radius == 0.0) cl.fail("--radius R is required");
+  if (min_feature_mm && !size_mm) cl.fail("--min-feature-mm needs --size-mm (the mesh's size in millimetres)");
   if (output.empty()) cl.fail("no output file: give -o FILE.ply|.obj|.stl");
   const std::string format = format_of(output);
   if (format.empty()) cl.fail(output + ": unknown mesh format (the name must end in .ply, .obj or .stl)");
@@ -305,6 +346,7 @@ int sphere(int argc, char** argv) {
   file.commit();
   std::fprintf(stderr, "solshape: sphere of radius %g: %zu vertices, %zu triangles -> %s\n", radius, mesh.vertices.size(),
                mesh.triangles.size(), output.c_str());
+  if (size_mm) report_printability(mesh, scale, *size_mm, min_feature_mm.value_or(0.8));
   return 0;
 }
 

@@ -290,4 +290,86 @@ TEST(Shapes, WorkBeyondThePointBoundsIsRefused) {
   EXPECT_EQ(sol::cut_locus_curves(dvec3(0.0), std::vector<double>(2, 5.0), 16).size(), 8u);
 }
 
+// vertex_thickness against shapes of known thickness: a box 10 x 2 x 6
+// with faces of 4 x 4 squares (a vertex inside a big face has that face's
+// normal, so the ray crosses the 2 exactly; a corner's diagonal ray meets
+// a face at 2 sqrt(3)); a UV sphere of radius 1.5, every vertex's ray
+// through the centre to the far side: 3 less the chord's sag, at most
+// r (1 - cos(pi / 24)) = 0.013 here.
+sol::Mesh box_mesh(const dvec3& size, int n) {
+  sol::Mesh m;
+  // Each face: an (n + 1)^2 grid of vertices, 2 n^2 triangles, outward (counter-clockwise seen from outside).
+  auto face = [&](const dvec3& origin, const dvec3& u, const dvec3& v) {
+    const int base = static_cast<int>(m.vertices.size());
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) m.vertices.push_back(origin + u * (double(i) / n) + v * (double(j) / n));
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const int a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+        m.triangles.push_back({a, b, d});
+        m.triangles.push_back({a, d, c});
+      }
+    }
+  };
+  const dvec3 x(size.x, 0, 0), y(0, size.y, 0), z(0, 0, size.z), o(0.0);
+  face(o, y, x);          // z = 0, normal -z
+  face(o + z, x, y);      // z = top, +z
+  face(o, x, z);          // y = 0, -y
+  face(o + y, z, x);      // y = top, +y
+  face(o, z, y);          // x = 0, -x
+  face(o + x, y, z);      // x = top, +x
+  return m;
+}
+
+TEST(Shapes, VertexThicknessOfShapesOfKnownThickness) {
+  const sol::Mesh box = box_mesh({10, 2, 6}, 4);
+  // (The faces' grids share no vertices, so each vertex's normal is its own face's, corners included: every
+  // vertex of a y face sees the other y face at 2, of an x face at 10 (beyond up_to: infinite), z faces at 6.)
+  const std::vector<double> t = sol::vertex_thickness(box, 8.0);
+  ASSERT_EQ(t.size(), box.vertices.size());
+  int twos = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const dvec3 v = box.vertices[k];
+    const bool y_face = k >= 2 * 25 && k < 4 * 25, z_face = k < 2 * 25;
+    if (y_face) {
+      EXPECT_NEAR(t[k], 2.0, 1e-12) << v.x << " " << v.y << " " << v.z;
+      ++twos;
+    } else if (z_face) {
+      EXPECT_NEAR(t[k], 6.0, 1e-12);
+    } else {
+      EXPECT_TRUE(std::isinf(t[k])) << t[k];  // 10 across: beyond up_to
+    }
+  }
+  EXPECT_EQ(twos, 50);
+  // The sphere.
+  sol::Mesh sphere;
+  const int rings = 24, segments = 48;
+  const double r = 1.5;
+  sphere.vertices.push_back({0, 0, r});
+  for (int i = 1; i < rings; ++i) {
+    const double theta = std::numbers::pi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2.0 * std::numbers::pi * j / segments;
+      sphere.vertices.push_back({r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi), r * std::cos(theta)});
+    }
+  }
+  sphere.vertices.push_back({0, 0, -r});
+  const int south = static_cast<int>(sphere.vertices.size()) - 1;
+  auto at = [&](int ring, int j) { return 1 + (ring - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    sphere.triangles.push_back({0, at(1, j), at(1, j + 1)});
+    for (int i = 1; i + 1 < rings; ++i) {
+      sphere.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      sphere.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+    sphere.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
+  }
+  const std::vector<double> ts = sol::vertex_thickness(sphere, 4.0);
+  for (std::size_t k = 0; k < ts.size(); ++k) EXPECT_NEAR(ts[k], 2.0 * r, 0.015) << k;
+  // Nothing within a smaller reach: infinite.
+  for (const double v : sol::vertex_thickness(sphere, 2.0)) EXPECT_TRUE(std::isinf(v));
+  EXPECT_THROW(sol::vertex_thickness(sphere, 0.0), sol::InvalidArgument);
+}
+
 }  // namespace

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <cstdint>
+#include <unordered_map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -396,6 +398,92 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
     }
   }
   return curves;
+}
+
+namespace {
+
+// The ray o + t d (d unit) against triangle (a, b, c), Möller–Trumbore:
+// t of the hit, or +infinity. Edges and corners count, with a margin of
+// 1e-9 in the barycentric coordinates: a ray through a vertex shared by
+// several triangles (a pole) must not slip between them by rounding.
+double ray_triangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+                    const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  const double det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-300) return std::numeric_limits<double>::infinity();
+  const glm::dvec3 s = o - a;
+  const double u = glm::dot(s, p) / det;
+  constexpr double margin = 1e-9;
+  if (u < -margin || u > 1.0 + margin) return std::numeric_limits<double>::infinity();
+  const glm::dvec3 q = glm::cross(s, e1);
+  const double v = glm::dot(d, q) / det;
+  if (v < -margin || u + v > 1.0 + margin) return std::numeric_limits<double>::infinity();
+  return glm::dot(e2, q) / det;
+}
+
+}  // namespace
+
+std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
+  if (!(up_to > 0.0) || !std::isfinite(up_to)) throw InvalidArgument("sol::vertex_thickness: up_to must be finite and > 0");
+  const std::size_t n = mesh.vertices.size();
+  for (const auto& t : mesh.triangles) {
+    for (int k : t) {
+      if (k < 0 || static_cast<std::size_t>(k) >= n) throw InvalidArgument("sol::vertex_thickness: a triangle's index is outside the vertices");
+    }
+  }
+  // Outward vertex normals: the triangles' cross products (twice their areas) summed.
+  std::vector<glm::dvec3> normals(n, glm::dvec3(0.0));
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const glm::dvec3 area = glm::cross(b - a, c - a);
+    for (int k : t) normals[static_cast<std::size_t>(k)] += area;
+  }
+  // The grid: each triangle in every cell its bounding box meets.
+  glm::dvec3 lo(std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& v : mesh.vertices) lo = glm::min(lo, v);
+  auto cell_of = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor((p - lo) / up_to)); };
+  auto key = [](const glm::i64vec3& c) {
+    return (static_cast<std::uint64_t>(c.x) * 73856093u) ^ (static_cast<std::uint64_t>(c.y) * 19349663u) ^
+           (static_cast<std::uint64_t>(c.z) * 83492791u);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const glm::dvec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const glm::i64vec3 c0 = cell_of(glm::min(a, glm::min(b, c))), c1 = cell_of(glm::max(a, glm::max(b, c)));
+    for (auto x = c0.x; x <= c1.x; ++x) {
+      for (auto y = c0.y; y <= c1.y; ++y) {
+        for (auto z = c0.z; z <= c1.z; ++z) grid[key({x, y, z})].push_back(i);
+      }
+    }
+  }
+  std::vector<double> thickness(n, std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> seen;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double length = glm::length(normals[k]);
+    if (!(length > 0.0)) continue;  // a vertex of no triangle
+    const glm::dvec3 o = mesh.vertices[k], d = -normals[k] / length;
+    // The cells the segment [o, o + up_to d] meets lie within its box.
+    const glm::i64vec3 c0 = cell_of(glm::min(o, o + up_to * d)), c1 = cell_of(glm::max(o, o + up_to * d));
+    seen.clear();
+    for (auto x = c0.x; x <= c1.x; ++x) {
+      for (auto y = c0.y; y <= c1.y; ++y) {
+        for (auto z = c0.z; z <= c1.z; ++z) {
+          const auto it = grid.find(key({x, y, z}));
+          if (it != grid.end()) seen.insert(seen.end(), it->second.begin(), it->second.end());
+        }
+      }
+    }
+    double least = std::numeric_limits<double>::infinity();
+    for (const std::size_t i : seen) {
+      const auto& t = mesh.triangles[i];
+      if (static_cast<std::size_t>(t[0]) == k || static_cast<std::size_t>(t[1]) == k || static_cast<std::size_t>(t[2]) == k) continue;
+      const double hit = ray_triangle(o, d, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+      if (hit > 0.0 && hit < least) least = hit;
+    }
+    if (least <= up_to) thickness[k] = least;
+  }
+  return thickness;
 }
 
 }  // namespace sol

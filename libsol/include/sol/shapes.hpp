@@ -104,4 +104,13 @@ std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, 
 std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, const std::vector<double>& radii,
                                                       int samples);
 
+/// How thick a closed mesh is at each vertex, for printing: the distance
+/// from the vertex along its inward normal (the area-weighted mean of its
+/// triangles' normals, reversed) to the first triangle not incident to it,
+/// or +infinity where none is within `up_to` (only thin parts matter, and
+/// looking no farther keeps the search local: a uniform grid of cells of
+/// size `up_to`). In the mesh's units. Throws InvalidArgument for
+/// `up_to` not finite and > 0 or an index outside the vertices.
+std::vector<double> vertex_thickness(const Mesh& mesh, double up_to);
+
 }  // namespace sol
