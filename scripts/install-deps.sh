@@ -25,6 +25,7 @@ packages=(
   ffmpeg                # solrender --video (films) and its test
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module sol and its tests
   libassimp-dev         # solshape: meshes to PLY, OBJ and STL
+  admesh                # tests: solshape's STL files checked by a third-party mesh checker
   libcgal-dev           # tests: geodesic sphere meshes checked for self-intersection (CGAL, exact predicates)
 )
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
