@@ -24,6 +24,7 @@ packages=(
   parallel              # the film test: frames shard over GNU parallel jobs (docs/films.md)
   ffmpeg                # solrender --video (films) and its test
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module sol and its tests
+  python3-nbclient python3-ipykernel  # tests: docs/notebooks/tour.ipynb executed headless
   libassimp-dev         # solshape: meshes to PLY, OBJ and STL
   admesh                # tests: solshape's STL files checked by a third-party mesh checker
   libcgal-dev           # tests: geodesic sphere meshes checked for self-intersection (CGAL, exact predicates)
