@@ -12,12 +12,12 @@
 # measure is the moving view).
 #   [TARGET=20] viewer/measure_fps.sh [BUILD_DIR] [present|refine]    (needs xvfb-run, or a DISPLAY)
 set -euo pipefail
-build=${1:-build/ci}
+build=${1:-build/release}
 solview=$build/viewer/solview
 run() {
   if [ -n "${DISPLAY:-}" ]; then "$solview" "$@"; else xvfb-run -a -s "-screen 0 1024x768x24" "$solview" "$@"; fi
 }
-field() { sed -n "s/.*: \([0-9.]*\) fps (mean over frames \([0-9]*\)\.\.\([0-9]*\)), mean render scale \([0-9.]*\)/\\$1/p"; }
+field() { sed -n "s/.*: \([0-9.]*\) fps (mean over the \([0-9]*\) rendered frames of \([0-9]*\)\.\.[0-9]*[^)]*), mean render scale \([0-9.]*\)/\\$1/p"; }
 if [ "${2:-}" = present ]; then
   echo "| run | direct (--present auto) fps | blit (--present blit) fps |"
   echo "|---|---|---|"

@@ -375,7 +375,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     m_captured_format = m_format;
     m_captured_direct = direct;
   }
-  return Shown{direct, record_ms};
+  return Shown{direct, record_ms, !reuse};
 }
 
 void Presenter::save(const std::string& path) {

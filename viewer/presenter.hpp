@@ -68,6 +68,7 @@ class Presenter {
   struct Shown {
     bool direct = false;         ///< the kernel wrote the swapchain image itself
     double record_ms = 0.0;      ///< host time to record the frame (renderer.record and the commands)
+    bool rendered = true;        ///< the kernel ran (false: a finished accumulation shown again, FrameOptions::reuse)
   };
   /// How present() makes its frame.
   struct FrameOptions {

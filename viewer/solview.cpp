@@ -490,31 +490,48 @@ class Refinement {
 // The run's figures, printed at exit: the mean frame rate, render scale and
 // host time after the first frames (pipeline builds, first allocations;
 // with --frames, the second half only: the adaptive scale has settled by
-// then), and which path presented the frames.
+// then), over the frames the kernel rendered (a finished refinement shown
+// again costs nothing and would inflate the rate), and which path
+// presented the frames.
 class RunFigures {
  public:
   explicit RunFigures(long frames) : first_measured_(std::max(kWarmupFrames, frames / 2) + 1) {}
 
-  // Frame `frame` (counted from 1) was shown at `scale`, `w` x `h` pixels.
-  void shown(long frame, double scale, double host_ms, bool direct, int w, int h) {
+  // Frame `frame` (counted from 1) was shown at `scale`, `w` x `h` pixels;
+  // `rendered`: the kernel made it (not a finished image shown again).
+  void shown(long frame, double scale, double host_ms, bool direct, int w, int h, bool rendered) {
     frames_ = frame;
     ++(direct ? direct_frames_ : blit_frames_);
     shown_w_ = w;
     shown_h_ = h;
-    if (frame == first_measured_ - 1) measure_start_ = std::chrono::steady_clock::now();
+    const auto now = std::chrono::steady_clock::now();
     if (frame >= first_measured_) {
-      scale_sum_ += scale;
-      host_ms_sum_ += host_ms;
+      if (rendered) {
+        ++measured_;
+        scale_sum_ += scale;
+        host_ms_sum_ += host_ms;
+        rendering_s_ += std::chrono::duration<double>(now - last_shown_).count();
+      } else {
+        ++reused_;
+      }
     }
+    last_shown_ = now;
   }
 
   void report(const App& app, const sol::viewer::Presenter& presenter) const {
-    const long measured = frames_ - first_measured_ + 1;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start_).count();
+    const long measured = measured_;
+    if (measured == 0 && reused_ > 0) {
+      std::fprintf(stderr, "solview: %s: no frame rendered from frame %ld on to measure (%ld finished images shown again)\n",
+                   app.scene_name.c_str(), first_measured_, reused_);
+    }
     if (measured > 0) {
-      std::fprintf(stderr, "solview: %s: %.2f fps (mean over frames %ld..%ld), mean render scale %.2f\n",
-                   app.scene_name.c_str(), static_cast<double>(measured) / seconds, first_measured_, frames_,
-                   scale_sum_ / static_cast<double>(measured));
+      // The rate of rendered frames: their count over the time they took
+      // (from the frame before each), a refined image's reshowing left out.
+      char reused[96] = "";
+      if (reused_ > 0) std::snprintf(reused, sizeof reused, "; %ld finished images shown again not counted", reused_);
+      std::fprintf(stderr, "solview: %s: %.2f fps (mean over the %ld rendered frames of %ld..%ld%s), mean render scale %.2f\n",
+                   app.scene_name.c_str(), static_cast<double>(measured) / rendering_s_, measured, first_measured_, frames_,
+                   reused, scale_sum_ / static_cast<double>(measured));
       // The host's share of a frame: the cameras, the world when it changed,
       // and the recorded commands (no waits on the device).
       std::fprintf(stderr, "solview: host %.3f ms per frame to prepare and record (mean over frames %ld..%ld)\n",
@@ -530,10 +547,12 @@ class RunFigures {
  private:
   static constexpr long kWarmupFrames = 5;
   long first_measured_, frames_ = 0;
-  std::chrono::steady_clock::time_point measure_start_ = std::chrono::steady_clock::now();
   double scale_sum_ = 0, host_ms_sum_ = 0;
   long direct_frames_ = 0, blit_frames_ = 0;
   int shown_w_ = 0, shown_h_ = 0;  // of the last frame's rendered image (both eyes)
+  long measured_ = 0, reused_ = 0;  // frames from first_measured_ on: rendered, shown again
+  double rendering_s_ = 0.0;        // the rendered ones' time, each from the frame before
+  std::chrono::steady_clock::time_point last_shown_ = std::chrono::steady_clock::now();
 };
 
 // The window's title: the frame rate (also the panel's), twice a second.
@@ -720,7 +739,7 @@ int run(App& app) {
     if (!shown) continue;  // the swapchain went out of date: re-created at the top
     refinement.shown();
     ++frame;
-    figures.shown(frame, app.scale, prepare_ms + shown->record_ms, shown->direct, eye_w * eyes, eye_h);
+    figures.shown(frame, app.scale, prepare_ms + shown->record_ms, shown->direct, eye_w * eyes, eye_h, shown->rendered);
 
     if (app.recording) presenter.save(frame_name(app.record_dir, frame - 1));
     if (app.want_screenshot) {
