@@ -1,7 +1,7 @@
 // solshape: Sol's shapes seen from outside, written as meshes for figures,
 // Blender, MeshLab or a 3D printer (docs/shapes.md).
 //
-//   solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S] -o FILE.ply|.obj|.stl
+//   solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S [--min-feature-mm T]] -o FILE.ply|.obj|.stl
 //   solshape geodesics [--from X,Y,Z] --directions N --length L [--segments S] -o FILE.ply|.obj
 //   solshape cut-locus [--center X,Y,Z] --radii R1,R2,... [--samples S] -o FILE.ply|.obj
 //
@@ -355,7 +355,7 @@ int sphere(int argc, char** argv) {
 int main(int argc, char** argv) {
   sol::programs::install_signal_cleanup();
   const std::string usage =
-      "usage: solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S] -o FILE.ply|.obj|.stl\n"
+      "usage: solshape sphere --radius R [--center X,Y,Z] [--resolution N] [--size-mm S [--min-feature-mm T]] -o FILE.ply|.obj|.stl\n"
       "       solshape geodesics [--from X,Y,Z] --directions N --length L [--segments S] -o FILE.ply|.obj\n"
       "       solshape cut-locus [--center X,Y,Z] --radii R1,R2,... [--samples S] -o FILE.ply|.obj\n"
       "Writes Sol's shapes as meshes and curves (solshape COMMAND --help for the options).\n";
