@@ -1458,6 +1458,29 @@ TEST(Kernel, TiledRenderEqualsOneDispatch) {
   expect_no_validation_errors();
 }
 
+// Without AOVs (RenderOptions::aovs false, solrender without --aov) the
+// kernel's colour is the same bits, mono and stereo, and nothing else is
+// read back: the AOV vectors stay empty.
+TEST(Kernel, ColourAloneIsTheSameColour) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const char* name : {"lattice-balls", "spheres"}) {
+    const sol::Scene scene = sol::preset_scene(name);
+    renderer.set_world(scene);
+    const sol::Camera eyes[] = {scene.camera, sol::stereo_eyes(scene.camera, 0.1).right};
+    for (std::size_t n : {1u, 2u}) {
+      const sol::RenderResult all = renderer.render(std::span(eyes, n), {.width = 24, .height = 16, .samples = 2});
+      const sol::RenderResult colour =
+          renderer.render(std::span(eyes, n), {.width = 24, .height = 16, .samples = 2, .aovs = false});
+      EXPECT_EQ(colour.rgba, all.rgba) << name << " " << n;
+      EXPECT_EQ(colour.width, all.width);
+      for (const auto* plane : {&colour.object, &colour.distance, &colour.px, &colour.py, &colour.pz, &colour.steps}) {
+        EXPECT_TRUE(plane->empty()) << name;
+      }
+    }
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");

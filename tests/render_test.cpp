@@ -1203,6 +1203,24 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   }
 }
 
+// The CPU renderer without AOVs: the same colour, mono and stereo (eyes
+// side by side), and no AOV planes.
+TEST(Render, ColourAloneIsTheSameColour) {
+  const sol::Scene scene = sol::preset_scene("sandwich");
+  sol::CpuRenderer renderer(scene);
+  const sol::Camera eyes[] = {scene.camera, sol::stereo_eyes(scene.camera, 0.1).right};
+  for (std::size_t n : {1u, 2u}) {
+    const sol::RenderResult all = renderer.render(std::span(eyes, n), {.width = 20, .height = 12});
+    const sol::RenderResult colour = renderer.render(std::span(eyes, n), {.width = 20, .height = 12, .aovs = false});
+    EXPECT_EQ(colour.rgba, all.rgba) << n;
+    EXPECT_EQ(colour.width, all.width);
+    EXPECT_FALSE(all.object.empty());
+    for (const auto* plane : {&colour.object, &colour.distance, &colour.px, &colour.py, &colour.pz, &colour.steps}) {
+      EXPECT_TRUE(plane->empty());
+    }
+  }
+}
+
 }  // namespace
 
 // A render that cannot fit in memory is refused up front with both figures

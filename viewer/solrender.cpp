@@ -58,7 +58,10 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   r.height = h;
   const std::size_t n = static_cast<std::size_t>(w) * h;
   r.rgba.resize(4 * n);
-  for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->resize(n);
+  const bool aovs = !both.object.empty();  // (rendered with RenderOptions::aovs)
+  if (aovs) {
+    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->resize(n);
+  }
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * w + i;
@@ -67,6 +70,7 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
       r.rgba[4 * k + 1] = both.rgba[4 * right + 1];
       r.rgba[4 * k + 2] = both.rgba[4 * right + 2];
       r.rgba[4 * k + 3] = 1.0f;
+      if (!aovs) continue;
       r.object[k] = both.object[left];
       r.distance[k] = both.distance[left];
       r.px[k] = both.px[left];
@@ -589,6 +593,7 @@ int main(int argc, char** argv) {
     options.height = o.height;
     options.samples = o.spp;
     options.threads = o.threads;
+    options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
     const Render render = [&](const sol::Camera& camera) {

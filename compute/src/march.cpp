@@ -681,6 +681,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   r.width = static_cast<int>(w);
   r.height = height;
   r.rgba = color.download();
+  if (!options.aovs) return r;  // the colour alone: nothing more read back or held
   const std::vector<float> hits = hit.download(), points = point.download();
   const std::size_t n = static_cast<std::size_t>(w) * h;
   r.object.resize(n);

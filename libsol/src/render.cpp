@@ -432,6 +432,7 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   const int h = left.height;
   auto join = [&](const std::vector<float>& a, const std::vector<float>& b, int channels) {
     std::vector<float> out;
+    if (a.empty() || b.empty()) return out;  // AOVs not asked for (RenderOptions::aovs)
     out.reserve(a.size() + b.size());
     const std::size_t ra = static_cast<std::size_t>(left.width) * channels, rb = static_cast<std::size_t>(right.width) * channels;
     for (int j = 0; j < h; ++j) {
@@ -506,12 +507,10 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
   r.width = w;
   r.height = h;
   r.rgba.assign(4 * pixels, 0.0f);
-  r.object.assign(pixels, 0.0f);
-  r.distance.assign(pixels, 0.0f);
-  r.px.assign(pixels, 0.0f);
-  r.py.assign(pixels, 0.0f);
-  r.pz.assign(pixels, 0.0f);
-  r.steps.assign(pixels, 0.0f);
+  const bool aovs = settings.aovs;
+  if (aovs) {
+    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->assign(pixels, 0.0f);
+  }
 
   // Every ray starts at the camera, except an ODS eye's: each column at its
   // own eye (sol::column_eye), prepared once per column.
@@ -557,6 +556,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       r.rgba[4 * k + 1] = static_cast<float>(c.g);
       r.rgba[4 * k + 2] = static_cast<float>(c.b);
       r.rgba[4 * k + 3] = 1.0f;
+      if (!aovs) continue;
       r.object[k] = static_cast<float>(hit.object);
       r.steps[k] = static_cast<float>(hit.steps);
       if (hit.object != 0) {

@@ -44,7 +44,12 @@ struct RenderOptions {
   /// watchdog), report progress and can stop. Infinite (the default): the
   /// whole image in one dispatch per sample. Tiles change no pixel.
   double max_dispatch_ms = std::numeric_limits<double>::infinity();
-  /// Called now and then with the finished fraction in (0, 1].
+  /// The arbitrary output variables too (RenderResult's object ... steps).
+  /// False: the colour alone, the AOV vectors left empty, so a renderer
+  /// neither reads them back from a device nor holds them (solrender
+  /// without --aov).
+  bool aovs = true;
+  /// Called now and then with the finished fraction in [0, 1] (0 first, 1 last).
   std::function<void(double)> progress;
   /// When set and true, the render stops early and throws sol::Cancelled.
   const std::atomic<bool>* cancel = nullptr;
@@ -53,7 +58,7 @@ struct RenderOptions {
 /// An image and its arbitrary output variables, row-major, row 0 at the top.
 struct RenderResult {
   int width = 0, height = 0;
-  std::vector<float> rgba;      ///< 4 per pixel, linear RGB, alpha 1
+  std::vector<float> rgba;      ///< 4 per pixel, linear RGB, alpha 1; the rest empty without RenderOptions::aovs
   std::vector<float> object;    ///< per pixel: 0 = no hit, k = k-th object (1-based)
   std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
   std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
