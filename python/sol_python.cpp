@@ -62,15 +62,6 @@ class Interrupts {
   std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
 };
 
-// Refuses a call whose points exceed `limit` before any work, with the figure.
-void check_points(double points, double limit, const char* what) {
-  if (points > limit) {
-    char text[200];
-    std::snprintf(text, sizeof text, "%s = %.3g points; at most %.0e in one call", what, points, limit);
-    throw sol::InvalidArgument(text);
-  }
-}
-
 // An (N, 3) array's rows (a single point is one row).
 std::vector<glm::dvec3> rows(const Points& points, const char* name) {
   const py::buffer_info b = points.request();
@@ -331,10 +322,7 @@ PYBIND11_MODULE(_sol, m) {
       "geodesic_polylines",
       [](const std::array<double, 3>& from, const Points& directions, double length, int segments) {
         const std::vector<glm::dvec3> dirs = rows(directions, "directions");
-        char what[96];
-        std::snprintf(what, sizeof what, "sol.geodesic_polylines: %zu directions x %lld points", dirs.size(),
-                      static_cast<long long>(segments) + 1);
-        check_points(static_cast<double>(dirs.size()) * (segments + 1.0), sol::kMaxPolylinePoints, what);
+        sol::check_polyline_points(dirs.size(), segments, "sol.geodesic_polylines");  // the whole, before the parts
         // A direction at a time (the checks of the arguments with the first),
         // Ctrl-C heard between them.
         std::vector<std::vector<glm::dvec3>> lines;
@@ -357,9 +345,7 @@ PYBIND11_MODULE(_sol, m) {
   m.def(
       "cut_locus_curves",
       [](const std::array<double, 3>& center, const std::vector<double>& radii, int samples) {
-        char what[96];
-        std::snprintf(what, sizeof what, "sol.cut_locus_curves: %zu radii x 4 arcs x %d samples", radii.size(), samples);
-        check_points(static_cast<double>(radii.size()) * 4.0 * samples, sol::kMaxCutLocusPoints, what);
+        sol::check_cut_locus_points(radii.size(), samples, "sol.cut_locus_curves");  // the whole, before the parts
         // A radius at a time, Ctrl-C heard between them.
         std::vector<std::vector<glm::dvec3>> curves;
         {

@@ -322,6 +322,26 @@ Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) 
   return mesh;
 }
 
+void check_polyline_points(std::size_t directions, long long segments, const char* who) {
+  const double points = static_cast<double>(directions) * (static_cast<double>(segments) + 1.0);
+  if (points > kMaxPolylinePoints) {
+    char text[240];
+    std::snprintf(text, sizeof text, "%s: %zu directions x %lld points = %.3g points; at most %.0e in one call", who,
+                  directions, segments + 1, points, kMaxPolylinePoints);
+    throw InvalidArgument(text);
+  }
+}
+
+void check_cut_locus_points(std::size_t radii, long long samples, const char* who) {
+  const double points = static_cast<double>(radii) * 4.0 * static_cast<double>(samples);
+  if (points > kMaxCutLocusPoints) {
+    char text[240];
+    std::snprintf(text, sizeof text, "%s: %zu radii x 4 arcs x %lld samples = %.3g points; at most %.0e in one call", who,
+                  radii, samples, points, kMaxCutLocusPoints);
+    throw InvalidArgument(text);
+  }
+}
+
 std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, const std::vector<glm::dvec3>& directions,
                                                         double length, int segments) {
   check_center(from, "sol::geodesic_polylines");
@@ -331,14 +351,7 @@ std::vector<std::vector<glm::dvec3>> geodesic_polylines(const glm::dvec3& from, 
   if (segments < 1 || segments > 1000000) {
     throw InvalidArgument("sol::geodesic_polylines: segments must be in [1, 1000000], got " + std::to_string(segments));
   }
-  const double points = static_cast<double>(directions.size()) * (segments + 1.0);
-  if (points > kMaxPolylinePoints) {
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "sol::geodesic_polylines: %zu directions x %d points = %.3g points; at most %.0e in one call", directions.size(),
-                  segments + 1, points, kMaxPolylinePoints);
-    throw InvalidArgument(text);
-  }
+  check_polyline_points(directions.size(), segments, "sol::geodesic_polylines");
   std::vector<std::vector<glm::dvec3>> lines;
   for (const glm::dvec3& d : directions) {
     if (!std::isfinite(d.x + d.y + d.z) || !(glm::length(d) > 0.0)) {
@@ -365,14 +378,7 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
   if (samples < 2 || samples > 100000) {
     throw InvalidArgument("sol::cut_locus_curves: samples must be in [2, 100000], got " + std::to_string(samples));
   }
-  const double points = static_cast<double>(radii.size()) * 4.0 * samples;
-  if (points > kMaxCutLocusPoints) {
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "sol::cut_locus_curves: %zu radii x 4 arcs x %d samples = %.3g points; at most %.0e in one call",
-                  radii.size(), samples, points, kMaxCutLocusPoints);
-    throw InvalidArgument(text);
-  }
+  check_cut_locus_points(radii.size(), samples, "sol::cut_locus_curves");
   std::vector<std::vector<glm::dvec3>> curves;
   for (double r : radii) {
     if (!(r > kSmoothSphereRadius) || !(r <= kMaxMeshedSphereRadius)) {

@@ -32,12 +32,8 @@ def _plain(value):
 
 
 def _camera_fields(c):
-    return {k: v for k, v in _json.loads(_scene_json_with_camera(c))["camera"].items()}
-
-
-def _scene_json_with_camera(c):
-    # A camera's fields as the scene file writes them: through a scene holding it.
-    return _sol._scene_with_camera(c).to_json()
+    """A camera's fields as the scene file writes them: through a scene holding it."""
+    return _json.loads(_sol._scene_with_camera(c).to_json())["camera"]
 
 
 def _parse(fields, source):

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -81,6 +82,14 @@ inline constexpr double kMaxPolylinePoints = 1e7;
 /// The most points cut_locus_curves makes in one call: radii × 4 arcs ×
 /// samples up to 10⁵, each found by bisection (about 7 s on one core).
 inline constexpr double kMaxCutLocusPoints = 1e5;
+
+/// The bounds above, before any work: InvalidArgument naming `who` with the
+/// figure ("N directions x S points = P points; at most 1e+07 in one
+/// call") where a call would make more points. geodesic_polylines and
+/// cut_locus_curves check with them; a caller that splits the work (the
+/// Python module, between interrupts) checks the whole first.
+void check_polyline_points(std::size_t directions, long long segments, const char* who);
+void check_cut_locus_points(std::size_t radii, long long samples, const char* who);
 
 /// Geodesics from `from` along each of `directions` (frame components,
 /// normalised here) to arc length `length`, each as segments + 1 points
