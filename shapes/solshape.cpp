@@ -326,6 +326,12 @@ int sphere(int argc, char** argv) {
   cl.parse(argc, argv);
   if (radius == 0.0) cl.fail("--radius R is required");
   if (min_feature_mm && !size_mm) cl.fail("--min-feature-mm needs --size-mm (the mesh's size in millimetres)");
+  // The report looks for thin parts up to twice the least feature: at most a
+  // tenth of the print, so each vertex searches a small part of the mesh.
+  if (min_feature_mm && *min_feature_mm > *size_mm / 20.0) {
+    cl.fail("--min-feature-mm " + std::to_string(*min_feature_mm) + " must be at most --size-mm / 20 (" +
+            std::to_string(*size_mm / 20.0) + ")");
+  }
   if (output.empty()) cl.fail("no output file: give -o FILE.ply|.obj|.stl");
   const std::string format = format_of(output);
   if (format.empty()) cl.fail(output + ": unknown mesh format (the name must end in .ply, .obj or .stl)");

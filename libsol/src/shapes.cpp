@@ -444,10 +444,24 @@ std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
     const glm::dvec3 area = glm::cross(b - a, c - a);
     for (int k : t) normals[static_cast<std::size_t>(k)] += area;
   }
-  // The grid: each triangle in every cell its bounding box meets.
-  glm::dvec3 lo(std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& v : mesh.vertices) lo = glm::min(lo, v);
-  auto cell_of = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor((p - lo) / up_to)); };
+  // The grid: each triangle in every cell its bounding box meets. Cells of
+  // at least the longest edge (a triangle meets at most 2 x 2 x 2 of them,
+  // however small up_to), and no thickness is looked for beyond the mesh's
+  // diagonal (however large up_to): the work stays bounded.
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& v : mesh.vertices) {
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  }
+  double longest_edge = 0.0;
+  for (const auto& t : mesh.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      longest_edge = std::max(longest_edge, glm::length(mesh.vertices[t[(e + 1) % 3]] - mesh.vertices[t[e]]));
+    }
+  }
+  const double reach = std::min(up_to, n > 0 ? glm::length(hi - lo) : up_to);
+  const double cell = std::max({reach, longest_edge, 1e-300});
+  auto cell_of = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor((p - lo) / cell)); };
   auto key = [](const glm::i64vec3& c) {
     return (static_cast<std::uint64_t>(c.x) * 73856093u) ^ (static_cast<std::uint64_t>(c.y) * 19349663u) ^
            (static_cast<std::uint64_t>(c.z) * 83492791u);
@@ -469,8 +483,8 @@ std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
     const double length = glm::length(normals[k]);
     if (!(length > 0.0)) continue;  // a vertex of no triangle
     const glm::dvec3 o = mesh.vertices[k], d = -normals[k] / length;
-    // The cells the segment [o, o + up_to d] meets lie within its box.
-    const glm::i64vec3 c0 = cell_of(glm::min(o, o + up_to * d)), c1 = cell_of(glm::max(o, o + up_to * d));
+    // The cells the segment [o, o + reach d] meets lie within its box.
+    const glm::i64vec3 c0 = cell_of(glm::min(o, o + reach * d)), c1 = cell_of(glm::max(o, o + reach * d));
     seen.clear();
     for (auto x = c0.x; x <= c1.x; ++x) {
       for (auto y = c0.y; y <= c1.y; ++y) {
@@ -487,7 +501,7 @@ std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
       const double hit = ray_triangle(o, d, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
       if (hit > 0.0 && hit < least) least = hit;
     }
-    if (least <= up_to) thickness[k] = least;
+    if (least <= reach) thickness[k] = least;
   }
   return thickness;
 }

@@ -118,7 +118,8 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
 /// triangles' normals, reversed) to the first triangle not incident to it,
 /// or +infinity where none is within `up_to` (only thin parts matter, and
 /// looking no farther keeps the search local: a uniform grid of cells of
-/// size `up_to`). In the mesh's units. Throws InvalidArgument for
+/// `up_to` or the longest edge, whichever is larger, and no farther than
+/// the mesh's diagonal). In the mesh's units. Throws InvalidArgument for
 /// `up_to` not finite and > 0 or an index outside the vertices.
 std::vector<double> vertex_thickness(const Mesh& mesh, double up_to);
 
