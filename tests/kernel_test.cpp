@@ -16,6 +16,7 @@
 #include <sol/vk/kernel_probes.hpp>
 #include <sol/vk/march.hpp>
 #include <sol/vk/march_interface.h>
+#include <sol/vk/pipeline.hpp>
 
 #include "srgb.hpp"
 #include "support/boxes.hpp"
@@ -1171,6 +1172,92 @@ TEST(Kernel, RecordedDispatchWritesRendersColour) {
   EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
     renderer.record(cb, std::vector<sol::Camera>{scene.camera}, 8, 8, small);
   }), sol::InvalidArgument);
+  expect_no_validation_errors();
+}
+
+// Frames in flight (MarchOptions::frames_in_flight = 3, the presenters'
+// ring): three frames recorded into command buffers of their own and
+// submitted one after another without waiting, each with another camera,
+// the third after set_world changed the world (a deferring one, spheres,
+// whose lists grow: buffers replaced while frames are pending), and a
+// fourth reusing the first frame's descriptor set once the first is done.
+// Each frame's image is render()'s image of its own camera and world, bit
+// for bit: a frame reads the uniforms its commands wrote, not a later
+// frame's (a host-written uniform buffer would show the last camera in all).
+TEST(Kernel, FramesInFlightEachRenderTheirOwnCameraAndWorld) {
+  sol::vk::Context& context = vk_context();
+  sol::vk::MarchRenderer renderer(context, {.frames_in_flight = 3});
+  sol::vk::MarchRenderer reference(context);
+  const int w = 16, h = 12;
+  const sol::Scene lattice = sol::preset_scene("lattice-balls"), spheres = sol::preset_scene("spheres");
+  struct Shot {
+    const sol::Scene* scene;
+    sol::Camera camera;
+  };
+  std::vector<Shot> shots;
+  for (int k = 0; k < 4; ++k) {
+    const sol::Scene& scene = k == 2 ? spheres : lattice;
+    sol::Camera c = scene.camera;
+    c.position += glm::dvec3(0.07 * k, -0.05 * k, 0.03 * k);
+    shots.push_back({&scene, c});
+  }
+  VkDevice device = context.device();
+  VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                                    VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, context.queue_family_index()};
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateCommandPool(device, &pool_info, nullptr, &pool), VK_SUCCESS);
+  std::vector<VkCommandBuffer> cbs(4);
+  VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                       VK_COMMAND_BUFFER_LEVEL_PRIMARY, 4};
+  ASSERT_EQ(vkAllocateCommandBuffers(device, &allocate, cbs.data()), VK_SUCCESS);
+  std::vector<VkFence> fences(4);
+  for (VkFence& f : fences) {
+    VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, 0};
+    ASSERT_EQ(vkCreateFence(device, &info, nullptr, &f), VK_SUCCESS);
+  }
+  std::vector<sol::vk::StorageImage> targets;
+  // Whatever fails, nothing is destroyed while a frame still runs.
+  struct Idle {
+    sol::vk::Context& c;
+    ~Idle() { c.wait_idle(); }
+  } idle{context};
+  for (int k = 0; k < 4; ++k) targets.emplace_back(context, static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
+  renderer.set_world(lattice);
+  for (int k = 0; k < 4; ++k) {
+    if (k == 2) renderer.set_world(spheres);  // frames 0 and 1 may still run
+    if (k == 3) {
+      renderer.set_world(lattice);
+      // Frame 3 takes frame 0's descriptor set: frame 0 must be done (the contract).
+      ASSERT_EQ(vkWaitForFences(device, 1, &fences[0], VK_TRUE, UINT64_MAX), VK_SUCCESS);
+    }
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    ASSERT_EQ(vkBeginCommandBuffer(cbs[k], &begin), VK_SUCCESS);
+    renderer.record(cbs[k], std::span(&shots[k].camera, 1), w, h, targets[k]);
+    sol::vk::record_memory_barrier(cbs[k], VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                                   VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+    ASSERT_EQ(vkEndCommandBuffer(cbs[k]), VK_SUCCESS);
+    VkSubmitInfo submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cbs[k];
+    ASSERT_EQ(vkQueueSubmit(context.queue(), 1, &submit, fences[k]), VK_SUCCESS);
+  }
+  ASSERT_EQ(vkWaitForFences(device, 4, fences.data(), VK_TRUE, UINT64_MAX), VK_SUCCESS);
+  for (int k = 0; k < 4; ++k) {
+    sol::Scene scene = *shots[k].scene;
+    scene.camera = shots[k].camera;
+    const sol::RenderResult want = sol::test::render(reference, scene, w, h);
+    EXPECT_EQ(targets[k].download(), want.rgba) << "frame " << k;
+  }
+  // The frames differ from one another (each camera is its own).
+  EXPECT_NE(targets[0].download(), targets[1].download());
+  for (VkFence f : fences) vkDestroyFence(device, f, nullptr);
+  vkDestroyCommandPool(device, pool, nullptr);
+  EXPECT_THROW(sol::vk::MarchRenderer(context, {.frames_in_flight = 0}), sol::InvalidArgument);
+  EXPECT_THROW(sol::vk::MarchRenderer(context, {.frames_in_flight = sol::vk::kMaxFramesInFlight + 1}),
+               sol::InvalidArgument);
   expect_no_validation_errors();
 }
 

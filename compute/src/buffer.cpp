@@ -1,5 +1,6 @@
 #include "sol/vk/buffer.hpp"
 
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -21,10 +22,15 @@ void check_range(VkDeviceSize offset, std::size_t count, VkDeviceSize size, cons
 
 }  // namespace
 
+std::uint64_t detail::next_resource_id() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
 Buffer::Buffer(Context& context, VkDeviceSize size, BufferUsage usage) : Buffer(context.internals(), size, usage) {}
 
 Buffer::Buffer(std::shared_ptr<detail::Device> owner, VkDeviceSize size, BufferUsage usage)
-    : m_owner(std::move(owner)), m_size(size), m_usage(usage) {
+    : m_owner(std::move(owner)), m_size(size), m_usage(usage), m_id(detail::next_resource_id()) {
   if (size == 0) throw std::invalid_argument("Buffer: size must be positive");
   const detail::Device& device = *m_owner;
   const VkDevice vk_device = device.device;
@@ -75,7 +81,8 @@ Buffer::Buffer(Buffer&& other) noexcept
       m_memory(std::exchange(other.m_memory, VK_NULL_HANDLE)),
       m_mapped(std::exchange(other.m_mapped, nullptr)),
       m_size(std::exchange(other.m_size, 0)),
-      m_usage(other.m_usage) {}
+      m_usage(other.m_usage),
+      m_id(std::exchange(other.m_id, 0)) {}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
   if (this != &other) {
@@ -86,6 +93,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     m_mapped = std::exchange(other.m_mapped, nullptr);
     m_size = std::exchange(other.m_size, 0);
     m_usage = other.m_usage;
+    m_id = std::exchange(other.m_id, 0);
   }
   return *this;
 }

@@ -13,6 +13,10 @@
 
 namespace sol::vk::detail {
 
+/// A new identity for a buffer or image: never 0, never given twice in the
+/// process (Buffer::id, StorageImage::id).
+std::uint64_t next_resource_id();
+
 struct Device {
   Device() = default;
   Device(const Device&) = delete;

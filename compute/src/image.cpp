@@ -41,7 +41,7 @@ constexpr VkImageSubresourceRange kColor{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
 }  // namespace
 
 StorageImage::StorageImage(Context& context, std::uint32_t width, std::uint32_t height, VkFormat format)
-    : m_owner(context.internals()), m_width(width), m_height(height), m_format(format) {
+    : m_owner(context.internals()), m_width(width), m_height(height), m_format(format), m_id(detail::next_resource_id()) {
   detail::Device& d = *m_owner;
   const std::uint32_t max_extent = d.properties.limits.maxImageDimension2D;
   if (width == 0 || height == 0 || width > max_extent || height > max_extent) {
@@ -113,7 +113,8 @@ StorageImage::StorageImage(StorageImage&& other) noexcept
       m_view(std::exchange(other.m_view, VK_NULL_HANDLE)),
       m_width(std::exchange(other.m_width, 0)),
       m_height(std::exchange(other.m_height, 0)),
-      m_format(std::exchange(other.m_format, VK_FORMAT_UNDEFINED)) {}
+      m_format(std::exchange(other.m_format, VK_FORMAT_UNDEFINED)),
+      m_id(std::exchange(other.m_id, 0)) {}
 
 StorageImage& StorageImage::operator=(StorageImage&& other) noexcept {
   if (this != &other) {
@@ -125,6 +126,7 @@ StorageImage& StorageImage::operator=(StorageImage&& other) noexcept {
     m_width = std::exchange(other.m_width, 0);
     m_height = std::exchange(other.m_height, 0);
     m_format = std::exchange(other.m_format, VK_FORMAT_UNDEFINED);
+    m_id = std::exchange(other.m_id, 0);
   }
   return *this;
 }

@@ -262,7 +262,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingQueue, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
-                             .specialization_folding = o.specialization_folding});
+                             .specialization_folding = o.specialization_folding,
+                             .descriptor_sets = static_cast<std::uint32_t>(o.frames_in_flight)});
 }
 
 // Which connection table exact balls and point lights need: none, the
@@ -279,13 +280,16 @@ SeedTable seed_table_of(const MarchFeatures& f) {
 struct MarchRenderer::Impl {
   Context& context;
   MarchOptions options;
-  // A variant's pipelines: the march pass, and the deferred passes it takes.
+  // What a descriptor set holds: the identity (Buffer::id, StorageImage::id)
+  // of the resource at each binding; 0 for none or a caller's raw image
+  // view, which is written again at every use.
+  using SetContents = std::array<std::uint64_t, kernel::kBindingQueue + 1>;
+  // A variant's pipelines: the march pass, and the deferred passes it takes;
+  // each with options.frames_in_flight descriptor sets, one per frame in flight.
   struct Built {
     ComputePipeline pipeline;
     std::optional<ComputePipeline> resume, shade;
-    std::uint64_t world_bound = 0;    // the world generation whose buffers are bound (0: none)
-    std::uint64_t columns_bound = 0;  // the columns buffer's generation bound (0: none)
-    std::uint64_t queue_bound = 0;    // the queue buffer's generation bound (0: none)
+    std::vector<SetContents> sets;
 
     // The deferred passes' pipelines compile on threads of their own while
     // the march pass's does (lavapipe takes up to a second for each, folded).
@@ -299,55 +303,85 @@ struct MarchRenderer::Impl {
       Built built{make_pipeline(c, o, v, kernel::kPassMarch)};
       if (resume.valid()) built.resume.emplace(resume.get());
       if (shade.valid()) built.shade.emplace(shade.get());
+      built.sets.assign(static_cast<std::size_t>(o.frames_in_flight), SetContents{});
       return built;
     }
-    // Binds a resource to every pass's pipeline.
+    // Binds a resource to every pass's pipeline in descriptor set `set`,
+    // unless the set holds it already (no descriptor is written then, so
+    // command buffers that use the set stay valid).
     template <class Resource>
-    void bind(int binding, const Resource& resource) {
-      pipeline.bind(static_cast<std::uint32_t>(binding), resource);
-      if (resume) resume->bind(static_cast<std::uint32_t>(binding), resource);
-      if (shade) shade->bind(static_cast<std::uint32_t>(binding), resource);
+    void bind(std::uint32_t set, int binding, const Resource& resource) {
+      std::uint64_t& held = sets[set][static_cast<std::size_t>(binding)];
+      if (held != 0 && held == resource.id()) return;
+      bind_each(set, binding, resource);
+      held = resource.id();
+    }
+    void bind(std::uint32_t set, int binding, VkImageView view) {
+      bind_each(set, binding, view);
+      sets[set][static_cast<std::size_t>(binding)] = 0;
+    }
+    template <class Resource>
+    void bind_each(std::uint32_t set, int binding, const Resource& resource) {
+      pipeline.bind(static_cast<std::uint32_t>(binding), resource, set);
+      if (resume) resume->bind(static_cast<std::uint32_t>(binding), resource, set);
+      if (shade) shade->bind(static_cast<std::uint32_t>(binding), resource, set);
     }
   };
   // One pipeline per kernel variant, built when first needed and kept.
   std::map<std::uint32_t, Built> pipelines;
+  // The uniforms: one buffer, written by each frame's commands (vkCmdUpdateBuffer), never by the host.
   Buffer params;
   // The prepared world and what set_world made of it.
   std::optional<MarchWorld> world;
-  std::uint64_t generation = 0;  // counts set_world calls
   Params world_uniforms{};
   // Device copies of the world's buffers; a recorded dispatch still reads
-  // them after record() returns, so they live until the next set_world.
+  // them after record() returns: a replaced one is retired (below).
   std::optional<Buffer> images;
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
   std::optional<Buffer> light_images;  // the quotient: its lights' images
-  // Omnidirectional stereo: the eyes' columns (sol::column_eye), rewritten
-  // each frame that has such eyes, reallocated when they outgrow it.
+  // Omnidirectional stereo: the eyes' columns (sol::column_eye), written by
+  // the commands of each frame that has such eyes; a larger one when they outgrow it.
   std::optional<Buffer> columns;
-  std::uint64_t columns_generation = 0;
   // The deferred passes' lists (kernel::QueueHeader, then the records): for
   // the largest dispatch so far, in device memory.
   std::optional<Buffer> queue;
-  std::uint64_t queue_generation = 0;
   SeedTable seeds_held = SeedTable::None;
   // For the AOV bindings (rgba32f, never written without AOVs) when the
   // colour binding holds a caller's 8-bit image.
   std::optional<StorageImage> placeholder;
+  // Frames: record() and render() calls so far. Call c uses descriptor set
+  // c mod frames_in_flight; before it the caller has waited for call
+  // c - frames_in_flight, so a buffer replaced before call f (used by calls
+  // up to f - 1) is free to go once call f + frames_in_flight - 1 begins.
+  std::uint64_t frames = 0;
+  std::vector<std::pair<std::uint64_t, Buffer>> retired;  // (f, buffer)
 
   Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {
-    write_columns(std::vector<kernel::Column>(1));  // a stub until an ODS frame
-    reserve_queue(0);                               // the header alone until a deferring frame
+    columns.emplace(context, sizeof(kernel::Column), BufferUsage::DeviceStorage);  // a stub until an ODS frame
+    reserve_queue(0);  // the header alone until a deferring frame
   }
 
-  // The ODS eyes' columns into the device buffer (a larger one when needed).
-  void write_columns(const std::vector<kernel::Column>& records) {
-    const VkDeviceSize bytes = records.size() * sizeof(kernel::Column);
-    if (!columns || columns->size() < bytes) {
-      columns.emplace(context, bytes);
-      ++columns_generation;
-    }
-    columns->write(records);
+  // Keeps `buffer` alive until no frame recorded so far can still read it.
+  void retire(std::optional<Buffer>& buffer) {
+    if (buffer) retired.emplace_back(frames, std::move(*buffer));
+    buffer.reset();
+  }
+  // A new frame (record() or render()): its descriptor set; retired buffers
+  // that no pending frame can read are released.
+  std::uint32_t begin_frame() {
+    const std::uint64_t c = frames++;
+    const auto in_flight = static_cast<std::uint64_t>(options.frames_in_flight);
+    std::erase_if(retired, [&](const auto& r) { return r.first + in_flight - 1 <= c; });
+    return static_cast<std::uint32_t>(c % in_flight);
+  }
+
+  // Room for the ODS eyes' columns (a larger buffer when needed).
+  void reserve_columns(std::size_t records) {
+    const VkDeviceSize bytes = std::max<std::size_t>(records, 1) * sizeof(kernel::Column);
+    if (columns && columns->size() >= bytes) return;
+    retire(columns);
+    columns.emplace(context, bytes, BufferUsage::DeviceStorage);
   }
 
   // Room in the lists for dispatches of up to `pixels` pixels (a resume
@@ -358,64 +392,81 @@ struct MarchRenderer::Impl {
   void reserve_queue(std::uint64_t pixels) {
     const VkDeviceSize bytes = queue_bytes(pixels);
     if (queue && queue->size() >= bytes) return;
+    retire(queue);
     queue.emplace(context, bytes, BufferUsage::DeviceStorage);
-    ++queue_generation;
   }
 
-  // The pipelines of a variant with the current world's buffers bound.
-  Built& pipeline(const KernelVariant& v) {
+  // The pipelines of a variant with the current world's buffers bound in descriptor set `set`.
+  Built& pipeline(const KernelVariant& v, std::uint32_t set) {
     auto it = pipelines.find(v.key());
     if (it == pipelines.end()) it = pipelines.emplace(v.key(), Built::build(context, options, v)).first;
     Built& built = it->second;
-    if (built.world_bound != generation) {
-      built.bind(kernel::kBindingParams, params);
-      built.bind(kernel::kBindingImages, *images);
-      built.bind(kernel::kBindingSeeds, *seeds);
-      built.bind(kernel::kBindingField, *field);
-      built.bind(kernel::kBindingLightImages, *light_images);
-      built.world_bound = generation;
-    }
-    if (built.columns_bound != columns_generation) {
-      built.bind(kernel::kBindingColumns, *columns);
-      built.columns_bound = columns_generation;
-    }
-    if (built.queue_bound != queue_generation) {
-      built.bind(kernel::kBindingQueue, *queue);
-      built.queue_bound = queue_generation;
-    }
+    built.bind(set, kernel::kBindingParams, params);
+    built.bind(set, kernel::kBindingImages, *images);
+    built.bind(set, kernel::kBindingSeeds, *seeds);
+    built.bind(set, kernel::kBindingField, *field);
+    built.bind(set, kernel::kBindingLightImages, *light_images);
+    built.bind(set, kernel::kBindingColumns, *columns);
+    built.bind(set, kernel::kBindingQueue, *queue);
     return built;
   }
 
-  // Records a dispatch of `built` over groups_x × groups_y workgroups: the
-  // march pass, then, when the variant defers, each deferred pass over its
-  // list (an indirect dispatch of the workgroups the march pass counted),
-  // with the barriers between them; the lists' header is reset first.
+  // What one frame's dispatches read besides the world: its uniforms and,
+  // for omnidirectional stereo, its eyes' columns.
+  struct FrameData {
+    const Params* params;
+    const std::vector<kernel::Column>* columns;  // null: none this frame
+  };
+
   // record_passes in a submission of its own, waited for
   // (sol::vk::run_recorded); returns the device's time in milliseconds.
-  double run_passes(const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {
-    return run_recorded(context, [&](VkCommandBuffer cb) { record_passes(cb, built, groups_x, groups_y); });
+  double run_passes(const Built& built, std::uint32_t set, std::uint32_t groups_x, std::uint32_t groups_y,
+                    const FrameData& data) {
+    return run_recorded(context, [&](VkCommandBuffer cb) { record_passes(cb, built, set, groups_x, groups_y, data); });
   }
 
-  void record_passes(VkCommandBuffer cb, const Built& built, std::uint32_t groups_x, std::uint32_t groups_y) {
-    if (!built.resume && !built.shade) {
-      built.pipeline.record_dispatch(cb, groups_x, groups_y);
-      return;
+  // Records a frame's dispatch of `built` over groups_x × groups_y
+  // workgroups with descriptor set `set`: the frame's uniforms and columns
+  // (and the lists' header, when the variant defers) written by the
+  // commands themselves, then the march pass and, when the variant defers,
+  // each deferred pass over its list (an indirect dispatch of the
+  // workgroups the march pass counted), with the barriers between them.
+  // Frames recorded one after another run in turn: this frame's writes wait
+  // until the passes of every earlier frame on the queue are done.
+  void record_passes(VkCommandBuffer cb, const Built& built, std::uint32_t set, std::uint32_t groups_x,
+                     std::uint32_t groups_y, const FrameData& data) {
+    const bool deferred = built.resume || built.shade;
+    // Write after read (and after write, the lists): earlier frames' passes first.
+    record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                          VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(cb, params.handle(), 0, sizeof(Params), data.params);
+    if (data.columns != nullptr) {
+      // vkCmdUpdateBuffer takes at most 65536 bytes a call.
+      constexpr std::size_t kChunk = 65536 / sizeof(kernel::Column);
+      for (std::size_t first = 0; first < data.columns->size(); first += kChunk) {
+        const std::size_t count = std::min(kChunk, data.columns->size() - first);
+        vkCmdUpdateBuffer(cb, columns->handle(), first * sizeof(kernel::Column), count * sizeof(kernel::Column),
+                          data.columns->data() + first);
+      }
     }
-    const kernel::QueueHeader header{.resume = glm::ivec4(0, 1, 1, 0), .shade = glm::ivec4(0, 1, 1, 0)};
-    vkCmdUpdateBuffer(cb, queue->handle(), 0, sizeof header, &header);
+    if (deferred) {
+      const kernel::QueueHeader header{.resume = glm::ivec4(0, 1, 1, 0), .shade = glm::ivec4(0, 1, 1, 0)};
+      vkCmdUpdateBuffer(cb, queue->handle(), 0, sizeof header, &header);
+    }
     auto barrier = [&](VkPipelineStageFlags from, VkAccessFlags written) {
       record_memory_barrier(cb, from, written, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+                            VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     };
     barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    built.pipeline.record_dispatch(cb, groups_x, groups_y);
+    built.pipeline.record_dispatch(cb, groups_x, groups_y, {}, set);
     if (built.resume) {
       barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-      built.resume->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, resume));
+      built.resume->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, resume), {}, set);
     }
     if (built.shade) {
       barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-      built.shade->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, shade));
+      built.shade->record_dispatch_indirect(cb, *queue, offsetof(kernel::QueueHeader, shade), {}, set);
     }
   }
 };
@@ -423,6 +474,10 @@ struct MarchRenderer::Impl {
 MarchRenderer::MarchRenderer(Context& context, const MarchOptions& options) {
   if (!(options.rk4_step > 0.0) || !std::isfinite(options.rk4_step)) {
     throw InvalidArgument("sol::vk::MarchRenderer: rk4_step must be finite and > 0");
+  }
+  if (options.frames_in_flight < 1 || options.frames_in_flight > kMaxFramesInFlight) {
+    throw InvalidArgument("sol::vk::MarchRenderer: frames_in_flight must be 1 to " + std::to_string(kMaxFramesInFlight) +
+                          ", got " + std::to_string(options.frames_in_flight));
   }
   // No pipeline yet: each variant is built when a frame first needs it
   // (a build costs lavapipe up to a second even folded, and one built here
@@ -449,11 +504,13 @@ void MarchRenderer::set_world(const World& world) {
   // first guesses, sol_shortest); else a stub.
   const std::vector<float> stub(4, 0.0f);
   const SeedTable seeds = seed_table_of(f);
-  // Nothing may still read the old buffers (one frame in flight: the caller waited for it).
+  // Frames still in flight read the old buffers: they are retired, not destroyed.
+  m.retire(m.images);
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
   if (!m.seeds || m.seeds_held != seeds) {
     const std::vector<float>& values = seeds == SeedTable::None ? stub : ConnectionTable::shared(seeds == SeedTable::Longer).seeds;
+    m.retire(m.seeds);
     m.seeds.emplace(m.context, values.size() * sizeof(float));
     m.seeds->write(values);
     m.seeds_held = seeds;
@@ -461,13 +518,14 @@ void MarchRenderer::set_world(const World& world) {
   // The quotient: its distance field over D (sol::MarchWorld built it; a stub otherwise).
   const std::vector<std::uint32_t> stub_field(4, 0u);
   const std::vector<std::uint32_t>& field = f.quotient ? prepared.field()->words() : stub_field;
+  m.retire(m.field);
   m.field.emplace(m.context, field.size() * sizeof(std::uint32_t));
   m.field->write(field);
+  m.retire(m.light_images);
   m.light_images.emplace(m.context, light_images.size() * sizeof(glm::vec4));
   m.light_images->write(light_images);
   m.world_uniforms = world_params(prepared);
   m.world.emplace(std::move(prepared));
-  ++m.generation;
 }
 
 const MarchWorld& MarchRenderer::world() const {
@@ -482,13 +540,17 @@ int MarchRenderer::deferred_passes() const {
 }
 
 struct MarchRenderer::Frame {
-  Impl::Built* pipeline;  // the variant's passes
+  Impl::Built* pipeline;        // the variant's passes
+  std::uint32_t set;            // the frame's descriptor set
   std::uint32_t width, height;  // of the whole (side-by-side) image
-  Params params;                // the uniforms written (render() rewrites their tile and sample per dispatch)
+  Params params;                // the uniforms (render() rewrites their tile and sample per dispatch)
+  std::vector<kernel::Column> columns;  // omnidirectional stereo: the eyes' columns (else empty)
+  Impl::FrameData data() const { return {&params, columns.empty() ? nullptr : &columns}; }
 };
 
 // What render() and record() do each frame: checks, the eyes' uniforms, and
-// the pipeline of the variant with the world's buffers bound.
+// the pipeline of the variant with the world's buffers bound in the frame's
+// descriptor set (the frame is counted only once every check has passed).
 MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs,
                                                   bool srgb_unorm, const PixelSample& sample, bool sample_aovs) {
   Impl& m = *m_impl;
@@ -498,7 +560,13 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   size.height = height;
   validate_render(eyes, size, "sol::vk::MarchRenderer");
   if (eyes.size() > 2) throw InvalidArgument("sol::vk::MarchRenderer: 1 or 2 eyes, got " + std::to_string(eyes.size()));
-  Params g = m.world_uniforms;
+  const bool inside = sample.offset.x >= 0.0 && sample.offset.x < 1.0 && sample.offset.y >= 0.0 && sample.offset.y < 1.0;
+  if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0)) {
+    throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
+  }
+  Frame f{};
+  Params& g = f.params;
+  g = m.world_uniforms;
   for (std::size_t i = 0; i < eyes.size(); ++i) g.eyes[i] = make_eye(prepared, eyes[i], width, height, m.options.rk4_step);
   g.counts.y = width;
   g.counts.z = height;
@@ -506,23 +574,17 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   // Omnidirectional stereo: every column's eye, in double (eye e's column i at e × width + i).
   const bool ods = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.eye_offset != 0.0; });
   if (ods) {
-    std::vector<kernel::Column> records(eyes.size() * static_cast<std::size_t>(width));
+    f.columns.resize(eyes.size() * static_cast<std::size_t>(width));
     for (std::size_t e = 0; e < eyes.size(); ++e) {
       for (int i = 0; i < width; ++i) {
         const ColumnEye c = column_eye(eyes[e], i, width);
-        records[e * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] = {
+        f.columns[e * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] = {
             vec4(c.offset, 0.0), {vec4(c.transport[0], 0.0), vec4(c.transport[1], 0.0), vec4(c.transport[2], 0.0)}};
       }
     }
-    m.write_columns(records);
-  }
-  const bool inside = sample.offset.x >= 0.0 && sample.offset.x < 1.0 && sample.offset.y >= 0.0 && sample.offset.y < 1.0;
-  if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0)) {
-    throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
   }
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
-  m.params.write(std::span<const Params>(&g, 1));
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
   KernelVariant variant{kernel_features(prepared.features(), m.options.all_features)};
   variant.aovs = aovs;
@@ -533,18 +595,35 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   // The lists hold a record per pixel of a dispatch, at most the whole
   // image; a frame whose lists one indirect dispatch or one storage buffer
   // binding could not hold renders in one dispatch.
+  const std::uint64_t pixels = static_cast<std::uint64_t>(width) * eyes.size() * static_cast<std::uint64_t>(height);
   if (variant.resume || variant.defer_shading) {
-    const std::uint64_t pixels = static_cast<std::uint64_t>(width) * eyes.size() * static_cast<std::uint64_t>(height);
     const VkPhysicalDeviceLimits& limits = m.context.limits();
     if (pixels / (kernel::kGroupSize * kernel::kGroupSize) + 1 > limits.maxComputeWorkGroupCount[0] ||
         Impl::queue_bytes(pixels) > limits.maxStorageBufferRange) {
       variant.resume = variant.defer_shading = false;
-    } else {
-      m.reserve_queue(pixels);
     }
   }
-  return {&m.pipeline(variant), static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size()),
-          static_cast<std::uint32_t>(height), g};
+  // Checked: the frame counts from here.
+  f.set = m.begin_frame();
+  if (variant.resume || variant.defer_shading) m.reserve_queue(pixels);
+  if (ods) m.reserve_columns(f.columns.size());
+  f.pipeline = &m.pipeline(variant, f.set);
+  f.width = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(eyes.size());
+  f.height = static_cast<std::uint32_t>(height);
+  return f;
+}
+
+void MarchRenderer::reserve(int width, int height, int eyes) {
+  if (width < 1 || height < 1 || eyes < 1 || eyes > 2) {
+    throw InvalidArgument("sol::vk::MarchRenderer::reserve: a size of at least 1 x 1 and 1 or 2 eyes");
+  }
+  Impl& m = *m_impl;
+  const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(eyes) * static_cast<std::uint64_t>(height);
+  const VkPhysicalDeviceLimits& limits = m.context.limits();
+  if (pixels / (kernel::kGroupSize * kernel::kGroupSize) + 1 <= limits.maxComputeWorkGroupCount[0] &&
+      Impl::queue_bytes(pixels) <= limits.maxStorageBufferRange) {
+    m.reserve_queue(pixels);
+  }
 }
 
 std::string MarchRenderer::description() const { return "vulkan '" + m_impl->context.device_name() + "'"; }
@@ -557,9 +636,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                           std::to_string(f.width) + " x " + std::to_string(f.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(b, target);
-  m_impl->record_passes(command_buffer, *f.pipeline, group_count(f.width, kernel::kGroupSize),
-                        group_count(f.height, kernel::kGroupSize));
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(f.set, b, target);
+  m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
+                        group_count(f.height, kernel::kGroupSize), f.data());
 }
 
 std::string MarchRenderer::unsupported(const World& world) {
@@ -613,10 +692,10 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                           " x " + std::to_string(f.height));
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
-  f.pipeline->bind(kernel::kBindingColor, target.view);
-  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(b, *m.placeholder);
-  m.record_passes(command_buffer, *f.pipeline, group_count(f.width, kernel::kGroupSize),
-                  group_count(f.height, kernel::kGroupSize));
+  f.pipeline->bind(f.set, kernel::kBindingColor, target.view);
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(f.set, b, *m.placeholder);
+  m.record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
+                  group_count(f.height, kernel::kGroupSize), f.data());
 }
 
 RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
@@ -629,14 +708,14 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
-  const Frame f = prepare_frame(eyes, options.width, height, true, false);
+  Frame f = prepare_frame(eyes, options.width, height, true, false);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
   StorageImage color(m.context, f.width, f.height), hit(m.context, f.width, f.height), point(m.context, f.width, f.height);
   Impl::Built& pipeline = *f.pipeline;
-  pipeline.bind(kernel::kBindingColor, color);
-  pipeline.bind(kernel::kBindingHit, hit);
-  pipeline.bind(kernel::kBindingPoint, point);
-  Params g = f.params;
+  pipeline.bind(f.set, kernel::kBindingColor, color);
+  pipeline.bind(f.set, kernel::kBindingHit, hit);
+  pipeline.bind(f.set, kernel::kBindingPoint, point);
+  Params& g = f.params;
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
   // dispatch (whole bands of the image's width while those fit, else
@@ -654,9 +733,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
         const PixelSample sample = k == 0 ? PixelSample{} : PixelSample{pixel_sample(k), 1.0 / (k + 1)};
         g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, k == 0 ? 1.0 : 0.0));
-        m.params.write(std::span<const Params>(&g, 1));
-        ms += m.run_passes(pipeline, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
-                           group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize));
+        ms += m.run_passes(pipeline, f.set, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
+                           group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize), f.data());
         pixels_timed += static_cast<double>(cols) * rows;
       }
     }

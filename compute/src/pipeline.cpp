@@ -119,9 +119,13 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     : m_owner(context.internals()),
       m_name(desc.name.empty() ? std::string("unnamed") : desc.name),
       m_bindings(desc.bindings),
-      m_bound(desc.bindings.size(), false),
       m_push_constant_size(desc.push_constant_size) {
   detail::Device& d = *m_owner;
+  if (desc.descriptor_sets < 1 || desc.descriptor_sets > 64) {
+    throw std::invalid_argument("pipeline '" + m_name + "': " + std::to_string(desc.descriptor_sets) +
+                                " descriptor sets, expected 1 to 64");
+  }
+  m_bound.assign(desc.bindings.size() * desc.descriptor_sets, false);
   for (std::size_t i = 0; i < m_bindings.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (m_bindings[i].binding == m_bindings[j].binding) {
@@ -163,9 +167,9 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
       auto size = std::find_if(pool_sizes.begin(), pool_sizes.end(),
                                [&](const VkDescriptorPoolSize& s) { return s.type == lb.descriptorType; });
       if (size == pool_sizes.end()) {
-        pool_sizes.push_back({lb.descriptorType, 1});
+        pool_sizes.push_back({lb.descriptorType, desc.descriptor_sets});
       } else {
-        ++size->descriptorCount;
+        size->descriptorCount += desc.descriptor_sets;
       }
     }
     VkDescriptorSetLayoutCreateInfo set_info{};
@@ -222,16 +226,20 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
     if (!m_bindings.empty()) {
       VkDescriptorPoolCreateInfo pool_info{};
       pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-      pool_info.maxSets = 1;
+      pool_info.maxSets = desc.descriptor_sets;
       pool_info.poolSizeCount = static_cast<std::uint32_t>(pool_sizes.size());
       pool_info.pPoolSizes = pool_sizes.data();
       check(vkCreateDescriptorPool(d.device, &pool_info, nullptr, &m_pool), "vkCreateDescriptorPool");
+      const std::vector<VkDescriptorSetLayout> layouts(desc.descriptor_sets, m_set_layout);
       VkDescriptorSetAllocateInfo allocate{};
       allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
       allocate.descriptorPool = m_pool;
-      allocate.descriptorSetCount = 1;
-      allocate.pSetLayouts = &m_set_layout;
-      check(vkAllocateDescriptorSets(d.device, &allocate, &m_set), "vkAllocateDescriptorSets");
+      allocate.descriptorSetCount = desc.descriptor_sets;
+      allocate.pSetLayouts = layouts.data();
+      m_sets.resize(desc.descriptor_sets, VK_NULL_HANDLE);
+      check(vkAllocateDescriptorSets(d.device, &allocate, m_sets.data()), "vkAllocateDescriptorSets");
+    } else {
+      m_sets.resize(desc.descriptor_sets, VK_NULL_HANDLE);
     }
   } catch (...) {
     if (module != VK_NULL_HANDLE) vkDestroyShaderModule(d.device, module, nullptr);
@@ -252,7 +260,7 @@ ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept
       m_layout(std::exchange(other.m_layout, VK_NULL_HANDLE)),
       m_pipeline(std::exchange(other.m_pipeline, VK_NULL_HANDLE)),
       m_pool(std::exchange(other.m_pool, VK_NULL_HANDLE)),
-      m_set(std::exchange(other.m_set, VK_NULL_HANDLE)) {}
+      m_sets(std::move(other.m_sets)) {}
 
 ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
   if (this != &other) {
@@ -266,7 +274,7 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
     m_layout = std::exchange(other.m_layout, VK_NULL_HANDLE);
     m_pipeline = std::exchange(other.m_pipeline, VK_NULL_HANDLE);
     m_pool = std::exchange(other.m_pool, VK_NULL_HANDLE);
-    m_set = std::exchange(other.m_set, VK_NULL_HANDLE);
+    m_sets = std::move(other.m_sets);
   }
   return *this;
 }
@@ -274,20 +282,24 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
 void ComputePipeline::release() noexcept {
   if (m_owner == nullptr) return;
   const VkDevice device = m_owner->device;
-  if (m_pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, m_pool, nullptr);  // frees the set
+  if (m_pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, m_pool, nullptr);  // frees the sets
   if (m_pipeline != VK_NULL_HANDLE) vkDestroyPipeline(device, m_pipeline, nullptr);
   if (m_layout != VK_NULL_HANDLE) vkDestroyPipelineLayout(device, m_layout, nullptr);
   if (m_set_layout != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device, m_set_layout, nullptr);
   m_pool = VK_NULL_HANDLE;
-  m_set = VK_NULL_HANDLE;
+  m_sets.clear();
   m_pipeline = VK_NULL_HANDLE;
   m_layout = VK_NULL_HANDLE;
   m_set_layout = VK_NULL_HANDLE;
   m_owner = nullptr;
 }
 
-const Binding& ComputePipeline::find_binding(std::uint32_t binding, DescriptorType type) const {
+const Binding& ComputePipeline::find_binding(std::uint32_t binding, DescriptorType type, std::uint32_t set) const {
   if (m_owner == nullptr) throw std::logic_error("ComputePipeline: the pipeline was moved from");
+  if (set >= m_sets.size()) {
+    throw std::invalid_argument("pipeline '" + m_name + "': descriptor set " + std::to_string(set) + " of " +
+                                std::to_string(m_sets.size()));
+  }
   for (const Binding& b : m_bindings) {
     if (b.binding != binding) continue;
     if (b.type != type) {
@@ -299,36 +311,42 @@ const Binding& ComputePipeline::find_binding(std::uint32_t binding, DescriptorTy
   throw std::invalid_argument("pipeline '" + m_name + "' has no binding " + std::to_string(binding));
 }
 
-void ComputePipeline::bind(std::uint32_t binding, const StorageImage& image) {
+void ComputePipeline::write(const Binding& b, std::uint32_t set, const VkWriteDescriptorSet& write) {
+  VkWriteDescriptorSet w = write;
+  w.dstSet = m_sets[set];
+  w.dstBinding = b.binding;
+  w.descriptorCount = 1;
+  vkUpdateDescriptorSets(m_owner->device, 1, &w, 0, nullptr);
+  m_bound[set * m_bindings.size() + static_cast<std::size_t>(&b - m_bindings.data())] = true;
+}
+
+void ComputePipeline::bind(std::uint32_t binding, const StorageImage& image, std::uint32_t set) {
   if (image.view() == VK_NULL_HANDLE) {
-    find_binding(binding, DescriptorType::StorageImage);
+    find_binding(binding, DescriptorType::StorageImage, set);
     throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) +
                                 ": the image was moved from");
   }
-  bind(binding, image.view());
+  bind(binding, image.view(), set);
 }
 
-void ComputePipeline::bind(std::uint32_t binding, VkImageView storage_view) {
-  const Binding& b = find_binding(binding, DescriptorType::StorageImage);
+void ComputePipeline::bind(std::uint32_t binding, VkImageView storage_view, std::uint32_t set) {
+  const Binding& b = find_binding(binding, DescriptorType::StorageImage, set);
   if (storage_view == VK_NULL_HANDLE) {
     throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) + ": a null image view");
   }
   // GENERAL: the layout storage images are in whenever a dispatch runs.
   const VkDescriptorImageInfo info{VK_NULL_HANDLE, storage_view, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet write{};
-  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  write.dstSet = m_set;
-  write.dstBinding = b.binding;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  write.pImageInfo = &info;
-  vkUpdateDescriptorSets(m_owner->device, 1, &write, 0, nullptr);
-  m_bound[static_cast<std::size_t>(&b - m_bindings.data())] = true;
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w.pImageInfo = &info;
+  write(b, set, w);
 }
 
-void ComputePipeline::bind(std::uint32_t binding, const Buffer& buffer) {
+void ComputePipeline::bind(std::uint32_t binding, const Buffer& buffer, std::uint32_t set) {
   const bool uniform = buffer.usage() == BufferUsage::Uniform;
-  const Binding& b = find_binding(binding, uniform ? DescriptorType::UniformBuffer : DescriptorType::StorageBuffer);
+  const Binding& b =
+      find_binding(binding, uniform ? DescriptorType::UniformBuffer : DescriptorType::StorageBuffer, set);
   if (buffer.handle() == VK_NULL_HANDLE) {
     throw std::invalid_argument("pipeline '" + m_name + "': binding " + std::to_string(binding) +
                                 ": the buffer was moved from");
@@ -341,24 +359,25 @@ void ComputePipeline::bind(std::uint32_t binding, const Buffer& buffer) {
                                 std::to_string(max_range) + " for a " + type_name(b.type));
   }
   const VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet write{};
-  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  write.dstSet = m_set;
-  write.dstBinding = b.binding;
-  write.descriptorCount = 1;
-  write.descriptorType = vk_type(b.type);
-  write.pBufferInfo = &info;
-  vkUpdateDescriptorSets(m_owner->device, 1, &write, 0, nullptr);
-  m_bound[static_cast<std::size_t>(&b - m_bindings.data())] = true;
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.descriptorType = vk_type(b.type);
+  w.pBufferInfo = &info;
+  write(b, set, w);
 }
 
 void ComputePipeline::check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
-                                     std::span<const std::byte> push_constants) const {
+                                     std::span<const std::byte> push_constants, std::uint32_t set) const {
   if (m_owner == nullptr) throw std::logic_error("ComputePipeline: the pipeline was moved from");
+  if (set >= m_sets.size()) {
+    throw std::invalid_argument("pipeline '" + m_name + "': descriptor set " + std::to_string(set) + " of " +
+                                std::to_string(m_sets.size()));
+  }
   for (std::size_t i = 0; i < m_bindings.size(); ++i) {
-    if (!m_bound[i]) {
+    if (!m_bound[set * m_bindings.size() + i]) {
       throw std::logic_error("pipeline '" + m_name + "': nothing bound to binding " +
-                             std::to_string(m_bindings[i].binding));
+                             std::to_string(m_bindings[i].binding) +
+                             (m_sets.size() > 1 ? " of descriptor set " + std::to_string(set) : std::string()));
     }
   }
   if (push_constants.size() != m_push_constant_size) {
@@ -373,10 +392,11 @@ void ComputePipeline::check_dispatch(std::uint32_t groups_x, std::uint32_t group
   }
 }
 
-void ComputePipeline::record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants) const {
+void ComputePipeline::record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants,
+                                   std::uint32_t set) const {
   vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline);
-  if (m_set != VK_NULL_HANDLE) {
-    vkCmdBindDescriptorSets(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout, 0, 1, &m_set, 0, nullptr);
+  if (m_sets[set] != VK_NULL_HANDLE) {
+    vkCmdBindDescriptorSets(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout, 0, 1, &m_sets[set], 0, nullptr);
   }
   if (!push_constants.empty()) {
     vkCmdPushConstants(command_buffer, m_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
@@ -385,21 +405,22 @@ void ComputePipeline::record_state(VkCommandBuffer command_buffer, std::span<con
 }
 
 void ComputePipeline::record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
-                                      std::span<const std::byte> push_constants) const {
-  check_dispatch(groups_x, groups_y, push_constants);
-  record_state(command_buffer, push_constants);
+                                      std::span<const std::byte> push_constants, std::uint32_t set) const {
+  check_dispatch(groups_x, groups_y, push_constants, set);
+  record_state(command_buffer, push_constants, set);
   vkCmdDispatch(command_buffer, groups_x, groups_y, 1);
 }
 
 void ComputePipeline::record_dispatch_indirect(VkCommandBuffer command_buffer, const Buffer& arguments,
-                                               VkDeviceSize offset, std::span<const std::byte> push_constants) const {
-  check_dispatch(1, 1, push_constants);
+                                               VkDeviceSize offset, std::span<const std::byte> push_constants,
+                                               std::uint32_t set) const {
+  check_dispatch(1, 1, push_constants, set);
   if (arguments.handle() == VK_NULL_HANDLE || offset % 4 != 0 || offset > arguments.size() ||
       arguments.size() - offset < sizeof(VkDispatchIndirectCommand)) {
     throw std::invalid_argument("pipeline '" + m_name + "': no dispatch command at byte " + std::to_string(offset) +
                                 " of the arguments buffer");
   }
-  record_state(command_buffer, push_constants);
+  record_state(command_buffer, push_constants, set);
   vkCmdDispatchIndirect(command_buffer, arguments.handle(), offset);
 }
 
@@ -434,7 +455,7 @@ double submit_between_barriers(detail::Device& device, const std::function<void(
 }  // namespace
 
 double ComputePipeline::run(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants) {
-  check_dispatch(groups_x, groups_y, push_constants);  // before anything is recorded
+  check_dispatch(groups_x, groups_y, push_constants, 0);  // before anything is recorded
   return submit_between_barriers(*m_owner, [&](VkCommandBuffer commands) {
     record_dispatch(commands, groups_x, groups_y, push_constants);
   });

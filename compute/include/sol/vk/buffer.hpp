@@ -49,6 +49,10 @@ class Buffer {
   VkBuffer handle() const { return m_buffer; }
   VkDeviceSize size() const { return m_size; }
   BufferUsage usage() const { return m_usage; }
+  /// This buffer's identity: unique among the process's buffers and images,
+  /// never reused (a handle may be, once its object is destroyed); 0 after
+  /// a move from it.
+  std::uint64_t id() const { return m_id; }
 
   /// The mapped memory.
   std::span<std::byte> bytes() { return {m_mapped, m_mapped ? static_cast<std::size_t>(m_size) : 0u}; }
@@ -79,6 +83,7 @@ class Buffer {
   std::byte* m_mapped = nullptr;
   VkDeviceSize m_size = 0;
   BufferUsage m_usage = BufferUsage::Storage;
+  std::uint64_t m_id = 0;
 };
 
 }  // namespace sol::vk

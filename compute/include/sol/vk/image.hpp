@@ -38,6 +38,9 @@ class StorageImage {
   VkFormat format() const { return m_format; }
   VkImage handle() const { return m_image; }
   VkImageView view() const { return m_view; }
+  /// This image's identity: unique among the process's buffers and images,
+  /// never reused; 0 after a move from it (Buffer::id).
+  std::uint64_t id() const { return m_id; }
   /// VK_IMAGE_LAYOUT_GENERAL, the layout between commands.
   VkImageLayout layout() const { return VK_IMAGE_LAYOUT_GENERAL; }
 
@@ -66,6 +69,7 @@ class StorageImage {
   std::uint32_t m_width = 0;
   std::uint32_t m_height = 0;
   VkFormat m_format = VK_FORMAT_UNDEFINED;
+  std::uint64_t m_id = 0;
 };
 
 /// Records one image memory barrier (colour aspect, mip 0, layer 0, no queue

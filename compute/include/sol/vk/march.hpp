@@ -60,7 +60,18 @@ struct MarchOptions {
   /// its SPIR-V on a CPU device and handed to the driver on a GPU. Same
   /// image; the tests compare both ways.
   SpecializationFolding specialization_folding = SpecializationFolding::Auto;
+  /// Frames a presenter keeps in flight, 1 to kMaxFramesInFlight: each
+  /// record() or render() call takes the next of this many descriptor sets,
+  /// and may be made while earlier calls' commands still run, provided the
+  /// caller has waited for the call made frames_in_flight calls before it
+  /// (with 1, for the previous one). A frame's uniforms are written by its
+  /// own commands, never by the host, and buffers the renderer replaces
+  /// (set_world, larger lists) are kept until no pending frame can read them.
+  int frames_in_flight = 1;
 };
+
+/// The most frames a MarchRenderer keeps in flight (MarchOptions::frames_in_flight).
+inline constexpr int kMaxFramesInFlight = 8;
 
 /// Most objects a scene may hold on the GPU, and most images of the objects
 /// around the domain in a quotient scene (sol::quotient_images): the
@@ -109,8 +120,9 @@ class MarchRenderer final : public Renderer {
   /// Prepares `world` for every later frame. Throws sol::InvalidArgument for
   /// an invalid world, more than kMaxGpuObjects objects or, in the
   /// quotient, more than kMaxGpuImages images; sol::NotImplemented for a
-  /// world the kernel does not render (supports()). The caller must not
-  /// change the world while a recorded dispatch still runs.
+  /// world the kernel does not render (supports()). Frames recorded before
+  /// may still run: they keep reading the previous world's buffers, which
+  /// live until they are done (MarchOptions::frames_in_flight).
   void set_world(const World& world) override;
   /// The prepared world (std::logic_error before set_world).
   const MarchWorld& world() const override;
@@ -139,11 +151,13 @@ class MarchRenderer final : public Renderer {
   /// each width × height, left eye on the left) into the caller's command
   /// buffer, writing the linear RGBA colour alone (no AOVs) into `target`, an
   /// R32G32B32A32_SFLOAT StorageImage of at least (eyes · width) × height,
-  /// in GENERAL layout. Records no barriers and submits nothing: the caller
-  /// orders the dispatch against earlier and later uses of `target`. The
-  /// renderer's uniforms are written now, so the caller must wait for its
-  /// previous recorded dispatch to finish before calling again (one frame in
-  /// flight per renderer), and keep `target` alive until this one finishes.
+  /// in GENERAL layout. Submits nothing, and records no barrier for
+  /// `target`: the caller orders the dispatch against earlier and later uses
+  /// of it. The frame's uniforms are written by the recorded commands, which
+  /// first wait for the kernels of frames submitted before them to finish;
+  /// frames may be recorded while earlier ones run, up to
+  /// MarchOptions::frames_in_flight (each call counts one). Keep `target`
+  /// alive until this frame finishes.
   /// Same checks and exceptions as render(). `sample` takes one sample of
   /// every pixel into the running mean already in `target` (progressive
   /// anti-aliasing: the caller orders the dispatch after the previous one).
@@ -156,6 +170,11 @@ class MarchRenderer final : public Renderer {
   /// render()'s, encoded, within 1 in 255.
   void record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
               const UnormTarget& target);
+
+  /// Makes room now for frames of up to eyes × width × height pixels (the
+  /// deferred passes' lists), so that no later frame of that size allocates
+  /// device memory; a presenter calls it when its largest frame changes.
+  void reserve(int width, int height, int eyes);
 
   /// Whether record() can write a UnormTarget of `format` on the context's
   /// device: R8G8B8A8_UNORM or B8G8R8A8_UNORM, usable as a storage image

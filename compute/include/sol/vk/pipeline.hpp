@@ -80,6 +80,11 @@ struct ComputePipelineDesc {
   std::vector<SpecializationConstant> specialization{};
   /// How the specialisation constants reach the code (SpecializationFolding).
   SpecializationFolding specialization_folding = SpecializationFolding::Auto;
+  /// Descriptor sets, each with every binding (at least 1). A caller with
+  /// several frames in flight binds each frame's resources into a set that
+  /// no pending command buffer uses (a set must not be updated while a
+  /// command buffer that uses it is pending or being recorded).
+  std::uint32_t descriptor_sets = 1;
 };
 
 /// The module with its specialisation constants given their values and
@@ -119,17 +124,19 @@ class ComputePipeline {
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
 
-  /// Binds a resource to `binding`: a StorageImage to a StorageImage binding,
-  /// a Storage buffer to a StorageBuffer binding, a Uniform buffer to a
-  /// UniformBuffer binding. Anything else throws std::invalid_argument. The
-  /// resource must outlive its use by run(). Not while a dispatch is running.
-  void bind(std::uint32_t binding, const StorageImage& image);
-  void bind(std::uint32_t binding, const Buffer& buffer);
+  /// Binds a resource to `binding` of descriptor set `set`: a StorageImage
+  /// to a StorageImage binding, a Storage buffer to a StorageBuffer binding,
+  /// a Uniform buffer to a UniformBuffer binding. Anything else, or a set
+  /// beyond descriptor_sets(), throws std::invalid_argument. The resource
+  /// must outlive its use by run(). Not while a dispatch that uses the set
+  /// is pending or being recorded.
+  void bind(std::uint32_t binding, const StorageImage& image, std::uint32_t set = 0);
+  void bind(std::uint32_t binding, const Buffer& buffer, std::uint32_t set = 0);
   /// Binds an image view of the caller's (a swapchain image's, say) to a
   /// StorageImage binding; the image must have STORAGE usage and be in
   /// GENERAL layout when a dispatch runs. Throws std::invalid_argument for a
   /// null view or a binding of another type.
-  void bind(std::uint32_t binding, VkImageView storage_view);
+  void bind(std::uint32_t binding, VkImageView storage_view, std::uint32_t set = 0);
 
   /// Dispatches groups_x × groups_y × 1 workgroups and waits for them; returns
   /// the time the device took in milliseconds (see Context::submit_and_wait).
@@ -144,11 +151,11 @@ class ComputePipeline {
     return run(groups_x, groups_y, std::as_bytes(std::span(&push_constants, 1)));
   }
 
-  /// Records the dispatch alone (bind pipeline and set, push constants,
-  /// vkCmdDispatch) into a command buffer of the caller, who provides the
-  /// barriers around it. Same checks as run().
+  /// Records the dispatch alone (bind pipeline and descriptor set `set`,
+  /// push constants, vkCmdDispatch) into a command buffer of the caller, who
+  /// provides the barriers around it. Same checks as run(), for that set.
   void record_dispatch(VkCommandBuffer command_buffer, std::uint32_t groups_x, std::uint32_t groups_y,
-                       std::span<const std::byte> push_constants = {}) const;
+                       std::span<const std::byte> push_constants = {}, std::uint32_t set = 0) const;
 
   /// The same with the workgroup counts read by the device from `arguments`
   /// at byte `offset` (a VkDispatchIndirectCommand, written by an earlier
@@ -157,31 +164,33 @@ class ComputePipeline {
   /// binding has nothing bound, std::invalid_argument when the command lies
   /// outside the buffer or `offset` is not a multiple of 4.
   void record_dispatch_indirect(VkCommandBuffer command_buffer, const Buffer& arguments, VkDeviceSize offset,
-                                std::span<const std::byte> push_constants = {}) const;
+                                std::span<const std::byte> push_constants = {}, std::uint32_t set = 0) const;
 
   const std::string& name() const { return m_name; }
   VkPipeline handle() const { return m_pipeline; }
   VkPipelineLayout layout() const { return m_layout; }
-  VkDescriptorSet descriptor_set() const { return m_set; }
+  VkDescriptorSet descriptor_set(std::uint32_t set = 0) const { return m_sets.at(set); }
+  std::uint32_t descriptor_sets() const { return static_cast<std::uint32_t>(m_sets.size()); }
 
  private:
-  const Binding& find_binding(std::uint32_t binding, DescriptorType type) const;
-  void check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
-                      std::span<const std::byte> push_constants) const;
-  // Binds the pipeline, its set and the push constants for a dispatch.
-  void record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants) const;
+  const Binding& find_binding(std::uint32_t binding, DescriptorType type, std::uint32_t set) const;
+  void write(const Binding& binding, std::uint32_t set, const VkWriteDescriptorSet& write);
+  void check_dispatch(std::uint32_t groups_x, std::uint32_t groups_y, std::span<const std::byte> push_constants,
+                      std::uint32_t set) const;
+  // Binds the pipeline, the set and the push constants for a dispatch.
+  void record_state(VkCommandBuffer command_buffer, std::span<const std::byte> push_constants, std::uint32_t set) const;
   void release() noexcept;
 
   std::shared_ptr<detail::Device> m_owner;
   std::string m_name;
   std::vector<Binding> m_bindings;
-  std::vector<bool> m_bound;
+  std::vector<bool> m_bound;  // set s's binding i at s · bindings + i
   std::uint32_t m_push_constant_size = 0;
   VkDescriptorSetLayout m_set_layout = VK_NULL_HANDLE;
   VkPipelineLayout m_layout = VK_NULL_HANDLE;
   VkPipeline m_pipeline = VK_NULL_HANDLE;
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
-  VkDescriptorSet m_set = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> m_sets;
 };
 
 /// Records a global memory barrier: what `src_access` wrote in `src_stages`
