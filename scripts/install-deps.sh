@@ -18,6 +18,7 @@ packages=(
   spirv-tools           # SPIRV-Tools: Sol::vk validates SPIR-V and folds its specialisation constants before a driver sees it
   vulkan-validationlayers  # VK_LAYER_KHRONOS_validation, on in the Vulkan tests
   libopenxr-dev libopenxr-loader1  # OpenXR headers and loader: solxr and its headless test runtime
+  openxr-layer-corevalidation  # tests: every solxr run under the OpenXR core validation layer
   libglfw3-dev          # solview: window and Vulkan surface
   libimgui-dev          # solview: its overlay panel (Dear ImGui; the GLFW and Vulkan backends are compiled in)
   xvfb xauth            # solview's tests: a virtual X display (xvfb-run)

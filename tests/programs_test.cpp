@@ -10,6 +10,7 @@
 #include <functional>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "frame_stats.hpp"
 #include "image_file.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
@@ -328,4 +330,35 @@ TEST(ProgressEstimate, IsWithinAFactorTwoAfterTenPercent) {
     }
     EXPECT_EQ(estimate.report(end, 1.0), 0.0);
   }
+}
+
+// The presenters' frame figures (solview and solxr --stats): the mean and
+// nearest-rank 99th percentile worked out by hand, intervals only where a
+// frame had a predecessor, and a frame missed when work plus recording
+// exceed its period (equal fits).
+TEST(FrameStats, MeanPercentileAndMissedFramesByHand) {
+  // Nearest rank: of 1..100 the 99th is 99, of 1..10 it is 10 (ceil(9.9) = 10), of one value that value.
+  std::vector<double> hundred(100);
+  for (int k = 0; k < 100; ++k) hundred[static_cast<std::size_t>(k)] = 100 - k;
+  EXPECT_EQ(sol::programs::percentile(hundred, 99.0), 99.0);
+  EXPECT_EQ(sol::programs::percentile({3, 1, 2, 10, 4, 5, 6, 7, 8, 9}, 99.0), 10.0);
+  EXPECT_EQ(sol::programs::percentile({7.5}, 99.0), 7.5);
+  EXPECT_EQ(sol::programs::percentile({}, 99.0), 0.0);
+  EXPECT_EQ(sol::programs::percentile({4, 1, 3, 2}, 50.0), 2.0);
+
+  sol::programs::FrameStats stats;
+  stats.add(std::nullopt, 9.0, 1.0, 11.0);  // the first frame: no interval; 10 <= 11 fits
+  stats.add(10.0, 10.0, 1.0, 11.0);         // 11 = 11: fits
+  stats.add(12.0, 11.0, 0.5, 11.0);         // 11.5 > 11: missed
+  stats.add(std::nullopt, 2.0, 0.5, 11.0);  // after a pause
+  stats.add(14.0, 3.0, 0.0, 2.0);           // 3 > 2: missed
+  EXPECT_EQ(stats.frames(), 5);
+  EXPECT_EQ(stats.intervals(), 3);
+  EXPECT_DOUBLE_EQ(stats.mean_interval_ms(), 12.0);
+  EXPECT_EQ(stats.p99_interval_ms(), 14.0);
+  EXPECT_DOUBLE_EQ(stats.mean_work_ms(), 7.0);
+  EXPECT_DOUBLE_EQ(stats.mean_record_ms(), 0.6);
+  EXPECT_EQ(stats.missed(), 2);
+  EXPECT_EQ(stats.summary("stereo"), "stereo frames: 5, mean 12.000 ms, p99 14.000 ms, missed 2");
+  EXPECT_EQ(sol::programs::FrameStats().summary("mono"), "mono frames: 0, mean 0.000 ms, p99 0.000 ms, missed 0");
 }

@@ -43,7 +43,10 @@ SolxrRun run_solxr(const std::string& name, const std::string& script, const std
   body.insert(brace + 1, "\"output\": \"" + r.dir.string() + "\", ");
   std::ofstream(r.dir / "script.json") << body;
   const fs::path log = r.dir / "log.txt";
-  const std::string command = "XR_RUNTIME_JSON='" + runtime_json + "' SOLXR_TEST_SCRIPT='" +
+  // Every run goes through the OpenXR core validation layer (Debian
+  // openxr-layer-corevalidation), which prints what it finds on stdout.
+  const std::string command = "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation XR_RUNTIME_JSON='" +
+                              runtime_json + "' SOLXR_TEST_SCRIPT='" +
                               (r.dir / "script.json").string() + "' '" SOLXR_PATH "' --validation " + args + " > '" +
                               log.string() + "' 2>&1";
   const int status = std::system(command.c_str());
@@ -57,9 +60,12 @@ SolxrRun run_solxr(const std::string& name, const std::string& script, const std
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 /// A clean run: exit 0, the runtime saw every object destroyed, no Vulkan
-/// validation message.
+/// validation message, and the OpenXR core validation layer loaded and
+/// silent (its messages begin "[VALID_ERROR |" or "[VALID_WARNING |").
 void expect_clean(const SolxrRun& r) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "Core Validation output type")) << r.err;
+  EXPECT_FALSE(contains(r.err, "[VALID_")) << r.err;
   EXPECT_TRUE(contains(r.err, " 0 objects leaked")) << r.err;
   EXPECT_FALSE(contains(r.err, "LEAK")) << r.err;
   EXPECT_FALSE(contains(r.err, "validation error")) << r.err;
@@ -368,8 +374,34 @@ TEST(XrSolxr, FramesOptionAsksTheRuntimeToExit) {
       run_solxr("frames", R"({"width": 8, "height": 8, "frames": [{}, {}, {}, {}, {}, {}, {}, {}, {}, {}]})",
                 "--frames 3 --stats");
   expect_clean(r);
-  EXPECT_TRUE(contains(r.err, "per eye")) << r.err;
-  EXPECT_TRUE(contains(r.err, "4 frames ended")) << r.err;  // 3, then the one waited for while stopping
+  // 3, then the one waited for while stopping, which the session is no longer visible for.
+  EXPECT_TRUE(contains(r.err, "4 frames ended, 6 images saved")) << r.err;
+  // --stats: every rendered stereo frame counted (the three), the intervals'
+  // mean and p99 (nearest rank of two: their largest, so at least the mean).
+  long n = -1, missed = -1;
+  double mean = -1, p99 = -1;
+  const std::size_t at = r.err.find("stereo frames: ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + at, "stereo frames: %ld, mean %lf ms, p99 %lf ms, missed %ld", &n, &mean, &p99,
+                        &missed),
+            4)
+      << r.err;
+  EXPECT_EQ(n, 3);
+  EXPECT_GT(mean, 0.0);
+  EXPECT_GE(p99, mean);
+  EXPECT_GE(missed, 0);
+  EXPECT_LE(missed, 3);
+  EXPECT_TRUE(contains(r.err, "device work mean")) << r.err;
+}
+
+// The test runtime's timing mode ("read_back": false): the views are still
+// logged, but no eye image is read back or saved.
+TEST(XrSolxr, TimingModeReadsNoImageBack) {
+  const SolxrRun r = run_solxr("timing", R"({"width": 8, "height": 8, "read_back": false, "frames": [{}, {}, {}]})", "");
+  expect_clean(r);
+  EXPECT_TRUE(contains(r.err, "0 images saved")) << r.err;
+  EXPECT_TRUE(fs::exists(r.dir / "views.txt"));
+  EXPECT_FALSE(fs::exists(r.dir / "frame0_view0.rgba32f"));
 }
 
 TEST(XrSolxr, NoRuntimeIsAClearError) {

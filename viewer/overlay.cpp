@@ -10,6 +10,8 @@
 
 #include <sol/vk/error.hpp>
 
+#include "presenter.hpp"
+
 namespace sol::viewer {
 namespace {
 
@@ -62,7 +64,10 @@ Overlay::Overlay(vk::Context& context, GLFWwindow* window) : m_context(context) 
 Overlay::~Overlay() {
   vkDeviceWaitIdle(m_context.device());
   destroy_backend();
-  if (m_framebuffer) vkDestroyFramebuffer(m_context.device(), m_framebuffer, nullptr);
+  for (VkFramebuffer f : m_framebuffers) {
+    if (f) vkDestroyFramebuffer(m_context.device(), f, nullptr);
+  }
+  m_framebuffers.clear();
   vkDestroyDescriptorPool(m_context.device(), m_pool, nullptr);
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -112,7 +117,9 @@ void Overlay::build_backend(VkFormat format) {
   init.Queue = m_context.queue();
   init.DescriptorPool = m_pool;
   init.MinImageCount = 2;
-  init.ImageCount = 2;  // vertex buffers per frame; the presenter keeps one frame in flight
+  // Vertex buffers per frame, taken in turn: more than the presenter's
+  // frames in flight, so that none is rewritten while a pending frame reads it.
+  init.ImageCount = sol::viewer::kFramesInFlight + 1;
   init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   init.CheckVkResultFn = check_imgui_result;
   if (!ImGui_ImplVulkan_Init(&init, m_render_pass)) throw std::runtime_error("ImGui's Vulkan backend failed to start");
@@ -139,8 +146,11 @@ void Overlay::record(VkCommandBuffer command_buffer, VkImageView view, VkFormat 
                      std::uint32_t height) {
   if (!m_backend || format != m_format) return;  // the draw lists belong to the other format's backend
   VkDevice device = m_context.device();
-  if (m_framebuffer) vkDestroyFramebuffer(device, m_framebuffer, nullptr);  // the last frame's: done
-  m_framebuffer = VK_NULL_HANDLE;
+  m_framebuffers.resize(kFramesInFlight, VK_NULL_HANDLE);
+  VkFramebuffer& framebuffer = m_framebuffers[m_next_framebuffer];
+  m_next_framebuffer = (m_next_framebuffer + 1) % m_framebuffers.size();
+  if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);  // kFramesInFlight calls ago: its frame is done
+  framebuffer = VK_NULL_HANDLE;
   VkFramebufferCreateInfo fb{};
   fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
   fb.renderPass = m_render_pass;
@@ -149,11 +159,11 @@ void Overlay::record(VkCommandBuffer command_buffer, VkImageView view, VkFormat 
   fb.width = width;
   fb.height = height;
   fb.layers = 1;
-  vk::check(vkCreateFramebuffer(device, &fb, nullptr, &m_framebuffer), "vkCreateFramebuffer");
+  vk::check(vkCreateFramebuffer(device, &fb, nullptr, &framebuffer), "vkCreateFramebuffer");
   VkRenderPassBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
   begin.renderPass = m_render_pass;
-  begin.framebuffer = m_framebuffer;
+  begin.framebuffer = framebuffer;
   begin.renderArea = {{0, 0}, {width, height}};
   vkCmdBeginRenderPass(command_buffer, &begin, VK_SUBPASS_CONTENTS_INLINE);
   if (ImDrawData* draw = ImGui::GetDrawData()) ImGui_ImplVulkan_RenderDrawData(draw, command_buffer);

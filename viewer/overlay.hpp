@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>  // after vulkan_core.h (GLFW_INCLUDE_VULKAN is defined by CMake)
 
 #include <cstdint>
+#include <vector>
 
 #include <sol/vk/context.hpp>
 
@@ -52,7 +53,10 @@ class Overlay {
   bool m_backend = false;
   // The framebuffer of the frame in flight: destroyed at the next record()
   // (the frame is done by then) or with the overlay.
-  VkFramebuffer m_framebuffer = VK_NULL_HANDLE;
+  // One per frame in flight, taken in turn: the one a call replaces was
+  // recorded kFramesInFlight calls before, into a frame that is done.
+  std::vector<VkFramebuffer> m_framebuffers;
+  std::size_t m_next_framebuffer = 0;
 };
 
 }  // namespace sol::viewer

@@ -29,14 +29,23 @@ Presenter::Presenter(vk::Context& context, GLFWwindow* window, bool vsync, bool 
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
                                       VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, context.queue_family_index()};
     vk::check(vkCreateCommandPool(device, &pool_info, nullptr, &m_pool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, m_pool,
-                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-    vk::check(vkAllocateCommandBuffers(device, &alloc, &m_commands), "vkAllocateCommandBuffers");
-    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
-    vk::check(vkCreateSemaphore(device, &sem, nullptr, &m_acquired), "vkCreateSemaphore");
-    // Signalled: the first frame's wait returns at once.
-    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
-    vk::check(vkCreateFence(device, &fence, nullptr, &m_frame_done), "vkCreateFence");
+    for (Slot& slot : m_slots) {
+      VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, m_pool,
+                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+      vk::check(vkAllocateCommandBuffers(device, &alloc, &slot.commands), "vkAllocateCommandBuffers");
+      VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+      vk::check(vkCreateSemaphore(device, &sem, nullptr, &slot.acquired), "vkCreateSemaphore");
+      // Signalled: the slot's first wait returns at once.
+      VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+      vk::check(vkCreateFence(device, &fence, nullptr, &slot.done), "vkCreateFence");
+      if (context.timestamps_supported()) {
+        VkQueryPoolCreateInfo queries{};
+        queries.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+        queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        queries.queryCount = 2;
+        vk::check(vkCreateQueryPool(device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
+      }
+    }
     create_swapchain(vsync);
   } catch (...) {
     release();  // what was made so far: every handle is null or valid
@@ -50,12 +59,15 @@ void Presenter::release() noexcept {
   VkDevice device = m_context.device();
   vkDeviceWaitIdle(device);
   destroy_swapchain();
-  if (m_acquired) vkDestroySemaphore(device, m_acquired, nullptr);
-  if (m_frame_done) vkDestroyFence(device, m_frame_done, nullptr);
-  m_acquired = VK_NULL_HANDLE;
-  m_frame_done = VK_NULL_HANDLE;
+  for (Slot& slot : m_slots) {
+    if (slot.acquired) vkDestroySemaphore(device, slot.acquired, nullptr);
+    if (slot.done) vkDestroyFence(device, slot.done, nullptr);
+    if (slot.timestamps) vkDestroyQueryPool(device, slot.timestamps, nullptr);
+    slot = Slot{};
+  }
   m_capture.reset();
   m_target.reset();
+  m_retired_targets.clear();
   if (m_pool) vkDestroyCommandPool(device, m_pool, nullptr);
   m_pool = VK_NULL_HANDLE;
   if (m_surface) vkDestroySurfaceKHR(m_context.instance(), m_surface, nullptr);
@@ -116,7 +128,8 @@ void Presenter::create_swapchain(bool vsync) {
     destroy_swapchain();
     return;
   }
-  std::uint32_t count = std::max(caps.minImageCount, 2u);
+  // An image for each frame in flight and one being shown.
+  std::uint32_t count = std::max(caps.minImageCount, static_cast<std::uint32_t>(kFramesInFlight) + 1);
   if (caps.maxImageCount) count = std::min(count, caps.maxImageCount);
   VkSwapchainCreateInfoKHR info{};
   info.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR;
@@ -177,18 +190,41 @@ void Presenter::destroy_swapchain() {
 
 void Presenter::recreate(bool vsync) {
   VkDevice device = m_context.device();
-  vkDeviceWaitIdle(device);  // nothing in flight may use the old images
-  // The acquire semaphore may be left signalled by an acquire whose frame was dropped: a fresh one.
-  vkDestroySemaphore(device, m_acquired, nullptr);
-  m_acquired = VK_NULL_HANDLE;
-  VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
-  vk::check(vkCreateSemaphore(device, &sem, nullptr, &m_acquired), "vkCreateSemaphore");
+  wait_for_frame();  // nothing in flight may use the old images (a resize, a path change: not per frame)
+  vkDeviceWaitIdle(device);  // nor may a present
+  // An acquire semaphore may be left signalled by an acquire whose frame was dropped: fresh ones.
+  for (Slot& slot : m_slots) {
+    vkDestroySemaphore(device, slot.acquired, nullptr);
+    slot.acquired = VK_NULL_HANDLE;
+    VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, nullptr, 0};
+    vk::check(vkCreateSemaphore(device, &sem, nullptr, &slot.acquired), "vkCreateSemaphore");
+  }
   m_out_of_date = false;
   create_swapchain(vsync);
 }
 
+void Presenter::retire(Slot& slot) {
+  vk::check(vkWaitForFences(m_context.device(), 1, &slot.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  // Targets that only frames up to this one could read.
+  std::erase_if(m_retired_targets, [&](const auto& r) { return r.first <= slot.frame; });
+  if (!slot.pending) return;
+  slot.pending = false;
+  if (slot.timestamps == VK_NULL_HANDLE) return;  // no device clock: nothing to count
+  std::uint64_t ticks[2] = {0, 0};
+  vk::check(vkGetQueryPoolResults(m_context.device(), slot.timestamps, 0, 2, sizeof ticks, ticks, sizeof(std::uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+            "vkGetQueryPoolResults");
+  const double ms_per_tick = static_cast<double>(m_context.timestamp_period()) * 1e-6;
+  const double begin = static_cast<double>(ticks[0]) * ms_per_tick, end = static_cast<double>(ticks[1]) * ms_per_tick;
+  const std::optional<double> interval =
+      slot.follows && m_last_end_ms ? std::optional<double>(end - *m_last_end_ms) : std::nullopt;
+  m_stats.add(interval, end - begin, slot.record_ms, slot.period_ms);
+  m_last_end_ms = end;
+}
+
 void Presenter::wait_for_frame() {
-  vk::check(vkWaitForFences(m_context.device(), 1, &m_frame_done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  // In frame order, so that the intervals are counted in turn.
+  for (long k = 0; k < kFramesInFlight; ++k) retire(m_slots[(m_frames + k) % kFramesInFlight]);
 }
 
 std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, std::span<const Camera> eyes,
@@ -216,10 +252,14 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   }
   const bool direct = m_direct;
 
-  // One frame in flight: wait until the previous frame's commands are done
-  // before touching its command buffer, the renderer's uniforms or the target.
-  wait_for_frame();
+  // Frames in flight: this frame's slot held frame n - kFramesInFlight,
+  // which must be done before its command buffer and semaphore are reused
+  // (with the swapchain's pacing it long is). The previous frame may still run.
+  Slot& slot = m_slots[m_frames % kFramesInFlight];
+  retire(slot);
   if (!direct && (!m_target || m_rendered_w != render_w || m_rendered_h != render_h)) {
+    // The frames before this one may still read the old image: kept until they are done.
+    if (m_target) m_retired_targets.emplace_back(m_frames - 1, std::move(*m_target));
     m_target.reset();
     m_target.emplace(m_context, static_cast<std::uint32_t>(render_w), static_cast<std::uint32_t>(render_h));
     m_rendered_w = render_w;
@@ -229,20 +269,24 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   // Reuse only what the image holds at this size; else render (sample 0).
   const bool reuse = options.reuse && !direct && m_target_has_frame;
   std::uint32_t index = 0;
-  const VkResult acquired = vkAcquireNextImageKHR(device, m_swapchain, UINT64_MAX, m_acquired, VK_NULL_HANDLE, &index);
+  const VkResult acquired = vkAcquireNextImageKHR(device, m_swapchain, UINT64_MAX, slot.acquired, VK_NULL_HANDLE, &index);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
     m_out_of_date = true;
     return std::nullopt;
   }
   if (acquired != VK_SUBOPTIMAL_KHR) vk::check(acquired, "vkAcquireNextImageKHR");
-  vk::check(vkResetFences(device, 1, &m_frame_done), "vkResetFences");
+  vk::check(vkResetFences(device, 1, &slot.done), "vkResetFences");
 
   const auto record_begin = std::chrono::steady_clock::now();
-  VkCommandBuffer cb = m_commands;
+  VkCommandBuffer cb = slot.commands;
   vk::check(vkResetCommandBuffer(cb, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                  VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
   vk::check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  if (slot.timestamps != VK_NULL_HANDLE) {
+    vkCmdResetQueryPool(cb, slot.timestamps, 0, 2);
+    vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
+  }
   VkImage swap_image = m_images[index];
   // Where the swapchain image is once the frame is in it, and the last
   // stage and access that wrote it.
@@ -338,6 +382,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   // submit signals after all these commands, so no later stage needs to wait here.
   vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
                     VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  if (slot.timestamps != VK_NULL_HANDLE) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
   vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
   const double record_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - record_begin).count();
@@ -348,13 +393,20 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.waitSemaphoreCount = 1;
-  submit.pWaitSemaphores = &m_acquired;
+  submit.pWaitSemaphores = &slot.acquired;
   submit.pWaitDstStageMask = &wait_stage;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cb;
   submit.signalSemaphoreCount = 1;
   submit.pSignalSemaphores = &m_rendered[index];
-  vk::check(vkQueueSubmit(m_context.queue(), 1, &submit, m_frame_done), "vkQueueSubmit");
+  vk::check(vkQueueSubmit(m_context.queue(), 1, &submit, slot.done), "vkQueueSubmit");
+  // Counted once done (retire): frames with the kernel; one shown again breaks the chain.
+  slot.frame = m_frames++;
+  slot.pending = !reuse;
+  slot.follows = m_chain;
+  slot.record_ms = record_ms;
+  slot.period_ms = options.period_ms;
+  m_chain = !reuse;
   VkPresentInfoKHR info{};
   info.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
   info.waitSemaphoreCount = 1;

@@ -7,8 +7,10 @@
 //    image (a storage-capable UNORM image, sRGB-encoded by the kernel);
 //  - blit: a scaled frame goes to an RGBA32F image, then a blit scales it
 //    into an sRGB swapchain image, which encodes it.
-// Each path has its own swapchain; a change of path re-creates it. One frame
-// is in flight: present() waits for the previous frame before it records.
+// Each path has its own swapchain; a change of path re-creates it. Two frames
+// are in flight: present() records frame n while the device may still run
+// frame n - 1; it waits only for frame n - 2's fence (its slot's), the
+// swapchain's acquire and, with vsync, the presentation engine.
 #pragma once
 
 #include <GLFW/glfw3.h>  // after vulkan_core.h (GLFW_INCLUDE_VULKAN is defined by CMake)
@@ -18,6 +20,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sol/camera.hpp>
@@ -26,7 +29,15 @@
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
+#include "frame_stats.hpp"
+
 namespace sol::viewer {
+
+/// Frames the presenter keeps in flight. The renderer it is given must
+/// allow one more (MarchOptions::frames_in_flight = kFramesInFlight + 1):
+/// a synchronous render() between two frames (solview's steps probe) then
+/// never rebinds a descriptor set that a pending frame uses.
+inline constexpr int kFramesInFlight = 2;
 
 /// What draws over a frame (solview's overlay panel): records its commands
 /// on the swapchain image's view, which is in COLOR_ATTACHMENT_OPTIMAL, of
@@ -60,8 +71,8 @@ class Presenter {
   /// Whether the swapchain images can be drawn to (present's overlay).
   bool overlay_capable() const { return m_overlay_capable; }
 
-  /// Waits until the previous frame's commands are done (before changing
-  /// what they read, such as the renderer's world).
+  /// Waits until every frame's commands are done (before the host reads
+  /// what they wrote, such as a capture).
   void wait_for_frame();
 
   /// What present() did.
@@ -82,6 +93,9 @@ class Presenter {
     /// Show the blit path's image as it is (a finished accumulation): no
     /// kernel; falls back to rendering when that image is not of this size.
     bool reuse = false;
+    /// The display period the frame must fit (stats(): a frame whose device
+    /// work and recording exceed it is missed), milliseconds.
+    double period_ms = 1000.0 / 60.0;
   };
   /// Renders `eyes` side by side, each eye_width × eye_height, with
   /// `renderer` (its world set) and presents the frame, scaled to the
@@ -100,7 +114,27 @@ class Presenter {
   /// Whether the surface offers the direct path.
   bool direct_capable() const { return m_direct_capable; }
 
+  /// The rendered frames' figures so far (FrameStats: the interval between
+  /// frames' ends and each frame's work from device timestamps, the host's
+  /// recording); frames still in flight are counted once done
+  /// (wait_for_frame counts them all). A frame shown again without the
+  /// kernel is not counted and breaks the chain of intervals.
+  const programs::FrameStats& stats() const { return m_stats; }
+
  private:
+  /// One frame's resources: frame n uses slot n mod kFramesInFlight.
+  struct Slot {
+    VkCommandBuffer commands = VK_NULL_HANDLE;
+    VkFence done = VK_NULL_HANDLE;            // created signalled: no frame yet
+    VkSemaphore acquired = VK_NULL_HANDLE;    // the swapchain image's acquire
+    VkQueryPool timestamps = VK_NULL_HANDLE;  // before the first command and after the last (null: unsupported)
+    bool pending = false;                     // a rendered frame whose figures are not yet counted
+    bool follows = false;                     // it came right after a counted frame
+    double record_ms = 0, period_ms = 0;
+    long frame = -1;                          // the frame it holds (-1: none)
+  };
+  // Waits for the slot's frame and counts its figures.
+  void retire(Slot& slot);
   void release() noexcept;
   void create_swapchain(bool vsync);
   void destroy_swapchain();
@@ -126,14 +160,20 @@ class Presenter {
   bool m_direct = false;          // the current swapchain is the direct path's
   bool m_out_of_date = false;
   std::vector<VkSemaphore> m_rendered;  // one per swapchain image: present waits on it
-  VkSemaphore m_acquired = VK_NULL_HANDLE;
-  VkFence m_frame_done = VK_NULL_HANDLE;
   VkCommandPool m_pool = VK_NULL_HANDLE;
-  VkCommandBuffer m_commands = VK_NULL_HANDLE;
+  Slot m_slots[kFramesInFlight];
+  long m_frames = 0;  // frames submitted
+  programs::FrameStats m_stats;
+  std::optional<double> m_last_end_ms;  // the last counted frame's end (device clock)
+  bool m_chain = false;                 // the next frame follows a counted one
   bool m_linear_blit = false;
   bool m_can_capture = false;  // swapchain images may be copied out (TRANSFER_SRC)
-  // The blit path's image: the kernel's output at the render scale.
+  // The blit path's image: the kernel's output at the render scale. One
+  // for all frames (they run in turn on the device, and an accumulation
+  // reads the last one's); a replaced one is kept until the frames that
+  // may read it are done: (the last frame that may, image).
   std::optional<vk::StorageImage> m_target;
+  std::vector<std::pair<long, vk::StorageImage>> m_retired_targets;
   int m_rendered_w = 0, m_rendered_h = 0;  // of the image in m_target (both eyes)
   bool m_target_has_frame = false;         // m_target holds the last frame presented
   // The shown frame copied to the host (screenshots, --record).

@@ -24,8 +24,12 @@
 #include <vector>
 
 #include <sol/sol.hpp>
+#include <sol/vk/buffer.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/error.hpp>
+#include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
+#include <sol/vk/pipeline.hpp>
 
 #include "command_line.hpp"
 #include "controls.hpp"
@@ -46,7 +50,7 @@ struct Options {
   double scale = 1.0, min_scale = 0.05, ipd = 0.064;
   std::optional<double> target_fps;
   std::string vsync = "on", present = "auto", overlay = "off";
-  bool fullscreen = false, stereo = false, validation = false;
+  bool fullscreen = false, stereo = false, validation = false, stats = false;
   long frames = 0;  // 0: until the window closes
   int refine = 16;  // samples per pixel a still view accumulates (0: off)
   std::string screenshot, script, record, state;
@@ -90,6 +94,10 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
               "without --record it writes to solview-recording/)");
   cl.add_text("--state", o.state, "FILE", "at exit, write the observer's position and frame to FILE");
   cl.add_flag("--validation", o.validation, "enable the Vulkan validation layer; its errors make the exit status 3");
+  cl.add_flag("--stats", o.stats,
+              "print at exit 'mono frames: N, mean X ms, p99 Y ms, missed Z' ('stereo' with --stereo): the time "
+              "between rendered frames' ends on the device; missed: device work plus host recording over the "
+              "period of --target-fps, else of the display's refresh");
   cl.set_footer(std::string(sol::viewer::kControls) + "\nScript key names: " + sol::viewer::key_names() +
                 ".\n\nExit status: 0 on success, 1 when no window can be opened (no display), 2 for bad options,\n"
                 "3 for validation errors, 4 for other failures.");
@@ -577,22 +585,89 @@ class Title {
   std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
 };
 
-// The panel's mean march steps: a small render with its AOVs once a second.
+// The panel's mean march steps: a small render with its AOVs once a second,
+// recorded into a submission of its own after the frame and read when its
+// fence says it is done (a later frame looks): the loop never waits for it.
 class StepsProbe {
  public:
+  explicit StepsProbe(sol::vk::Context& context) : context_(context) {
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                                 VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, context.queue_family_index()};
+    sol::vk::check(vkCreateCommandPool(context.device(), &pool, nullptr, &pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool_,
+                                         VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    sol::vk::check(vkAllocateCommandBuffers(context.device(), &allocate, &commands_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+    sol::vk::check(vkCreateFence(context.device(), &fence, nullptr, &done_), "vkCreateFence");
+  }
+  ~StepsProbe() {
+    vkWaitForFences(context_.device(), 1, &done_, VK_TRUE, UINT64_MAX);
+    vkDestroyFence(context_.device(), done_, nullptr);
+    vkDestroyCommandPool(context_.device(), pool_, nullptr);
+  }
+  StepsProbe(const StepsProbe&) = delete;
+  StepsProbe& operator=(const StepsProbe&) = delete;
+
   double mean() const { return mean_; }
-  void update(sol::viewer::Presenter& presenter, sol::vk::MarchRenderer& renderer, const sol::Camera& camera, int eye_w,
-              int eye_h) {
+  void update(sol::vk::MarchRenderer& renderer, const sol::Camera& camera, int eye_w, int eye_h) {
+    if (pending_) {
+      if (vkGetFenceStatus(context_.device(), done_) != VK_SUCCESS) return;  // not yet: a later frame looks
+      pending_ = false;
+      const auto* hits = reinterpret_cast<const float*>(readback_->bytes().data());
+      const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+      double sum = 0;
+      for (std::size_t k = 0; k < n; ++k) sum += hits[4 * k + 2];  // object, distance, steps, 0
+      mean_ = n == 0 ? -1.0 : sum / static_cast<double>(n);
+    }
     if (std::chrono::steady_clock::now() - last_ <= std::chrono::seconds(1)) return;
-    presenter.wait_for_frame();  // the frame in flight reads the renderer's uniforms
-    const sol::RenderResult probe = renderer.render(camera, {.width = 64, .height = std::max(1, 64 * eye_h / std::max(1, eye_w))});
-    double sum = 0;
-    for (float v : probe.steps) sum += v;
-    mean_ = probe.steps.empty() ? -1.0 : sum / static_cast<double>(probe.steps.size());
     last_ = std::chrono::steady_clock::now();
+    width_ = 64;
+    height_ = std::max(1, 64 * eye_h / std::max(1, eye_w));
+    const auto w = static_cast<std::uint32_t>(width_), h = static_cast<std::uint32_t>(height_);
+    if (!color_ || color_->width() != w || color_->height() != h) {  // (no probe pending reads the old ones)
+      color_.emplace(context_, w, h);
+      hit_.emplace(context_, w, h);
+      point_.emplace(context_, w, h);
+      readback_.emplace(context_, VkDeviceSize{w} * h * 16);
+    }
+    sol::vk::check(vkResetFences(context_.device(), 1, &done_), "vkResetFences");
+    sol::vk::check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    sol::vk::check(vkBeginCommandBuffer(commands_, &begin), "vkBeginCommandBuffer");
+    renderer.record(commands_, std::span(&camera, 1), width_, height_, *color_, *hit_, *point_);
+    // The kernel's AOVs, then to the host: a copy of the hit image into the mapped buffer.
+    // (Read from the layout made for transfers, then back to GENERAL for the next probe's kernel.)
+    sol::vk::image_barrier(commands_, hit_->handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {w, h, 1};
+    vkCmdCopyImageToBuffer(commands_, hit_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_->handle(), 1, &copy);
+    sol::vk::image_barrier(commands_, hit_->handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    sol::vk::record_memory_barrier(commands_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    sol::vk::check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
+    VkSubmitInfo submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands_;
+    sol::vk::check(vkQueueSubmit(context_.queue(), 1, &submit, done_), "vkQueueSubmit");
+    pending_ = true;
   }
 
  private:
+  sol::vk::Context& context_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkFence done_ = VK_NULL_HANDLE;
+  std::optional<sol::vk::StorageImage> color_, hit_, point_;
+  std::optional<sol::vk::Buffer> readback_;
+  int width_ = 0, height_ = 0;
+  bool pending_ = false;
   double mean_ = -1.0;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now() - std::chrono::seconds(10);
 };
@@ -640,12 +715,24 @@ void finish(const App& app, sol::viewer::Presenter& presenter, long frames) {
   }
 }
 
+// The period a frame must fit: that of --target-fps (or the panel's
+// target), else the display's refresh (60 Hz where the monitor gives none).
+double display_period_ms(const App& app) {
+  if (app.adaptive && app.target_fps > 0.0) return 1000.0 / app.target_fps;
+  if (app.options.target_fps) return 1000.0 / *app.options.target_fps;
+  GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+  const GLFWvidmode* mode = monitor != nullptr ? glfwGetVideoMode(monitor) : nullptr;
+  return 1000.0 / (mode != nullptr && mode->refreshRate > 0 ? mode->refreshRate : 60);
+}
+
 int run(App& app) {
   const Options& opt = app.options;
   Replay replay(prepare_files(app), !opt.script.empty());
   const GlfwSession glfw(app.command_line);
   sol::vk::Context context(context_options(opt, app.command_line));
-  sol::vk::MarchRenderer renderer(context);
+  // One more frame than the presenter keeps in flight: the steps probe's
+  // render() between two frames then never touches a pending frame's set.
+  sol::vk::MarchRenderer renderer(context, {.frames_in_flight = sol::viewer::kFramesInFlight + 1});
   const Window window(app, replay.active());
   sol::viewer::Presenter presenter(context, window.get(), app.vsync, opt.present == "auto", app.scale == 1.0);
   // The overlay, after the viewer's own callbacks (ImGui's GLFW backend chains to them).
@@ -664,7 +751,7 @@ int run(App& app) {
   Refinement refinement(opt.refine);
   RunFigures figures(opt.frames);
   Title title;
-  StepsProbe steps;
+  StepsProbe steps(context);
   long frame = 0;
   auto last = std::chrono::steady_clock::now();
 
@@ -721,18 +808,18 @@ int run(App& app) {
     const auto host_begin = std::chrono::steady_clock::now();
     // The world is prepared once per scene; per frame only the cameras change.
     if (app.world_changed) {
-      presenter.wait_for_frame();  // the previous frame still reads the old world
-      renderer.set_world(app.scene);
+      renderer.set_world(app.scene);  // frames in flight keep reading the old world's buffers
       app.world_changed = false;
     }
     const std::vector<sol::Camera> cameras = app.cameras();
-    if (app.overlay_visible) steps.update(presenter, renderer, cameras[0], eye_w, eye_h);
+    if (app.overlay_visible) steps.update(renderer, cameras[0], eye_w, eye_h);
     const double prepare_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
     sol::viewer::Presenter::FrameOptions frame_options;
     frame_options.capture = app.recording || !opt.screenshot.empty() || app.want_screenshot;
     frame_options.vsync = app.vsync;
     frame_options.overlay = overlay_draw ? &*overlay_draw : nullptr;
+    frame_options.period_ms = display_period_ms(app);
     refinement.set(frame_options);
     const std::optional<sol::viewer::Presenter::Shown> shown =
         presenter.present(renderer, cameras, eye_w, eye_h, frame_options);
@@ -751,9 +838,14 @@ int run(App& app) {
     }
     title.frame(app);
   }
+  presenter.wait_for_frame();  // the frames still in flight: done, and counted
   context.wait_idle();
   finish(app, presenter, frame);
   figures.report(app, presenter);
+  if (opt.stats) {
+    std::printf("%s\n", presenter.stats().summary(app.stereo ? "stereo" : "mono").c_str());
+    std::printf("solview: %s\n", presenter.stats().details().c_str());
+  }
   if (context.validation_enabled()) {
     const std::vector<std::string> errors = context.validation_errors();
     for (const std::string& e : errors) std::fprintf(stderr, "solview: validation: %s\n", e.c_str());

@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,11 +32,13 @@
 #include <sol/sol.hpp>
 #include <sol/vk/buffer.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/error.hpp>
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
 #include "command_line.hpp"
 #include "eye_pose.hpp"
+#include "frame_stats.hpp"
 #include "renderers.hpp"
 #include "srgb.hpp"
 
@@ -73,7 +76,9 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
   cl.add_choice("--copy", o.copy, {"auto", "device", "host"},
                 "how an eye reaches its swapchain image: device = the kernel's image blitted on the GPU (no host round "
                 "trip), host = read back and uploaded; auto (default) = device when the formats allow the blit");
-  cl.add_flag("--stats", o.stats, "print per-eye frame times at exit");
+  cl.add_flag("--stats", o.stats,
+              "print at exit 'stereo frames: N, mean X ms, p99 Y ms, missed Z' (the time between frames' ends on the "
+              "device; missed: device work plus host recording over the display period) and the work per frame");
   cl.add_flag("--validation", o.validation, "enable the Vulkan validation layer; validation errors fail the run");
   cl.set_footer(
       "Head motion moves the eyes along geodesics from the base observer (the scene camera); the left\n"
@@ -155,16 +160,34 @@ std::size_t texel_size(std::int64_t format) {
 struct Eye {
   XrSwapchain swapchain = XR_NULL_HANDLE;
   std::vector<VkImage> images;
-  std::optional<sol::vk::StorageImage> rendered;  // device copy: the kernel's linear RGBA32F image
-  std::optional<sol::vk::Buffer> staging;         // host copy: the texels on their way up
+  std::optional<sol::vk::Buffer> staging;  // host copy: the texels on their way up
   std::vector<std::byte> texels;
 };
 
-struct Timing {
-  long eyes = 0;
-  double render_ms = 0, kernel_ms = 0, upload_ms = 0, total_ms = 0;
+/// Frames in flight: frame n is recorded into slot n mod kFramesInFlight
+/// while the device may still run frame n - 1. A slot is reused once its
+/// fence says its frame is done; with the runtime pacing the loop that
+/// frame finished long before, so the wait returns at once.
+constexpr int kFramesInFlight = 2;
+
+/// One frame's resources on the ring.
+struct FrameSlot {
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  VkFence done = VK_NULL_HANDLE;            // the slot's frame is done (created signalled: no frame yet)
+  VkQueryPool timestamps = VK_NULL_HANDLE;  // before the frame's first command and after its last (null: unsupported)
+  bool pending = false;                     // a frame was submitted whose figures are not yet counted
+  bool follows = false;                     // that frame came right after a rendered frame
+  double record_ms = 0, period_ms = 0;      // its host recording time and the display period it had
+  double submitted_ms = 0;                  // the host clock at its submission (intervals without timestamps)
 };
 
+/// The frames' figures, counted in frame order as their slots come back.
+struct FrameClock {
+  sol::programs::FrameStats stats;
+  std::optional<double> last_end_ms;  // the previous counted frame's end (device clock, or host clock without timestamps)
+  bool chain = false;                 // the next frame follows a rendered one
+};
 /// The OpenXR objects in creation order; the destructor takes them down in
 /// reverse, so every path out (an exception included) leaves nothing behind.
 /// The Vulkan context sits between the instance and the session: the session
@@ -177,6 +200,8 @@ struct App {
   XrSession session = XR_NULL_HANDLE;
   XrSpace space = XR_NULL_HANDLE;
   std::vector<Eye> eyes;
+  std::optional<sol::vk::StorageImage> rendered;  // device copy: both eyes side by side, the kernel's RGBA32F image
+  std::vector<FrameSlot> slots;                   // device copy: the frames in flight
   XrActionSet action_set = XR_NULL_HANDLE;
   XrAction move = XR_NULL_HANDLE, turn = XR_NULL_HANDLE;
 
@@ -190,6 +215,16 @@ struct App {
       } catch (const std::exception&) {
       }
     }
+    if (context) {
+      const VkDevice device = context->device();
+      for (FrameSlot& slot : slots) {
+        if (slot.timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(device, slot.timestamps, nullptr);
+        if (slot.done != VK_NULL_HANDLE) vkDestroyFence(device, slot.done, nullptr);
+        if (slot.pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, slot.pool, nullptr);  // frees its buffer
+      }
+    }
+    slots.clear();
+    rendered.reset();
     for (Eye& eye : eyes) {
       eye.staging.reset();
       if (eye.swapchain != XR_NULL_HANDLE) xrDestroySwapchain(eye.swapchain);
@@ -361,7 +396,10 @@ std::int64_t create_swapchains(App& app, const Options& o, std::uint32_t& width,
   xr_check(xrEnumerateViewConfigurationViews(app.instance, app.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count,
                                              &count, views.data()),
            "xrEnumerateViewConfigurationViews");
-  if (views.empty()) throw XrError("the OpenXR runtime offers no views for the primary stereo configuration");
+  if (views.size() != 2) {
+    throw XrError("the OpenXR runtime offers " + std::to_string(views.size()) +
+                  " views for the primary stereo configuration; solxr renders 2");
+  }
 
   xr_check(xrEnumerateSwapchainFormats(app.session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
   std::vector<std::int64_t> formats(count);
@@ -410,17 +448,40 @@ bool can_blit(const App& app, std::int64_t format) {
          (dst.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT);
 }
 
-/// Per eye, what the chosen copy path needs.
+/// What the chosen copy path needs: for the device copy the kernel's image
+/// of both eyes and the ring of frames (a command buffer, a fence and two
+/// timestamps each); for the host copy a staging buffer per eye.
 void prepare_copies(App& app, bool device, std::int64_t format, std::uint32_t width, std::uint32_t height) {
-  for (Eye& eye : app.eyes) {
-    if (device) {
-      eye.rendered.emplace(*app.context, width, height);
-    } else {
+  if (!device) {
+    for (Eye& eye : app.eyes) {
       const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(format);
       eye.staging.emplace(*app.context, bytes);
       eye.texels.resize(bytes);
     }
+    return;
   }
+  app.rendered.emplace(*app.context, 2 * width, height);
+  const VkDevice vk_device = app.context->device();
+  for (int k = 0; k < kFramesInFlight; ++k) {
+    FrameSlot& slot = app.slots.emplace_back();
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                                 VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, app.context->queue_family_index()};
+    sol::vk::check(vkCreateCommandPool(vk_device, &pool, nullptr, &slot.pool), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, slot.pool,
+                                         VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    sol::vk::check(vkAllocateCommandBuffers(vk_device, &allocate, &slot.commands), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+    sol::vk::check(vkCreateFence(vk_device, &fence, nullptr, &slot.done), "vkCreateFence");
+    if (app.context->timestamps_supported()) {
+      VkQueryPoolCreateInfo queries{};
+      queries.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      queries.queryCount = 2;
+      sol::vk::check(vkCreateQueryPool(vk_device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
+    }
+  }
+  // The deferred passes' lists for a stereo frame, allocated now rather than in the first frame.
+  app.renderer->reserve(static_cast<int>(width), static_cast<int>(height), 2);
 }
 
 /// Thumbstick actions. Bindings are suggested for common controllers; a
@@ -509,20 +570,33 @@ void locomote(App& app, sol::Observer& base, const Options& o, double seconds, b
   }
 }
 
-/// Acquires the eye's next swapchain image, runs `record` on it in one
-/// submission (waited for) and releases it; returns the submission's device time.
-double with_swapchain_image(App& app, Eye& eye, const std::function<void(VkCommandBuffer, VkImage)>& record) {
-  std::uint32_t index = 0;
-  auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
-  xr_check(xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
-  auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
-  wait.timeout = XR_INFINITE_DURATION;
-  xr_check(xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
-  const VkImage target = eye.images.at(index);
-  const double ms = app.context->submit_and_wait([&](VkCommandBuffer cmd) { record(cmd, target); });
-  auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
-  xr_check(xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
-  return ms;
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Acquires the next image of every eye's swapchain and waits until the
+/// runtime is done with it; returns them in view order.
+std::vector<VkImage> acquire_images(App& app) {
+  std::vector<VkImage> targets;
+  for (Eye& eye : app.eyes) {
+    std::uint32_t index = 0;
+    auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
+    xr_check(xrAcquireSwapchainImage(eye.swapchain, &acquire, &index), "xrAcquireSwapchainImage");
+    auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
+    wait.timeout = XR_INFINITE_DURATION;
+    xr_check(xrWaitSwapchainImage(eye.swapchain, &wait), "xrWaitSwapchainImage");
+    targets.push_back(eye.images.at(index));
+  }
+  return targets;
+}
+
+/// Hands every eye's image back to the runtime (after the frame's
+/// submission: the runtime's reads are queued after it).
+void release_images(App& app) {
+  for (Eye& eye : app.eyes) {
+    auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+    xr_check(xrReleaseSwapchainImage(eye.swapchain, &release), "xrReleaseSwapchainImage");
+  }
 }
 
 /// The swapchain image from UNDEFINED (its old contents are discarded: the
@@ -543,91 +617,138 @@ void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 }
 
-/// The device path: the kernel writes the eye's RGBA32F image and a blit
-/// (same size: nearest texels, converted to the swapchain's format, sRGB-
-/// encoded where it is an sRGB one) copies it into the swapchain image, all
-/// in one submission; nothing goes through the host.
-void render_on_device(App& app, Eye& eye, const sol::Camera& camera, std::uint32_t width, std::uint32_t height,
-                      Timing& timing) {
-  const auto begin = std::chrono::steady_clock::now();
-  const sol::vk::StorageImage& rendered = *eye.rendered;
-  const double ms = with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
-    app.renderer->record(cmd, std::span<const sol::Camera>(&camera, 1), static_cast<int>(width), static_cast<int>(height),
-                         rendered);
-    // The kernel's writes must land before the blit reads them, from the
-    // layout made for reading by transfers (GENERAL costs some devices a
-    // slower path, which the validation layers point out).
-    sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    begin_transfer_to(cmd, target);
+/// Waits for the slot's previous frame (frame n - kFramesInFlight; done
+/// long before when the runtime paces the loop) and counts its figures:
+/// its work between its two timestamps, its interval from the previous
+/// counted frame's end.
+void retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
+  sol::vk::check(vkWaitForFences(app.context->device(), 1, &slot.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  if (!slot.pending) return;
+  slot.pending = false;
+  double begin_ms = slot.submitted_ms, end_ms = slot.submitted_ms;
+  if (slot.timestamps != VK_NULL_HANDLE) {
+    std::uint64_t ticks[2] = {0, 0};
+    sol::vk::check(vkGetQueryPoolResults(app.context->device(), slot.timestamps, 0, 2, sizeof ticks, ticks,
+                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                   "vkGetQueryPoolResults");
+    const double ns_per_tick = app.context->timestamp_period();
+    begin_ms = static_cast<double>(ticks[0]) * ns_per_tick * 1e-6;
+    end_ms = static_cast<double>(ticks[1]) * ns_per_tick * 1e-6;
+  }
+  const std::optional<double> interval =
+      slot.follows && clock.last_end_ms ? std::optional<double>(end_ms - *clock.last_end_ms) : std::nullopt;
+  clock.stats.add(interval, end_ms - begin_ms, slot.record_ms, slot.period_ms);
+  clock.last_end_ms = end_ms;
+}
+
+/// The device path, one submission per stereo frame, not waited for: the
+/// kernel renders both eyes side by side into the RGBA32F image in one
+/// dispatch, and a blit per eye (same size: nearest texels, converted to
+/// the swapchain's format, sRGB-encoded where it is an sRGB one) copies its
+/// half into the eye's swapchain image; nothing goes through the host.
+void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& cameras,
+                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height) {
+  const double begin = now_ms();
+  const VkCommandBuffer cmd = slot.commands;
+  sol::vk::check(vkResetFences(app.context->device(), 1, &slot.done), "vkResetFences");
+  sol::vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+  sol::vk::check(vkBeginCommandBuffer(cmd, &info), "vkBeginCommandBuffer");
+  if (slot.timestamps != VK_NULL_HANDLE) {
+    vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
+  }
+  const sol::vk::StorageImage& rendered = *app.rendered;
+  app.renderer->record(cmd, cameras, static_cast<int>(width), static_cast<int>(height), rendered);
+  // The kernel's writes must land before the blits read them, from the
+  // layout made for reading by transfers (GENERAL costs some devices a
+  // slower path, which the validation layers point out).
+  sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  const auto w = static_cast<std::int32_t>(width), h = static_cast<std::int32_t>(height);
+  for (std::size_t v = 0; v < targets.size(); ++v) {
+    begin_transfer_to(cmd, targets[v]);
     VkImageBlit region{};
     region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[1] = region.dstOffsets[1] = {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height), 1};
-    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+    region.srcOffsets[0] = {static_cast<std::int32_t>(v) * w, 0, 0};  // the left eye on the left
+    region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * w, h, 1};
+    region.dstOffsets[1] = {w, h, 1};
+    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets[v],
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
-    end_transfer_to(cmd, target);
-    // The next frame's kernel writes the image again (GENERAL, as the kernel
-    // takes it) only after this blit has read it.
-    sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-  });
-  const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-  timing.render_ms += elapsed;
-  timing.kernel_ms += ms;  // kernel and blit: one submission
-}
-
-/// The host path: render() reads the image back, the host converts it to
-/// the swapchain's format and a copy uploads it.
-void render_through_host(App& app, Eye& eye, const sol::Camera& camera, std::int64_t format, std::uint32_t width,
-                         std::uint32_t height, Timing& timing) {
-  const auto begin = std::chrono::steady_clock::now();
-  const sol::RenderResult image =
-      app.renderer->render(camera, {.width = static_cast<int>(width), .height = static_cast<int>(height)});
-  const double kernel_ms = image.device_ms;
-  const auto rendered = std::chrono::steady_clock::now();
-
-    // Into the swapchain's format (linear floats, or sRGB-encoded bytes).
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
-    std::memcpy(eye.texels.data(), image.rgba.data(), pixels * 16);
-  } else {
-    const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB;
-    auto* out = reinterpret_cast<std::uint8_t*>(eye.texels.data());
-    for (std::size_t k = 0; k < pixels; ++k) {
-      const float* in = &image.rgba[4 * k];
-      out[4 * k + 0] = sol::programs::srgb_byte(in[bgr ? 2 : 0]);
-      out[4 * k + 1] = sol::programs::srgb_byte(in[1]);
-      out[4 * k + 2] = sol::programs::srgb_byte(in[bgr ? 0 : 2]);
-      out[4 * k + 3] = 255;
-    }
+    end_transfer_to(cmd, targets[v]);
   }
-  eye.staging->write(eye.texels);
-  const VkBuffer staging = eye.staging->handle();
-  with_swapchain_image(app, eye, [&](VkCommandBuffer cmd, VkImage target) {
-    begin_transfer_to(cmd, target);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {width, height, 1};
-    vkCmdCopyBufferToImage(cmd, staging, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    end_transfer_to(cmd, target);
-  });
-  const auto end = std::chrono::steady_clock::now();
-  timing.render_ms += std::chrono::duration<double, std::milli>(rendered - begin).count();
-  timing.kernel_ms += kernel_ms;
-  timing.upload_ms += std::chrono::duration<double, std::milli>(end - rendered).count();
+  // The next frame's kernel writes the image again (GENERAL, as the kernel
+  // takes it) only after these blits have read it.
+  sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  if (slot.timestamps != VK_NULL_HANDLE) {
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
+  }
+  sol::vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  sol::vk::check(vkQueueSubmit(app.context->queue(), 1, &submit, slot.done), "vkQueueSubmit");
+  slot.submitted_ms = now_ms();
+  slot.record_ms = slot.submitted_ms - begin;
+  slot.pending = true;
 }
 
-/// Renders each view's eye into its swapchain image.
-void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, const Options& o, std::int64_t format,
-                  std::uint32_t width, std::uint32_t height, const std::vector<XrView>& views, Timing& timing,
-                  std::vector<XrCompositionLayerProjectionView>& layer_views) {
+/// The host path (--copy host, or a swapchain format the device cannot
+/// blit into): render() reads both eyes back, the host converts each to the
+/// swapchain's format and one submission uploads them, waited for. Returns
+/// the device's time (kernel and upload) in milliseconds.
+double render_through_host(App& app, const std::array<sol::Camera, 2>& cameras, const std::vector<VkImage>& targets,
+                           std::int64_t format, std::uint32_t width, std::uint32_t height) {
+  const sol::RenderResult image =
+      app.renderer->render(cameras, {.width = static_cast<int>(width), .height = static_cast<int>(height)});
+  // Into the swapchain's format (linear floats, or sRGB-encoded bytes), each eye its half.
+  const bool bgr = format == VK_FORMAT_B8G8R8A8_SRGB;
   for (std::size_t v = 0; v < app.eyes.size(); ++v) {
     Eye& eye = app.eyes[v];
-    const auto begin = std::chrono::steady_clock::now();
+    for (std::uint32_t j = 0; j < height; ++j) {
+      const float* row = &image.rgba[(static_cast<std::size_t>(j) * 2 * width + v * width) * 4];
+      std::byte* out_row = eye.texels.data() + static_cast<std::size_t>(j) * width * texel_size(format);
+      if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        std::memcpy(out_row, row, static_cast<std::size_t>(width) * 16);
+        continue;
+      }
+      auto* out = reinterpret_cast<std::uint8_t*>(out_row);
+      for (std::uint32_t i = 0; i < width; ++i) {
+        const float* in = &row[4 * i];
+        out[4 * i + 0] = sol::programs::srgb_byte(in[bgr ? 2 : 0]);
+        out[4 * i + 1] = sol::programs::srgb_byte(in[1]);
+        out[4 * i + 2] = sol::programs::srgb_byte(in[bgr ? 0 : 2]);
+        out[4 * i + 3] = 255;
+      }
+    }
+    eye.staging->write(eye.texels);
+  }
+  const double upload_ms = app.context->submit_and_wait([&](VkCommandBuffer cmd) {
+    for (std::size_t v = 0; v < app.eyes.size(); ++v) {
+      begin_transfer_to(cmd, targets[v]);
+      VkBufferImageCopy region{};
+      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.imageExtent = {width, height, 1};
+      vkCmdCopyBufferToImage(cmd, app.eyes[v].staging->handle(), targets[v], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                             &region);
+      end_transfer_to(cmd, targets[v]);
+    }
+  });
+  return image.device_ms + upload_ms;
+}
+
+/// The Sol eyes of the located views, each with its own, generally
+/// off-centre, view window (sol::Frustum); the composition layer's views.
+std::array<sol::Camera, 2> eye_cameras(const sol::Scene& scene, const sol::Observer& base, const Options& o,
+                                       const std::vector<XrView>& views) {
+  std::array<sol::Camera, 2> cameras;
+  for (std::size_t v = 0; v < cameras.size(); ++v) {
     const XrView& view = views[v];
-    // The eye's own, generally off-centre, view window (sol::Frustum).
     const XrFovf& f = view.fov;
     const sol::Frustum frustum{std::tan(static_cast<double>(f.angleLeft)), std::tan(static_cast<double>(f.angleRight)),
                                std::tan(static_cast<double>(f.angleDown)), std::tan(static_cast<double>(f.angleUp))};
@@ -649,29 +770,18 @@ void render_views(App& app, const sol::Scene& scene, const sol::Observer& base, 
                     v, pose.position.x, pose.position.y, pose.position.z, o.scale);
       throw XrError(where + std::string(e.what()));
     }
-    if (eye.rendered) {
-      render_on_device(app, eye, camera, width, height, timing);
-    } else {
-      render_through_host(app, eye, camera, format, width, height, timing);
-    }
-
-    XrCompositionLayerProjectionView& lv = layer_views[v];
-    lv = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
-    lv.pose = view.pose;
-    lv.fov = view.fov;
-    lv.subImage.swapchain = eye.swapchain;
-    lv.subImage.imageRect = {{0, 0}, {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height)}};
-    lv.subImage.imageArrayIndex = 0;
-    ++timing.eyes;
-    timing.total_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    cameras[v] = camera;
   }
+  return cameras;
 }
 
 int run(const Options& o, const sol::Scene& scene) {
   App app;
   create_instance(app);
   create_context(app, o.validation);
-  app.renderer.emplace(*app.context, sol::programs::march_options({.rk4 = o.flow.rk4(), .rk4_step = o.flow.rk_step}));
+  sol::vk::MarchOptions march = sol::programs::march_options({.rk4 = o.flow.rk4(), .rk4_step = o.flow.rk_step});
+  march.frames_in_flight = kFramesInFlight;
+  app.renderer.emplace(*app.context, march);
   app.renderer->set_world(scene);  // prepared once: every frame only sends its eyes
   create_session(app, o);
   std::uint32_t width = 0, height = 0;
@@ -683,14 +793,15 @@ int run(const Options& o, const sol::Scene& scene) {
   const bool device_copy = o.copy == "device" || (o.copy == "auto" && blit);
   prepare_copies(app, device_copy, format, width, height);
   create_actions(app);
-  std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain\n", app.eyes.size(), width, height,
-               device_copy ? "device" : "host");
+  std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain%s\n", app.eyes.size(), width, height,
+               device_copy ? "device" : "host",
+               device_copy ? ", both eyes in one submission, 2 frames in flight" : ", waited for");
 
   sol::Observer base = sol::observer_at(scene);
 
   bool running = false, quit = false, exit_requested = false, announced = false;
   long frames = 0;
-  Timing timing;
+  FrameClock clock;
   XrTime last_time = 0;
   while (!quit) {
     // Session state machine: begin when ready, end when stopping, leave on exiting or loss.
@@ -744,6 +855,8 @@ int run(const Options& o, const sol::Scene& scene) {
       xr_check(xrRequestExitSession(app.session), "xrRequestExitSession");
       exit_requested = true;
     }
+    // The loop's only waits: the runtime's pacing here and its swapchain
+    // images below (and a slot's fence, for the frame kFramesInFlight back).
     auto wait = xr_struct<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
     auto frame = xr_struct<XrFrameState>(XR_TYPE_FRAME_STATE);
     xr_check(xrWaitFrame(app.session, &wait, &frame), "xrWaitFrame");
@@ -760,7 +873,12 @@ int run(const Options& o, const sol::Scene& scene) {
     auto end = xr_struct<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
     end.displayTime = frame.predictedDisplayTime;
     end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    bool rendered = false;
     if (frame.shouldRender) {
+      FrameSlot* slot = device_copy ? &app.slots[static_cast<std::size_t>(frames % kFramesInFlight)] : nullptr;
+      if (slot != nullptr) retire_slot(app, *slot, clock);
+      // The head pose as late as the frame allows: for this frame's
+      // predicted display time, after the slot's wait.
       auto locate = xr_struct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
       locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
       locate.displayTime = frame.predictedDisplayTime;
@@ -773,26 +891,54 @@ int run(const Options& o, const sol::Scene& scene) {
                "xrLocateViews");
       const XrViewStateFlags needed = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
       if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
-        render_views(app, scene, base, o, format, width, height, views, timing, layer_views);
+        const std::array<sol::Camera, 2> cameras = eye_cameras(scene, base, o, views);
+        const std::vector<VkImage> targets = acquire_images(app);
+        const double period_ms = static_cast<double>(frame.predictedDisplayPeriod) * 1e-6;
+        if (slot != nullptr) {
+          slot->follows = clock.chain;
+          slot->period_ms = period_ms;
+          submit_frame(app, *slot, cameras, targets, width, height);
+        } else {
+          const double started = now_ms();
+          const double work_ms = render_through_host(app, cameras, targets, format, width, height);
+          const double finished = now_ms();
+          const std::optional<double> interval =
+              clock.chain && clock.last_end_ms ? std::optional<double>(finished - *clock.last_end_ms) : std::nullopt;
+          clock.stats.add(interval, work_ms, finished - started - work_ms, period_ms);
+          clock.last_end_ms = finished;
+        }
+        release_images(app);
+        for (std::size_t v = 0; v < app.eyes.size(); ++v) {
+          XrCompositionLayerProjectionView& lv = layer_views[v];
+          lv = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
+          lv.pose = views[v].pose;
+          lv.fov = views[v].fov;
+          lv.subImage.swapchain = app.eyes[v].swapchain;
+          lv.subImage.imageRect = {{0, 0}, {static_cast<std::int32_t>(width), static_cast<std::int32_t>(height)}};
+          lv.subImage.imageArrayIndex = 0;
+        }
         layer.space = app.space;
         layer.viewCount = static_cast<std::uint32_t>(layer_views.size());
         layer.views = layer_views.data();
         end.layerCount = 1;
         end.layers = layers;
+        rendered = true;
       }
     }
+    clock.chain = rendered;  // a frame not rendered breaks the chain of intervals
     xr_check(xrEndFrame(app.session, &end), "xrEndFrame");
     ++frames;
   }
+  // The frames still in flight: waited for and counted, in order.
+  for (long k = 0; k < kFramesInFlight && !app.slots.empty(); ++k) {
+    retire_slot(app, app.slots[static_cast<std::size_t>((frames + k) % kFramesInFlight)], clock);
+  }
 
   std::fprintf(stderr, "solxr: %ld frames\n", frames);
-  if (o.stats && timing.eyes > 0) {
-    const double n = static_cast<double>(timing.eyes);
-    std::printf(
-        "solxr: %ux%u per eye on '%s': %.2f ms per eye (render %.2f ms of which kernel %.2f ms, upload %.2f ms), "
-        "%ld eye images\n",
-        width, height, app.context->device_name().c_str(), timing.total_ms / n, timing.render_ms / n,
-        timing.kernel_ms / n, timing.upload_ms / n, timing.eyes);
+  if (o.stats) {
+    std::printf("%s\n", clock.stats.summary("stereo").c_str());
+    std::printf("solxr: %ux%u per eye on '%s', %s copy: %s\n", width, height, app.context->device_name().c_str(),
+                device_copy ? "device" : "host", clock.stats.details().c_str());
   }
   if (o.validation) {
     const std::size_t errors = app.context->validation_errors().size();

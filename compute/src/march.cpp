@@ -641,6 +641,22 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                         group_count(f.height, kernel::kGroupSize), f.data());
 }
 
+void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+                           const StorageImage& color, const StorageImage& hit, const StorageImage& point) {
+  Frame f = prepare_frame(eyes, width, height, true, false);
+  for (const StorageImage* image : {&color, &hit, &point}) {
+    if (image->format() != VK_FORMAT_R32G32B32A32_SFLOAT || image->width() < f.width || image->height() < f.height) {
+      throw InvalidArgument("sol::vk::MarchRenderer::record: the colour and AOV images must be R32G32B32A32_SFLOAT and "
+                            "at least " + std::to_string(f.width) + " x " + std::to_string(f.height));
+    }
+  }
+  f.pipeline->bind(f.set, kernel::kBindingColor, color);
+  f.pipeline->bind(f.set, kernel::kBindingHit, hit);
+  f.pipeline->bind(f.set, kernel::kBindingPoint, point);
+  m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
+                        group_count(f.height, kernel::kGroupSize), f.data());
+}
+
 std::string MarchRenderer::unsupported(const World& world) {
   // In the quotient a light's images within reach of D grow fast with the
   // reach (about 300 at 0, 2000 at 1): beyond reach 1 they outgrow

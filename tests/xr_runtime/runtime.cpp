@@ -19,6 +19,8 @@
 //    "formats": ["rgba32f", "srgb8"],  swapchain formats, runtime preference first
 //    "controllers": true,              false: no interaction profile, inactive actions
 //    "output": "DIR",                  where eye images go (none: not saved)
+//    "read_back": true,                false: the timing mode: no eye image is read
+//                                      back or saved (views.txt is still written)
 //    "frames": [{"position": [x, y, z], "orientation": [x, y, z, w],  head pose
 //                "left_stick": [x, y], "right_stick": [x, y],
 //                "event": "focus_loss" | "focus_gain" | "exit" | "loss_pending"}, ...]}
@@ -103,6 +105,7 @@ struct Script {
   std::vector<std::int64_t> formats{VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R8G8B8A8_SRGB};
   bool controllers = true;
   std::string output;
+  bool read_back = true;
   std::vector<Frame> frames{Frame{}};
 };
 
@@ -124,6 +127,7 @@ Script load_script() {
   s.ipd = j.value("ipd", s.ipd);
   s.controllers = j.value("controllers", s.controllers);
   s.output = j.value("output", s.output);
+  s.read_back = j.value("read_back", s.read_back);
   if (j.contains("formats")) {
     s.formats.clear();
     for (const std::string f : j["formats"]) {
@@ -806,7 +810,7 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
       }
       if (st.script.output.empty()) continue;
       const std::string stem = st.script.output + "/frame" + std::to_string(k) + "_view" + std::to_string(v);
-      save_image(*sc, sc->images[static_cast<std::size_t>(sc->released)], stem + ".rgba32f");
+      if (st.script.read_back) save_image(*sc, sc->images[static_cast<std::size_t>(sc->released)], stem + ".rgba32f");
       std::FILE* f = std::fopen((st.script.output + "/views.txt").c_str(), "a");
       if (f != nullptr) {
         const XrPosef& p = view.pose;

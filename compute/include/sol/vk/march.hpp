@@ -176,6 +176,15 @@ class MarchRenderer final : public Renderer {
   /// device memory; a presenter calls it when its largest frame changes.
   void reserve(int width, int height, int eyes);
 
+  /// The same with the AOVs, for a presenter's probes (solview's panel
+  /// shows the mean march steps without waiting for a read-back): the
+  /// colour into `color`, the object, the distance and the steps into `hit`
+  /// and the hit point into `point`, laid out as render() reads them back;
+  /// each an R32G32B32A32_SFLOAT StorageImage of at least (eyes · width) ×
+  /// height in GENERAL layout (else sol::InvalidArgument).
+  void record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
+              const StorageImage& color, const StorageImage& hit, const StorageImage& point);
+
   /// Whether record() can write a UnormTarget of `format` on the context's
   /// device: R8G8B8A8_UNORM or B8G8R8A8_UNORM, usable as a storage image
   /// (optimal tiling), and the shaderStorageImageWriteWithoutFormat feature
