@@ -102,7 +102,7 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 }  // namespace
 
 int main(int argc, char** argv) {
-  int size = 512, error_size = 128, gpu_size = 2048, repeats = 5;
+  int size = 512, error_size = 128, gpu_size = 2048, gpu_height = 0, repeats = 5;
   std::string out_dir = ".", only, scene_name;
   bool kernel_only = false;
   sol::cli::CommandLine cl("render_bench", "[options]",
@@ -110,6 +110,8 @@ int main(int argc, char** argv) {
   cl.add_integer("--size", size, 1, 8192, "N", "image side for throughput and the exact section (default 512)");
   cl.add_integer("--error-size", error_size, 1, 4096, "N", "image side for error against run time (default 128)");
   cl.add_integer("--gpu-size", gpu_size, 1, 8192, "N", "one eye's side for the headset section (default 2048)");
+  cl.add_integer("--gpu-height", gpu_height, 1, 8192, "H",
+                 "one eye's height for the headset section, its width --gpu-size (default: square)");
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
   cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines"}, "run one section and write its files");
@@ -284,7 +286,8 @@ int main(int argc, char** argv) {
       files.emplace_back("render_exact.csv", exact);
     }
 
-    // 4. Headset sizes: one eye at gpu_size², and a stereo frame of two in one dispatch.
+    // 4. Headset sizes: one eye at gpu_size × gpu_height (square by default), and a stereo frame of two in one dispatch.
+    if (gpu_height == 0) gpu_height = gpu_size;
     const bool gpu_section = only == "gpu" || (only.empty() && !context.is_cpu());
     if (only.empty() && context.is_cpu()) {
       std::fprintf(stderr, "render_bench: '%s' is a CPU device: section 4 (headset sizes) only with --only gpu\n",
@@ -297,7 +300,7 @@ int main(int argc, char** argv) {
       constexpr int kBackToBack = 8;
       constexpr double kWarmUpSeconds = 1.5;
       sol::vk::StorageImage target(context, 2 * static_cast<std::uint32_t>(gpu_size),
-                                   static_cast<std::uint32_t>(gpu_size));
+                                   static_cast<std::uint32_t>(gpu_height));
       // Each frame's writes (the target, the deferred passes' lists) complete
       // before the next frame's commands touch them.
       const auto between_frames = [](VkCommandBuffer cb) {
@@ -311,7 +314,7 @@ int main(int argc, char** argv) {
         return sol::vk::run_recorded(context, [&](VkCommandBuffer cb) {
                  for (int f = 0; f < kBackToBack; ++f) {
                    if (f > 0) between_frames(cb);
-                   renderer.record(cb, eyes, gpu_size, gpu_size, target);
+                   renderer.record(cb, eyes, gpu_size, gpu_height, target);
                  }
                }) /
                kBackToBack;
@@ -333,7 +336,7 @@ int main(int argc, char** argv) {
         }
         char line[512];
         std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(),
-                      gpu_size, gpu_size, mono, static_cast<double>(gpu_size) * gpu_size / mono * 1e-3, stereo,
+                      gpu_size, gpu_height, mono, static_cast<double>(gpu_size) * gpu_height / mono * 1e-3, stereo,
                       1e3 / stereo);
         gpu += line;
         std::fprintf(stderr, "gpu: %s", line);

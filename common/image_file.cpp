@@ -1,6 +1,11 @@
 #include "image_file.hpp"
 
 #include <algorithm>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -47,64 +52,193 @@ bool can_write(const std::string& path) {
   return out != nullptr;
 }
 
-std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
-                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
-  const std::string& path = file.target();
-  const int given = static_cast<int>(channel_names.size());
-  if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * given) {
-    throw std::runtime_error(path + ": internal error: pixel data size does not match the image");
+struct ImageWriter::Impl {
+  explicit Impl(const OutputFile& f) : file(f) {}
+  const OutputFile& file;
+  std::string path;  // the target's name, for messages
+  int width = 0, height = 0, given = 0, channels = 0;
+  bool drop_alpha = false, as_float = false, srgb = false;
+  // The encoded bytes and their proxy before the writer: it may write
+  // into them as it goes (an unfinished file closes when destroyed).
+  std::vector<unsigned char> encoded;
+  std::unique_ptr<OIIO::Filesystem::IOVecOutput> memory;
+  std::unique_ptr<OIIO::ImageOutput> out;
+  OIIO::ImageSpec spec;
+  bool in_memory = false;
+  int next_row = 0;
+  std::size_t non_finite = 0;
+  std::vector<float> band;  // one band's values as the file takes them
+
+  // The worker: bands (first row, rows, values) waiting to be encoded.
+  struct Queued {
+    int first, rows;
+    std::vector<float> values;
+  };
+  std::thread worker;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<Queued> queue;
+  bool closing = false;
+  std::exception_ptr error;  // the worker's
+
+  [[noreturn]] void fail(const std::string& reason) const {
+    throw std::runtime_error(path + ": cannot write: " + reason);
   }
+  void encode(int first_row, int rows, std::span<const float> interleaved);
+  void work();
+  // Stops the worker (after the queued bands) and rethrows its error.
+  void join();
+};
+
+void ImageWriter::Impl::work() {
+  for (;;) {
+    Queued q;
+    {
+      std::unique_lock lock(mutex);
+      changed.wait(lock, [&] { return !queue.empty() || closing; });
+      if (queue.empty()) return;
+      q = std::move(queue.front());
+    }
+    try {
+      if (!error) encode(q.first, q.rows, q.values);
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      error = std::current_exception();
+    }
+    {
+      std::lock_guard lock(mutex);
+      queue.pop_front();
+    }
+    changed.notify_all();
+  }
+}
+
+void ImageWriter::Impl::join() {
+  if (worker.joinable()) {
+    {
+      std::lock_guard lock(mutex);
+      closing = true;
+    }
+    changed.notify_all();
+    worker.join();
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+ImageWriter::ImageWriter(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
+                         bool srgb_for_8bit, bool worker)
+    : m_impl(std::make_unique<Impl>(file)) {
+  Impl& m = *m_impl;
+  m.path = file.target();
+  m.width = width;
+  m.height = height;
+  m.given = static_cast<int>(channel_names.size());
+  m.srgb = srgb_for_8bit;
   // The writer is chosen from the target's name; it writes the temporary.
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw std::runtime_error(path + ": no image format for this file name (" + OIIO::geterror() + ")");
+  m.out = OIIO::ImageOutput::create(m.path);
+  if (!m.out) throw std::runtime_error(m.path + ": no image format for this file name (" + OIIO::geterror() + ")");
   // RGBA into a format without alpha (Radiance .hdr, .ppm: "can only
   // support 3-channel images", after the whole render): RGB alone. The
   // renders' alpha is 1 everywhere; nothing is lost.
-  const bool drop_alpha = given == 4 && channel_names[3] == "A" && !out->supports("alpha");
-  const int channels = drop_alpha ? 3 : given;
-  std::vector<float> data;
-  if (drop_alpha) {
-    data.reserve(interleaved.size() / 4 * 3);
-    for (std::size_t i = 0; i < interleaved.size(); ++i) {
-      if (i % 4 != 3) data.push_back(interleaved[i]);
-    }
-  } else {
-    data = interleaved;
-  }
-  const bool as_float = float_format(path);
-  OIIO::ImageSpec spec(width, height, channels, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  spec.channelnames.assign(channel_names.begin(), channel_names.begin() + channels);
-  if (channels == 4 && channel_names[3] == "A") spec.alpha_channel = 3;
-  std::size_t non_finite = 0;
-  for (float& v : data) {
-    if (!std::isfinite(v)) {
-      v = 0.0f;
-      ++non_finite;
-    }
-  }
-  if (!as_float && srgb_for_8bit) {
-    for (std::size_t i = 0; i < data.size(); ++i) {
-      if (static_cast<int>(i % static_cast<std::size_t>(channels)) < 3) data[i] = programs::srgb_encode(data[i]);
-    }
-  }
+  m.drop_alpha = m.given == 4 && channel_names[3] == "A" && !m.out->supports("alpha");
+  m.channels = m.drop_alpha ? 3 : m.given;
+  m.as_float = float_format(m.path);
+  m.spec = OIIO::ImageSpec(width, height, m.channels, m.as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  m.spec.channelnames.assign(channel_names.begin(), channel_names.begin() + m.channels);
+  if (m.channels == 4 && channel_names[3] == "A") m.spec.alpha_channel = 3;
   // Encoded in memory where the writer can (its own file writes are not all
   // checked: a full disk left PNG files empty and said nothing), then
   // written with every write checked; otherwise written by the writer and
   // read back whole before the file may replace its target.
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
-  if (!out->open(in_memory ? path : file.path(), spec)) throw std::runtime_error(path + ": cannot write: " + out->geterror());
-  const bool written = out->write_image(OIIO::TypeDesc::FLOAT, data.data());
-  const std::string reason = written ? std::string() : out->geterror();
-  const bool closed = out->close();
-  if (!written || !closed) throw std::runtime_error(path + ": cannot write: " + (reason.empty() ? out->geterror() : reason));
-  if (in_memory) {
-    file.write(std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
-  } else {
-    check_readable(file.path(), path, spec);
+  m.memory = std::make_unique<OIIO::Filesystem::IOVecOutput>(m.encoded);
+  m.in_memory = m.out->supports("ioproxy") && m.out->set_ioproxy(m.memory.get());
+  if (!m.out->open(m.in_memory ? m.path : file.path(), m.spec)) m.fail(m.out->geterror());
+  if (worker) m.worker = std::thread([&m] { m.work(); });
+}
+
+ImageWriter::~ImageWriter() {
+  try {
+    m_impl->join();  // (an unfinished file: its temporary goes with its OutputFile)
+  } catch (...) {
   }
-  return non_finite;
+}
+
+void ImageWriter::write_rows(int first_row, int rows, std::span<const float> interleaved) {
+  Impl& m = *m_impl;
+  const auto row_in = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.given);
+  if (first_row != m.next_row || rows < 0 || first_row + rows > m.height ||
+      interleaved.size() != row_in * static_cast<std::size_t>(rows)) {
+    throw std::runtime_error(m.path + ": internal error: rows " + std::to_string(first_row) + " + " +
+                             std::to_string(rows) + " do not follow row " + std::to_string(m.next_row) +
+                             " or do not match the image");
+  }
+  m.next_row += rows;
+  if (!m.worker.joinable()) {
+    m.encode(first_row, rows, interleaved);
+    return;
+  }
+  std::unique_lock lock(m.mutex);
+  m.changed.wait(lock, [&] { return m.queue.size() < static_cast<std::size_t>(kQueuedBands) || m.error; });
+  if (m.error) std::rethrow_exception(m.error);
+  m.queue.push_back({first_row, rows, std::vector<float>(interleaved.begin(), interleaved.end())});
+  lock.unlock();
+  m.changed.notify_all();
+}
+
+void ImageWriter::Impl::encode(int first_row, int rows, std::span<const float> interleaved) {
+  Impl& m = *this;
+  const auto row_in = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.given);
+  // In bands of kBandRows rows: alpha dropped where the format has none,
+  // non-finite values written as 0 (and counted), 8-bit formats sRGB-encoded.
+  constexpr int kBandRows = 64;
+  const auto row_out = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.channels);
+  for (int y = 0; y < rows; y += kBandRows) {
+    const int n = std::min(kBandRows, rows - y);
+    const float* in = interleaved.data() + static_cast<std::size_t>(y) * row_in;
+    const std::size_t values = row_out * static_cast<std::size_t>(n);
+    m.band.resize(values);
+    for (std::size_t i = 0, j = 0; i < values; ++j) {
+      if (m.drop_alpha && j % 4 == 3) continue;
+      float v = in[j];
+      if (!std::isfinite(v)) {
+        v = 0.0f;
+        ++m.non_finite;
+      }
+      if (!m.as_float && m.srgb && static_cast<int>(i % static_cast<std::size_t>(m.channels)) < 3) {
+        v = programs::srgb_encode(v);
+      }
+      m.band[i++] = v;
+    }
+    if (!m.out->write_scanlines(first_row + y, first_row + y + n, 0, OIIO::TypeDesc::FLOAT, m.band.data())) {
+      m.fail(m.out->geterror());
+    }
+  }
+}
+
+std::size_t ImageWriter::finish() {
+  Impl& m = *m_impl;
+  m.join();
+  if (m.next_row != m.height) {
+    throw std::runtime_error(m.path + ": internal error: " + std::to_string(m.next_row) + " of " +
+                             std::to_string(m.height) + " rows written");
+  }
+  if (!m.out->close()) m.fail(m.out->geterror());
+  if (m.in_memory) {
+    m.file.write(std::string_view(reinterpret_cast<const char*>(m.encoded.data()), m.encoded.size()));
+  } else {
+    check_readable(m.file.path(), m.path, m.spec);
+  }
+  return m.non_finite;
+}
+
+std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
+                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
+  if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channel_names.size()) {
+    throw std::runtime_error(file.target() + ": internal error: pixel data size does not match the image");
+  }
+  ImageWriter writer(file, width, height, channel_names, srgb_for_8bit);
+  writer.write_rows(0, height, interleaved);
+  return writer.finish();
 }
 
 std::size_t write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,

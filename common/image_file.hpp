@@ -3,12 +3,47 @@
 // when complete, so a failure never leaves a partial output file.
 #pragma once
 
+#include <cstddef>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "output_file.hpp"
 
 namespace sol::programs {
+
+/// An image file written band by band, rows from the top, as write_image
+/// writes a whole one (same formats, encoding and checks), into `file`'s
+/// temporary, left for the caller to commit: a renderer's bands go
+/// straight into the encoder (RenderOptions::rows) and the image is never
+/// held whole. Throws std::runtime_error naming the file and the reason.
+class ImageWriter {
+ public:
+  /// With `worker`, the rows are encoded on a thread of the writer's own:
+  /// write_rows copies them and returns (waiting only while kQueuedBands
+  /// bands are already queued), so that a renderer goes on with the next
+  /// band meanwhile.
+  ImageWriter(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
+              bool srgb_for_8bit, bool worker = false);
+  ~ImageWriter();
+  ImageWriter(const ImageWriter&) = delete;
+  ImageWriter& operator=(const ImageWriter&) = delete;
+  /// Rows [first_row, first_row + rows): the next ones, in order, their
+  /// channels interleaved (rows × width × channels values). An error of the
+  /// worker's is thrown here or by finish().
+  void write_rows(int first_row, int rows, std::span<const float> interleaved);
+  /// After the last row: finishes the file (the worker's rows first);
+  /// returns how many non-finite values were written as 0.
+  std::size_t finish();
+
+  /// The most bands queued for the worker at once.
+  static constexpr int kQueuedBands = 2;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
 
 /// Writes a width × height image with the given channels (interleaved floats,
 /// row 0 at the top) in the format the extension names (any OpenImageIO

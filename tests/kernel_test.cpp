@@ -1568,6 +1568,36 @@ TEST(Kernel, ColourAloneIsTheSameColour) {
   expect_no_validation_errors();
 }
 
+// RenderOptions::rows: the colour handed over band by band as each band of
+// tiles is done (a tiny max_dispatch_ms makes bands of 8 rows; 2 samples,
+// stereo), in order and covering every row once, is render()'s colour bit
+// for bit, and the result holds none.
+TEST(Kernel, ColourHandedOverBandByBandIsTheColour) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Scene scene = sol::preset_scene("lattice-balls");
+  renderer.set_world(scene);
+  const sol::Camera eyes[] = {scene.camera, sol::stereo_eyes(scene.camera, 0.1).right};
+  const sol::RenderOptions base{.width = 24, .height = 40, .samples = 2, .max_dispatch_ms = 1e-6, .aovs = false};
+  const sol::RenderResult whole = renderer.render(eyes, base);
+  std::vector<float> bands;
+  int next_row = 0, count = 0;
+  sol::RenderOptions streamed = base;
+  streamed.rows = [&](int first, int rows, std::span<const float> rgba) {
+    EXPECT_EQ(first, next_row);
+    EXPECT_EQ(rgba.size(), static_cast<std::size_t>(rows) * 48 * 4);
+    next_row = first + rows;
+    ++count;
+    bands.insert(bands.end(), rgba.begin(), rgba.end());
+  };
+  const sol::RenderResult r = renderer.render(eyes, streamed);
+  EXPECT_EQ(next_row, 40);
+  EXPECT_GT(count, 1);  // several bands, each handed over when done
+  EXPECT_TRUE(r.rgba.empty());
+  EXPECT_EQ(r.width, 48);
+  EXPECT_EQ(bands, whole.rgba);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");

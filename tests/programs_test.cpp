@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "adaptive_scale.hpp"
 #include "frame_stats.hpp"
 #include "image_file.hpp"
 #include "output_file.hpp"
@@ -303,6 +305,62 @@ TEST(ImageFile, RgbaIntoFormatsWithoutAlphaKeepsTheColour) {
   fs::remove_all(d);
 }
 
+// ImageWriter takes an image band by band, on the caller's thread or its
+// worker's, and writes the file write_image writes of the whole (the same
+// pixels read back, in PNG's 8-bit sRGB and EXR's floats); rows out of turn
+// and a file finished short are errors; a writer given up unfinished (a
+// failed render) leaves its temporary behind for the OutputFile to remove,
+// and no target.
+TEST(ImageFile, RowsWrittenBandByBandAreTheWholeImage) {
+  const fs::path d = fresh_directory("bands");
+  const int w = 37, h = 150;  // bands of 64 rows inside the writer: 64 + 64 + 22
+  std::vector<float> pixels(static_cast<std::size_t>(w) * h * 4);
+  for (std::size_t k = 0; k < pixels.size(); ++k) pixels[k] = static_cast<float>((k * 7919) % 1000) / 900.0f;
+  auto read = [](const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    std::vector<float> back(static_cast<std::size_t>(in->spec().width) * in->spec().height * in->spec().nchannels);
+    EXPECT_TRUE(in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, back.data()));
+    return back;
+  };
+  for (const char* ext : {".png", ".exr"}) {
+    const std::string whole = (d / (std::string("whole") + ext)).string();
+    sol::programs::write_image(whole, w, h, {"R", "G", "B", "A"}, pixels, true);
+    for (bool worker : {false, true}) {
+      const std::string banded = (d / (std::string(worker ? "worker" : "caller") + ext)).string();
+      sol::programs::OutputFile file(banded);
+      sol::programs::ImageWriter writer(file, w, h, {"R", "G", "B", "A"}, true, worker);
+      for (int y = 0; y < h; y += 40) {  // uneven bands: 40, 40, 40, 30
+        const int rows = std::min(40, h - y);
+        writer.write_rows(y, rows, std::span(pixels).subspan(static_cast<std::size_t>(y) * w * 4,
+                                                              static_cast<std::size_t>(rows) * w * 4));
+      }
+      EXPECT_EQ(writer.finish(), 0u);
+      file.commit();
+      EXPECT_EQ(read(banded), read(whole)) << banded;
+    }
+  }
+  {
+    sol::programs::OutputFile file((d / "turns.png").string());
+    sol::programs::ImageWriter writer(file, w, h, {"R", "G", "B", "A"}, true);
+    const auto rows = std::span(pixels).subspan(0, static_cast<std::size_t>(w) * 4 * 10);
+    EXPECT_THROW(writer.write_rows(10, 10, rows), std::runtime_error);  // row 0 first
+    writer.write_rows(0, 10, rows);
+    EXPECT_THROW(writer.finish(), std::runtime_error);  // 10 of 150 rows
+  }
+  for (bool worker : {false, true}) {
+    {
+      sol::programs::OutputFile file((d / "given-up.png").string());
+      sol::programs::ImageWriter writer(file, w, h, {"R", "G", "B", "A"}, true, worker);
+      writer.write_rows(0, 40, std::span(pixels).subspan(0, static_cast<std::size_t>(w) * 4 * 40));
+    }  // destroyed unfinished, as when a render throws
+    EXPECT_FALSE(fs::exists(d / "given-up.png"));
+  }
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(d)) ++files;
+  EXPECT_EQ(files, 6u);  // whole, caller and worker of each format; no temporary left
+  fs::remove_all(d);
+}
+
 // The time-left estimate against the truth of a render whose start is slow
 // (a kernel compiled on a cold cache: 11.5 s before the first band of 4 %,
 // then 1 s for the rest, as on lavapipe) and one that runs evenly: after
@@ -361,4 +419,34 @@ TEST(FrameStats, MeanPercentileAndMissedFramesByHand) {
   EXPECT_EQ(stats.missed(), 2);
   EXPECT_EQ(stats.summary("stereo"), "stereo frames: 5, mean 12.000 ms, p99 14.000 ms, missed 2");
   EXPECT_EQ(sol::programs::FrameStats().summary("mono"), "mono frames: 0, mean 0.000 ms, p99 0.000 ms, missed 0");
+}
+
+// The adaptive render scale (solview --target-fps, solxr's display period)
+// on a frame whose time goes with its pixels, K · scale² ms: it settles
+// where the frame fits the target, aimed 10 % below (K s² <= target within
+// the 5 % dead band, so s² within [target / 1.1 / K · 0.95², target / 1.1 / K · 1.05²]),
+// holds there, drops at once after a frame over twice the target, and stays
+// within [min_scale, 1].
+TEST(AdaptiveScale, SettlesWhereTheFrameFitsTheTarget) {
+  const double k = 40.0, target = 20.0;
+  sol::programs::AdaptiveScale adaptive(target, 0.1);
+  double scale = 1.0;
+  for (long frame = 0; frame < 200; ++frame) scale = adaptive.next(scale, frame, k * scale * scale);
+  const double settled = std::sqrt(target / 1.1 / k);
+  EXPECT_GE(scale, settled * 0.95);
+  EXPECT_LE(scale, settled * 1.05);
+  EXPECT_LE(k * scale * scale, target);
+  // A frame of five times the target (a heavier view) moves the scale at once, not at the next 8th frame.
+  const double before = scale;
+  scale = adaptive.next(scale, 201, 5.0 * target);
+  EXPECT_LT(scale, before);
+  // Never below the floor, never above 1.
+  sol::programs::AdaptiveScale floor(1.0, 0.25);
+  double s = 1.0;
+  for (long frame = 0; frame < 100; ++frame) s = floor.next(s, frame, 1000.0);
+  EXPECT_EQ(s, 0.25);
+  sol::programs::AdaptiveScale ceiling(100.0, 0.25);
+  s = 0.5;
+  for (long frame = 0; frame < 100; ++frame) s = ceiling.next(s, frame, 1.0);
+  EXPECT_EQ(s, 1.0);
 }

@@ -1218,6 +1218,19 @@ TEST(Render, ColourAloneIsTheSameColour) {
     for (const auto* plane : {&colour.object, &colour.distance, &colour.px, &colour.py, &colour.pz, &colour.steps}) {
       EXPECT_TRUE(plane->empty());
     }
+    // Handed over (RenderOptions::rows) rather than held: the same colour, every row once.
+    std::vector<float> handed;
+    int rows_seen = 0;
+    sol::RenderOptions streamed{.width = 20, .height = 12, .aovs = false};
+    streamed.rows = [&](int first, int rows, std::span<const float> rgba) {
+      EXPECT_EQ(first, rows_seen);
+      rows_seen += rows;
+      handed.insert(handed.end(), rgba.begin(), rgba.end());
+    };
+    const sol::RenderResult none = renderer.render(std::span(eyes, n), streamed);
+    EXPECT_TRUE(none.rgba.empty());
+    EXPECT_EQ(rows_seen, 12);
+    EXPECT_EQ(handed, all.rgba) << n;
   }
 }
 

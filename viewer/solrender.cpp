@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <span>
 #include <string>
 #include <thread>
 #include <spawn.h>
@@ -173,7 +174,17 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
 
 
 // Renders one camera (both eyes, an anaglyph, as the options say).
-using Render = std::function<sol::RenderResult(const sol::Camera&)>;
+// Renders a camera's image. With a writer (and no anaglyph, which is made
+// from the whole stereo image) the colour goes straight into it band by
+// band as the renderer reads it back (RenderOptions::rows) and the result's
+// colour stays empty; else the result holds it.
+using Render = std::function<sol::RenderResult(const sol::Camera&, sol::programs::ImageWriter*)>;
+
+// The colour of `r` into `writer` where the render did not stream it, then the file finished.
+std::size_t finish_image(sol::programs::ImageWriter& writer, const sol::RenderResult& r) {
+  if (!r.rgba.empty()) writer.write_rows(0, r.height, r.rgba);
+  return writer.finish();
+}
 
 bool is_cpu(const sol::Renderer& renderer) { return dynamic_cast<const sol::CpuRenderer*>(&renderer) != nullptr; }
 
@@ -192,6 +203,9 @@ struct Options {
   bool stereo() const { return !stereo_mode.empty(); }
   bool anaglyph() const { return stereo_mode == "anaglyph"; }
 };
+
+// The written image's width: both eyes side by side in stereo, one anaglyph.
+int image_width(const Options& o) { return o.width * (o.stereo() && !o.anaglyph() ? 2 : 1); }
 
 // The options, their help and the footer.
 void declare(sol::cli::CommandLine& cl, Options& o) {
@@ -499,6 +513,20 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   const std::optional<sol::Lattice> lattice = scene.lattice();
   long to_render = 0;
   for (long k = film.first; k < film.end; ++k) to_render += o.overwrite || !std::filesystem::exists(frame_name(o.output, k));
+  // A frame whose file the worker still encodes (ImageWriter), finished
+  // and committed after the next frame's render: frames are committed in turn.
+  struct PendingFrame {
+    std::unique_ptr<sol::programs::OutputFile> file;
+    std::unique_ptr<sol::programs::ImageWriter> writer;
+    sol::RenderResult result;
+    std::string name;
+  };
+  std::optional<PendingFrame> pending;
+  const auto complete = [](PendingFrame& p) {
+    const std::size_t non_finite = finish_image(*p.writer, p.result);
+    p.file->commit();
+    if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, p.name.c_str());
+  };
   for (long k = film.first; k < film.end; ++k) {
     const std::string name = frame_name(o.output, k);
     if (!o.overwrite && std::filesystem::exists(name)) {
@@ -515,14 +543,18 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
     char prefix[160];
     std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld%s): ", k, rendered + 1, to_render, film_left);
     progress.start(prefix);
-    const sol::RenderResult r = render(camera);
+    auto file = std::make_unique<sol::programs::OutputFile>(name);
+    auto writer = std::make_unique<sol::programs::ImageWriter>(*file, image_width(o), o.height,
+                                                                std::vector<std::string>{"R", "G", "B", "A"}, true, true);
+    sol::RenderResult r = render(camera, writer.get());
     if (tty) std::fprintf(stderr, "\r");
-    sol::programs::OutputFile image(name);
-    const std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
-    image.commit();
-    if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, name.c_str());
+    // The previous frame's file is finished only now: its last bands were
+    // encoded while this frame rendered.
+    if (pending) complete(*pending);
+    pending = PendingFrame{std::move(file), std::move(writer), std::move(r), name};
     ++rendered;
   }
+  if (pending) complete(*pending);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
   std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
@@ -535,7 +567,11 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
 void render_still(const Options& o, const sol::Scene& scene, const Render& render, bool tty, bool on_device,
                   std::string where) {
   const auto begin = std::chrono::steady_clock::now();
-  const sol::RenderResult r = render(scene.camera);
+  sol::programs::OutputFile image(o.output);
+  sol::programs::ImageWriter writer(image, image_width(o), o.height, {"R", "G", "B", "A"}, true, /*worker=*/true);
+  const sol::RenderResult r = render(scene.camera, &writer);
+  std::size_t non_finite = finish_image(writer, r);
+  // (The render and the image file: the colour is encoded as it is read back.)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (tty) std::fprintf(stderr, "\r");
   if (on_device) {
@@ -543,8 +579,6 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
     std::snprintf(buf, sizeof buf, " (kernel %.1f ms)", r.device_ms);
     where += buf;
   }
-  sol::programs::OutputFile image(o.output);
-  std::size_t non_finite = sol::programs::write_image(image, r.width, r.height, {"R", "G", "B", "A"}, r.rgba, true);
   std::optional<sol::programs::OutputFile> aovs;
   if (!o.aov.empty()) {
     aovs.emplace(o.aov);
@@ -596,9 +630,13 @@ int main(int argc, char** argv) {
     options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
-    const Render render = [&](const sol::Camera& camera) {
+    const Render render = [&](const sol::Camera& camera, sol::programs::ImageWriter* writer) {
+      sol::RenderOptions these = options;
+      if (writer != nullptr && !o.anaglyph()) {
+        these.rows = [writer](int first_row, int rows, std::span<const float> rgba) { writer->write_rows(first_row, rows, rgba); };
+      }
       const sol::RenderResult both =
-          o.stereo() ? renderer->render_stereo(camera, o.ipd, options) : renderer->render(camera, options);
+          o.stereo() ? renderer->render_stereo(camera, o.ipd, these) : renderer->render(camera, these);
       return o.anaglyph() ? to_anaglyph(both) : both;
     };
     progress.start();

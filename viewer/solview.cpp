@@ -31,6 +31,7 @@
 #include <sol/vk/march.hpp>
 #include <sol/vk/pipeline.hpp>
 
+#include "adaptive_scale.hpp"
 #include "command_line.hpp"
 #include "controls.hpp"
 #include "image_file.hpp"
@@ -259,34 +260,6 @@ void write_state(const std::string& path, const sol::Observer& o, long frames) {
   text += line;
   sol::programs::write_text_file(path, text);
 }
-
-// The render scale that holds the target frame rate: the frame time goes
-// with the pixel count, scale². Updated every 8 frames, or at once when a
-// frame took over twice the target time (a slow scene must not crawl
-// through 8 full-size frames first).
-class AdaptiveScale {
- public:
-  AdaptiveScale(double target_fps, double min_scale) : m_target_fps(target_fps), m_min_scale(min_scale) {}
-  double target() const { return m_target_fps; }
-  double next(double scale, long frame, double frame_seconds) {
-    if (frame > 0) m_smoothed_ms = m_smoothed_ms == 0 ? frame_seconds * 1e3 : 0.8 * m_smoothed_ms + 0.2 * frame_seconds * 1e3;
-    const bool far_too_slow = frame > 1 && frame_seconds * m_target_fps > 2.0;
-    if (far_too_slow) m_smoothed_ms = frame_seconds * 1e3;
-    if ((frame % 8 != 0 && !far_too_slow) || m_smoothed_ms <= 0) return scale;
-    // Aim 10% above the target so that the dead band below never leaves the rate under it.
-    const double wanted = scale * std::sqrt(1e3 / (1.1 * m_target_fps) / m_smoothed_ms);
-    const double next = std::clamp(wanted, m_min_scale, 1.0);
-    // A 5% dead band against dithering; the bounds are taken whatever the
-    // step (scale 1 is the direct path, see Presenter; at 0.97 it would
-    // never be reached).
-    const bool at_bound = next == m_min_scale || next == 1.0;
-    return std::abs(next - scale) > 0.05 * scale || (at_bound && next != scale) ? next : scale;
-  }
-
- private:
-  double m_target_fps, m_min_scale;
-  double m_smoothed_ms = 0;
-};
 
 // Loads --script and refuses the files written at exit (or their folder),
 // before a window opens.
@@ -746,8 +719,9 @@ int run(App& app) {
   app.overlay_visible = app.overlay && opt.overlay == "on";
   app.overlay_in_capture = opt.overlay == "on";
   if (opt.target_fps) app.target_fps = *opt.target_fps;
-  std::optional<AdaptiveScale> adaptive;
-  if (opt.target_fps) adaptive.emplace(*opt.target_fps, opt.min_scale);
+  // The render scale that holds the target frame rate (sol::programs::AdaptiveScale).
+  std::optional<sol::programs::AdaptiveScale> adaptive;
+  if (opt.target_fps) adaptive.emplace(1e3 / *opt.target_fps, opt.min_scale);
   Refinement refinement(opt.refine);
   RunFigures figures(opt.frames);
   Title title;
@@ -782,10 +756,12 @@ int run(App& app) {
     }
     if (app.quit) break;
     app.controls.step(app.observer, dt);
-    if (app.adaptive && (!adaptive || adaptive->target() != app.target_fps)) adaptive.emplace(app.target_fps, opt.min_scale);
+    if (app.adaptive && (!adaptive || adaptive->target_ms() != 1e3 / app.target_fps)) {
+      adaptive.emplace(1e3 / app.target_fps, opt.min_scale);
+    }
     // Refinement frames are full-size on purpose: they do not steer the adaptive scale.
     if (adaptive && refinement.refined() < 0) {
-      const double next = adaptive->next(app.scale, frame, frame_seconds);
+      const double next = adaptive->next(app.scale, frame, frame_seconds * 1e3);
       if (app.adaptive) app.scale = next;
     }
     if (frame > 0) {
@@ -799,7 +775,7 @@ int run(App& app) {
     const VkExtent2D extent = presenter.extent();
     if (!refinement.update(app.view_key(static_cast<int>(extent.width), static_cast<int>(extent.height)), dt, app.scale) &&
         adaptive) {
-      adaptive.emplace(app.target_fps, opt.min_scale);  // forget the full-size frames
+      adaptive.emplace(1e3 / app.target_fps, opt.min_scale);  // forget the full-size frames
     }
     const double render_scale = refinement.refined() >= 0 ? 1.0 : app.scale;
     const int eye_w = std::max(1, static_cast<int>(std::lround(extent.width * render_scale / eyes)));

@@ -1,5 +1,7 @@
 #include "sol/vk/image.hpp"
 
+#include <algorithm>
+
 #include <cstring>
 #include <stdexcept>
 #include <span>
@@ -167,43 +169,78 @@ std::vector<std::uint8_t> StorageImage::download_bytes() const {
 }
 
 void StorageImage::copy_to_host(std::span<std::byte> out) const {
-  Buffer staging(m_owner, out.size(), BufferUsage::Storage);
-  m_owner->submit_and_wait([&](VkCommandBuffer commands) {
-    // GENERAL -> TRANSFER_SRC_OPTIMAL for the copy; earlier dispatches' image
-    // writes must land before the copy reads them.
-    image_barrier(commands, m_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-
-    VkBufferImageCopy region{};
-    region.bufferOffset = 0;
-    region.bufferRowLength = 0;  // tightly packed
-    region.bufferImageHeight = 0;
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageOffset = {0, 0, 0};
-    region.imageExtent = {m_width, m_height, 1};
-    vkCmdCopyImageToBuffer(commands, m_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
-
-    // Back to GENERAL for later dispatches, after the copy has read the image
-    // (a write-after-read hazard: an execution dependency suffices).
-    image_barrier(commands, m_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_GENERAL);
-
-    // The copy's writes must be visible to the host before it reads the mapping.
-    VkBufferMemoryBarrier buffer_barrier{};
-    buffer_barrier.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
-    buffer_barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    buffer_barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    buffer_barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    buffer_barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    buffer_barrier.buffer = staging.handle();
-    buffer_barrier.offset = 0;
-    buffer_barrier.size = VK_WHOLE_SIZE;
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
-                         &buffer_barrier, 0, nullptr);
+  const std::size_t row_bytes = out.size() / m_height;
+  copy_bands(row_bytes / m_width, 0, m_height, [&](std::uint32_t y, std::uint32_t, std::span<const std::byte> bytes) {
+    std::copy(bytes.begin(), bytes.end(), out.begin() + static_cast<std::ptrdiff_t>(row_bytes * y));
   });
-  staging.read_bytes(out);
+}
+
+void StorageImage::download_rows(
+    const std::function<void(std::uint32_t first_row, std::uint32_t rows, std::span<const float> values)>& band,
+    std::uint32_t first, std::uint32_t count) const {
+  if (m_owner == nullptr) throw std::logic_error("StorageImage::download_rows: the image was moved from");
+  const std::uint32_t channels = float_channels();
+  if (channels == 0) {
+    throw std::logic_error("StorageImage::download_rows: " + format_name(m_format) + " is not a 32-bit float format");
+  }
+  if (count == 0 && first < m_height) count = m_height - first;
+  if (first >= m_height || count > m_height - first) {
+    throw std::out_of_range("StorageImage::download_rows: rows " + std::to_string(first) + " + " + std::to_string(count) +
+                            " outside the image's " + std::to_string(m_height));
+  }
+  copy_bands(channels * sizeof(float), first, count, [&](std::uint32_t y, std::uint32_t rows, std::span<const std::byte> bytes) {
+    band(y, rows, std::span(reinterpret_cast<const float*>(bytes.data()), bytes.size() / sizeof(float)));
+  });
+}
+
+void StorageImage::copy_bands(
+    std::size_t texel_bytes, std::uint32_t first, std::uint32_t count,
+    const std::function<void(std::uint32_t, std::uint32_t, std::span<const std::byte>)>& band) const {
+  // Band by band through a staging buffer of at most kStagingBytes (a row
+  // at least), so that a large image costs the host no second copy of itself.
+  constexpr std::size_t kStagingBytes = std::size_t{16} << 20;
+  const std::size_t row_bytes = texel_bytes * m_width;
+  const std::uint32_t band_rows = static_cast<std::uint32_t>(std::clamp<std::size_t>(kStagingBytes / row_bytes, 1, count));
+  Buffer staging(m_owner, row_bytes * band_rows, BufferUsage::Storage);
+  for (std::uint32_t y = first; y < first + count; y += band_rows) {
+    const std::uint32_t rows = std::min(band_rows, first + count - y);
+    m_owner->submit_and_wait([&](VkCommandBuffer commands) {
+      // GENERAL -> TRANSFER_SRC_OPTIMAL for the copy; earlier dispatches' image
+      // writes must land before the copy reads them.
+      image_barrier(commands, m_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+
+      VkBufferImageCopy region{};
+      region.bufferOffset = 0;
+      region.bufferRowLength = 0;  // tightly packed
+      region.bufferImageHeight = 0;
+      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.imageOffset = {0, static_cast<std::int32_t>(y), 0};
+      region.imageExtent = {m_width, rows, 1};
+      vkCmdCopyImageToBuffer(commands, m_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
+
+      // Back to GENERAL for later dispatches, after the copy has read the image
+      // (a write-after-read hazard: an execution dependency suffices).
+      image_barrier(commands, m_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_IMAGE_LAYOUT_GENERAL);
+
+      // The copy's writes must be visible to the host before it reads the mapping.
+      VkBufferMemoryBarrier buffer_barrier{};
+      buffer_barrier.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+      buffer_barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      buffer_barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      buffer_barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      buffer_barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      buffer_barrier.buffer = staging.handle();
+      buffer_barrier.offset = 0;
+      buffer_barrier.size = VK_WHOLE_SIZE;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
+                           &buffer_barrier, 0, nullptr);
+    });
+    band(y, rows, std::span<const std::byte>(staging.bytes().data(), row_bytes * rows));
+  }
 }
 
 void image_barrier(VkCommandBuffer commands, VkImage image, VkPipelineStageFlags src_stage, VkAccessFlags src_access,

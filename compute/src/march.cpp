@@ -718,19 +718,28 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   Impl& m = *m_impl;
   (void)world();  // a world first (logic_error)
   // Peak host memory per pixel, measured on lavapipe (whose device memory
-  // is the host's): 120 bytes (the images, their staging copies and the
-  // result), rounded up.
+  // is the host's): with the AOVs 120 bytes (the images, their staging
+  // copies and the result), rounded up.
   validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
-  Frame f = prepare_frame(eyes, options.width, height, true, false);
+  Frame f = prepare_frame(eyes, options.width, height, options.aovs, false);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
-  StorageImage color(m.context, f.width, f.height), hit(m.context, f.width, f.height), point(m.context, f.width, f.height);
+  // The AOV images only when asked for (the kernel variant without AOVs
+  // never writes them: a 1 x 1 placeholder holds their bindings).
+  StorageImage color(m.context, f.width, f.height);
+  std::optional<StorageImage> hit, point;
+  if (options.aovs) {
+    hit.emplace(m.context, f.width, f.height);
+    point.emplace(m.context, f.width, f.height);
+  } else if (!m.placeholder) {
+    m.placeholder.emplace(m.context, 1, 1);
+  }
   Impl::Built& pipeline = *f.pipeline;
   pipeline.bind(f.set, kernel::kBindingColor, color);
-  pipeline.bind(f.set, kernel::kBindingHit, hit);
-  pipeline.bind(f.set, kernel::kBindingPoint, point);
+  pipeline.bind(f.set, kernel::kBindingHit, hit ? *hit : *m.placeholder);
+  pipeline.bind(f.set, kernel::kBindingPoint, point ? *point : *m.placeholder);
   Params& g = f.params;
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
@@ -754,6 +763,13 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         pixels_timed += static_cast<double>(cols) * rows;
       }
     }
+    // The band's colour is done: handed over now (RenderOptions::rows), so
+    // that the caller encodes it while later bands render.
+    if (options.rows) {
+      color.download_rows([&](std::uint32_t first, std::uint32_t n, std::span<const float> values) {
+        options.rows(static_cast<int>(first), static_cast<int>(n), values);
+      }, static_cast<std::uint32_t>(y), static_cast<std::uint32_t>(rows));
+    }
     y += rows;
     if (options.progress) options.progress(static_cast<double>(y) / h);
     if (options.cancel && options.cancel->load() && y < h) throw Cancelled("sol::vk::MarchRenderer::render: cancelled");
@@ -774,9 +790,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   r.device_ms = ms;
   r.width = static_cast<int>(w);
   r.height = height;
-  r.rgba = color.download();
+  if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
   if (!options.aovs) return r;  // the colour alone: nothing more read back or held
-  const std::vector<float> hits = hit.download(), points = point.download();
+  const std::vector<float> hits = hit->download(), points = point->download();
   const std::size_t n = static_cast<std::size_t>(w) * h;
   r.object.resize(n);
   r.distance.resize(n);

@@ -491,6 +491,10 @@ RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptio
     RenderResult eye = render_eye(eyes[e], eye_options);
     r = e == 0 ? std::move(eye) : side_by_side(r, eye);
   }
+  if (options.rows) {  // the colour handed over, not kept
+    options.rows(0, r.height, r.rgba);
+    std::vector<float>().swap(r.rgba);
+  }
   return r;
 }
 

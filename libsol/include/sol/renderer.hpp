@@ -53,6 +53,13 @@ struct RenderOptions {
   std::function<void(double)> progress;
   /// When set and true, the render stops early and throws sol::Cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  /// Where the colour goes instead of RenderResult::rgba, band by band
+  /// from the top: (first row, rows, their 4 × W × rows values, W the width
+  /// of all eyes side by side). RenderResult::rgba is then left empty. A
+  /// device renderer hands each band over as it reads it back, so the
+  /// colour is never held whole on the host (solrender streams it into the
+  /// image file's encoder); the CPU renderer hands over its whole image.
+  std::function<void(int first_row, int rows, std::span<const float> rgba)> rows;
 };
 
 /// An image and its arbitrary output variables, row-major, row 0 at the top.

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -53,6 +54,14 @@ class StorageImage {
   /// width·height·float_channels() values. Throws std::logic_error for a
   /// format that is not 32-bit float.
   std::vector<float> download() const;
+  /// The same band by band, without holding the whole image: each band of
+  /// rows (at most 16 MiB, a row at least) of rows [first, first + count)
+  /// (count 0: to the last row) is copied to the host and handed to `band`
+  /// as (first row, rows, their values), from the top; the next band is
+  /// copied once it returns. Same errors as download(), and
+  /// std::out_of_range for rows outside the image.
+  void download_rows(const std::function<void(std::uint32_t first_row, std::uint32_t rows, std::span<const float> values)>& band,
+                     std::uint32_t first = 0, std::uint32_t count = 0) const;
   /// The same for an 8-bit R8G8B8A8_UNORM or B8G8R8A8_UNORM image: 4 bytes
   /// per pixel in the format's channel order. Throws std::logic_error for
   /// other formats.
@@ -61,6 +70,10 @@ class StorageImage {
  private:
   void release() noexcept;
   void copy_to_host(std::span<std::byte> out) const;
+  // Copies rows [first, first + count) band by band through one staging
+  // buffer, handing each band's bytes to `band`.
+  void copy_bands(std::size_t texel_bytes, std::uint32_t first, std::uint32_t count,
+                  const std::function<void(std::uint32_t, std::uint32_t, std::span<const std::byte>)>& band) const;
 
   std::shared_ptr<detail::Device> m_owner;
   VkImage m_image = VK_NULL_HANDLE;
