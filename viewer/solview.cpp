@@ -39,6 +39,7 @@
 #include "overlay.hpp"
 #include "panel.hpp"
 #include "presenter.hpp"
+#include "refinement.hpp"
 #include "viewer_state.hpp"
 
 namespace {
@@ -408,64 +409,27 @@ class Replay {
   std::size_t next_ = 0;
 };
 
-// Progressive refinement: a view unchanged for kDelay (in the replay's
-// time when replaying) is rendered at full resolution, then sample by
-// sample into a running mean, up to --refine samples; then that image is
-// shown as it is. Any change starts again.
-class Refinement {
+// solview's use of the shared refinement (sol::programs::Refinement): the
+// frame's sample or the finished image again, and the times of a finished
+// refinement on stderr (docs/solview.md's table).
+class Refinement : public sol::programs::Refinement {
  public:
-  static constexpr double kDelay = 0.25;
-  explicit Refinement(int samples) : samples_(samples) {}
-
-  // Samples accumulated; -1 while not refining.
-  int refined() const { return refined_; }
-
-  // This frame's view; false when it ended a refinement (the adaptive scale forgets the full-size frames).
-  bool update(const std::array<double, 16>& key, double dt, double scale) {
-    bool kept = true;
-    if (key != last_key_) {
-      last_key_ = key;
-      still_for_ = 0.0;
-      kept = refined_ < 0;
-      refined_ = -1;
-    } else {
-      still_for_ += dt;
-    }
-    if (refined_ < 0 && samples_ > 0 && still_for_ >= kDelay && (scale < 1.0 || samples_ > 1)) {
-      refined_ = 0;
-      began_ = std::chrono::steady_clock::now();
-    }
-    return kept;
-  }
-
-  // The frame's sample, or the last image shown again.
+  using sol::programs::Refinement::Refinement;
   void set(sol::viewer::Presenter::FrameOptions& options) const {
-    if (refined_ >= 0 && refined_ < samples_) {
-      options.sample = sol::vk::PixelSample{sol::pixel_sample(refined_), 1.0 / (refined_ + 1)};
-    } else if (refined_ >= samples_) {
+    if (const auto s = sample()) {
+      options.sample = sol::vk::PixelSample{s->offset, s->weight};
+    } else if (reuse()) {
       options.reuse = true;
     }
   }
-
-  // A frame was shown.
   void shown() {
-    if (refined_ < 0 || refined_ >= samples_) return;
-    ++refined_;
-    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
-    if (refined_ == 1) full_s_ = since;
-    if (refined_ == samples_) {
-      // Wall-clock time from the end of the pause to the frames shown, for docs/solview.md's table.
+    double full = 0.0;
+    if (const auto since = sol::programs::Refinement::shown(&full)) {
+      // Wall-clock time from the end of the pause to the frames shown.
       std::fprintf(stderr, "solview: refined: full resolution %.3f s and %d samples %.3f s after the %.2f s pause\n",
-                   full_s_, samples_, since, kDelay);
+                   full, samples(), *since, kDelay);
     }
   }
-
- private:
-  int samples_;
-  std::array<double, 16> last_key_{};
-  double still_for_ = 0.0, full_s_ = 0.0;
-  int refined_ = -1;
-  std::chrono::steady_clock::time_point began_ = std::chrono::steady_clock::now();
 };
 
 // The run's figures, printed at exit: the mean frame rate, render scale and
