@@ -45,10 +45,13 @@ SolxrRun run_solxr(const std::string& name, const std::string& script, const std
   const fs::path log = r.dir / "log.txt";
   // Every run goes through the OpenXR core validation layer (Debian
   // openxr-layer-corevalidation), which prints what it finds on stdout.
+  // The render scale fixed unless the test is about it: the eye images are
+  // compared with full-size CPU renders, whatever the machine's speed.
+  const std::string scale = args.find("--adaptive") == std::string::npos ? "--adaptive off " : "";
   const std::string command = "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation XR_RUNTIME_JSON='" +
                               runtime_json + "' SOLXR_TEST_SCRIPT='" +
-                              (r.dir / "script.json").string() + "' '" SOLXR_PATH "' --validation " + args + " > '" +
-                              log.string() + "' 2>&1";
+                              (r.dir / "script.json").string() + "' '" SOLXR_PATH "' --validation " + scale + args +
+                              " > '" + log.string() + "' 2>&1";
   const int status = std::system(command.c_str());
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::stringstream text;
@@ -187,6 +190,52 @@ TEST(XrSolxr, EachEyeImageIsTheCpuRenderOfThatEye) {
   }
   // The eyes see different images (the test has teeth).
   EXPECT_GT(differing_pixels(load_eye(r.dir, 0, 0), right, kFloatTolerance), allowed(load_eye(r.dir, 0, 0)));
+}
+
+// A still head refines (--refine 4): from 0.25 s of still views (frame 23
+// at the runtime's 90 Hz) four jittered samples join a running mean, then
+// that image is shown again; the last frame is the CPU render with 4
+// samples per pixel (the same pixel_sample sequence), an early one the
+// single-sample render, and the two differ (the test has teeth).
+TEST(XrSolxr, AStillHeadRefinesToTheSampledMean) {
+  std::string frames;
+  for (int k = 0; k < 36; ++k) frames += k == 0 ? "{}" : ", {}";
+  const SolxrRun r = run_solxr("refine", R"({"width": 16, "height": 16, "fov": 60, "ipd": 0.2, "frames": [)" + frames + "]}",
+                               "--scene sandwich --refine 4");
+  expect_clean(r);
+  sol::Scene scene = sol::preset_scene("sandwich");
+  scene.camera.fov = 60.0;
+  const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
+  sol::Scene one = scene;
+  one.camera = eyes.left;
+  sol::RenderOptions settings;
+  settings.width = settings.height = 16;
+  const sol::RenderResult single = sol::render_cpu(one, settings);
+  settings.samples = 4;
+  const sol::RenderResult refined = sol::render_cpu(one, settings);
+  const Image early = load_eye(r.dir, 5, 0), last = load_eye(r.dir, 35, 0);
+  EXPECT_LE(differing_pixels(early, single, kFloatTolerance), allowed(early));
+  EXPECT_LE(differing_pixels(last, refined, kFloatTolerance), allowed(last));
+  EXPECT_GT(differing_pixels(last, single, kFloatTolerance), allowed(last));
+}
+
+// The render scale follows the display period (--adaptive on): frames of
+// lattice-balls at 256 x 256 per eye take lavapipe far longer than the
+// runtime's 11.1 ms, so the scale drops, never below --min-scale.
+TEST(XrSolxr, TheRenderScaleAdaptsToTheDisplayPeriod) {
+  std::string frames;
+  for (int k = 0; k < 30; ++k) frames += k == 0 ? "{}" : ", {}";
+  const SolxrRun r =
+      run_solxr("adaptive", R"({"width": 256, "height": 256, "read_back": false, "frames": [)" + frames + "]}",
+                "--scene lattice-balls --adaptive on --min-scale 0.3 --refine 0 --stats");
+  expect_clean(r);
+  double end = -1, mean = -1;
+  const std::size_t at = r.err.find("render scale ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + at, "render scale %lf at the end, mean %lf", &end, &mean), 2) << r.err;
+  EXPECT_LT(end, 0.9) << r.err;
+  EXPECT_GE(end, 0.3) << r.err;
+  EXPECT_LT(mean, 1.0) << r.err;
 }
 
 // Headsets' eye frusta are off-centre (XrFovf angles, left/right and up/down
@@ -470,6 +519,10 @@ TEST(XrSolxr, BadOptionsAreClearErrors) {
       {"--position 1,2", "three comma-separated numbers"},
       {"--speed", "--speed needs a value"},
       {"--copy gpu", "--copy expects auto, device or host, got 'gpu'"},
+      {"--render-scale 0", "--render-scale must be in (0, 1]"},
+      {"--min-scale 2", "--min-scale must be in (0, 1]"},
+      {"--adaptive maybe", "--adaptive expects on or off, got 'maybe'"},
+      {"--refine -1", "--refine must be in [0, 4096]"},
   };
   for (const auto& c : cases) {
     const SolxrRun r = run_solxr("badoptions", "{}", c.args);

@@ -38,7 +38,9 @@
 
 #include "command_line.hpp"
 #include "eye_pose.hpp"
+#include "adaptive_scale.hpp"
 #include "frame_stats.hpp"
+#include "refinement.hpp"
 #include "renderers.hpp"
 #include "srgb.hpp"
 
@@ -53,6 +55,9 @@ struct Options {
   bool stats = false, validation = false;
   std::string copy = "auto";  // device: kernel image blitted into the swapchain image; host: through the host
   sol::cli::SceneOverrides overrides;  // camera and limits (no --fov: the runtime's)
+  double render_scale = 1.0, min_scale = 0.25;
+  std::string adaptive = "on";
+  int refine = 16;  // samples a still head accumulates (0: off)
 };
 
 // The command line; exits 0 after --help and 2 on bad usage.
@@ -76,6 +81,16 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
   cl.add_choice("--copy", o.copy, {"auto", "device", "host"},
                 "how an eye reaches its swapchain image: device = the kernel's image blitted on the GPU (no host round "
                 "trip), host = read back and uploaded; auto (default) = device when the formats allow the blit");
+  cl.add_number("--render-scale", o.render_scale, "S",
+                "render each eye at S times its size, (0, 1], then upscale (default 1; where --adaptive starts)",
+                sol::cli::in_unit_interval());
+  cl.add_choice("--adaptive", o.adaptive, {"on", "off"},
+                "adapt the render scale to hold the runtime's display period (default on; device copy only)");
+  cl.add_number("--min-scale", o.min_scale, "S", "lowest adaptive scale, (0, 1] (default 0.25)",
+                sol::cli::in_unit_interval());
+  cl.add_integer("--refine", o.refine, 0, 4096, "N",
+                 "when the head and the observer have been still for 0.25 s: render at full size, then accumulate up "
+                 "to N jittered samples per pixel (as solview --refine); 0: off (default 16; device copy only)");
   cl.add_flag("--stats", o.stats,
               "print at exit 'stereo frames: N, mean X ms, p99 Y ms, missed Z' (the time between frames' ends on the "
               "device; missed: device work plus host recording over the display period) and the work per frame");
@@ -180,13 +195,27 @@ struct FrameSlot {
   bool follows = false;                     // that frame came right after a rendered frame
   double record_ms = 0, period_ms = 0;      // its host recording time and the display period it had
   double submitted_ms = 0;                  // the host clock at its submission (intervals without timestamps)
+  bool adaptive = false;                    // rendered at the adaptive scale (its time steers the scale)
+  double scale = 1.0;                       // its render scale
+};
+
+/// What a frame renders: both eyes at `scale` of their size, or a
+/// refinement sample at full size into the running mean, or the finished
+/// refinement again (no kernel).
+struct FramePlan {
+  double scale = 1.0;
+  std::optional<sol::vk::PixelSample> sample;
+  bool reuse = false;
 };
 
 /// The frames' figures, counted in frame order as their slots come back.
 struct FrameClock {
   sol::programs::FrameStats stats;
+  double scale_sum = 0.0;  // the counted frames' render scales
   std::optional<double> last_end_ms;  // the previous counted frame's end (device clock, or host clock without timestamps)
   bool chain = false;                 // the next frame follows a rendered one
+  double last_work_ms = 0.0;          // the last counted frame's device work plus host recording
+  bool last_adaptive = false;         // it was rendered at the adaptive scale
 };
 /// The OpenXR objects in creation order; the destructor takes them down in
 /// reverse, so every path out (an exception included) leaves nothing behind.
@@ -202,6 +231,7 @@ struct App {
   std::vector<Eye> eyes;
   std::optional<sol::vk::StorageImage> rendered;  // device copy: both eyes side by side, the kernel's RGBA32F image
   std::vector<FrameSlot> slots;                   // device copy: the frames in flight
+  bool linear_blit = false;                       // RGBA32F blits may filter linearly (scaled frames)
   XrActionSet action_set = XR_NULL_HANDLE;
   XrAction move = XR_NULL_HANDLE, turn = XR_NULL_HANDLE;
 
@@ -461,6 +491,9 @@ void prepare_copies(App& app, bool device, std::int64_t format, std::uint32_t wi
     return;
   }
   app.rendered.emplace(*app.context, 2 * width, height);
+  VkFormatProperties props{};
+  vkGetPhysicalDeviceFormatProperties(app.context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &props);
+  app.linear_blit = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
   const VkDevice vk_device = app.context->device();
   for (int k = 0; k < kFramesInFlight; ++k) {
     FrameSlot& slot = app.slots.emplace_back();
@@ -620,10 +653,10 @@ void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
 /// Waits for the slot's previous frame (frame n - kFramesInFlight; done
 /// long before when the runtime paces the loop) and counts its figures:
 /// its work between its two timestamps, its interval from the previous
-/// counted frame's end.
-void retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
+/// counted frame's end. Returns whether a frame was counted.
+bool retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
   sol::vk::check(vkWaitForFences(app.context->device(), 1, &slot.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-  if (!slot.pending) return;
+  if (!slot.pending) return false;
   slot.pending = false;
   double begin_ms = slot.submitted_ms, end_ms = slot.submitted_ms;
   if (slot.timestamps != VK_NULL_HANDLE) {
@@ -638,7 +671,11 @@ void retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
   const std::optional<double> interval =
       slot.follows && clock.last_end_ms ? std::optional<double>(end_ms - *clock.last_end_ms) : std::nullopt;
   clock.stats.add(interval, end_ms - begin_ms, slot.record_ms, slot.period_ms);
+  clock.scale_sum += slot.scale;
   clock.last_end_ms = end_ms;
+  clock.last_work_ms = end_ms - begin_ms + slot.record_ms;
+  clock.last_adaptive = slot.adaptive;
+  return true;
 }
 
 /// The device path, one submission per stereo frame, not waited for: the
@@ -647,7 +684,7 @@ void retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
 /// the swapchain's format, sRGB-encoded where it is an sRGB one) copies its
 /// half into the eye's swapchain image; nothing goes through the host.
 void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& cameras,
-                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height) {
+                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
   const double begin = now_ms();
   const VkCommandBuffer cmd = slot.commands;
   sol::vk::check(vkResetFences(app.context->device(), 1, &slot.done), "vkResetFences");
@@ -660,7 +697,12 @@ void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& c
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
   }
   const sol::vk::StorageImage& rendered = *app.rendered;
-  app.renderer->record(cmd, cameras, static_cast<int>(width), static_cast<int>(height), rendered);
+  // Each eye at the plan's scale (the image's top-left 2 rw x rh); a
+  // refinement sample joins the running mean already there; a finished
+  // refinement is shown again without the kernel.
+  const int rw = std::max(1, static_cast<int>(std::lround(width * plan.scale)));
+  const int rh = std::max(1, static_cast<int>(std::lround(height * plan.scale)));
+  if (!plan.reuse) app.renderer->record(cmd, cameras, rw, rh, rendered, plan.sample.value_or(sol::vk::PixelSample{}));
   // The kernel's writes must land before the blits read them, from the
   // layout made for reading by transfers (GENERAL costs some devices a
   // slower path, which the validation layers point out).
@@ -668,15 +710,17 @@ void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& c
                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   const auto w = static_cast<std::int32_t>(width), h = static_cast<std::int32_t>(height);
+  const bool scaled = rw != w || rh != h;
   for (std::size_t v = 0; v < targets.size(); ++v) {
     begin_transfer_to(cmd, targets[v]);
     VkImageBlit region{};
     region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[0] = {static_cast<std::int32_t>(v) * w, 0, 0};  // the left eye on the left
-    region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * w, h, 1};
+    region.srcOffsets[0] = {static_cast<std::int32_t>(v) * rw, 0, 0};  // the left eye on the left
+    region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * rw, rh, 1};
     region.dstOffsets[1] = {w, h, 1};
     vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets[v],
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
+                   scaled && app.linear_blit ? VK_FILTER_LINEAR : VK_FILTER_NEAREST);
     end_transfer_to(cmd, targets[v]);
   }
   // The next frame's kernel writes the image again (GENERAL, as the kernel
@@ -696,6 +740,7 @@ void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& c
   slot.submitted_ms = now_ms();
   slot.record_ms = slot.submitted_ms - begin;
   slot.pending = true;
+  slot.scale = plan.reuse ? 1.0 : plan.scale;
 }
 
 /// The host path (--copy host, or a swapchain format the device cannot
@@ -740,6 +785,20 @@ double render_through_host(App& app, const std::array<sol::Camera, 2>& cameras, 
     }
   });
   return image.device_ms + upload_ms;
+}
+
+/// What determines a frame's image, for the refinement: both eyes'
+/// positions and directions (and the first's window), rounded to 1e-6 so
+/// that a head held still within that is still.
+std::array<double, 16> view_key(const std::array<sol::Camera, 2>& cameras) {
+  const sol::Camera& a = cameras[0];
+  const sol::Camera& b = cameras[1];
+  const double frustum = a.frustum ? a.frustum->left + 3 * a.frustum->right + 5 * a.frustum->up : 0.0;
+  std::array<double, 16> key = {a.position.x, a.position.y, a.position.z, a.forward.x, a.forward.y, a.forward.z,
+                                a.up.x,       a.up.y,       a.up.z,       b.position.x, b.position.y, b.position.z,
+                                b.forward.x,  b.forward.y,  b.forward.z,  frustum};
+  for (double& k : key) k = std::round(k * 1e6);
+  return key;
 }
 
 /// The Sol eyes of the located views, each with its own, generally
@@ -802,6 +861,13 @@ int run(const Options& o, const sol::Scene& scene) {
   bool running = false, quit = false, exit_requested = false, announced = false;
   long frames = 0;
   FrameClock clock;
+  // Holding the rate (device copy): the render scale adapts to the display
+  // period from the frames' device work and recording, two frames late (a
+  // slot's figures are read when it is reused); a still head refines.
+  double scale = o.render_scale;
+  std::optional<sol::programs::AdaptiveScale> adaptive;
+  long adapted = 0;  // frames the adaptive scale has counted
+  sol::programs::Refinement refinement(device_copy ? o.refine : 0);
   XrTime last_time = 0;
   while (!quit) {
     // Session state machine: begin when ready, end when stopping, leave on exiting or loss.
@@ -876,7 +942,12 @@ int run(const Options& o, const sol::Scene& scene) {
     bool rendered = false;
     if (frame.shouldRender) {
       FrameSlot* slot = device_copy ? &app.slots[static_cast<std::size_t>(frames % kFramesInFlight)] : nullptr;
-      if (slot != nullptr) retire_slot(app, *slot, clock);
+      const double period_ms = static_cast<double>(frame.predictedDisplayPeriod) * 1e-6;
+      if (slot != nullptr && retire_slot(app, *slot, clock) && o.adaptive == "on" && clock.last_adaptive &&
+          period_ms > 0.0) {
+        if (!adaptive || adaptive->target_ms() != period_ms) adaptive.emplace(period_ms, o.min_scale);
+        scale = adaptive->next(scale, adapted++, clock.last_work_ms);
+      }
       // The head pose as late as the frame allows: for this frame's
       // predicted display time, after the slot's wait.
       auto locate = xr_struct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
@@ -893,11 +964,24 @@ int run(const Options& o, const sol::Scene& scene) {
       if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
         const std::array<sol::Camera, 2> cameras = eye_cameras(scene, base, o, views);
         const std::vector<VkImage> targets = acquire_images(app);
-        const double period_ms = static_cast<double>(frame.predictedDisplayPeriod) * 1e-6;
         if (slot != nullptr) {
+          // A still head (and observer) refines; a move starts again at the
+          // adaptive scale, which forgets the full-size frames.
+          if (!refinement.update(view_key(cameras), seconds, scale)) {
+            adaptive.reset();
+            adapted = 0;
+          }
+          FramePlan plan{.scale = scale};
+          if (const auto sample = refinement.sample()) {
+            plan = FramePlan{.scale = 1.0, .sample = sol::vk::PixelSample{sample->offset, sample->weight}};
+          } else if (refinement.reuse()) {
+            plan = FramePlan{.scale = 1.0, .reuse = true};
+          }
           slot->follows = clock.chain;
           slot->period_ms = period_ms;
-          submit_frame(app, *slot, cameras, targets, width, height);
+          slot->adaptive = !plan.sample && !plan.reuse;
+          submit_frame(app, *slot, cameras, targets, width, height, plan);
+          refinement.shown();
         } else {
           const double started = now_ms();
           const double work_ms = render_through_host(app, cameras, targets, format, width, height);
@@ -939,6 +1023,10 @@ int run(const Options& o, const sol::Scene& scene) {
     std::printf("%s\n", clock.stats.summary("stereo").c_str());
     std::printf("solxr: %ux%u per eye on '%s', %s copy: %s\n", width, height, app.context->device_name().c_str(),
                 device_copy ? "device" : "host", clock.stats.details().c_str());
+    if (device_copy && clock.stats.frames() > 0) {
+      std::printf("solxr: render scale %.2f at the end, mean %.2f\n", scale,
+                  clock.scale_sum / static_cast<double>(clock.stats.frames()));
+    }
   }
   if (o.validation) {
     const std::size_t errors = app.context->validation_errors().size();
