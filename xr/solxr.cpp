@@ -58,6 +58,7 @@ struct Options {
   double render_scale = 1.0, min_scale = 0.25;
   std::string adaptive = "on";
   int refine = 16;  // samples a still head accumulates (0: off)
+  std::string foveation = "off";
 };
 
 // The command line; exits 0 after --help and 2 on bad usage.
@@ -91,6 +92,10 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
   cl.add_integer("--refine", o.refine, 0, 4096, "N",
                  "when the head and the observer have been still for 0.25 s: render at full size, then accumulate up "
                  "to N jittered samples per pixel (as solview --refine); 0: off (default 16; device copy only)");
+  cl.add_choice("--foveation", o.foveation, {"off", "on"},
+                "fixed foveated rendering: around each eye's centre of view full resolution, then half the rays "
+                "(1/sqrt 2 the resolution), then a quarter in the periphery, each blitted up over the one outside "
+                "it (default off; device copy only)");
   cl.add_flag("--stats", o.stats,
               "print at exit 'stereo frames: N, mean X ms, p99 Y ms, missed Z' (the time between frames' ends on the "
               "device; missed: device work plus host recording over the display period) and the work per frame");
@@ -206,7 +211,36 @@ struct FramePlan {
   double scale = 1.0;
   std::optional<sol::vk::PixelSample> sample;
   bool reuse = false;
+  bool foveated = false;  // the levels of kFoveation instead of one image per eye
 };
+
+/// Fixed foveated rendering (--foveation on): each eye in three levels
+/// around its centre of view (where the view direction meets the image:
+/// tangent 0, 0 of its window), each a rectangle of the eye image rendered
+/// at its own resolution with the window of that rectangle, the outer
+/// ones first: the whole eye at half resolution (a quarter of the rays), a
+/// rectangle of 60 % of the eye's width and height at 1/sqrt 2 (half the
+/// rays), and one of 35 % at full resolution. 0.25 + 0.36 / 2 + 0.35^2 =
+/// 55 % of the rays of the full render.
+struct FoveaLevel {
+  double extent;  // of the eye's width and height
+  double scale;   // the resolution within it
+};
+constexpr FoveaLevel kFoveation[] = {{1.0, 0.5}, {0.6, 0.7071067811865476}, {0.35, 1.0}};
+constexpr int kFoveaLevels = 3;
+
+/// A level's rectangle in an eye image of width x height: centred on the
+/// centre of view (cx, cy) and moved inside the image.
+struct PixelRect {
+  int x0, y0, x1, y1;
+};
+PixelRect fovea_rect(const FoveaLevel& level, double cx, double cy, int width, int height) {
+  const int w = std::max(1, static_cast<int>(std::lround(level.extent * width)));
+  const int h = std::max(1, static_cast<int>(std::lround(level.extent * height)));
+  const int x0 = std::clamp(static_cast<int>(std::lround(cx - 0.5 * w)), 0, width - w);
+  const int y0 = std::clamp(static_cast<int>(std::lround(cy - 0.5 * h)), 0, height - h);
+  return {x0, y0, x0 + w, y0 + h};
+}
 
 /// The frames' figures, counted in frame order as their slots come back.
 struct FrameClock {
@@ -232,6 +266,7 @@ struct App {
   std::optional<sol::vk::StorageImage> rendered;  // device copy: both eyes side by side, the kernel's RGBA32F image
   std::vector<FrameSlot> slots;                   // device copy: the frames in flight
   bool linear_blit = false;                       // RGBA32F blits may filter linearly (scaled frames)
+  std::vector<sol::vk::StorageImage> fovea;       // --foveation on: each level's image, both eyes side by side
   XrActionSet action_set = XR_NULL_HANDLE;
   XrAction move = XR_NULL_HANDLE, turn = XR_NULL_HANDLE;
 
@@ -255,6 +290,7 @@ struct App {
     }
     slots.clear();
     rendered.reset();
+    fovea.clear();
     for (Eye& eye : eyes) {
       eye.staging.reset();
       if (eye.swapchain != XR_NULL_HANDLE) xrDestroySwapchain(eye.swapchain);
@@ -481,7 +517,8 @@ bool can_blit(const App& app, std::int64_t format) {
 /// What the chosen copy path needs: for the device copy the kernel's image
 /// of both eyes and the ring of frames (a command buffer, a fence and two
 /// timestamps each); for the host copy a staging buffer per eye.
-void prepare_copies(App& app, bool device, std::int64_t format, std::uint32_t width, std::uint32_t height) {
+void prepare_copies(App& app, bool device, bool foveation, std::int64_t format, std::uint32_t width,
+                    std::uint32_t height) {
   if (!device) {
     for (Eye& eye : app.eyes) {
       const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(format);
@@ -511,6 +548,13 @@ void prepare_copies(App& app, bool device, std::int64_t format, std::uint32_t wi
       queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
       queries.queryCount = 2;
       sol::vk::check(vkCreateQueryPool(vk_device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
+    }
+  }
+  if (foveation) {
+    for (const FoveaLevel& level : kFoveation) {
+      const auto w = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * width)) + 1;
+      const auto h = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * height)) + 1;
+      app.fovea.emplace_back(*app.context, 2 * w, h);
     }
   }
   // The deferred passes' lists for a stereo frame, allocated now rather than in the first frame.
@@ -678,24 +722,9 @@ bool retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
   return true;
 }
 
-/// The device path, one submission per stereo frame, not waited for: the
-/// kernel renders both eyes side by side into the RGBA32F image in one
-/// dispatch, and a blit per eye (same size: nearest texels, converted to
-/// the swapchain's format, sRGB-encoded where it is an sRGB one) copies its
-/// half into the eye's swapchain image; nothing goes through the host.
-void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& cameras,
-                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
-  const double begin = now_ms();
-  const VkCommandBuffer cmd = slot.commands;
-  sol::vk::check(vkResetFences(app.context->device(), 1, &slot.done), "vkResetFences");
-  sol::vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-  VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
-                                VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
-  sol::vk::check(vkBeginCommandBuffer(cmd, &info), "vkBeginCommandBuffer");
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
-  }
+/// The plain frame: both eyes in one dispatch, then a blit per eye.
+void record_eyes(App& app, VkCommandBuffer cmd, const std::array<sol::Camera, 2>& cameras,
+                 const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
   const sol::vk::StorageImage& rendered = *app.rendered;
   // Each eye at the plan's scale (the image's top-left 2 rw x rh); a
   // refinement sample joins the running mean already there; a finished
@@ -728,6 +757,93 @@ void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& c
   sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+/// The foveated frame (kFoveation): per level one dispatch of both eyes,
+/// each with the window of its rectangle, at the level's resolution times
+/// the render scale; then per eye the levels blitted into the swapchain
+/// image from the outside in, each over the last.
+void record_foveated(App& app, VkCommandBuffer cmd, const std::array<sol::Camera, 2>& cameras,
+                     const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, double scale) {
+  const int w = static_cast<int>(width), h = static_cast<int>(height);
+  PixelRect rects[kFoveaLevels][2];
+  int sizes[kFoveaLevels][2];
+  for (int l = 0; l < kFoveaLevels; ++l) {
+    std::array<sol::Camera, 2> level = cameras;
+    for (std::size_t v = 0; v < 2; ++v) {
+      const sol::Frustum f = cameras[v].frustum.value_or(sol::Frustum{});
+      // The centre of view (tangent 0, 0) in pixels, rows from the top.
+      const double cx = std::clamp(w * (0.0 - f.left) / (f.right - f.left), 0.0, static_cast<double>(w));
+      const double cy = std::clamp(h * (f.up - 0.0) / (f.up - f.down), 0.0, static_cast<double>(h));
+      const PixelRect r = fovea_rect(kFoveation[l], cx, cy, w, h);
+      rects[l][v] = r;
+      auto tx = [&](int px) { return f.left + (f.right - f.left) * px / w; };
+      auto ty = [&](int py) { return f.up - (f.up - f.down) * py / h; };
+      level[v].frustum = sol::Frustum{tx(r.x0), tx(r.x1), ty(r.y1), ty(r.y0)};
+    }
+    const double resolution = kFoveation[l].scale * scale;
+    sizes[l][0] = std::max(1, static_cast<int>(std::lround((rects[l][0].x1 - rects[l][0].x0) * resolution)));
+    sizes[l][1] = std::max(1, static_cast<int>(std::lround((rects[l][0].y1 - rects[l][0].y0) * resolution)));
+    app.renderer->record(cmd, level, sizes[l][0], sizes[l][1], app.fovea[static_cast<std::size_t>(l)]);
+  }
+  for (const sol::vk::StorageImage& image : app.fovea) {
+    sol::vk::image_barrier(cmd, image.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  }
+  for (std::size_t v = 0; v < targets.size(); ++v) {
+    begin_transfer_to(cmd, targets[v]);
+    for (int l = 0; l < kFoveaLevels; ++l) {
+      if (l > 0) {  // each level over the last: its blit waits for theirs (write after write)
+        sol::vk::image_barrier(cmd, targets[v], VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+      }
+      const PixelRect& r = rects[l][v];
+      const int lw = sizes[l][0], lh = sizes[l][1];
+      VkImageBlit region{};
+      region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.srcOffsets[0] = {static_cast<std::int32_t>(v) * lw, 0, 0};
+      region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * lw, lh, 1};
+      region.dstOffsets[0] = {r.x0, r.y0, 0};
+      region.dstOffsets[1] = {r.x1, r.y1, 1};
+      const bool scaled = lw != r.x1 - r.x0 || lh != r.y1 - r.y0;
+      vkCmdBlitImage(cmd, app.fovea[static_cast<std::size_t>(l)].handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     targets[v], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
+                     scaled && app.linear_blit ? VK_FILTER_LINEAR : VK_FILTER_NEAREST);
+    }
+    end_transfer_to(cmd, targets[v]);
+  }
+  for (const sol::vk::StorageImage& image : app.fovea) {
+    sol::vk::image_barrier(cmd, image.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  }
+}
+
+/// The device path, one submission per stereo frame, not waited for,
+/// between two timestamps: the plan's frame (record_eyes: both eyes in one
+/// dispatch and a blit per eye, converting to the swapchain's format and
+/// sRGB-encoding 8-bit sRGB ones; record_foveated: the foveation's levels),
+/// signalling the slot's fence; nothing goes through the host.
+void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& cameras,
+                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
+  const double begin = now_ms();
+  const VkCommandBuffer cmd = slot.commands;
+  sol::vk::check(vkResetFences(app.context->device(), 1, &slot.done), "vkResetFences");
+  sol::vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+  sol::vk::check(vkBeginCommandBuffer(cmd, &info), "vkBeginCommandBuffer");
+  if (slot.timestamps != VK_NULL_HANDLE) {
+    vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
+  }
+  if (plan.foveated) {
+    record_foveated(app, cmd, cameras, targets, width, height, plan.scale);
+  } else {
+    record_eyes(app, cmd, cameras, targets, width, height, plan);
+  }
   if (slot.timestamps != VK_NULL_HANDLE) {
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
   }
@@ -839,7 +955,8 @@ int run(const Options& o, const sol::Scene& scene) {
   create_instance(app);
   create_context(app, o.validation);
   sol::vk::MarchOptions march = sol::programs::march_options({.rk4 = o.flow.rk4(), .rk4_step = o.flow.rk_step});
-  march.frames_in_flight = kFramesInFlight;
+  // A foveated frame records one dispatch per level: each a call of the renderer's.
+  march.frames_in_flight = kFramesInFlight * (o.foveation == "on" ? kFoveaLevels : 1);
   app.renderer.emplace(*app.context, march);
   app.renderer->set_world(scene);  // prepared once: every frame only sends its eyes
   create_session(app, o);
@@ -850,7 +967,11 @@ int run(const Options& o, const sol::Scene& scene) {
     throw XrError("--copy device: the device cannot blit RGBA32F images into the runtime's swapchain format");
   }
   const bool device_copy = o.copy == "device" || (o.copy == "auto" && blit);
-  prepare_copies(app, device_copy, format, width, height);
+  const bool foveation = device_copy && o.foveation == "on";
+  if (o.foveation == "on" && !device_copy) {
+    std::fprintf(stderr, "solxr: --foveation: the host copy renders every pixel (no foveation)\n");
+  }
+  prepare_copies(app, device_copy, foveation, format, width, height);
   create_actions(app);
   std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain%s\n", app.eyes.size(), width, height,
                device_copy ? "device" : "host",
@@ -971,7 +1092,7 @@ int run(const Options& o, const sol::Scene& scene) {
             adaptive.reset();
             adapted = 0;
           }
-          FramePlan plan{.scale = scale};
+          FramePlan plan{.scale = scale, .foveated = foveation};
           if (const auto sample = refinement.sample()) {
             plan = FramePlan{.scale = 1.0, .sample = sol::vk::PixelSample{sample->offset, sample->weight}};
           } else if (refinement.reuse()) {
