@@ -172,9 +172,7 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
   std::fprintf(stderr, "solrender: encoded %s with ffmpeg\n", video.c_str());
 }
 
-
-// Renders one camera (both eyes, an anaglyph, as the options say).
-// Renders a camera's image. With a writer (and no anaglyph, which is made
+// Renders a camera's image (both eyes, an anaglyph, as the options say). With a writer (and no anaglyph, which is made
 // from the whole stereo image) the colour goes straight into it band by
 // band as the renderer reads it back (RenderOptions::rows) and the result's
 // colour stays empty; else the result holds it.

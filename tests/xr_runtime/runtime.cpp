@@ -21,6 +21,7 @@
 //    "output": "DIR",                  where eye images go (none: not saved)
 //    "read_back": true,                false: the timing mode: no eye image is read
 //                                      back or saved (views.txt is still written)
+//    "refresh_hz": 90,                 the display's rate: predictedDisplayPeriod (not paced)
 //    "frames": [{"position": [x, y, z], "orientation": [x, y, z, w],  head pose
 //                "left_stick": [x, y], "right_stick": [x, y],
 //                "event": "focus_loss" | "focus_gain" | "exit" | "loss_pending"}, ...]}
@@ -83,7 +84,8 @@ __attribute__((visibility("default"))) XrResult xrNegotiateLoaderRuntimeInterfac
 namespace {
 
 constexpr XrSystemId kSystem = 1;
-constexpr XrTime kPeriod = 11'111'111;  // 90 Hz, nanoseconds
+// The display period, nanoseconds: the script's "refresh_hz" (default 90).
+XrTime period();
 constexpr std::uint32_t kImagesPerSwapchain = 3;
 
 void say(const std::string& text) { std::fprintf(stderr, "sol test runtime: %s\n", text.c_str()); }
@@ -106,6 +108,7 @@ struct Script {
   bool controllers = true;
   std::string output;
   bool read_back = true;
+  double refresh_hz = 90.0;
   std::vector<Frame> frames{Frame{}};
 };
 
@@ -128,6 +131,8 @@ Script load_script() {
   s.controllers = j.value("controllers", s.controllers);
   s.output = j.value("output", s.output);
   s.read_back = j.value("read_back", s.read_back);
+  s.refresh_hz = j.value("refresh_hz", s.refresh_hz);
+  if (!(s.refresh_hz >= 1.0 && s.refresh_hz <= 1000.0)) s.refresh_hz = 90.0;
   if (j.contains("formats")) {
     s.formats.clear();
     for (const std::string f : j["formats"]) {
@@ -203,6 +208,8 @@ State& state() {
   return s;
 }
 
+XrTime period() { return static_cast<XrTime>(std::llround(1e9 / state().script.refresh_hz)); }
+
 std::uint64_t make(const std::string& kind) {
   const std::uint64_t h = state().next_handle++;
   state().live[h] = kind;
@@ -227,7 +234,7 @@ void push_state(XrSessionState s) {
   e->type = XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED;
   e->session = st.session;
   e->state = s;
-  e->time = static_cast<XrTime>(st.waited) * kPeriod;
+  e->time = static_cast<XrTime>(st.waited) * period();
   st.events.push_back(buffer);
 }
 
@@ -747,8 +754,8 @@ XRAPI_ATTR XrResult XRAPI_CALL WaitFrame(XrSession session, const XrFrameWaitInf
   if (session != st.session) return XR_ERROR_HANDLE_INVALID;
   if (!st.running) return XR_ERROR_SESSION_NOT_RUNNING;
   const std::uint64_t k = st.waited++;
-  frame->predictedDisplayTime = static_cast<XrTime>(k + 1) * kPeriod;
-  frame->predictedDisplayPeriod = kPeriod;
+  frame->predictedDisplayTime = static_cast<XrTime>(k + 1) * period();
+  frame->predictedDisplayPeriod = period();
   frame->shouldRender = st.session_state == XR_SESSION_STATE_VISIBLE || st.session_state == XR_SESSION_STATE_FOCUSED;
   // Scripted events for this frame, seen by the application's next poll.
   if (k < st.script.frames.size()) {
@@ -784,8 +791,8 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
     return XR_ERROR_CALL_ORDER_INVALID;
   }
   st.frame_begun = false;
-  const std::uint64_t k = static_cast<std::uint64_t>(info->displayTime / kPeriod) - 1;
-  if (info->displayTime != static_cast<XrTime>(st.waited) * kPeriod) {
+  const std::uint64_t k = static_cast<std::uint64_t>(info->displayTime / period()) - 1;
+  if (info->displayTime != static_cast<XrTime>(st.waited) * period()) {
     say("xrEndFrame: displayTime is not the predicted one");
     return XR_ERROR_TIME_INVALID;
   }
@@ -842,7 +849,7 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateViews(XrSession session, const XrViewLocate
   *count = 2;
   if (capacity == 0) return XR_SUCCESS;
   if (capacity < 2) return XR_ERROR_SIZE_INSUFFICIENT;
-  const std::uint64_t k = static_cast<std::uint64_t>(std::max<XrTime>(info->displayTime / kPeriod - 1, 0));
+  const std::uint64_t k = static_cast<std::uint64_t>(std::max<XrTime>(info->displayTime / period() - 1, 0));
   const Frame& f = frame_at(k);
   view_state->viewStateFlags = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT |
                                XR_VIEW_STATE_ORIENTATION_TRACKED_BIT | XR_VIEW_STATE_POSITION_TRACKED_BIT;
