@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The presenters against the kernel, in one run on one device, every preset:
-#  - solxr's mean stereo frame time (--stats, through the headless test
-#    runtime in its timing mode: no image read back, no pacing) against
+#  - solxr's mean stereo frame time (--stats, the render scale fixed at 1,
+#    no refinement, through the headless test runtime in its timing mode:
+#    no image read back, no pacing) against
 #    render_bench's stereo frame of two EYE x EYE eyes (--only gpu), with the
 #    runtime's field of view set to the scene camera's;
 #  - solview's mean frame time (--stats: mono, 640x360, render scale 1, no
@@ -49,7 +50,7 @@ for scene in $presets; do
   python3 -c "import json; json.dump({'width': $eye, 'height': $eye, 'fov': $fov, 'read_back': False, 'frames': [{}] * $frames}, open('$work/script.json', 'w'))"
   read -r kernel device < <(kernel_ms "$scene" "$eye" "$eye" stereo_ms)
   read -r mean p99 < <(XR_RUNTIME_JSON=$runtime SOLXR_TEST_SCRIPT=$work/script.json \
-    "$build/xr/solxr" --scene "$scene" --stats 2> /dev/null | stats)
+    "$build/xr/solxr" --scene "$scene" --adaptive off --refine 0 --stats 2> /dev/null | stats)
   echo "$day,solxr,$scene,\"$device\",$eye,$eye,$frames,$kernel,$mean,$p99,$(python3 -c "print(f'{$mean / $kernel:.3f}')")"
   if [ "$solview" = on ]; then
     read -r kernel device < <(kernel_ms "$scene" 640 360 mono_ms)
