@@ -19,6 +19,7 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <csignal>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,6 +33,7 @@
 #include "output_file.hpp"
 #include "progress.hpp"
 #include "renderers.hpp"
+#include "srgb.hpp"
 
 namespace {
 
@@ -172,16 +174,104 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
   std::fprintf(stderr, "solrender: encoded %s with ffmpeg\n", video.c_str());
 }
 
-// Renders a camera's image (both eyes, an anaglyph, as the options say). With a writer (and no anaglyph, which is made
-// from the whole stereo image) the colour goes straight into it band by
-// band as the renderer reads it back (RenderOptions::rows) and the result's
-// colour stays empty; else the result holds it.
-using Render = std::function<sol::RenderResult(const sol::Camera&, sol::programs::ImageWriter*)>;
+// --video-only: ffmpeg reads the frames on its standard input as they
+// render (raw 8-bit sRGB RGBA, width x height at the film's rate) and
+// encodes them as encode_video does into the video's temporary; no frame
+// file is written or read. finish() closes the pipe, waits for ffmpeg and
+// commits the video; given up unfinished (an error, a signal), ffmpeg is
+// stopped and the temporary removed.
+class VideoPipe {
+ public:
+  VideoPipe(const std::string& ffmpeg, const std::string& video, int width, int height, double fps)
+      : m_out(video), m_video(video) {
+    std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is a failed write (EPIPE), not the end of solrender
+    int fds[2] = {-1, -1};
+    if (pipe(fds) != 0) throw std::runtime_error("--video: cannot make a pipe to ffmpeg");
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgba",
+                                     "-s", size, "-framerate", std::to_string(fps), "-i", "-", "-c:v", "libx264",
+                                     "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f",
+                                     video_format(video), m_out.path()};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+    posix_spawn_file_actions_addclose(&actions, fds[1]);
+    const int spawned = posix_spawn(&m_pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(fds[0]);
+    if (spawned != 0) {
+      close(fds[1]);
+      throw std::runtime_error("--video: cannot run " + ffmpeg);
+    }
+    m_fd = fds[1];
+  }
+  ~VideoPipe() {
+    if (m_fd >= 0) close(m_fd);
+    if (m_pid > 0) {
+      kill(m_pid, SIGTERM);
+      int status = 0;
+      waitpid(m_pid, &status, 0);
+    }
+  }
+  VideoPipe(const VideoPipe&) = delete;
+  VideoPipe& operator=(const VideoPipe&) = delete;
 
-// The colour of `r` into `writer` where the render did not stream it, then the file finished.
-std::size_t finish_image(sol::programs::ImageWriter& writer, const sol::RenderResult& r) {
-  if (!r.rgba.empty()) writer.write_rows(0, r.height, r.rgba);
-  return writer.finish();
+  // The frame's next rows, converted to sRGB bytes and written.
+  void write_rows(std::span<const float> rgba) {
+    m_bytes.resize(rgba.size());
+    for (std::size_t k = 0; k < rgba.size(); ++k) {
+      const float v = std::isfinite(rgba[k]) ? rgba[k] : 0.0f;
+      m_bytes[k] = k % 4 == 3 ? static_cast<std::uint8_t>(255) : sol::programs::srgb_byte(v);
+    }
+    const auto* at = m_bytes.data();
+    std::size_t left = m_bytes.size();
+    while (left > 0) {
+      const ssize_t n = write(m_fd, at, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw std::runtime_error("--video: ffmpeg stopped reading the frames (" + m_video + ")");
+      at += n;
+      left -= static_cast<std::size_t>(n);
+    }
+  }
+
+  void finish() {
+    close(m_fd);
+    m_fd = -1;
+    int status = 0;
+    waitpid(m_pid, &status, 0);
+    m_pid = 0;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("--video: ffmpeg failed to encode " + m_video);
+    m_out.commit();
+    std::fprintf(stderr, "solrender: encoded %s with ffmpeg, frames piped as they rendered\n", m_video.c_str());
+  }
+
+ private:
+  sol::programs::OutputFile m_out;
+  std::string m_video;
+  pid_t m_pid = 0;
+  int m_fd = -1;
+  std::vector<std::uint8_t> m_bytes;
+};
+
+// Renders a camera's image (both eyes, an anaglyph, as the options say).
+// With a sink (and no anaglyph, which is made from the whole stereo image)
+// the colour goes into it band by band as the renderer reads it back
+// (RenderOptions::rows) and the result's colour stays empty; else the
+// result holds it.
+using RowSink = std::function<void(int first_row, int rows, std::span<const float> rgba)>;
+using Render = std::function<sol::RenderResult(const sol::Camera&, const RowSink*)>;
+
+// The colour of `r` into `sink` where the render did not hand it over.
+void hand_over(const RowSink& sink, const sol::RenderResult& r) {
+  if (!r.rgba.empty()) sink(0, r.height, r.rgba);
+}
+
+// An image file's sink: its rows into the writer.
+RowSink into(sol::programs::ImageWriter& writer) {
+  return [&writer](int first, int rows, std::span<const float> rgba) { writer.write_rows(first, rows, rgba); };
 }
 
 bool is_cpu(const sol::Renderer& renderer) { return dynamic_cast<const sol::CpuRenderer*>(&renderer) != nullptr; }
@@ -194,7 +284,7 @@ struct Options {
   std::optional<double> fisheye_fov;
   sol::cli::IntegratorOptions flow;
   sol::cli::SceneOverrides overrides;
-  bool print_scene = false, progress = false, overwrite = false;
+  bool print_scene = false, progress = false, overwrite = false, video_only = false;
   int width = 512, height = 512, spp = 0;  // spp 0: the scene's "samples"
   unsigned threads = 0;
 
@@ -242,6 +332,9 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_number("--fps", o.fps, "F", "frames per second of --path, (0, 1000] (default 24)", sol::cli::in_range(1e-3, 1000.0));
   cl.add_text("--frames", o.frames, "A:B", "with --path: frames A to B-1 only (either may be left out; default all)");
   cl.add_text("--video", o.video, "FILE.mp4", "with --path: encode the frames with ffmpeg into FILE (.mp4, .mkv, .mov)");
+  cl.add_flag("--video-only", o.video_only,
+              "with --video: pipe each frame into ffmpeg as it renders and write no frame files (no -o; a stopped "
+              "run leaves no video and starts again from the first frame)");
   cl.add_flag("--overwrite", o.overwrite,
               "with --path: render every frame of --frames again, replacing those there, and record these settings "
               "(without it, frames rendered with other settings are refused, not mixed in)");
@@ -277,6 +370,12 @@ void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::Co
   if (scene.camera.projection == sol::Projection::Equirectangular && o.width != 2 * o.height) {
     cl.fail("an equirectangular image needs --width = 2 x --height (360 x 180 degrees), got " + std::to_string(o.width) +
             " x " + std::to_string(o.height));
+  }
+  if (o.video_only) {
+    if (o.video.empty() || o.path_file.empty()) cl.fail("--video-only needs --path FILE and --video FILE");
+    if (!o.output.empty()) cl.fail("--video-only writes no frame files: leave out -o " + o.output);
+    if (!o.aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
+    return;
   }
   if (o.output.empty()) cl.fail("no output file: give -o OUT (see solrender --help)");
   if (!sol::programs::can_write(o.output)) cl.fail(o.output + ": no image format for this file name extension");
@@ -391,7 +490,7 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
     cl.fail(e.what());
   }
   if (!o.aov.empty()) cl.fail("--aov is not available with --path (one image per frame)");
-  if (!frame_number_end(o.output)) {
+  if (!o.video_only && !frame_number_end(o.output)) {
     cl.fail("-o " + o.output + ": with --path the name needs one frame number, %d or zero-padded such as %06d (frame-%06d.png)");
   }
   const long count = film.path.frame_count(o.fps);
@@ -429,7 +528,7 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
     if (std::filesystem::is_directory(o.video)) cl.fail("--video " + o.video + ": it is a directory");
     if (!video_format(o.video)) cl.fail("--video " + o.video + ": give a .mp4, .mkv or .mov file");
   }
-  check_film_folder(o, scene, film, cl);
+  if (!o.video_only) check_film_folder(o, scene, film, cl);  // (no frames, no manifest with --video-only)
   return film;
 }
 
@@ -510,7 +609,13 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   const auto film_started = std::chrono::steady_clock::now();
   const std::optional<sol::Lattice> lattice = scene.lattice();
   long to_render = 0;
-  for (long k = film.first; k < film.end; ++k) to_render += o.overwrite || !std::filesystem::exists(frame_name(o.output, k));
+  for (long k = film.first; k < film.end; ++k) {
+    to_render += o.video_only || o.overwrite || !std::filesystem::exists(frame_name(o.output, k));
+  }
+  // --video-only: every frame into ffmpeg as it renders, no frame files.
+  std::optional<VideoPipe> video;
+  if (o.video_only) video.emplace(film.ffmpeg, o.video, image_width(o), o.height, o.fps);
+  const RowSink to_video = [&video](int, int, std::span<const float> rgba) { video->write_rows(rgba); };
   // A frame whose file the worker still encodes (ImageWriter), finished
   // and committed after the next frame's render: frames are committed in turn.
   struct PendingFrame {
@@ -521,13 +626,14 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   };
   std::optional<PendingFrame> pending;
   const auto complete = [](PendingFrame& p) {
-    const std::size_t non_finite = finish_image(*p.writer, p.result);
+    hand_over(into(*p.writer), p.result);
+    const std::size_t non_finite = p.writer->finish();
     p.file->commit();
     if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, p.name.c_str());
   };
   for (long k = film.first; k < film.end; ++k) {
-    const std::string name = frame_name(o.output, k);
-    if (!o.overwrite && std::filesystem::exists(name)) {
+    const std::string name = o.video_only ? std::string() : frame_name(o.output, k);
+    if (!o.video_only && !o.overwrite && std::filesystem::exists(name)) {
       ++skipped;
       continue;
     }
@@ -541,10 +647,17 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
     char prefix[160];
     std::snprintf(prefix, sizeof prefix, "frame %ld (%ld of %ld%s): ", k, rendered + 1, to_render, film_left);
     progress.start(prefix);
+    if (video) {
+      hand_over(to_video, render(camera, &to_video));
+      if (tty) std::fprintf(stderr, "\r");
+      ++rendered;
+      continue;
+    }
     auto file = std::make_unique<sol::programs::OutputFile>(name);
     auto writer = std::make_unique<sol::programs::ImageWriter>(*file, image_width(o), o.height,
                                                                 std::vector<std::string>{"R", "G", "B", "A"}, true, true);
-    sol::RenderResult r = render(camera, writer.get());
+    const RowSink sink = into(*writer);
+    sol::RenderResult r = render(camera, &sink);
     if (tty) std::fprintf(stderr, "\r");
     // The previous frame's file is finished only now: its last bands were
     // encoded while this frame rendered.
@@ -553,11 +666,12 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
     ++rendered;
   }
   if (pending) complete(*pending);
+  if (video) video->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
   std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
-               o.output.c_str());
-  if (!o.video.empty()) encode_video(film.ffmpeg, o.output, film.first, o.fps, o.video);
+               o.video_only ? o.video.c_str() : o.output.c_str());
+  if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, o.fps, o.video);
 }
 
 // One image and its AOVs: both files complete before either replaces what
@@ -567,8 +681,10 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
   const auto begin = std::chrono::steady_clock::now();
   sol::programs::OutputFile image(o.output);
   sol::programs::ImageWriter writer(image, image_width(o), o.height, {"R", "G", "B", "A"}, true, /*worker=*/true);
-  const sol::RenderResult r = render(scene.camera, &writer);
-  std::size_t non_finite = finish_image(writer, r);
+  const RowSink sink = into(writer);
+  const sol::RenderResult r = render(scene.camera, &sink);
+  hand_over(sink, r);
+  std::size_t non_finite = writer.finish();
   // (The render and the image file: the colour is encoded as it is read back.)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (tty) std::fprintf(stderr, "\r");
@@ -628,11 +744,9 @@ int main(int argc, char** argv) {
     options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
-    const Render render = [&](const sol::Camera& camera, sol::programs::ImageWriter* writer) {
+    const Render render = [&](const sol::Camera& camera, const RowSink* sink) {
       sol::RenderOptions these = options;
-      if (writer != nullptr && !o.anaglyph()) {
-        these.rows = [writer](int first_row, int rows, std::span<const float> rgba) { writer->write_rows(first_row, rows, rgba); };
-      }
+      if (sink != nullptr && !o.anaglyph()) these.rows = *sink;
       const sol::RenderResult both =
           o.stereo() ? renderer->render_stereo(camera, o.ipd, these) : renderer->render(camera, these);
       return o.anaglyph() ? to_anaglyph(both) : both;
