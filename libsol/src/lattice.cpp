@@ -13,8 +13,8 @@
 
 namespace sol {
 
-Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height)
-    : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)} {
+Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy)
+    : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)}, m_monodromy(monodromy) {
   // Inverse of the 2x2 matrix with columns g1, g2.
   const double det = g1.x * g2.y - g2.x * g1.y;
   m_coordinates_row0 = glm::dvec2(g2.y, -g2.x) / det;
@@ -24,13 +24,65 @@ Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height)
 Lattice Lattice::golden() {
   // φ and 2 ln φ as the kernels have them (sol/kernel_constants.h).
   constexpr double phi = kernel::kPhi;
-  return Lattice({phi, -1.0}, {1.0, phi}, kernel::kLatticeHeight);
+  return Lattice({phi, -1.0}, {1.0, phi}, kernel::kLatticeHeight, Monodromy{});
+}
+
+std::string Monodromy::str() const {
+  return "[[" + std::to_string(a) + ", " + std::to_string(b) + "], [" + std::to_string(c) + ", " + std::to_string(d) +
+         "]]";
+}
+
+Lattice Lattice::from_monodromy(const Monodromy& m, std::optional<double> fibre_area) {
+  const std::string name = "sol::Lattice::from_monodromy: " + m.str();
+  // Entries within ±2^31, so that ad - bc and the trace are exact.
+  constexpr long long kLargest = 1LL << 31;
+  for (long long v : {m.a, m.b, m.c, m.d}) {
+    if (v > kLargest || v < -kLargest) throw InvalidArgument(name + ": entries must lie within ±2^31");
+  }
+  const long long det = m.a * m.d - m.b * m.c;
+  if (det != 1) throw InvalidArgument(name + " is not in SL(2, Z): its determinant is " + std::to_string(det) + ", not 1");
+  const long long t = m.trace();
+  if (t >= -2 && t <= 2) {
+    throw InvalidArgument(name + " is not hyperbolic: its trace is " + std::to_string(t) +
+                          " (|trace| must exceed 2 for an Anosov map and a Sol manifold)");
+  }
+  if (t < -2) {
+    throw NotImplemented(name + ": a negative trace (" + std::to_string(t) +
+                         ") makes γ3 turn the fibre by a half-turn, an isometry outside Sol's group: not supported yet");
+  }
+  if (fibre_area && !(std::isfinite(*fibre_area) && *fibre_area > 0.0)) {
+    throw InvalidArgument(name + ": the fibre area must be finite and > 0");
+  }
+  if (m == Monodromy{} && !fibre_area) return golden();  // today's lattice, to the bit
+  // λ > 1 with λ + 1/λ = t; u± = (c, μ - a) for the eigenvalues μ = λ, 1/λ
+  // (c != 0: an integer matrix with c = 0 and determinant 1 has trace ±2),
+  // normalised by u+·e2 = 1 and u-·e1 = -1.
+  const double td = static_cast<double>(t);
+  const double lambda = 0.5 * (td + std::sqrt(td * td - 4.0));
+  const double inv = 1.0 / lambda;
+  const double a = static_cast<double>(m.a), c = static_cast<double>(m.c);
+  const glm::dvec2 up(c / (lambda - a), 1.0);      // u+ / (λ - a)
+  const glm::dvec2 um(-1.0, -(inv - a) / c);       // -u- / c
+  glm::dvec2 g1(up.x, um.x), g2(up.y, um.y);
+  if (fibre_area) {
+    const double area = std::abs(g1.x * g2.y - g2.x * g1.y);
+    const double k = std::sqrt(*fibre_area / area);
+    g1 *= k;
+    g2 *= k;
+  }
+  return Lattice(g1, g2, std::log(lambda), m);
+}
+
+double Lattice::fibre_area() const {
+  const glm::dvec3& g1 = m_generators[0];
+  const glm::dvec3& g2 = m_generators[1];
+  return std::abs(g1.x * g2.y - g2.x * g1.y);
 }
 
 glm::dvec3 Lattice::element(long long n1, long long n2, long long n3) const {
   // γ1 and γ2 lie in z = 0 and commute: γ1^n1 γ2^n2 = (n1 γ1 + n2 γ2) as a translation.
   const glm::dvec3 translation = static_cast<double>(n1) * m_generators[0] + static_cast<double>(n2) * m_generators[1];
-  return multiply(translation, {0.0, 0.0, static_cast<double>(n3) * height()});
+  return sol::multiply(translation, {0.0, 0.0, static_cast<double>(n3) * height()});
 }
 
 glm::dvec2 Lattice::lattice_coordinates(double x, double y) const {
@@ -70,6 +122,24 @@ LatticeWord LatticeWord::operator*(const LatticeWord& v) const {
     vb = next_b;
   }
   return {checked_sum(1, u.a, 1, va), checked_sum(1, u.b, 1, vb), checked_sum(1, u.c, 1, v.c)};
+}
+
+LatticeWord Lattice::multiply(const LatticeWord& u, const LatticeWord& v) const {
+  // u v = γ1^{a1} γ2^{b1} (γ3^{c1} γ1^{a2} γ2^{b2} γ3^{-c1}) γ3^{c1 + c2}; conjugation by γ3 maps the
+  // word's (a, b) to A (a, b), by γ3⁻¹ to A⁻¹ (a, b), A⁻¹ = [[d, -b], [-c, a]] (determinant 1).
+  const Monodromy& m = m_monodromy;
+  long long va = v.a, vb = v.b;
+  for (long long k = 0; k < std::abs(u.c); ++k) {
+    const long long next_a = u.c > 0 ? checked_sum(m.a, va, m.b, vb) : checked_sum(m.d, va, -m.b, vb);
+    const long long next_b = u.c > 0 ? checked_sum(m.c, va, m.d, vb) : checked_sum(-m.c, va, m.a, vb);
+    va = next_a;
+    vb = next_b;
+  }
+  return {checked_sum(1, u.a, 1, va), checked_sum(1, u.b, 1, vb), checked_sum(1, u.c, 1, v.c)};
+}
+
+LatticeWord Lattice::inverse(const LatticeWord& w) const {
+  return multiply(LatticeWord{0, 0, -w.c}, LatticeWord{-w.a, -w.b, 0});
 }
 
 LatticeWord LatticeWord::inverse() const {

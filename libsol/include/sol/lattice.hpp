@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include <glm/vec2.hpp>
@@ -40,10 +41,49 @@ struct LatticeWord {
   std::string str() const;
 };
 
+/// A matrix [[a, b], [c, d]] of SL(2, Z): the monodromy of a torus bundle
+/// over the circle (Lattice::from_monodromy).
+struct Monodromy {
+  long long a = 2, b = 1, c = 1, d = 1;
+  bool operator==(const Monodromy&) const = default;
+  long long trace() const { return a + d; }
+  /// "[[a, b], [c, d]]".
+  std::string str() const;
+};
+
 class Lattice {
  public:
-  /// The lattice Γ of docs/mathematics.md.
+  /// The lattice Γ of docs/mathematics.md: from_monodromy of [[2, 1], [1, 1]].
   static Lattice golden();
+
+  /// The lattice Γ_A of a hyperbolic A in SL(2, Z) with trace > 2
+  /// (docs/mathematics.md, "Every lattice"): with λ > 1 A's larger
+  /// eigenvalue and row vectors u± with u+ A = λ u+, u- A = u- / λ, the
+  /// generators are γ1 = (u+·e1, u-·e1, 0), γ2 = (u+·e2, u-·e2, 0),
+  /// γ3 = (0, 0, ln λ), so that γ3 γ(w) γ3⁻¹ = γ(A w) for w in Z² (γ(w) =
+  /// γ1^{w1} γ2^{w2}): γ3 γ1 γ3⁻¹ = γ1^a γ2^c, γ3 γ2 γ3⁻¹ = γ1^b γ2^d. The
+  /// scale of u± is normalised by u+·e2 = 1 and u-·e1 = -1 (which gives the
+  /// golden lattice for [[2, 1], [1, 1]], exactly: its generators are
+  /// golden()'s), then both are scaled by one factor to `fibre_area`, the
+  /// area |det(γ1, γ2)| of the fibre torus, when given (scaling x and y
+  /// together is not an isometry: the area is a parameter of the manifold;
+  /// scaling x by k and y by 1/k is one, so the split does not matter).
+  /// Throws InvalidArgument naming the reason for a matrix not in
+  /// SL(2, Z), one with |trace| <= 2 (not hyperbolic) or a fibre area that
+  /// is not finite and positive; NotImplemented for trace < -2 (its γ3 also
+  /// turns the fibre by a half-turn, an isometry outside the group).
+  static Lattice from_monodromy(const Monodromy& monodromy, std::optional<double> fibre_area = std::nullopt);
+
+  /// The monodromy A: conjugation by γ3 acts on the words γ1^a γ2^b as A.
+  const Monodromy& monodromy() const { return m_monodromy; }
+  /// The fibre torus's area |det(γ1, γ2)|.
+  double fibre_area() const;
+  /// The product u·v of two words of this lattice, in normal form (γ3^c
+  /// γ1^a γ2^b γ3^-c = γ1^a' γ2^b' with (a', b') = A^c (a, b)); throws
+  /// OutOfRange when a coefficient would leave ±2^62. For golden() this is
+  /// LatticeWord::operator*.
+  LatticeWord multiply(const LatticeWord& u, const LatticeWord& v) const;
+  LatticeWord inverse(const LatticeWord& w) const;
 
   /// Generators γ1, γ2, γ3 as points of Sol.
   const std::array<glm::dvec3, 3>& generators() const { return m_generators; }
@@ -72,9 +112,10 @@ class Lattice {
   Teleport teleport(const glm::dvec3& p) const;
 
  private:
-  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height);
+  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy);
 
   std::array<glm::dvec3, 3> m_generators;
+  Monodromy m_monodromy;
   glm::dvec2 m_coordinates_row0;  // rows of [γ1 γ2]^{-1}
   glm::dvec2 m_coordinates_row1;
 };
