@@ -1,9 +1,10 @@
-// solxr: stands you inside Sol with a headset. Each eye is rendered by the
-// Vulkan ray-marcher (sol::vk::MarchRenderer) on the device the OpenXR
-// runtime asks for (XR_KHR_vulkan_enable2) and copied into that eye's
-// swapchain image; head poses become Sol eyes by the exponential map at the
-// base observer (eye_pose.hpp); the left thumbstick walks along geodesics,
-// the right one turns.
+// solxr: stands you inside Sol with a headset. Both eyes are rendered by
+// the Vulkan ray-marcher (sol::vk::MarchRenderer) in one dispatch on the
+// device the OpenXR runtime asks for (XR_KHR_vulkan_enable2) and blitted
+// into each eye's swapchain image, two frames in flight (device_frames.hpp);
+// head poses become Sol eyes by the exponential map at the base observer
+// (eye_pose.hpp); the left thumbstick walks along geodesics, the right one
+// turns. This file is the OpenXR session and its frame loop.
 //
 //   solxr --scene plane
 //   solxr --scene lattice-balls --frames 600 --stats
@@ -37,6 +38,7 @@
 #include <sol/vk/march.hpp>
 
 #include "command_line.hpp"
+#include "device_frames.hpp"
 #include "eye_pose.hpp"
 #include "adaptive_scale.hpp"
 #include "frame_stats.hpp"
@@ -45,6 +47,13 @@
 #include "srgb.hpp"
 
 namespace {
+
+using sol::xr::begin_transfer_to;
+using sol::xr::end_transfer_to;
+using sol::xr::FrameClock;
+using sol::xr::FramePlan;
+using sol::xr::kFoveaLevels;
+using sol::xr::kFramesInFlight;
 
 struct Options {
   std::string scene = "plane", reference = "local";
@@ -184,73 +193,6 @@ struct Eye {
   std::vector<std::byte> texels;
 };
 
-/// Frames in flight: frame n is recorded into slot n mod kFramesInFlight
-/// while the device may still run frame n - 1. A slot is reused once its
-/// fence says its frame is done; with the runtime pacing the loop that
-/// frame finished long before, so the wait returns at once.
-constexpr int kFramesInFlight = 2;
-
-/// One frame's resources on the ring.
-struct FrameSlot {
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkCommandBuffer commands = VK_NULL_HANDLE;
-  VkFence done = VK_NULL_HANDLE;            // the slot's frame is done (created signalled: no frame yet)
-  VkQueryPool timestamps = VK_NULL_HANDLE;  // before the frame's first command and after its last (null: unsupported)
-  bool pending = false;                     // a frame was submitted whose figures are not yet counted
-  bool follows = false;                     // that frame came right after a rendered frame
-  double record_ms = 0, period_ms = 0;      // its host recording time and the display period it had
-  double submitted_ms = 0;                  // the host clock at its submission (intervals without timestamps)
-  bool adaptive = false;                    // rendered at the adaptive scale (its time steers the scale)
-  double scale = 1.0;                       // its render scale
-};
-
-/// What a frame renders: both eyes at `scale` of their size, or a
-/// refinement sample at full size into the running mean, or the finished
-/// refinement again (no kernel).
-struct FramePlan {
-  double scale = 1.0;
-  std::optional<sol::vk::PixelSample> sample;
-  bool reuse = false;
-  bool foveated = false;  // the levels of kFoveation instead of one image per eye
-};
-
-/// Fixed foveated rendering (--foveation on): each eye in three levels
-/// around its centre of view (where the view direction meets the image:
-/// tangent 0, 0 of its window), each a rectangle of the eye image rendered
-/// at its own resolution with the window of that rectangle, the outer
-/// ones first: the whole eye at half resolution (a quarter of the rays), a
-/// rectangle of 60 % of the eye's width and height at 1/sqrt 2 (half the
-/// rays), and one of 35 % at full resolution. 0.25 + 0.36 / 2 + 0.35^2 =
-/// 55 % of the rays of the full render.
-struct FoveaLevel {
-  double extent;  // of the eye's width and height
-  double scale;   // the resolution within it
-};
-constexpr FoveaLevel kFoveation[] = {{1.0, 0.5}, {0.6, 0.7071067811865476}, {0.35, 1.0}};
-constexpr int kFoveaLevels = 3;
-
-/// A level's rectangle in an eye image of width x height: centred on the
-/// centre of view (cx, cy) and moved inside the image.
-struct PixelRect {
-  int x0, y0, x1, y1;
-};
-PixelRect fovea_rect(const FoveaLevel& level, double cx, double cy, int width, int height) {
-  const int w = std::max(1, static_cast<int>(std::lround(level.extent * width)));
-  const int h = std::max(1, static_cast<int>(std::lround(level.extent * height)));
-  const int x0 = std::clamp(static_cast<int>(std::lround(cx - 0.5 * w)), 0, width - w);
-  const int y0 = std::clamp(static_cast<int>(std::lround(cy - 0.5 * h)), 0, height - h);
-  return {x0, y0, x0 + w, y0 + h};
-}
-
-/// The frames' figures, counted in frame order as their slots come back.
-struct FrameClock {
-  sol::programs::FrameStats stats;
-  double scale_sum = 0.0;  // the counted frames' render scales
-  std::optional<double> last_end_ms;  // the previous counted frame's end (device clock, or host clock without timestamps)
-  bool chain = false;                 // the next frame follows a rendered one
-  double last_work_ms = 0.0;          // the last counted frame's device work plus host recording
-  bool last_adaptive = false;         // it was rendered at the adaptive scale
-};
 /// The OpenXR objects in creation order; the destructor takes them down in
 /// reverse, so every path out (an exception included) leaves nothing behind.
 /// The Vulkan context sits between the instance and the session: the session
@@ -263,10 +205,7 @@ struct App {
   XrSession session = XR_NULL_HANDLE;
   XrSpace space = XR_NULL_HANDLE;
   std::vector<Eye> eyes;
-  std::optional<sol::vk::StorageImage> rendered;  // device copy: both eyes side by side, the kernel's RGBA32F image
-  std::vector<FrameSlot> slots;                   // device copy: the frames in flight
-  bool linear_blit = false;                       // RGBA32F blits may filter linearly (scaled frames)
-  std::vector<sol::vk::StorageImage> fovea;       // --foveation on: each level's image, both eyes side by side
+  std::optional<sol::xr::DeviceFrames> frames;  // device copy: the frames in flight (device_frames.hpp)
   XrActionSet action_set = XR_NULL_HANDLE;
   XrAction move = XR_NULL_HANDLE, turn = XR_NULL_HANDLE;
 
@@ -280,17 +219,7 @@ struct App {
       } catch (const std::exception&) {
       }
     }
-    if (context) {
-      const VkDevice device = context->device();
-      for (FrameSlot& slot : slots) {
-        if (slot.timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(device, slot.timestamps, nullptr);
-        if (slot.done != VK_NULL_HANDLE) vkDestroyFence(device, slot.done, nullptr);
-        if (slot.pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, slot.pool, nullptr);  // frees its buffer
-      }
-    }
-    slots.clear();
-    rendered.reset();
-    fovea.clear();
+    frames.reset();
     for (Eye& eye : eyes) {
       eye.staging.reset();
       if (eye.swapchain != XR_NULL_HANDLE) xrDestroySwapchain(eye.swapchain);
@@ -514,51 +443,13 @@ bool can_blit(const App& app, std::int64_t format) {
          (dst.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT);
 }
 
-/// What the chosen copy path needs: for the device copy the kernel's image
-/// of both eyes and the ring of frames (a command buffer, a fence and two
-/// timestamps each); for the host copy a staging buffer per eye.
-void prepare_copies(App& app, bool device, bool foveation, std::int64_t format, std::uint32_t width,
-                    std::uint32_t height) {
-  if (!device) {
-    for (Eye& eye : app.eyes) {
-      const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(format);
-      eye.staging.emplace(*app.context, bytes);
-      eye.texels.resize(bytes);
-    }
-    return;
+/// The host copy's staging buffer per eye.
+void prepare_host_copy(App& app, std::int64_t format, std::uint32_t width, std::uint32_t height) {
+  for (Eye& eye : app.eyes) {
+    const std::size_t bytes = static_cast<std::size_t>(width) * height * texel_size(format);
+    eye.staging.emplace(*app.context, bytes);
+    eye.texels.resize(bytes);
   }
-  app.rendered.emplace(*app.context, 2 * width, height);
-  VkFormatProperties props{};
-  vkGetPhysicalDeviceFormatProperties(app.context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &props);
-  app.linear_blit = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
-  const VkDevice vk_device = app.context->device();
-  for (int k = 0; k < kFramesInFlight; ++k) {
-    FrameSlot& slot = app.slots.emplace_back();
-    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
-                                 VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, app.context->queue_family_index()};
-    sol::vk::check(vkCreateCommandPool(vk_device, &pool, nullptr, &slot.pool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, slot.pool,
-                                         VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-    sol::vk::check(vkAllocateCommandBuffers(vk_device, &allocate, &slot.commands), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
-    sol::vk::check(vkCreateFence(vk_device, &fence, nullptr, &slot.done), "vkCreateFence");
-    if (app.context->timestamps_supported()) {
-      VkQueryPoolCreateInfo queries{};
-      queries.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-      queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      queries.queryCount = 2;
-      sol::vk::check(vkCreateQueryPool(vk_device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
-    }
-  }
-  if (foveation) {
-    for (const FoveaLevel& level : kFoveation) {
-      const auto w = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * width)) + 1;
-      const auto h = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * height)) + 1;
-      app.fovea.emplace_back(*app.context, 2 * w, h);
-    }
-  }
-  // The deferred passes' lists for a stereo frame, allocated now rather than in the first frame.
-  app.renderer->reserve(static_cast<int>(width), static_cast<int>(height), 2);
 }
 
 /// Thumbstick actions. Bindings are suggested for common controllers; a
@@ -676,189 +567,6 @@ void release_images(App& app) {
   }
 }
 
-/// The swapchain image from UNDEFINED (its old contents are discarded: the
-/// whole image is overwritten) to TRANSFER_DST, after the runtime's last read
-/// of it (its compositor, any stage).
-void begin_transfer_to(VkCommandBuffer cmd, VkImage target) {
-  sol::vk::image_barrier(cmd, target, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-}
-
-/// The swapchain image to COLOR_ATTACHMENT_OPTIMAL, the layout the runtime
-/// expects released colour images in (XR_KHR_vulkan_enable2), with our
-/// transfer write finished before it reads.
-void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
-  sol::vk::image_barrier(cmd, target, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-}
-
-/// Waits for the slot's previous frame (frame n - kFramesInFlight; done
-/// long before when the runtime paces the loop) and counts its figures:
-/// its work between its two timestamps, its interval from the previous
-/// counted frame's end. Returns whether a frame was counted.
-bool retire_slot(App& app, FrameSlot& slot, FrameClock& clock) {
-  sol::vk::check(vkWaitForFences(app.context->device(), 1, &slot.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-  if (!slot.pending) return false;
-  slot.pending = false;
-  double begin_ms = slot.submitted_ms, end_ms = slot.submitted_ms;
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    std::uint64_t ticks[2] = {0, 0};
-    sol::vk::check(vkGetQueryPoolResults(app.context->device(), slot.timestamps, 0, 2, sizeof ticks, ticks,
-                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                   "vkGetQueryPoolResults");
-    const double ns_per_tick = app.context->timestamp_period();
-    begin_ms = static_cast<double>(ticks[0]) * ns_per_tick * 1e-6;
-    end_ms = static_cast<double>(ticks[1]) * ns_per_tick * 1e-6;
-  }
-  const std::optional<double> interval =
-      slot.follows && clock.last_end_ms ? std::optional<double>(end_ms - *clock.last_end_ms) : std::nullopt;
-  clock.stats.add(interval, end_ms - begin_ms, slot.record_ms, slot.period_ms);
-  clock.scale_sum += slot.scale;
-  clock.last_end_ms = end_ms;
-  clock.last_work_ms = end_ms - begin_ms + slot.record_ms;
-  clock.last_adaptive = slot.adaptive;
-  return true;
-}
-
-/// The plain frame: both eyes in one dispatch, then a blit per eye.
-void record_eyes(App& app, VkCommandBuffer cmd, const std::array<sol::Camera, 2>& cameras,
-                 const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
-  const sol::vk::StorageImage& rendered = *app.rendered;
-  // Each eye at the plan's scale (the image's top-left 2 rw x rh); a
-  // refinement sample joins the running mean already there; a finished
-  // refinement is shown again without the kernel.
-  const int rw = std::max(1, static_cast<int>(std::lround(width * plan.scale)));
-  const int rh = std::max(1, static_cast<int>(std::lround(height * plan.scale)));
-  if (!plan.reuse) app.renderer->record(cmd, cameras, rw, rh, rendered, plan.sample.value_or(sol::vk::PixelSample{}));
-  // The kernel's writes must land before the blits read them, from the
-  // layout made for reading by transfers (GENERAL costs some devices a
-  // slower path, which the validation layers point out).
-  sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  const auto w = static_cast<std::int32_t>(width), h = static_cast<std::int32_t>(height);
-  const bool scaled = rw != w || rh != h;
-  for (std::size_t v = 0; v < targets.size(); ++v) {
-    begin_transfer_to(cmd, targets[v]);
-    VkImageBlit region{};
-    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[0] = {static_cast<std::int32_t>(v) * rw, 0, 0};  // the left eye on the left
-    region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * rw, rh, 1};
-    region.dstOffsets[1] = {w, h, 1};
-    vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets[v],
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
-                   scaled && app.linear_blit ? VK_FILTER_LINEAR : VK_FILTER_NEAREST);
-    end_transfer_to(cmd, targets[v]);
-  }
-  // The next frame's kernel writes the image again (GENERAL, as the kernel
-  // takes it) only after these blits have read it.
-  sol::vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-}
-
-/// The foveated frame (kFoveation): per level one dispatch of both eyes,
-/// each with the window of its rectangle, at the level's resolution times
-/// the render scale; then per eye the levels blitted into the swapchain
-/// image from the outside in, each over the last.
-void record_foveated(App& app, VkCommandBuffer cmd, const std::array<sol::Camera, 2>& cameras,
-                     const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, double scale) {
-  const int w = static_cast<int>(width), h = static_cast<int>(height);
-  PixelRect rects[kFoveaLevels][2];
-  int sizes[kFoveaLevels][2];
-  for (int l = 0; l < kFoveaLevels; ++l) {
-    std::array<sol::Camera, 2> level = cameras;
-    for (std::size_t v = 0; v < 2; ++v) {
-      const sol::Frustum f = cameras[v].frustum.value_or(sol::Frustum{});
-      // The centre of view (tangent 0, 0) in pixels, rows from the top.
-      const double cx = std::clamp(w * (0.0 - f.left) / (f.right - f.left), 0.0, static_cast<double>(w));
-      const double cy = std::clamp(h * (f.up - 0.0) / (f.up - f.down), 0.0, static_cast<double>(h));
-      const PixelRect r = fovea_rect(kFoveation[l], cx, cy, w, h);
-      rects[l][v] = r;
-      auto tx = [&](int px) { return f.left + (f.right - f.left) * px / w; };
-      auto ty = [&](int py) { return f.up - (f.up - f.down) * py / h; };
-      level[v].frustum = sol::Frustum{tx(r.x0), tx(r.x1), ty(r.y1), ty(r.y0)};
-    }
-    const double resolution = kFoveation[l].scale * scale;
-    sizes[l][0] = std::max(1, static_cast<int>(std::lround((rects[l][0].x1 - rects[l][0].x0) * resolution)));
-    sizes[l][1] = std::max(1, static_cast<int>(std::lround((rects[l][0].y1 - rects[l][0].y0) * resolution)));
-    app.renderer->record(cmd, level, sizes[l][0], sizes[l][1], app.fovea[static_cast<std::size_t>(l)]);
-  }
-  for (const sol::vk::StorageImage& image : app.fovea) {
-    sol::vk::image_barrier(cmd, image.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  }
-  for (std::size_t v = 0; v < targets.size(); ++v) {
-    begin_transfer_to(cmd, targets[v]);
-    for (int l = 0; l < kFoveaLevels; ++l) {
-      if (l > 0) {  // each level over the last: its blit waits for theirs (write after write)
-        sol::vk::image_barrier(cmd, targets[v], VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-      }
-      const PixelRect& r = rects[l][v];
-      const int lw = sizes[l][0], lh = sizes[l][1];
-      VkImageBlit region{};
-      region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.srcOffsets[0] = {static_cast<std::int32_t>(v) * lw, 0, 0};
-      region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * lw, lh, 1};
-      region.dstOffsets[0] = {r.x0, r.y0, 0};
-      region.dstOffsets[1] = {r.x1, r.y1, 1};
-      const bool scaled = lw != r.x1 - r.x0 || lh != r.y1 - r.y0;
-      vkCmdBlitImage(cmd, app.fovea[static_cast<std::size_t>(l)].handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     targets[v], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
-                     scaled && app.linear_blit ? VK_FILTER_LINEAR : VK_FILTER_NEAREST);
-    }
-    end_transfer_to(cmd, targets[v]);
-  }
-  for (const sol::vk::StorageImage& image : app.fovea) {
-    sol::vk::image_barrier(cmd, image.handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-  }
-}
-
-/// The device path, one submission per stereo frame, not waited for,
-/// between two timestamps: the plan's frame (record_eyes: both eyes in one
-/// dispatch and a blit per eye, converting to the swapchain's format and
-/// sRGB-encoding 8-bit sRGB ones; record_foveated: the foveation's levels),
-/// signalling the slot's fence; nothing goes through the host.
-void submit_frame(App& app, FrameSlot& slot, const std::array<sol::Camera, 2>& cameras,
-                  const std::vector<VkImage>& targets, std::uint32_t width, std::uint32_t height, const FramePlan& plan) {
-  const double begin = now_ms();
-  const VkCommandBuffer cmd = slot.commands;
-  sol::vk::check(vkResetFences(app.context->device(), 1, &slot.done), "vkResetFences");
-  sol::vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-  VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
-                                VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
-  sol::vk::check(vkBeginCommandBuffer(cmd, &info), "vkBeginCommandBuffer");
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
-  }
-  if (plan.foveated) {
-    record_foveated(app, cmd, cameras, targets, width, height, plan.scale);
-  } else {
-    record_eyes(app, cmd, cameras, targets, width, height, plan);
-  }
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
-  }
-  sol::vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-  VkSubmitInfo submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  sol::vk::check(vkQueueSubmit(app.context->queue(), 1, &submit, slot.done), "vkQueueSubmit");
-  slot.submitted_ms = now_ms();
-  slot.record_ms = slot.submitted_ms - begin;
-  slot.pending = true;
-  slot.scale = plan.reuse ? 1.0 : plan.scale;
-}
-
 /// The host path (--copy host, or a swapchain format the device cannot
 /// blit into): render() reads both eyes back, the host converts each to the
 /// swapchain's format and one submission uploads them, waited for. Returns
@@ -971,7 +679,11 @@ int run(const Options& o, const sol::Scene& scene) {
   if (o.foveation == "on" && !device_copy) {
     std::fprintf(stderr, "solxr: --foveation: the host copy renders every pixel (no foveation)\n");
   }
-  prepare_copies(app, device_copy, foveation, format, width, height);
+  if (device_copy) {
+    app.frames.emplace(*app.context, *app.renderer, width, height, foveation);
+  } else {
+    prepare_host_copy(app, format, width, height);
+  }
   create_actions(app);
   std::fprintf(stderr, "solxr: %zu views of %ux%u, %s copy into the swapchain%s\n", app.eyes.size(), width, height,
                device_copy ? "device" : "host",
@@ -1062,9 +774,9 @@ int run(const Options& o, const sol::Scene& scene) {
     end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
     bool rendered = false;
     if (frame.shouldRender) {
-      FrameSlot* slot = device_copy ? &app.slots[static_cast<std::size_t>(frames % kFramesInFlight)] : nullptr;
       const double period_ms = static_cast<double>(frame.predictedDisplayPeriod) * 1e-6;
-      if (slot != nullptr && retire_slot(app, *slot, clock) && o.adaptive == "on" && clock.last_adaptive &&
+      // This frame's slot comes back: the frame kFramesInFlight back, done and counted.
+      if (app.frames && app.frames->retire(frames, clock) && o.adaptive == "on" && clock.last_adaptive &&
           period_ms > 0.0) {
         if (!adaptive || adaptive->target_ms() != period_ms) adaptive.emplace(period_ms, o.min_scale);
         scale = adaptive->next(scale, adapted++, clock.last_work_ms);
@@ -1085,7 +797,7 @@ int run(const Options& o, const sol::Scene& scene) {
       if ((view_state.viewStateFlags & needed) == needed && count == views.size()) {
         const std::array<sol::Camera, 2> cameras = eye_cameras(scene, base, o, views);
         const std::vector<VkImage> targets = acquire_images(app);
-        if (slot != nullptr) {
+        if (app.frames) {
           // A still head (and observer) refines; a move starts again at the
           // adaptive scale, which forgets the full-size frames.
           if (!refinement.update(view_key(cameras), seconds, scale)) {
@@ -1098,10 +810,7 @@ int run(const Options& o, const sol::Scene& scene) {
           } else if (refinement.reuse()) {
             plan = FramePlan{.scale = 1.0, .reuse = true};
           }
-          slot->follows = clock.chain;
-          slot->period_ms = period_ms;
-          slot->adaptive = !plan.sample && !plan.reuse;
-          submit_frame(app, *slot, cameras, targets, width, height, plan);
+          app.frames->submit(frames, cameras, targets, plan, clock.chain, period_ms, !plan.sample && !plan.reuse);
           refinement.shown();
         } else {
           const double started = now_ms();
@@ -1135,9 +844,7 @@ int run(const Options& o, const sol::Scene& scene) {
     ++frames;
   }
   // The frames still in flight: waited for and counted, in order.
-  for (long k = 0; k < kFramesInFlight && !app.slots.empty(); ++k) {
-    retire_slot(app, app.slots[static_cast<std::size_t>((frames + k) % kFramesInFlight)], clock);
-  }
+  if (app.frames) app.frames->drain(frames, clock);
 
   std::fprintf(stderr, "solxr: %ld frames\n", frames);
   if (o.stats) {
