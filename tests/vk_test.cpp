@@ -279,6 +279,45 @@ TEST(VkPipeline, FillWritesEveryPixelExactly) {
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
 }
 
+// FrameTimer's two timestamps around a frame's commands, against the
+// submission's own timing (Context::submit_and_wait's timestamps, around
+// everything the submission holds): eight dispatches of a 1024² fill between
+// them take almost all of the submission's time (at least half of it, at
+// most all of it and an allowance for the timestamps' rounding), in the
+// right order and in milliseconds; recorded again for a second frame, the
+// timer reads that frame.
+TEST(VkFrameTimer, TimesTheCommandsBetweenItsTimestamps) {
+  Context context(validated());
+  ASSERT_TRUE(context.timestamps_supported());  // lavapipe and every GPU here write timestamps
+  sol::vk::FrameTimer timer(context);
+  ASSERT_TRUE(timer.supported());
+  constexpr std::uint32_t side = 1024;
+  StorageImage image(context, side, side, VK_FORMAT_R32G32B32A32_SFLOAT);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, image);
+  for (float value : {1.0f, 2.0f}) {
+    const double submission_ms = sol::vk::run_recorded(context, [&](VkCommandBuffer cb) {
+      timer.begin(cb);
+      for (int k = 0; k < 8; ++k) {
+        if (k > 0) {
+          sol::vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+        }
+        fill.record_dispatch(cb, side / 8, side / 8, std::as_bytes(std::span(&value, 1)));
+      }
+      timer.end(cb);
+    });
+    const std::optional<sol::vk::FrameTimer::Reading> t = timer.read();
+    ASSERT_TRUE(t.has_value());
+    const double ms = timer.elapsed_ms(t->begin, t->end);
+    EXPECT_GT(ms, 0.5 * submission_ms) << submission_ms;
+    EXPECT_LE(ms, submission_ms + 0.01) << submission_ms;
+    expect_fill(image.download(), side, side, value);
+  }
+  const std::vector<std::string> errors = context.validation_errors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
 // Specialisation constants folded into the SPIR-V (sol::vk::specialize_spirv,
 // the default) give the program the driver gives them, and the code they
 // rule out is gone before the driver sees it. tests/shaders/specialised.comp

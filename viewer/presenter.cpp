@@ -38,13 +38,7 @@ Presenter::Presenter(vk::Context& context, GLFWwindow* window, bool vsync, bool 
       // Signalled: the slot's first wait returns at once.
       VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
       vk::check(vkCreateFence(device, &fence, nullptr, &slot.done), "vkCreateFence");
-      if (context.timestamps_supported()) {
-        VkQueryPoolCreateInfo queries{};
-        queries.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-        queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        queries.queryCount = 2;
-        vk::check(vkCreateQueryPool(device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
-      }
+      slot.timer.emplace(context);
     }
     create_swapchain(vsync);
   } catch (...) {
@@ -62,7 +56,6 @@ void Presenter::release() noexcept {
   for (Slot& slot : m_slots) {
     if (slot.acquired) vkDestroySemaphore(device, slot.acquired, nullptr);
     if (slot.done) vkDestroyFence(device, slot.done, nullptr);
-    if (slot.timestamps) vkDestroyQueryPool(device, slot.timestamps, nullptr);
     slot = Slot{};
   }
   m_capture.reset();
@@ -209,17 +202,12 @@ void Presenter::retire(Slot& slot) {
   std::erase_if(m_retired_targets, [&](const auto& r) { return r.first <= slot.frame; });
   if (!slot.pending) return;
   slot.pending = false;
-  if (slot.timestamps == VK_NULL_HANDLE) return;  // no device clock: nothing to count
-  std::uint64_t ticks[2] = {0, 0};
-  vk::check(vkGetQueryPoolResults(m_context.device(), slot.timestamps, 0, 2, sizeof ticks, ticks, sizeof(std::uint64_t),
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-            "vkGetQueryPoolResults");
-  const double ms_per_tick = static_cast<double>(m_context.timestamp_period()) * 1e-6;
-  const double begin = static_cast<double>(ticks[0]) * ms_per_tick, end = static_cast<double>(ticks[1]) * ms_per_tick;
+  const std::optional<vk::FrameTimer::Reading> t = slot.timer->read();
+  if (!t) return;  // no device clock: nothing to count
   const std::optional<double> interval =
-      slot.follows && m_last_end_ms ? std::optional<double>(end - *m_last_end_ms) : std::nullopt;
-  m_stats.add(interval, end - begin, slot.record_ms, slot.period_ms);
-  m_last_end_ms = end;
+      slot.follows && m_last_end ? std::optional<double>(slot.timer->elapsed_ms(*m_last_end, t->end)) : std::nullopt;
+  m_stats.add(interval, slot.timer->elapsed_ms(t->begin, t->end), slot.record_ms, slot.period_ms);
+  m_last_end = t->end;
 }
 
 void Presenter::wait_for_frame() {
@@ -283,10 +271,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                  VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
   vk::check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdResetQueryPool(cb, slot.timestamps, 0, 2);
-    vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
-  }
+  slot.timer->begin(cb);
   VkImage swap_image = m_images[index];
   // Where the swapchain image is once the frame is in it, and the last
   // stage and access that wrote it.
@@ -382,7 +367,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   // submit signals after all these commands, so no later stage needs to wait here.
   vk::image_barrier(cb, swap_image, shown_stage, shown_access, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, shown_layout,
                     VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-  if (slot.timestamps != VK_NULL_HANDLE) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
+  slot.timer->end(cb);
   vk::check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
   const double record_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - record_begin).count();

@@ -26,6 +26,7 @@
 #include <sol/camera.hpp>
 #include <sol/vk/buffer.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/frame_timer.hpp>
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
@@ -127,7 +128,7 @@ class Presenter {
     VkCommandBuffer commands = VK_NULL_HANDLE;
     VkFence done = VK_NULL_HANDLE;            // created signalled: no frame yet
     VkSemaphore acquired = VK_NULL_HANDLE;    // the swapchain image's acquire
-    VkQueryPool timestamps = VK_NULL_HANDLE;  // before the first command and after the last (null: unsupported)
+    std::optional<vk::FrameTimer> timer;      // timestamps before the first command and after the last
     bool pending = false;                     // a rendered frame whose figures are not yet counted
     bool follows = false;                     // it came right after a counted frame
     double record_ms = 0, period_ms = 0;
@@ -164,7 +165,7 @@ class Presenter {
   Slot m_slots[kFramesInFlight];
   long m_frames = 0;  // frames submitted
   programs::FrameStats m_stats;
-  std::optional<double> m_last_end_ms;  // the last counted frame's end (device clock)
+  std::optional<std::uint64_t> m_last_end;  // the last counted frame's end (a device timestamp)
   bool m_chain = false;                 // the next frame follows a counted one
   bool m_linear_blit = false;
   bool m_can_capture = false;  // swapchain images may be copied out (TRANSFER_SRC)

@@ -59,13 +59,7 @@ DeviceFrames::DeviceFrames(vk::Context& context, vk::MarchRenderer& renderer, st
       vk::check(vkAllocateCommandBuffers(vk_device, &allocate, &slot.commands), "vkAllocateCommandBuffers");
       VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
       vk::check(vkCreateFence(vk_device, &fence, nullptr, &slot.done), "vkCreateFence");
-      if (m_context.timestamps_supported()) {
-        VkQueryPoolCreateInfo queries{};
-        queries.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-        queries.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        queries.queryCount = 2;
-        vk::check(vkCreateQueryPool(vk_device, &queries, nullptr, &slot.timestamps), "vkCreateQueryPool");
-      }
+      slot.timer.emplace(m_context);
     }
     if (foveation) {
       for (const FoveaLevel& level : kFoveation) {
@@ -88,7 +82,6 @@ void DeviceFrames::release() noexcept {
   vkDeviceWaitIdle(m_context.device());  // nothing of ours may still run
   const VkDevice device = m_context.device();
   for (Slot& slot : m_slots) {
-    if (slot.timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(device, slot.timestamps, nullptr);
     if (slot.done != VK_NULL_HANDLE) vkDestroyFence(device, slot.done, nullptr);
     if (slot.pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, slot.pool, nullptr);  // frees its buffer
   }
@@ -100,22 +93,21 @@ bool DeviceFrames::retire(long frame, FrameClock& clock) {
   vk::check(vkWaitForFences(m_context.device(), 1, &slot.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   if (!slot.pending) return false;
   slot.pending = false;
-  double begin_ms = slot.submitted_ms, end_ms = slot.submitted_ms;
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    std::uint64_t ticks[2] = {0, 0};
-    vk::check(vkGetQueryPoolResults(m_context.device(), slot.timestamps, 0, 2, sizeof ticks, ticks,
-                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                   "vkGetQueryPoolResults");
-    const double ns_per_tick = m_context.timestamp_period();
-    begin_ms = static_cast<double>(ticks[0]) * ns_per_tick * 1e-6;
-    end_ms = static_cast<double>(ticks[1]) * ns_per_tick * 1e-6;
+  // The work and the interval on the device's clock; without timestamps the
+  // interval between submissions on the host's, and no work.
+  double work_ms = 0.0;
+  std::optional<double> interval;
+  if (const std::optional<vk::FrameTimer::Reading> t = slot.timer->read()) {
+    work_ms = slot.timer->elapsed_ms(t->begin, t->end);
+    if (slot.follows && clock.last_end) interval = slot.timer->elapsed_ms(*clock.last_end, t->end);
+    clock.last_end = t->end;
+  } else {
+    if (slot.follows && clock.last_end_ms) interval = slot.submitted_ms - *clock.last_end_ms;
+    clock.last_end_ms = slot.submitted_ms;
   }
-  const std::optional<double> interval =
-      slot.follows && clock.last_end_ms ? std::optional<double>(end_ms - *clock.last_end_ms) : std::nullopt;
-  clock.stats.add(interval, end_ms - begin_ms, slot.record_ms, slot.period_ms);
+  clock.stats.add(interval, work_ms, slot.record_ms, slot.period_ms);
   clock.scale_sum += slot.scale;
-  clock.last_end_ms = end_ms;
-  clock.last_work_ms = end_ms - begin_ms + slot.record_ms;
+  clock.last_work_ms = work_ms + slot.record_ms;
   clock.last_adaptive = slot.adaptive;
   return true;
 }
@@ -235,18 +227,13 @@ void DeviceFrames::submit(long frame, const std::array<Camera, 2>& cameras, cons
   VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                 VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
   vk::check(vkBeginCommandBuffer(cmd, &info), "vkBeginCommandBuffer");
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.timestamps, 0);
-  }
+  slot.timer->begin(cmd);
   if (plan.foveated) {
     record_foveated(cmd, cameras, targets, plan.scale);
   } else {
     record_eyes(cmd, cameras, targets, plan);
   }
-  if (slot.timestamps != VK_NULL_HANDLE) {
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, 1);
-  }
+  slot.timer->end(cmd);
   vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;

@@ -15,6 +15,7 @@
 
 #include <sol/camera.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/frame_timer.hpp>
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
@@ -57,7 +58,8 @@ inline constexpr int kFoveaLevels = 3;
 struct FrameClock {
   programs::FrameStats stats;
   double scale_sum = 0.0;  // the counted frames' render scales
-  std::optional<double> last_end_ms;  // the previous counted frame's end (device clock, or host clock without timestamps)
+  std::optional<std::uint64_t> last_end;  // the previous counted frame's end: a device timestamp
+  std::optional<double> last_end_ms;      // or, without timestamps (and for the host copy), the host clock's
   bool chain = false;                 // the next frame follows a rendered one
   double last_work_ms = 0.0;          // the last counted frame's device work plus host recording
   bool last_adaptive = false;         // it was rendered at the adaptive scale
@@ -112,7 +114,7 @@ class DeviceFrames {
   VkCommandPool pool = VK_NULL_HANDLE;
   VkCommandBuffer commands = VK_NULL_HANDLE;
   VkFence done = VK_NULL_HANDLE;            // the slot's frame is done (created signalled: no frame yet)
-  VkQueryPool timestamps = VK_NULL_HANDLE;  // before the frame's first command and after its last (null: unsupported)
+  std::optional<vk::FrameTimer> timer;      // timestamps before the frame's first command and after its last
   bool pending = false;                     // a frame was submitted whose figures are not yet counted
   bool follows = false;                     // that frame came right after a rendered frame
   double record_ms = 0, period_ms = 0;      // its host recording time and the display period it had

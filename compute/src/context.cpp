@@ -411,10 +411,14 @@ double Device::submit_and_wait(const std::function<void(VkCommandBuffer)>& recor
   check(vkGetQueryPoolResults(device, timestamp_pool, 0, 2, sizeof(ticks), ticks, sizeof(std::uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
         "vkGetQueryPoolResults");
+  return elapsed_ms(ticks[0], ticks[1]);
+}
+
+double Device::elapsed_ms(std::uint64_t from, std::uint64_t to) const {
   // Only the low timestampValidBits bits count; unsigned subtraction under the
   // mask also survives a wrap-around.
   const std::uint64_t mask = timestamp_valid_bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << timestamp_valid_bits) - 1;
-  const std::uint64_t elapsed = (ticks[1] - ticks[0]) & mask;
+  const std::uint64_t elapsed = (to - from) & mask;
   return static_cast<double>(elapsed) * static_cast<double>(properties.limits.timestampPeriod) * 1e-6;
 }
 

@@ -32,6 +32,10 @@ struct Device {
 
   /// See Context::submit_and_wait.
   double submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+  /// Milliseconds between two timestamps of the queue: only the low
+  /// timestamp_valid_bits bits count, and the unsigned difference under
+  /// that mask also survives a wrap-around (FrameTimer::elapsed_ms).
+  double elapsed_ms(std::uint64_t from, std::uint64_t to) const;
 
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
