@@ -170,12 +170,42 @@ std::vector<glm::vec4> pack_light_images(const MarchWorld& prepared) {
 // One build of march.comp: the world's features (each a specialisation
 // constant, so a world's kernel contains only what it needs), the variant's
 // flags (sol/vk/march_interface.h) and the output.
+// The values of SOL_LATTICE_CONSTANTS for a lattice, each rounded to float
+// from double (the golden lattice's: what the kernel folded from kPhi and
+// kLatticeHeight before they were constants of the pipeline).
+constexpr std::size_t kLatticeConstantCount = 0
+#define SOL_LATTICE_COUNT(constant, id) +1
+    SOL_LATTICE_CONSTANTS(SOL_LATTICE_COUNT);
+#undef SOL_LATTICE_COUNT
+using LatticeConstants = std::array<std::uint32_t, kLatticeConstantCount>;
+LatticeConstants lattice_constants(const Lattice& lattice) {
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  const double h = lattice.height();
+  const double values[] = {g1.x,
+                           g1.y,
+                           g2.x,
+                           g2.y,
+                           1.0 / (g1.x * g2.y - g2.x * g1.y),
+                           h,
+                           h * 0.9999999,
+                           1.0 / h,
+                           std::exp(h),
+                           std::exp(-h),
+                           std::exp(0.5 * h)};
+  static_assert(std::size(values) == kLatticeConstantCount, "one value per SOL_LATTICE_CONSTANTS entry, in its order");
+  LatticeConstants bits{};
+  for (std::size_t i = 0; i < kLatticeConstantCount; ++i) bits[i] = std::bit_cast<std::uint32_t>(static_cast<float>(values[i]));
+  return bits;
+}
+
 struct KernelVariant {
   MarchFeatures features;
 #define SOL_VARIANT_MEMBER(member, constant, id) bool member = false;
   SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_MEMBER)
 #undef SOL_VARIANT_MEMBER
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
+  // The quotient's lattice, SOL_LATTICE_CONSTANTS's floats as bits (all 0 in Sol).
+  LatticeConstants lattice{};
   // A bit per flag: the features', the variant's, the build's.
   std::uint32_t key() const {
     const MarchFeatures& f = features;
@@ -243,6 +273,10 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
   SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_VALUE)
 #undef SOL_FEATURE_VALUE
 #undef SOL_VARIANT_VALUE
+  std::size_t i = 0;
+#define SOL_LATTICE_VALUE(constant, id) values.push_back({id, v.lattice[i++]});
+  SOL_LATTICE_CONSTANTS(SOL_LATTICE_VALUE)
+#undef SOL_LATTICE_VALUE
   return values;
 }
 
@@ -328,7 +362,7 @@ struct MarchRenderer::Impl {
     }
   };
   // One pipeline per kernel variant, built when first needed and kept.
-  std::map<std::uint32_t, Built> pipelines;
+  std::map<std::pair<std::uint32_t, LatticeConstants>, Built> pipelines;
   // The uniforms: one buffer, written by each frame's commands (vkCmdUpdateBuffer), never by the host.
   Buffer params;
   // The prepared world and what set_world made of it.
@@ -398,8 +432,9 @@ struct MarchRenderer::Impl {
 
   // The pipelines of a variant with the current world's buffers bound in descriptor set `set`.
   Built& pipeline(const KernelVariant& v, std::uint32_t set) {
-    auto it = pipelines.find(v.key());
-    if (it == pipelines.end()) it = pipelines.emplace(v.key(), Built::build(context, options, v)).first;
+    const std::pair<std::uint32_t, LatticeConstants> key{v.key(), v.lattice};
+    auto it = pipelines.find(key);
+    if (it == pipelines.end()) it = pipelines.emplace(key, Built::build(context, options, v)).first;
     Built& built = it->second;
     built.bind(set, kernel::kBindingParams, params);
     built.bind(set, kernel::kBindingImages, *images);
@@ -587,6 +622,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
   KernelVariant variant{kernel_features(prepared.features(), m.options.all_features)};
+  if (prepared.lattice()) variant.lattice = lattice_constants(*prepared.lattice());
   variant.aovs = aovs;
   variant.srgb_unorm = srgb_unorm;
   variant.projections = projections;

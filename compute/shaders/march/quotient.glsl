@@ -1,47 +1,48 @@
-// The compact quotient Γ\Sol of the golden lattice (sol::Lattice::golden,
-// docs/mathematics.md): lattice coordinates, the fundamental domain D and
-// the teleport back into it, the distance field over D
-// (sol::QuotientField) with each cell's candidate images, and the
-// positions of the quotient march (by Jacobi's zeta function or by
-// Carlson's integrals, split between the march and resume passes).
+// A compact quotient Γ\Sol (sol::Lattice, docs/mathematics.md): lattice
+// coordinates, the fundamental domain D and the teleport back into it, the
+// distance field over D (sol::QuotientField) with each cell's candidate
+// images, and the positions of the quotient march (by Jacobi's zeta
+// function or by Carlson's integrals, split between the march and resume
+// passes). The lattice is the specialisation constants LATTICE_*
+// (SOL_LATTICE_CONSTANTS): folded in as the golden constants once were.
 #ifndef SOL_MARCH_QUOTIENT_GLSL
 #define SOL_MARCH_QUOTIENT_GLSL
 
-// (s, r) = [γ1 γ2]^{-1} (x, y), γ1 = (φ, -1), γ2 = (1, φ): a point's lattice
-// coordinates (multiplied by the constant 1/(φ² + 1): no division per step).
-const float kInverseDet = 1.0 / (kPhi * kPhi + 1.0);
-vec2 lattice_coordinates(vec3 p) { return vec2(kPhi * p.x - p.y, p.x + kPhi * p.y) * kInverseDet; }
+// (s, r) = [γ1 γ2]^{-1} (x, y): a point's lattice coordinates (the adjugate
+// times the constant 1/det: no division per step).
+vec2 lattice_coordinates(vec3 p) {
+  return vec2(LATTICE_G2Y * p.x - LATTICE_G2X * p.y, LATTICE_G1X * p.y - LATTICE_G1Y * p.x) * LATTICE_INV_DET;
+}
 
 bool in_domain(vec3 p) {
   const vec2 sr = lattice_coordinates(p);
-  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0 && p.z >= 0.0 && p.z < kLatticeHeight;
+  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0 && p.z >= 0.0 && p.z < LATTICE_HEIGHT;
 }
 
-// The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by φ^{2n},
-// y by φ^{-2n}), then γ1, γ2 translate (x, y) into the parallelogram. With
+// The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by λ^n,
+// y by λ^-n), then γ1, γ2 translate (x, y) into the parallelogram. With
 // `step_end` (a constant at each call), p is the end of a march step from a
-// point of D, less than kLatticeHeight long, so n is -1, 0 or 1 and φ^{±2n}
-// a choice between constants (the march runs this at every step, masked:
-// no pow there); else any n.
+// point of D, less than LATTICE_HEIGHT long (every lattice's height exceeds
+// kQuotientMaxStep), so n is -1, 0 or 1 and λ^{±n} a choice between
+// constants (the march runs this at every step, masked: no pow there); else any n.
 vec3 teleport(vec3 p, const bool step_end) {
-  const float n = -floor(p.z / kLatticeHeight);
-  const float phi2 = kPhi * kPhi;
-  const float up = n > 0.5 ? phi2 : (n < -0.5 ? 1.0 / phi2 : 1.0);
-  const float down = n > 0.5 ? 1.0 / phi2 : (n < -0.5 ? phi2 : 1.0);
-  const float scale = step_end ? up : pow(kPhi, 2.0 * n);
+  const float n = -floor(p.z / LATTICE_HEIGHT);
+  const float up = n > 0.5 ? LATTICE_LAMBDA : (n < -0.5 ? LATTICE_INV_LAMBDA : 1.0);
+  const float down = n > 0.5 ? LATTICE_INV_LAMBDA : (n < -0.5 ? LATTICE_LAMBDA : 1.0);
+  const float scale = step_end ? up : pow(LATTICE_SQRT_LAMBDA, 2.0 * n);
   const float inverse_scale = step_end ? down : 1.0 / scale;
-  vec3 q = vec3(scale * p.x, p.y * inverse_scale, p.z + n * kLatticeHeight);
-  q.z = min(max(q.z, 0.0), kLatticeHeight * 0.9999999);
+  vec3 q = vec3(scale * p.x, p.y * inverse_scale, p.z + n * LATTICE_HEIGHT);
+  q.z = min(max(q.z, 0.0), LATTICE_TOP);
   const vec2 f = floor(lattice_coordinates(q));
   const float fs = f.x, fr = f.y;
-  q.x -= fs * kPhi + fr;
-  q.y -= -fs + fr * kPhi;
+  q.x -= fs * LATTICE_G1X + fr * LATTICE_G2X;
+  q.y -= fs * LATTICE_G1Y + fr * LATTICE_G2Y;
   return q;
 }
 
 // The field's cell of a point of D, as its index (sol::QuotientField::cell_of).
 int field_cell(vec3 p) {
-  const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * (1.0 / kLatticeHeight)), 0.0, 1.0);
+  const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * LATTICE_INV_HEIGHT), 0.0, 1.0);
   const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
   const int i = min(int(g.x), kFieldCells - 1), j = min(int(g.y), kFieldCells - 1), k = min(int(g.z), kFieldLayers - 1);
   return (k * kFieldCells + j) * kFieldCells + i;

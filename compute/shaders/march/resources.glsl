@@ -28,6 +28,10 @@ SOL_MARCH_FEATURES(SOL_FEATURE_CONSTANT)
 #define SOL_VARIANT_CONSTANT(member, constant, id) layout(constant_id = id) const bool constant = false;
 SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_CONSTANT)
 #undef SOL_VARIANT_CONSTANT
+// The quotient's lattice (SOL_LATTICE_CONSTANTS; march/quotient.glsl).
+#define SOL_LATTICE_CONSTANT(constant, id) layout(constant_id = id) const float constant = 1.0;
+SOL_LATTICE_CONSTANTS(SOL_LATTICE_CONSTANT)
+#undef SOL_LATTICE_CONSTANT
 // Every object a plane x = c or y = c: their crossing solved
 // (plane_xy_roots) is the whole march. (The roots need the closed form:
 // with RK4 such a world is marched.)

@@ -53,6 +53,29 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */
 // clang-format on
 
+/// The quotient's lattice (sol::Lattice), each X(the kernel's float
+/// constant, its id): the host rounds each from its double value (so that
+/// the golden lattice's are the numbers its kernel once folded from
+/// kPhi and kLatticeHeight). γ1 = (G1X, G1Y, 0), γ2 = (G2X, G2Y, 0);
+/// LATTICE_INV_DET = 1 / det[γ1 γ2]; LATTICE_HEIGHT = h, the z of γ3;
+/// LATTICE_TOP = h (1 - 1e-7), the largest z a teleport leaves;
+/// LATTICE_INV_HEIGHT = 1 / h; LATTICE_LAMBDA = λ = e^h (γ3 scales x by
+/// it), LATTICE_INV_LAMBDA = 1 / λ, LATTICE_SQRT_LAMBDA = √λ.
+// clang-format off
+#define SOL_LATTICE_CONSTANTS(X)   \
+  X(LATTICE_G1X,         30)       \
+  X(LATTICE_G1Y,         31)       \
+  X(LATTICE_G2X,         32)       \
+  X(LATTICE_G2Y,         33)       \
+  X(LATTICE_INV_DET,     34)       \
+  X(LATTICE_HEIGHT,      35)       \
+  X(LATTICE_TOP,         36)       \
+  X(LATTICE_INV_HEIGHT,  37)       \
+  X(LATTICE_LAMBDA,      38)       \
+  X(LATTICE_INV_LAMBDA,  39)       \
+  X(LATTICE_SQRT_LAMBDA, 40)
+// clang-format on
+
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
 // everything. With it (docs/renderer.md "Deferred passes"), the march pass
 // lists the pixels whose ray reached an exact ball's shell in Sol, or whose
@@ -180,8 +203,10 @@ struct Column {
 /// Every specialisation constant's id, the features' and the variant's.
 inline constexpr int kSpecIds[] = {
 #define SOL_SPEC_ID(member, constant, id) id,
-    SOL_MARCH_FEATURES(SOL_SPEC_ID) SOL_KERNEL_VARIANT_FLAGS(SOL_SPEC_ID)
+#define SOL_LATTICE_SPEC_ID(constant, id) id,
+    SOL_MARCH_FEATURES(SOL_SPEC_ID) SOL_KERNEL_VARIANT_FLAGS(SOL_SPEC_ID) SOL_LATTICE_CONSTANTS(SOL_LATTICE_SPEC_ID)
 #undef SOL_SPEC_ID
+#undef SOL_LATTICE_SPEC_ID
         kSpecIntegrator, kSpecPass};
 constexpr bool distinct_spec_ids() {
   for (int a : kSpecIds) {
