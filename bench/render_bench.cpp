@@ -37,6 +37,15 @@
 //     with --only gpu (it takes many minutes there; pass a smaller
 //     --gpu-size).
 //
+//  6. Every lattice (--only lattices): one world, a ball of radius 0.3 at
+//     the base point, in the golden lattice and in those of [[3, 1], [2, 1]]
+//     (trace 4), [[5, 2], [2, 1]] (trace 6) and [[9, 4], [2, 1]] (trace 10),
+//     seen from the middle of each one's domain along z and along x + y,
+//     on the kernel at --size², best of --repeats in rounds over the
+//     lattices: time, M rays/s, mean steps, the images listed and the time
+//     against the golden lattice's. Written to render_lattices.csv. Not in
+//     the default run.
+//
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
 //     folded into the SPIR-V (the default on a CPU device) and handed to
@@ -46,7 +55,7 @@
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu|pipelines] [--scene PRESET] [--kernel-only]
+//                [--only throughput|error|exact|gpu|pipelines|lattices] [--scene PRESET] [--kernel-only]
 //
 // For quick before/after figures of one change: --only throughput --scene
 // lattice-balls --kernel-only (the specialised kernel alone, one preset).
@@ -58,6 +67,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -114,13 +124,14 @@ int main(int argc, char** argv) {
                  "one eye's height for the headset section, its width --gpu-size (default: square)");
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines"}, "run one section and write its files");
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices"},
+                "run one section and write its files (lattices: only so)");
   cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput, headset and pipeline sections: this preset only");
   cl.add_flag("--kernel-only", kernel_only,
               "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
-                "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu) and\n"
-                "render_pipelines.csv to DIR.");
+                "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu),\n"
+                "render_pipelines.csv and (--only lattices) render_lattices.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
   if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
@@ -198,6 +209,62 @@ int main(int argc, char** argv) {
       }
       files.emplace_back("render_throughput.csv", throughput);
       if (!kernel_only) files.emplace_back("render_features.csv", features);
+    }
+
+    // 6. Every lattice: the same world in several (asked for by name only).
+    if (only == "lattices") {
+      struct Case {
+        const char* name;
+        sol::Monodromy monodromy;
+      };
+      const Case cases[] = {{"golden", {2, 1, 1, 1}}, {"trace4", {3, 1, 2, 1}}, {"trace6", {5, 2, 2, 1}}, {"trace10", {9, 4, 2, 1}}};
+      struct Run {
+        std::string label;
+        sol::Scene scene;
+        std::size_t images = 0;
+        std::unique_ptr<sol::vk::MarchRenderer> renderer;
+        double best = 1e300;
+        sol::RenderResult result;
+      };
+      std::vector<Run> runs_of;
+      for (const Case& c : cases) {
+        for (const auto& [view, forward, up] : {std::tuple{"z", glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0)},
+                                                std::tuple{"xy", glm::dvec3(1, 1, 0), glm::dvec3(0, 0, 1)}}) {
+          Run r;
+          r.label = std::string(c.name) + "," + view;
+          sol::set_quotient(r.scene, sol::Quotient::Monodromy, c.monodromy);
+          const sol::Lattice lattice = *r.scene.lattice();
+          r.scene.camera = {0.5 * (lattice.generators()[0] + lattice.generators()[1]) +
+                                glm::dvec3(0.0, 0.0, 0.5 * lattice.height()),
+                            forward, up, 90.0};
+          r.scene.objects = {{sol::Ball{{0.0, 0.0, 0.0}, 0.3}, {0.9, 0.55, 0.3}}};
+          r.scene.fog_density = 1.0 / 12.0;
+          r.scene.max_distance = 12.0;
+          r.scene.max_steps = 400;
+          r.images = sol::quotient_images(r.scene).size();
+          r.renderer = std::make_unique<sol::vk::MarchRenderer>(context);
+          sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});  // warm-up
+          runs_of.push_back(std::move(r));
+        }
+      }
+      for (int k = 0; k < repeats; ++k) {
+        for (Run& r : runs_of) {
+          r.result = sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});
+          r.best = std::min(r.best, r.result.device_ms);
+        }
+      }
+      std::string csv = "lattice,view,device,width,height,images,ms,mrays_per_s,mean_steps,time_vs_golden\n";
+      for (std::size_t i = 0; i < runs_of.size(); ++i) {
+        const Run& r = runs_of[i];
+        const Run& golden = runs_of[i % 2];  // the golden lattice's run of the same view
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%zu,%.2f,%.3f,%.2f,%.3f\n", r.label.c_str(), quoted_device.c_str(), size,
+                      size, r.images, r.best, static_cast<double>(size) * size / r.best * 1e-3, mean(r.result.steps),
+                      r.best / golden.best);
+        csv += line;
+        std::fprintf(stderr, "%s", line);
+      }
+      files.emplace_back("render_lattices.csv", csv);
     }
 
     // 2. Image error against run time.

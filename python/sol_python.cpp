@@ -366,9 +366,41 @@ PYBIND11_MODULE(_sol, m) {
       "arcs per radius, each point with two minimising geodesics.");
 
   // ---- The lattice
-  py::class_<sol::Lattice>(m, "Lattice", "The lattice Γ of the compact quotient Γ\\Sol")
-      .def_static("golden", &sol::Lattice::golden, "The golden lattice (the renderer's quotient).")
-      .def_property_readonly("height", &sol::Lattice::height, "The height of the fundamental domain D.")
+  py::class_<sol::Lattice>(m, "Lattice",
+                           "A lattice Γ of Sol, whose compact quotient Γ\\Sol is the torus bundle of a hyperbolic "
+                           "monodromy A (docs/mathematics.md, 'Every lattice').")
+      .def(py::init([](const std::array<std::array<long long, 2>, 2>& a, std::optional<double> fibre_area) {
+             return sol::Lattice::from_monodromy({a[0][0], a[0][1], a[1][0], a[1][1]}, fibre_area);
+           }),
+           py::arg("monodromy"), py::arg("fibre_area") = py::none(),
+           "The lattice of the monodromy [[a, b], [c, d]] (in SL(2, Z), trace > 2), its fibre torus of area "
+           "`fibre_area` (None: the normalisation u+.e2 = 1, u-.e1 = -1, which for [[2, 1], [1, 1]] is the golden "
+           "lattice).")
+      .def_static("golden", &sol::Lattice::golden, "The golden lattice, of [[2, 1], [1, 1]].")
+      .def_property_readonly(
+          "monodromy",
+          [](const sol::Lattice& l) {
+            const sol::Monodromy& a = l.monodromy();
+            return py::make_tuple(py::make_tuple(a.a, a.b), py::make_tuple(a.c, a.d));
+          },
+          "The monodromy A: conjugation by γ3 acts on the words γ1^a γ2^b as A.")
+      .def_property_readonly(
+          "generators",
+          [](const sol::Lattice& l) {
+            const auto& g = l.generators();
+            return py::make_tuple(array(g[0]), array(g[1]), array(g[2]));
+          },
+          "γ1, γ2, γ3 as points of Sol.")
+      .def_property_readonly("fibre_area", &sol::Lattice::fibre_area, "The area |det(γ1, γ2)| of the fibre torus.")
+      .def_property_readonly("height", &sol::Lattice::height, "The height of the fundamental domain D: ln λ.")
+      .def(
+          "multiply",
+          [](const sol::Lattice& l, const std::array<long long, 3>& u, const std::array<long long, 3>& v) {
+            const sol::LatticeWord w = l.multiply({u[0], u[1], u[2]}, {v[0], v[1], v[2]});
+            return py::make_tuple(w.a, w.b, w.c);
+          },
+          py::arg("u"), py::arg("v"), "The product of the words u = (a, b, c) and v (γ1^a γ2^b γ3^c) in normal form.")
+      .def("__repr__", [](const sol::Lattice& l) { return "sol.Lattice(" + l.monodromy().str() + ")"; })
       .def(
           "element", [](const sol::Lattice& l, long long a, long long b, long long c) { return array(l.element(a, b, c)); },
           py::arg("a"), py::arg("b"), py::arg("c"), "The group element γ1^a γ2^b γ3^c as a point.")

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
@@ -858,9 +860,9 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
 
 TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::Lattice lattice = sol::Lattice::golden();
-  for (const char* name : {"lattice-balls", "lattice-pillars"}) {
+  for (const char* name : {"lattice-balls", "lattice-pillars", "trace4-balls"}) {
     sol::Scene scene = sol::preset_scene(name);
+    const sol::Lattice lattice = *scene.lattice();
     scene.max_distance = 6.0;
     const sol::RenderResult here = sol::test::render(renderer, scene, 24, 18);
     for (const dvec3& g : {lattice.element(0, 0, 1), lattice.element(3, -2, -2), lattice.element(400000, -300000, 0)}) {
@@ -872,20 +874,27 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
     }
   }
   // Thin planes 1e-4 inside the faces z = 0 and z = h: as the CPU reference
-  // (which render_test.cpp holds to the cover with all the plane's images).
-  for (const double c : {1e-4, lattice.height() - 1e-4}) {
-    sol::Scene thin;
-    thin.quotient = sol::Quotient::Golden;
-    thin.camera = {{0.7, 0.4, 0.5 * lattice.height()}, {0.3, 0.5, -0.2}, {0, 0, 1}, 100.0};
-    thin.max_distance = 8.0;
-    thin.max_steps = 400;
-    thin.objects = {{sol::PlaneZ{c}}};
-    sol::RenderOptions settings;
-    settings.width = 24;
-    settings.height = 18;
-    const Comparison d = compare(sol::test::render(renderer, thin, 24, 18), sol::render_cpu(thin, settings));
-    EXPECT_LE(d.mask_differs, d.pixels / 100) << c;
-    EXPECT_LT(d.distance, 1e-3) << c;  // float over several teleports
+  // (which render_test.cpp holds to the cover with all the plane's images),
+  // in the golden lattice and in that of [[9, 4], [2, 1]] (trace 10, its
+  // fibre's area 7).
+  for (const auto& [monodromy, area] : {std::pair{sol::Monodromy{2, 1, 1, 1}, std::optional<double>()},
+                                        std::pair{sol::Monodromy{9, 4, 2, 1}, std::optional<double>(7.0)}}) {
+    const sol::Lattice lattice = sol::Lattice::from_monodromy(monodromy, area);
+    const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+    for (const double c : {1e-4, lattice.height() - 1e-4}) {
+      sol::Scene thin;
+      sol::set_quotient(thin, sol::Quotient::Monodromy, monodromy, area);
+      thin.camera = {0.43 * g1 + 0.21 * g2 + dvec3(0.0, 0.0, 0.5 * lattice.height()), {0.3, 0.5, -0.2}, {0, 0, 1}, 100.0};
+      thin.max_distance = 8.0;
+      thin.max_steps = 400;
+      thin.objects = {{sol::PlaneZ{c}}};
+      sol::RenderOptions settings;
+      settings.width = 24;
+      settings.height = 18;
+      const Comparison d = compare(sol::test::render(renderer, thin, 24, 18), sol::render_cpu(thin, settings));
+      EXPECT_LE(d.mask_differs, d.pixels / 100) << monodromy.str() << " " << c;
+      EXPECT_LT(d.distance, 1e-3) << monodromy.str() << " " << c;  // float over several teleports
+    }
   }
   expect_no_validation_errors();
 }

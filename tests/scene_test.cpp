@@ -69,8 +69,9 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"objects": [{"type": "ball", "center": [0, 0, 0]}]})", "needs a 'radius'");
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
-  expect_rejected(R"({"quotient": "torus", )" + objects + "}", "'quotient' must be none or golden, got \"torus\"");
-  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none or golden, got 7");
+  expect_rejected(R"({"quotient": "torus", )" + objects + "}",
+                  "'quotient' must be none, golden or {\"monodromy\": [[a, b], [c, d]]}, got \"torus\"");
+  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none, golden or {\"monodromy\"");
   expect_rejected(R"({"camera": {"projection": ["fisheye"]}, )" + objects + "}",
                   "'camera.projection' must be perspective, equirectangular or fisheye, got [\"fisheye\"]");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})",
@@ -208,12 +209,103 @@ TEST(Scene, TubeAxesAsDirections) {
                   "objects[0].axis must be a unit vertical or horizontal direction");
   const std::string golden = R"({"quotient": "golden", "objects": [)";
   expect_rejected(golden + R"({"type": "tube", "axis": [1, 1, 0], "through": [0, 0, 0], "radius": 0.1}]})",
-                  "objects[0].axis: a horizontal tube closes up in the quotient only along gamma1 or gamma2");
+                  "objects[0].axis: a horizontal tube closes up in the quotient only along its lattice's gamma1 or gamma2");
   // γ1 = (φ, -1, 0) given backwards is still the closed curve of γ1.
   const sol::Scene along = sol::parse_scene(
       golden + R"({"type": "tube", "axis": [-1.618033988749895, 1, 0], "through": [0, 0, 0], "radius": 0.1}]})");
   const glm::dvec3 d = std::get<sol::Tube>(along.objects[0].shape).direction;
   EXPECT_NEAR(glm::length(glm::cross(d, sol::tube_axis_direction(sol::TubeAxis::Gamma1))), 0.0, 1e-15);
+}
+
+// "quotient": {"monodromy": A, "fibre_area": S}: the torus bundle of A. Its
+// axes gamma1 and gamma2 are its own lattice's: for A = [[3, 1], [2, 1]]
+// (λ = 2 + √3) the rows u with u A = λ u and u A = u / λ are (1 + √3, 1) and
+// (-1, (1 + √3)/2) up to scale, so γ1 ∝ (1 + √3, -1) and γ2 ∝ (1, (1 + √3)/2).
+TEST(Scene, QuotientOfAMonodromy) {
+  const std::string text = R"({"quotient": {"monodromy": [[3, 1], [2, 1]]}, "objects": [
+    {"type": "tube", "axis": "gamma1", "through": [0, 0, 0], "radius": 0.1},
+    {"type": "tube", "axis": "gamma2", "through": [0, 0, 0.3], "radius": 0.1},
+    {"type": "ball", "center": [0.2, 0.1, 0.4], "radius": 0.3}]})";
+  const sol::Scene s = sol::parse_scene(text);
+  EXPECT_EQ(s.quotient, sol::Quotient::Monodromy);
+  EXPECT_EQ(s.monodromy, (sol::Monodromy{3, 1, 2, 1}));
+  EXPECT_FALSE(s.fibre_area.has_value());
+  const double r3 = std::sqrt(3.0);
+  const glm::dvec3 g1 = std::get<sol::Tube>(s.objects[0].shape).direction;
+  const glm::dvec3 g2 = std::get<sol::Tube>(s.objects[1].shape).direction;
+  EXPECT_NEAR(glm::length(glm::cross(g1, glm::normalize(glm::dvec3(1.0 + r3, -1.0, 0.0)))), 0.0, 1e-14);
+  EXPECT_NEAR(glm::length(glm::cross(g2, glm::normalize(glm::dvec3(1.0, 0.5 * (1.0 + r3), 0.0)))), 0.0, 1e-14);
+  EXPECT_NEAR(s.lattice()->height(), std::log(2.0 + r3), 1e-15);
+  // Written back with the names and the matrix, and read back the same.
+  const std::string json = sol::to_json(s);
+  EXPECT_NE(json.find("\"gamma1\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"monodromy\""), std::string::npos) << json;
+  const sol::Scene back = sol::parse_scene(json);
+  EXPECT_EQ(back.quotient, s.quotient);
+  EXPECT_EQ(back.monodromy, s.monodromy);
+  for (std::size_t k = 0; k < s.objects.size(); ++k) EXPECT_EQ(back.objects[k].shape, s.objects[k].shape);
+  // A fibre area scales the fibre (and round-trips).
+  const sol::Scene big = sol::parse_scene(R"({"quotient": {"monodromy": [[3, 1], [2, 1]], "fibre_area": 10},
+    "objects": [{"type": "plane_z", "c": 0.2}]})");
+  ASSERT_TRUE(big.fibre_area.has_value());
+  EXPECT_NEAR(big.lattice()->fibre_area(), 10.0, 1e-12);
+  EXPECT_EQ(sol::parse_scene(sol::to_json(big)).fibre_area, big.fibre_area);
+  // [[2, 1], [1, 1]] without an area is the golden lattice itself.
+  const sol::Scene golden = sol::parse_scene(R"({"quotient": {"monodromy": [[2, 1], [1, 1]]}, "objects": [
+    {"type": "tube", "axis": "gamma1", "through": [0, 0, 0], "radius": 0.1}]})");
+  EXPECT_EQ(golden.lattice()->generators(), sol::Lattice::golden().generators());
+  EXPECT_EQ(std::get<sol::Tube>(golden.objects[0].shape).direction, sol::tube_axis_direction(sol::TubeAxis::Gamma1));
+
+  // Refusals name the field and the reason.
+  const std::string objects = R"("objects": [{"type": "plane_z"}])";
+  auto with = [&](const std::string& quotient) { return R"({"quotient": )" + quotient + ", " + objects + "}"; };
+  expect_rejected(with(R"({"monodromy": [[2, 1], [1, 2]]})"), "quotient.monodromy: ");
+  expect_rejected(with(R"({"monodromy": [[2, 1], [1, 2]]})"), "is not in SL(2, Z): its determinant is 3");
+  expect_rejected(with(R"({"monodromy": [[1, 1], [0, 1]]})"), "is not hyperbolic: its trace is 2");
+  expect_rejected(with(R"({"monodromy": [[0, -1], [1, 0]]})"), "is not hyperbolic: its trace is 0");
+  expect_rejected(with(R"({"monodromy": [[-2, -1], [-1, -1]]})"), "half-turn");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": -1})"), "quotient.fibre_area: ");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": 0})"), "fibre area must be finite and > 0");
+  expect_rejected(with(R"({"monodromy": [3, 1, 2, 1]})"), "'quotient.monodromy' must be a 2 x 2 integer matrix");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2]]})"), "'quotient.monodromy' must be a 2 x 2 integer matrix");
+  expect_rejected(with(R"({"monodromy": [[3, 1.5], [2, 1]]})"), "'quotient.monodromy[0][1]' must be an integer");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1e12]]})"), "'quotient.monodromy[1][1]' must be an integer within");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, "1"]]})"), "quotient.monodromy[1][1]");
+  expect_rejected(with(R"({"matrix": [[3, 1], [2, 1]]})"), "unknown key 'matrix'");
+  expect_rejected(with(R"({"fibre_area": 2})"), "needs a 'monodromy'");
+  // The golden lattice's γ1 is no closed curve of another lattice.
+  expect_rejected(R"({"quotient": {"monodromy": [[3, 1], [2, 1]]}, "objects": [
+    {"type": "tube", "axis": [1.618033988749895, -1, 0], "through": [0, 0, 0], "radius": 0.1}]})",
+                  "only along its lattice's gamma1 or gamma2");
+  // validate() names the field too.
+  sol::World world = s;
+  world.monodromy = {4, 1, 1, 1};
+  try {
+    sol::validate(world);
+    ADD_FAILURE() << "accepted a matrix of determinant 3";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("quotient.monodromy: "), std::string::npos) << e.what();
+  }
+}
+
+// set_quotient moves a world to another space: tubes along the lattice's γ1
+// and γ2 follow the lattice, and back; a bad monodromy leaves it as it was.
+TEST(Scene, SetQuotientCarriesTheClosedCurves) {
+  const sol::Scene pillars = sol::preset_scene("lattice-pillars");
+  sol::World world = pillars;
+  sol::set_quotient(world, sol::Quotient::Monodromy, {5, 2, 2, 1}, 6.0);
+  const sol::Lattice lattice = *world.lattice();
+  EXPECT_NEAR(lattice.fibre_area(), 6.0, 1e-12);
+  EXPECT_EQ(std::get<sol::Tube>(world.objects[0].shape).direction, glm::normalize(lattice.generators()[0]));
+  EXPECT_EQ(std::get<sol::Tube>(world.objects[1].shape).direction, glm::normalize(lattice.generators()[1]));
+  EXPECT_EQ(std::get<sol::Tube>(world.objects[2].shape).direction, glm::dvec3(0, 0, 1));
+  EXPECT_NO_THROW(sol::validate(world));
+  const sol::World before = world;
+  EXPECT_THROW(sol::set_quotient(world, sol::Quotient::Monodromy, {1, 1, 0, 1}), sol::InvalidArgument);
+  EXPECT_EQ(to_json(sol::Scene{world}), to_json(sol::Scene{before}));
+  sol::set_quotient(world, sol::Quotient::Golden);
+  EXPECT_FALSE(world.fibre_area.has_value());
+  for (std::size_t k = 0; k < world.objects.size(); ++k) EXPECT_EQ(world.objects[k].shape, pillars.objects[k].shape);
 }
 
 // validate() of a world, a camera and a scene name the field and say which check spoke.

@@ -78,6 +78,18 @@ std::string format_vec(const char* name, const glm::dvec3& v) {
 
 }  // namespace
 
+namespace {
+
+// The panel's four integers as a monodromy, and back.
+Monodromy to_monodromy(const std::array<int, 4>& a) { return {a[0], a[1], a[2], a[3]}; }
+
+std::array<int, 4> from_monodromy(const Monodromy& a) {
+  auto small = [](long long v) { return static_cast<int>(std::clamp(v, -1000000LL, 1000000LL)); };
+  return {small(a.a), small(a.b), small(a.c), small(a.d)};
+}
+
+}  // namespace
+
 std::string quotient_refusal(const World& world) {
   World q = world;
   q.quotient = Quotient::Golden;
@@ -194,11 +206,44 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::SameLine();
     if (ImGui::Button("load file") && text.file[0] != '\0') out.load = std::string(text.file.data());
 
-    int quotient = m.scene.quotient == Quotient::Golden ? 1 : 0;
-    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)"};
-    if (ImGui::Combo("quotient", &quotient, quotients, 2)) {
-      m.scene.quotient = quotient == 1 ? Quotient::Golden : Quotient::None;
-      out.world_changed = true;
+    // The space: Sol, the golden quotient or the torus bundle of a monodromy
+    // typed in (applied on Enter); tubes along γ1, γ2 follow the lattice.
+    int quotient = static_cast<int>(m.scene.quotient);
+    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A"};
+    if (ImGui::Combo("quotient", &quotient, quotients, 3)) {
+      try {
+        set_quotient(m.scene, static_cast<Quotient>(quotient), to_monodromy(text.monodromy), m.scene.fibre_area);
+        out.world_changed = true;
+      } catch (const std::exception& e) {
+        text.refusal = e.what();
+      }
+    }
+    if (m.scene.quotient == Quotient::Monodromy) {
+      bool apply = ImGui::InputInt4("A = [[a, b], [c, d]]", text.monodromy.data(), ImGuiInputTextFlags_EnterReturnsTrue);
+      bool custom_area = m.scene.fibre_area.has_value();
+      double area = m.scene.fibre_area.value_or(m.scene.lattice() ? m.scene.lattice()->fibre_area() : 1.0);
+      if (ImGui::Checkbox("fibre area", &custom_area)) apply = true;
+      if (custom_area) {
+        ImGui::SameLine();
+        apply |= drag_double("##area", area, 0.01, 0.5, 100.0, "%.3f");
+      }
+      if (apply) {
+        try {
+          set_quotient(m.scene, Quotient::Monodromy, to_monodromy(text.monodromy),
+                       custom_area ? std::optional<double>(area) : std::nullopt);
+          text.refusal.clear();
+          out.world_changed = true;
+        } catch (const std::exception& e) {
+          text.refusal = e.what();
+        }
+      }
+      const Monodromy& a = m.scene.monodromy;
+      std::snprintf(line, sizeof line, "shown: [[%lld, %lld], [%lld, %lld]], trace %lld, h = ln lambda = %.4f", a.a, a.b, a.c,
+                    a.d, a.trace(), m.scene.lattice() ? m.scene.lattice()->height() : 0.0);
+      ImGui::TextUnformatted(line);
+      if (!text.refusal.empty()) ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
+    } else {
+      text.monodromy = from_monodromy(m.scene.monodromy);
     }
     if (m.scene.quotient == Quotient::None) {
       const std::string why = quotient_refusal(m.scene);

@@ -57,6 +57,8 @@ struct PanelText {
   std::array<char, 1024> file{};
   std::array<char, 1024> save{};
   std::array<float, 4> rect{};  ///< where the panel was last drawn: x, y, width, height in window pixels
+  std::array<int, 4> monodromy{2, 1, 1, 1};  ///< the monodromy being typed, a, b, c, d (applied on Enter)
+  std::string refusal;                       ///< why the last monodromy typed was not applied (empty: it was)
 };
 
 /// Builds the panel in the current ImGui frame.

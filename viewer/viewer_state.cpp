@@ -94,7 +94,7 @@ void ViewerState::poll_reload() {
     if (const std::string why = m_supported(fresh); !why.empty()) throw std::runtime_error(why);
     const bool camera_moved = fresh.camera.position != scene.camera.position ||
                               fresh.camera.forward != scene.camera.forward || fresh.camera.up != scene.camera.up;
-    const bool quotient_changed = fresh.quotient != scene.quotient;
+    const bool quotient_changed = !same_space(fresh, scene);
     scene = fresh;
     good_world = scene;
     world_changed = true;
@@ -121,8 +121,13 @@ void ViewerState::world_edited() {
     message = e.what();
     std::fprintf(stderr, "solview: %s\n", e.what());
   }
-  // The observer follows a change of quotient (bound to the lattice or not).
-  if (observer.lattice().has_value() != scene.lattice().has_value()) observer.bind(scene.lattice());
+  // The observer follows a change of quotient (bound to the new lattice or to none).
+  const std::optional<Lattice> lattice = scene.lattice();
+  const std::optional<Lattice>& bound = observer.lattice();
+  if (bound.has_value() != lattice.has_value() ||
+      (lattice && (bound->generators() != lattice->generators() || bound->monodromy() != lattice->monodromy()))) {
+    observer.bind(lattice);
+  }
 }
 
 void ViewerState::act(const PanelActions& a, int render_width, int render_height) {

@@ -96,9 +96,13 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
   // C: the largest over a 7³ grid of D of the least distance to the nearby
   // images (an upper bound of the least distance to all of them), plus the
   // longest path from a point of D to its nearest grid node: offsets up to
-  // 1/12 of γ1 + γ2 (|Δx|, |Δy| <= (φ + 1)/12) at a height in [0, h]
-  // (e^{-z}|Δx| + e^{z}|Δy| <= 0.218 (1 + φ²)) and h/12 vertically: 0.87.
+  // 1/12 of |γ1| + |γ2| along x and y at a height z in [0, h] (a path
+  // e^{-z}|Δx| + e^{z}|Δy|, convex in z: largest at 0 or h) and h/12
+  // vertically (for the golden lattice 0.74, taken as 0.87).
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  const double h = lattice.height();
+  const double dx = (std::abs(g1.x) + std::abs(g2.x)) / 12.0, dy = (std::abs(g1.y) + std::abs(g2.y)) / 12.0;
+  const double slack = std::max(0.87, std::max(dx + dy, std::exp(-h) * dx + std::exp(h) * dy) + h / 12.0);
   std::vector<glm::dvec3> nearby;
   for (int a = -2; a <= 2; ++a) {
     for (int b = -2; b <= 2; ++b) {
@@ -124,14 +128,14 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
       }
     }
   }
-  const double radius = cover + 0.87 + light.reach;
+  const double radius = cover + slack + light.reach;
   std::vector<glm::dvec3> images;
   const int layers = static_cast<int>(std::ceil(radius / lattice.height())) + 1;
-  // The words enumerated, as the objects' images (sol::quotient_images):
-  // an image on the edge of that square within R means others beyond it
-  // are too, and the list would be silently short. The nearest edge image
-  // bounds the reach that keeps it whole.
-  const int range = Ball{}.lattice_range();
+  // The words γ1^a γ2^b γ3^c enumerated, |a|, |b| <= range: an image on the
+  // edge of that square within R means others beyond it may be too, and
+  // the list would be silently short. The nearest edge image bounds the
+  // reach that keeps it whole.
+  constexpr int range = 22;
   double nearest_edge = std::numeric_limits<double>::infinity();
   for (int c = -layers; c <= layers; ++c) {
     for (int a = -range; a <= range; ++a) {
@@ -150,7 +154,7 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
                   "(%zu images lie within %.2f of the domain, some on its edge, and each point of a surface would "
                   "look for connections to many of them); this light allows a reach of at most %.2f",
                   light.reach, 2 * range + 1, 2 * range + 1, images.size(), radius,
-                  std::max(0.0, std::floor(100.0 * (nearest_edge - cover - 0.87)) / 100.0 - 0.01));
+                  std::max(0.0, std::floor(100.0 * (nearest_edge - cover - slack)) / 100.0 - 0.01));
     throw InvalidArgument(text);
   }
   return images;

@@ -1,6 +1,8 @@
 #include "sol/march.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -8,6 +10,7 @@
 #include <utility>
 
 #include "field_error.hpp"
+#include "sol/error.hpp"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
 #include "sol/quotient_field.hpp"
@@ -64,32 +67,137 @@ bool same_image(const MarchObject& a, const MarchObject& b) {
 
 }  // namespace
 
+namespace {
+
+// The primitive integer vector (k1, k2) with k1 γ1 + k2 γ2 parallel to the
+// horizontal direction `heading`: the translation of Γ under which a
+// horizontal line along it is invariant. The ratio of its lattice
+// coordinates is found by continued fractions; InvalidArgument when no
+// vector with entries below 2^20 is parallel to 1e-9.
+std::array<long long, 2> lattice_period(const Lattice& lattice, const glm::dvec2& heading) {
+  const glm::dvec2 sr = lattice.lattice_coordinates(heading.x, heading.y);
+  const bool swapped = std::abs(sr.y) > std::abs(sr.x);
+  const double big = swapped ? sr.y : sr.x, small = swapped ? sr.x : sr.y;
+  const double x = small / big;  // in [-1, 1]
+  long long p0 = 0, q0 = 1, p1 = 1, q1 = 0;
+  double f = x;
+  for (int i = 0; i < 64; ++i) {
+    const double a = std::floor(f);
+    const long long p2 = static_cast<long long>(a) * p1 + p0, q2 = static_cast<long long>(a) * q1 + q0;
+    p0 = p1;
+    q0 = q1;
+    p1 = p2;
+    q1 = q2;
+    if (q1 > (1LL << 20)) break;
+    if (std::abs(x - static_cast<double>(p1) / static_cast<double>(q1)) <= 1e-9) {
+      const long long sign = big < 0.0 ? -1 : 1;
+      return swapped ? std::array<long long, 2>{sign * p1, sign * q1} : std::array<long long, 2>{sign * q1, sign * p1};
+    }
+    const double rest = f - a;
+    if (rest <= 0.0) break;
+    f = 1.0 / rest;
+  }
+  throw InvalidArgument("sol::quotient_images: a horizontal tube is not along a vector of the lattice ⟨γ1, γ2⟩");
+}
+
+// Every lattice word g = γ1^a γ2^b γ3^c whose image g·anchor may come within
+// `reach` of D (the proof at quotient_images).
+std::vector<LatticeWord> words_near_domain(const Lattice& lattice, const ImageAnchor& anchor, double reach) {
+  const double h = lattice.height();
+  const glm::dvec2 g1(lattice.generators()[0]), g2(lattice.generators()[1]);
+  const glm::dvec2 corners[4] = {{0.0, 0.0}, g1, g2, g1 + g2};
+  double xlo = 0.0, xhi = 0.0, ylo = 0.0, yhi = 0.0;
+  for (const glm::dvec2& k : corners) {
+    xlo = std::min(xlo, k.x);
+    xhi = std::max(xhi, k.x);
+    ylo = std::min(ylo, k.y);
+    yhi = std::max(yhi, k.y);
+  }
+  // The box B of (x, y) within `reach` of D's.
+  const double wx = std::sinh(reach) * std::exp(h), wy = std::sinh(reach);
+  const glm::dvec2 box[4] = {{xlo - wx, ylo - wy}, {xhi + wx, ylo - wy}, {xlo - wx, yhi + wy}, {xhi + wx, yhi + wy}};
+  using Along = ImageAnchor::Along;
+  const glm::dvec3 p = anchor.point;
+  // Layers: the image's z is p.z + c h, within `reach` of [0, h) (a
+  // vertical line through a lattice point is mapped by γ3 onto another, so
+  // any one layer lists them all: these do). Every search also covers the
+  // window |a|, |b| <= 22, |c| <= 2 (the golden lattice's first search,
+  // which its computed ranges lie within: kept so that its images are
+  // listed in the same order, and the same representative of each line
+  // kept, as ever).
+  constexpr long long kWindow = 22, kWindowLayers = 2;
+  const long long c_lo = std::min(-kWindowLayers, static_cast<long long>(std::ceil((-reach - p.z) / h)));
+  const long long c_hi = std::max(kWindowLayers, static_cast<long long>(std::floor((h + reach - p.z) / h)));
+  std::vector<LatticeWord> words;
+  for (long long c = c_lo; c <= c_hi; ++c) {
+    if (anchor.along == Along::Height) {
+      words.push_back({0, 0, c});
+      continue;
+    }
+    // γ3^c · p = (λ^c x, λ^-c y, z + c h); γ1^a γ2^b then adds a γ1 + b γ2.
+    const double scale = std::exp(static_cast<double>(c) * h);
+    const glm::dvec2 pc(scale * p.x, p.y / scale);
+    const glm::dvec2 own = lattice.lattice_coordinates(pc.x, pc.y);
+    double slo = std::numeric_limits<double>::infinity(), shi = -slo, rlo = slo, rhi = -slo;
+    for (const glm::dvec2& k : box) {
+      const glm::dvec2 sr = lattice.lattice_coordinates(k.x, k.y) - own;
+      slo = std::min(slo, sr.x);
+      shi = std::max(shi, sr.x);
+      rlo = std::min(rlo, sr.y);
+      rhi = std::max(rhi, sr.y);
+    }
+    if (anchor.along == Along::HorizontalLine) {
+      // A line meeting B has a point there within one period of p's image.
+      const std::array<long long, 2> k =
+          lattice_period(lattice, glm::dvec2(scale * anchor.heading.x, anchor.heading.y / scale));
+      const double k1 = static_cast<double>(std::llabs(k[0])), k2 = static_cast<double>(std::llabs(k[1]));
+      slo -= k1;
+      shi += k1;
+      rlo -= k2;
+      rhi += k2;
+    }
+    const long long a_lo = std::min(-kWindow, static_cast<long long>(std::floor(slo)) - 1);
+    const long long a_hi = std::max(kWindow, static_cast<long long>(std::ceil(shi)) + 1);
+    const long long b_lo = std::min(-kWindow, static_cast<long long>(std::floor(rlo)) - 1);
+    const long long b_hi = std::max(kWindow, static_cast<long long>(std::ceil(rhi)) + 1);
+    if ((a_hi - a_lo + 1) * (b_hi - b_lo + 1) > 1000000) {
+      throw InvalidArgument("sol::quotient_images: over a million lattice words lie near the domain (a fibre area too small?)");
+    }
+    for (long long a = a_lo; a <= a_hi; ++a) {
+      for (long long b = b_lo; b <= b_hi; ++b) words.push_back({a, b, c});
+    }
+  }
+  return words;
+}
+
+}  // namespace
+
 // Why these images are all a march step can reach. A step starts at a point
-// q of D and is at most max_step <= kQuotientMaxStep (0.9) long, and
+// q of D and is at most max_step <= kQuotientMaxStep long, and
 // object_distance is a lower bound of the distance to the drawn object; so
 // an image whose bound exceeds max_step all over D is never reached, and
 // each kind's least_distance_over_domain (objects.cpp) proves that for the
-// images dropped here. The enumeration is wide enough. A reachable image has
-// its centre (or a point of its axis) within R = 0.9 + 0.45 = 1.35 of a
-// point q of D (radii are at most kMaxQuotientRadius, 0.45; validate checks
-// it). (1) Sol distance is at least the difference in z, and |c| >= 3 moves
-// an object, first moved into the cells z in [0, h), by at least 2h = 1.92
-// from D: beyond R. (2) The distance from q to a point is at least
-// asinh(|Δx| e^{-z_q}) and asinh(|Δy| e^{z_q}) (the planes x, y = const
-// through it), so a reachable centre lies within sinh(R) e^{h} = 4.71 in x
-// and sinh(R) = 1.80 in y of D's (x, y) (x in [0, φ + 1], y in [-1, φ]):
-// lattice coordinates (s, r) of size below 4.1. γ3^c with |c| <= 2 moves a
-// point of D to lattice coordinates of size at most 8 (the entries of
-// [[2,1],[1,1]]^{±2} sum to at most 8 per row), and γ1^a γ2^b adds (a, b):
-// |a|, |b| <= 13 suffice for balls and for vertical lines (which pass
-// through lattice points, validate checks it, mapped by γ3 onto each
-// other). A horizontal line along γ1 or γ2 is mapped by γ3^c onto a line
-// along a lattice vector v with coordinates of size at most 5 and 3, under
-// whose translation it is invariant; so its reachable point is within
-// (5 + 3)/2 = 4 in lattice coordinates of an image of the moved axis point,
-// which adds 4 to |a|, |b|: 17, and lattice_range is 22. The test
+// images dropped here. The search is wide enough: every point of an object
+// lies within kMaxQuotientRadius of its anchor (ImageAnchor: a centre, an
+// axis, a height; validate checks the radius), so a reachable image has a
+// point of its anchor within R = max_step + kMaxQuotientRadius of a point q
+// of D. (1) Sol distance is at least the difference in z: the anchor's
+// image at height p_z + c h (p_z in [0, h) once moved into D) lies within R
+// of [0, h), which bounds c. A vertical line passes through a lattice point
+// of ⟨γ1, γ2⟩ (validate checks it), and γ3 maps those onto each other, so
+// any one layer c lists all of its images. (2) The distance from q to a point is at
+// least asinh(|Δx| e^{-z_q}) and asinh(|Δy| e^{z_q}) (the planes x, y =
+// const through it), so the anchor's reachable point lies within sinh(R)
+// e^{h} in x and sinh(R) in y of D's (x, y) (the parallelogram P of γ1,
+// γ2): in the box B. γ3^c moves p to p_c = (λ^c p_x, λ^-c p_y), and γ1^a
+// γ2^b adds a γ1 + b γ2, so (a, b) lies in the lattice coordinates of B
+// less p_c's, whose bounds the corners of B give. (3) A horizontal line
+// along a lattice vector k (in lattice coordinates; γ3^c turns it into
+// A^c k) is invariant under that translation, so its point in B is within
+// one period of p_c's image under some word: the range widens by |k|.
+// The ranges of a and b are widened by one more for rounding. The test
 // Quotient.ImagesAreCompleteAndReachable checks that a wider enumeration
-// finds nothing more, at both longest steps.
+// finds nothing more, at both longest steps, for several lattices.
 std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::quotient_images: max_step must be in (0, kQuotientMaxStep]");
@@ -97,23 +205,20 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   const std::optional<Lattice> world_lattice = world.lattice();
   if (!world_lattice) throw std::invalid_argument("sol::quotient_images: the world is Sol itself, not a quotient");
   const Lattice& lattice = *world_lattice;
+  const double reach = max_step + kMaxQuotientRadius;
   std::vector<MarchObject> images;
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     std::visit(
         [&](const auto& kind) {
           using Kind = std::decay_t<decltype(kind)>;
           if constexpr (ClosesInQuotient<Kind>) {
-            const MarchObject base{kind.into_domain(lattice), i};
-            const int range = kind.lattice_range();
-            for (int c = -2; c <= 2; ++c) {
-              for (int a = -range; a <= range; ++a) {
-                for (int b = -range; b <= range; ++b) {
-                  const MarchObject image = relative_to(base, inverse(lattice.element(a, b, c)));
-                  if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > max_step) continue;
-                  if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
-                    images.push_back(image);
-                  }
-                }
+            const Kind moved = kind.into_domain(lattice);
+            const MarchObject base{moved, i};
+            for (const LatticeWord& w : words_near_domain(lattice, moved.image_anchor(), reach)) {
+              const MarchObject image = relative_to(base, inverse(lattice.element(w)));
+              if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > max_step) continue;
+              if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
+                images.push_back(image);
               }
             }
           }

@@ -180,7 +180,7 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
   if (!unit_interval3(o.color)) field_error(at + ".color", at + ".color components must be in [0, 1]");
 }
 
-SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at) {
+SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
   if (!o.is_object()) r.fail(at, at + " must be an object");
   if (!o.contains("type")) r.fail(at, at + " needs a 'type'");
   const std::string type = SceneFileReader::text(o["type"]);
@@ -192,14 +192,14 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   }
   SceneObject obj;
   obj.shape = *shape;
-  std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at); }, obj.shape);
+  std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at, quotient); }, obj.shape);
   if (o.contains("color")) obj.color = r.vec3(o["color"], at + ".color");
   if (o.contains("pattern")) obj.pattern = read_pattern(o["pattern"], r, at + ".pattern");
   return obj;
 }
 
-json write_object(const SceneObject& o) {
-  json j = std::visit([&](const auto& kind) { return write_kind(kind, o); }, o.shape);
+json write_object(const SceneObject& o, const Lattice* quotient) {
+  json j = std::visit([&](const auto& kind) { return write_kind(kind, o, quotient); }, o.shape);
   j["type"] = std::string(kind_name(o.shape));
   j["color"] = to_json(o.color);
   j["pattern"] = std::string(to_string(o.pattern));

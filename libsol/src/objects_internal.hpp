@@ -17,11 +17,6 @@ namespace sol::detail {
 
 // ---- Helpers of the kinds' geometry (objects.cpp)
 
-// Lattice words γ1^a γ2^b γ3^c with |a|, |b| up to this are searched for the
-// images of balls and tubes in the quotient: see the proof at
-// sol::quotient_images (march.cpp).
-inline constexpr int kQuotientLatticeRange = 22;
-
 // Two images are the same set when they agree to this.
 inline constexpr double kSameSetTolerance = 1e-9;
 
@@ -70,11 +65,13 @@ json to_json(const glm::dvec3& v);
 
 // Each kind's checks of scene object `at` ("objects[2]"; with `quotient`,
 // the world's lattice, those of its compact quotient; throws FieldError), its own keys read from
-// the object's JSON `o` into `kind` (and the object), and written back.
+// the object's JSON `o` into `kind` (and the object), and written back (names
+// of lattice directions are `quotient`'s, the golden lattice's without one).
 #define SOL_KIND_FILE_FUNCTIONS(Type, code_name, code, prefix, feature, solid)                                 \
   void check_kind(const Type& kind, const std::string& at, const Lattice* quotient);                                   \
-  void read_kind(Type& kind, SceneObject& object, const json& o, const SceneFileReader& reader, const std::string& at); \
-  json write_kind(const Type& kind, const SceneObject& object);
+  void read_kind(Type& kind, SceneObject& object, const json& o, const SceneFileReader& reader, const std::string& at, \
+                 const Lattice* quotient);                                                                             \
+  json write_kind(const Type& kind, const SceneObject& object, const Lattice* quotient);
 SOL_OBJECT_KINDS(SOL_KIND_FILE_FUNCTIONS)
 #undef SOL_KIND_FILE_FUNCTIONS
 
@@ -82,9 +79,11 @@ SOL_OBJECT_KINDS(SOL_KIND_FILE_FUNCTIONS)
 /// world's lattice) those of its compact quotient; throws FieldError.
 void check_object(const SceneObject& object, const std::string& at, const Lattice* quotient);
 
-/// A scene object from its JSON at path `at`.
-SceneObject read_object(const json& value, const SceneFileReader& reader, const std::string& at);
-/// The JSON of a scene object (read_object reads it back).
-json write_object(const SceneObject& object);
+/// A scene object from its JSON at path `at`, in a world whose quotient's
+/// lattice is `quotient` (null in Sol: names of axes such as gamma1 are the
+/// lattice's).
+SceneObject read_object(const json& value, const SceneFileReader& reader, const std::string& at, const Lattice* quotient);
+/// The JSON of a scene object (read_object reads it back with the same lattice).
+json write_object(const SceneObject& object, const Lattice* quotient);
 
 }  // namespace sol::detail

@@ -42,7 +42,7 @@ void Observer::keep_in_domain() {
   const Teleport t = m_lattice->teleport(m_position);
   m_position = t.point;
   const LatticeWord e = m_lattice->word_of(t.element);
-  if (e != LatticeWord{}) m_copy = m_copy * e.inverse();
+  if (e != LatticeWord{}) m_copy = m_lattice->multiply(m_copy, m_lattice->inverse(e));
 }
 
 void Observer::move(const glm::dvec3& local_direction, double distance) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -20,7 +21,16 @@ void check_light(const Light& light, const std::string& at);  // light.cpp
 void check_world(const World& s) {
   if (s.objects.empty()) field_error("objects", "the scene has no objects");
   if (s.objects.size() > 64) field_error("objects", "at most 64 objects, got " + std::to_string(s.objects.size()));
-  const std::optional<Lattice> lattice = s.lattice();
+  std::optional<Lattice> lattice;
+  try {
+    lattice = s.lattice();
+  } catch (const InvalidArgument& e) {
+    const bool area = s.fibre_area && !(std::isfinite(*s.fibre_area) && *s.fibre_area > 0.0);
+    const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
+    field_error(at, at + ": " + e.what());
+  } catch (const NotImplemented& e) {
+    field_error("quotient.monodromy", std::string("quotient.monodromy: ") + e.what());
+  }
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);
   }
@@ -68,12 +78,36 @@ bool uses_exact(const World& world) {
 }
 
 std::optional<Lattice> World::lattice() const {
-  if (quotient == Quotient::Golden) return Lattice::golden();
+  switch (quotient) {
+    case Quotient::None:
+      return std::nullopt;
+    case Quotient::Golden:
+      return Lattice::golden();
+    case Quotient::Monodromy:
+      return Lattice::from_monodromy(monodromy, fibre_area);
+  }
   return std::nullopt;
 }
 
+void set_quotient(World& world, Quotient quotient, const Monodromy& monodromy, std::optional<double> fibre_area) {
+  World next = world;
+  next.quotient = quotient;
+  next.monodromy = quotient == Quotient::Monodromy ? monodromy : Monodromy{};
+  next.fibre_area = quotient == Quotient::Monodromy ? fibre_area : std::nullopt;
+  const Lattice before = world.lattice().value_or(Lattice::golden());
+  const Lattice after = next.lattice().value_or(Lattice::golden());  // throws for a bad monodromy
+  for (SceneObject& o : next.objects) {
+    if (Tube* t = std::get_if<Tube>(&o.shape)) {
+      const std::optional<TubeAxis> axis = tube_axis_of(t->direction, before);
+      if (axis == TubeAxis::Gamma1 || axis == TubeAxis::Gamma2) t->direction = tube_axis_direction(*axis, after);
+    }
+  }
+  world = std::move(next);
+}
+
 std::vector<std::string> preset_names() {
-  return {"plane", "sandwich", "sheets", "lattice-balls", "lattice-pillars", "lattice-boxes", "spheres"};
+  return {"plane",         "sandwich",     "sheets",         "lattice-balls", "lattice-pillars",
+          "lattice-boxes", "trace4-balls", "trace4-pillars", "spheres"};
 }
 
 Scene preset_scene(std::string_view name) {
@@ -124,6 +158,32 @@ Scene preset_scene(std::string_view name) {
     s.objects = {{Box{{0.0, 0.0, 0.0}, {0.15, 0.15, 0.15}}, {0.35, 0.65, 0.9}, Pattern::Checker}};
     s.fog_density = 1.0 / 10.0;
     s.max_distance = 12.0;
+    s.max_steps = 400;
+  } else if (name == "trace4-balls" || name == "trace4-pillars") {
+    // Another manifold: the torus bundle of A = [[3, 1], [2, 1]] (trace 4,
+    // λ = 2 + √3: γ3 stretches x by 3.73, where the golden lattice's
+    // stretches by 2.62). Its balls at Γ·o, or its tubes along γ1, γ2, γ3,
+    // seen from the middle of its fundamental domain as the golden presets.
+    s.quotient = Quotient::Monodromy;
+    s.monodromy = {3, 1, 2, 1};
+    const Lattice lattice = Lattice::from_monodromy(s.monodromy);
+    const glm::dvec3 middle =
+        0.5 * (lattice.generators()[0] + lattice.generators()[1]) + glm::dvec3(0.0, 0.0, 0.5 * lattice.height());
+    if (name == "trace4-balls") {
+      s.camera = {middle, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 90.0};
+      s.objects = {{Ball{{0.0, 0.0, 0.0}, 0.3}, {0.9, 0.55, 0.3}}};
+      s.fog_density = 1.0 / 12.0;
+      s.max_distance = 12.0;
+    } else {
+      s.camera = {middle, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 90.0};
+      for (const auto& [axis, color] : {std::pair{TubeAxis::Gamma1, glm::dvec3(0.9, 0.35, 0.3)},
+                                        std::pair{TubeAxis::Gamma2, glm::dvec3(0.35, 0.8, 0.4)},
+                                        std::pair{TubeAxis::Z, glm::dvec3(0.35, 0.5, 0.95)}}) {
+        s.objects.push_back({make_tube(axis, {0.0, 0.0, 0.0}, 0.06, lattice), color});
+      }
+      s.fog_density = 1.0 / 5.0;
+      s.max_distance = 10.0;
+    }
     s.max_steps = 400;
   } else if (name == "spheres") {
     // True geodesic spheres (exact balls) of radii 0.3 to 0.6 on, above and

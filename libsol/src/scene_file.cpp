@@ -1,6 +1,8 @@
 #include "sol/scene_file.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <optional>
 #include <numbers>
 #include <sstream>
 
@@ -83,6 +85,41 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   return light;
 }
 
+// "quotient": "none", "golden" or {"monodromy": [[a, b], [c, d]],
+// "fibre_area": A} (the area optional).
+void read_quotient(const json& q, const SceneFileReader& r, Scene& s) {
+  if (!q.is_object()) {
+    if (q.is_string() && q.get_ref<const std::string&>() == "none") return;
+    if (q.is_string() && q.get_ref<const std::string&>() == "golden") {
+      s.quotient = Quotient::Golden;
+      return;
+    }
+    r.fail("quotient", "'quotient' must be none, golden or {\"monodromy\": [[a, b], [c, d]]}, got " +
+                           SceneFileReader::json_text(q));
+  }
+  r.require_known_keys(q, {"monodromy", "fibre_area"}, "quotient", "quotient");
+  r.require_key(q, "monodromy", "quotient", "a 'monodromy' [[a, b], [c, d]]", "quotient");
+  const json& m = q["monodromy"];
+  const std::string shape = "'quotient.monodromy' must be a 2 x 2 integer matrix [[a, b], [c, d]], got ";
+  if (!m.is_array() || m.size() != 2 || !m[0].is_array() || m[0].size() != 2 || !m[1].is_array() || m[1].size() != 2) {
+    r.fail("quotient.monodromy", shape + SceneFileReader::json_text(m));
+  }
+  long long entries[2][2] = {};
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      const std::string at = "quotient.monodromy[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+      const double v = r.number(m[i][j], at);
+      if (!(std::abs(v) <= 2147483648.0) || v != std::floor(v)) {
+        r.fail(at, "'" + at + "' must be an integer within ±2^31, got " + SceneFileReader::json_text(m[i][j]));
+      }
+      entries[i][j] = static_cast<long long>(v);
+    }
+  }
+  s.quotient = Quotient::Monodromy;
+  s.monodromy = {entries[0][0], entries[0][1], entries[1][0], entries[1][1]};
+  if (q.contains("fibre_area")) s.fibre_area = r.number(q["fibre_area"], "quotient.fibre_area");
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, std::string_view source) {
@@ -103,9 +140,19 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   Scene s;
   if (root.contains("camera")) read_camera(root["camera"], r, s.camera);
   if (!root.contains("objects") || !root["objects"].is_array()) r.fail("objects", "'objects' must be an array");
+  // The quotient first: objects name their axes by its lattice's generators.
+  if (root.contains("quotient")) read_quotient(root["quotient"], r, s);
+  std::optional<Lattice> lattice;
+  try {
+    lattice = s.lattice();
+  } catch (const std::exception& e) {
+    const bool area = s.fibre_area && !(std::isfinite(*s.fibre_area) && *s.fibre_area > 0.0);
+    const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
+    r.fail(at, at + ": " + e.what());
+  }
   const json& objects = root["objects"];
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    s.objects.push_back(detail::read_object(objects[i], r, "objects[" + std::to_string(i) + "]"));
+    s.objects.push_back(detail::read_object(objects[i], r, "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr));
   }
   // "light" and "fog_distance": the first schema's single directional light and fog.
   if (root.contains("light")) {
@@ -123,9 +170,6 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     for (std::size_t i = 0; i < list.size(); ++i) s.lights.push_back(read_light(list[i], r, "lights[" + std::to_string(i) + "]"));
   }
   if (root.contains("ambient")) s.ambient = r.number(root["ambient"], "ambient");
-  if (root.contains("quotient")) {
-    s.quotient = r.choice<Quotient>(root["quotient"], "quotient", {{"none", Quotient::None}, {"golden", Quotient::Golden}});
-  }
   if (root.contains("fog_distance")) {
     const double d = r.number(root["fog_distance"], "fog_distance");
     if (!(d == 0.0 || (d >= 1e-6))) r.fail("fog_distance", "fog_distance must be 0 (no fog) or at least 1e-6");
@@ -182,7 +226,8 @@ std::string to_json(const Scene& s) {
     root["camera"]["frustum"] = json::array({f.left, f.right, f.down, f.up});
   }
   root["objects"] = json::array();
-  for (const SceneObject& o : s.objects) root["objects"].push_back(detail::write_object(o));
+  const std::optional<Lattice> lattice = s.lattice();
+  for (const SceneObject& o : s.objects) root["objects"].push_back(detail::write_object(o, lattice ? &*lattice : nullptr));
   root["lights"] = json::array();
   for (const Light& l : s.lights) {
     json j = {{"color", arr(l.color)}, {"intensity", l.intensity}};
@@ -201,7 +246,20 @@ std::string to_json(const Scene& s) {
   }
   root["ambient"] = s.ambient;
   root["fog"] = {{"color", arr(s.fog_color)}, {"density", s.fog_density}};
-  root["quotient"] = s.quotient == Quotient::Golden ? "golden" : "none";
+  switch (s.quotient) {
+    case Quotient::None:
+      root["quotient"] = "none";
+      break;
+    case Quotient::Golden:
+      root["quotient"] = "golden";
+      break;
+    case Quotient::Monodromy: {
+      const Monodromy& m = s.monodromy;
+      root["quotient"] = {{"monodromy", json::array({json::array({m.a, m.b}), json::array({m.c, m.d})})}};
+      if (s.fibre_area) root["quotient"]["fibre_area"] = *s.fibre_area;
+      break;
+    }
+  }
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
   root["hit_epsilon"] = s.hit_epsilon;

@@ -46,7 +46,8 @@ def scene(objects, *, camera=None, lights=None, **world):
     objects: the objects (sol.ball, sol.box, sol.tube, sol.plane_x/y/z, or dicts with the file's keys).
     camera: a sol.Camera (sol.camera(...)) or a dict of the file's camera keys; the file's default camera if None.
     lights: the lights (sol.point_light, sol.directional_light, or dicts); the file's default if None.
-    world: the other top-level keys: quotient ("none" or "golden"), ambient, fog ({"color", "density"}),
+    world: the other top-level keys: quotient ("none", "golden" or {"monodromy": [[a, b], [c, d]], "fibre_area": S}:
+        the torus bundle of A, sol.Lattice(A)), ambient, fog ({"color", "density"}),
         fog_distance, max_distance, max_steps, hit_epsilon, samples, background, ...
 
     Raises sol.InvalidArgumentError naming the field for anything the scene file would refuse.

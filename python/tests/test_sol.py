@@ -89,6 +89,28 @@ def test_lattice_teleport():
     assert lattice.height == pytest.approx(2 * math.log((1 + math.sqrt(5)) / 2), rel=1e-15)
 
 
+def test_lattice_of_a_monodromy():
+    # The torus bundle of A = [[3, 1], [2, 1]]: γ3 γ1 γ3⁻¹ and γ3 γ2 γ3⁻¹ are the words of A's columns, as points.
+    lattice = sol.Lattice([[3, 1], [2, 1]])
+    assert lattice.monodromy == ((3, 1), (2, 1))
+    assert lattice.height == pytest.approx(math.log(2 + math.sqrt(3)), rel=1e-15)
+    g1, g2, g3 = lattice.generators
+    conjugate = lambda g: sol.multiply(sol.multiply(g3, g), sol.inverse(g3))
+    assert np.allclose(conjugate(g1), lattice.element(3, 2, 0), atol=1e-12)
+    assert np.allclose(conjugate(g2), lattice.element(1, 1, 0), atol=1e-12)
+    assert lattice.multiply((0, 0, 1), (1, 0, 0)) == (3, 2, 1)
+    assert sol.Lattice([[3, 1], [2, 1]], fibre_area=10.0).fibre_area == pytest.approx(10.0, rel=1e-14)
+    assert all(np.array_equal(a, b) for a, b in zip(sol.Lattice([[2, 1], [1, 1]]).generators, sol.Lattice.golden().generators))
+    with pytest.raises(ValueError, match="not hyperbolic"):
+        sol.Lattice([[1, 1], [0, 1]])
+    # A scene in it: the ball at the base point seen from the middle of D.
+    middle = tuple(0.5 * (np.array(g1) + np.array(g2)) + np.array([0, 0, 0.5 * lattice.height]))
+    scene = sol.scene([sol.ball((0, 0, 0), 0.3)], quotient={"monodromy": [[3, 1], [2, 1]]},
+                      camera=sol.camera(position=middle, forward=(0, 0, -1), up=(0, 1, 0)))
+    assert scene.to_dict()["quotient"] == {"monodromy": [[3, 1], [2, 1]]}
+    assert (sol.render_cpu(scene, 16, 12)["object"] > 0).any()
+
+
 def test_spreading_along_the_z_axis():
     assert sol.sphere_area_density((0, 0, 1), 2.0) == pytest.approx(math.sinh(2.0) ** 2, rel=1e-10)
 

@@ -75,16 +75,19 @@ inline constexpr double kQuotientMaxStep = kernel::kQuotientMaxStep;
 /// would be more than kQuotientLongStepImages (sol::quotient_max_step).
 inline constexpr double kQuotientShortStep = 0.5;
 inline constexpr std::size_t kQuotientLongStepImages = 64;
+// kLatticeHeight, 2 ln φ, is the least height of any lattice (ln λ for
+// the least |trace| of a hyperbolic monodromy, 3).
 static_assert(kQuotientShortStep < kQuotientMaxStep && kQuotientMaxStep < kernel::kLatticeHeight,
               "a quotient step from D must end within one layer of cells of it");
 
 /// Quotient worlds: the images, in world coordinates, of the world's objects
 /// that a march step of at most `max_step` (<= kQuotientMaxStep) can reach
 /// from D. Each object is first moved by Γ so that its centre or axis point
-/// lies in D; its images g·object, g = γ1^a γ2^b γ3^c with |a|, |b| <= 22,
-/// |c| <= 2, are kept when a lower bound of their distance bound over all of
-/// D is at most max_step: see the proof in march.cpp. Lines that coincide
-/// are listed once.
+/// lies in D; its images g·object, g = γ1^a γ2^b γ3^c over the words whose
+/// image of that point (or axis) can come within max_step +
+/// kMaxQuotientRadius of D, are kept when a lower bound of their distance
+/// bound over all of D is at most max_step: see the proof in march.cpp.
+/// Lines that coincide are listed once.
 std::vector<MarchObject> quotient_images(const World& world, double max_step);
 /// The images for the world's own longest step (quotient_max_step).
 std::vector<MarchObject> quotient_images(const World& world);

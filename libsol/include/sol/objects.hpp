@@ -77,15 +77,14 @@ template <class Kind>
 concept ClosesInQuotient = requires(const Kind& kind, const Lattice& lattice) {
   { kind.into_domain(lattice) } -> std::same_as<Kind>;
   { kind.least_distance_over_domain(lattice) } -> std::convertible_to<double>;
-  { kind.lattice_range() } -> std::convertible_to<int>;
+  { kind.image_anchor() } -> std::same_as<ImageAnchor>;
   { kind.same_set(kind) } -> std::convertible_to<bool>;
 };
 
 /// Largest radius of a solid in a quotient scene (boxes: the sum of their
 /// half sizes, which bounds the distance from the centre to every point): the proof that
 /// sol::quotient_images lists every image a step can reach assumes it
-/// (lattice words γ3^c with |c| <= 2 only, which holds while 2h - radius
-/// exceeds the longest quotient step, 0.9; and the widths of its search).
+/// (its search covers the anchors within the longest step and this radius of D).
 constexpr double kMaxQuotientRadius = 0.45;
 
 // Visiting a shape: the distance, normal, pattern coordinates and

@@ -22,14 +22,21 @@
 
 namespace sol {
 
-/// The space the rays live in: Sol itself, or the compact quotient Γ\Sol
-/// of the golden lattice (sol/lattice.hpp), where rays stay in the
-/// fundamental domain D and teleport back by an element of Γ.
-enum class Quotient { None, Golden };
+/// The space the rays live in: Sol itself, or a compact quotient Γ\Sol
+/// (sol/lattice.hpp), where rays stay in the fundamental domain D and
+/// teleport back by an element of Γ: the golden lattice's, or that of
+/// World::monodromy and World::fibre_area (Lattice::from_monodromy).
+enum class Quotient { None, Golden, Monodromy };
 
 /// Everything that is seen, and how the march looks for it.
 struct World {
   Quotient quotient = Quotient::None;
+  /// Quotient::Monodromy: the torus bundle's monodromy A, hyperbolic with
+  /// trace > 2 (A = [[2, 1], [1, 1]] without a fibre area is the golden lattice) ...
+  Monodromy monodromy{};
+  /// ... and the area of its fibre torus (none: the normalisation of
+  /// Lattice::from_monodromy).
+  std::optional<double> fibre_area;
   std::vector<SceneObject> objects;
   std::vector<Light> lights{Light{}};    ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                 ///< light reaching surfaces facing away, in [0, 1]
@@ -54,6 +61,20 @@ struct Scene : World {
   int samples = 1;
 };
 
+/// Whether two worlds live in the same space (the same quotient, monodromy
+/// and fibre area).
+inline bool same_space(const World& a, const World& b) {
+  return a.quotient == b.quotient && a.monodromy == b.monodromy && a.fibre_area == b.fibre_area;
+}
+
+/// Moves the world into another space: `quotient` (with `monodromy` and
+/// `fibre_area` for Quotient::Monodromy; ignored otherwise). Tubes along the
+/// old lattice's γ1 or γ2 (the golden one's in Sol) turn to the new
+/// lattice's, so that the closed curves stay closed curves. Throws what
+/// Lattice::from_monodromy throws for a bad monodromy, the world unchanged.
+void set_quotient(World& world, Quotient quotient, const Monodromy& monodromy = {},
+                  std::optional<double> fibre_area = std::nullopt);
+
 /// Checks every field of the world (finite numbers, positive limits,
 /// colours in [0, 1], at least one object, at most 64 objects and
 /// kMaxLights lights, what the quotient allows); throws InvalidArgument
@@ -72,7 +93,9 @@ bool uses_exact_lights(const World& world);
 /// looking straight down), "sandwich" (planes z = ±1, observer at the
 /// origin), "sheets" (planes x = 0 and y = 0), "lattice-balls" (Γ\Sol, one
 /// ball at the base point), "lattice-pillars" (Γ\Sol, tubes along the closed
-/// curves of γ1, γ2, γ3 through the base point), "spheres" (exact geodesic
+/// curves of γ1, γ2, γ3 through the base point), "lattice-boxes" (Γ\Sol, one
+/// cube at the base point), "trace4-balls" and "trace4-pillars" (the same
+/// in the torus bundle of [[3, 1], [2, 1]]), "spheres" (exact geodesic
 /// spheres of several radii above, on and below z = 0, lit by an exact point
 /// light). InvalidArgument if unknown.
 Scene preset_scene(std::string_view name);

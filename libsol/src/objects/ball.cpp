@@ -62,7 +62,7 @@ double Ball::least_distance_over_domain(const Lattice& lattice) const {
   return least_solid_bound(Solid::Ball, center, {0.0, 0.0}, lattice) - radius;
 }
 
-int Ball::lattice_range() const { return kQuotientLatticeRange; }
+ImageAnchor Ball::image_anchor() const { return {ImageAnchor::Along::Point, center, {0.0, 0.0}}; }
 
 bool Ball::same_set(const Ball& other) const { return glm::length(center - other.center) < kSameSetTolerance; }
 
@@ -75,7 +75,7 @@ void check_kind(const Ball& b, const std::string& at, const Lattice* quotient) {
   check_radius(b.radius, at, quotient);
 }
 
-void read_kind(Ball& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(Ball& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   const std::string what = at + " (a ball)";
   r.require_known_keys(o, {"type", "center", "radius", "color", "pattern", "exact"}, what, at);
   r.require_key(o, "center", what, "a 'center'", at);
@@ -85,7 +85,7 @@ void read_kind(Ball& b, SceneObject&, const json& o, const SceneFileReader& r, c
   if (o.contains("exact")) b.exact = r.boolean(o["exact"], at + ".exact");
 }
 
-json write_kind(const Ball& b, const SceneObject&) {
+json write_kind(const Ball& b, const SceneObject&, const Lattice*) {
   return {{"center", to_json(b.center)}, {"radius", b.radius}, {"exact", b.exact}};
 }
 

@@ -115,7 +115,7 @@ double Box::least_distance_over_domain(const Lattice& lattice) const {
 // y, then z from the centre's frame: lengths a, b, c at most), which the
 // quotient's check keeps within kMaxQuotientRadius: the images' search of
 // sol::quotient_images holds for it as for a ball of that radius.
-int Box::lattice_range() const { return kQuotientLatticeRange; }
+ImageAnchor Box::image_anchor() const { return {ImageAnchor::Along::Point, center, {0.0, 0.0}}; }
 
 bool Box::same_set(const Box& other) const {
   return glm::length(center - other.center) < kSameSetTolerance &&
@@ -142,7 +142,7 @@ void check_kind(const Box& b, const std::string& at, const Lattice* quotient) {
   }
 }
 
-void read_kind(Box& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(Box& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   const std::string what = at + " (a box)";
   r.require_known_keys(o, {"type", "center", "half_size", "color", "pattern"}, what, at);
   r.require_key(o, "center", what, "a 'center'", at);
@@ -151,7 +151,7 @@ void read_kind(Box& b, SceneObject&, const json& o, const SceneFileReader& r, co
   b.half_size = r.vec3(o["half_size"], at + ".half_size");
 }
 
-json write_kind(const Box& b, const SceneObject&) { return {{"center", to_json(b.center)}, {"half_size", to_json(b.half_size)}}; }
+json write_kind(const Box& b, const SceneObject&, const Lattice*) { return {{"center", to_json(b.center)}, {"half_size", to_json(b.half_size)}}; }
 
 }  // namespace detail
 }  // namespace sol

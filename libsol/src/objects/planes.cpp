@@ -110,19 +110,19 @@ void read_plane(const json& o, double& c, bool& cutout, const SceneFileReader& r
   if (o.contains("c")) c = r.number(o["c"], at + ".c");
   if (o.contains("cutout")) cutout = r.boolean(o["cutout"], at + ".cutout");
 }
-void read_kind(PlaneX& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(PlaneX& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   read_plane(o, p.c, obj.cutout, r, at);
 }
-void read_kind(PlaneY& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(PlaneY& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   read_plane(o, p.c, obj.cutout, r, at);
 }
-void read_kind(PlaneZ& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(PlaneZ& p, SceneObject& obj, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   read_plane(o, p.c, obj.cutout, r, at);
 }
 
-json write_kind(const PlaneX& p, const SceneObject& o) { return {{"c", p.c}, {"cutout", o.cutout}}; }
-json write_kind(const PlaneY& p, const SceneObject& o) { return {{"c", p.c}, {"cutout", o.cutout}}; }
-json write_kind(const PlaneZ& p, const SceneObject& o) { return {{"c", p.c}, {"cutout", o.cutout}}; }
+json write_kind(const PlaneX& p, const SceneObject& o, const Lattice*) { return {{"c", p.c}, {"cutout", o.cutout}}; }
+json write_kind(const PlaneY& p, const SceneObject& o, const Lattice*) { return {{"c", p.c}, {"cutout", o.cutout}}; }
+json write_kind(const PlaneZ& p, const SceneObject& o, const Lattice*) { return {{"c", p.c}, {"cutout", o.cutout}}; }
 
 }  // namespace detail
 }  // namespace sol

@@ -21,8 +21,7 @@ using namespace detail;
 
 // ---- Tube ----------------------------------------------------------------
 
-glm::dvec3 tube_axis_direction(TubeAxis axis) {
-  constexpr double phi = kernel::kPhi;
+glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice) {
   switch (axis) {
     case TubeAxis::X:
       return {1.0, 0.0, 0.0};
@@ -31,9 +30,9 @@ glm::dvec3 tube_axis_direction(TubeAxis axis) {
     case TubeAxis::Z:
       return {0.0, 0.0, 1.0};
     case TubeAxis::Gamma1:
-      return glm::normalize(glm::dvec3(phi, -1.0, 0.0));
+      return glm::normalize(lattice.generators()[0]);
     case TubeAxis::Gamma2:
-      return glm::normalize(glm::dvec3(1.0, phi, 0.0));
+      return glm::normalize(lattice.generators()[1]);
   }
   return {0.0, 0.0, 1.0};
 }
@@ -42,9 +41,9 @@ namespace {
 constexpr TubeAxis kTubeAxes[] = {TubeAxis::X, TubeAxis::Y, TubeAxis::Z, TubeAxis::Gamma1, TubeAxis::Gamma2};
 }
 
-std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction) {
+std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction, const Lattice& lattice) {
   for (TubeAxis a : kTubeAxes) {
-    if (tube_axis_direction(a) == direction) return a;
+    if (tube_axis_direction(a, lattice) == direction) return a;
   }
   return std::nullopt;
 }
@@ -131,7 +130,10 @@ double Tube::least_distance_over_domain(const Lattice& lattice) const {
          radius;
 }
 
-int Tube::lattice_range() const { return kQuotientLatticeRange; }
+ImageAnchor Tube::image_anchor() const {
+  if (vertical()) return {ImageAnchor::Along::VerticalLine, through, {0.0, 0.0}};
+  return {ImageAnchor::Along::HorizontalLine, through, {direction.x, direction.y}};
+}
 
 bool Tube::same_set(const Tube& other) const {
   constexpr double tol = kSameSetTolerance;
@@ -168,12 +170,16 @@ void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
   } else if (parallel(d, tube_axis_direction(TubeAxis::X)) || parallel(d, tube_axis_direction(TubeAxis::Y))) {
     field_error(at + ".axis", at + ".axis: tubes along x or y do not close up in the quotient (their images are dense); "
                                    "use gamma1, gamma2 or z");
-  } else if (!parallel(d, tube_axis_direction(TubeAxis::Gamma1)) && !parallel(d, tube_axis_direction(TubeAxis::Gamma2))) {
-    field_error(at + ".axis", at + ".axis: a horizontal tube closes up in the quotient only along gamma1 or gamma2");
+  } else if (!parallel(d, tube_axis_direction(TubeAxis::Gamma1, *quotient)) &&
+             !parallel(d, tube_axis_direction(TubeAxis::Gamma2, *quotient))) {
+    field_error(at + ".axis", at + ".axis: a horizontal tube closes up in the quotient only along its lattice's gamma1 "
+                                   "or gamma2 (" + to_json(tube_axis_direction(TubeAxis::Gamma1, *quotient)).dump() + " or " +
+                                   to_json(tube_axis_direction(TubeAxis::Gamma2, *quotient)).dump() + ")");
   }
 }
 
-void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at) {
+void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at,
+               const Lattice* quotient) {
   const std::string what = at + " (a tube)";
   r.require_known_keys(o, {"type", "axis", "through", "radius", "color", "pattern"}, what, at);
   for (const char* key : {"axis", "through", "radius"}) r.require_key(o, key, what, std::string("'") + key + "'", at);
@@ -190,7 +196,7 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
     if (name == "gamma3") {
       t.direction = tube_axis_direction(TubeAxis::Z);  // the closed curve of γ3 is the vertical line
     } else if (known != std::end(kTubeAxes)) {
-      t.direction = tube_axis_direction(*known);
+      t.direction = quotient ? tube_axis_direction(*known, *quotient) : tube_axis_direction(*known);
     } else {
       r.fail(at + ".axis", "'" + at + ".axis' must be x, y, z, gamma1, gamma2 or gamma3, got " + SceneFileReader::json_text(axis) +
                                " (or a vertical or horizontal direction [a, b, c])");
@@ -200,8 +206,8 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
   t.radius = r.number(o["radius"], at + ".radius");
 }
 
-json write_kind(const Tube& t, const SceneObject&) {
-  const std::optional<TubeAxis> name = tube_axis_of(t.direction);
+json write_kind(const Tube& t, const SceneObject&, const Lattice* quotient) {
+  const std::optional<TubeAxis> name = quotient ? tube_axis_of(t.direction, *quotient) : tube_axis_of(t.direction);
   return {{"axis", name ? json(std::string(to_string(*name))) : to_json(t.direction)},
           {"through", to_json(t.through)},
           {"radius", t.radius}};

@@ -28,7 +28,7 @@ struct Ball {
   KernelShape kernel_shape() const;
   Ball into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
-  int lattice_range() const;
+  ImageAnchor image_anchor() const;
   bool same_set(const Ball& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

@@ -36,7 +36,7 @@ struct Box {
   KernelShape kernel_shape() const;
   Box into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
-  int lattice_range() const;
+  ImageAnchor image_anchor() const;
   bool same_set(const Box& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

@@ -26,7 +26,7 @@
 //   visit_fields(v)  its parameters as a program's controls edit them;
 // and for kinds that close up in the compact quotient (planes z = c,
 // balls, tubes along γ1, γ2, γ3, boxes): into_domain,
-// least_distance_over_domain, lattice_range and same_set
+// least_distance_over_domain, image_anchor and same_set
 // (sol::quotient_images). Its checks and scene-file keys are free functions
 // of libsol/src/objects_internal.hpp. A kind lives in its own header here
 // and source in libsol/src/objects/, and is one line of SOL_OBJECT_KINDS
@@ -58,6 +58,20 @@ struct KernelShape {
   /// The quotient's image record of the object's bound (kernel::Image::bound),
   /// in the four words a quotient march step reads of each candidate.
   glm::dvec4 bound{0.0};
+};
+
+/// Where a kind's images in the quotient are searched (sol::quotient_images):
+/// the set every point of the object lies within kMaxQuotientRadius of.
+struct ImageAnchor {
+  enum class Along {
+    Point,           ///< a point (balls' and boxes' centres)
+    VerticalLine,    ///< the vertical line through `point`
+    HorizontalLine,  ///< the horizontal line through `point` along `heading`
+    Height,          ///< the plane z = point.z (planes z = c)
+  };
+  Along along = Along::Point;
+  glm::dvec3 point{0.0};
+  glm::dvec2 heading{0.0};
 };
 
 /// How a program's control edits a number: its step and range.

@@ -64,7 +64,7 @@ struct PlaneZ {
   // The quotient: γ3 moves it by the lattice height; γ1, γ2 fix it.
   PlaneZ into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
-  int lattice_range() const { return 0; }
+  ImageAnchor image_anchor() const { return {ImageAnchor::Along::Height, {0.0, 0.0, c}, {0.0, 0.0}}; }
   bool same_set(const PlaneZ& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

@@ -5,22 +5,23 @@
 #include <optional>
 #include <string_view>
 
+#include "sol/lattice.hpp"
 #include "sol/objects/kind.hpp"
 
 namespace sol {
 
 /// The named axes of a tube: the coordinate lines, and the horizontal lines
-/// along γ1 = (φ, -1, 0) and γ2 = (1, φ, 0) (the one-parameter subgroups
-/// t·γ1, t·γ2 of the plane z = 0, translated): through a point of Γ·o these
-/// are the closed curves of γ1, γ2 in M = Γ\Sol, and the z-line is the
-/// closed curve of γ3.
+/// along a lattice's γ1 and γ2 (for the golden lattice (φ, -1, 0) and
+/// (1, φ, 0); the one-parameter subgroups t·γ1, t·γ2 of the plane z = 0,
+/// translated): through a point of Γ·o these are the closed curves of γ1,
+/// γ2 in M = Γ\Sol, and the z-line is the closed curve of γ3.
 enum class TubeAxis { X, Y, Z, Gamma1, Gamma2 };
 
 /// Unit coordinate direction of a named axis: (1,0,0), (0,1,0), (0,0,1),
-/// (φ,-1,0)/|.|, (1,φ,0)/|.|.
-glm::dvec3 tube_axis_direction(TubeAxis axis);
+/// γ1/|γ1|, γ2/|γ2| of `lattice` (the golden one's unless given).
+glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice = Lattice::golden());
 /// The name of a direction when it is one of the named axes' (exactly).
-std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction);
+std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction, const Lattice& lattice = Lattice::golden());
 /// The scene file's name of an axis: "x", "y", "z", "gamma1", "gamma2".
 std::string_view to_string(TubeAxis axis);
 
@@ -48,7 +49,7 @@ struct Tube {
   KernelShape kernel_shape() const;
   Tube into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
-  int lattice_range() const;
+  ImageAnchor image_anchor() const;
   bool same_set(const Tube& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {
@@ -58,9 +59,9 @@ struct Tube {
   bool operator==(const Tube&) const = default;
 };
 
-/// A tube along a named axis.
-inline Tube make_tube(TubeAxis axis, const glm::dvec3& through, double radius) {
-  return {through, tube_axis_direction(axis), radius};
+/// A tube along a named axis (of `lattice`: gamma1 and gamma2 are its generators').
+inline Tube make_tube(TubeAxis axis, const glm::dvec3& through, double radius, const Lattice& lattice = Lattice::golden()) {
+  return {through, tube_axis_direction(axis, lattice), radius};
 }
 
 }  // namespace sol
