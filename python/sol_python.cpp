@@ -373,7 +373,8 @@ PYBIND11_MODULE(_sol, m) {
              return sol::Lattice::from_monodromy({a[0][0], a[0][1], a[1][0], a[1][1]}, fibre_area);
            }),
            py::arg("monodromy"), py::arg("fibre_area") = py::none(),
-           "The lattice of the monodromy [[a, b], [c, d]] (in SL(2, Z), trace > 2), its fibre torus of area "
+           "The lattice of the monodromy [[a, b], [c, d]] (in SL(2, Z), |trace| > 2; a negative trace turns the fibre), "
+           "its fibre torus of area "
            "`fibre_area` (None: the normalisation u+.e2 = 1, u-.e1 = -1, which for [[2, 1], [1, 1]] is the golden "
            "lattice).")
       .def_static("golden", &sol::Lattice::golden, "The golden lattice, of [[2, 1], [1, 1]].")
@@ -392,6 +393,14 @@ PYBIND11_MODULE(_sol, m) {
           },
           "γ1, γ2, γ3 as points of Sol.")
       .def_property_readonly("fibre_area", &sol::Lattice::fibre_area, "The area |det(γ1, γ2)| of the fibre torus.")
+      .def_property_readonly("turns", &sol::Lattice::turns,
+                             "Whether γ3 also turns the fibre by the half-turn (x, y, z) -> (-x, -y, z) (trace < -2).")
+      .def(
+          "apply",
+          [](const sol::Lattice& l, const std::array<long long, 3>& w, const std::array<double, 3>& p) {
+            return array(l.apply({w[0], w[1], w[2]}, vec3(p)));
+          },
+          py::arg("word"), py::arg("p"), "The image of p under the word (a, b, c)'s isometry.")
       .def_property_readonly("height", &sol::Lattice::height, "The height of the fundamental domain D: ln λ.")
       .def(
           "multiply",

@@ -860,14 +860,19 @@ TEST(Kernel, CutoutPlanesMatchTheCpuRenderer) {
 
 TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   sol::vk::MarchRenderer renderer(vk_context());
-  for (const char* name : {"lattice-balls", "lattice-pillars", "trace4-balls"}) {
+  for (const char* name : {"lattice-balls", "lattice-pillars", "trace4-balls", "halfturn-balls"}) {
     sol::Scene scene = sol::preset_scene(name);
     const sol::Lattice lattice = *scene.lattice();
     scene.max_distance = 6.0;
     const sol::RenderResult here = sol::test::render(renderer, scene, 24, 18);
-    for (const dvec3& g : {lattice.element(0, 0, 1), lattice.element(3, -2, -2), lattice.element(400000, -300000, 0)}) {
+    for (const sol::LatticeWord& w : {sol::LatticeWord{0, 0, 1}, sol::LatticeWord{3, -2, -2}, sol::LatticeWord{400000, -300000, 0}}) {
+      // g·p with the frame g turns (where the lattice's γ3 turns and c is odd).
       sol::Scene moved = scene;
-      moved.camera.position = sol::multiply(g, scene.camera.position);
+      moved.camera.position = lattice.apply(w, scene.camera.position);
+      if (lattice.turns() && w.c % 2 != 0) {
+        moved.camera.forward = sol::half_turn(scene.camera.forward);
+        moved.camera.up = sol::half_turn(scene.camera.up);
+      }
       const Comparison c = compare(sol::test::render(renderer, moved, 24, 18), here);
       EXPECT_LE(c.mask_differs, 2) << name;  // the eye is teleported in double: same float input up to rounding
       EXPECT_LT(c.distance, 1e-4) << name;

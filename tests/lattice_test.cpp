@@ -214,6 +214,70 @@ TEST(Lattice, EveryHyperbolicMonodromyGivesItsLattice) {
   }
 }
 
+// Negative traces -3 to -10: γ3 is the isometry p -> (0, 0, ln λ) ·
+// half_turn(p), and the words act as isometries (Lattice::apply). Against
+// the group law and the half-turn alone, on points: γ3 γ1 γ3⁻¹ and
+// γ3 γ2 γ3⁻¹ act as the words of A's columns, γ1 and γ2 as translations; a
+// word's action is the composition of its letters'; multiply composes
+// actions; random points teleport into D as the element's action, turned
+// exactly when the word's c is odd; the generators are -A's (B = -A has
+// trace > 2: the lattice of B's translations, λ its eigenvalue).
+TEST(Lattice, NegativeTracesTurnTheFibre) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> coordinate(-3.0, 3.0), height(-2.0, 2.0);
+  for (const sol::Monodromy& b : kMonodromies) {
+    const sol::Monodromy m{-b.a, -b.b, -b.c, -b.d};
+    const sol::Lattice lattice = sol::Lattice::from_monodromy(m), positive = sol::Lattice::from_monodromy(b);
+    EXPECT_TRUE(lattice.turns()) << m.str();
+    EXPECT_FALSE(positive.turns());
+    EXPECT_EQ(lattice.monodromy(), m);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(lattice.generators()[k], positive.generators()[k]) << m.str();
+    const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1], g3 = lattice.generators()[2];
+    // The letters as maps: γ1, γ2 translate, γ3^{±1} turn and translate by ±h.
+    auto gamma3 = [&](const dvec3& p) { return sol::multiply(g3, sol::half_turn(p)); };
+    auto gamma3_inverse = [&](const dvec3& p) { return sol::half_turn(sol::multiply(sol::inverse(g3), p)); };
+    const double t = static_cast<double>(-m.trace());
+    const double scale = std::max({std::abs(g1.x), std::abs(g1.y), std::abs(g2.x), std::abs(g2.y)}) * t * t;
+    for (int i = 0; i < 20; ++i) {
+      const dvec3 p(coordinate(rng), coordinate(rng), height(rng));
+      const dvec3 conj1 = gamma3(sol::multiply(g1, gamma3_inverse(p)));
+      const dvec3 conj2 = gamma3(sol::multiply(g2, gamma3_inverse(p)));
+      EXPECT_LT(diff(conj1, lattice.apply({m.a, m.c, 0}, p)), 1e-13 * scale) << m.str();
+      EXPECT_LT(diff(conj2, lattice.apply({m.b, m.d, 0}, p)), 1e-13 * scale) << m.str();
+      EXPECT_LT(diff(lattice.apply({0, 0, 1}, p), gamma3(p)), 1e-14 * (1.0 + glm::length(p)));
+      EXPECT_LT(diff(lattice.apply({0, 0, -1}, p), gamma3_inverse(p)), 1e-14 * (1.0 + glm::length(p)));
+      // γ1^a γ2^b γ3^c letter by letter.
+      std::uniform_int_distribution<int> ab(-3, 3), c(-2, 2);
+      const sol::LatticeWord w{ab(rng), ab(rng), c(rng)};
+      dvec3 q = p;
+      for (int k = 0; k < std::abs(w.c); ++k) q = w.c > 0 ? gamma3(q) : gamma3_inverse(q);
+      q = sol::multiply(lattice.element(w.a, w.b, 0), q);
+      EXPECT_LT(diff(lattice.apply(w, p), q), 1e-12 * (1.0 + glm::length(q))) << m.str() << " " << w.str();
+      const sol::LatticeWord v{ab(rng), ab(rng), c(rng)};
+      const dvec3 composed = lattice.apply(w, lattice.apply(v, p));
+      EXPECT_LT(diff(lattice.apply(lattice.multiply(w, v), p), composed), 1e-11 * (1.0 + glm::length(composed)))
+          << m.str() << " " << w.str() << " " << v.str();
+    }
+    std::uniform_real_distribution<double> far(-20.0, 20.0), high(-4.0, 4.0);
+    int turned = 0;
+    for (int i = 0; i < 200; ++i) {
+      const dvec3 p(far(rng), far(rng), high(rng));
+      const sol::Teleport tp = lattice.teleport(p);
+      EXPECT_TRUE(lattice.contains(tp.point)) << m.str();
+      const sol::LatticeWord w = lattice.word_of(tp.element);
+      EXPECT_EQ(tp.turned, w.c % 2 != 0) << m.str();
+      EXPECT_LT(diff(lattice.apply(w, p), tp.point), 1e-9) << m.str();
+      turned += tp.turned;
+    }
+    EXPECT_GT(turned, 20) << m.str();
+  }
+  // The preset's monodromy: trace -3, [[-2, -1], [-1, -1]], the golden
+  // lattice's translations with a turning γ3.
+  const sol::Lattice minus = sol::Lattice::from_monodromy({-2, -1, -1, -1});
+  EXPECT_TRUE(minus.turns());
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(minus.generators()[k], sol::Lattice::golden().generators()[k]);
+}
+
 // The golden matrix gives golden() to the bit; a fibre area scales the
 // fibre and leaves the height; the same area with another normalisation of
 // the eigenvectors is the same lattice up to the isometry (x, y) -> (k x, y / k).
@@ -236,8 +300,7 @@ TEST(Lattice, TheGoldenMonodromyIsTheGoldenLatticeAndTheAreaScalesTheFibre) {
   }
 }
 
-// Matrices that give no Sol manifold, or none supported yet, are refused
-// with the reason.
+// Matrices that give no Sol manifold are refused with the reason.
 TEST(Lattice, MonodromiesThatAreNotHyperbolicAreRefusedWithTheReason) {
   auto message = [](const sol::Monodromy& m, std::optional<double> area = std::nullopt) {
     try {
@@ -251,8 +314,6 @@ TEST(Lattice, MonodromiesThatAreNotHyperbolicAreRefusedWithTheReason) {
   EXPECT_NE(message({1, 1, 0, 1}).find("not hyperbolic: its trace is 2"), std::string::npos);
   EXPECT_NE(message({0, -1, 1, 0}).find("not hyperbolic: its trace is 0"), std::string::npos);
   EXPECT_NE(message({-1, 0, 0, -1}).find("not hyperbolic: its trace is -2"), std::string::npos);
-  EXPECT_THROW((void)sol::Lattice::from_monodromy({-2, -1, -1, -1}), sol::NotImplemented);
-  EXPECT_NE(message({-2, -1, -1, -1}).find("half-turn"), std::string::npos);
   EXPECT_NE(message({2, 1, 1, 1}, 0.0).find("fibre area must be finite and > 0"), std::string::npos);
   EXPECT_NE(message({2, 1, 1, 1}, std::nan("")).find("fibre area"), std::string::npos);
   EXPECT_NE(message({1LL << 40, 1, 1, 1}).find("±2^31"), std::string::npos);

@@ -134,6 +134,36 @@ TEST(Observer, BoundToTheLatticeStaysInTheDomain) {
   EXPECT_FALSE(far.lattice().has_value());
 }
 
+// In a lattice whose γ3 turns the fibre (trace -4), every teleport by an
+// odd power of γ3 turns the frame: the bound walker is the free one moved by
+// the isometry of its copy's word, position and frame (the differential of
+// the half-turn: E1, E2 -> -E1, -E2), after walks up and down through the
+// faces z = 0 and z = h.
+TEST(Observer, BoundToATurningLatticeTurnsItsFrame) {
+  const sol::Lattice lattice = sol::Lattice::from_monodromy({-3, -1, -2, -1});
+  ASSERT_TRUE(lattice.turns());
+  sol::Observer free_walker({0.4, 0.3, 0.2}, {0.3, 0.9, 0.2}, {0, 0, 1});
+  sol::Observer bound = free_walker;
+  bound.bind(lattice);
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int odd = 0;
+  for (int i = 0; i < 300; ++i) {
+    const dvec3 dir(u(rng), i < 150 ? 1.0 : -1.0, u(rng));  // mostly along up: through the faces z = 0, h
+    free_walker.move(dir, 0.05);
+    bound.move(dir, 0.05);
+    ASSERT_TRUE(lattice.contains(bound.position()));
+    const sol::LatticeWord w = bound.copy();
+    const bool turned = w.c % 2 != 0;
+    odd += turned;
+    EXPECT_LT(diff(lattice.apply(w, bound.position()), free_walker.position()), 1e-8) << i;
+    auto carried = [&](const dvec3& v) { return turned ? sol::half_turn(v) : v; };
+    EXPECT_LT(diff(carried(bound.forward()), free_walker.forward()), 1e-8) << i;
+    EXPECT_LT(diff(carried(bound.up()), free_walker.up()), 1e-8) << i;
+  }
+  EXPECT_GT(odd, 20);  // the walk spent steps in copies an odd power of γ3 away
+}
+
 TEST(Observer, RejectsBadInput) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(sol::Observer({nan, 0, 0}, {1, 0, 0}, {0, 0, 1}), sol::InvalidArgument);

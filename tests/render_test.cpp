@@ -931,7 +931,8 @@ int count_differences(const sol::RenderResult& a, const sol::RenderResult& b, do
 // In Γ\Sol the observer at p and at g·p (g ∈ Γ) see the same image.
 class QuotientPresets : public ::testing::TestWithParam<const char*> {};
 INSTANTIATE_TEST_SUITE_P(Quotient, QuotientPresets,
-                         ::testing::Values("lattice-balls", "lattice-pillars", "trace4-balls", "trace4-pillars"),
+                         ::testing::Values("lattice-balls", "lattice-pillars", "trace4-balls", "trace4-pillars",
+                                           "halfturn-balls"),
                          [](const auto& p) {
                            std::string name;
                            for (const char* c = p.param; *c; ++c) {
@@ -948,10 +949,19 @@ TEST_P(QuotientPresets, ObserverAtPAndGpSeeTheSameImage) {
   settings.height = 16;
   const sol::RenderResult here = sol::render_cpu(scene, settings);
   const sol::Lattice lattice = *scene.lattice();
-  for (const dvec3& g : {lattice.element(1, 0, 0), lattice.element(0, 0, 1), lattice.element(3, -2, -2),
-                         lattice.element(-5, 7, 3), lattice.element(lattice.multiply({2, -3, 1}, {-7, 5, -2}))}) {
+  for (const sol::LatticeWord& w : {sol::LatticeWord{1, 0, 0}, sol::LatticeWord{0, 0, 1}, sol::LatticeWord{3, -2, -2},
+                                    sol::LatticeWord{-5, 7, 3}, lattice.multiply({2, -3, 1}, {-7, 5, -2})}) {
+    // g·p, and the frame with it: g is a left translation, after the
+    // half-turn where the lattice's γ3 turns and the word's c is odd (its
+    // differential turns the frame components E1, E2 to -E1, -E2).
+    const dvec3 g = lattice.element(w);
+    const bool turns = lattice.turns() && w.c % 2 != 0;
     sol::Scene moved = scene;
-    moved.camera.position = sol::multiply(g, scene.camera.position);
+    moved.camera.position = lattice.apply(w, scene.camera.position);
+    if (turns) {
+      moved.camera.forward = sol::half_turn(scene.camera.forward);
+      moved.camera.up = sol::half_turn(scene.camera.up);
+    }
     double worst = 0;
     int shifted = 0;
     const int differ = count_differences(here, sol::render_cpu(moved, settings), worst, &shifted);
@@ -974,13 +984,13 @@ TEST_P(QuotientPresets, ObserverAtPAndGpSeeTheSameImage) {
 }
 
 // The lattices the quotient's tests run in: the golden one and monodromies
-// of traces 4, 6 and 10 (one with its fibre's area doubled).
+// of traces 4, 6 and 10 (one with its fibre's area 7) and -4 (its γ3 turns).
 struct LatticeCase {
   sol::Monodromy monodromy;
   std::optional<double> fibre_area;
 };
-const LatticeCase kLatticeCases[] = {
-    {{2, 1, 1, 1}, {}}, {{3, 1, 2, 1}, {}}, {{5, 2, 2, 1}, {}}, {{9, 4, 2, 1}, 7.0}};
+const LatticeCase kLatticeCases[] = {{{2, 1, 1, 1}, {}}, {{3, 1, 2, 1}, {}}, {{5, 2, 2, 1}, {}},
+                                     {{9, 4, 2, 1}, 7.0},  {{-3, -1, -2, -1}, {}}};
 
 // (Not inlined: GCC 12 then warns that the default light, copied from an
 // initializer list, may be uninitialised, which it is not.)
@@ -1062,15 +1072,23 @@ template <class Visit>
 void follow_quotient_ray(const sol::MarchWorld& world, const dvec3& camera, const dvec3& direction, double max_step,
                          Visit&& visit) {
   const sol::Lattice& lattice = *world.lattice();
-  dvec3 origin = lattice.teleport(camera).point;
-  auto ray = std::make_unique<sol::ClosedFormGeodesic<double>>(direction);
+  // A teleport by a word of odd c in a lattice whose γ3 turns also turns
+  // the direction's frame components (E1, E2 -> -E1, -E2).
+  auto turned = [&](const sol::Teleport& to, const dvec3& u) {
+    const bool odd = lattice.word_of(to.element).c % 2 != 0;
+    return lattice.turns() && odd ? dvec3(-u.x, -u.y, u.z) : u;
+  };
+  const sol::Teleport start = lattice.teleport(camera);
+  dvec3 origin = start.point;
+  auto ray = std::make_unique<sol::ClosedFormGeodesic<double>>(turned(start, direction));
   double t = 0.0, local = 0.0;
   while (t <= world.world().max_distance) {
     const sol::ClosedFormGeodesic<double>::State state = ray->at(local);
     dvec3 q = sol::multiply(origin, state.position);
     if (!lattice.contains(q)) {
-      origin = q = lattice.teleport(q).point;
-      ray = std::make_unique<sol::ClosedFormGeodesic<double>>(state.direction);
+      const sol::Teleport back = lattice.teleport(q);
+      origin = q = back.point;
+      ray = std::make_unique<sol::ClosedFormGeodesic<double>>(turned(back, state.direction));
       local = 0.0;
     }
     const double step = visit(t, q);
@@ -1232,10 +1250,19 @@ void expect_images_complete(const sol::Scene& scene, const std::vector<dvec3>& s
     int needed = 0;
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const sol::MarchObject world{scene.objects[i].shape, i};
+      // The object after the half-turn (x, y, z) -> (-x, -y, z), by hand:
+      // what an odd power of a turning γ3 applies first.
+      sol::MarchObject turned = world;
+      if (auto* ball = std::get_if<sol::Ball>(&turned.shape)) ball->center = dvec3(-ball->center.x, -ball->center.y, ball->center.z);
+      if (auto* tube = std::get_if<sol::Tube>(&turned.shape)) {
+        tube->through = dvec3(-tube->through.x, -tube->through.y, tube->through.z);
+        tube->direction = dvec3(-tube->direction.x, -tube->direction.y, tube->direction.z);
+      }
       for (int c = -layers; c <= layers; ++c) {
         for (int a = -window; a <= window; ++a) {
           for (int b = -window; b <= window; ++b) {
-            const sol::MarchObject image = sol::relative_to(world, sol::inverse(lattice.element(a, b, c)));
+            const bool turns = lattice.turns() && c % 2 != 0;
+            const sol::MarchObject image = sol::relative_to(turns ? turned : world, sol::inverse(lattice.element(a, b, c)));
             if (sol::object_distance(image, centre) > step + reach) continue;
             bool within = false;
             for (const Group& g : groups) {
@@ -1288,7 +1315,7 @@ void expect_images_complete(const sol::Scene& scene, const std::vector<dvec3>& s
 // (it would only cost time): each comes within S + 1.5 of a point of D (the
 // domain bound uses P's bounding box in x and y; measured looser by up to
 // 0.85 at S = 0.5, 1.38 at S = 0.9). In the golden lattice and in those of
-// traces 4 and 10 (the latter with its fibre's area 7).
+// traces 4, 10 (with its fibre's area 7) and -4 (whose γ3 turns).
 TEST(Quotient, ImagesAreCompleteAndReachable) {
   const sol::Lattice lattice = sol::Lattice::golden();
   std::mt19937_64 rng(61);
@@ -1311,7 +1338,7 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
 
   // Other lattices: objects about D (their centres within a domain's width
   // of it), the enumeration as wide as their λ needs.
-  for (const LatticeCase& l : {kLatticeCases[1], kLatticeCases[3]}) {
+  for (const LatticeCase& l : {kLatticeCases[1], kLatticeCases[3], kLatticeCases[4]}) {
     SCOPED_TRACE(l.monodromy.str());
     sol::Scene other = quotient_scene(l);
     const sol::Lattice other_lattice = *other.lattice();

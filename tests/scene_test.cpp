@@ -263,7 +263,8 @@ TEST(Scene, QuotientOfAMonodromy) {
   expect_rejected(with(R"({"monodromy": [[2, 1], [1, 2]]})"), "is not in SL(2, Z): its determinant is 3");
   expect_rejected(with(R"({"monodromy": [[1, 1], [0, 1]]})"), "is not hyperbolic: its trace is 2");
   expect_rejected(with(R"({"monodromy": [[0, -1], [1, 0]]})"), "is not hyperbolic: its trace is 0");
-  expect_rejected(with(R"({"monodromy": [[-2, -1], [-1, -1]]})"), "half-turn");
+  // A negative trace is a lattice whose γ3 turns the fibre.
+  EXPECT_TRUE(sol::parse_scene(with(R"({"monodromy": [[-2, -1], [-1, -1]]})")).lattice()->turns());
   expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": -1})"), "quotient.fibre_area: ");
   expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": 0})"), "fibre area must be finite and > 0");
   expect_rejected(with(R"({"monodromy": [3, 1, 2, 1]})"), "'quotient.monodromy' must be a 2 x 2 integer matrix");

@@ -96,17 +96,21 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   const bool quotient = prepared.features().quotient;
   // In the quotient the kernel works in world coordinates inside D: the eye
   // is teleported there (in double) and point lights stay in world coordinates.
-  const glm::dvec3 p = quotient ? prepared.lattice()->teleport(cam.position).point : cam.position;
+  const Teleport start = quotient ? prepared.lattice()->teleport(cam.position) : Teleport{cam.position};
+  const glm::dvec3 p = start.point;
+  // A teleport that turns (a lattice of negative trace) turns the eye's
+  // frame components with it.
+  auto turned = [&](const glm::dvec3& v) { return start.turned ? half_turn(v) : v; };
   Eye e{};
-  e.right = vec4(basis.right, 0.0);
-  e.up = vec4(basis.up, 0.0);
+  e.right = vec4(turned(basis.right), 0.0);
+  e.up = vec4(turned(basis.up), 0.0);
   e.window = glm::vec4(image_window(cam, width, height));
   const int code = cam.projection == Projection::Equirectangular ? kernel::kProjectionEquirectangular
                    : cam.projection == Projection::Fisheye      ? kernel::kProjectionFisheye
                                                                 : kernel::kProjectionPerspective;
   e.projection = glm::vec4(static_cast<float>(code), static_cast<float>(cam.fisheye_fov * 0.5 * std::numbers::pi / 180.0),
                            0.0f, 0.0f);
-  e.forward = vec4(basis.forward, rk4_step);
+  e.forward = vec4(turned(basis.forward), rk4_step);
   e.camera = vec4(p, std::exp(p.z));
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
@@ -191,7 +195,8 @@ LatticeConstants lattice_constants(const Lattice& lattice) {
                            1.0 / h,
                            std::exp(h),
                            std::exp(-h),
-                           std::exp(0.5 * h)};
+                           std::exp(0.5 * h),
+                           lattice.turns() ? -1.0 : 1.0};
   static_assert(std::size(values) == kLatticeConstantCount, "one value per SOL_LATTICE_CONSTANTS entry, in its order");
   LatticeConstants bits{};
   for (std::size_t i = 0; i < kLatticeConstantCount; ++i) bits[i] = std::bit_cast<std::uint32_t>(static_cast<float>(values[i]));
@@ -611,8 +616,15 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   if (ods) {
     f.columns.resize(eyes.size() * static_cast<std::size_t>(width));
     for (std::size_t e = 0; e < eyes.size(); ++e) {
+      // An eye whose teleport turns (make_eye): its columns' offsets and
+      // transports in the turned frame, D c.offset and D T D, D = diag(-1, -1, 1).
+      const bool turned = prepared.lattice() && prepared.lattice()->teleport(eyes[e].position).turned;
+      const glm::dmat3 d = turned ? glm::dmat3(glm::dvec3(-1.0, 0.0, 0.0), glm::dvec3(0.0, -1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0))
+                                  : glm::dmat3(1.0);
       for (int i = 0; i < width; ++i) {
-        const ColumnEye c = column_eye(eyes[e], i, width);
+        ColumnEye c = column_eye(eyes[e], i, width);
+        c.offset = d * c.offset;
+        c.transport = d * c.transport * d;
         f.columns[e * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] = {
             vec4(c.offset, 0.0), {vec4(c.transport[0], 0.0), vec4(c.transport[1], 0.0), vec4(c.transport[2], 0.0)}};
       }

@@ -39,6 +39,8 @@ jpeg --scene trace4-balls "${a[@]}" -o $g/trace4-balls-z.jpg
 jpeg --scene trace4-balls --forward 1,1,0 --up 0,0,1 "${a[@]}" -o $g/trace4-balls-xy.jpg
 jpeg --scene trace4-pillars --forward 0,0,-1 --up 0,1,0 "${a[@]}" -o $g/trace4-pillars-z.jpg
 jpeg --scene trace4-pillars "${a[@]}" -o $g/trace4-pillars-xy.jpg
+jpeg --scene halfturn-balls "${a[@]}" -o $g/halfturn-balls-z.jpg
+jpeg --scene $s/golden-two-balls.json "${a[@]}" -o $g/golden-two-balls-z.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg
 $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 576 --spp 16 -o $g/sandwich-dome.png
 # Light (docs/lighting.md): the geodesic falloff beside the inverse-square law. For the sandwich lit

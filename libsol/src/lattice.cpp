@@ -13,8 +13,10 @@
 
 namespace sol {
 
-Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy)
-    : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)}, m_monodromy(monodromy) {
+Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns)
+    : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)},
+      m_monodromy(monodromy),
+      m_turns(turns) {
   // Inverse of the 2x2 matrix with columns g1, g2.
   const double det = g1.x * g2.y - g2.x * g1.y;
   m_coordinates_row0 = glm::dvec2(g2.y, -g2.x) / det;
@@ -46,21 +48,23 @@ Lattice Lattice::from_monodromy(const Monodromy& m, std::optional<double> fibre_
     throw InvalidArgument(name + " is not hyperbolic: its trace is " + std::to_string(t) +
                           " (|trace| must exceed 2 for an Anosov map and a Sol manifold)");
   }
-  if (t < -2) {
-    throw NotImplemented(name + ": a negative trace (" + std::to_string(t) +
-                         ") makes γ3 turn the fibre by a half-turn, an isometry outside Sol's group: not supported yet");
-  }
   if (fibre_area && !(std::isfinite(*fibre_area) && *fibre_area > 0.0)) {
     throw InvalidArgument(name + ": the fibre area must be finite and > 0");
   }
   if (m == Monodromy{} && !fibre_area) return golden();  // today's lattice, to the bit
+  if (m == Monodromy{-2, -1, -1, -1} && !fibre_area) {  // its translations, with a turning γ3
+    const Lattice g = golden();
+    return Lattice(glm::dvec2(g.m_generators[0]), glm::dvec2(g.m_generators[1]), g.height(), m, true);
+  }
   // λ > 1 with λ + 1/λ = t; u± = (c, μ - a) for the eigenvalues μ = λ, 1/λ
   // (c != 0: an integer matrix with c = 0 and determinant 1 has trace ±2),
   // normalised by u+·e2 = 1 and u-·e1 = -1.
-  const double td = static_cast<double>(t);
+  // A negative trace: B = -A's eigenvectors and λ, and γ3 turns.
+  const bool turns = t < 0;
+  const double td = static_cast<double>(turns ? -t : t);
   const double lambda = 0.5 * (td + std::sqrt(td * td - 4.0));
   const double inv = 1.0 / lambda;
-  const double a = static_cast<double>(m.a), c = static_cast<double>(m.c);
+  const double a = static_cast<double>(turns ? -m.a : m.a), c = static_cast<double>(turns ? -m.c : m.c);
   const glm::dvec2 up(c / (lambda - a), 1.0);      // u+ / (λ - a)
   const glm::dvec2 um(-1.0, -(inv - a) / c);       // -u- / c
   glm::dvec2 g1(up.x, um.x), g2(up.y, um.y);
@@ -70,7 +74,12 @@ Lattice Lattice::from_monodromy(const Monodromy& m, std::optional<double> fibre_
     g1 *= k;
     g2 *= k;
   }
-  return Lattice(g1, g2, std::log(lambda), m);
+  return Lattice(g1, g2, std::log(lambda), m, turns);
+}
+
+glm::dvec3 Lattice::apply(const LatticeWord& w, const glm::dvec3& p) const {
+  const bool odd = (w.c % 2) != 0;
+  return sol::multiply(element(w), m_turns && odd ? half_turn(p) : p);
 }
 
 double Lattice::fibre_area() const {
@@ -207,9 +216,11 @@ Teleport Lattice::teleport(const glm::dvec3& p) const {
     z = p.z - n * h;
   }
   if (!(z >= 0.0 && z < h)) z = 0.0;  // |z| so large that nh is not exact: rounding, stay in D
+  // Where γ3 turns, γ3^{-n} also turns the fibre when n is odd.
+  const bool turned = m_turns && std::fmod(n, 2.0) != 0.0;
   const double scale = std::exp(-n * h);
-  const double x = scale * p.x;
-  const double y = p.y / scale;
+  const double x = (turned ? -scale : scale) * p.x;
+  const double y = (turned ? -p.y : p.y) / scale;
   if (!std::isfinite(x) || !std::isfinite(y)) {
     throw OutOfRange("sol::Lattice::teleport: point too far from the origin to teleport in double");
   }
@@ -220,6 +231,7 @@ Teleport Lattice::teleport(const glm::dvec3& p) const {
   double r = fraction(sr.y, r_whole);
   const glm::dvec2 g1(m_generators[0]), g2(m_generators[1]);
   Teleport result;
+  result.turned = turned;
   result.element = glm::dvec3(-s_whole * g1 - r_whole * g2, -n * h);
   result.point = glm::dvec3(s * g1 + r * g2, z);
   // Rounding in s*g1 + r*g2 can put a point with s or r at 0 or near 1 just

@@ -106,7 +106,7 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
   std::vector<glm::dvec3> nearby;
   for (int a = -2; a <= 2; ++a) {
     for (int b = -2; b <= 2; ++b) {
-      for (int c = -1; c <= 1; ++c) nearby.push_back(multiply(lattice.element(a, b, c), l0));
+      for (int c = -1; c <= 1; ++c) nearby.push_back(lattice.apply({a, b, c}, l0));
     }
   }
   constexpr int n = 6;
@@ -140,7 +140,7 @@ std::vector<glm::dvec3> quotient_light_images(const Light& light, const Lattice&
   for (int c = -layers; c <= layers; ++c) {
     for (int a = -range; a <= range; ++a) {
       for (int b = -range; b <= range; ++b) {
-        const glm::dvec3 q = multiply(lattice.element(a, b, c), l0);
+        const glm::dvec3 q = lattice.apply({a, b, c}, l0);
         const double d = Ball{q, 0.0}.least_distance_over_domain(lattice);
         if (d <= radius) images.push_back(q);
         if (std::abs(a) == range || std::abs(b) == range) nearest_edge = std::min(nearest_edge, d);

@@ -134,9 +134,11 @@ std::vector<LatticeWord> words_near_domain(const Lattice& lattice, const ImageAn
       words.push_back({0, 0, c});
       continue;
     }
-    // γ3^c · p = (λ^c x, λ^-c y, z + c h); γ1^a γ2^b then adds a γ1 + b γ2.
+    // γ3^c · p = (λ^c x, λ^-c y, z + c h), both signs changed where γ3
+    // turns and c is odd; γ1^a γ2^b then adds a γ1 + b γ2.
+    const double sign = lattice.turns() && c % 2 != 0 ? -1.0 : 1.0;
     const double scale = std::exp(static_cast<double>(c) * h);
-    const glm::dvec2 pc(scale * p.x, p.y / scale);
+    const glm::dvec2 pc(sign * scale * p.x, sign * p.y / scale);
     const glm::dvec2 own = lattice.lattice_coordinates(pc.x, pc.y);
     double slo = std::numeric_limits<double>::infinity(), shi = -slo, rlo = slo, rhi = -slo;
     for (const glm::dvec2& k : box) {
@@ -213,9 +215,11 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
           using Kind = std::decay_t<decltype(kind)>;
           if constexpr (ClosesInQuotient<Kind>) {
             const Kind moved = kind.into_domain(lattice);
-            const MarchObject base{moved, i};
+            // A word of odd c in a lattice that turns: its isometry turns first (Lattice::apply).
+            const MarchObject base{moved, i}, turned{moved.half_turned(), i};
             for (const LatticeWord& w : words_near_domain(lattice, moved.image_anchor(), reach)) {
-              const MarchObject image = relative_to(base, inverse(lattice.element(w)));
+              const bool turns = lattice.turns() && w.c % 2 != 0;
+              const MarchObject image = relative_to(turns ? turned : base, inverse(lattice.element(w)));
               if (std::get<Kind>(image.shape).least_distance_over_domain(lattice) > max_step) continue;
               if (std::none_of(images.begin(), images.end(), [&](const MarchObject& m) { return same_image(m, image); })) {
                 images.push_back(image);

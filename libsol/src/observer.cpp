@@ -41,6 +41,9 @@ void Observer::keep_in_domain() {
   // point = e · p: the cover position w · p is (w e⁻¹) · point.
   const Teleport t = m_lattice->teleport(m_position);
   m_position = t.point;
+  // A teleport that turns (a lattice of negative trace) turns the frame:
+  // E1, E2 -> -E1, -E2, so every frame vector's first two components.
+  if (t.turned) m_frame = glm::dmat3(glm::dvec3(-1.0, 0.0, 0.0), glm::dvec3(0.0, -1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0)) * m_frame;
   const LatticeWord e = m_lattice->word_of(t.element);
   if (e != LatticeWord{}) m_copy = m_lattice->multiply(m_copy, m_lattice->inverse(e));
 }

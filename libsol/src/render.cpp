@@ -289,8 +289,11 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
   const QuotientField& field = *prepared.field();
   const Lattice& lattice = *prepared.lattice();
   const std::vector<MarchObject>& images = prepared.objects();
-  glm::dvec3 origin = lattice.teleport(camera).point;
-  auto ray = std::make_unique<ClosedFormGeodesic<double>>(direction);
+  // The camera's point of D; where its teleport turns (a lattice of
+  // negative trace), frame components turn with it.
+  const Teleport start = lattice.teleport(camera);
+  glm::dvec3 origin = start.point;
+  auto ray = std::make_unique<ClosedFormGeodesic<double>>(start.turned ? half_turn(direction) : direction);
   MarchHit hit;
   double t = 0.0, local = 0.0;  // total arc length; arc length since the last teleport
   const double max_length = std::min(world.max_distance, limits.length);
@@ -312,9 +315,13 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     // left translation: the restarted ray starts along it).
     const ClosedFormGeodesic<double>::State state = ray->at(local + proposal);
     glm::dvec3 q = multiply(origin, state.position);
-    const glm::dvec3 u = state.direction;
+    glm::dvec3 u = state.direction;
     const bool outside = !lattice.contains(q);
-    if (outside) q = lattice.teleport(q).point;
+    if (outside) {
+      const Teleport back = lattice.teleport(q);
+      q = back.point;
+      if (back.turned) u = half_turn(u);
+    }
     hit.steps = step + 1;
     field.sample(q, cell);
     // The clearances ahead and (for a proposal to check) back.

@@ -103,6 +103,11 @@ def test_lattice_of_a_monodromy():
     assert all(np.array_equal(a, b) for a, b in zip(sol.Lattice([[2, 1], [1, 1]]).generators, sol.Lattice.golden().generators))
     with pytest.raises(ValueError, match="not hyperbolic"):
         sol.Lattice([[1, 1], [0, 1]])
+    # A negative trace: γ3 turns the fibre, γ3(p) = (0, 0, h) · (-x, -y, z).
+    minus = sol.Lattice([[-3, -1], [-2, -1]])
+    assert minus.turns and not lattice.turns
+    p = (0.3, -0.2, 0.1)
+    assert np.allclose(minus.apply((0, 0, 1), p), sol.multiply(minus.generators[2], (-0.3, 0.2, 0.1)), atol=1e-14)
     # A scene in it: the ball at the base point seen from the middle of D.
     middle = tuple(0.5 * (np.array(g1) + np.array(g2)) + np.array([0, 0, 0.5 * lattice.height]))
     scene = sol.scene([sol.ball((0, 0, 0), 0.3)], quotient={"monodromy": [[3, 1], [2, 1]]},

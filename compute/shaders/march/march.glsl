@@ -445,11 +445,13 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   // march moved to, and `covered` the part of it q's own bounds clear.
   float proposal = 0.0, covered = 0.0;
   for (int step = 0; step < max_steps; ++step) {
-    const SolForward forward = camera ? quotient_forward(qray, local_t + proposal, by_zeta)
-                                      : sol_forward(qray, local_t + proposal, false);
+    SolForward forward = camera ? quotient_forward(qray, local_t + proposal, by_zeta)
+                                : sol_forward(qray, local_t + proposal, false);
     vec3 e = sol_translate(origin, origin_scale, forward.position);
     const bool outside = !in_domain(e);
-    if (outside) e = teleport(e, true);
+    float turn = 1.0;  // -1: the teleport turned the fibre (teleport), and the direction's frame components
+    if (outside) e = teleport(e, true, turn);
+    forward.direction.xy *= turn;
     const int cell = field_cell(e);
     steps = step + 1;
     const uint word = field_candidates(cell);
@@ -515,6 +517,11 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       origin_scale = hz * hz;  // e^{±z} of e
       qray = camera ? quotient_ray_restarted(qray, local_t + proposal, forward, by_zeta)
                     : sol_ray_restarted(qray, local_t + proposal, forward, false);
+      // A turned restart goes on along the half-turned geodesic: the signs
+      // of its x and y (applied last to every position and direction).
+      qray.sign_x *= turn;
+      qray.sign_y *= turn;
+      qray.direction.xy *= turn;
       local_t = 0.0;
     } else {
       local_t += proposal;

@@ -46,16 +46,19 @@ void march_pass() {
   // ODS column's eye); in the quotient the eye's point of D (from double),
   // or the column's eye teleported into D.
   vec3 origin = ray.start;
+  vec3 direction = ray.direction;
   if (QUOTIENT) {
     origin = params.eyes[eye].camera.xyz;
     if (HAS_ODS) {
       origin = sol_translate(origin, ray.start);
-      if (!in_domain(origin)) origin = teleport(origin, false);
+      float turn = 1.0;
+      if (!in_domain(origin)) origin = teleport(origin, false, turn);
+      direction.xy *= turn;
     }
   } else {
     load_objects(eye);
   }
-  const MarchHit h = march(origin, ray.direction, params.limits.x,
+  const MarchHit h = march(origin, direction, params.limits.x,
                            MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
   if (h.deferred) {  // the rest of this ray in the resume pass
     defer_exact(pixel, h.resume.t, h.resume.passing, h.resume.step);

@@ -25,13 +25,18 @@ bool in_domain(vec3 p) {
 // point of D, less than LATTICE_HEIGHT long (every lattice's height exceeds
 // kQuotientMaxStep), so n is -1, 0 or 1 and λ^{±n} a choice between
 // constants (the march runs this at every step, masked: no pow there); else any n.
-vec3 teleport(vec3 p, const bool step_end) {
+// `turn`: -1 where γ3^n also turned the fibre by the half-turn (a lattice of
+// negative trace, n odd: then x and y change sign, and so do the first two
+// frame components of a direction there), else 1 (the constant 1 for a
+// lattice that does not turn, folded away).
+vec3 teleport(vec3 p, const bool step_end, out float turn) {
   const float n = -floor(p.z / LATTICE_HEIGHT);
+  turn = mod(n, 2.0) != 0.0 ? LATTICE_TURN : 1.0;
   const float up = n > 0.5 ? LATTICE_LAMBDA : (n < -0.5 ? LATTICE_INV_LAMBDA : 1.0);
   const float down = n > 0.5 ? LATTICE_INV_LAMBDA : (n < -0.5 ? LATTICE_LAMBDA : 1.0);
   const float scale = step_end ? up : pow(LATTICE_SQRT_LAMBDA, 2.0 * n);
   const float inverse_scale = step_end ? down : 1.0 / scale;
-  vec3 q = vec3(scale * p.x, p.y * inverse_scale, p.z + n * LATTICE_HEIGHT);
+  vec3 q = vec3(turn * scale * p.x, turn * p.y * inverse_scale, p.z + n * LATTICE_HEIGHT);
   q.z = min(max(q.z, 0.0), LATTICE_TOP);
   const vec2 f = floor(lattice_coordinates(q));
   const float fs = f.x, fr = f.y;

@@ -5,7 +5,9 @@
 // M = Γ\Sol is a torus bundle over the circle with Anosov monodromy. The
 // fundamental domain is D = {sγ1 + rγ2 : s,r ∈ [0,1)} × [0, 2 ln φ). Elements
 // (x,y,0) act by plain translation of (x,y); γ3^n scales x by φ^{2n} and y by
-// φ^{-2n} and adds 2n ln φ to z. docs/mathematics.md.
+// φ^{-2n} and adds 2n ln φ to z. Every other hyperbolic monodromy A gives
+// its lattice the same way (Lattice::from_monodromy); for a negative trace
+// its γ3 also turns the fibre by the half-turn. docs/mathematics.md.
 #pragma once
 
 #include <array>
@@ -17,11 +19,19 @@
 
 namespace sol {
 
+/// The half-turn (x, y, z) -> (-x, -y, z): an isometry of Sol and an
+/// automorphism of its group (half_turn(p q) = half_turn(p) half_turn(q))
+/// that is not a left translation; it turns the frame's E1, E2 to -E1, -E2.
+inline glm::dvec3 half_turn(const glm::dvec3& p) { return {-p.x, -p.y, p.z}; }
+
 /// Result of Lattice::teleport: `point` lies in D and equals
-/// multiply(element, p) up to rounding (see Lattice::teleport).
+/// multiply(element, turned ? half_turn(p) : p) up to rounding (see
+/// Lattice::teleport); `turned` only in a lattice whose γ3 turns
+/// (Lattice::turns), where frame components at p turn with it.
 struct Teleport {
   glm::dvec3 point{0.0};
   glm::dvec3 element{0.0};
+  bool turned = false;
 };
 
 /// An element of Γ as the word γ1^a γ2^b γ3^c (every element has exactly
@@ -56,7 +66,7 @@ class Lattice {
   /// The lattice Γ of docs/mathematics.md: from_monodromy of [[2, 1], [1, 1]].
   static Lattice golden();
 
-  /// The lattice Γ_A of a hyperbolic A in SL(2, Z) with trace > 2
+  /// The lattice Γ_A of a hyperbolic A in SL(2, Z): for trace > 2
   /// (docs/mathematics.md, "Every lattice"): with λ > 1 A's larger
   /// eigenvalue and row vectors u± with u+ A = λ u+, u- A = u- / λ, the
   /// generators are γ1 = (u+·e1, u-·e1, 0), γ2 = (u+·e2, u-·e2, 0),
@@ -68,11 +78,22 @@ class Lattice {
   /// area |det(γ1, γ2)| of the fibre torus, when given (scaling x and y
   /// together is not an isometry: the area is a parameter of the manifold;
   /// scaling x by k and y by 1/k is one, so the split does not matter).
+  /// For trace < -2, A = -B with B of trace > 2: γ1, γ2 and λ are B's, and
+  /// γ3 is the isometry p -> (0, 0, ln λ) · half_turn(p) (turns() is true),
+  /// so that γ3 γ(w) γ3⁻¹ = -γ(B w) = γ(A w) still: Γ_A is then a lattice of
+  /// isometries of Sol, not a subgroup of its group.
   /// Throws InvalidArgument naming the reason for a matrix not in
   /// SL(2, Z), one with |trace| <= 2 (not hyperbolic) or a fibre area that
-  /// is not finite and positive; NotImplemented for trace < -2 (its γ3 also
-  /// turns the fibre by a half-turn, an isometry outside the group).
+  /// is not finite and positive.
   static Lattice from_monodromy(const Monodromy& monodromy, std::optional<double> fibre_area = std::nullopt);
+
+  /// Whether γ3 also turns the fibre by the half-turn (trace < -2): the
+  /// word γ1^a γ2^b γ3^c is then the isometry p -> element(a, b, c) ·
+  /// half_turn^c(p).
+  bool turns() const { return m_turns; }
+  /// The image of p under the word's isometry: element(w) · p, after the
+  /// half-turn when turns() and w.c is odd.
+  glm::dvec3 apply(const LatticeWord& w, const glm::dvec3& p) const;
 
   /// The monodromy A: conjugation by γ3 acts on the words γ1^a γ2^b as A.
   const Monodromy& monodromy() const { return m_monodromy; }
@@ -91,7 +112,8 @@ class Lattice {
   /// Height of D along z (the z-coordinate of γ3).
   double height() const { return m_generators[2].z; }
 
-  /// The group element γ1^n1 γ2^n2 γ3^n3.
+  /// The group element γ1^n1 γ2^n2 γ3^n3 (its translation part where γ3
+  /// turns: see turns() and apply()).
   glm::dvec3 element(long long n1, long long n2, long long n3) const;
   glm::dvec3 element(const LatticeWord& w) const { return element(w.a, w.b, w.c); }
   /// The word of an element of Γ given as a point (such as Teleport::element),
@@ -104,7 +126,9 @@ class Lattice {
   /// True when p lies in the fundamental domain D (half-open faces).
   bool contains(const glm::dvec3& p) const;
 
-  /// Finds element ∈ Γ with point = element * p in D. `point` is always in D
+  /// Finds element ∈ Γ with point = element * p in D (element *
+  /// half_turn(p) where `turned`: a word of odd c in a lattice that
+  /// turns). `point` is always in D
   /// (contains(point) is true). Rounding: point matches multiply(element, p)
   /// to about 4 ulp of the largest intermediate |coordinate|, which grows like
   /// φ^{2|n|}·max(|x|,|y|) where n ≈ z / height(); for |z| ≲ 10 and
@@ -112,10 +136,11 @@ class Lattice {
   Teleport teleport(const glm::dvec3& p) const;
 
  private:
-  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy);
+  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns = false);
 
   std::array<glm::dvec3, 3> m_generators;
   Monodromy m_monodromy;
+  bool m_turns = false;
   glm::dvec2 m_coordinates_row0;  // rows of [γ1 γ2]^{-1}
   glm::dvec2 m_coordinates_row1;
 };

@@ -78,6 +78,7 @@ concept ClosesInQuotient = requires(const Kind& kind, const Lattice& lattice) {
   { kind.into_domain(lattice) } -> std::same_as<Kind>;
   { kind.least_distance_over_domain(lattice) } -> std::convertible_to<double>;
   { kind.image_anchor() } -> std::same_as<ImageAnchor>;
+  { kind.half_turned() } -> std::same_as<Kind>;
   { kind.same_set(kind) } -> std::convertible_to<bool>;
 };
 

@@ -31,8 +31,9 @@ enum class Quotient { None, Golden, Monodromy };
 /// Everything that is seen, and how the march looks for it.
 struct World {
   Quotient quotient = Quotient::None;
-  /// Quotient::Monodromy: the torus bundle's monodromy A, hyperbolic with
-  /// trace > 2 (A = [[2, 1], [1, 1]] without a fibre area is the golden lattice) ...
+  /// Quotient::Monodromy: the torus bundle's monodromy A, hyperbolic
+  /// (|trace| > 2; A = [[2, 1], [1, 1]] without a fibre area is the golden
+  /// lattice, a negative trace turns the fibre: Lattice::turns) ...
   Monodromy monodromy{};
   /// ... and the area of its fibre torus (none: the normalisation of
   /// Lattice::from_monodromy).
@@ -95,7 +96,9 @@ bool uses_exact_lights(const World& world);
 /// ball at the base point), "lattice-pillars" (Γ\Sol, tubes along the closed
 /// curves of γ1, γ2, γ3 through the base point), "lattice-boxes" (Γ\Sol, one
 /// cube at the base point), "trace4-balls" and "trace4-pillars" (the same
-/// in the torus bundle of [[3, 1], [2, 1]]), "spheres" (exact geodesic
+/// in the torus bundle of [[3, 1], [2, 1]]), "halfturn-balls" (the bundle of
+/// [[-2, -1], [-1, -1]], whose γ3 turns the fibre: a ball at the base point
+/// and one off it), "spheres" (exact geodesic
 /// spheres of several radii above, on and below z = 0, lit by an exact point
 /// light). InvalidArgument if unknown.
 Scene preset_scene(std::string_view name);

@@ -62,6 +62,8 @@ double Ball::least_distance_over_domain(const Lattice& lattice) const {
   return least_solid_bound(Solid::Ball, center, {0.0, 0.0}, lattice) - radius;
 }
 
+Ball Ball::half_turned() const { return {half_turn(center), radius, exact}; }
+
 ImageAnchor Ball::image_anchor() const { return {ImageAnchor::Along::Point, center, {0.0, 0.0}}; }
 
 bool Ball::same_set(const Ball& other) const { return glm::length(center - other.center) < kSameSetTolerance; }

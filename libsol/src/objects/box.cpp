@@ -115,6 +115,9 @@ double Box::least_distance_over_domain(const Lattice& lattice) const {
 // y, then z from the centre's frame: lengths a, b, c at most), which the
 // quotient's check keeps within kMaxQuotientRadius: the images' search of
 // sol::quotient_images holds for it as for a ball of that radius.
+// The half-turn is an automorphism and B is symmetric: half_turn(center·B) = half_turn(center)·B.
+Box Box::half_turned() const { return {half_turn(center), half_size}; }
+
 ImageAnchor Box::image_anchor() const { return {ImageAnchor::Along::Point, center, {0.0, 0.0}}; }
 
 bool Box::same_set(const Box& other) const {

@@ -119,7 +119,7 @@ KernelShape Tube::kernel_shape() const {
 // the axis with it (left-translation by g = seen from g⁻¹).
 Tube Tube::into_domain(const Lattice& lattice) const {
   const Teleport t = lattice.teleport(through);
-  Tube moved = seen_from(inverse(t.element));
+  Tube moved = (t.turned ? half_turned() : *this).seen_from(inverse(t.element));
   moved.through = t.point;
   return moved;
 }
@@ -129,6 +129,10 @@ double Tube::least_distance_over_domain(const Lattice& lattice) const {
   return least_solid_bound(solid, through, vertical() ? glm::dvec2(0.0) : glm::dvec2(direction.x, direction.y), lattice) -
          radius;
 }
+
+// The line through half_turn(through) along the turned direction (a
+// vertical one is its own); the pattern follows (along and across keep their signs).
+Tube Tube::half_turned() const { return {half_turn(through), half_turn(direction), radius}; }
 
 ImageAnchor Tube::image_anchor() const {
   if (vertical()) return {ImageAnchor::Along::VerticalLine, through, {0.0, 0.0}};

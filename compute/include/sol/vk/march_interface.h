@@ -60,7 +60,9 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
 /// LATTICE_INV_DET = 1 / det[γ1 γ2]; LATTICE_HEIGHT = h, the z of γ3;
 /// LATTICE_TOP = h (1 - 1e-7), the largest z a teleport leaves;
 /// LATTICE_INV_HEIGHT = 1 / h; LATTICE_LAMBDA = λ = e^h (γ3 scales x by
-/// it), LATTICE_INV_LAMBDA = 1 / λ, LATTICE_SQRT_LAMBDA = √λ.
+/// it), LATTICE_INV_LAMBDA = 1 / λ, LATTICE_SQRT_LAMBDA = √λ;
+/// LATTICE_TURN = -1 where γ3 also turns the fibre by the half-turn (a
+/// negative trace: sol::Lattice::turns), else 1.
 // clang-format off
 #define SOL_LATTICE_CONSTANTS(X)   \
   X(LATTICE_G1X,         30)       \
@@ -73,7 +75,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(LATTICE_INV_HEIGHT,  37)       \
   X(LATTICE_LAMBDA,      38)       \
   X(LATTICE_INV_LAMBDA,  39)       \
-  X(LATTICE_SQRT_LAMBDA, 40)
+  X(LATTICE_SQRT_LAMBDA, 40)       \
+  X(LATTICE_TURN,        41)
 // clang-format on
 
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does

@@ -29,6 +29,7 @@ struct Ball {
   Ball into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
   ImageAnchor image_anchor() const;
+  Ball half_turned() const;
   bool same_set(const Ball& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

@@ -37,6 +37,7 @@ struct Box {
   Box into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
   ImageAnchor image_anchor() const;
+  Box half_turned() const;
   bool same_set(const Box& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

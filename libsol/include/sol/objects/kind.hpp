@@ -26,7 +26,8 @@
 //   visit_fields(v)  its parameters as a program's controls edit them;
 // and for kinds that close up in the compact quotient (planes z = c,
 // balls, tubes along γ1, γ2, γ3, boxes): into_domain,
-// least_distance_over_domain, image_anchor and same_set
+// least_distance_over_domain, image_anchor, half_turned (its image under
+// (x, y, z) -> (-x, -y, z), for lattices whose γ3 turns) and same_set
 // (sol::quotient_images). Its checks and scene-file keys are free functions
 // of libsol/src/objects_internal.hpp. A kind lives in its own header here
 // and source in libsol/src/objects/, and is one line of SOL_OBJECT_KINDS

@@ -65,6 +65,7 @@ struct PlaneZ {
   PlaneZ into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
   ImageAnchor image_anchor() const { return {ImageAnchor::Along::Height, {0.0, 0.0, c}, {0.0, 0.0}}; }
+  PlaneZ half_turned() const { return *this; }
   bool same_set(const PlaneZ& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {

@@ -50,6 +50,7 @@ struct Tube {
   Tube into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
   ImageAnchor image_anchor() const;
+  Tube half_turned() const;
   bool same_set(const Tube& other) const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {
