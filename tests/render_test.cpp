@@ -1358,6 +1358,20 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   }
 }
 
+// A fibre so small that more images of the objects lie within a step of D
+// than the field holds: refused with what would help, naming the field.
+TEST(Quotient, ASmallFibreSaysWhatHelps) {
+  sol::Scene scene = sol::preset_scene("trace4-balls");
+  sol::set_quotient(scene, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.05);
+  try {
+    const sol::MarchWorld prepared(scene);
+    ADD_FAILURE() << prepared.objects().size() << " images accepted";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 254 images"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("or a larger quotient.fibre_area"), std::string::npos) << e.what();
+  }
+}
+
 // The CPU renderer without AOVs: the same colour, mono and stereo (eyes
 // side by side), and no AOV planes.
 TEST(Render, ColourAloneIsTheSameColour) {

@@ -141,7 +141,9 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   if (images.size() > static_cast<std::size_t>(kMaxGpuImages)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the quotient scene has " + std::to_string(images.size()) +
                           " object images around the domain; the kernel takes at most " +
-                          std::to_string(kMaxGpuImages) + " (fewer or smaller objects)");
+                          std::to_string(kMaxGpuImages) + " (fewer or smaller objects" +
+                          (prepared.world().quotient == Quotient::Monodromy ? std::string(", or a larger quotient.fibre_area)")
+                                                                             : std::string(")")));
   }
   std::vector<kernel::Image> out;
   for (const MarchObject& m : images) {

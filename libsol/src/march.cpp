@@ -285,8 +285,13 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
   m_features = features_of(world);
   m_lattice = world.lattice();
   if (m_lattice) {
-    std::tie(m_objects, m_max_step) = listed_images(world);
-    m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
+    try {
+      std::tie(m_objects, m_max_step) = listed_images(world);
+      m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
+    } catch (const std::invalid_argument& e) {  // too many images for the field: say what helps
+      throw InvalidArgument(std::string(e.what()) + " (fewer or smaller objects" +
+                            (world.quotient == Quotient::Monodromy ? std::string(", or a larger quotient.fibre_area)") : ")"));
+    }
     for (std::size_t i = 0; i < world.lights.size(); ++i) {
       try {
         m_light_images.push_back(quotient_light_images(world.lights[i], *m_lattice));
