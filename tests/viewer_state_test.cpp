@@ -81,6 +81,38 @@ TEST(ViewerState, BadEditsFallBackToTheLastGoodWorld) {
   EXPECT_EQ(s.good_world.fog_density, 0.1);
 }
 
+// Another monodromy (the panel's): the observer binds to the new lattice
+// and is in its domain at once, its frame turned where the new lattice's
+// teleport turns; back to Sol it is unbound.
+TEST(ViewerState, AnotherMonodromyRebindsTheObserver) {
+  ViewerState s = make_state();
+  s.set_scene("plane");  // in Sol, the observer at (0, 0, 1.5): above the new lattice's domain (h = ln(2 + √3) = 1.32)
+  const glm::dvec3 far_forward = s.observer.forward(), far_up = s.observer.up();
+  sol::set_quotient(s.scene, sol::Quotient::Monodromy, {-3, -1, -2, -1});
+  s.world_edited();
+  EXPECT_TRUE(s.message.empty()) << s.message;
+  ASSERT_TRUE(s.observer.lattice().has_value());
+  const sol::Lattice lattice = *s.scene.lattice();
+  EXPECT_TRUE(s.observer.lattice()->turns());
+  EXPECT_EQ(s.observer.lattice()->generators(), lattice.generators());
+  EXPECT_TRUE(lattice.contains(s.observer.position()));
+  EXPECT_EQ(s.world_version, 2);
+  // The observer at the preset's camera, moved into the new domain by γ3⁻¹
+  // (which turns): its copy's word takes it back there, position and frame.
+  const sol::LatticeWord w = s.observer.copy();
+  const bool turned = w.c % 2 != 0;
+  EXPECT_TRUE(turned);
+  EXPECT_LT(glm::length(lattice.apply(w, s.observer.position()) - sol::preset_scene("plane").camera.position), 1e-12);
+  EXPECT_LT(glm::length(sol::half_turn(s.observer.forward()) - far_forward), 1e-12);
+  EXPECT_LT(glm::length(sol::half_turn(s.observer.up()) - far_up), 1e-12);
+  EXPECT_LT(s.observer.up().y, -0.99);  // (0, 1, 0) turned
+  // A matrix that is not hyperbolic is refused by set_quotient itself (the panel shows why).
+  EXPECT_THROW(sol::set_quotient(s.scene, sol::Quotient::Monodromy, {1, 1, 0, 1}), sol::InvalidArgument);
+  sol::set_quotient(s.scene, sol::Quotient::None);
+  s.world_edited();
+  EXPECT_FALSE(s.observer.lattice().has_value());
+}
+
 TEST(ViewerState, SettingsApplyOrAreRefusedByName) {
   ViewerState s = make_state();
   s.set_scene("plane");
