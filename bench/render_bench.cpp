@@ -39,7 +39,8 @@
 //
 //  6. Every lattice (--only lattices): one world, a ball of radius 0.3 at
 //     the base point, in the golden lattice and in those of [[3, 1], [2, 1]]
-//     (trace 4), [[5, 2], [2, 1]] (trace 6) and [[9, 4], [2, 1]] (trace 10),
+//     (trace 4), [[5, 2], [2, 1]] (trace 6), [[9, 4], [2, 1]] (trace 10) and
+//     [[-3, -1], [-2, -1]] (trace -4, its γ3 turning the fibre),
 //     seen from the middle of each one's domain along z and along x + y,
 //     on the kernel at --size², best of --repeats in rounds over the
 //     lattices: time, M rays/s, mean steps, the images listed and the time
@@ -217,7 +218,11 @@ int main(int argc, char** argv) {
         const char* name;
         sol::Monodromy monodromy;
       };
-      const Case cases[] = {{"golden", {2, 1, 1, 1}}, {"trace4", {3, 1, 2, 1}}, {"trace6", {5, 2, 2, 1}}, {"trace10", {9, 4, 2, 1}}};
+      const Case cases[] = {{"golden", {2, 1, 1, 1}},
+                            {"trace4", {3, 1, 2, 1}},
+                            {"trace6", {5, 2, 2, 1}},
+                            {"trace10", {9, 4, 2, 1}},
+                            {"trace-4", {-3, -1, -2, -1}}};
       struct Run {
         std::string label;
         sol::Scene scene;
