@@ -904,6 +904,25 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
   expect_no_validation_errors();
 }
 
+// A quotient with more images near its domain than the kernel's records
+// hold (here a small fibre: 74 for [[3, 1], [2, 1]] with area 0.3) is one
+// the kernel does not render: unsupported() says so, naming what helps, so
+// that --device auto renders it on the CPU; the presets are rendered.
+TEST(Kernel, CrowdedQuotientsRenderOnTheCpu) {
+  sol::Scene crowded = sol::preset_scene("trace4-balls");
+  sol::set_quotient(crowded, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.3);
+  ASSERT_GT(sol::quotient_images(crowded).size(), static_cast<std::size_t>(sol::vk::kMaxGpuImages));
+  const std::string why = sol::vk::MarchRenderer::unsupported(crowded);
+  EXPECT_NE(why.find("render on the CPU only"), std::string::npos) << why;
+  EXPECT_NE(why.find("a larger quotient.fibre_area"), std::string::npos) << why;
+  sol::vk::MarchRenderer renderer(vk_context());
+  EXPECT_THROW(renderer.set_world(crowded), sol::NotImplemented);
+  for (const char* name : {"lattice-balls", "lattice-pillars", "lattice-boxes", "trace4-balls", "trace4-pillars", "halfturn-balls"}) {
+    EXPECT_EQ(sol::vk::MarchRenderer::unsupported(sol::preset_scene(name)), "") << name;
+  }
+  expect_no_validation_errors();
+}
+
 // The quotient march takes every ray off the plane regime
 // (sol_direction_off_plane_regime in sol_forward.glsl: μ = |ab| raised to
 // 2e-24, or a vertical line), so that its steps leave that regime's

@@ -732,6 +732,24 @@ std::string MarchRenderer::unsupported(const World& world) {
       return message;
     }
   }
+  if (world.quotient != Quotient::None) {
+    // More images near the domain than the kernel's records hold: a crowded
+    // world, or a monodromy's small fibre.
+    std::size_t images = 0;
+    try {
+      images = quotient_images(world).size();
+    } catch (const std::exception&) {
+      return {};  // an invalid world: set_world says why
+    }
+    if (images > static_cast<std::size_t>(kMaxGpuImages)) {
+      std::snprintf(message, sizeof message,
+                    "objects: %zu images of the objects lie near the quotient's domain, more than the kernel's %d: "
+                    "they render on the CPU only (--device cpu)%s",
+                    images, kMaxGpuImages,
+                    world.quotient == Quotient::Monodromy ? "; a larger quotient.fibre_area gives fewer" : "");
+      return message;
+    }
+  }
   return {};
 }
 

@@ -203,8 +203,10 @@ class MarchRenderer final : public Renderer {
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach
   /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages),
-  /// and those with exact balls above kMaxExactBallRadius. set_world throws
-  /// sol::NotImplemented for those; the CPU renderer takes every world.
+  /// those with exact balls above kMaxExactBallRadius, and quotients with
+  /// more than kMaxGpuImages images near the domain (a crowded world, or a
+  /// monodromy's small fibre). set_world throws sol::NotImplemented for
+  /// those; the CPU renderer takes every world (up to its field's 254 images).
   static bool supports(const World& world);
   /// Why the kernel does not render the world, naming the field and saying
   /// where it renders ("" when it does: supports()).
