@@ -17,18 +17,23 @@ namespace detail {
 void check_camera(const Camera& camera);                    // camera.cpp
 void check_light(const Light& light, const std::string& at);  // light.cpp
 
-// The checks behind validate(World), also run on the world of a scene file.
-void check_world(const World& s) {
-  if (s.objects.empty()) field_error("objects", "the scene has no objects");
-  if (s.objects.size() > 64) field_error("objects", "at most 64 objects, got " + std::to_string(s.objects.size()));
-  std::optional<Lattice> lattice;
+// The world's lattice (World::lattice), a bad monodromy or fibre area a
+// FieldError at quotient.monodromy or quotient.fibre_area.
+std::optional<Lattice> checked_lattice(const World& s) {
   try {
-    lattice = s.lattice();
+    return s.lattice();
   } catch (const InvalidArgument& e) {
     const bool area = s.fibre_area && !(std::isfinite(*s.fibre_area) && *s.fibre_area > 0.0);
     const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
     field_error(at, at + ": " + e.what());
   }
+}
+
+// The checks behind validate(World), also run on the world of a scene file.
+void check_world(const World& s) {
+  if (s.objects.empty()) field_error("objects", "the scene has no objects");
+  if (s.objects.size() > 64) field_error("objects", "at most 64 objects, got " + std::to_string(s.objects.size()));
+  const std::optional<Lattice> lattice = checked_lattice(s);
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);
   }

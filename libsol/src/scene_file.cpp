@@ -15,6 +15,7 @@ namespace sol {
 namespace detail {
 void check_camera(const Camera& camera);  // camera.cpp
 void check_world(const World& world);     // scene.cpp
+std::optional<Lattice> checked_lattice(const World& world);  // scene.cpp
 }  // namespace detail
 
 namespace {
@@ -144,11 +145,9 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("quotient")) read_quotient(root["quotient"], r, s);
   std::optional<Lattice> lattice;
   try {
-    lattice = s.lattice();
-  } catch (const std::exception& e) {
-    const bool area = s.fibre_area && !(std::isfinite(*s.fibre_area) && *s.fibre_area > 0.0);
-    const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
-    r.fail(at, at + ": " + e.what());
+    lattice = detail::checked_lattice(s);
+  } catch (const detail::FieldError& e) {
+    r.fail(e.path(), e.what());
   }
   const json& objects = root["objects"];
   for (std::size_t i = 0; i < objects.size(); ++i) {
