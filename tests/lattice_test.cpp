@@ -314,7 +314,10 @@ TEST(Lattice, MonodromiesThatAreNotHyperbolicAreRefusedWithTheReason) {
   EXPECT_NE(message({1, 1, 0, 1}).find("not hyperbolic: its trace is 2"), std::string::npos);
   EXPECT_NE(message({0, -1, 1, 0}).find("not hyperbolic: its trace is 0"), std::string::npos);
   EXPECT_NE(message({-1, 0, 0, -1}).find("not hyperbolic: its trace is -2"), std::string::npos);
-  EXPECT_NE(message({2, 1, 1, 1}, 0.0).find("fibre area must be finite and > 0"), std::string::npos);
+  EXPECT_NE(message({2, 1, 1, 1}, 0.0).find("fibre area must be in [0.01, 10000]"), std::string::npos);
+  EXPECT_NE(message({2, 1, 1, 1}, 1e300).find("fibre area must be in [0.01, 10000]"), std::string::npos);
+  EXPECT_NE(message({2, 1, 1, 1}, 0.009).find("fibre area must be in [0.01, 10000]"), std::string::npos);
+  EXPECT_EQ(message({2, 1, 1, 1}, 10000.0), "accepted");
   EXPECT_NE(message({2, 1, 1, 1}, std::nan("")).find("fibre area"), std::string::npos);
   EXPECT_NE(message({1LL << 40, 1, 1, 1}).find("±2^31"), std::string::npos);
   EXPECT_EQ(sol::Monodromy({3, 1, 2, 1}).str(), "[[3, 1], [2, 1]]");

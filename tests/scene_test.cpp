@@ -266,7 +266,8 @@ TEST(Scene, QuotientOfAMonodromy) {
   // A negative trace is a lattice whose γ3 turns the fibre.
   EXPECT_TRUE(sol::parse_scene(with(R"({"monodromy": [[-2, -1], [-1, -1]]})")).lattice()->turns());
   expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": -1})"), "quotient.fibre_area: ");
-  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": 0})"), "fibre area must be finite and > 0");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": 0})"), "fibre area must be in [0.01, 10000]");
+  expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1]], "fibre_area": 1e300})"), "quotient.fibre_area: ");
   expect_rejected(with(R"({"monodromy": [3, 1, 2, 1]})"), "'quotient.monodromy' must be a 2 x 2 integer matrix");
   expect_rejected(with(R"({"monodromy": [[3, 1], [2]]})"), "'quotient.monodromy' must be a 2 x 2 integer matrix");
   expect_rejected(with(R"({"monodromy": [[3, 1.5], [2, 1]]})"), "'quotient.monodromy[0][1]' must be an integer");

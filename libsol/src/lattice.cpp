@@ -48,8 +48,10 @@ Lattice Lattice::from_monodromy(const Monodromy& m, std::optional<double> fibre_
     throw InvalidArgument(name + " is not hyperbolic: its trace is " + std::to_string(t) +
                           " (|trace| must exceed 2 for an Anosov map and a Sol manifold)");
   }
-  if (fibre_area && !(std::isfinite(*fibre_area) && *fibre_area > 0.0)) {
-    throw InvalidArgument(name + ": the fibre area must be finite and > 0");
+  // Areas far outside this put the generators beyond what the kernel's
+  // floats resolve (or the images near D beyond any count a march takes).
+  if (fibre_area && !(*fibre_area >= 0.01 && *fibre_area <= 10000.0)) {
+    throw InvalidArgument(name + ": the fibre area must be in [0.01, 10000]");
   }
   if (m == Monodromy{} && !fibre_area) return golden();  // today's lattice, to the bit
   if (m == Monodromy{-2, -1, -1, -1} && !fibre_area) {  // its translations, with a turning γ3

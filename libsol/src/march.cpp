@@ -158,13 +158,13 @@ std::vector<LatticeWord> words_near_domain(const Lattice& lattice, const ImageAn
       rlo -= k2;
       rhi += k2;
     }
+    if ((shi - slo + 3.0) * (rhi - rlo + 3.0) > 1e6) {  // in double: no integer conversion can overflow
+      throw InvalidArgument("sol::quotient_images: over a million lattice words lie near the domain (a fibre area too small?)");
+    }
     const long long a_lo = std::min(-kWindow, static_cast<long long>(std::floor(slo)) - 1);
     const long long a_hi = std::max(kWindow, static_cast<long long>(std::ceil(shi)) + 1);
     const long long b_lo = std::min(-kWindow, static_cast<long long>(std::floor(rlo)) - 1);
     const long long b_hi = std::max(kWindow, static_cast<long long>(std::ceil(rhi)) + 1);
-    if ((a_hi - a_lo + 1) * (b_hi - b_lo + 1) > 1000000) {
-      throw InvalidArgument("sol::quotient_images: over a million lattice words lie near the domain (a fibre area too small?)");
-    }
     for (long long a = a_lo; a <= a_hi; ++a) {
       for (long long b = b_lo; b <= b_hi; ++b) words.push_back({a, b, c});
     }

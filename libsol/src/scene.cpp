@@ -23,7 +23,7 @@ std::optional<Lattice> checked_lattice(const World& s) {
   try {
     return s.lattice();
   } catch (const InvalidArgument& e) {
-    const bool area = s.fibre_area && !(std::isfinite(*s.fibre_area) && *s.fibre_area > 0.0);
+    const bool area = s.fibre_area && !(*s.fibre_area >= 0.01 && *s.fibre_area <= 10000.0);
     const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
     field_error(at, at + ": " + e.what());
   }

@@ -83,8 +83,8 @@ class Lattice {
   /// so that γ3 γ(w) γ3⁻¹ = -γ(B w) = γ(A w) still: Γ_A is then a lattice of
   /// isometries of Sol, not a subgroup of its group.
   /// Throws InvalidArgument naming the reason for a matrix not in
-  /// SL(2, Z), one with |trace| <= 2 (not hyperbolic) or a fibre area that
-  /// is not finite and positive.
+  /// SL(2, Z), one with |trace| <= 2 (not hyperbolic) or a fibre area outside
+  /// [0.01, 10000] (beyond it the kernel's floats cannot resolve the lattice).
   static Lattice from_monodromy(const Monodromy& monodromy, std::optional<double> fibre_area = std::nullopt);
 
   /// Whether γ3 also turns the fibre by the half-turn (trace < -2): the
