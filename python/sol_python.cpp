@@ -378,6 +378,31 @@ PYBIND11_MODULE(_sol, m) {
            "`fibre_area` (None: the normalisation u+.e2 = 1, u-.e1 = -1, which for [[2, 1], [1, 1]] is the golden "
            "lattice).")
       .def_static("golden", &sol::Lattice::golden, "The golden lattice, of [[2, 1], [1, 1]].")
+      .def_static("z_loop", &sol::Lattice::z_loop, py::arg("height"),
+                  "The loop γ3 = (0, 0, height) alone (height in [1, 20]): the non-compact quotient Sol/<γ3>, whose "
+                  "domain is R^2 x [0, height) (docs/mathematics.md, 'The non-compact quotients').")
+      .def_static(
+          "xy_loops",
+          [](const std::array<double, 2>& g1, const std::array<double, 2>& g2) {
+            return sol::Lattice::xy_loops({g1[0], g1[1]}, {g2[0], g2[1]});
+          },
+          py::arg("gamma1"), py::arg("gamma2"),
+          "The loops γ1 = (x1, y1, 0) and γ2 = (x2, y2, 0) alone: the quotient Sol/<γ1, γ2>, a torus times a line, "
+          "whose domain is their parallelogram times every height.")
+      .def_property_readonly(
+          "loops",
+          [](const sol::Lattice& l) {
+            switch (l.loops()) {
+              case sol::Lattice::Loops::Z:
+                return "z";
+              case sol::Lattice::Loops::XY:
+                return "xy";
+              case sol::Lattice::Loops::All:
+                break;
+            }
+            return "all";
+          },
+          "Which loops the quotient closes: 'all' (a compact torus bundle), 'z' (a z loop) or 'xy' (xy loops).")
       .def_property_readonly(
           "monodromy",
           [](const sol::Lattice& l) {
@@ -409,7 +434,20 @@ PYBIND11_MODULE(_sol, m) {
             return py::make_tuple(w.a, w.b, w.c);
           },
           py::arg("u"), py::arg("v"), "The product of the words u = (a, b, c) and v (γ1^a γ2^b γ3^c) in normal form.")
-      .def("__repr__", [](const sol::Lattice& l) { return "sol.Lattice(" + l.monodromy().str() + ")"; })
+      .def("__repr__",
+           [](const sol::Lattice& l) {
+             const auto& g = l.generators();
+             switch (l.loops()) {
+               case sol::Lattice::Loops::Z:
+                 return "sol.Lattice.z_loop(" + std::to_string(l.height()) + ")";
+               case sol::Lattice::Loops::XY:
+                 return "sol.Lattice.xy_loops((" + std::to_string(g[0].x) + ", " + std::to_string(g[0].y) + "), (" +
+                        std::to_string(g[1].x) + ", " + std::to_string(g[1].y) + "))";
+               case sol::Lattice::Loops::All:
+                 break;
+             }
+             return "sol.Lattice(" + l.monodromy().str() + ")";
+           })
       .def(
           "element", [](const sol::Lattice& l, long long a, long long b, long long c) { return array(l.element(a, b, c)); },
           py::arg("a"), py::arg("b"), py::arg("c"), "The group element γ1^a γ2^b γ3^c as a point.")

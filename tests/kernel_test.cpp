@@ -25,6 +25,7 @@
 #include "support/directions.hpp"
 #include "support/extremes.hpp"
 #include "support/kernel.hpp"
+#include "support/loops.hpp"
 
 namespace {
 
@@ -900,6 +901,38 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
       EXPECT_LE(d.mask_differs, d.pixels / 100) << monodromy.str() << " " << c;
       EXPECT_LT(d.distance, 1e-3) << monodromy.str() << " " << c;  // float over several teleports
     }
+  }
+  expect_no_validation_errors();
+}
+
+// The non-compact quotients on the kernel (LATTICE_LOOPS: a z loop's D has
+// every x, y, xy loops' every z; every image a candidate): as the CPU
+// renderer (which render_test.cpp holds to the universal cover), with the
+// tolerances of PresetsMatchTheCpuRenderer; and the observer at p and at
+// g·p (γ3², γ1³ γ2⁻²) sees the same image.
+TEST(Kernel, NonCompactQuotientsMatchTheCpuRenderer) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const sol::Scene& scene : {sol::test::z_loop_scene(), sol::test::xy_loops_scene()}) {
+    const sol::Lattice lattice = *scene.lattice();
+    const char* name = lattice.loops() == sol::Lattice::Loops::Z ? "z loop" : "xy loops";
+    EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "") << name;
+    sol::RenderOptions settings;
+    settings.width = 48;
+    settings.height = 32;
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, settings.width, settings.height);
+    for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v)) << name;
+    const Comparison c = compare(gpu, sol::render_cpu(scene, settings));
+    std::printf("%s: hit mask differs at %d of %d pixels, colour at %d, worst distance difference %.2e\n", name,
+                c.mask_differs, c.pixels, c.color_differs, c.distance);
+    EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
+    EXPECT_LE(c.color_differs, c.pixels / 100) << name;
+    EXPECT_LT(c.distance, 0.05) << name;  // grazing rays (PresetsMatchTheCpuRenderer); measured 1.3e-5, 3.1e-5
+    const sol::LatticeWord w = lattice.loops() == sol::Lattice::Loops::Z ? sol::LatticeWord{0, 0, 2} : sol::LatticeWord{3, -2, 0};
+    sol::Scene moved = scene;
+    moved.camera.position = lattice.apply(w, scene.camera.position);
+    const Comparison d = compare(sol::test::render(renderer, moved, 24, 18), sol::test::render(renderer, scene, 24, 18));
+    EXPECT_LE(d.mask_differs, 2) << name;  // the eye is teleported in double: same float input up to rounding
+    EXPECT_LT(d.distance, 1e-4) << name;
   }
   expect_no_validation_errors();
 }

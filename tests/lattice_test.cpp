@@ -324,3 +324,87 @@ TEST(Lattice, MonodromiesThatAreNotHyperbolicAreRefusedWithTheReason) {
 }
 
 }  // namespace
+
+namespace {
+
+// The non-compact quotients' loops (sol::Lattice::Loops): a z loop keeps
+// γ3 = (0, 0, h) alone, whose domain is R² × [0, h); xy loops keep the
+// translations γ1, γ2 alone, whose domain is P × R. Each teleport lands in
+// its domain by a word of its own loops (a = b = 0, or c = 0), and the
+// element's action is the group law's: multiply(element, p) = point.
+TEST(Lattice, NonCompactQuotientsTeleportByTheirOwnLoops) {
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> xy(-30.0, 30.0), z(-6.0, 6.0);
+  const sol::Lattice zl = sol::Lattice::z_loop(1.3);
+  EXPECT_EQ(zl.loops(), sol::Lattice::Loops::Z);
+  EXPECT_FALSE(zl.compact());
+  EXPECT_EQ(zl.generators()[2], dvec3(0.0, 0.0, 1.3));
+  EXPECT_EQ(zl.fibre_area(), 0.0);
+  const glm::dvec2 g1(1.6, 0.3), g2(-0.4, 1.4);
+  const sol::Lattice xy_loops = sol::Lattice::xy_loops(g1, g2);
+  EXPECT_EQ(xy_loops.loops(), sol::Lattice::Loops::XY);
+  EXPECT_EQ(xy_loops.generators()[0], dvec3(g1, 0.0));
+  EXPECT_EQ(xy_loops.height(), 0.0);
+  EXPECT_NEAR(xy_loops.fibre_area(), 1.6 * 1.4 + 0.4 * 0.3, 1e-15);
+  for (int i = 0; i < 2000; ++i) {
+    const dvec3 p(xy(rng), xy(rng), z(rng));
+    // z loop: γ3^n p = (e^{nh} x, e^{-nh} y, z + nh) with z + nh in [0, h).
+    const sol::Teleport t = zl.teleport(p);
+    ASSERT_TRUE(zl.contains(t.point));
+    const double n = std::floor(p.z / 1.3);
+    const dvec3 by_hand(std::exp(-n * 1.3) * p.x, std::exp(n * 1.3) * p.y, p.z - n * 1.3);
+    EXPECT_LT(diff(t.point, by_hand), 1e-12 * (1.0 + glm::length(by_hand)));
+    EXPECT_LT(diff(sol::multiply(t.element, p), t.point), 1e-12 * (1.0 + glm::length(t.point)));
+    const sol::LatticeWord w = zl.word_of(t.element);
+    EXPECT_EQ(w.a, 0);
+    EXPECT_EQ(w.b, 0);
+    EXPECT_EQ(w.c, -static_cast<long long>(n));
+    EXPECT_LT(diff(zl.apply(w, p), t.point), 1e-12 * (1.0 + glm::length(t.point)));
+    EXPECT_FALSE(t.turned);
+    // xy loops: z unchanged, (x, y) moved by whole γ1, γ2 into P.
+    const sol::Teleport u = xy_loops.teleport(p);
+    ASSERT_TRUE(xy_loops.contains(u.point));
+    EXPECT_EQ(u.point.z, p.z);
+    const sol::LatticeWord v = xy_loops.word_of(u.element);
+    EXPECT_EQ(v.c, 0);
+    const glm::dvec2 moved = glm::dvec2(p) + static_cast<double>(v.a) * g1 + static_cast<double>(v.b) * g2;
+    EXPECT_LT(std::max(std::abs(moved.x - u.point.x), std::abs(moved.y - u.point.y)), 1e-12);
+    // P by its own lattice coordinates, computed here.
+    const double det = g1.x * g2.y - g2.x * g1.y;
+    const double s = (g2.y * u.point.x - g2.x * u.point.y) / det, r = (g1.x * u.point.y - g1.y * u.point.x) / det;
+    EXPECT_GE(s, -1e-15);
+    EXPECT_LT(s, 1.0 + 1e-15);
+    EXPECT_GE(r, -1e-15);
+    EXPECT_LT(r, 1.0 + 1e-15);
+  }
+  // Their domains: a z loop's has every x, y; xy loops' every z.
+  EXPECT_TRUE(zl.contains({1e6, -1e6, 0.5}));
+  EXPECT_FALSE(zl.contains({0.0, 0.0, 1.3}));
+  EXPECT_FALSE(zl.contains({0.0, 0.0, -1e-12}));
+  EXPECT_TRUE(xy_loops.contains({0.1, 0.1, 70.0}));
+  EXPECT_TRUE(xy_loops.contains({0.1, 0.1, -70.0}));
+  EXPECT_FALSE(xy_loops.contains({-0.1, 0.1, 0.0}));
+  // Words compose as their elements multiply.
+  const sol::LatticeWord a{0, 0, 2}, b{0, 0, -5};
+  EXPECT_LT(diff(zl.element(zl.multiply(a, b)), sol::multiply(zl.element(a), zl.element(b))), 1e-12);
+  const sol::LatticeWord c{3, -2, 0}, d{-7, 4, 0};
+  EXPECT_LT(diff(xy_loops.element(xy_loops.multiply(c, d)), sol::multiply(xy_loops.element(c), xy_loops.element(d))), 1e-12);
+  // Bad loops are refused with the reason.
+  auto refused = [](auto make, const std::string& reason) {
+    try {
+      (void)make();
+      ADD_FAILURE() << "accepted: " << reason;
+    } catch (const sol::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+    }
+  };
+  refused([] { return sol::Lattice::z_loop(0.5); }, "must be in [1, 20]");
+  refused([] { return sol::Lattice::z_loop(21.0); }, "must be in [1, 20]");
+  refused([] { return sol::Lattice::z_loop(std::nan("")); }, "must be in [1, 20]");
+  refused([] { return sol::Lattice::xy_loops({1.0, 2.0}, {2.0, 4.0}); }, "(they are parallel)");
+  refused([] { return sol::Lattice::xy_loops({0.01, 0.0}, {0.0, 0.5}); }, "area |det| in [0.01, 10000]");
+  refused([] { return sol::Lattice::xy_loops({std::numeric_limits<double>::infinity(), 0.0}, {0.0, 1.0}); },
+          "finite and at most 1e4 long");
+}
+
+}  // namespace

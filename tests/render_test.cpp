@@ -23,6 +23,7 @@
 #include "row_pool.hpp"  // libsol/src: the CPU renderer's thread pool
 #include "support/directions.hpp"
 #include "support/extremes.hpp"
+#include "support/loops.hpp"
 #include "support/sweep.hpp"
 
 namespace {
@@ -1172,6 +1173,10 @@ bool same_set(const sol::MarchObject& a, const sol::MarchObject& b) {
   if (const auto* p = std::get_if<sol::Ball>(&a.shape)) {
     return glm::length(p->center - std::get<sol::Ball>(b.shape).center) < 1e-9;
   }
+  if (const auto* p = std::get_if<sol::Box>(&a.shape)) {
+    return glm::length(p->center - std::get<sol::Box>(b.shape).center) < 1e-9 &&
+           p->half_size == std::get<sol::Box>(b.shape).half_size;
+  }
   const sol::Tube &s = std::get<sol::Tube>(a.shape), &t = std::get<sol::Tube>(b.shape);
   if (s.vertical()) return std::hypot(s.through.x - t.through.x, s.through.y - t.through.y) < 1e-9;
   const dvec3 &ha = s.direction, &hb = t.direction;
@@ -1355,6 +1360,240 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
     other.objects.push_back({sol::make_tube(sol::TubeAxis::Z, other_lattice.element(1, -1, 0), 0.3)});
     sol::validate(other);
     expect_images_complete(other, domain_samples(other_lattice, rng, 1500), 40, 3);
+  }
+}
+
+// The non-compact quotients against their universal cover. A z loop's
+// images are γ3^k of each object: the cover is Sol with those images as
+// objects (k within the rays' reach), rendered by the plain Sol march. Xy
+// loops have images without end at large |z| (the loops shorten there), more
+// than a world holds, so their cover is traced here: plain sphere tracing
+// in Sol along the camera ray's closed form (no domain, no teleport), each
+// step the least bound of the images near q, enumerated from the group
+// law: translations a γ1 + b γ2 of an object whose every point lies within
+// `extent` of its centre c, for which the centre lies within sinh(S +
+// extent) e^{q_z} in x and sinh(S + extent) e^{-q_z} in y of q, and |q_z -
+// c_z| <= S + extent (the distance from q to a point is at least asinh(|Δx|
+// e^{-q_z}), asinh(|Δy| e^{q_z}) and |Δz|): every other image is farther
+// than S, the longest step. Both stop within hit_epsilon of the same
+// surface (arc lengths within 0.005, as OverRelaxedMarchMeetsWhatPlainSphereTracingMeets
+// argues), but for rays that graze a surface: at most 1 % of the pixels.
+sol::RenderResult trace_xy_loops_cover(const sol::Scene& scene, int width, int height) {
+  const sol::Lattice lattice = *scene.lattice();
+  const glm::dvec2 g1(lattice.generators()[0]), g2(lattice.generators()[1]);
+  const double det = g1.x * g2.y - g2.x * g1.y;
+  constexpr double kStep = 0.5;
+  struct Source {
+    sol::MarchObject object;
+    dvec3 centre;
+    double extent;
+  };
+  std::vector<Source> sources;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const sol::Shape& shape = scene.objects[i].shape;
+    if (const auto* ball = std::get_if<sol::Ball>(&shape)) sources.push_back({{shape, i}, ball->center, ball->radius});
+    if (const auto* box = std::get_if<sol::Box>(&shape)) {
+      sources.push_back({{shape, i}, box->center, box->half_size.x + box->half_size.y + box->half_size.z});
+    }
+  }
+  sol::RenderResult out;
+  out.object.assign(static_cast<std::size_t>(width * height), 0);
+  out.distance.assign(out.object.size(), 0.0f);
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) {
+      const sol::ClosedFormGeodesic<double> ray(sol::camera_ray(scene.camera, i, j, width, height));
+      double t = 0.0;
+      for (int step = 0; step < 4000 && t <= scene.max_distance; ++step) {
+        const dvec3 q = sol::multiply(scene.camera.position, ray.at(t).position);
+        double least = kStep;
+        int owner = 0;
+        for (const Source& src : sources) {
+          const double r = kStep + src.extent;
+          if (std::abs(q.z - src.centre.z) > r) continue;
+          const double wx = std::sinh(r) * std::exp(q.z), wy = std::sinh(r) * std::exp(-q.z);
+          // (a, b) with c + a γ1 + b γ2 in the box about q: the box's corners in lattice coordinates.
+          double alo = 1e300, ahi = -1e300, blo = 1e300, bhi = -1e300;
+          for (const glm::dvec2 d : {glm::dvec2(-wx, -wy), glm::dvec2(wx, -wy), glm::dvec2(-wx, wy), glm::dvec2(wx, wy)}) {
+            const glm::dvec2 v = glm::dvec2(q) + d - glm::dvec2(src.centre);
+            const double a = (g2.y * v.x - g2.x * v.y) / det, b = (g1.x * v.y - g1.y * v.x) / det;
+            alo = std::min(alo, a);
+            ahi = std::max(ahi, a);
+            blo = std::min(blo, b);
+            bhi = std::max(bhi, b);
+          }
+          for (long long a = static_cast<long long>(std::floor(alo)); a <= static_cast<long long>(std::ceil(ahi)); ++a) {
+            for (long long b = static_cast<long long>(std::floor(blo)); b <= static_cast<long long>(std::ceil(bhi)); ++b) {
+              const glm::dvec2 shift = static_cast<double>(a) * g1 + static_cast<double>(b) * g2;
+              const sol::MarchObject image = sol::relative_to(src.object, -dvec3(shift, 0.0));
+              const double d = sol::object_distance(image, q);
+              if (d < least) {
+                least = d;
+                owner = static_cast<int>(src.object.owner) + 1;
+              }
+            }
+          }
+        }
+        if (least < scene.hit_epsilon) {
+          out.object[static_cast<std::size_t>(j * width + i)] = static_cast<float>(owner);
+          out.distance[static_cast<std::size_t>(j * width + i)] = static_cast<float>(t);
+          break;
+        }
+        t += least;
+      }
+    }
+  }
+  return out;
+}
+
+// `owners`: the quotient's object (1-based) of each of the cover's (none: the same).
+void expect_same_hits(const sol::RenderResult& quotient, const sol::RenderResult& cover, const char* what,
+                      const std::vector<int>& owners = {}) {
+  int hits = 0, differ = 0, apart = 0;
+  for (std::size_t k = 0; k < quotient.object.size(); ++k) {
+    hits += quotient.object[k] != 0;
+    const int seen = static_cast<int>(cover.object[k]);
+    const int owner = seen == 0 || owners.empty() ? seen : owners[static_cast<std::size_t>(seen - 1)];
+    if (static_cast<int>(quotient.object[k]) != owner) {
+      ++differ;
+    } else if (quotient.object[k] != 0 && std::abs(quotient.distance[k] - cover.distance[k]) > 0.005) {
+      ++apart;
+    }
+  }
+  const int pixels = static_cast<int>(quotient.object.size());
+  std::printf("%s: %d of %d pixels hit; %d differ in the object, %d in the arc length\n", what, hits, pixels, differ, apart);
+  EXPECT_GT(hits, pixels / 8) << what;
+  EXPECT_LE(differ + apart, pixels / 100) << what;
+}
+
+TEST(Quotient, NonCompactQuotientsSeeWhatTheirCoverSees) {
+  sol::RenderOptions settings;
+  settings.width = 32;
+  settings.height = 24;
+  {
+    // A z loop: γ3^k of each object, k in [-6, 6] (the rays' heights stay
+    // within 0.6 ± 5); the z axis is its own image.
+    sol::Scene quotient = sol::test::z_loop_scene();
+    quotient.max_distance = 5.0;
+    const sol::Lattice lattice = *quotient.lattice();
+    sol::Scene cover = quotient;
+    cover.quotient = sol::Quotient::None;
+    cover.objects.clear();
+    std::vector<int> owners;
+    for (std::size_t i = 0; i < quotient.objects.size(); ++i) {
+      const sol::SceneObject& o = quotient.objects[i];
+      const auto* tube = std::get_if<sol::Tube>(&o.shape);
+      for (int k = -6; k <= 6; ++k) {
+        if (tube && tube->vertical() && k != 0) continue;
+        sol::SceneObject image = o;
+        image.shape = sol::relative_to({o.shape, 0}, sol::inverse(lattice.element(0, 0, k))).shape;
+        cover.objects.push_back(image);
+        owners.push_back(static_cast<int>(i) + 1);
+      }
+    }
+    sol::validate(cover);
+    expect_same_hits(sol::render_cpu(quotient, settings), sol::render_cpu(cover, settings), "z loop", owners);
+    // Thin planes just inside its faces and between: the planes z = c + k h.
+    for (const double c : {1e-4, lattice.height() - 1e-4, 0.37 * lattice.height()}) {
+      sol::Scene thin = quotient;
+      thin.objects = {{sol::PlaneZ{c}}};
+      sol::Scene planes = cover;
+      planes.objects.clear();
+      for (int k = -6; k <= 6; ++k) planes.objects.push_back({sol::PlaneZ{c + k * lattice.height()}});
+      expect_same_hits(sol::render_cpu(thin, settings), sol::render_cpu(planes, settings), "z loop, thin plane",
+                       std::vector<int>(planes.objects.size(), 1));
+    }
+  }
+  {
+    // Xy loops: the ball and the box (the tube along γ1: ImagesAreCompleteAndReachable, and the kernel's test).
+    sol::Scene quotient = sol::test::xy_loops_scene();
+    quotient.objects.pop_back();
+    quotient.max_distance = 5.0;
+    expect_same_hits(sol::render_cpu(quotient, settings), trace_xy_loops_cover(quotient, settings.width, settings.height),
+                     "xy loops");
+  }
+}
+
+// sol::quotient_images for the non-compact quotients: against a wider
+// enumeration (γ3^c, |c| <= 10, of a z loop; γ1^a γ2^b, |a|, |b| <= 60, of
+// xy loops), every image whose bound is within a step S of a sampled point
+// of D is listed, and none lies on the enumeration's edge. A z loop's D has
+// every x, y: its samples are random ones in [-4, 4]² × [0, h) and, for
+// each image, the points of D straight above and below its anchor (the
+// nearest to it). Xy loops' D has every z: random samples of P × [-3, 3].
+TEST(Quotient, NonCompactImagesAreComplete) {
+  std::mt19937_64 rng(45);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const sol::Scene& scene : {sol::test::z_loop_scene(), sol::test::xy_loops_scene()}) {
+    const sol::Lattice lattice = *scene.lattice();
+    const bool z_loop = lattice.loops() == sol::Lattice::Loops::Z;
+    SCOPED_TRACE(z_loop ? "z loop" : "xy loops");
+    const double h = lattice.height();
+    const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+    std::vector<dvec3> samples;
+    for (int k = 0; k < 3000; ++k) {
+      samples.push_back(z_loop ? dvec3(8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0, h * unit(rng) * (1 - 1e-12))
+                               : unit(rng) * g1 + unit(rng) * g2 + dvec3(0, 0, 6.0 * unit(rng) - 3.0));
+    }
+    const int window = z_loop ? 10 : 60;
+    for (const double step : {sol::kQuotientShortStep, sol::kQuotientMaxStep}) {
+      const std::vector<sol::MarchObject> listed = sol::quotient_images(scene, step);
+      int needed = 0;
+      for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const sol::MarchObject world{scene.objects[i].shape, i};
+        for (int a = z_loop ? 0 : -window; a <= (z_loop ? 0 : window); ++a) {
+          for (int b = z_loop ? 0 : -window; b <= (z_loop ? 0 : window); ++b) {
+            for (int c = z_loop ? -window : 0; c <= (z_loop ? window : 0); ++c) {
+              const sol::MarchObject image = sol::relative_to(world, sol::inverse(lattice.element(a, b, c)));
+              if (!z_loop) {
+                // Speed: a line along γ1 is its own image under γ1 (a = 0 lists it); a ball's or box's
+                // centre more than sinh(S + 0.45) e^3 in x or y from P's box is beyond S of every sample.
+                const auto* tube = std::get_if<sol::Tube>(&image.shape);
+                if (tube && a != 0) continue;
+                const sol::Ball* ball = std::get_if<sol::Ball>(&image.shape);
+                const sol::Box* box = std::get_if<sol::Box>(&image.shape);
+                if (ball || box) {
+                  const dvec3 centre = ball ? ball->center : box->center;
+                  const double reach = std::sinh(step + 0.45) * std::exp(3.0);
+                  const double xs[] = {0.0, g1.x, g2.x, g1.x + g2.x}, ys[] = {0.0, g1.y, g2.y, g1.y + g2.y};
+                  if (centre.x < *std::min_element(xs, xs + 4) - reach || centre.x > *std::max_element(xs, xs + 4) + reach ||
+                      centre.y < *std::min_element(ys, ys + 4) - reach || centre.y > *std::max_element(ys, ys + 4) + reach) {
+                    continue;
+                  }
+                }
+              }
+              std::vector<dvec3> near = samples;
+              if (z_loop) {
+                dvec3 anchor(0.0);
+                if (const auto* ball = std::get_if<sol::Ball>(&image.shape)) anchor = ball->center;
+                if (const auto* box = std::get_if<sol::Box>(&image.shape)) anchor = box->center;
+                if (const auto* tube = std::get_if<sol::Tube>(&image.shape)) anchor = tube->through;
+                for (const double z : {0.0, 0.5 * h, h * (1 - 1e-12)}) near.push_back({anchor.x, anchor.y, z});
+              }
+              bool within = false;
+              for (const dvec3& q : near) {
+                if (sol::object_distance(image, q) <= step) {
+                  within = true;
+                  break;
+                }
+              }
+              if (!within) continue;
+              ++needed;
+              const auto* tube = std::get_if<sol::Tube>(&image.shape);
+              if (!(tube && (tube->vertical() || !z_loop))) {  // lines repeat along themselves
+                EXPECT_LT(std::max({std::abs(a), std::abs(b), std::abs(c)}), window) << "object " << i << ": widen the window";
+              }
+              const bool found =
+                  std::any_of(listed.begin(), listed.end(), [&](const sol::MarchObject& m) { return same_set(m, image); });
+              EXPECT_TRUE(found) << "object " << i << " image (" << a << ", " << b << ", " << c << ") is within a step of "
+                                 << step << " of D but not listed";
+            }
+          }
+        }
+      }
+      std::printf("%s, step %.1f: %zu images listed, %d within a step of the samples\n", z_loop ? "z loop" : "xy loops", step,
+                  listed.size(), needed);
+      EXPECT_GT(needed, 0);
+    }
   }
 }
 

@@ -70,8 +70,8 @@ TEST(Scene, RejectsMalformedAndInconsistentInput) {
   expect_rejected(R"({"lights": [{"type": "spot"}], )" + objects + "}", "directional or point");
   expect_rejected(R"({"objects": [{"type": "plane_z", "cutout": true}]})", "cutout needs a plane with a pattern");
   expect_rejected(R"({"quotient": "torus", )" + objects + "}",
-                  "'quotient' must be none, golden or {\"monodromy\": [[a, b], [c, d]]}, got \"torus\"");
-  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none, golden or {\"monodromy\"");
+                  "'quotient' must be none, golden, {\"monodromy\": [[a, b], [c, d]]}, {\"z_loop\": h} or {\"xy_loops\": [[x1, y1], [x2, y2]]}, got \"torus\"");
+  expect_rejected(R"({"quotient": 7, )" + objects + "}", "'quotient' must be none, golden, {\"monodromy\"");
   expect_rejected(R"({"camera": {"projection": ["fisheye"]}, )" + objects + "}",
                   "'camera.projection' must be perspective, equirectangular or fisheye, got [\"fisheye\"]");
   expect_rejected(R"({"objects": [{"type": "tube", "axis": "w", "through": [0, 0, 0], "radius": 1}]})",
@@ -288,6 +288,67 @@ TEST(Scene, QuotientOfAMonodromy) {
   } catch (const sol::InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("quotient.monodromy: "), std::string::npos) << e.what();
   }
+}
+
+// The non-compact quotients in scene files: {"z_loop": h} and {"xy_loops":
+// [[x1, y1], [x2, y2]]}, written back as read; what each allows (balls,
+// boxes, planes z = c; a z loop's tubes: horizontal ones and the z axis,
+// xy loops': along γ1 or γ2) and the refusals, naming the field.
+TEST(Scene, NonCompactQuotients) {
+  const sol::Scene z = sol::parse_scene(R"({"quotient": {"z_loop": 1.5}, "objects": [
+    {"type": "ball", "center": [3, -2, 7], "radius": 0.3},
+    {"type": "box", "center": [0, 1, 0], "half_size": [0.1, 0.1, 0.1]},
+    {"type": "plane_z", "c": -0.4},
+    {"type": "tube", "axis": "z", "through": [0, 0, 5], "radius": 0.1},
+    {"type": "tube", "axis": [0.6, 0.8, 0], "through": [1, 2, 0.3], "radius": 0.1}]})");
+  EXPECT_EQ(z.quotient, sol::Quotient::ZLoop);
+  EXPECT_EQ(z.z_loop, 1.5);
+  EXPECT_EQ(z.lattice()->generators()[2], glm::dvec3(0.0, 0.0, 1.5));
+  const sol::Scene z_back = sol::parse_scene(sol::to_json(z));
+  EXPECT_TRUE(sol::same_space(z_back, z));
+  for (std::size_t k = 0; k < z.objects.size(); ++k) EXPECT_EQ(z_back.objects[k].shape, z.objects[k].shape);
+  const sol::Scene xy = sol::parse_scene(R"({"quotient": {"xy_loops": [[2, 0], [0.5, 1.5]]}, "objects": [
+    {"type": "ball", "center": [3, -2, 0.5], "radius": 0.3},
+    {"type": "tube", "axis": "gamma1", "through": [0, 0, 0.2], "radius": 0.1},
+    {"type": "tube", "axis": "x", "through": [0, 1, -0.2], "radius": 0.1},
+    {"type": "tube", "axis": "gamma2", "through": [0, 0, 0.4], "radius": 0.1}]})");
+  EXPECT_EQ(xy.quotient, sol::Quotient::XYLoops);
+  EXPECT_EQ(xy.xy_loops[1], glm::dvec2(0.5, 1.5));
+  EXPECT_NEAR(glm::length(glm::cross(std::get<sol::Tube>(xy.objects[3].shape).direction,
+                                     glm::normalize(glm::dvec3(0.5, 1.5, 0.0)))), 0.0, 1e-15);
+  const sol::Scene xy_back = sol::parse_scene(sol::to_json(xy));
+  EXPECT_TRUE(sol::same_space(xy_back, xy));
+  EXPECT_FALSE(sol::same_space(xy_back, z));
+
+  const std::string plane = R"("objects": [{"type": "plane_z"}])";
+  auto with = [&](const std::string& quotient, const std::string& objects) {
+    return R"({"quotient": )" + quotient + ", " + objects + "}";
+  };
+  expect_rejected(with(R"({"z_loop": 0.5})", plane), "quotient.z_loop: ");
+  expect_rejected(with(R"({"z_loop": 0.5})", plane), "must be in [1, 20]");
+  expect_rejected(with(R"({"z_loop": "1"})", plane), "quotient.z_loop");
+  expect_rejected(with(R"({"xy_loops": [[1, 2], [2, 4]]})", plane), "quotient.xy_loops: ");
+  expect_rejected(with(R"({"xy_loops": [[1, 2], [2, 4]]})", plane), "(they are parallel)");
+  expect_rejected(with(R"({"xy_loops": [1, 0, 0, 1]})", plane), "'quotient.xy_loops' must be two vectors");
+  expect_rejected(with(R"({"xy_loops": [[1, 0], [0, "1"]]})", plane), "quotient.xy_loops[1][1]");
+  expect_rejected(with(R"({"z_loop": 2, "xy_loops": [[1, 0], [0, 1]]})", plane), "not several");
+  expect_rejected(with(R"({"z_loop": 2, "fibre_area": 3})", plane), "quotient.fibre_area");
+  // What each allows.
+  expect_rejected(with(R"({"z_loop": 2})", R"("objects": [{"type": "tube", "axis": "z", "through": [1, 0, 0], "radius": 0.1}])"),
+                  "objects[0].through: a tube along z in a z loop must be the axis x = y = 0");
+  expect_rejected(with(R"({"z_loop": 2})", R"("objects": [{"type": "plane_x", "c": 0}])"),
+                  "objects[0].type: planes x, y = c are not supported in the quotient");
+  expect_rejected(with(R"({"xy_loops": [[1, 0], [0, 1]]})",
+                       R"("objects": [{"type": "tube", "axis": "z", "through": [0, 0, 0], "radius": 0.1}])"),
+                  "objects[0].axis: a tube along z does not fit xy loops");
+  expect_rejected(with(R"({"xy_loops": [[1, 0.5], [0, 1]]})",
+                       R"("objects": [{"type": "tube", "axis": "x", "through": [0, 0, 0], "radius": 0.1}])"),
+                  "objects[0].axis: tubes along x or y do not close up");
+  expect_rejected(with(R"({"xy_loops": [[1, 0], [0, 1]]})", R"("objects": [{"type": "ball", "center": [0, 0, 0], "radius": 0.5}])"),
+                  "objects[0].radius must be <= 0.45");
+  expect_rejected(with(R"({"z_loop": 2})", R"("objects": [{"type": "plane_z"}],
+                       "lights": [{"type": "point", "position": [0, 0, 0.5], "exact": true}])"),
+                  "lights[0].exact: exact point lights are only in Sol and its compact quotients");
 }
 
 // set_quotient moves a world to another space: tubes along the lattice's γ1

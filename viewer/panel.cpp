@@ -206,17 +206,41 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::SameLine();
     if (ImGui::Button("load file") && text.file[0] != '\0') out.load = std::string(text.file.data());
 
-    // The space: Sol, the golden quotient or the torus bundle of a monodromy
-    // typed in (applied on Enter); tubes along γ1, γ2 follow the lattice.
+    // The space: Sol, the golden quotient, the torus bundle of a monodromy
+    // typed in (applied on Enter), a z loop or xy loops; tubes along γ1, γ2
+    // follow the lattice. A space the objects do not fit is not applied,
+    // and the reason is shown.
     int quotient = static_cast<int>(m.scene.quotient);
-    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A"};
-    if (ImGui::Combo("quotient", &quotient, quotients, 3)) {
+    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A", "z loop (Sol/<(0, 0, h)>)",
+                                     "xy loops (torus x line)"};
+    auto apply_space = [&](Quotient q, const Scene& from) {
       try {
-        set_quotient(m.scene, static_cast<Quotient>(quotient), to_monodromy(text.monodromy), m.scene.fibre_area);
+        Scene next = from;
+        set_quotient(next, q, to_monodromy(text.monodromy), from.fibre_area);
+        validate(next);
+        m.scene = std::move(next);
+        text.refusal.clear();
         out.world_changed = true;
       } catch (const std::exception& e) {
         text.refusal = e.what();
       }
+    };
+    if (ImGui::Combo("quotient", &quotient, quotients, 5)) apply_space(static_cast<Quotient>(quotient), m.scene);
+    if (m.scene.quotient == Quotient::ZLoop) {
+      Scene next = m.scene;
+      if (drag_double("loop height h", next.z_loop, 0.01, 1.0, 20.0, "%.3f")) apply_space(Quotient::ZLoop, next);
+    }
+    if (m.scene.quotient == Quotient::XYLoops) {
+      Scene next = m.scene;
+      double loops[4] = {next.xy_loops[0].x, next.xy_loops[0].y, next.xy_loops[1].x, next.xy_loops[1].y};
+      if (ImGui::InputScalarN("gamma1, gamma2 (x, y)", ImGuiDataType_Double, loops, 4, nullptr, nullptr, "%.3f",
+                              ImGuiInputTextFlags_EnterReturnsTrue)) {
+        next.xy_loops = {glm::dvec2(loops[0], loops[1]), glm::dvec2(loops[2], loops[3])};
+        apply_space(Quotient::XYLoops, next);
+      }
+    }
+    if (m.scene.quotient != Quotient::Monodromy && !text.refusal.empty()) {
+      ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
     }
     if (m.scene.quotient == Quotient::Monodromy) {
       bool apply = ImGui::InputInt4("A = [[a, b], [c, d]]", text.monodromy.data(), ImGuiInputTextFlags_EnterReturnsTrue);

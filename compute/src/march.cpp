@@ -185,8 +185,12 @@ constexpr std::size_t kLatticeConstantCount = 0
 #undef SOL_LATTICE_COUNT
 using LatticeConstants = std::array<std::uint32_t, kLatticeConstantCount>;
 LatticeConstants lattice_constants(const Lattice& lattice) {
-  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
-  const double h = lattice.height();
+  // A non-compact quotient's missing loops: stand-ins its kernel never uses.
+  using Loops = Lattice::Loops;
+  const bool z_only = lattice.loops() == Loops::Z, xy_only = lattice.loops() == Loops::XY;
+  const glm::dvec3 g1 = z_only ? glm::dvec3(1.0, 0.0, 0.0) : lattice.generators()[0];
+  const glm::dvec3 g2 = z_only ? glm::dvec3(0.0, 1.0, 0.0) : lattice.generators()[1];
+  const double h = xy_only ? 1.0 : lattice.height();
   const double values[] = {g1.x,
                            g1.y,
                            g2.x,
@@ -198,7 +202,8 @@ LatticeConstants lattice_constants(const Lattice& lattice) {
                            std::exp(h),
                            std::exp(-h),
                            std::exp(0.5 * h),
-                           lattice.turns() ? -1.0 : 1.0};
+                           lattice.turns() ? -1.0 : 1.0,
+                           z_only ? 1.0 : (xy_only ? 2.0 : 0.0)};
   static_assert(std::size(values) == kLatticeConstantCount, "one value per SOL_LATTICE_CONSTANTS entry, in its order");
   LatticeConstants bits{};
   for (std::size_t i = 0; i < kLatticeConstantCount; ++i) bits[i] = std::bit_cast<std::uint32_t>(static_cast<float>(values[i]));

@@ -41,6 +41,8 @@ jpeg --scene trace4-pillars --forward 0,0,-1 --up 0,1,0 "${a[@]}" -o $g/trace4-p
 jpeg --scene trace4-pillars "${a[@]}" -o $g/trace4-pillars-xy.jpg
 jpeg --scene halfturn-balls "${a[@]}" -o $g/halfturn-balls-z.jpg
 jpeg --scene $s/golden-two-balls.json "${a[@]}" -o $g/golden-two-balls-z.jpg
+jpeg --scene $s/z-loop.json "${a[@]}" -o $g/z-loop.jpg
+jpeg --scene $s/xy-loops.json "${a[@]}" -o $g/xy-loops.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg
 $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 576 --spp 16 -o $g/sandwich-dome.png
 # Light (docs/lighting.md): the geodesic falloff beside the inverse-square law. For the sandwich lit

@@ -13,14 +13,39 @@
 
 namespace sol {
 
-Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns)
+Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns,
+                 Loops loops)
     : m_generators{glm::dvec3(g1, 0.0), glm::dvec3(g2, 0.0), glm::dvec3(0.0, 0.0, height)},
       m_monodromy(monodromy),
-      m_turns(turns) {
-  // Inverse of the 2x2 matrix with columns g1, g2.
+      m_turns(turns),
+      m_loops(loops) {
+  // Inverse of the 2x2 matrix with columns g1, g2 (none for a z loop: zero rows).
+  if (loops == Loops::Z) return;
   const double det = g1.x * g2.y - g2.x * g1.y;
   m_coordinates_row0 = glm::dvec2(g2.y, -g2.x) / det;
   m_coordinates_row1 = glm::dvec2(-g1.y, g1.x) / det;
+}
+
+Lattice Lattice::z_loop(double height) {
+  if (!(height >= 1.0 && height <= 20.0)) {
+    throw InvalidArgument("sol::Lattice::z_loop: the loop's height must be in [1, 20], got " + std::to_string(height));
+  }
+  return Lattice({0.0, 0.0}, {0.0, 0.0}, height, Monodromy{1, 0, 0, 1}, false, Loops::Z);
+}
+
+Lattice Lattice::xy_loops(const glm::dvec2& g1, const glm::dvec2& g2) {
+  const std::string name = "sol::Lattice::xy_loops: ";
+  for (const glm::dvec2& g : {g1, g2}) {
+    if (!std::isfinite(g.x) || !std::isfinite(g.y) || !(std::hypot(g.x, g.y) <= 1e4)) {
+      throw InvalidArgument(name + "each loop must be finite and at most 1e4 long");
+    }
+  }
+  const double area = std::abs(g1.x * g2.y - g2.x * g1.y);
+  if (!(area >= 0.01 && area <= 10000.0)) {
+    throw InvalidArgument(name + "the two loops must span an area |det| in [0.01, 10000], got " + std::to_string(area) +
+                          (area == 0.0 ? " (they are parallel)" : ""));
+  }
+  return Lattice(g1, g2, 0.0, Monodromy{1, 0, 0, 1}, false, Loops::XY);
 }
 
 Lattice Lattice::golden() {
@@ -101,7 +126,9 @@ glm::dvec2 Lattice::lattice_coordinates(double x, double y) const {
 }
 
 bool Lattice::contains(const glm::dvec3& p) const {
-  if (!(p.z >= 0.0 && p.z < height())) return false;
+  if (m_loops != Loops::XY && !(p.z >= 0.0 && p.z < height())) return false;
+  if (m_loops == Loops::Z) return std::isfinite(p.x) && std::isfinite(p.y);
+  if (!std::isfinite(p.z)) return false;
   const glm::dvec2 sr = lattice_coordinates(p.x, p.y);
   return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0;
 }
@@ -178,7 +205,7 @@ std::string LatticeWord::str() const {
 LatticeWord Lattice::word_of(const glm::dvec3& element) const {
   // element = (a γ1 + b γ2, c h): γ1^a γ2^b lies in z = 0 and γ3^c adds c h to z only.
   const glm::dvec2 ab = lattice_coordinates(element.x, element.y);
-  const double c = element.z / height();
+  const double c = m_loops == Loops::XY ? 0.0 : element.z / height();
   // Beyond 2^53 double holds no exact integer (and beyond 2^63 no long
   // long): such a word could not be told, let alone map the point into D.
   constexpr double kExact = 9007199254740992.0;
@@ -205,6 +232,7 @@ double fraction(double v, double& whole) {
 
 Teleport Lattice::teleport(const glm::dvec3& p) const {
   detail::require_finite(p, "sol::Lattice::teleport", "p");
+  if (m_loops == Loops::XY) return teleport_translations(0.0, p.x, p.y, p.z, false);
   const double h = height();
   // 1. A power of γ3 brings z into [0, h): γ3^{-n} * p = (e^{-nh} x, e^{nh} y, z - nh).
   double n = std::floor(p.z / h);
@@ -226,6 +254,13 @@ Teleport Lattice::teleport(const glm::dvec3& p) const {
   if (!std::isfinite(x) || !std::isfinite(y)) {
     throw OutOfRange("sol::Lattice::teleport: point too far from the origin to teleport in double");
   }
+  if (m_loops == Loops::Z) return {{x, y, z}, {0.0, 0.0, -n * h}, false};
+  return teleport_translations(n, x, y, z, turned);
+}
+
+// Step 2 of teleport: (x, y) at height z (γ3^{-n} p) into the parallelogram.
+Teleport Lattice::teleport_translations(double n, double x, double y, double z, bool turned) const {
+  const double h = height();
   // 2. The commuting translations γ1, γ2 bring (x, y) into the parallelogram.
   const glm::dvec2 sr = lattice_coordinates(x, y);
   double s_whole = 0.0, r_whole = 0.0;

@@ -100,9 +100,61 @@ std::array<long long, 2> lattice_period(const Lattice& lattice, const glm::dvec2
   throw InvalidArgument("sol::quotient_images: a horizontal tube is not along a vector of the lattice ⟨γ1, γ2⟩");
 }
 
+// The words of a non-compact quotient's whose image of the anchor may come
+// within `reach` of D (the proof at quotient_images, "The non-compact
+// quotients"): a z loop's γ3^c of the layers (1), xy loops' γ1^a γ2^b of
+// the box (2) at the anchor's own heights.
+std::vector<LatticeWord> loop_words_near_domain(const Lattice& lattice, const ImageAnchor& anchor, double reach) {
+  const glm::dvec3 p = anchor.point;
+  std::vector<LatticeWord> words;
+  if (lattice.loops() == Lattice::Loops::Z) {
+    const double h = lattice.height();
+    const long long c_lo = static_cast<long long>(std::ceil((-reach - p.z) / h));
+    const long long c_hi = static_cast<long long>(std::floor((h + reach - p.z) / h));
+    for (long long c = c_lo; c <= c_hi; ++c) words.push_back({0, 0, c});
+    return words;
+  }
+  const glm::dvec2 g1(lattice.generators()[0]), g2(lattice.generators()[1]);
+  // A point q of D within `reach` of a point of the anchor's image (at the
+  // anchor's height p.z: translations keep z) has |q_z - p_z| <= reach, so
+  // |Δx| <= sinh(reach) e^{q_z} <= sinh(reach) e^{p_z + reach} and |Δy| <=
+  // sinh(reach) e^{reach - p_z}.
+  const double wx = std::sinh(reach) * std::exp(p.z + reach), wy = std::sinh(reach) * std::exp(reach - p.z);
+  double slo = std::numeric_limits<double>::infinity(), shi = -slo, rlo = slo, rhi = -slo;
+  const glm::dvec2 own = lattice.lattice_coordinates(p.x, p.y);
+  for (const glm::dvec2& corner : {glm::dvec2(0.0), g1, g2, g1 + g2}) {
+    for (const glm::dvec2& w : {glm::dvec2(-wx, -wy), glm::dvec2(wx, -wy), glm::dvec2(-wx, wy), glm::dvec2(wx, wy)}) {
+      const glm::dvec2 sr = lattice.lattice_coordinates(corner.x + w.x, corner.y + w.y) - own;
+      slo = std::min(slo, sr.x);
+      shi = std::max(shi, sr.x);
+      rlo = std::min(rlo, sr.y);
+      rhi = std::max(rhi, sr.y);
+    }
+  }
+  if (anchor.along == ImageAnchor::Along::HorizontalLine) {
+    // Within one period of the line (3), as for the compact quotients.
+    const std::array<long long, 2> k = lattice_period(lattice, anchor.heading);
+    slo -= static_cast<double>(std::llabs(k[0]));
+    shi += static_cast<double>(std::llabs(k[0]));
+    rlo -= static_cast<double>(std::llabs(k[1]));
+    rhi += static_cast<double>(std::llabs(k[1]));
+  }
+  if ((shi - slo + 3.0) * (rhi - rlo + 3.0) > 1e6) {
+    throw InvalidArgument("sol::quotient_images: over a million lattice words lie near the domain (an object far above "
+                          "or below z = 0, where one of the loops is short, or loops spanning too small an area?)");
+  }
+  for (long long a = static_cast<long long>(std::floor(slo)) - 1; a <= static_cast<long long>(std::ceil(shi)) + 1; ++a) {
+    for (long long b = static_cast<long long>(std::floor(rlo)) - 1; b <= static_cast<long long>(std::ceil(rhi)) + 1; ++b) {
+      words.push_back({a, b, 0});
+    }
+  }
+  return words;
+}
+
 // Every lattice word g = γ1^a γ2^b γ3^c whose image g·anchor may come within
 // `reach` of D (the proof at quotient_images).
 std::vector<LatticeWord> words_near_domain(const Lattice& lattice, const ImageAnchor& anchor, double reach) {
+  if (!lattice.compact()) return loop_words_near_domain(lattice, anchor, reach);
   const double h = lattice.height();
   const glm::dvec2 g1(lattice.generators()[0]), g2(lattice.generators()[1]);
   const glm::dvec2 corners[4] = {{0.0, 0.0}, g1, g2, g1 + g2};
@@ -200,6 +252,17 @@ std::vector<LatticeWord> words_near_domain(const Lattice& lattice, const ImageAn
 // The ranges of a and b are widened by one more for rounding. The test
 // Quotient.ImagesAreCompleteAndReachable checks that a wider enumeration
 // finds nothing more, at both longest steps, for several lattices.
+//
+// The non-compact quotients (Lattice::Loops). A z loop's D is R² × [0, h)
+// and its words are γ3^c alone: (1) bounds c as above, and every c in that
+// range is listed (the anchor's x, y do not matter: D has every x, y).
+// Xy loops' D is P × R and their words are γ1^a γ2^b, which keep z: a
+// point q of D within R of a point of the anchor's image has |q_z - p_z| <=
+// R, so by (2) that point lies within sinh(R) e^{p_z + R} in x and
+// sinh(R) e^{R - p_z} in y of P (wider the farther the anchor is from z =
+// 0, where one loop is short); (3) widens lines by their period. The
+// kinds' least_distance_over_domain takes the same D (objects_internal.hpp,
+// domain_extent). The same test covers a z loop and xy loops.
 std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::quotient_images: max_step must be in (0, kQuotientMaxStep]");

@@ -16,28 +16,46 @@ namespace sol {
 
 namespace detail {
 
+DomainExtent domain_extent(const Lattice& lattice, double z) {
+  // Heights beyond the longest step and the largest radius, with room: a
+  // bound there exceeds every step a march takes.
+  constexpr double kBeyond = 4.0;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (lattice.loops() == Lattice::Loops::Z) return {-inf, inf, -inf, inf, false, 0.0, lattice.height(), 16, inf};
+  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
+  DomainExtent e{0.0, 0.0, 0.0, 0.0, true, 0.0, lattice.height(), 16, inf};
+  for (const glm::dvec2& k : {glm::dvec2(g1), glm::dvec2(g2), glm::dvec2(g1 + g2)}) {
+    e.xlo = std::min(e.xlo, k.x);
+    e.xhi = std::max(e.xhi, k.x);
+    e.ylo = std::min(e.ylo, k.y);
+    e.yhi = std::max(e.yhi, k.y);
+  }
+  if (lattice.loops() == Lattice::Loops::XY) {
+    e.zlo = z - kBeyond;
+    e.zhi = z + kBeyond;
+    e.slabs = 32;
+    e.beyond = kBeyond;
+  }
+  return e;
+}
+
 double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& heading, const Lattice& lattice) {
-  const double h = lattice.height();
+  const DomainExtent e = domain_extent(lattice, c.z);
+  if (solid == Solid::VerticalTube && std::isfinite(e.beyond)) return 0.0;  // no |Δz| term: near at some height
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   const glm::dvec2 corners[4] = {{0.0, 0.0}, {g1.x, g1.y}, {g2.x, g2.y}, {g1.x + g2.x, g1.y + g2.y}};
-  double xlo = 0.0, xhi = 0.0, ylo = 0.0, yhi = 0.0;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;  // h_y Δx - h_x Δy over P
   for (const glm::dvec2& k : corners) {
-    xlo = std::min(xlo, k.x);
-    xhi = std::max(xhi, k.x);
-    ylo = std::min(ylo, k.y);
-    yhi = std::max(yhi, k.y);
     const double v = heading.y * (k.x - c.x) - heading.x * (k.y - c.y);
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
-  const double least_across = lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(std::abs(lo), std::abs(hi));
-  const double gx = gap(c.x, xlo, xhi), gy = gap(c.y, ylo, yhi);
+  const double least_across = !e.xy_bounded || (lo <= 0.0 && hi >= 0.0) ? 0.0 : std::min(std::abs(lo), std::abs(hi));
+  const double gx = gap(c.x, e.xlo, e.xhi), gy = gap(c.y, e.ylo, e.yhi);
   const double hx = std::abs(heading.x), hy = std::abs(heading.y);
-  constexpr int kSlabs = 16;
-  double least = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < kSlabs; ++i) {
-    const double z0 = h * i / kSlabs, z1 = h * (i + 1) / kSlabs;
+  double least = e.beyond;
+  for (int i = 0; i < e.slabs; ++i) {
+    const double z0 = e.zlo + (e.zhi - e.zlo) * i / e.slabs, z1 = e.zlo + (e.zhi - e.zlo) * (i + 1) / e.slabs;
     double b = 0.0;
     if (solid == Solid::HorizontalTube) {
       const double denominator = std::max(hx * std::exp(-z0) + hy * std::exp(z0), hx * std::exp(-z1) + hy * std::exp(z1));

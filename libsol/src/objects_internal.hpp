@@ -52,8 +52,28 @@ inline double gap(double v, double lo, double hi) { return v < lo ? lo - v : (v 
 //    is 0 when the corners' values differ in sign and else the least corner
 //    value; the denominator |h_x| e^{-z} + |h_y| e^{z} is convex in z, so at
 //    most its larger value at z0 or z1; also >= |Δz|.
+//
+// The non-compact quotients (Lattice::Loops): a z loop's D = R² × [0, h) has
+// no x-, y-range (gap_x = gap_y = 0, and a horizontal tube's least |h_y Δx -
+// h_x Δy| is 0), so only |Δz| bounds; xy loops' D = P × R is unbounded in
+// z, and the slabs cover only c_z ± kBeyond: above and below, |Δz| alone
+// exceeds kBeyond (a vertical tube, which has no |Δz| term, gets 0 there).
 enum class Solid { Ball, VerticalTube, HorizontalTube };
 double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& heading, const Lattice& lattice);
+
+// D's extent for these bounds: (x, y) in [xlo, xhi] × [ylo, yhi] (the box of
+// P; infinite for a z loop, with xy_bounded false), heights [zlo, zhi] cut
+// into `slabs`, and `beyond`: every point of D outside those heights is
+// more than it from the height `z` (infinite where D's heights are all
+// covered: a compact quotient, a z loop).
+struct DomainExtent {
+  double xlo, xhi, ylo, yhi;
+  bool xy_bounded;
+  double zlo, zhi;
+  int slabs;
+  double beyond;
+};
+DomainExtent domain_extent(const Lattice& lattice, double z);
 
 // ---- Checks and scene-file keys
 

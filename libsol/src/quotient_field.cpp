@@ -61,8 +61,20 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::QuotientField: max_step must be in (0, kQuotientMaxStep]");
   }
-  const double h = lattice.height();
   m_words.assign(2 * kCellCount, 0u);
+  if (!lattice.compact()) {
+    // A non-compact quotient's D is unbounded (in x, y or in z): no grid
+    // over it. Every cell (and cell_of: the first) lists every image, and
+    // the reach is the longest step.
+    float f = static_cast<float>(max_step - kRounding);
+    if (static_cast<double>(f) > max_step - kRounding) f = std::nextafter(f, -1.0f);
+    for (std::size_t c = 0; c < kCellCount; ++c) {
+      m_words[2 * c] = kernel::kFieldAllImages;
+      m_words[2 * c + 1] = std::bit_cast<std::uint32_t>(f);
+    }
+    return;
+  }
+  const double h = lattice.height();
   // Per layer, the cells' diameter (at most, over the layer's heights).
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   const double dz = h / kNz;
@@ -127,6 +139,7 @@ QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_
 
 QuotientField::Cell QuotientField::cell_of(const glm::dvec3& q) const {
   const Lattice& lattice = m_lattice;
+  if (!lattice.compact()) return {0, 0, 0};  // every cell alike (the constructor)
   const glm::dvec2 sr = lattice.lattice_coordinates(q.x, q.y);
   const glm::dvec3 g(std::clamp(sr.x, 0.0, 1.0) * kN, std::clamp(sr.y, 0.0, 1.0) * kN,
                      std::clamp(q.z / lattice.height(), 0.0, 1.0) * kNz);

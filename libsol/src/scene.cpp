@@ -24,7 +24,10 @@ std::optional<Lattice> checked_lattice(const World& s) {
     return s.lattice();
   } catch (const InvalidArgument& e) {
     const bool area = s.fibre_area && !(*s.fibre_area >= 0.01 && *s.fibre_area <= 10000.0);
-    const std::string at = area ? "quotient.fibre_area" : "quotient.monodromy";
+    const std::string at = s.quotient == Quotient::ZLoop     ? "quotient.z_loop"
+                           : s.quotient == Quotient::XYLoops ? "quotient.xy_loops"
+                           : area                            ? "quotient.fibre_area"
+                                                             : "quotient.monodromy";
     field_error(at, at + ": " + e.what());
   }
 }
@@ -40,7 +43,15 @@ void check_world(const World& s) {
   if (s.lights.size() > static_cast<std::size_t>(kMaxLights)) {
     field_error("lights", "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(s.lights.size()));
   }
-  for (std::size_t i = 0; i < s.lights.size(); ++i) check_light(s.lights[i], "lights[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const std::string at = "lights[" + std::to_string(i) + "]";
+    check_light(s.lights[i], at);
+    // An exact light's images are found over a grid of D (sol::quotient_light_images): a bounded D.
+    if (lattice && !lattice->compact() && s.lights[i].type == LightType::Point && s.lights[i].exact) {
+      field_error(at + ".exact", at + ".exact: exact point lights are only in Sol and its compact quotients, not in a z loop "
+                                      "or xy loops (set exact to false)");
+    }
+  }
   if (!(s.ambient >= 0.0 && s.ambient <= 1.0)) field_error("ambient", "ambient must be in [0, 1]");
   if (!unit_interval3(s.fog_color)) field_error("fog.color", "fog.color components must be in [0, 1]");
   if (!(s.fog_density >= 0.0) || !std::isfinite(s.fog_density)) {
@@ -88,6 +99,10 @@ std::optional<Lattice> World::lattice() const {
       return Lattice::golden();
     case Quotient::Monodromy:
       return Lattice::from_monodromy(monodromy, fibre_area);
+    case Quotient::ZLoop:
+      return Lattice::z_loop(z_loop);
+    case Quotient::XYLoops:
+      return Lattice::xy_loops(xy_loops[0], xy_loops[1]);
   }
   return std::nullopt;
 }

@@ -86,20 +86,47 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   return light;
 }
 
-// "quotient": "none", "golden" or {"monodromy": [[a, b], [c, d]],
-// "fibre_area": A} (the area optional).
+// "quotient": "none", "golden", {"monodromy": [[a, b], [c, d]],
+// "fibre_area": A} (the area optional), {"z_loop": h} or {"xy_loops":
+// [[x1, y1], [x2, y2]]}.
 void read_quotient(const json& q, const SceneFileReader& r, Scene& s) {
+  const std::string forms =
+      "'quotient' must be none, golden, {\"monodromy\": [[a, b], [c, d]]}, {\"z_loop\": h} or {\"xy_loops\": [[x1, y1], "
+      "[x2, y2]]}, got ";
   if (!q.is_object()) {
     if (q.is_string() && q.get_ref<const std::string&>() == "none") return;
     if (q.is_string() && q.get_ref<const std::string&>() == "golden") {
       s.quotient = Quotient::Golden;
       return;
     }
-    r.fail("quotient", "'quotient' must be none, golden or {\"monodromy\": [[a, b], [c, d]]}, got " +
-                           SceneFileReader::json_text(q));
+    r.fail("quotient", forms + SceneFileReader::json_text(q));
   }
-  r.require_known_keys(q, {"monodromy", "fibre_area"}, "quotient", "quotient");
-  r.require_key(q, "monodromy", "quotient", "a 'monodromy' [[a, b], [c, d]]", "quotient");
+  r.require_known_keys(q, {"monodromy", "fibre_area", "z_loop", "xy_loops"}, "quotient", "quotient");
+  const int kinds = static_cast<int>(q.contains("monodromy")) + static_cast<int>(q.contains("z_loop")) +
+                    static_cast<int>(q.contains("xy_loops"));
+  if (kinds > 1) r.fail("quotient", forms + SceneFileReader::json_text(q) + " (one of the three keys, not several)");
+  if (kinds == 1 && !q.contains("monodromy") && q.contains("fibre_area")) {
+    r.fail("quotient.fibre_area", "'quotient.fibre_area' belongs to a monodromy's quotient only");
+  }
+  if (q.contains("z_loop")) {
+    s.quotient = Quotient::ZLoop;
+    s.z_loop = r.number(q["z_loop"], "quotient.z_loop");
+    return;
+  }
+  if (q.contains("xy_loops")) {
+    const json& g = q["xy_loops"];
+    if (!g.is_array() || g.size() != 2 || !g[0].is_array() || g[0].size() != 2 || !g[1].is_array() || g[1].size() != 2) {
+      r.fail("quotient.xy_loops", "'quotient.xy_loops' must be two vectors [[x1, y1], [x2, y2]], got " +
+                                      SceneFileReader::json_text(g));
+    }
+    s.quotient = Quotient::XYLoops;
+    for (int i = 0; i < 2; ++i) {
+      const std::string at = "quotient.xy_loops[" + std::to_string(i) + "]";
+      s.xy_loops[static_cast<std::size_t>(i)] = {r.number(g[i][0], at + "[0]"), r.number(g[i][1], at + "[1]")};
+    }
+    return;
+  }
+  r.require_key(q, "monodromy", "quotient", "a 'monodromy' [[a, b], [c, d]], a 'z_loop' h or 'xy_loops'", "quotient");
   const json& m = q["monodromy"];
   const std::string shape = "'quotient.monodromy' must be a 2 x 2 integer matrix [[a, b], [c, d]], got ";
   if (!m.is_array() || m.size() != 2 || !m[0].is_array() || m[0].size() != 2 || !m[1].is_array() || m[1].size() != 2) {
@@ -258,6 +285,13 @@ std::string to_json(const Scene& s) {
       if (s.fibre_area) root["quotient"]["fibre_area"] = *s.fibre_area;
       break;
     }
+    case Quotient::ZLoop:
+      root["quotient"] = {{"z_loop", s.z_loop}};
+      break;
+    case Quotient::XYLoops:
+      root["quotient"] = {{"xy_loops", json::array({json::array({s.xy_loops[0].x, s.xy_loops[0].y}),
+                                                    json::array({s.xy_loops[1].x, s.xy_loops[1].y})})}};
+      break;
   }
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;

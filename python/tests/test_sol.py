@@ -116,6 +116,28 @@ def test_lattice_of_a_monodromy():
     assert (sol.render_cpu(scene, 16, 12)["object"] > 0).any()
 
 
+def test_non_compact_quotients():
+    # A z loop: gamma3 alone, D = R^2 x [0, h); xy loops: translations alone, D = P x R.
+    z = sol.Lattice.z_loop(1.5)
+    assert z.loops == "z" and z.height == 1.5
+    point, word = z.teleport((4.0, -3.0, 3.2))
+    assert word == (0, 0, -2) and z.contains(point)
+    assert np.allclose(point, (4.0 * math.exp(-3.0), -3.0 * math.exp(3.0), 0.2), atol=1e-12)
+    xy = sol.Lattice.xy_loops((2.0, 0.0), (0.5, 1.5))
+    assert xy.loops == "xy" and xy.fibre_area == pytest.approx(3.0, rel=1e-15)
+    point, word = xy.teleport((5.3, -0.4, 7.0))
+    assert word[2] == 0 and point[2] == 7.0 and xy.contains(point)
+    with pytest.raises(ValueError, match="parallel"):
+        sol.Lattice.xy_loops((1.0, 2.0), (2.0, 4.0))
+    # Scenes in them render, and say what they refuse.
+    scene = sol.scene([sol.ball((1.0, 1.0, 0.3), 0.3)], quotient={"z_loop": 1.2},
+                      camera=sol.camera(position=(0.2, 0.1, 0.5), forward=(1, 1, 0), up=(0, 0, 1)))
+    assert scene.to_dict()["quotient"] == {"z_loop": 1.2}
+    assert (sol.render_cpu(scene, 16, 12)["object"] > 0).any()
+    with pytest.raises(ValueError, match="objects\\[0\\].axis: a tube along z does not fit xy loops"):
+        sol.scene([sol.tube("z", (0, 0, 0), 0.1)], quotient={"xy_loops": [[1, 0], [0, 1]]})
+
+
 def test_spreading_along_the_z_axis():
     assert sol.sphere_area_density((0, 0, 1), 2.0) == pytest.approx(math.sinh(2.0) ** 2, rel=1e-10)
 

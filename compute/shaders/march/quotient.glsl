@@ -1,4 +1,4 @@
-// A compact quotient Γ\Sol (sol::Lattice, docs/mathematics.md): lattice
+// A quotient Γ\Sol (sol::Lattice, docs/mathematics.md): lattice
 // coordinates, the fundamental domain D and the teleport back into it, the
 // distance field over D (sol::QuotientField) with each cell's candidate
 // images, and the positions of the quotient march (by Jacobi's zeta
@@ -14,9 +14,15 @@ vec2 lattice_coordinates(vec3 p) {
   return vec2(LATTICE_G2Y * p.x - LATTICE_G2X * p.y, LATTICE_G1X * p.y - LATTICE_G1Y * p.x) * LATTICE_INV_DET;
 }
 
+// The non-compact quotients (LATTICE_LOOPS): a z loop's D has every x, y,
+// xy loops' every z (a float constant's comparison: folded once specialised).
+#define LOOPS_Z_ONLY (LATTICE_LOOPS == 1.0)
+#define LOOPS_XY_ONLY (LATTICE_LOOPS == 2.0)
+
 bool in_domain(vec3 p) {
   const vec2 sr = lattice_coordinates(p);
-  return sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0 && p.z >= 0.0 && p.z < LATTICE_HEIGHT;
+  const bool in_xy = LOOPS_Z_ONLY || (sr.x >= 0.0 && sr.x < 1.0 && sr.y >= 0.0 && sr.y < 1.0);
+  return in_xy && (LOOPS_XY_ONLY || (p.z >= 0.0 && p.z < LATTICE_HEIGHT));
 }
 
 // The point of D equivalent to p under Γ: γ3^n fixes z (scaling x by λ^n,
@@ -30,14 +36,16 @@ bool in_domain(vec3 p) {
 // frame components of a direction there), else 1 (the constant 1 for a
 // lattice that does not turn, folded away).
 vec3 teleport(vec3 p, const bool step_end, out float turn) {
-  const float n = -floor(p.z / LATTICE_HEIGHT);
+  const float n = LOOPS_XY_ONLY ? 0.0 : -floor(p.z / LATTICE_HEIGHT);
   turn = mod(n, 2.0) != 0.0 ? LATTICE_TURN : 1.0;
   const float up = n > 0.5 ? LATTICE_LAMBDA : (n < -0.5 ? LATTICE_INV_LAMBDA : 1.0);
   const float down = n > 0.5 ? LATTICE_INV_LAMBDA : (n < -0.5 ? LATTICE_LAMBDA : 1.0);
   const float scale = step_end ? up : pow(LATTICE_SQRT_LAMBDA, 2.0 * n);
   const float inverse_scale = step_end ? down : 1.0 / scale;
   vec3 q = vec3(turn * scale * p.x, turn * p.y * inverse_scale, p.z + n * LATTICE_HEIGHT);
-  q.z = min(max(q.z, 0.0), LATTICE_TOP);
+  if (LOOPS_XY_ONLY) q = p;
+  else q.z = min(max(q.z, 0.0), LATTICE_TOP);
+  if (LOOPS_Z_ONLY) return q;
   const vec2 f = floor(lattice_coordinates(q));
   const float fs = f.x, fr = f.y;
   q.x -= fs * LATTICE_G1X + fr * LATTICE_G2X;
@@ -47,6 +55,7 @@ vec3 teleport(vec3 p, const bool step_end, out float turn) {
 
 // The field's cell of a point of D, as its index (sol::QuotientField::cell_of).
 int field_cell(vec3 p) {
+  if (LATTICE_LOOPS != 0.0) return 0;  // a non-compact quotient's cells are alike (sol::QuotientField)
   const vec3 unit = clamp(vec3(lattice_coordinates(p), p.z * LATTICE_INV_HEIGHT), 0.0, 1.0);
   const vec3 g = unit * vec3(float(kFieldCells), float(kFieldCells), float(kFieldLayers));
   const int i = min(int(g.x), kFieldCells - 1), j = min(int(g.y), kFieldCells - 1), k = min(int(g.z), kFieldLayers - 1);

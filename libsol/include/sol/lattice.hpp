@@ -7,7 +7,10 @@
 // (x,y,0) act by plain translation of (x,y); γ3^n scales x by φ^{2n} and y by
 // φ^{-2n} and adds 2n ln φ to z. Every other hyperbolic monodromy A gives
 // its lattice the same way (Lattice::from_monodromy); for a negative trace
-// its γ3 also turns the fibre by the half-turn. docs/mathematics.md.
+// its γ3 also turns the fibre by the half-turn. The non-compact quotients
+// keep part of the generators (Lattice::Loops): γ3 alone (Sol/<γ3>, the
+// domain R² × [0, h)) or γ1 and γ2 alone (T² × R, the domain P × R).
+// docs/mathematics.md.
 #pragma once
 
 #include <array>
@@ -63,6 +66,14 @@ struct Monodromy {
 
 class Lattice {
  public:
+  /// Which loops the quotient closes: all three generators (a compact torus
+  /// bundle Γ\Sol), γ3 = (0, 0, h) alone (Sol/<γ3>: the fundamental domain
+  /// is R² × [0, h), γ1 and γ2 are (0, 0, 0)), or the translations γ1 =
+  /// (x1, y1, 0), γ2 = (x2, y2, 0) alone (Sol/<γ1, γ2>, a torus times a line:
+  /// the domain is P × R, P their parallelogram, and γ3 = (0, 0, 0), height 0).
+  /// Words of the non-compact ones have a = b = 0 (Z) or c = 0 (XY).
+  enum class Loops { All, Z, XY };
+
   /// The lattice Γ of docs/mathematics.md: from_monodromy of [[2, 1], [1, 1]].
   static Lattice golden();
 
@@ -87,6 +98,18 @@ class Lattice {
   /// [0.01, 10000] (beyond it the kernel's floats cannot resolve the lattice).
   static Lattice from_monodromy(const Monodromy& monodromy, std::optional<double> fibre_area = std::nullopt);
 
+  /// Sol/<γ3> with γ3 = (0, 0, height): height in [1, 20] (a march step,
+  /// at most kQuotientMaxStep, then crosses at most one face of the domain;
+  /// λ = e^height stays well inside float). InvalidArgument otherwise.
+  static Lattice z_loop(double height);
+  /// Sol/<γ1, γ2> with γ1 = (g1, 0), γ2 = (g2, 0): finite, independent,
+  /// each of length at most 1e4 and spanning an area |det(g1, g2)| in
+  /// [0.01, 10000] (as from_monodromy's fibre). InvalidArgument otherwise.
+  static Lattice xy_loops(const glm::dvec2& g1, const glm::dvec2& g2);
+  Loops loops() const { return m_loops; }
+  /// Whether Γ\Sol is compact (loops() == Loops::All).
+  bool compact() const { return m_loops == Loops::All; }
+
   /// Whether γ3 also turns the fibre by the half-turn (trace < -2): the
   /// word γ1^a γ2^b γ3^c is then the isometry p -> element(a, b, c) ·
   /// half_turn^c(p).
@@ -95,9 +118,10 @@ class Lattice {
   /// half-turn when turns() and w.c is odd.
   glm::dvec3 apply(const LatticeWord& w, const glm::dvec3& p) const;
 
-  /// The monodromy A: conjugation by γ3 acts on the words γ1^a γ2^b as A.
+  /// The monodromy A: conjugation by γ3 acts on the words γ1^a γ2^b as A
+  /// (the identity for the non-compact quotients, whose words never need it).
   const Monodromy& monodromy() const { return m_monodromy; }
-  /// The fibre torus's area |det(γ1, γ2)|.
+  /// The fibre torus's area |det(γ1, γ2)| (0 for a z loop: no fibre torus).
   double fibre_area() const;
   /// The product u·v of two words of this lattice, in normal form (γ3^c
   /// γ1^a γ2^b γ3^-c = γ1^a' γ2^b' with (a', b') = A^c (a, b)); throws
@@ -109,7 +133,8 @@ class Lattice {
   /// Generators γ1, γ2, γ3 as points of Sol.
   const std::array<glm::dvec3, 3>& generators() const { return m_generators; }
 
-  /// Height of D along z (the z-coordinate of γ3).
+  /// Height of D along z (the z-coordinate of γ3; 0 for xy loops, whose D
+  /// is unbounded in z).
   double height() const { return m_generators[2].z; }
 
   /// The group element γ1^n1 γ2^n2 γ3^n3 (its translation part where γ3
@@ -120,7 +145,8 @@ class Lattice {
   /// rounded to the nearest lattice word.
   LatticeWord word_of(const glm::dvec3& element) const;
 
-  /// Lattice coordinates (s, r) with (x, y) = s γ1 + r γ2 (in the plane z = 0).
+  /// Lattice coordinates (s, r) with (x, y) = s γ1 + r γ2 (in the plane z =
+  /// 0); (0, 0) for a z loop, which has no γ1, γ2.
   glm::dvec2 lattice_coordinates(double x, double y) const;
 
   /// True when p lies in the fundamental domain D (half-open faces).
@@ -136,11 +162,14 @@ class Lattice {
   Teleport teleport(const glm::dvec3& p) const;
 
  private:
-  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns = false);
+  Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns = false,
+          Loops loops = Loops::All);
+  Teleport teleport_translations(double n, double x, double y, double z, bool turned) const;
 
   std::array<glm::dvec3, 3> m_generators;
   Monodromy m_monodromy;
   bool m_turns = false;
+  Loops m_loops = Loops::All;
   glm::dvec2 m_coordinates_row0;  // rows of [γ1 γ2]^{-1}
   glm::dvec2 m_coordinates_row1;
 };

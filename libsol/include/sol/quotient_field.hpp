@@ -26,6 +26,10 @@
 // lower bound F the march stepped by where it was longer: at 8 % of the
 // steps, and so little longer that without it a ray takes 0.5 % more
 // steps, while it cost three more reads a step; docs/renderer.md "The quotient".)
+//
+// A non-compact quotient (Lattice::Loops: a z loop, xy loops) has an
+// unbounded D and few images near it: every cell lists every image, with
+// the longest step as its reach (the march as in Sol, over the images).
 #pragma once
 
 #include <cstdint>

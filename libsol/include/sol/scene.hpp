@@ -8,11 +8,13 @@
 // (docs/conventions.md).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "sol/camera.hpp"
@@ -22,11 +24,15 @@
 
 namespace sol {
 
-/// The space the rays live in: Sol itself, or a compact quotient Γ\Sol
+/// The space the rays live in: Sol itself, or a quotient Γ\Sol
 /// (sol/lattice.hpp), where rays stay in the fundamental domain D and
-/// teleport back by an element of Γ: the golden lattice's, or that of
-/// World::monodromy and World::fibre_area (Lattice::from_monodromy).
-enum class Quotient { None, Golden, Monodromy };
+/// teleport back by an element of Γ: compact, the golden lattice's or that
+/// of World::monodromy and World::fibre_area (Lattice::from_monodromy); or
+/// non-compact, Sol/<(0, 0, h)> (ZLoop: World::z_loop, Lattice::z_loop) or
+/// Sol/<(x1, y1, 0), (x2, y2, 0)> (XYLoops: World::xy_loops,
+/// Lattice::xy_loops), which allow balls, boxes, planes z = c and some tubes
+/// (docs/scene-format.md).
+enum class Quotient { None, Golden, Monodromy, ZLoop, XYLoops };
 
 /// Everything that is seen, and how the march looks for it.
 struct World {
@@ -38,6 +44,10 @@ struct World {
   /// ... and the area of its fibre torus (none: the normalisation of
   /// Lattice::from_monodromy).
   std::optional<double> fibre_area;
+  /// Quotient::ZLoop: the height h of its loop γ3 = (0, 0, h), in [1, 20].
+  double z_loop = 1.0;
+  /// Quotient::XYLoops: its loops γ1 = (x1, y1, 0) and γ2 = (x2, y2, 0).
+  std::array<glm::dvec2, 2> xy_loops{glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
   std::vector<SceneObject> objects;
   std::vector<Light> lights{Light{}};    ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                 ///< light reaching surfaces facing away, in [0, 1]
@@ -65,11 +75,13 @@ struct Scene : World {
 /// Whether two worlds live in the same space (the same quotient, monodromy
 /// and fibre area).
 inline bool same_space(const World& a, const World& b) {
-  return a.quotient == b.quotient && a.monodromy == b.monodromy && a.fibre_area == b.fibre_area;
+  return a.quotient == b.quotient && a.monodromy == b.monodromy && a.fibre_area == b.fibre_area &&
+         (a.quotient != Quotient::ZLoop || a.z_loop == b.z_loop) && (a.quotient != Quotient::XYLoops || a.xy_loops == b.xy_loops);
 }
 
 /// Moves the world into another space: `quotient` (with `monodromy` and
-/// `fibre_area` for Quotient::Monodromy; ignored otherwise). Tubes along the
+/// `fibre_area` for Quotient::Monodromy; ignored otherwise; a z loop or xy
+/// loops take the world's World::z_loop or World::xy_loops). Tubes along the
 /// old lattice's γ1 or γ2 (the golden one's in Sol) turn to the new
 /// lattice's, so that the closed curves stay closed curves. Throws what
 /// Lattice::from_monodromy throws for a bad monodromy, the world unchanged.

@@ -93,18 +93,13 @@ Box Box::into_domain(const Lattice& lattice) const { return {lattice.teleport(ce
 // the y-slab's asinh(g_y e^{z0}), the z-slab's the gap between [z0, z1] and
 // the box's z-range.
 double Box::least_distance_over_domain(const Lattice& lattice) const {
-  const double h = lattice.height();
-  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
-  const double xs[4] = {0.0, g1.x, g2.x, g1.x + g2.x}, ys[4] = {0.0, g1.y, g2.y, g1.y + g2.y};
-  const double xlo = *std::min_element(xs, xs + 4), xhi = *std::max_element(xs, xs + 4);
-  const double ylo = *std::min_element(ys, ys + 4), yhi = *std::max_element(ys, ys + 4);
+  const DomainExtent e = domain_extent(lattice, center.z);  // the non-compact quotients: objects_internal.hpp
   const glm::dvec2 w = coordinate_half_widths();
-  const double gx = interval_gap(xlo, xhi, center.x - w.x, center.x + w.x);
-  const double gy = interval_gap(ylo, yhi, center.y - w.y, center.y + w.y);
-  constexpr int kSlabs = 16;
-  double least = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < kSlabs; ++i) {
-    const double z0 = h * i / kSlabs, z1 = h * (i + 1) / kSlabs;
+  const double gx = interval_gap(e.xlo, e.xhi, center.x - w.x, center.x + w.x);
+  const double gy = interval_gap(e.ylo, e.yhi, center.y - w.y, center.y + w.y);
+  double least = e.beyond - half_size.z;  // beyond the slabs, the z-slab's term alone
+  for (int i = 0; i < e.slabs; ++i) {
+    const double z0 = e.zlo + (e.zhi - e.zlo) * i / e.slabs, z1 = e.zlo + (e.zhi - e.zlo) * (i + 1) / e.slabs;
     least = std::min(least, std::max({std::asinh(gx * std::exp(-z1)), std::asinh(gy * std::exp(z0)),
                                       interval_gap(z0, z1, center.z - half_size.z, center.z + half_size.z)}));
   }

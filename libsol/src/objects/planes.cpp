@@ -77,11 +77,14 @@ KernelShape PlaneZ::kernel_shape() const {
 }
 
 PlaneZ PlaneZ::into_domain(const Lattice& lattice) const {
+  if (lattice.loops() == Lattice::Loops::XY) return *this;  // γ1, γ2 fix it, and there is no γ3
   const double h = lattice.height();
   return {c - h * std::floor(c / h)};
 }
 
-double PlaneZ::least_distance_over_domain(const Lattice& lattice) const { return gap(c, 0.0, lattice.height()); }
+double PlaneZ::least_distance_over_domain(const Lattice& lattice) const {
+  return lattice.loops() == Lattice::Loops::XY ? 0.0 : gap(c, 0.0, lattice.height());  // xy loops: D has every height
+}
 
 bool PlaneZ::same_set(const PlaneZ& other) const { return std::abs(c - other.c) < kSameSetTolerance; }
 
@@ -96,8 +99,10 @@ void check_plane(const Plane& p, const std::string& at, const Lattice* quotient)
     field_error(at + ".c", at + ".c is a height: it must be within [-80, 80] (e^{±z} must stay finite in float)");
   }
   if (quotient && !std::is_same_v<Plane, PlaneZ>) {
-    field_error(at + ".type", at + ".type: planes x, y = c are not supported in the quotient (Γ maps them to planes of "
-                                   "every slope, dense in M)");
+    field_error(at + ".type", quotient->compact() ? at + ".type: planes x, y = c are not supported in the quotient (Γ maps "
+                                                         "them to planes of every slope, dense in M)"
+                                                  : at + ".type: planes x, y = c are not supported in the quotient (its loops "
+                                                         "map them to planes without end near the domain)");
   }
 }
 

@@ -21,6 +21,13 @@ using namespace detail;
 
 // ---- Tube ----------------------------------------------------------------
 
+namespace {
+const Lattice& golden_lattice() {
+  static const Lattice golden = Lattice::golden();
+  return golden;
+}
+}  // namespace
+
 glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice) {
   switch (axis) {
     case TubeAxis::X:
@@ -30,9 +37,11 @@ glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice) {
     case TubeAxis::Z:
       return {0.0, 0.0, 1.0};
     case TubeAxis::Gamma1:
-      return glm::normalize(lattice.generators()[0]);
-    case TubeAxis::Gamma2:
-      return glm::normalize(lattice.generators()[1]);
+    case TubeAxis::Gamma2: {
+      // A z loop has no γ1, γ2: the golden lattice's directions stand in.
+      const Lattice& own = lattice.loops() == Lattice::Loops::Z ? golden_lattice() : lattice;
+      return glm::normalize(own.generators()[axis == TubeAxis::Gamma1 ? 0 : 1]);
+    }
   }
   return {0.0, 0.0, 1.0};
 }
@@ -163,7 +172,21 @@ void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
   }
   check_radius(t.radius, at, quotient);
   if (!quotient) return;
+  if (quotient->loops() == Lattice::Loops::Z) {
+    // γ3 maps a horizontal line at height z to one at z + h (finitely many
+    // near D), the axis x = y = 0 to itself, every other vertical line to
+    // others without end (all of them near D's unbounded x, y).
+    if (t.vertical() && (t.through.x != 0.0 || t.through.y != 0.0)) {
+      field_error(at + ".through", at + ".through: a tube along z in a z loop must be the axis x = y = 0 (γ3 maps every "
+                                        "other vertical line to new ones without end)");
+    }
+    return;
+  }
   if (t.vertical()) {
+    if (quotient->loops() == Lattice::Loops::XY) {
+      field_error(at + ".axis", at + ".axis: a tube along z does not fit xy loops (its images crowd together without end "
+                                     "far above or below); use a horizontal tube along gamma1 or gamma2");
+    }
     // A vertical line closes up (as the curve of γ3) when it passes through
     // a lattice point of ⟨γ1, γ2⟩, which γ3 maps into the lattice.
     const glm::dvec2 st = quotient->lattice_coordinates(t.through.x, t.through.y);
@@ -171,11 +194,13 @@ void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
       field_error(at + ".through", at + ".through: a tube along z in the quotient must pass through a point (x, y) of the "
                                         "lattice ⟨γ1, γ2⟩ (then it is the closed curve of γ3)");
     }
+  } else if (parallel(d, tube_axis_direction(TubeAxis::Gamma1, *quotient)) ||
+             parallel(d, tube_axis_direction(TubeAxis::Gamma2, *quotient))) {
+    return;  // the closed curve of γ1 or γ2 (its period: sol::quotient_images)
   } else if (parallel(d, tube_axis_direction(TubeAxis::X)) || parallel(d, tube_axis_direction(TubeAxis::Y))) {
     field_error(at + ".axis", at + ".axis: tubes along x or y do not close up in the quotient (their images are dense); "
                                    "use gamma1, gamma2 or z");
-  } else if (!parallel(d, tube_axis_direction(TubeAxis::Gamma1, *quotient)) &&
-             !parallel(d, tube_axis_direction(TubeAxis::Gamma2, *quotient))) {
+  } else {
     field_error(at + ".axis", at + ".axis: a horizontal tube closes up in the quotient only along its lattice's gamma1 "
                                    "or gamma2 (" + to_json(tube_axis_direction(TubeAxis::Gamma1, *quotient)).dump() + " or " +
                                    to_json(tube_axis_direction(TubeAxis::Gamma2, *quotient)).dump() + ")");

@@ -62,7 +62,11 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
 /// LATTICE_INV_HEIGHT = 1 / h; LATTICE_LAMBDA = λ = e^h (γ3 scales x by
 /// it), LATTICE_INV_LAMBDA = 1 / λ, LATTICE_SQRT_LAMBDA = √λ;
 /// LATTICE_TURN = -1 where γ3 also turns the fibre by the half-turn (a
-/// negative trace: sol::Lattice::turns), else 1.
+/// negative trace: sol::Lattice::turns), else 1; LATTICE_LOOPS = 0 for a
+/// compact quotient, 1 for a z loop (D = R² × [0, h): no γ1, γ2, whose
+/// constants are then the unit vectors, unused), 2 for xy loops (D = P × R:
+/// no γ3, whose constants are then those of h = 1, unused)
+/// (sol::Lattice::Loops).
 // clang-format off
 #define SOL_LATTICE_CONSTANTS(X)   \
   X(LATTICE_G1X,         30)       \
@@ -76,7 +80,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(LATTICE_LAMBDA,      38)       \
   X(LATTICE_INV_LAMBDA,  39)       \
   X(LATTICE_SQRT_LAMBDA, 40)       \
-  X(LATTICE_TURN,        41)
+  X(LATTICE_TURN,        41)       \
+  X(LATTICE_LOOPS,       42)
 // clang-format on
 
 // ---- Passes (kSpecPass). Without deferral one dispatch of kPassMarch does
