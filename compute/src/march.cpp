@@ -143,7 +143,9 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
                           " object images around the domain; the kernel takes at most " +
                           std::to_string(kMaxGpuImages) + " (fewer or smaller objects" +
                           (prepared.world().quotient == Quotient::Monodromy ? std::string(", or a larger quotient.fibre_area)")
-                                                                             : std::string(")")));
+                           : prepared.world().quotient == Quotient::XYLoops
+                               ? std::string(", or objects nearer z = 0, where neither loop is short)")
+                               : std::string(")")));
   }
   std::vector<kernel::Image> out;
   for (const MarchObject& m : images) {

@@ -352,8 +352,10 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
       std::tie(m_objects, m_max_step) = listed_images(world);
       m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
     } catch (const std::invalid_argument& e) {  // too many images for the field: say what helps
-      throw InvalidArgument(std::string(e.what()) + " (fewer or smaller objects" +
-                            (world.quotient == Quotient::Monodromy ? std::string(", or a larger quotient.fibre_area)") : ")"));
+      const char* more = world.quotient == Quotient::Monodromy ? ", or a larger quotient.fibre_area)"
+                         : world.quotient == Quotient::XYLoops  ? ", or objects nearer z = 0, where neither loop is short)"
+                                                                : ")";
+      throw InvalidArgument(std::string(e.what()) + " (fewer or smaller objects" + more);
     }
     for (std::size_t i = 0; i < world.lights.size(); ++i) {
       try {
