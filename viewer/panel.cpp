@@ -48,6 +48,13 @@ bool object_controls(SceneObject& o) {
   };
   std::visit([&](auto& kind) { kind.visit_fields(FieldControls{changed}); }, o.shape);
   if (!is_solid(o.shape)) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
+  // Materials: the mirror's share, and the emitted radiance (linear, may exceed 1).
+  changed |= drag_double("mirror", o.mirror, 0.01, 0.0, 1.0, "%.2f");
+  float e[3] = {static_cast<float>(o.emission.x), static_cast<float>(o.emission.y), static_cast<float>(o.emission.z)};
+  if (ImGui::DragFloat3("emission", e, 0.01f, 0.0f, 100.0f, "%.2f")) {
+    o.emission = glm::dvec3(std::max(e[0], 0.0f), std::max(e[1], 0.0f), std::max(e[2], 0.0f));
+    changed = true;
+  }
   return changed;
 }
 
@@ -183,6 +190,9 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
       out.world_changed = true;
     }
     out.world_changed |= drag_double("hit epsilon", m.scene.hit_epsilon, 1e-6, 1e-7, 0.1, "%.2e");
+    if (ImGui::DragInt("max bounces (mirrors)", &m.scene.max_bounces, 0.1f, 0, 64, "%d", ImGuiSliderFlags_AlwaysClamp)) {
+      out.world_changed = true;
+    }
     ImGui::Checkbox("stereo", &m.stereo);
     drag_double("ipd", m.ipd, 0.001, 0.0, 10.0, "%.3f");
     if (drag_double("render scale", m.scale, 0.005, m.min_scale, 1.0, "%.2f")) m.adaptive = false;

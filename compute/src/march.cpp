@@ -76,12 +76,13 @@ Params world_params(const MarchWorld& prepared) {
     g.light_image_count[static_cast<glm::length_t>(i)] = count;
     first += count;
   }
-  g.limits = glm::vec4(world.max_distance, world.hit_epsilon, 0.0, world.max_steps);
+  g.limits = glm::vec4(world.max_distance, world.hit_epsilon, world.max_bounces, world.max_steps);
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
     const SceneObject& o = world.objects[k];
     const KernelShape shape = kernel_shape(o.shape);
     g.objects[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
     g.objects[k].color = vec4(o.color, 1.0);
+    g.objects[k].material = vec4(o.emission, o.mirror);
   }
   // Objects (the quotient: the images around D).
   g.counts.x = static_cast<int>(prepared.objects().size());
@@ -270,7 +271,8 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
 // march pass holds the zeta function's positions alone.
 void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
-  v.defer_shading = o.deferred && f.exact_lights;
+  // (Not with mirrors: a reflected ray is marched where its hit is shaded.)
+  v.defer_shading = o.deferred && f.exact_lights && !f.mirrors;
   v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 

@@ -196,6 +196,12 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
     field_error(at + ".cutout", at + ".cutout needs a plane with a pattern (circles or checker)");
   }
   if (!unit_interval3(o.color)) field_error(at + ".color", at + ".color components must be in [0, 1]");
+  for (int c = 0; c < 3; ++c) {
+    if (!(o.emission[c] >= 0.0 && o.emission[c] <= 1e6)) {
+      field_error(at + ".emission", at + ".emission components must be in [0, 1e6] (emitted radiance, linear)");
+    }
+  }
+  if (!(o.mirror >= 0.0 && o.mirror <= 1.0)) field_error(at + ".mirror", at + ".mirror must be in [0, 1]");
 }
 
 SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
@@ -213,6 +219,8 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at, quotient); }, obj.shape);
   if (o.contains("color")) obj.color = r.vec3(o["color"], at + ".color");
   if (o.contains("pattern")) obj.pattern = read_pattern(o["pattern"], r, at + ".pattern");
+  if (o.contains("emission")) obj.emission = r.vec3(o["emission"], at + ".emission");
+  if (o.contains("mirror")) obj.mirror = r.number(o["mirror"], at + ".mirror");
   return obj;
 }
 
@@ -221,6 +229,8 @@ json write_object(const SceneObject& o, const Lattice* quotient) {
   j["type"] = std::string(kind_name(o.shape));
   j["color"] = to_json(o.color);
   j["pattern"] = std::string(to_string(o.pattern));
+  if (o.emission != glm::dvec3(0.0)) j["emission"] = to_json(o.emission);
+  if (o.mirror != 0.0) j["mirror"] = o.mirror;
   return j;
 }
 

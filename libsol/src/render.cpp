@@ -248,6 +248,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.point = world_point;
       hit.normal = shape_normal(objects[hit_k].shape, p);
       hit.pattern_uv = uv;
+      hit.direction = ray.direction_at(t);
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -365,6 +366,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       // (a plane then faces the side the ray comes from, as in the cover).
       hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
       hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
+      hit.direction = u;
       return hit;
     }
     double step_length = std::min(clear, cell.reach);
@@ -409,8 +411,54 @@ bool blocked(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec
   return h.object != 0;
 }
 
+// The light a hit's surface reflects diffusely, before fog: its colour and
+// pattern times the ambient and the lights' (shade_hit, radiance).
+glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit);
+
 glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   if (hit.object == 0) return glm::dvec3(0.0);
+  const World& world = prepared.world();
+  const glm::dvec3 surface = diffuse_light(prepared, hit);
+  const double transmittance = std::exp(-world.fog_density * hit.distance);
+  return world.fog_color + (surface - world.fog_color) * transmittance;
+}
+
+// The march of a reflected ray: from a hit point (world coordinates) along
+// `direction` (frame components there), leaving the surface it starts on.
+MarchHit march_from(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction) {
+  const MarchLimits limits{std::numeric_limits<double>::infinity(), true};
+  return prepared.features().quotient ? march_quotient(prepared, from, direction, limits)
+                                      : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
+}
+
+// What a ray brings back where the world has mirrors or glowing objects:
+// at each hit, over the fog of its segment (each segment its own
+// max_distance), the object's emission, (1 - mirror) times its diffuse
+// light and mirror times what the reflected geodesic brings back (its
+// tangent reflected in the surface's normal, frame components: the
+// reflection is that of the tangent space at the hit, an isometry of it),
+// up to max_bounces reflections (past them the mirror's share is black).
+// A world without either shades as shade_hit, to the bit.
+glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
+  if (!prepared.features().mirrors && !prepared.features().emission) return shade_hit(prepared, first);
+  const World& world = prepared.world();
+  glm::dvec3 color(0.0), weight(1.0);
+  MarchHit hit = first;
+  for (int bounce = 0; hit.object != 0; ++bounce) {
+    const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
+    const double transmittance = std::exp(-world.fog_density * hit.distance);
+    color += weight * ((1.0 - transmittance) * world.fog_color);
+    color += weight * transmittance * (o.emission + (1.0 - o.mirror) * diffuse_light(prepared, hit));
+    if (o.mirror == 0.0 || bounce == world.max_bounces) break;
+    weight *= transmittance * o.mirror;
+    const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
+    const glm::dvec3 reflected = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
+    hit = march_from(prepared, hit.point, reflected);
+  }
+  return color;
+}
+
+glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
   const World& world = prepared.world();
   const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
@@ -428,10 +476,8 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
       light += l.color * (l.intensity * at.attenuation * cosine);
     }
   }
-  const glm::dvec3 surface = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) *
-                             (world.ambient + (1.0 - world.ambient) * light);
-  const double transmittance = std::exp(-world.fog_density * hit.distance);
-  return world.fog_color + (surface - world.fog_color) * transmittance;
+  return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) *
+         (world.ambient + (1.0 - world.ambient) * light);
 }
 
 // Two images of the same height side by side, `left` on the left, with their AOVs.
@@ -481,7 +527,7 @@ MarchHit CpuRenderer::march(const Camera& camera, const glm::dvec3& direction) c
   return march_view(world(), view_from(world(), camera), direction);
 }
 
-glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return shade_hit(world(), hit); }
+glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return radiance(world(), hit); }
 
 RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
   (void)world();  // a world first (logic_error)
@@ -555,12 +601,12 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
-      glm::dvec3 c = sees ? shade_hit(prepared, hit) : glm::dvec3(0.0);
+      glm::dvec3 c = sees ? radiance(prepared, hit) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
         const MarchHit other = march_at(i, j, offset);
-        c += shade_hit(prepared, other);
+        c += radiance(prepared, other);
       }
       c /= static_cast<double>(settings.samples);
       r.rgba[4 * k + 0] = static_cast<float>(c.r);
@@ -585,7 +631,7 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   return CpuRenderer(scene).march(scene.camera, direction);
 }
 
-glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return shade_hit(MarchWorld(scene), hit); }
+glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return radiance(MarchWorld(scene), hit); }
 
 RenderResult render_cpu(const Scene& scene, const RenderOptions& options) {
   CpuRenderer renderer;

@@ -61,6 +61,7 @@ void check_world(const World& s) {
   if (!(s.max_distance > 0.0 && s.max_distance <= 1e4)) field_error("max_distance", "max_distance must be in (0, 10000]");
   if (!(s.max_steps >= 1 && s.max_steps <= 100000)) field_error("max_steps", "max_steps must be in [1, 100000]");
   if (!(s.hit_epsilon > 0.0 && s.hit_epsilon <= 0.1)) field_error("hit_epsilon", "hit_epsilon must be in (0, 0.1]");
+  if (!(s.max_bounces >= 0 && s.max_bounces <= 64)) field_error("max_bounces", "max_bounces must be in [0, 64]");
 }
 
 }  // namespace detail

@@ -163,7 +163,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (!root.is_object()) r.fail("", "the scene must be a JSON object");
   r.require_known_keys(root,
                        {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
-                        "max_steps", "hit_epsilon", "quotient", "samples"},
+                        "max_steps", "hit_epsilon", "quotient", "samples", "max_bounces"},
                        "the scene", "");
   Scene s;
   if (root.contains("camera")) read_camera(root["camera"], r, s.camera);
@@ -211,6 +211,15 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   }
   if (root.contains("max_distance")) s.max_distance = r.number(root["max_distance"], "max_distance");
   if (root.contains("hit_epsilon")) s.hit_epsilon = r.number(root["hit_epsilon"], "hit_epsilon");
+  if (root.contains("max_bounces")) {
+    const json& m = root["max_bounces"];
+    if (!m.is_number_integer()) {
+      r.fail("max_bounces", "'max_bounces' must be an integer, got " + SceneFileReader::json_text(m));
+    }
+    const auto v = m.get<long long>();
+    if (v < 0 || v > 64) r.fail("max_bounces", "max_bounces must be in [0, 64]");
+    s.max_bounces = static_cast<int>(v);
+  }
   if (root.contains("max_steps")) {
     const json& m = root["max_steps"];
     if (!m.is_number_integer()) r.fail("max_steps", "'max_steps' must be an integer, got " + SceneFileReader::json_text(m));
@@ -295,6 +304,7 @@ std::string to_json(const Scene& s) {
   }
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
+  root["max_bounces"] = s.max_bounces;
   root["hit_epsilon"] = s.hit_epsilon;
   root["samples"] = s.samples;
   return root.dump(2);

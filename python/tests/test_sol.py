@@ -138,6 +138,19 @@ def test_non_compact_quotients():
         sol.scene([sol.tube("z", (0, 0, 0), 0.1)], quotient={"xy_loops": [[1, 0], [0, 1]]})
 
 
+def test_materials():
+    # A glowing ball shows its emission over its ambient-lit colour; a mirror's keys round-trip.
+    scene = sol.scene([sol.ball((0.7, 0.7, 0.0), 0.3, color=(0.4, 0.4, 0.4), emission=(0.25, 0.5, 1.0)),
+                       sol.plane_z(-1.0, mirror=0.5)],
+                      camera=sol.camera(position=(0, 0, 0), forward=(1, 1, 0), up=(0, 0, 1), fov=40),
+                      lights=[], ambient=0.5, max_bounces=2)
+    fields = scene.to_dict()
+    assert fields["objects"][0]["emission"] == [0.25, 0.5, 1.0] and fields["objects"][1]["mirror"] == 0.5
+    assert fields["max_bounces"] == 2
+    image = sol.render_cpu(scene, 9, 9)
+    assert np.allclose(image["rgba"][4, 4, :3], (0.45, 0.7, 1.2), atol=1e-6)
+
+
 def test_spreading_along_the_z_axis():
     assert sol.sphere_area_density((0, 0, 1), 2.0) == pytest.approx(math.sinh(2.0) ** 2, rel=1e-10)
 

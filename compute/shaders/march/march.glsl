@@ -13,7 +13,7 @@
 
 // What a march is for.
 const int kMarchCamera = 0;  // from an eye (or an ODS column's eye) to the first object
-const int kMarchShadow = 1;  // from a hit point towards a light: passes the surface it starts on
+const int kMarchShadow = 1;  // from a hit point: towards a light, or a mirror's reflected ray; passes the surface it starts on
 
 // Where a march picks a ray up: at arc length t, march step `step`,
 // passing the objects of the mask `passing` (cutout planes between their
@@ -33,6 +33,7 @@ struct MarchHit {
   float t;     // the arc length marched (to the hit)
   vec3 q;      // the point reached, in the march's coordinates
   vec3 from;   // the start of the ray's last segment (planes face its side)
+  vec3 u;      // with mirrors (HAS_MIRRORS): the ray's unit tangent at q, frame components
   int steps;   // positions evaluated
   // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
   int exact_k;
@@ -48,6 +49,7 @@ MarchHit march_hit_none(MarchResume resume) {
   h.t = resume.t;
   h.q = vec3(0.0);
   h.from = vec3(0.0);
+  h.u = vec3(0.0, 0.0, 1.0);
   h.steps = 0;
   h.exact_k = -1;
   h.exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
@@ -358,7 +360,11 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
     q = sol_position_forward(ray, t);
     if (HAS_ODS) q = sol_translate(origin, q);
   }
-  return march_found(hit - 1, t, q, origin, steps, exact);
+  MarchHit found = march_found(hit - 1, t, q, origin, steps, exact);
+  // A mirror reflects the ray's tangent at the hit (the positions above may
+  // have left it out).
+  if (HAS_MIRRORS && hit != 0) found.u = rk4 ? rk_u : sol_forward(ray, t).direction;
+  return found;
 }
 
 // ---- The march in the quotient (march_quotient in libsol/src/render.cpp)
@@ -444,6 +450,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   // Over-relaxation: `proposal` is the step from q, the last point the
   // march moved to, and `covered` the part of it q's own bounds clear.
   float proposal = 0.0, covered = 0.0;
+  vec3 u = vec3(0.0, 0.0, 1.0);  // with mirrors: the tangent at q (frame components)
   for (int step = 0; step < max_steps; ++step) {
     SolForward forward = camera ? quotient_forward(qray, local_t + proposal, by_zeta)
                                 : sol_forward(qray, local_t + proposal, false);
@@ -527,6 +534,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       local_t += proposal;
     }
     q = e;
+    if (HAS_MIRRORS) u = forward.direction;
     if (nearest < hit_epsilon) {
       hit_image = nearest_i;
       break;
@@ -539,7 +547,9 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
     proposal = camera && reach < clear ? min(max(step_length, min(kQuotientOverRelax * step_length, kQuotientMaxStep)), limit - t)
                                        : step_length;
   }
-  return march_found(hit_image, t, q, origin, steps, exact);
+  MarchHit found = march_found(hit_image, t, q, origin, steps, exact);
+  found.u = u;
+  return found;
 }
 
 // The march of any ray: from `origin` (march coordinates: relative to the

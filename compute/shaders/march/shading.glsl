@@ -63,7 +63,9 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
   return march(q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow).k >= 0;
 }
 
-// Colour of a hit on object k with unit normal n (frame components), plane
+// The light object k's surface reflects diffusely (diffuse_light, before
+// fog; shade_hit adds the fog over the arc length t): the colour of a hit on
+// object k with unit normal n (frame components), plane
 // coordinates uv, arc length t; q and the eye's light positions are in the
 // same coordinates (camera-relative in Sol, world in the quotient). Lights
 // as sol::lights_at: point lights by the coordinate difference in frame
@@ -73,7 +75,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
 // 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
 // light where none is found; with shadows, each geodesic marched to the
 // light first (shadow_blocked).
-vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
+vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
   const float ambient = params.shading.x;
   const int light_count = min(int(params.shading.z), kMaxLights);
   vec3 light = vec3(0.0);
@@ -111,8 +113,12 @@ vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
     }
     light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
   } while (++i < light_count);
-  const vec3 surface = params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
-                       (ambient + (1.0 - ambient) * light);
+  return params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
+         (ambient + (1.0 - ambient) * light);
+}
+
+vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
+  const vec3 surface = diffuse_light(k, n, uv, q, eye);
   const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
   return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
 }
@@ -160,6 +166,43 @@ Surface surface_at(MarchHit h) {
                                                                          : object_normal(type, q, rel, heading, radius, h.from);
   f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;
+}
+
+// One hit's share (radiance): over the fog of its segment, its emission and
+// (1 - mirror) times its diffuse light, times `weight`; returns its mirror.
+float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
+  const vec4 material = params.objects[f.object].material;
+  const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+  color += weight * ((1.0 - transmittance) * params.fog_color.rgb +
+                     transmittance * (material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye)));
+  return material.w * transmittance;
+}
+
+// What a camera ray brings back where the world has mirrors or glowing
+// objects (radiance in libsol/src/render.cpp): at each hit, over the fog of
+// its segment, the object's emission, (1 - mirror) times its diffuse light
+// and mirror times what the reflected ray brings back (the tangent u
+// reflected in the normal, frame components, marched from the hit as a
+// ray that leaves its surface), up to max bounces (params.limits.z).
+vec4 radiance(MarchHit h, Surface f, int eye) {
+  const int bounces = int(params.limits.z);
+  vec3 color = vec3(0.0);
+  vec3 weight = vec3(radiance_of_hit(h, f, eye, vec3(1.0), color));
+  const float mirror = params.objects[f.object].material.w;
+  int bounce = 0;
+  bool alive = HAS_MIRRORS && mirror > 0.0 && bounces > 0;
+  if (alive) do {  // (tested at its end: see march.comp)
+    const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+    const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
+    h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
+    alive = h.k >= 0;
+    if (alive) {
+      f = surface_at(h);
+      weight *= radiance_of_hit(h, f, eye, weight, color);
+      alive = params.objects[f.object].material.w > 0.0;
+    }
+  } while (alive && ++bounce < bounces);
+  return vec4(color, 1.0);
 }
 
 #endif  // SOL_MARCH_SHADING_GLSL

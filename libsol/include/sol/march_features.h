@@ -35,7 +35,9 @@
   X(cutout,         HAS_CUTOUT,           5)  /* cutout planes */                                             \
   X(exact_lights,   HAS_EXACT_LIGHTS,     9)  /* exact point lights */                                        \
   X(light_reach,    HAS_LIGHT_REACH,      17) /* exact point lights with a reach: the longer connections */   \
-  X(shadows,        HAS_SHADOWS,          15) /* exact point lights with shadows */
+  X(shadows,        HAS_SHADOWS,          15) /* exact point lights with shadows */ \
+  X(mirrors,        HAS_MIRRORS,          43) /* mirrors: rays go on along the reflected geodesic */ \
+  X(emission,       HAS_EMISSION,         44) /* glowing objects */
 // clang-format on
 
 #endif  // SOL_MARCH_FEATURES_H

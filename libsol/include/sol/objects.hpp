@@ -69,6 +69,13 @@ struct SceneObject {
   Pattern pattern = Pattern::None;
   /// Planes: only the pattern's bright cells (discs, light squares) are solid.
   bool cutout = false;
+  /// Emitted radiance, linear RGB (>= 0): a glowing object shows it on top
+  /// of the light it reflects.
+  glm::dvec3 emission{0.0, 0.0, 0.0};
+  /// Specular reflectance in [0, 1]: the share of the light that comes
+  /// along the geodesic reflected in the surface (the rest is diffuse, with
+  /// albedo `color`); up to World::max_bounces reflections.
+  double mirror = 0.0;
 };
 
 /// The kinds that close up in the compact quotient (planes z = c, balls,

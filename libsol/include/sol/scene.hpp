@@ -56,6 +56,7 @@ struct World {
   double max_distance = 30.0;            ///< arc length after which a ray misses
   int max_steps = 200;                   ///< march steps after which a ray misses
   double hit_epsilon = 5e-5;             ///< a ray hits when the distance falls below this
+  int max_bounces = 4;                   ///< reflections a ray takes in mirrors (SceneObject::mirror), in [0, 64]
 
   /// The lattice Γ of the quotient the rays live in (sol/lattice.hpp), or
   /// none in Sol itself: everything that teleports, lists images or binds an

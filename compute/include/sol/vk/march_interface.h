@@ -125,8 +125,9 @@ SOL_CONSTANT(int, kGroupSize, 8);
 
 /// An object's appearance and kind.
 struct Object {
-  vec4 plane;  ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
-  vec4 color;  ///< rgb: linear colour
+  vec4 plane;     ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
+  vec4 color;     ///< rgb: linear colour
+  vec4 material;  ///< rgb: emitted radiance (linear); w: mirror, the specular reflectance
 };
 
 /// One eye: a mono image has one, a side-by-side stereo image two, rendered
@@ -149,7 +150,7 @@ struct Params {
   Eye eyes[2];
   vec4 shading;    ///< x: ambient, y: fog density, z: light count
   vec4 fog_color;  ///< rgb
-  vec4 limits;     ///< x: max distance, y: hit epsilon, w: max steps
+  vec4 limits;     ///< x: max distance, y: hit epsilon, z: max bounces (mirrors), w: max steps
   ivec4 counts;    ///< x: objects (the quotient: images), y: eye width, z: height, w: eyes (1 or 2)
   /// This dispatch's sample of every pixel: xy its point in the pixel (from
   /// the top-left corner; 0.5, 0.5 the centre), z its weight in the colour
@@ -226,7 +227,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 2 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
+static_assert(sizeof(Object) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
