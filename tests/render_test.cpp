@@ -1690,6 +1690,68 @@ TEST(Mirrors, MaterialsAreReadCheckedAndShown) {
   EXPECT_NEAR(r.rgba[4 * centre + 2], 0.2 + 1.0, 1e-6);
 }
 
+// The furnace (the path tracer, Transport::Path): a camera at the centre of
+// an exact ball of radius 1 (seen from inside) that emits E and reflects
+// diffusely with albedo ρ, nothing else: every path gathers E (1 + ρ + ρ²
+// + ...), so every pixel sees E / (1 - ρ), here 0.5 / 0.4 = 1.25. With a
+// mirror share m the ball reflects m + (1 - m) ρ in all: 0.5 / (1 - 0.8) =
+// 2.5 for m = 0.5. Each pixel is the mean of 8 paths; the image's mean must
+// lie within 4 standard errors of the value (the error estimated from the
+// pixels' spread: 64 independent means), and no pixel may be non-finite.
+TEST(Path, AnEmittingBallSeenFromInsideIsAFurnace) {
+  for (const auto& [mirror, expected] : {std::pair{0.0, 1.25}, std::pair{0.5, 2.5}}) {
+    sol::Scene furnace;
+    furnace.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
+    sol::SceneObject ball{sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, {0.6, 0.6, 0.6}};
+    ball.emission = {0.5, 0.5, 0.5};
+    ball.mirror = mirror;
+    furnace.objects = {ball};
+    furnace.lights.clear();
+    furnace.max_steps = 2000;
+    sol::RenderOptions settings;
+    settings.width = 8;
+    settings.height = 8;
+    settings.samples = 8;
+    settings.transport = sol::Transport::Path;
+    settings.seed = 7;
+    const sol::RenderResult r = sol::render_cpu(furnace, settings);
+    double sum = 0.0, squares = 0.0;
+    for (std::size_t k = 0; k < 64; ++k) {
+      ASSERT_TRUE(std::isfinite(r.rgba[4 * k]));
+      ASSERT_EQ(r.object[k], 1.0f);  // the inside of the sphere
+      EXPECT_EQ(r.rgba[4 * k], r.rgba[4 * k + 2]);  // grey in, grey out
+      sum += r.rgba[4 * k];
+      squares += r.rgba[4 * k] * r.rgba[4 * k];
+    }
+    const double mean = sum / 64.0, spread = std::sqrt(std::max(0.0, squares / 64.0 - mean * mean));
+    const double error = spread / std::sqrt(63.0);
+    std::printf("furnace, mirror %.1f: %.4f (expected %.4f, standard error %.4f)\n", mirror, mean, expected, error);
+    EXPECT_GT(error, 0.0);
+    EXPECT_LT(std::abs(mean - expected), 4.0 * error);
+  }
+}
+
+// Paths are reproducible: their random numbers come from the seed, the
+// pixel and the sample, so one thread and two give the same image; another
+// seed another one.
+TEST(Path, TheSameSeedGivesTheSameImageOnAnyThreads) {
+  sol::Scene scene = sol::preset_scene("lattice-balls");
+  scene.objects[0].emission = {0.4, 0.3, 0.2};
+  sol::RenderOptions settings;
+  settings.width = 12;
+  settings.height = 8;
+  settings.samples = 2;
+  settings.transport = sol::Transport::Path;
+  settings.seed = 3;
+  settings.threads = 1;
+  const sol::RenderResult one = sol::render_cpu(scene, settings);
+  settings.threads = 2;
+  const sol::RenderResult two = sol::render_cpu(scene, settings);
+  EXPECT_EQ(one.rgba, two.rgba);
+  settings.seed = 4;
+  EXPECT_NE(sol::render_cpu(scene, settings).rgba, one.rgba);
+}
+
 // A fibre so small that more images of the objects lie within a step of D
 // than the field holds: refused with what would help, naming the field.
 TEST(Quotient, ASmallFibreSaysWhatHelps) {

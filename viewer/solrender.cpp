@@ -278,7 +278,7 @@ bool is_cpu(const sol::Renderer& renderer) { return dynamic_cast<const sol::CpuR
 
 // What the command line asks for.
 struct Options {
-  std::string scene = "plane", output, aov, device = "auto", path_file, frames, video, projection;
+  std::string scene = "plane", output, aov, device = "auto", path_file, frames, video, projection, transport = "direct";
   std::string stereo_mode;  // empty: mono
   double fps = 24.0, ipd = 0.064;
   std::optional<double> fisheye_fov;
@@ -286,6 +286,7 @@ struct Options {
   sol::cli::SceneOverrides overrides;
   bool print_scene = false, progress = false, overwrite = false, video_only = false;
   int width = 512, height = 512, spp = 0;  // spp 0: the scene's "samples"
+  int seed = 0;                            // the path tracer's
   unsigned threads = 0;
 
   bool stereo() const { return !stereo_mode.empty(); }
@@ -315,6 +316,13 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_choice("--device", o.device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
+  cl.add_choice("--transport", o.transport, {"direct", "path"},
+                "how light reaches the eye: direct (each hit lit by the lights, with ambient light, mirrors and "
+                "emission; the default) or path (path tracing: diffuse interreflection, glowing objects, mirrors, the "
+                "lights by next-event estimation, no ambient light; each of --spp samples one path; the CPU renderer "
+                "only, which --device auto then takes; docs/lighting.md)");
+  cl.add_integer("--seed", o.seed, 0, 2147483647, "N",
+                 "the path tracer's random seed, 0..2^31-1 (default 0): the same seed gives the same image");
   o.flow.add_to(cl);
   cl.add_optional_choice("--stereo", o.stereo_mode, {"side-by-side", "anaglyph"}, "side-by-side",
                          "both eyes: side by side (the default; image width 2 W) or as a red/cyan anaglyph (width W: "
@@ -387,6 +395,10 @@ void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::Co
     cl.fail("--aov " + o.aov + " is the same file as -o " + o.output + ": give two files");
   }
   if (o.flow.rk4() && o.device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
+  if (o.transport == "path" && o.device == "vulkan") {
+    cl.fail("--transport path runs on the CPU renderer only (--device cpu or auto)");
+  }
+  if (o.transport == "path" && o.flow.rk4()) cl.fail("--transport path runs on the CPU renderer, --integrator rk4 on the kernel");
 }
 
 // A film: its camera path, the frames to render and the encoder.
@@ -427,6 +439,7 @@ std::string film_manifest(const Options& o, const sol::Scene& scene) {
   m["stereo"] = o.stereo_mode.empty() ? "mono" : o.stereo_mode;
   m["ipd"] = o.stereo() ? o.ipd : 0.0;
   m["integrator"] = o.flow.rk4() ? "rk4 " + std::to_string(o.flow.rk_step) : "closed";
+  if (o.transport == "path") m["transport"] = "path seed " + std::to_string(o.seed);
   return m.dump(2) + "\n";
 }
 
@@ -588,6 +601,7 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
                                        : sol::programs::Device::Auto;
   choice.rk4 = o.flow.rk4();
   choice.rk4_step = o.flow.rk_step;
+  choice.path = o.transport == "path";
 #ifndef NDEBUG
   choice.validation = true;  // validation layers in debug builds
 #endif
@@ -741,6 +755,8 @@ int main(int argc, char** argv) {
     options.height = o.height;
     options.samples = o.spp;
     options.threads = o.threads;
+    options.transport = o.transport == "path" ? sol::Transport::Path : sol::Transport::Direct;
+    options.seed = static_cast<std::uint64_t>(o.seed);
     options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };

@@ -798,6 +798,10 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // is the host's): with the AOVs 120 bytes (the images, their staging
   // copies and the result), rounded up.
   validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
+  if (options.transport == Transport::Path) {
+    throw NotImplemented("sol::vk::MarchRenderer::render: the kernel renders direct light only; path tracing runs on the "
+                         "CPU renderer (sol::CpuRenderer)");
+  }
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;

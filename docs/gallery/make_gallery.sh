@@ -43,6 +43,7 @@ jpeg --scene halfturn-balls "${a[@]}" -o $g/halfturn-balls-z.jpg
 jpeg --scene $s/golden-two-balls.json "${a[@]}" -o $g/golden-two-balls-z.jpg
 jpeg --scene $s/z-loop.json "${a[@]}" -o $g/z-loop.jpg
 jpeg --scene $s/xy-loops.json "${a[@]}" -o $g/xy-loops.jpg
+jpeg --scene $s/mirror-balls.json "${a[@]}" -o $g/mirror-balls.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg
 $r --scene sandwich --projection fisheye --fisheye-fov 180 --width 576 --height 576 --spp 16 -o $g/sandwich-dome.png
 # Light (docs/lighting.md): the geodesic falloff beside the inverse-square law. For the sandwich lit

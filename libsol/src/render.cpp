@@ -8,6 +8,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -148,8 +149,14 @@ PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const 
   return r;
 }
 
+bool exact_ball(const Shape& shape) {
+  const Ball* b = std::get_if<Ball>(&shape);
+  return b && b->exact;
+}
+
 // The march in Sol: `objects` relative to `origin`, so the ray starts at
-// the origin of their coordinates.
+// the origin of their coordinates. Exact balls are seen from inside as
+// well as from outside.
 MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const std::vector<MarchObject>& objects,
                      const glm::dvec3& direction, const MarchLimits& limits = {}) {
   const World& world = prepared.world();
@@ -203,8 +210,13 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
     std::size_t hit_k = 0, nearest_k = 0;
+    bool nearest_inside = false;  // the nearest object is an exact ball the ray is inside
     for (std::size_t k = 0; k < n; ++k) {
       double d = object_distance(objects[k], q);
+      // An exact ball is seen from inside too: there d is its exact signed
+      // distance, and the sphere is at least -d away (the triangle inequality).
+      const bool inside = d < 0.0 && exact_ball(objects[k].shape);
+      if (inside) d = -d;
       if (planes_xy && crossing.solved &&
           (std::holds_alternative<PlaneX>(objects[k].shape) || std::holds_alternative<PlaneY>(objects[k].shape))) {
         d = k == crossing.k ? std::max(crossing.t - t, 0.0) : std::numeric_limits<double>::infinity();
@@ -219,6 +231,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
         second = nearest;
         nearest = d;
         nearest_k = k;
+        nearest_inside = inside;
       } else {
         second = std::min(second, d);
       }
@@ -228,7 +241,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       }
     }
     const Shape& nearest_shape = objects[nearest_k].shape;
-    if (solids && others && is_solid(nearest_shape)) {
+    if (solids && others && is_solid(nearest_shape) && !nearest_inside) {  // (the clearance is the outside's)
       nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, ray.direction_at(t))));
     }
     hit.steps = crossing.steps + step + 1;
@@ -249,6 +262,8 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.normal = shape_normal(objects[hit_k].shape, p);
       hit.pattern_uv = uv;
       hit.direction = ray.direction_at(t);
+      // From inside an exact ball its normal faces inward, to the ray.
+      if (exact_ball(objects[hit_k].shape) && glm::dot(hit.normal, hit.direction) > 0.0) hit.normal = -hit.normal;
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -458,9 +473,10 @@ glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
   return color;
 }
 
-glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
+// The light the lights bring to a hit (sol::lights_at, with shadows), the
+// cosine taken with `normal`: before the surface's colour and the ambient.
+glm::dvec3 light_received(const MarchWorld& prepared, const MarchHit& hit, const glm::dvec3& normal) {
   const World& world = prepared.world();
-  const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3& p = hit.point;
   glm::dvec3 light(0.0);
   for (std::size_t i = 0; i < world.lights.size(); ++i) {
@@ -469,15 +485,100 @@ glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
     const std::vector<LightAtPoint> ways =
         prepared.features().quotient ? lights_at(l, p, prepared.light_images()[i]) : lights_at(l, p);
     for (const LightAtPoint& at : ways) {
-      const double cosine = glm::dot(hit.normal, at.direction);
+      const double cosine = glm::dot(normal, at.direction);
       if (cosine <= 0.0) continue;
       // Shadows: the geodesic the light arrives along, marched to the light.
       if (l.shadows && std::isfinite(at.length) && blocked(prepared, p, at.direction, at.length)) continue;
       light += l.color * (l.intensity * at.attenuation * cosine);
     }
   }
+  return light;
+}
+
+glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
+  const World& world = prepared.world();
+  const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
+  const glm::dvec3 light = light_received(prepared, hit, hit.normal);
   return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) *
          (world.ambient + (1.0 - world.ambient) * light);
+}
+
+// ---- Path tracing (RenderOptions::transport = Transport::Path)
+
+// A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the
+// seed, the pixel and the sample, so that an image does not depend on the
+// threads that rendered it.
+class PathRandom {
+ public:
+  PathRandom(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
+      : m_state(seed ^ (0x9E3779B97F4A7C15ULL * (pixel + 1)) ^ (0xD1B54A32D192ED03ULL * (sample + 1))) {}
+  /// Uniform in [0, 1).
+  double uniform() {
+    std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  std::uint64_t m_state;
+};
+
+// A direction about the unit normal n with density cos θ / π (the frame's
+// components are orthonormal coordinates of the tangent space, so the
+// Euclidean construction holds there): a point of the unit disc lifted to
+// the hemisphere, in a basis (t, b, n) (Duff et al. 2017's branchless one).
+glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z), c = n.x * n.y * a;
+  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  const glm::dvec3 b(c, sign + n.y * n.y * a, -n.y);
+  const double r = std::sqrt(random.uniform()), phi = 2.0 * std::numbers::pi * random.uniform();
+  const double x = r * std::cos(phi), y = r * std::sin(phi);
+  return glm::normalize(x * t + y * b + std::sqrt(std::max(0.0, 1.0 - x * x - y * y)) * n);
+}
+
+// What one path from a camera ray's first hit brings back. At each hit,
+// over the fog of its segment: the object's emission; then with
+// probability `mirror` the path goes on along the reflected geodesic (its
+// weight unchanged: the mirror's share over its probability), else it is
+// diffuse: the lights' light by next-event estimation (light_received,
+// every geodesic to an exact light with its 1/J, and shadows) times the
+// albedo, and the path goes on along a cosine-distributed direction, its
+// weight times the albedo (the Lambertian ρ/π times cos θ over the density
+// cos θ / π). Russian roulette from the fourth hit: the path goes on with
+// probability q = min(0.95, the weight's largest component), its weight
+// divided by q. Radiance is constant along a geodesic, so the estimator
+// needs no more than the geodesics themselves. No ambient light.
+glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& random) {
+  const World& world = prepared.world();
+  glm::dvec3 color(0.0), weight(1.0);
+  constexpr int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
+  for (int depth = 0; hit.object != 0 && depth < kMaxDepth; ++depth) {
+    const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
+    const double transmittance = std::exp(-world.fog_density * hit.distance);
+    color += weight * ((1.0 - transmittance) * world.fog_color);
+    weight *= transmittance;
+    color += weight * o.emission;
+    const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
+    glm::dvec3 next;
+    if (o.mirror > 0.0 && random.uniform() < o.mirror) {
+      next = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
+    } else {
+      const glm::dvec3 albedo = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
+      if (!world.lights.empty()) color += weight * albedo * light_received(prepared, hit, n);
+      weight *= albedo;
+      next = cosine_direction(n, random);
+    }
+    if (depth >= 3) {
+      const double q = std::min(0.95, std::max({weight.r, weight.g, weight.b}));
+      if (!(q > 0.0) || random.uniform() >= q) break;
+      weight /= q;
+    }
+    hit = march_from(prepared, hit.point, next);
+  }
+  return color;
 }
 
 // Two images of the same height side by side, `left` on the left, with their AOVs.
@@ -589,6 +690,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
     const std::size_t c = static_cast<std::size_t>(i);
     return march_view(prepared, views[c], glm::normalize(transports[c] * camera_ray(mono, i, j, w, h, offset)));
   };
+  const bool path = settings.transport == Transport::Path;
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
   detail::for_each_row(h, threads, settings.progress, [&](int j, const std::atomic<bool>& stopping) {
@@ -601,12 +703,18 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
-      glm::dvec3 c = sees ? radiance(prepared, hit) : glm::dvec3(0.0);
+      // A sample's colour: the direct light at its hit, or one path's.
+      const auto colour = [&](const MarchHit& at, int s) {
+        if (!path) return radiance(prepared, at);
+        PathRandom random(settings.seed, k, static_cast<std::uint64_t>(s));
+        return path_radiance(prepared, at, random);
+      };
+      glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
         const MarchHit other = march_at(i, j, offset);
-        c += radiance(prepared, other);
+        c += colour(other, s);
       }
       c /= static_cast<double>(settings.samples);
       r.rgba[4 * k + 0] = static_cast<float>(c.r);

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <span>
@@ -29,6 +30,13 @@
 namespace sol {
 
 /// How a renderer makes an image beyond its world and eyes.
+/// How light reaches the eye: Direct (each hit lit by the lights, with
+/// ambient light, mirrors and emission: sol::CpuRenderer, the kernel), or
+/// Path: path tracing (diffuse interreflection, emission, mirrors and the
+/// lights by next-event estimation; no ambient light), on the CPU renderer
+/// (docs/lighting.md, "Path tracing").
+enum class Transport { Direct, Path };
+
 struct RenderOptions {
   int width = 512;   ///< of each eye, in [1, 16384]
   int height = 512;  ///< in [1, 16384]
@@ -38,6 +46,11 @@ struct RenderOptions {
   int samples = 1;
   /// The CPU renderer's threads (0: all hardware threads).
   unsigned threads = 0;
+  /// Transport::Path: each sample one path from the camera (its random
+  /// numbers from `seed`, the pixel and the sample: the same image on any
+  /// number of threads); the colour their mean.
+  Transport transport = Transport::Direct;
+  std::uint64_t seed = 0;
   /// Device renderers: each dispatch (one sample of a tile) is sized from
   /// the earlier ones' times to take about half of this on the device, so
   /// that long renders never hold it in one dispatch (a display's
