@@ -16,6 +16,8 @@
 #include <glm/geometric.hpp>
 
 #include "sol/closed_form.hpp"
+#include "sol/connection.hpp"
+#include "sol/spreading.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
@@ -539,37 +541,159 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
   return glm::normalize(x * t + y * b + std::sqrt(std::max(0.0, 1.0 - x * x - y * y)) * n);
 }
 
-// What one path from a camera ray's first hit brings back. At each hit,
-// over the fog of its segment: the object's emission; then with
-// probability `mirror` the path goes on along the reflected geodesic (its
-// weight unchanged: the mirror's share over its probability), else it is
-// diffuse: the lights' light by next-event estimation (light_received,
-// every geodesic to an exact light with its 1/J, and shadows) times the
-// albedo, and the path goes on along a cosine-distributed direction, its
-// weight times the albedo (the Lambertian ρ/π times cos θ over the density
-// cos θ / π). Russian roulette from the fourth hit: the path goes on with
-// probability q = min(0.95, the weight's largest component), its weight
-// divided by q. Radiance is constant along a geodesic, so the estimator
-// needs no more than the geodesics themselves. No ambient light.
-glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& random) {
+// Next-event estimation to glowing exact balls (in Sol; a quotient's paths
+// reach them by reflection alone). A glowing ball's sphere S = exp_c(r S²)
+// is sampled by a direction w at its centre, uniform on S², whose point y =
+// exp_c(r w) has the area density 1 / (4π J_c(w, r)), J the spreading of
+// the geodesics from c (sol::sphere_area_density). y is connected to the
+// diffuse point x by its minimising geodesics, each a direction d at x and
+// a length L, and each is one way light comes: its geometric term is
+// cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen from x, equal to
+// that seen from y: reciprocity), where plain space has 1 / |x - y|². A
+// connection counts where the march from x along d first meets that ball
+// at arc length L. The density of d in solid angle at x is then
+// p_pick p_area J_x / cos θ_y, which weighs both strategies (the balance
+// heuristic) when they are combined.
+struct GlowingBall {
+  std::size_t object;
+  Ball ball;
+};
+
+std::vector<GlowingBall> glowing_balls(const World& world) {
+  std::vector<GlowingBall> out;
+  if (world.quotient != Quotient::None) return out;
+  for (std::size_t k = 0; k < world.objects.size(); ++k) {
+    const Ball* b = std::get_if<Ball>(&world.objects[k].shape);
+    if (b && b->exact && world.objects[k].emission != glm::dvec3(0.0)) out.push_back({k, *b});
+  }
+  return out;
+}
+
+// |cos| between the geodesic from x along d at length L and ball's normal there (y on its sphere).
+double cos_at_sphere(const Ball& ball, const glm::dvec3& d, double L, const glm::dvec3& y) {
+  const glm::dvec3 arriving = ClosedFormGeodesic<double>(d).direction_at(L);
+  return std::abs(glm::dot(arriving, sdf_ball_exact_gradient(y, ball.center)));
+}
+
+// The density, in solid angle at x, with which next-event estimation picks
+// the direction d whose geodesic first meets glowing ball `g` at y after L
+// (0 where no minimising geodesic from x to y runs along d).
+double glow_density(const GlowingBall& g, std::size_t count, const glm::dvec3& x, const glm::dvec3& d, double L,
+                    const glm::dvec3& y) {
+  try {
+    if (L > distance(x, y) * (1.0 + 1e-6) + 1e-9) return 0.0;  // not minimising: next-event estimation never takes it
+    const std::vector<Connection> from_centre = minimising_geodesics(g.ball.center, y);
+    const double j_centre = sphere_area_density(glm::normalize(from_centre.front().direction), g.ball.radius);
+    const double cos_y = cos_at_sphere(g.ball, d, L, y);
+    if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
+    return sphere_area_density(d, L) / (static_cast<double>(count) * 4.0 * std::numbers::pi * j_centre * cos_y);
+  } catch (const OutOfRange&) {
+    return 0.0;
+  }
+}
+
+// Next-event estimation from a diffuse hit (normal n, albedo times the
+// path's weight in `weight`): the light of one sampled point of one glowing
+// ball, along each of its minimising geodesics, weighted for `sampling`.
+glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, const MarchHit& hit,
+                       const glm::dvec3& n, PathSampling sampling, PathRandom& random) {
   const World& world = prepared.world();
+  const std::size_t pick = std::min(glowing.size() - 1, static_cast<std::size_t>(random.uniform() * static_cast<double>(glowing.size())));
+  const GlowingBall& g = glowing[pick];
+  const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
+  const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
+  const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
+  const glm::dvec3 y = multiply(g.ball.center, ClosedFormGeodesic<double>(w).at(g.ball.radius).position);
+  const double area = 1.0 / (static_cast<double>(glowing.size()) * 4.0 * std::numbers::pi *
+                             std::max(sphere_area_density(w, g.ball.radius), 1e-300));
+  glm::dvec3 light(0.0);
+  std::vector<Connection> ways;
+  try {
+    ways = minimising_geodesics(hit.point, y);
+  } catch (const OutOfRange&) {
+    return light;
+  }
+  for (const Connection& c : ways) {
+    if (!(c.length > 0.0)) continue;
+    const glm::dvec3 d = glm::normalize(c.direction);
+    const double cos_x = glm::dot(n, d);
+    if (cos_x <= 0.0) continue;
+    const MarchHit seen = march_from(prepared, hit.point, d);
+    if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > 1e-3 * std::max(1.0, c.length)) {
+      continue;  // something, or the ball's nearer side, is in the way
+    }
+    const double cos_y = cos_at_sphere(g.ball, d, c.length, y);
+    const double spreading = sphere_area_density(d, c.length);
+    if (!(spreading > 0.0)) continue;
+    double weight = 1.0;
+    if (sampling == PathSampling::Combined) {
+      const double glow = area * spreading / std::max(cos_y, 1e-300), reflection = cos_x / std::numbers::pi;
+      weight = glow / (glow + reflection);
+    }
+    light += world.objects[g.object].emission * (weight * cos_x * cos_y / (std::numbers::pi * spreading * area));
+  }
+  return light;
+}
+
+// What one path from a camera ray's first hit brings back. At each hit,
+// over the fog of its segment: the object's emission (where the path came
+// by a diffuse reflection and next-event estimation could have sampled it
+// too, weighted for `sampling`); then with probability `mirror` the path
+// goes on along the reflected geodesic (its weight unchanged: the mirror's
+// share over its probability), else it is diffuse: the lights' light by
+// next-event estimation (light_received, every geodesic to an exact light
+// with its 1/J, and shadows) times the albedo, the glowing balls' by
+// glow_sample, and the path goes on along a cosine-distributed direction,
+// its weight times the albedo (the Lambertian ρ/π times cos θ over the
+// density cos θ / π). Russian roulette from the fourth hit: the path goes
+// on with probability q = min(0.95, the weight's largest component), its
+// weight divided by q. Radiance is constant along a geodesic, so the
+// estimator needs no more than the geodesics themselves. No ambient light.
+glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& random, PathSampling sampling) {
+  const World& world = prepared.world();
+  const std::vector<GlowingBall> glowing =
+      sampling == PathSampling::ReflectionOnly ? std::vector<GlowingBall>() : glowing_balls(world);
   glm::dvec3 color(0.0), weight(1.0);
+  // The last hit, where it was diffuse (for the emission's weight at the next).
+  bool after_diffuse = false;
+  glm::dvec3 from(0.0), from_direction(0.0);
+  double from_cosine = 0.0;
   constexpr int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
   for (int depth = 0; hit.object != 0 && depth < kMaxDepth; ++depth) {
     const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
     const double transmittance = std::exp(-world.fog_density * hit.distance);
     color += weight * ((1.0 - transmittance) * world.fog_color);
     weight *= transmittance;
-    color += weight * o.emission;
+    if (o.emission != glm::dvec3(0.0)) {
+      double share = 1.0;
+      const auto g = std::find_if(glowing.begin(), glowing.end(),
+                                  [&](const GlowingBall& b) { return b.object == static_cast<std::size_t>(hit.object - 1); });
+      if (after_diffuse && g != glowing.end()) {
+        if (sampling == PathSampling::GlowOnly) {
+          share = 0.0;  // next-event estimation counted it
+        } else {
+          const double glow = glow_density(*g, glowing.size(), from, from_direction, hit.distance, hit.point);
+          const double reflection = from_cosine / std::numbers::pi;
+          share = reflection / (reflection + glow);
+        }
+      }
+      color += weight * o.emission * share;
+    }
     const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
     glm::dvec3 next;
     if (o.mirror > 0.0 && random.uniform() < o.mirror) {
       next = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
+      after_diffuse = false;
     } else {
       const glm::dvec3 albedo = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
       if (!world.lights.empty()) color += weight * albedo * light_received(prepared, hit, n);
+      if (!glowing.empty()) color += weight * albedo * glow_sample(prepared, glowing, hit, n, sampling, random);
       weight *= albedo;
       next = cosine_direction(n, random);
+      after_diffuse = true;
+      from = hit.point;
+      from_direction = next;
+      from_cosine = glm::dot(n, next);
     }
     if (depth >= 3) {
       const double q = std::min(0.95, std::max({weight.r, weight.g, weight.b}));
@@ -707,7 +831,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       const auto colour = [&](const MarchHit& at, int s) {
         if (!path) return radiance(prepared, at);
         PathRandom random(settings.seed, k, static_cast<std::uint64_t>(s));
-        return path_radiance(prepared, at, random);
+        return path_radiance(prepared, at, random, settings.path_sampling);
       };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only

@@ -37,6 +37,14 @@ namespace sol {
 /// (docs/lighting.md, "Path tracing").
 enum class Transport { Direct, Path };
 
+/// How the path tracer reaches glowing exact balls from a diffuse hit:
+/// both strategies combined by multiple importance sampling (the default),
+/// or one alone (the same expected image, for comparing the estimators):
+/// sampling the surface's reflection (a path that meets a glowing ball
+/// counts its emission), or next-event estimation (a point of a glowing
+/// ball's sphere sampled and connected; docs/lighting.md, "Path tracing").
+enum class PathSampling { Combined, ReflectionOnly, GlowOnly };
+
 struct RenderOptions {
   int width = 512;   ///< of each eye, in [1, 16384]
   int height = 512;  ///< in [1, 16384]
@@ -51,6 +59,7 @@ struct RenderOptions {
   /// number of threads); the colour their mean.
   Transport transport = Transport::Direct;
   std::uint64_t seed = 0;
+  PathSampling path_sampling = PathSampling::Combined;
   /// Device renderers: each dispatch (one sample of a tile) is sized from
   /// the earlier ones' times to take about half of this on the device, so
   /// that long renders never hold it in one dispatch (a display's
