@@ -47,6 +47,15 @@
 //     against the golden lattice's. Written to render_lattices.csv. Not in
 //     the default run.
 //
+//  7. Light transport (--only path): the path tracer's error against
+//     samples per pixel and against seconds, on the CPU renderer (the
+//     kernel renders direct light only): lattice-balls with its ball
+//     glowing, at 64×48, 1 to 256 samples per pixel against a 2048-sample
+//     reference (other seeds): the relative RMS error (over the pixels, of
+//     the three channels, over the reference's RMS) and the wall time.
+//     Written to path_convergence.csv (bench/plot_path_convergence.py
+//     draws it). Not in the default run.
+//
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
 //     folded into the SPIR-V (the default on a CPU device) and handed to
@@ -56,7 +65,7 @@
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu|pipelines|lattices] [--scene PRESET] [--kernel-only]
+//                [--only throughput|error|exact|gpu|pipelines|lattices|path] [--scene PRESET] [--kernel-only]
 //
 // For quick before/after figures of one change: --only throughput --scene
 // lattice-balls --kernel-only (the specialised kernel alone, one preset).
@@ -125,14 +134,15 @@ int main(int argc, char** argv) {
                  "one eye's height for the headset section, its width --gpu-size (default: square)");
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices"},
-                "run one section and write its files (lattices: only so)");
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path"},
+                "run one section and write its files (lattices, path: only so)");
   cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput, headset and pipeline sections: this preset only");
   cl.add_flag("--kernel-only", kernel_only,
               "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
                 "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu),\n"
-                "render_pipelines.csv and (--only lattices) render_lattices.csv to DIR.");
+                "render_pipelines.csv, (--only lattices) render_lattices.csv and (--only path)\n"
+                "path_convergence.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
   if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
@@ -270,6 +280,45 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s", line);
       }
       files.emplace_back("render_lattices.csv", csv);
+    }
+
+    // 7. Light transport: the path tracer's error against samples and seconds (asked for by name only).
+    if (only == "path") {
+      sol::Scene scene = sol::preset_scene("lattice-balls");
+      scene.objects[0].emission = {0.6, 0.35, 0.2};
+      auto render = [&](int samples, std::uint64_t seed, double& seconds) {
+        sol::RenderOptions settings;
+        settings.width = 64;
+        settings.height = 48;
+        settings.samples = samples;
+        settings.transport = sol::Transport::Path;
+        settings.seed = seed;
+        const auto start = std::chrono::steady_clock::now();
+        sol::RenderResult r = sol::render_cpu(scene, settings);
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return r;
+      };
+      double reference_seconds = 0.0;
+      const sol::RenderResult reference = render(2048, 1000, reference_seconds);
+      double reference_squares = 0.0;
+      for (std::size_t k = 0; k < reference.rgba.size(); ++k) {
+        if (k % 4 != 3) reference_squares += static_cast<double>(reference.rgba[k]) * reference.rgba[k];
+      }
+      std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp\n";
+      for (int spp = 1; spp <= 256; spp *= 2) {
+        double seconds = 0.0;
+        const sol::RenderResult r = render(spp, static_cast<std::uint64_t>(spp), seconds);
+        double squares = 0.0;
+        for (std::size_t k = 0; k < r.rgba.size(); ++k) {
+          if (k % 4 != 3) squares += std::pow(static_cast<double>(r.rgba[k]) - reference.rgba[k], 2.0);
+        }
+        char line[256];
+        std::snprintf(line, sizeof line, "lattice-balls-glowing,cpu,64,48,%d,%.3f,%.5f,2048\n", spp, seconds,
+                      std::sqrt(squares / reference_squares));
+        csv += line;
+        std::fprintf(stderr, "%s", line);
+      }
+      files.emplace_back("path_convergence.csv", csv);
     }
 
     // 2. Image error against run time.
