@@ -72,7 +72,7 @@ void march_pass() {
     if (DEFER_SHADING) {
       defer_shading(pixel, h.q, h.t, f.n, h.k);
     } else {
-      color = HAS_MIRRORS || HAS_EMISSION ? radiance(h, f, eye) : shade_hit(f.object, f.n, f.uv, h.t, h.q, eye);
+      color = radiance(h, f, eye);  // (without mirrors and emission: shade_hit's colour, to the bit)
     }
     hit_aov.x = float(f.object + 1);
     hit_aov.y = h.t;

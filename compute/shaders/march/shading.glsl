@@ -169,12 +169,14 @@ Surface surface_at(MarchHit h) {
 }
 
 // One hit's share (radiance): over the fog of its segment, its emission and
-// (1 - mirror) times its diffuse light, times `weight`; returns its mirror.
+// (1 - mirror) times its diffuse light, times `weight`; returns its mirror
+// times the fog's transmittance. Written as shade_hit's fog, so that a hit
+// without emission or mirror (weight 1) adds exactly what shade_hit gives.
 float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
   const vec4 material = params.objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-  color += weight * ((1.0 - transmittance) * params.fog_color.rgb +
-                     transmittance * (material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye)));
+  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye);
+  color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
   return material.w * transmittance;
 }
 
@@ -186,22 +188,22 @@ float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 co
 // ray that leaves its surface), up to max bounces (params.limits.z).
 vec4 radiance(MarchHit h, Surface f, int eye) {
   const int bounces = int(params.limits.z);
-  vec3 color = vec3(0.0);
-  vec3 weight = vec3(radiance_of_hit(h, f, eye, vec3(1.0), color));
-  const float mirror = params.objects[f.object].material.w;
+  vec3 color = vec3(0.0), weight = vec3(1.0);
   int bounce = 0;
-  bool alive = HAS_MIRRORS && mirror > 0.0 && bounces > 0;
-  if (alive) do {  // (tested at its end: see march.comp)
-    const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
-    const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
-    h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
-    alive = h.k >= 0;
+  bool alive = true;
+  // (One call of radiance_of_hit and of march: the driver inlines each
+  // call, and each holds a march. Tested at its end: see march.comp.)
+  do {
+    weight *= radiance_of_hit(h, f, eye, weight, color);
+    alive = HAS_MIRRORS && params.objects[f.object].material.w > 0.0 && bounce < bounces;
     if (alive) {
-      f = surface_at(h);
-      weight *= radiance_of_hit(h, f, eye, weight, color);
-      alive = params.objects[f.object].material.w > 0.0;
+      const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+      const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
+      h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
+      alive = h.k >= 0;
+      if (alive) f = surface_at(h);
     }
-  } while (alive && ++bounce < bounces);
+  } while (alive && ++bounce <= bounces);
   return vec4(color, 1.0);
 }
 
