@@ -418,14 +418,22 @@ MarchHit march_view(const MarchWorld& world, const CameraView& view, const glm::
                                    : march_cover(world, view.position, view.objects, direction);
 }
 
+// The march of a ray that leaves a surface (a shadow ray, a mirror's
+// reflected ray, a path's next segment): from a hit point (world
+// coordinates) along `direction` (frame components there), up to `length`
+// (with the world's max_distance, the shorter), passing the surface it
+// starts on until it is 2 hit_epsilon away.
+MarchHit march_from(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction,
+                    double length = std::numeric_limits<double>::infinity()) {
+  const MarchLimits limits{length, true};
+  return prepared.features().quotient ? march_quotient(prepared, from, direction, limits)
+                                      : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
+}
+
 // Whether the geodesic from a hit point along `direction` meets an object
 // within `length` (a shadow ray: it leaves the hit's surface first).
 bool blocked(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction, double length) {
-  const MarchLimits limits{length, true};
-  const MarchHit h = prepared.features().quotient
-                         ? march_quotient(prepared, from, direction, limits)
-                         : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
-  return h.object != 0;
+  return march_from(prepared, from, direction, length).object != 0;
 }
 
 // The light a hit's surface reflects diffusely, before fog: its colour and
@@ -438,14 +446,6 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   const glm::dvec3 surface = diffuse_light(prepared, hit);
   const double transmittance = std::exp(-world.fog_density * hit.distance);
   return world.fog_color + (surface - world.fog_color) * transmittance;
-}
-
-// The march of a reflected ray: from a hit point (world coordinates) along
-// `direction` (frame components there), leaving the surface it starts on.
-MarchHit march_from(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction) {
-  const MarchLimits limits{std::numeric_limits<double>::infinity(), true};
-  return prepared.features().quotient ? march_quotient(prepared, from, direction, limits)
-                                      : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
 }
 
 // What a ray brings back where the world has mirrors or glowing objects:
