@@ -23,7 +23,7 @@ bool Refinement::update(const std::array<double, 16>& key, double dt, double sca
 
 std::optional<Refinement::Sample> Refinement::sample() const {
   if (m_refined < 0 || m_refined >= m_samples) return std::nullopt;
-  return Sample{sol::pixel_sample(m_refined), 1.0 / (m_refined + 1)};
+  return Sample{sol::pixel_sample(m_refined), 1.0 / (m_refined + 1), m_refined};
 }
 
 std::optional<double> Refinement::shown(double* full_seconds) {

@@ -36,6 +36,7 @@ class Refinement {
   struct Sample {
     glm::dvec2 offset;  ///< in the pixel (sol::pixel_sample)
     double weight;      ///< in the running mean: 1 / (k + 1)
+    int index;          ///< k (a path's index, where the samples are paths)
   };
   std::optional<Sample> sample() const;
   bool reuse() const { return m_refined >= 0 && m_refined >= m_samples; }

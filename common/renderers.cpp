@@ -50,11 +50,9 @@ bool has_vulkan() { return false; }
 std::unique_ptr<sol::Renderer> make_renderer(const RendererChoice& choice, const sol::World& world,
                                              const std::function<void(const std::string&)>& note) {
   if (choice.rk4 && choice.device == Device::Cpu) throw InvalidArgument("the RK4 integrator needs the Vulkan kernel");
-  if (choice.path && choice.rk4) throw InvalidArgument("path tracing runs on the CPU renderer, the RK4 integrator on the kernel");
 #ifdef SOL_HAVE_VULKAN
   if (choice.device != Device::Cpu) {
     std::string why = vk::MarchRenderer::unsupported(world);
-    if (why.empty() && choice.path) why = "path tracing runs on the CPU renderer only";
     if (!why.empty() && choice.device == Device::Vulkan) throw NotImplemented(why);
     if (!why.empty() && !choice.rk4) {
       note(why + "; rendering on the CPU");

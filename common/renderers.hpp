@@ -28,7 +28,6 @@ struct RendererChoice {
   bool rk4 = false;        ///< the kernel's RK4 integrator (Vulkan only) instead of the closed form
   double rk4_step = 0.01;  ///< its substep in arc length, > 0
   bool validation = false; ///< the Vulkan validation layers
-  bool path = false;       ///< path tracing (sol::Transport::Path): the CPU renderer's alone
 };
 
 /// Whether this build has the Vulkan kernel.

@@ -319,8 +319,8 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_choice("--transport", o.transport, {"direct", "path"},
                 "how light reaches the eye: direct (each hit lit by the lights, with ambient light, mirrors and "
                 "emission; the default) or path (path tracing: diffuse interreflection, glowing objects, mirrors, the "
-                "lights by next-event estimation, no ambient light; each of --spp samples one path; the CPU renderer "
-                "only, which --device auto then takes; docs/lighting.md)");
+                "lights by next-event estimation, no ambient light; each of --spp samples one path, on the kernel or "
+                "the CPU renderer; docs/lighting.md)");
   cl.add_integer("--seed", o.seed, 0, 2147483647, "N",
                  "the path tracer's random seed, 0..2^31-1 (default 0): the same seed gives the same image");
   o.flow.add_to(cl);
@@ -395,10 +395,6 @@ void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::Co
     cl.fail("--aov " + o.aov + " is the same file as -o " + o.output + ": give two files");
   }
   if (o.flow.rk4() && o.device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
-  if (o.transport == "path" && o.device == "vulkan") {
-    cl.fail("--transport path runs on the CPU renderer only (--device cpu or auto)");
-  }
-  if (o.transport == "path" && o.flow.rk4()) cl.fail("--transport path runs on the CPU renderer, --integrator rk4 on the kernel");
 }
 
 // A film: its camera path, the frames to render and the encoder.
@@ -601,7 +597,6 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
                                        : sol::programs::Device::Auto;
   choice.rk4 = o.flow.rk4();
   choice.rk4_step = o.flow.rk_step;
-  choice.path = o.transport == "path";
 #ifndef NDEBUG
   choice.validation = true;  // validation layers in debug builds
 #endif

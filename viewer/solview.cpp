@@ -55,6 +55,7 @@ struct Options {
   bool fullscreen = false, stereo = false, validation = false, stats = false;
   long frames = 0;  // 0: until the window closes
   int refine = 16;  // samples per pixel a still view accumulates (0: off)
+  bool refine_paths = false;  // the refinement's samples are paths (path tracing)
   std::string screenshot, script, record, state;
 };
 
@@ -75,6 +76,10 @@ void add_options(sol::cli::CommandLine& cl, Options& o) {
                  "when the view has not changed for 0.25 s: render at full resolution, then accumulate up to N "
                  "jittered samples per pixel (anti-aliasing, as solrender --spp N); any change starts again at the "
                  "moving scale; 0: off (default 16)");
+  cl.add_flag("--refine-paths", o.refine_paths,
+              "refine by path tracing: each of the --refine samples is one path per pixel (solrender --transport path: "
+              "diffuse interreflection, glowing objects, mirrors, no ambient light; docs/lighting.md), while the "
+              "moving view stays direct light");
   cl.add_choice("--vsync", o.vsync, {"on", "off"}, "wait for the display's refresh (default on)");
   cl.add_choice("--present", o.present, {"auto", "blit"},
                 "auto (default): the kernel writes straight into the swapchain image at render scale 1 when the surface "
@@ -414,10 +419,11 @@ class Replay {
 // refinement on stderr (docs/solview.md's table).
 class Refinement : public sol::programs::Refinement {
  public:
-  using sol::programs::Refinement::Refinement;
+  Refinement(int samples, bool paths) : sol::programs::Refinement(samples), m_paths(paths) {}
   void set(sol::viewer::Presenter::FrameOptions& options) const {
     if (const auto s = sample()) {
-      options.sample = sol::vk::PixelSample{s->offset, s->weight};
+      // By paths: the k-th path of every pixel (seed 0), as solrender --transport path --spp N.
+      options.sample = sol::vk::PixelSample{s->offset, s->weight, m_paths ? s->index : -1, 0};
     } else if (reuse()) {
       options.reuse = true;
     }
@@ -430,6 +436,9 @@ class Refinement : public sol::programs::Refinement {
                    full, samples(), *since, kDelay);
     }
   }
+
+ private:
+  bool m_paths;
 };
 
 // The run's figures, printed at exit: the mean frame rate, render scale and
@@ -686,7 +695,7 @@ int run(App& app) {
   // The render scale that holds the target frame rate (sol::programs::AdaptiveScale).
   std::optional<sol::programs::AdaptiveScale> adaptive;
   if (opt.target_fps) adaptive.emplace(1e3 / *opt.target_fps, opt.min_scale);
-  Refinement refinement(opt.refine);
+  Refinement refinement(opt.refine, opt.refine_paths);
   RunFigures figures(opt.frames);
   Title title;
   StepsProbe steps(context);

@@ -19,7 +19,8 @@
 //   quotient.glsl     the lattice, D, the teleport, the distance field
 //   plane_roots.glsl  planes x = c, y = c met as roots
 //   march.glsl        the one march of every ray (camera and shadow)
-//   shading.glsl      lights, shadows, colour
+//   shading.glsl      lights, shadows, colour, mirrors
+//   paths.glsl        path tracing (the path builds: SOL_PATH_BUILD)
 //   passes.glsl       the march, resume and shade passes: a pixel's ray and what becomes of it
 // and the geodesics themselves in sol_geodesic.glsl (the closed form),
 // sol_connection.glsl and sol_spreading.glsl (exact lights and balls).
@@ -47,6 +48,9 @@
 #include "march/plane_roots.glsl"
 #include "march/march.glsl"
 #include "march/shading.glsl"
+#ifdef SOL_PATH_BUILD
+#include "march/paths.glsl"
+#endif
 #include "march/passes.glsl"
 
 void main() {

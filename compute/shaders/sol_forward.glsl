@@ -349,4 +349,13 @@ vec3 sol_translate(vec3 origin, vec2 scale, vec3 local) {
 
 vec3 sol_translate(vec3 origin, vec3 local) { return sol_translate(origin, vec2(exp(origin.z), exp(-origin.z)), local); }
 
+// The exponential map: the end of the geodesic from the origin with unit
+// initial direction `direction` after arc length t, its position and unit
+// tangent (a ray set up and evaluated once; not a march).
+SolForward sol_exp(vec3 direction, float t) {
+  SolRay g = sol_ray(direction);
+  sol_ray_integrals(g);
+  return sol_forward(g, t);
+}
+
 #endif  // SOL_FORWARD_GLSL

@@ -28,6 +28,8 @@
 #include "shaders/march_reach_comp_spv.hpp"
 #include "shaders/march_reach_srgb_unorm_comp_spv.hpp"
 #include "shaders/march_srgb_unorm_comp_spv.hpp"
+#include "shaders/march_path_comp_spv.hpp"
+#include "shaders/march_path_reach_comp_spv.hpp"
 
 namespace sol::vk {
 namespace {
@@ -219,6 +221,7 @@ struct KernelVariant {
   SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_MEMBER)
 #undef SOL_VARIANT_MEMBER
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
+  bool path = false;        // path tracing (the march_path build; Params::path)
   // The quotient's lattice, SOL_LATTICE_CONSTANTS's floats as bits (all 0 in Sol).
   LatticeConstants lattice{};
   // A bit per flag: the features', the variant's, the build's.
@@ -227,7 +230,7 @@ struct KernelVariant {
     std::uint32_t k = 0, bit = 1;
 #define SOL_FLAG_OF_FEATURES(member, constant, id) f.member,
 #define SOL_FLAG_OF_VARIANT(member, constant, id) member,
-    for (bool b : {SOL_MARCH_FEATURES(SOL_FLAG_OF_FEATURES) SOL_KERNEL_VARIANT_FLAGS(SOL_FLAG_OF_VARIANT) srgb_unorm}) {
+    for (bool b : {SOL_MARCH_FEATURES(SOL_FLAG_OF_FEATURES) SOL_KERNEL_VARIANT_FLAGS(SOL_FLAG_OF_VARIANT) srgb_unorm, path}) {
 #undef SOL_FLAG_OF_FEATURES
 #undef SOL_FLAG_OF_VARIANT
       if (b) k |= bit;
@@ -236,6 +239,29 @@ struct KernelVariant {
     return k;
   }
 };
+
+static_assert(static_cast<int>(PathSampling::Combined) == kernel::kPathSamplingCombined &&
+                  static_cast<int>(PathSampling::ReflectionOnly) == kernel::kPathSamplingReflectionOnly &&
+                  static_cast<int>(PathSampling::GlowOnly) == kernel::kPathSamplingGlowOnly,
+              "Params::path.w is sol::PathSampling's value");
+
+// Whether an eye lies inside an exact ball (in Sol; an omnidirectional
+// stereo eye's columns within its offset of it): only then can a ray be
+// inside one (a ray that starts outside every ball meets the sphere
+// first), so only such frames take the balls' inside code (HAS_INSIDE).
+// The exact signed distance is solved only within its band of the sphere
+// (sol::sdf_ball_exact): a frame costs a bound per ball and eye.
+bool eye_inside_exact_ball(const MarchWorld& prepared, std::span<const Camera> eyes) {
+  if (prepared.features().quotient || !prepared.features().exact_balls) return false;
+  for (const SceneObject& o : prepared.world().objects) {
+    const Ball* b = std::get_if<Ball>(&o.shape);
+    if (b == nullptr || !b->exact) continue;
+    for (const Camera& eye : eyes) {
+      if (sdf_ball_exact(eye.position, b->center, b->radius) < std::abs(eye.eye_offset)) return true;
+    }
+  }
+  return false;
+}
 
 // The features the kernel is built for: the world's, or with all_features
 // everything a world of its space may use (the exact objects' tables are
@@ -253,8 +279,13 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
 }
 
 // The build of march.comp for the variant: 8-bit sRGB output or linear,
-// and lights with a reach (every connection kept) or not (the minimisers').
+// lights with a reach (every connection kept) or not (the minimisers'), and
+// path tracing (march/paths.glsl) or direct light.
 std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
+  if (v.path) {  // (linear colour only: render())
+    return v.features.light_reach ? std::span<const std::uint32_t>(march_path_reach_comp_spv)
+                                  : std::span<const std::uint32_t>(march_path_comp_spv);
+  }
   if (v.features.light_reach) {
     return v.srgb_unorm ? std::span<const std::uint32_t>(march_reach_srgb_unorm_comp_spv)
                         : std::span<const std::uint32_t>(march_reach_comp_spv);
@@ -271,8 +302,8 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
 // march pass holds the zeta function's positions alone.
 void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
-  // (Not with mirrors: a reflected ray is marched where its hit is shaded.)
-  v.defer_shading = o.deferred && f.exact_lights && !f.mirrors;
+  // (Not with mirrors or paths: a reflected ray is marched where its hit is shaded.)
+  v.defer_shading = o.deferred && f.exact_lights && !f.mirrors && !v.path;
   v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 
@@ -603,7 +634,8 @@ struct MarchRenderer::Frame {
 // the pipeline of the variant with the world's buffers bound in the frame's
 // descriptor set (the frame is counted only once every check has passed).
 MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs,
-                                                  bool srgb_unorm, const PixelSample& sample, bool sample_aovs) {
+                                                  bool srgb_unorm, const PixelSample& sample, bool sample_aovs,
+                                                  bool path) {
   Impl& m = *m_impl;
   const MarchWorld& prepared = world();
   RenderOptions size;
@@ -612,8 +644,9 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   validate_render(eyes, size, "sol::vk::MarchRenderer");
   if (eyes.size() > 2) throw InvalidArgument("sol::vk::MarchRenderer: 1 or 2 eyes, got " + std::to_string(eyes.size()));
   const bool inside = sample.offset.x >= 0.0 && sample.offset.x < 1.0 && sample.offset.y >= 0.0 && sample.offset.y < 1.0;
-  if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0)) {
-    throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)² and its weight in (0, 1]");
+  if (!inside || !(sample.weight > 0.0 && sample.weight <= 1.0) || sample.path < -1) {
+    throw InvalidArgument("sol::vk::MarchRenderer: a pixel sample's offset must lie in [0, 1)², its weight in (0, 1] "
+                          "and its path be -1 or an index");
   }
   Frame f{};
   Params& g = f.params;
@@ -650,6 +683,13 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.srgb_unorm = srgb_unorm;
   variant.projections = projections;
   variant.ods = ods;
+  variant.path = path || sample.path >= 0;
+  variant.inside = eye_inside_exact_ball(prepared, eyes);
+  if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
+    g.path = glm::ivec4(static_cast<int>(static_cast<std::uint32_t>(sample.seed)),
+                        static_cast<int>(static_cast<std::uint32_t>(sample.seed >> 32)), sample.path,
+                        kernel::kPathSamplingCombined);
+  }
   defer_passes(variant, m.options);
   // The lists hold a record per pixel of a dispatch, at most the whole
   // image; a frame whose lists one indirect dispatch or one storage buffer
@@ -798,14 +838,11 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // is the host's): with the AOVs 120 bytes (the images, their staging
   // copies and the result), rounded up.
   validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
-  if (options.transport == Transport::Path) {
-    throw NotImplemented("sol::vk::MarchRenderer::render: the kernel renders direct light only; path tracing runs on the "
-                         "CPU renderer (sol::CpuRenderer)");
-  }
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
-  Frame f = prepare_frame(eyes, options.width, height, options.aovs, false);
+  const bool path = options.transport == Transport::Path;
+  Frame f = prepare_frame(eyes, options.width, height, options.aovs, false, {}, true, path);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
   // The AOV images only when asked for (the kernel variant without AOVs
   // never writes them: a 1 x 1 placeholder holds their bindings).
@@ -822,6 +859,10 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   pipeline.bind(f.set, kernel::kBindingHit, hit ? *hit : *m.placeholder);
   pipeline.bind(f.set, kernel::kBindingPoint, point ? *point : *m.placeholder);
   Params& g = f.params;
+  // Paths: the seed's halves and the sampling (each dispatch its sample's index, below).
+  g.path = glm::ivec4(static_cast<int>(static_cast<std::uint32_t>(options.seed)),
+                      static_cast<int>(static_cast<std::uint32_t>(options.seed >> 32)), 0,
+                      static_cast<int>(options.path_sampling));
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
   // dispatch (whole bands of the image's width while those fit, else
@@ -839,6 +880,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
         const PixelSample sample = k == 0 ? PixelSample{} : PixelSample{pixel_sample(k), 1.0 / (k + 1)};
         g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, k == 0 ? 1.0 : 0.0));
+        g.path.z = k;
         ms += m.run_passes(pipeline, f.set, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
                            group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize), f.data());
         pixels_timed += static_cast<double>(cols) * rows;

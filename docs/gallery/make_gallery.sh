@@ -44,8 +44,8 @@ jpeg --scene $s/golden-two-balls.json "${a[@]}" -o $g/golden-two-balls-z.jpg
 jpeg --scene $s/z-loop.json "${a[@]}" -o $g/z-loop.jpg
 jpeg --scene $s/xy-loops.json "${a[@]}" -o $g/xy-loops.jpg
 jpeg --scene $s/mirror-balls.json "${a[@]}" -o $g/mirror-balls.jpg
-# Path traced on the CPU renderer (docs/lighting.md, "Path tracing"): 384x288, 64 paths a pixel.
-p=(--transport path --spp 64 --width 384 --height 288)
+# Path traced (docs/lighting.md, "Path tracing"; on the kernel where there is one): 64 paths a pixel.
+p=(--transport path --spp 64 --width 768 --height 576)
 jpeg --scene $s/glowing-sandwich.json "${p[@]}" -o $g/glowing-sandwich.jpg
 jpeg --scene $s/glowing-lattice-balls.json "${p[@]}" -o $g/glowing-lattice-balls.jpg
 jpeg --scene lattice-balls --projection equirectangular --width 1024 --height 512 --spp 16 -o $g/lattice-balls-panorama.jpg

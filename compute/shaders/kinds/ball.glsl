@@ -56,12 +56,46 @@ vec2 ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
 // ---- exact_ball: approached as a ball; its exact distance, normal and
 // clearance near the sphere are march/exact_balls.glsl's
 
-float exact_ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  return ball_distance(q, rel, heading, radius, hz, hc);
+// Seen from inside (sol::sdf_ball_exact's sign; HAS_INSIDE, a frame whose
+// eye is inside an exact ball: no ray that starts outside every ball gets
+// inside one, it meets the sphere first): where q lies inside for
+// certain, the sphere is at least r - L away, L the length of any curve
+// from the centre c to q, which bounds the distance from above. The curve:
+// the straight coordinate segment from c to q, in c's frame w = c⁻¹·q,
+// w(s) = s w for s in [0, 1], whose length in the metric e^{-2z} dx² +
+// e^{2z} dy² + dz² is ∫ √(e^{-2 s w_z} w_x² + e^{2 s w_z} w_y² + w_z²) ds
+// <= √(w_x² E(-2 w_z) + w_y² E(2 w_z) + w_z²) (Cauchy-Schwarz), E(a) =
+// (e^a - 1)/a the mean of e^{s a}. Returns
+// r - that bound: positive only inside for certain, else <= 0 (then the
+// bound outside, or the exact solve near the sphere, decides).
+float exact_ball_inside(vec3 q, vec4 rel, float radius, vec2 hz, vec2 hc) {
+  const vec2 e = hz * hc.yx;  // e^{±(q.z - c.z)/2}
+  const float wz = q.z - rel.z, a = 2.0 * wz;
+  const float up = e.x * e.x * e.x * e.x, down = e.y * e.y * e.y * e.y;  // e^{±2 w_z}
+  const float mean_up = abs(a) < 1e-3 ? 1.0 + 0.5 * a : (up - 1.0) / a;
+  const float mean_down = abs(a) < 1e-3 ? 1.0 - 0.5 * a : (1.0 - down) / a;
+  const vec2 hc2 = hc * hc;  // e^{±c.z}
+  const float wx = (q.x - rel.x) * hc2.y, wy = (q.y - rel.y) * hc2.x;
+  return radius - sqrt(wx * wx * mean_down + wy * wy * mean_up + wz * wz);
 }
 
+float exact_ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  float d = ball_distance(q, rel, heading, radius, hz, hc);
+  if (HAS_INSIDE && d < 0.0) {
+    const float inside = exact_ball_inside(q, rel, radius, hz, hc);
+    if (inside > 0.0) d = inside;
+  }
+  return d;
+}
+
+// (Inside for certain: no clearance, the distance alone.)
 vec3 exact_ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  return ball_clearances(q, u, rel, heading, radius, hz, hc);
+  vec3 c = ball_clearances(q, u, rel, heading, radius, hz, hc);
+  if (HAS_INSIDE && c.x < 0.0) {
+    const float inside = exact_ball_inside(q, rel, radius, hz, hc);
+    if (inside > 0.0) c = vec3(inside);
+  }
+  return c;
 }
 
 vec3 exact_ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) { return ball_record_clearances(q, u, m, hz); }

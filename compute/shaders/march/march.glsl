@@ -18,14 +18,19 @@ const int kMarchShadow = 1;  // from a hit point: towards a light, or a mirror's
 // Where a march picks a ray up: at arc length t, march step `step`,
 // passing the objects of the mask `passing` (cutout planes between their
 // discs, the surface a shadow ray leaves). A new ray starts at zero; the
-// resume pass goes on from the march pass's record (defer_exact).
+// resume pass goes on from the march pass's record (defer_exact). A ray
+// entering the exact ball it leaves (Surface::inside) names it in `entering`.
 struct MarchResume {
   float t;
   uint passing;
   int step;
+  uint entering;
 };
 
-const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0);
+const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0, 0u);
+
+// A ray that leaves a hit of object k, entering it where `inside` (Sol).
+MarchResume march_leaving(int k, bool inside) { return MarchResume(0.0, 0u, 0, inside ? 1u << uint(k) : 0u); }
 
 // What a march found.
 struct MarchHit {
@@ -38,6 +43,7 @@ struct MarchHit {
   // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
   int exact_k;
   SolEnd exact_end;
+  bool exact_inside;  // that geodesic is shorter than the ball's radius: the sphere seen from inside (Sol)
   // The march pass left the ray to the resume pass, from `resume`.
   bool deferred;
   MarchResume resume;
@@ -53,6 +59,7 @@ MarchHit march_hit_none(MarchResume resume) {
   h.steps = 0;
   h.exact_k = -1;
   h.exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
+  h.exact_inside = false;
   h.deferred = false;
   h.resume = resume;
   return h;
@@ -193,13 +200,33 @@ bool planes_z_reachable(SolRay ray, float z0, float hit_epsilon) {
 // (s.nearest_k), finished by its exact distance (steps, and hits on the
 // true sphere) against the least distance to every other object: the
 // step beyond the exact distance by the ball's clearance along the ray (its
-// rate from the sphere's normal, the gradient of d). Returns whether the
-// march goes on (march_step_end).
-bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, inout MarchStep s,
+// rate from the sphere's normal, the gradient of d). Inside the ball (where
+// the solve landed) the sphere is -sdf away: it is seen from inside.
+//
+// Or (`entered`) a step of a ray that entered an exact ball at its start
+// (s.nearest_any, passed), near its sphere: there the ball's distance
+// (inside: r less an upper bound of the distance to the centre,
+// exact_ball_inside) is too loose to end the pass, so it is solved
+// exactly: the sphere is -sdf away, the step's bound for that ball; the
+// pass ends once that is 2 hit_epsilon (as march_objects' for the others),
+// and the ball is a hit candidate again, seen from inside; the other
+// objects' candidate hit stands.
+//
+// One exact solve for both (each call is inlined, a Newton loop each).
+// Returns whether the march goes on (march_step_end).
+bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool entered, inout MarchStep s,
                       inout ExactSolve x, inout uint passing, inout float t, inout int hit) {
-  const float exact = exact_ball_sdf(q, g_relative[s.nearest_k].xyz, g_radii[s.nearest_k], s.nearest_k, x);
+  const int e = entered ? s.nearest_any : s.nearest_k;
+  const float sdf = exact_ball_sdf(q, g_relative[e].xyz, g_radii[e], e, x);
+  if (HAS_INSIDE && entered) {
+    const float inside = x.known ? -sdf : 0.0;  // (where the solve did not land: the passing's least step)
+    if (inside > 2.0 * hit_epsilon) passing &= ~(1u << uint(e));
+    s.nearest = min(s.others, max(inside, 0.0));
+    return march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, true, passing, t, hit);
+  }
+  const float exact = HAS_INSIDE && x.known ? abs(sdf) : sdf;
   float exact_step = exact;
-  if (x.known && exact > hit_epsilon) {
+  if (x.known && sdf > hit_epsilon) {  // (the clearance is the outside's)
     const float slope = dot(x.end.tangent, u);
     exact_step = exact_ball_clearance(exact, length(x.v), slope, hit_epsilon);
   }
@@ -259,7 +286,10 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
 
   int hit = 0, steps = 0;
   uint passing = resume.passing;
+  // The exact ball it starts on and enters (march_exact_step), passed.
+  const uint entering = HAS_INSIDE && !camera ? resume.entering : 0u;
   if (!camera) {  // the surfaces it starts on
+    passing |= entering;
     for (int k = 0; k < g_count; ++k) {
       if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) passing |= 1u << uint(k);
     }
@@ -290,6 +320,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   int step = resume.step;
   MarchStep s = march_step_none();
   bool shell = false;  // the step's nearest is an exact ball within kExactShell: finished exactly
+  bool inside_shell = false;  // the step's nearest is an exact ball the ray entered at its start (passed)
   vec3 u = vec3(0.0);  // the ray's tangent at q (frame components), for the clearances
   // (Without exact balls one round, a loop the compiler unrolls; with
   // PLANES_XY_ONLY none: the roots did all, and a loop whose condition is
@@ -332,23 +363,26 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
                                                    g_half_exp_z[s.nearest_any]).y);
       }
       shell = HAS_EXACT_BALLS && g_types[s.nearest_k] == kObjectExactBall && s.nearest_hit < kExactShell;
-      if (shell) break;  // finished below
+      // The ball the ray entered, still passed, near enough to hold the step back: its exact distance below.
+      inside_shell = HAS_INSIDE && !camera && (entering & passing & (1u << uint(s.nearest_any))) != 0u &&
+                     s.nearest < kExactShell;
+      if (shell || inside_shell) break;  // finished below
       steps = root_steps + step + 1;
       alive = march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, passes, passing, t, hit);
     } while (++step < max_steps && alive);
     if (defer_shell) {
       if (shell && alive) {  // the rest of this ray in the resume pass
         h.deferred = true;
-        h.resume = MarchResume(t, passing, step);
+        h.resume = MarchResume(t, passing, step, 0u);
         return h;
       }
     } else if (zeta && zeta_round && shell && alive) {
       zeta_round = false;  // this step again, by Carlson's integrals (as the resume pass)
       shell = false;
-    } else if (HAS_EXACT_BALLS && shell && alive) {
+    } else if (HAS_EXACT_BALLS && (shell || inside_shell) && alive) {
       steps = root_steps + step + 1;
-      alive = march_exact_step(q, u, hit_epsilon, limit, passes, s, exact, passing, t, hit);
-      shell = false;
+      alive = march_exact_step(q, u, hit_epsilon, limit, passes, inside_shell && !shell, s, exact, passing, t, hit);
+      shell = inside_shell = false;
       ++step;
     }
     alive = alive && step < max_steps;
@@ -363,7 +397,8 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   MarchHit found = march_found(hit - 1, t, q, origin, steps, exact);
   // A mirror reflects the ray's tangent at the hit (the positions above may
   // have left it out).
-  if (HAS_MIRRORS && hit != 0) found.u = rk4 ? rk_u : sol_forward(ray, t).direction;
+  if ((HAS_MIRRORS || PATH_TRACING) && hit != 0) found.u = rk4 ? rk_u : sol_forward(ray, t).direction;
+  found.exact_inside = HAS_INSIDE && exact.k == hit - 1 && exact.known && length(exact.v) < g_radii[exact.k];
   return found;
 }
 
@@ -534,7 +569,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       local_t += proposal;
     }
     q = e;
-    if (HAS_MIRRORS) u = forward.direction;
+    if (HAS_MIRRORS || PATH_TRACING) u = forward.direction;
     if (nearest < hit_epsilon) {
       hit_image = nearest_i;
       break;

@@ -59,7 +59,7 @@ void march_pass() {
     load_objects(eye);
   }
   const MarchHit h = march(origin, direction, params.limits.x,
-                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
+                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w), 0u), kMarchCamera);
   if (h.deferred) {  // the rest of this ray in the resume pass
     defer_exact(pixel, h.resume.t, h.resume.passing, h.resume.step);
     return;
@@ -72,7 +72,11 @@ void march_pass() {
     if (DEFER_SHADING) {
       defer_shading(pixel, h.q, h.t, f.n, h.k);
     } else {
+#ifdef SOL_PATH_BUILD
+      color = path_radiance(h, f, eye, uint(local.y * width + local.x));
+#else
       color = radiance(h, f, eye);  // (without mirrors and emission: shade_hit's colour, to the bit)
+#endif
     }
     hit_aov.x = float(f.object + 1);
     hit_aov.y = h.t;

@@ -59,14 +59,13 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL
 // CPU's `blocked` in libsol/src/render.cpp): the shadow ray's march,
 // passing the objects within 2 hit_epsilon of q (the surface it leaves)
 // until it is 2 hit_epsilon away from them.
-bool shadow_blocked(vec3 q, vec3 direction, float len) {
-  return march(q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow).k >= 0;
+bool shadow_blocked(vec3 q, vec3 direction, float len, MarchResume leaving) {
+  return march(q, direction, min(len, params.limits.x), leaving, kMarchShadow).k >= 0;
 }
 
-// The light object k's surface reflects diffusely (diffuse_light, before
-// fog; shade_hit adds the fog over the arc length t): the colour of a hit on
-// object k with unit normal n (frame components), plane
-// coordinates uv, arc length t; q and the eye's light positions are in the
+// The light the lights bring to a point q with unit normal n (frame
+// components), before the surface's colour and the ambient (light_received
+// in libsol/src/render.cpp); q and the eye's light positions are in the
 // same coordinates (camera-relative in Sol, world in the quotient). Lights
 // as sol::lights_at: point lights by the coordinate difference in frame
 // components at the hit and 1/(1 + r²) on the distance bound; exact point
@@ -75,8 +74,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len) {
 // 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
 // light where none is found; with shadows, each geodesic marched to the
 // light first (shadow_blocked).
-vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
-  const float ambient = params.shading.x;
+vec3 light_received(vec3 n, vec3 q, int eye, MarchResume leaving) {
   const int light_count = min(int(params.shading.z), kMaxLights);
   vec3 light = vec3(0.0);
   int i = 0;
@@ -98,7 +96,7 @@ vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
           // from q is its J seen from the light (reciprocity).
           const float cosine = max(0.0, dot(n, found[j].xyz));
           if (cosine == 0.0) continue;
-          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w)) continue;
+          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w, leaving)) continue;
           const float spread = lc.w == float(kLightExactGeodesic)
                                    ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
                                    : 1.0 + found[j].w * found[j].w;
@@ -113,12 +111,21 @@ vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
     }
     light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
   } while (++i < light_count);
-  return params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y) *
-         (ambient + (1.0 - ambient) * light);
+  return light;
+}
+
+// The surface's albedo: its colour times its pattern.
+vec3 albedo(int k, vec2 uv) { return params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y); }
+
+// The light object k's surface reflects diffusely at q, with plane
+// coordinates uv, before fog (shade_hit adds the fog over the arc length).
+vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye, MarchResume leaving) {
+  const float ambient = params.shading.x;
+  return albedo(k, uv) * (ambient + (1.0 - ambient) * light_received(n, q, eye, leaving));
 }
 
 vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
-  const vec3 surface = diffuse_light(k, n, uv, q, eye);
+  const vec3 surface = diffuse_light(k, n, uv, q, eye, kMarchFromStart);
   const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
   return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
 }
@@ -133,6 +140,7 @@ struct Surface {
   vec3 n;
   vec2 uv;
   vec3 world;
+  bool inside;  // an exact ball seen from inside (Sol): its normal turned to face the ray
 };
 
 Surface surface_at(MarchHit h) {
@@ -164,6 +172,9 @@ Surface surface_at(MarchHit h) {
   }
   f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == h.k ? exact_sphere_normal(h.exact_end)
                                                                          : object_normal(type, q, rel, heading, radius, h.from);
+  // An exact ball seen from inside: its normal faces the ray (as the CPU's).
+  f.inside = HAS_INSIDE && type == kObjectExactBall && h.exact_k == h.k && h.exact_inside;
+  if (f.inside) f.n = -f.n;
   f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;
 }
@@ -175,7 +186,7 @@ Surface surface_at(MarchHit h) {
 float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
   const vec4 material = params.objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye);
+  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye, march_leaving(f.object, f.inside));
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
   return material.w * transmittance;
 }
@@ -199,7 +210,7 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
     if (alive) {
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
-      h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
+      h = march(h.q, reflected, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
       alive = h.k >= 0;
       if (alive) f = surface_at(h);
     }

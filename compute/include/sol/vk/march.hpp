@@ -92,10 +92,15 @@ struct UnormTarget {
 /// One sample of every pixel in an anti-aliased image: where in the pixel
 /// (sol::pixel_sample), and its weight in the colour already in the target:
 /// 1 overwrites it, 1/(k + 1) makes the k-th sample (k from 0) part of the
-/// running mean of k + 1 samples.
+/// running mean of k + 1 samples. With `path` >= 0 the sample is a path
+/// (sol::Transport::Path, combined sampling): every pixel's path of that
+/// index for `seed`, as render()'s k-th sample (a presenter's refinement
+/// by paths).
 struct PixelSample {
   glm::dvec2 offset{0.5, 0.5};
   double weight = 1.0;
+  int path = -1;           ///< the path's index (>= 0), or -1 for direct light
+  std::uint64_t seed = 0;  ///< the paths' seed
 };
 
 /// The ray-marcher on a Vulkan device, a sol::Renderer (sol/renderer.hpp).
@@ -215,7 +220,7 @@ class MarchRenderer final : public Renderer {
  private:
   struct Frame;
   Frame prepare_frame(std::span<const Camera> eyes, int width, int height, bool aovs, bool srgb_unorm,
-                      const PixelSample& sample = {}, bool sample_aovs = true);
+                      const PixelSample& sample = {}, bool sample_aovs = true, bool path = false);
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };

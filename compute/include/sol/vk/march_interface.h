@@ -50,7 +50,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(projections,   HAS_PROJECTIONS, 13) /* an eye's projection is equirectangular or fisheye */             \
   X(ods,           HAS_ODS,         14) /* omnidirectional stereo eyes (binding 8) */                       \
   X(defer_shading, DEFER_SHADING,   19) /* hits shaded by the shade pass (exact lights) */                  \
-  X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */
+  X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
+  X(inside,        HAS_INSIDE,      45) /* an eye inside an exact ball (Sol): exact balls seen from inside */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
@@ -96,6 +97,12 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
 SOL_CONSTANT(int, kPassMarch, 0);
 SOL_CONSTANT(int, kPassResume, 1);
 SOL_CONSTANT(int, kPassShade, 2);
+
+/// Params::path.w: how paths reach glowing balls (sol::PathSampling's order):
+/// both ways combined, reflection sampling alone, next-event estimation alone.
+SOL_CONSTANT(int, kPathSamplingCombined, 0);
+SOL_CONSTANT(int, kPathSamplingReflectionOnly, 1);
+SOL_CONSTANT(int, kPathSamplingGlowOnly, 2);
 
 /// The quotient march's positions: by Jacobi's zeta function
 /// (sol_forward_zeta in sol_forward.glsl) for rays of μ = |ab| at least
@@ -167,6 +174,10 @@ struct Params {
   ivec4 light_image_count;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
   Object objects[kMaxGpuObjects];
+  /// Path tracing (the march_path builds, march/paths.glsl): xy the seed's low and high 32 bits, z this
+  /// dispatch's sample (the index of the pixel's path), w the sampling of
+  /// glowing balls (kPathSampling*).
+  ivec4 path;
 };
 
 // ---- The quotient's images of the objects around D (binding 4, std430), world coordinates
@@ -241,7 +252,7 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, light_image_count) == 2 * sizeof(Eye) + 8 * 16 &&
                   offsetof(Params, light_color) == 2 * sizeof(Eye) + 9 * 16 &&
                   offsetof(Params, objects) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object),
+                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object) + 16,
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif

@@ -1,0 +1,205 @@
+// Path tracing (the SOL_PATH_BUILD builds; path_radiance in libsol/src/render.cpp, the
+// same estimator with the same random numbers): one path per pixel and
+// dispatch, from the camera ray's hit. docs/lighting.md, "Path tracing".
+#ifndef SOL_MARCH_PATHS_GLSL
+#define SOL_MARCH_PATHS_GLSL
+
+// ---- The paths' random numbers: splitmix64 (as sol's PathRandom) from the
+// seed, the pixel (its index in its eye's image) and the sample, on 64-bit
+// integers held as (low, high) 32-bit halves, so that the kernel draws the
+// CPU's numbers without the shaderInt64 feature.
+
+uvec2 u64_add(uvec2 a, uvec2 b) {
+  uint carry;
+  const uint low = uaddCarry(a.x, b.x, carry);
+  return uvec2(low, a.y + b.y + carry);
+}
+
+// The low 64 bits of a b.
+uvec2 u64_mul(uvec2 a, uvec2 b) {
+  uint high, low;
+  umulExtended(a.x, b.x, high, low);
+  return uvec2(low, high + a.x * b.y + a.y * b.x);
+}
+
+// a >> s for s in [1, 31].
+uvec2 u64_shr(uvec2 a, int s) { return uvec2((a.x >> uint(s)) | (a.y << uint(32 - s)), a.y >> uint(s)); }
+
+const uvec2 kGolden = uvec2(0x7F4A7C15u, 0x9E3779B9u);  // 0x9E3779B97F4A7C15
+const uvec2 kSampleMix = uvec2(0xD192ED03u, 0xD1B54A32u);  // 0xD1B54A32D192ED03
+
+uvec2 path_random_start(uvec2 seed, uint pixel, uint sample_index) {
+  return seed ^ u64_mul(kGolden, uvec2(pixel + 1u, 0u)) ^ u64_mul(kSampleMix, uvec2(sample_index + 1u, 0u));
+}
+
+// Uniform in [0, 1): the top 24 bits of the CPU's 53 (its double, rounded down to a float).
+float path_uniform(inout uvec2 state) {
+  state = u64_add(state, kGolden);
+  uvec2 z = state;
+  z = u64_mul(z ^ u64_shr(z, 30), uvec2(0x1CE4E5B9u, 0xBF58476Du));
+  z = u64_mul(z ^ u64_shr(z, 27), uvec2(0x133111EBu, 0x94D049BBu));
+  z = z ^ u64_shr(z, 31);
+  return float(z.y >> 8u) * (1.0 / 16777216.0);
+}
+
+// A direction about the unit normal n with density cos θ / π, in frame
+// components (as the CPU's cosine_direction: the same basis, the same two numbers).
+vec3 cosine_direction(vec3 n, inout uvec2 state) {
+  const float sign = n.z >= 0.0 ? 1.0 : -1.0;
+  const float a = -1.0 / (sign + n.z), c = n.x * n.y * a;
+  const vec3 t = vec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  const vec3 b = vec3(c, sign + n.y * n.y * a, -n.y);
+  const float r = sqrt(path_uniform(state)), phi = 2.0 * SOL_PI * path_uniform(state);
+  const float x = r * cos(phi), y = r * sin(phi);
+  return normalize(x * t + y * b + sqrt(max(0.0, 1.0 - x * x - y * y)) * n);
+}
+
+// ---- Next-event estimation to glowing exact balls (in Sol; glow_sample
+// and glow_density in libsol/src/render.cpp, with the same numbers): a
+// point y = c·exp(r w) of a glowing ball's sphere, w uniform on S² (area
+// density 1 / (4π J_c(w, r))), connected to the diffuse point x by its
+// minimising geodesics (sol_connections, reach 0), each weighed by its own
+// J (sol_sphere_area_density) and counted where the march along it first
+// meets that ball at its length; combined with reflection sampling by the
+// balance heuristic.
+const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS && !QUOTIENT;
+
+bool glowing(int k) { return g_types[k] == kObjectExactBall && params.objects[k].material.rgb != vec3(0.0); }
+
+int glowing_count() {
+  int n = 0;
+  for (int k = 0; k < g_count; ++k) n += glowing(k) ? 1 : 0;
+  return n;
+}
+
+// The geodesic from q to p (march coordinates) as the connection solver
+// takes it: p seen from q, in frame components at q.
+vec3 seen_from(vec3 q, vec3 p) {
+  const vec3 d = p - q;
+  return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
+}
+
+// The density in solid angle at x with which glow_sample picks direction d
+// whose geodesic first meets glowing ball k at y after L (cos_y: the
+// cosine there with its normal): 0 where that geodesic is not minimising.
+float glow_density(int k, int count, vec3 x, vec3 d, float L, vec3 y, float cos_y) {
+  vec4 found[SOL_FOUND_SLOTS];
+  if (sol_connections(seen_from(x, y), 0.0, found) == 0 || L > found[0].w * (1.0 + 1e-3) + 1e-4) return 0.0;
+  if (sol_connections(seen_from(g_relative[k].xyz, y), 0.0, found) == 0) return 0.0;
+  const float j_centre = sol_sphere_area_density(found[0].xyz, g_radii[k]);
+  if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
+  return sol_sphere_area_density(d, L) / (float(count) * 4.0 * SOL_PI * j_centre * cos_y);
+}
+
+// The light of one sampled point of one glowing ball at the diffuse hit h
+// (normal n), along each minimising geodesic to it, weighted for the
+// sampling (params.path.w: kPathSampling*). One call of march.
+vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
+  const int pick = min(count - 1, int(path_uniform(state) * float(count)));
+  int k = 0, seen = -1;
+  for (int j = 0; j < g_count; ++j) {
+    seen += glowing(j) ? 1 : 0;
+    if (glowing(j) && seen == pick) k = j;
+  }
+  const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
+  const float s = sqrt(max(0.0, 1.0 - u * u));
+  const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
+  const SolForward on_sphere = sol_exp(w, g_radii[k]);
+  const vec3 y = sol_translate(g_relative[k].xyz, on_sphere.position);
+  const vec3 normal_y = normalize(on_sphere.direction);  // the sphere's outward normal at y
+  const float area = 1.0 / (float(count) * 4.0 * SOL_PI * max(sol_sphere_area_density(w, g_radii[k]), 1e-30));
+  vec4 ways[SOL_FOUND_SLOTS];
+  const int paths = sol_connections(seen_from(h.q, y), 0.0, ways);
+  vec3 light = vec3(0.0);
+  for (int j = 0; j < paths; ++j) {
+    const vec3 d = ways[j].xyz;
+    const float L = ways[j].w, cos_x = dot(n, d);
+    if (!(L > 0.0) || cos_x <= 0.0) continue;
+    const MarchHit to = march(h.q, d, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
+    if (to.k != k || abs(to.t - L) > 1e-3 * max(1.0, L)) continue;  // something, or the ball's nearer side, is in the way
+    const float cos_y = abs(dot(sol_exp(d, L).direction, normal_y));
+    const float spreading = sol_sphere_area_density(d, L);
+    if (!(spreading > 0.0)) continue;
+    float weight = 1.0;
+    if (params.path.w == kPathSamplingCombined) {
+      const float glow = area * spreading / max(cos_y, 1e-30), reflection = cos_x / SOL_PI;
+      weight = glow / (glow + reflection);
+    }
+    light += params.objects[k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * area));
+  }
+  return light;
+}
+
+// What one path from a camera ray's hit brings back (path_radiance in
+// libsol/src/render.cpp): at each hit, over the fog of its segment, the
+// object's emission; then with probability `mirror` the path goes on along
+// the reflected geodesic, else it is diffuse: the lights' light by
+// next-event estimation (light_received: every geodesic to an exact light
+// with its 1/J, and shadows) times the albedo, and the path goes on along a
+// cosine-distributed direction, its weight times the albedo. Russian
+// roulette from the fourth hit. No ambient light. Glowing exact balls (in
+// Sol) by next-event estimation too (glow_sample), the emission a path
+// meets after a diffuse bounce weighed by the balance heuristic. One call
+// of march here and one in glow_sample: the driver inlines each call, each
+// holding a march (see radiance).
+vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
+  uvec2 state = path_random_start(uvec2(params.path.xy), pixel, uint(params.path.z));
+  const int light_count = min(int(params.shading.z), kMaxLights);
+  const int glow_count = GLOW_SAMPLING && params.path.w != kPathSamplingReflectionOnly ? glowing_count() : 0;
+  vec3 color = vec3(0.0), weight = vec3(1.0);
+  // The last hit, where it was diffuse (for the emission's weight at the next).
+  bool after_diffuse = false;
+  vec3 from = vec3(0.0), from_direction = vec3(0.0);
+  float from_cosine = 0.0;
+  const int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
+  int depth = 0;
+  bool alive = true;
+  do {
+    const vec4 material = params.objects[f.object].material;
+    const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+    color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
+    weight *= transmittance;
+    if (HAS_EMISSION) {
+      float share = 1.0;
+      if (GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
+        if (params.path.w == kPathSamplingGlowOnly) {
+          share = 0.0;  // next-event estimation counted it
+        } else {
+          const float glow = glow_density(f.object, glow_count, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
+          const float reflection = from_cosine / SOL_PI;
+          share = reflection / (reflection + glow);
+        }
+      }
+      color += weight * material.rgb * share;
+    }
+    const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+    vec3 next;
+    if (HAS_MIRRORS && material.w > 0.0 && path_uniform(state) < material.w) {
+      next = normalize(h.u - 2.0 * dot(h.u, n) * n);
+      after_diffuse = false;
+    } else {
+      const vec3 a = albedo(f.object, f.uv);
+      if (light_count > 0) color += weight * a * light_received(n, h.q, eye, march_leaving(f.object, f.inside));
+      if (GLOW_SAMPLING && glow_count > 0) color += weight * a * glow_sample(h, f, n, glow_count, state);
+      weight *= a;
+      next = cosine_direction(n, state);
+      after_diffuse = true;
+      from = h.q;
+      from_direction = next;
+      from_cosine = dot(n, next);
+    }
+    if (depth >= 3) {
+      const float q = min(0.95, max(weight.r, max(weight.g, weight.b)));
+      alive = q > 0.0 && path_uniform(state) < q;
+      weight /= max(q, 1e-30);
+    }
+    if (alive) {
+      h = march(h.q, next, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
+      alive = h.k >= 0;
+      if (alive) f = surface_at(h);
+    }
+  } while (alive && ++depth < kMaxDepth);
+  return vec4(color, 1.0);
+}
+
+#endif  // SOL_MARCH_PATHS_GLSL
