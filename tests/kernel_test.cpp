@@ -28,6 +28,7 @@
 #include "support/kernel.hpp"
 #include "support/loops.hpp"
 #include "support/mirrors.hpp"
+#include "support/paths.hpp"
 
 namespace {
 
@@ -1005,28 +1006,18 @@ TEST(Kernel, PathsInAnEmittingBallSeenFromInsideMakeAFurnace) {
   sol::SceneObject outside{sol::Ball{{0.0, 0.0, 4.0}, 0.2, true}, {0.5, 0.5, 0.5}};
   outside.mirror = 0.5;
   for (const auto& [mirror, expected] : {std::pair{0.0, 1.25}, std::pair{0.5, 2.5}}) {
-    sol::Scene furnace;
-    furnace.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
-    sol::SceneObject ball{sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, {0.6, 0.6, 0.6}};
-    ball.emission = {0.5, 0.5, 0.5};
-    ball.mirror = mirror;
-    furnace.objects = {ball, outside};
-    furnace.lights.clear();
-    furnace.max_steps = 2000;
+    sol::Scene furnace = sol::test::furnace(mirror);
+    furnace.objects.push_back(outside);
     const sol::RenderResult r = sol::render_scene(
         renderer, furnace, {.width = 6, .height = 6, .samples = 8, .transport = sol::Transport::Path, .seed = 7});
-    double sum = 0.0, squares = 0.0;
     for (std::size_t k = 0; k < 36; ++k) {
       ASSERT_TRUE(std::isfinite(r.rgba[4 * k]));
       ASSERT_EQ(r.object[k], 1.0f);  // the inside of the sphere
-      sum += r.rgba[4 * k];
-      squares += r.rgba[4 * k] * r.rgba[4 * k];
     }
-    const double mean = sum / 36.0, spread = std::sqrt(std::max(0.0, squares / 36.0 - mean * mean));
-    const double error = spread / std::sqrt(35.0);
-    std::printf("kernel furnace, mirror %.1f: %.4f (expected %.4f, standard error %.4f)\n", mirror, mean, expected, error);
-    EXPECT_GT(error, 0.0);
-    EXPECT_LT(std::abs(mean - expected), 4.0 * error);
+    const sol::test::MeanAndError m = sol::test::red_mean(r);
+    std::printf("kernel furnace, mirror %.1f: %.4f (expected %.4f, standard error %.4f)\n", mirror, m.mean, expected, m.error);
+    EXPECT_GT(m.error, 0.0);
+    EXPECT_LT(std::abs(m.mean - expected), 4.0 * m.error);
   }
   expect_no_validation_errors();
 }
@@ -1069,25 +1060,13 @@ TEST(Kernel, PathsAreTheCpuPathsForTheSameSeed) {
   const sol::RenderResult gpu = sol::render_scene(renderer, scene, settings);
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
   const std::size_t n = cpu.rgba.size() / 4;
-  std::size_t agree = 0;
-  double sum = 0.0, squares = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    bool same = true;
-    for (int c = 0; c < 3; ++c) {
-      ASSERT_TRUE(std::isfinite(gpu.rgba[4 * k + c]));
-      same = same && std::abs(gpu.rgba[4 * k + c] - cpu.rgba[4 * k + c]) <= 1e-3 * std::max(1.0f, cpu.rgba[4 * k + c]);
-    }
-    agree += same ? 1 : 0;
-    const double d = gpu.rgba[4 * k] - cpu.rgba[4 * k];
-    sum += d;
-    squares += d * d;
-  }
-  const double mean = sum / static_cast<double>(n);
-  const double error = std::sqrt(std::max(0.0, squares / static_cast<double>(n) - mean * mean) / static_cast<double>(n - 1));
+  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
+  const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
+  const sol::test::MeanAndError d = sol::test::red_difference(gpu, cpu);
   std::printf("paths, kernel against CPU: %zu of %zu pixels agree to 1e-3; mean difference %.4f, standard error %.4f\n",
-              agree, n, mean, error);
+              agree, n, d.mean, d.error);
   EXPECT_GE(agree, n * 8 / 10);
-  EXPECT_LE(std::abs(mean), 3.0 * error + 1e-6);
+  EXPECT_LE(std::abs(d.mean), 3.0 * d.error + 1e-6);
   double lit = 0.0;
   for (std::size_t k = 0; k < n; ++k) lit += gpu.object[k] == 1.0f ? gpu.rgba[4 * k] : 0.0;
   EXPECT_GT(lit, 0.0);  // the floor is lit
@@ -1138,13 +1117,7 @@ TEST(Kernel, PathsRecordedOneByOneAreTheRenderedImage) {
 // image (their mean difference within 3 standard errors, as the CPU's
 // Path.ReflectionSamplingGlowSamplingAndBothAgree).
 TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
-  sol::Scene scene;
-  scene.camera = {{0.3, 0.2, 1.2}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 70.0};
-  sol::SceneObject glow{sol::Ball{{0.0, 0.0, 0.4}, 0.15, true}, {0.5, 0.5, 0.5}};
-  glow.emission = {4.0, 3.0, 2.0};
-  scene.objects = {{sol::PlaneZ{0.0}, {0.7, 0.7, 0.7}}, glow};
-  scene.lights.clear();
-  scene.max_distance = 6.0;
+  const sol::Scene scene = sol::test::glow_over_plane();
   sol::vk::MarchRenderer renderer(vk_context());
   std::vector<sol::RenderResult> images;
   for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
@@ -1153,29 +1126,14 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
     images.push_back(sol::render_scene(renderer, scene, settings));
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
     const std::size_t n = cpu.rgba.size() / 4;
-    std::size_t agree = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      bool same = true;
-      for (int c = 0; c < 3; ++c) {
-        same = same && std::abs(images.back().rgba[4 * k + c] - cpu.rgba[4 * k + c]) <= 1e-3 * std::max(1.0f, cpu.rgba[4 * k + c]);
-      }
-      agree += same ? 1 : 0;
-    }
+    const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
     std::printf("glow, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", static_cast<int>(sampling), agree, n);
     EXPECT_GE(agree, n * 8 / 10) << static_cast<int>(sampling);
   }
   auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    double sum = 0.0, squares = 0.0;
-    const std::size_t n = a.rgba.size() / 4;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double d = a.rgba[4 * k] - b.rgba[4 * k];  // red
-      sum += d;
-      squares += d * d;
-    }
-    const double mean = sum / static_cast<double>(n);
-    const double error = std::sqrt((squares / static_cast<double>(n) - mean * mean) / static_cast<double>(n - 1));
-    std::printf("kernel %s: mean difference %.4f, standard error %.4f\n", what, mean, error);
-    EXPECT_LT(std::abs(mean), 3.0 * error) << what;
+    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
+    std::printf("kernel %s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
+    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
   };
   agree(images[0], images[1], "combined - reflection");
   agree(images[0], images[2], "combined - glow");

@@ -25,6 +25,7 @@
 #include "support/extremes.hpp"
 #include "support/loops.hpp"
 #include "support/mirrors.hpp"
+#include "support/paths.hpp"
 #include "support/sweep.hpp"
 
 namespace {
@@ -1702,34 +1703,22 @@ TEST(Mirrors, MaterialsAreReadCheckedAndShown) {
 // spread: 36 independent means), and no pixel may be non-finite.
 TEST(Path, AnEmittingBallSeenFromInsideIsAFurnace) {
   for (const auto& [mirror, expected] : {std::pair{0.0, 1.25}, std::pair{0.5, 2.5}}) {
-    sol::Scene furnace;
-    furnace.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
-    sol::SceneObject ball{sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, {0.6, 0.6, 0.6}};
-    ball.emission = {0.5, 0.5, 0.5};
-    ball.mirror = mirror;
-    furnace.objects = {ball};
-    furnace.lights.clear();
-    furnace.max_steps = 2000;
     sol::RenderOptions settings;
     settings.width = 6;
     settings.height = 6;
     settings.samples = 8;
     settings.transport = sol::Transport::Path;
     settings.seed = 7;
-    const sol::RenderResult r = sol::render_cpu(furnace, settings);
-    double sum = 0.0, squares = 0.0;
+    const sol::RenderResult r = sol::render_cpu(sol::test::furnace(mirror), settings);
     for (std::size_t k = 0; k < 36; ++k) {
       ASSERT_TRUE(std::isfinite(r.rgba[4 * k]));
       ASSERT_EQ(r.object[k], 1.0f);  // the inside of the sphere
       EXPECT_EQ(r.rgba[4 * k], r.rgba[4 * k + 2]);  // grey in, grey out
-      sum += r.rgba[4 * k];
-      squares += r.rgba[4 * k] * r.rgba[4 * k];
     }
-    const double mean = sum / 36.0, spread = std::sqrt(std::max(0.0, squares / 36.0 - mean * mean));
-    const double error = spread / std::sqrt(35.0);
-    std::printf("furnace, mirror %.1f: %.4f (expected %.4f, standard error %.4f)\n", mirror, mean, expected, error);
-    EXPECT_GT(error, 0.0);
-    EXPECT_LT(std::abs(mean - expected), 4.0 * error);
+    const sol::test::MeanAndError m = sol::test::red_mean(r);
+    std::printf("furnace, mirror %.1f: %.4f (expected %.4f, standard error %.4f)\n", mirror, m.mean, expected, m.error);
+    EXPECT_GT(m.error, 0.0);
+    EXPECT_LT(std::abs(m.mean - expected), 4.0 * m.error);
   }
 }
 
@@ -1748,19 +1737,8 @@ TEST(Path, AnEmittingBallSeenFromInsideIsAFurnace) {
 // has a long tail (a rare path that finds the glow from close by), which
 // moves an RMS by a factor of 2 between runs, not the median; a median over
 // some 80 values is itself uncertain by some 15 %: within [1.3, 2.6].
-sol::Scene glow_over_plane() {
-  sol::Scene s;
-  s.camera = {{0.3, 0.2, 1.2}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 70.0};
-  sol::SceneObject glow{sol::Ball{{0.0, 0.0, 0.4}, 0.15, true}, {0.5, 0.5, 0.5}};
-  glow.emission = {4.0, 3.0, 2.0};
-  s.objects = {{sol::PlaneZ{0.0}, {0.7, 0.7, 0.7}}, glow};
-  s.lights.clear();
-  s.max_distance = 6.0;
-  return s;
-}
-
 TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
-  const sol::Scene scene = glow_over_plane();
+  const sol::Scene scene = sol::test::glow_over_plane();
   auto render = [&](sol::PathSampling sampling, int samples, std::uint64_t seed) {
     sol::RenderOptions settings;
     settings.width = 10;
@@ -1775,17 +1753,9 @@ TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
   const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 8, 2);
   const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 8, 3);
   auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    double sum = 0.0, squares = 0.0;
-    const std::size_t n = a.rgba.size() / 4;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double d = a.rgba[4 * k] - b.rgba[4 * k];  // red
-      sum += d;
-      squares += d * d;
-    }
-    const double mean = sum / static_cast<double>(n);
-    const double error = std::sqrt((squares / static_cast<double>(n) - mean * mean) / static_cast<double>(n - 1));
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, mean, error);
-    EXPECT_LT(std::abs(mean), 3.0 * error) << what;
+    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
+    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
+    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
   };
   agree(both, reflection, "combined - reflection");
   agree(both, glow, "combined - glow");

@@ -1,0 +1,81 @@
+// The path tracer's tests on the CPU renderer (tests/render_test.cpp) and
+// the kernel (tests/kernel_test.cpp): statistics of path-traced images, and
+// the scenes both render.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+
+#include <sol/sol.hpp>
+
+namespace sol::test {
+
+/// A mean and its standard error (the spread of the values over √(n − 1)).
+struct MeanAndError {
+  double mean = 0.0;
+  double error = 0.0;
+};
+
+/// The red channel's mean over the pixels of an image.
+inline MeanAndError red_mean(const sol::RenderResult& r) {
+  const std::size_t n = r.rgba.size() / 4;
+  double sum = 0.0, squares = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    sum += r.rgba[4 * k];
+    squares += static_cast<double>(r.rgba[4 * k]) * r.rgba[4 * k];
+  }
+  const double mean = sum / static_cast<double>(n);
+  return {mean, std::sqrt(std::max(0.0, squares / static_cast<double>(n) - mean * mean) / static_cast<double>(n - 1))};
+}
+
+/// The pixel-by-pixel difference of the red channels of two images of the
+/// same size: its mean over the pixels, 0 for two unbiased estimators of
+/// one image (the image's own variation cancels).
+inline MeanAndError red_difference(const sol::RenderResult& a, const sol::RenderResult& b) {
+  sol::RenderResult d = a;
+  for (std::size_t k = 0; k < d.rgba.size(); ++k) d.rgba[k] = a.rgba[k] - b.rgba[k];
+  return red_mean(d);
+}
+
+/// The pixels whose three channels agree to `tolerance` (relative above 1).
+inline std::size_t pixels_agreeing(const sol::RenderResult& a, const sol::RenderResult& b, float tolerance) {
+  std::size_t agree = 0;
+  for (std::size_t k = 0; k < a.rgba.size() / 4; ++k) {
+    bool same = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      same = same && std::abs(a.rgba[4 * k + c] - b.rgba[4 * k + c]) <= tolerance * std::max(1.0f, b.rgba[4 * k + c]);
+    }
+    agree += same ? 1 : 0;
+  }
+  return agree;
+}
+
+/// A small glowing exact ball over a diffuse plane, seen from above.
+inline sol::Scene glow_over_plane() {
+  sol::Scene s;
+  s.camera = {{0.3, 0.2, 1.2}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 70.0};
+  sol::SceneObject glow{sol::Ball{{0.0, 0.0, 0.4}, 0.15, true}, {0.5, 0.5, 0.5}};
+  glow.emission = {4.0, 3.0, 2.0};
+  s.objects = {{sol::PlaneZ{0.0}, {0.7, 0.7, 0.7}}, glow};
+  s.lights.clear();
+  s.max_distance = 6.0;
+  return s;
+}
+
+/// A camera at the centre of an exact ball of radius 1 that emits 0.5 and
+/// reflects with albedo 0.6 (a share `mirror` of it specular), nothing else.
+inline sol::Scene furnace(double mirror) {
+  sol::Scene s;
+  s.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
+  sol::SceneObject ball{sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, {0.6, 0.6, 0.6}};
+  ball.emission = {0.5, 0.5, 0.5};
+  ball.mirror = mirror;
+  s.objects = {ball};
+  s.lights.clear();
+  s.max_steps = 2000;
+  return s;
+}
+
+}  // namespace sol::test
