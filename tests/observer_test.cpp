@@ -132,6 +132,18 @@ TEST(Observer, BoundToTheLatticeStaysInTheDomain) {
   EXPECT_LT(diff(sol::multiply(lattice.element(far.copy()), far.position()), {100, -50, 7}), 1e-8);
   far.bind(std::nullopt);
   EXPECT_FALSE(far.lattice().has_value());
+  // A long walk along z in the quotient: each height γ3 more, and the word's
+  // coefficients grow as λ^c (λ = φ² ≈ 2.6), past ±2^62 after some 45
+  // heights. The copy is then no longer tracked; the walk goes on in D.
+  sol::Observer climber({0.1, 0.2, 0.3}, {0, 0, 1}, {1, 0, 0});
+  climber.bind(lattice);
+  for (int i = 0; i < 70 && climber.copy_known(); ++i) climber.move({0, 0, 1}, 1.0);
+  EXPECT_FALSE(climber.copy_known());
+  climber.move({0, 0, 1}, 1.0);
+  EXPECT_TRUE(lattice.contains(climber.position()));
+  EXPECT_TRUE(std::isfinite(climber.forward().z));
+  climber.bind(lattice);
+  EXPECT_TRUE(climber.copy_known());
 }
 
 // In a lattice whose γ3 turns the fibre (trace -4), every teleport by an

@@ -158,7 +158,8 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
       std::snprintf(line, sizeof line, "%s%s^%lld", word.empty() ? "" : " ", name, power);
       word += line;
     }
-    const std::string copy = "copy of the domain D: " + (word.empty() ? std::string("e") : word) + " D";
+    const std::string copy = !m.observer.copy_known() ? std::string("copy of the domain D: too far to count")
+                             : "copy of the domain D: " + (word.empty() ? std::string("e") : word) + " D";
     ImGui::TextUnformatted(copy.c_str());
   }
   if (!m.message.empty()) {

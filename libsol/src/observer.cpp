@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "check.hpp"
+#include "sol/error.hpp"
 #include "sol/scene.hpp"
 
 namespace sol {
@@ -45,7 +46,12 @@ void Observer::keep_in_domain() {
   // E1, E2 -> -E1, -E2, so every frame vector's first two components.
   if (t.turned) m_frame = glm::dmat3(glm::dvec3(-1.0, 0.0, 0.0), glm::dvec3(0.0, -1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0)) * m_frame;
   const LatticeWord e = m_lattice->word_of(t.element);
-  if (e != LatticeWord{}) m_copy = m_lattice->multiply(m_copy, m_lattice->inverse(e));
+  if (e == LatticeWord{} || !m_copy_known) return;
+  try {
+    m_copy = m_lattice->multiply(m_copy, m_lattice->inverse(e));
+  } catch (const OutOfRange&) {
+    m_copy_known = false;  // past ±2^62: no longer tracked (copy_known)
+  }
 }
 
 void Observer::move(const glm::dvec3& local_direction, double distance) {
@@ -97,6 +103,7 @@ void Observer::roll(double angle) {
 void Observer::bind(std::optional<Lattice> lattice) {
   m_lattice = std::move(lattice);
   m_copy = {};
+  m_copy_known = true;
   keep_in_domain();
 }
 

@@ -57,8 +57,12 @@ class Observer {
   /// Bound: the copy of D the observer is in, in the cover: the element w
   /// of Γ with (position in the cover) = w · position(), accumulated from
   /// every teleport since bind() (which starts it at the identity, then
-  /// teleports). The identity when unbound.
+  /// teleports). The identity when unbound. A walk far enough along z
+  /// (about 40 heights of the lattice) takes the word's coefficients past
+  /// ±2^62: from then on the copy is no longer tracked (copy_known() false,
+  /// copy() the last one known), while the position and frame go on.
   const LatticeWord& copy() const { return m_copy; }
+  bool copy_known() const { return m_copy_known; }
 
   /// Options used by move (method, tolerance).
   void set_flow_options(const FlowOptions& options);
@@ -72,6 +76,7 @@ class Observer {
   glm::dmat3 m_frame{1.0};
   std::optional<Lattice> m_lattice;
   LatticeWord m_copy;
+  bool m_copy_known = true;
   FlowOptions m_options;
 };
 
