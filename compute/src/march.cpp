@@ -245,6 +245,12 @@ static_assert(static_cast<int>(PathSampling::Combined) == kernel::kPathSamplingC
                   static_cast<int>(PathSampling::GlowOnly) == kernel::kPathSamplingGlowOnly,
               "Params::path.w is sol::PathSampling's value");
 
+// Params::path: the seed's low and high halves, the path's index, the sampling.
+glm::ivec4 path_uniform(std::uint64_t seed, int index, PathSampling sampling) {
+  return {static_cast<int>(static_cast<std::uint32_t>(seed)), static_cast<int>(static_cast<std::uint32_t>(seed >> 32)),
+          index, static_cast<int>(sampling)};
+}
+
 // Whether an eye lies inside an exact ball (in Sol; an omnidirectional
 // stereo eye's columns within its offset of it): only then can a ray be
 // inside one (a ray that starts outside every ball meets the sphere
@@ -686,9 +692,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.path = path || sample.path >= 0;
   variant.inside = eye_inside_exact_ball(prepared, eyes);
   if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
-    g.path = glm::ivec4(static_cast<int>(static_cast<std::uint32_t>(sample.seed)),
-                        static_cast<int>(static_cast<std::uint32_t>(sample.seed >> 32)), sample.path,
-                        kernel::kPathSamplingCombined);
+    g.path = path_uniform(sample.seed, sample.path, PathSampling::Combined);
   }
   defer_passes(variant, m.options);
   // The lists hold a record per pixel of a dispatch, at most the whole
@@ -860,9 +864,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   pipeline.bind(f.set, kernel::kBindingPoint, point ? *point : *m.placeholder);
   Params& g = f.params;
   // Paths: the seed's halves and the sampling (each dispatch its sample's index, below).
-  g.path = glm::ivec4(static_cast<int>(static_cast<std::uint32_t>(options.seed)),
-                      static_cast<int>(static_cast<std::uint32_t>(options.seed >> 32)), 0,
-                      static_cast<int>(options.path_sampling));
+  g.path = path_uniform(options.seed, 0, options.path_sampling);
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
   // dispatch (whole bands of the image's width while those fit, else
