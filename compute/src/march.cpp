@@ -144,11 +144,7 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
   if (images.size() > static_cast<std::size_t>(kMaxGpuImages)) {
     throw InvalidArgument("sol::vk::MarchRenderer: the quotient scene has " + std::to_string(images.size()) +
                           " object images around the domain; the kernel takes at most " +
-                          std::to_string(kMaxGpuImages) + " (fewer or smaller objects" +
-                          (prepared.world().quotient == Quotient::Monodromy ? std::string(", or a larger quotient.fibre_area)")
-                           : prepared.world().quotient == Quotient::XYLoops
-                               ? std::string(", or objects nearer z = 0, where neither loop is short)")
-                               : std::string(")")));
+                          std::to_string(kMaxGpuImages) + " " + crowded_quotient_hint(prepared.world()));
   }
   std::vector<kernel::Image> out;
   for (const MarchObject& m : images) {
@@ -251,19 +247,26 @@ glm::ivec4 path_uniform(std::uint64_t seed, int index, PathSampling sampling) {
           index, static_cast<int>(sampling)};
 }
 
-// Whether an eye lies inside an exact ball (in Sol; an omnidirectional
-// stereo eye's columns within its offset of it): only then can a ray be
-// inside one (a ray that starts outside every ball meets the sphere
-// first), so only such frames take the balls' inside code (HAS_INSIDE).
-// The exact signed distance is solved only within its band of the sphere
-// (sol::sdf_ball_exact): a frame costs a bound per ball and eye.
-bool eye_inside_exact_ball(const MarchWorld& prepared, std::span<const Camera> eyes) {
-  if (prepared.features().quotient || !prepared.features().exact_balls) return false;
-  for (const SceneObject& o : prepared.world().objects) {
-    const Ball* b = std::get_if<Ball>(&o.shape);
-    if (b == nullptr || !b->exact) continue;
-    for (const Camera& eye : eyes) {
-      if (sdf_ball_exact(eye.position, b->center, b->radius) < std::abs(eye.eye_offset)) return true;
+// Whether an eye lies inside a solid (an omnidirectional stereo eye's
+// columns within its offset of it): only then can a ray be inside one (a
+// ray that starts outside every solid meets a surface first), so only
+// such frames take the solids' inside code (HAS_INSIDE). In the quotient
+// the eye's point of D against every image. An exact ball's signed
+// distance is solved only within its band of the sphere
+// (sol::sdf_ball_exact): a frame costs a bound per solid and eye.
+bool eye_inside_solid(const MarchWorld& prepared, std::span<const Camera> eyes) {
+  if (!prepared.features().solids) return false;
+  for (const Camera& eye : eyes) {
+    const double reach = std::abs(eye.eye_offset);
+    if (prepared.features().quotient) {
+      const glm::dvec3 p = prepared.lattice()->teleport(eye.position).point;
+      for (const MarchObject& image : prepared.objects()) {
+        if (is_solid(image.shape) && object_distance(image, p) < reach) return true;
+      }
+    } else {
+      for (const SceneObject& o : prepared.world().objects) {
+        if (is_solid(o.shape) && shape_distance(o.shape, eye.position) < reach) return true;
+      }
     }
   }
   return false;
@@ -690,7 +693,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.projections = projections;
   variant.ods = ods;
   variant.path = path || sample.path >= 0;
-  variant.inside = eye_inside_exact_ball(prepared, eyes);
+  variant.inside = eye_inside_solid(prepared, eyes);
   if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
     g.path = path_uniform(sample.seed, sample.path, PathSampling::Combined);
   }

@@ -345,6 +345,13 @@ MarchFeatures features_of(const World& world) {
   return f;
 }
 
+std::string crowded_quotient_hint(const World& world) {
+  const char* more = world.quotient == Quotient::Monodromy ? ", or a larger quotient.fibre_area)"
+                     : world.quotient == Quotient::XYLoops  ? ", or objects nearer z = 0, where neither loop is short)"
+                                                            : ")";
+  return std::string("(fewer or smaller objects") + more;
+}
+
 MarchWorld::MarchWorld(const World& world) : m_world(world) {
   validate(world);
   m_features = features_of(world);
@@ -354,10 +361,7 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
       std::tie(m_objects, m_max_step) = listed_images(world);
       m_field = std::make_shared<const QuotientField>(m_objects, m_max_step, *m_lattice);
     } catch (const std::invalid_argument& e) {  // too many images for the field: say what helps
-      const char* more = world.quotient == Quotient::Monodromy ? ", or a larger quotient.fibre_area)"
-                         : world.quotient == Quotient::XYLoops  ? ", or objects nearer z = 0, where neither loop is short)"
-                                                                : ")";
-      throw InvalidArgument(std::string(e.what()) + " (fewer or smaller objects" + more);
+      throw InvalidArgument(std::string(e.what()) + " " + crowded_quotient_hint(world));
     }
     for (std::size_t i = 0; i < world.lights.size(); ++i) {
       try {

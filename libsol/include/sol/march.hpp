@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -111,6 +112,11 @@ struct MarchFeatures {
 MarchFeatures features_of(const World& world);
 
 class QuotientField;
+
+/// What makes a quotient world's objects fewer images around the domain,
+/// for the messages that refuse a crowded one: "(fewer or smaller
+/// objects, ...)", with what else helps in its kind of quotient.
+std::string crowded_quotient_hint(const World& world);
 
 /// A world prepared for the march once: checked, its features found, its
 /// objects in world coordinates (Sol) or their images around D and their
