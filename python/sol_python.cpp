@@ -128,11 +128,22 @@ struct PyCpuRenderer {
     camera = scene.camera;
     samples = scene.samples;
   }
-  // A render from `eye` (the scene's camera when none), `samples` 0 the scene's.
-  sol::RenderResult render(int width, int height, int samples_given, unsigned threads, const std::optional<sol::Camera>& eye) {
+  // A render from `eye` (the scene's camera when none), `samples` 0 the
+  // scene's, by `transport` ("direct" or "path", solrender's --transport)
+  // with the path tracer's `seed` (solrender's --seed).
+  sol::RenderResult render(int width, int height, int samples_given, unsigned threads, const std::optional<sol::Camera>& eye,
+                           const std::string& transport = "direct", long long seed = 0) {
     const sol::Camera from = eye.value_or(camera);
-    const sol::RenderOptions options{
-        .width = width, .height = height, .samples = samples_given == 0 ? samples : samples_given, .threads = threads};
+    if (transport != "direct" && transport != "path") {
+      throw sol::InvalidArgument("sol.CpuRenderer.render: transport must be \"direct\" or \"path\", not \"" + transport + "\"");
+    }
+    if (seed < 0) throw sol::InvalidArgument("sol.CpuRenderer.render: seed must be 0 or more, not " + std::to_string(seed));
+    const sol::RenderOptions options{.width = width,
+                                     .height = height,
+                                     .samples = samples_given == 0 ? samples : samples_given,
+                                     .threads = threads,
+                                     .transport = transport == "path" ? sol::Transport::Path : sol::Transport::Direct,
+                                     .seed = static_cast<std::uint64_t>(seed)};
     // The CPU renderer's 64 bytes a pixel and the arrays it becomes here,
     // 40 more (the result lives until they are made): refused up front
     // where that cannot fit.
@@ -534,23 +545,27 @@ PYBIND11_MODULE(_sol, m) {
       .def("set_scene", &PyCpuRenderer::set_scene, py::arg("scene"), "Prepares another scene's world (and takes its camera).")
       .def(
           "render",
-          [](PyCpuRenderer& r, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera) {
-            return render_dict(r.render(width, height, samples, threads, camera));
+          [](PyCpuRenderer& r, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera,
+             const std::string& transport, long long seed) {
+            return render_dict(r.render(width, height, samples, threads, camera, transport, seed));
           },
           py::arg("width") = 512, py::arg("height") = 512, py::arg("samples") = 0, py::arg("threads") = 0,
-          py::arg("camera") = py::none(),
+          py::arg("camera") = py::none(), py::arg("transport") = "direct", py::arg("seed") = 0,
           "Renders the prepared world, width x height pixels (1..16384; solrender's 512 x 512 by default), from "
           "`camera` (a sol.Camera; the scene's when None), `samples` rays per pixel (1..4096; 0: the scene's "
-          "\"samples\", as solrender's --spp), on `threads` threads (0: all): a dict of float32 arrays as render_cpu's.");
+          "\"samples\", as solrender's --spp), on `threads` threads (0: all), by `transport` (\"direct\" light, the "
+          "default, or \"path\" tracing, each sample one path whose random numbers come from `seed`, 0 or more, as "
+          "solrender's --transport and --seed): a dict of float32 arrays as render_cpu's.");
   m.def(
       "render_cpu",
-      [](const sol::Scene& scene, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera) {
+      [](const sol::Scene& scene, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera,
+         const std::string& transport, long long seed) {
         PyCpuRenderer r;
         r.set_scene(scene);
-        return render_dict(r.render(width, height, samples, threads, camera));
+        return render_dict(r.render(width, height, samples, threads, camera, transport, seed));
       },
       py::arg("scene"), py::arg("width") = 512, py::arg("height") = 512, py::arg("samples") = 0, py::arg("threads") = 0,
-      py::arg("camera") = py::none(),
+      py::arg("camera") = py::none(), py::arg("transport") = "direct", py::arg("seed") = 0,
       "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many), with "
       "CpuRenderer.render's arguments and defaults; returns a dict of float32 arrays: rgba (H, W, 4; linear RGB, "
       "alpha 1: sol.save writes it as solrender does), object (H, W; 0 = no hit, k = k-th object), distance (H, W; "

@@ -156,9 +156,32 @@ bool exact_ball(const Shape& shape) {
   return b && b->exact;
 }
 
+// A solid seen from inside: where its distance d is negative the ray is
+// inside it, and the surface is at least -d away. Every solid's distance
+// is 1-Lipschitz with the solid its sublevel set {d <= 0} (the exact
+// ball's is the true signed distance; the bounds are maxima of distances
+// to planes and of the hyperbolic planes' distances, each 1-Lipschitz:
+// docs/lighting.md), so -d inside is a step as d is outside.
+struct SeenDistance {
+  double d;     // |distance|: the step either side
+  bool inside;  // a solid the ray is inside
+};
+
+SeenDistance seen_distance(const MarchObject& object, bool solid, const glm::dvec3& q) {
+  const double d = object_distance(object, q);
+  const bool inside = solid && d < 0.0;
+  return {inside ? -d : d, inside};
+}
+
+// The normal at a hit, turned to face the ray where it faces away and
+// `turn` (a solid met from inside).
+glm::dvec3 facing_normal(const glm::dvec3& normal, const glm::dvec3& direction, bool turn) {
+  return turn && glm::dot(normal, direction) > 0.0 ? -normal : normal;
+}
+
 // The march in Sol: `objects` relative to `origin`, so the ray starts at
-// the origin of their coordinates. Exact balls are seen from inside as
-// well as from outside.
+// the origin of their coordinates. Solids are seen from inside as well as
+// from outside.
 MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const std::vector<MarchObject>& objects,
                      const glm::dvec3& direction, const MarchLimits& limits = {}) {
   const World& world = prepared.world();
@@ -207,18 +230,21 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   // beside it) up to the next object's distance. (Only the nearest's: it
   // is what limits the step, and the kernel evaluates one clearance a step.)
   const bool solids = prepared.features().solids && full;
+  std::uint64_t solid = 0;  // which objects are solids
+  for (std::size_t k = 0; k < n; ++k) {
+    if (is_solid(objects[k].shape)) solid |= std::uint64_t{1} << k;
+  }
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
     std::size_t hit_k = 0, nearest_k = 0;
-    bool nearest_inside = false;  // the nearest object is an exact ball the ray is inside
+    bool nearest_inside = false, hit_inside = false;  // the nearest (to hit) is a solid the ray is inside
     for (std::size_t k = 0; k < n; ++k) {
-      double d = object_distance(objects[k], q);
-      // An exact ball is seen from inside too: there d is its exact signed
-      // distance, and the sphere is at least -d away (the triangle inequality).
-      const bool inside = d < 0.0 && exact_ball(objects[k].shape);
-      if (inside) d = -d;
+      const std::uint64_t bit = std::uint64_t{1} << k;
+      const SeenDistance seen = seen_distance(objects[k], (solid & bit) != 0, q);
+      double d = seen.d;
+      const bool inside = seen.inside;
       if (planes_xy && crossing.solved &&
           (std::holds_alternative<PlaneX>(objects[k].shape) || std::holds_alternative<PlaneY>(objects[k].shape))) {
         d = k == crossing.k ? std::max(crossing.t - t, 0.0) : std::numeric_limits<double>::infinity();
@@ -227,7 +253,6 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (o.cutout && std::holds_alternative<PlaneZ>(o.shape)) {
         d = std::max(d, cutout_gap_bound(o.pattern, multiply(origin, q)));
       }
-      const std::uint64_t bit = std::uint64_t{1} << k;
       if ((passing & bit) && d > 2.0 * world.hit_epsilon) passing &= ~bit;
       if (d < nearest) {
         second = nearest;
@@ -240,6 +265,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (!(passing & bit) && d < nearest_hit) {
         nearest_hit = d;
         hit_k = k;
+        hit_inside = inside;
       }
     }
     const Shape& nearest_shape = objects[nearest_k].shape;
@@ -264,8 +290,8 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.normal = shape_normal(objects[hit_k].shape, p);
       hit.pattern_uv = uv;
       hit.direction = ray.direction_at(t);
-      // From inside an exact ball its normal faces inward, to the ray.
-      if (exact_ball(objects[hit_k].shape) && glm::dot(hit.normal, hit.direction) > 0.0) hit.normal = -hit.normal;
+      // (In Sol an exact ball's normal faces the ray wherever it faces away.)
+      hit.normal = facing_normal(hit.normal, hit.direction, hit_inside || exact_ball(objects[hit_k].shape));
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -346,12 +372,17 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     double clear = std::numeric_limits<double>::infinity(), back = clear, nearest_hit = clear;
     const bool check = proposal > covered;
     int nearest_k = -1;
+    bool hit_inside = false;
     for (int k : cell.candidates) {
       const MarchObject& image = images[static_cast<std::size_t>(k)];
-      const double d = object_distance(image, q);
+      const SeenDistance seen = seen_distance(image, is_solid(image.shape), q);
+      const double d = seen.d;
       auto left = std::find(passing.begin(), passing.end(), k);
       if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
-      if (check) {
+      if (seen.inside) {  // inside: the distance alone, either way (the clearances are the outside's)
+        clear = std::min(clear, d);
+        back = std::min(back, d);
+      } else if (check) {
         const Clearances both = object_clearances(image, q, u);
         clear = std::min(clear, std::max(d, both.ahead));
         back = std::min(back, std::max(d, both.back));
@@ -361,6 +392,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (left == passing.end() && d < nearest_hit) {
         nearest_hit = d;
         nearest_k = k;
+        hit_inside = seen.inside;
       }
     }
     if (check && covered + std::min(back, cell.reach) < proposal) {
@@ -384,6 +416,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
       hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
       hit.direction = u;
+      hit.normal = facing_normal(hit.normal, hit.direction, hit_inside);
       return hit;
     }
     double step_length = std::min(clear, cell.reach);

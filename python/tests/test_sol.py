@@ -228,6 +228,34 @@ def test_render_matches_solrender():
     assert np.abs(srgb(result["rgba"][:, :, :3]) - written).max() < 0.6 / 255
 
 
+@pytest.mark.skipif("SOLRENDER" not in os.environ, reason="solrender not built")
+def test_path_tracing_is_solrenders():
+    # transport="path" with a seed is solrender's --transport path --seed on the CPU: the same paths, so the same
+    # image to 8-bit rounding; another seed gives another image; a name other than "direct" or "path", or a negative
+    # seed, is refused by name.
+    import matplotlib.image
+    scene = sol.parse_scene('{"camera": {"position": [0, 0, 0], "forward": [1, 0.2, 0.1]}, "lights": [],'
+                            ' "objects": [{"type": "box", "center": [0, 0, 0], "half_size": [0.5, 0.4, 0.3], "color": [0.6, 0.6, 0.6],'
+                            ' "emission": [0.2, 0.3, 0.4]}]}')
+    result = sol.render_cpu(scene, 12, 8, samples=4, transport="path", seed=3)
+    assert np.isfinite(result["rgba"]).all() and (result["object"] == 1).all()
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "inside.json")
+        with open(path, "w") as f:
+            f.write(scene.to_json())
+        png = os.path.join(tmp, "inside.png")
+        subprocess.run([os.environ["SOLRENDER"], "--device", "cpu", "--scene", path, "--width", "12", "--height", "8",
+                        "--spp", "4", "--transport", "path", "--seed", "3", "-o", png], check=True, capture_output=True)
+        written = matplotlib.image.imread(png)[:, :, :3]
+    assert np.abs(srgb(result["rgba"][:, :, :3]) - written).max() < 0.6 / 255
+    other = sol.render_cpu(scene, 12, 8, samples=4, transport="path", seed=4)
+    assert not np.array_equal(other["rgba"], result["rgba"])
+    with pytest.raises(ValueError, match="transport"):
+        sol.render_cpu(scene, 12, 8, transport="paths")
+    with pytest.raises(ValueError, match="seed"):
+        sol.CpuRenderer(scene).render(12, 8, transport="path", seed=-1)
+
+
 def test_cpu_renderer_keeps_its_world():
     # A renderer prepares the world once and renders it again and again: each render is render_cpu's, to the bit,
     # and set_scene moves it to another world.

@@ -64,18 +64,26 @@ inline sol::Scene glow_over_plane() {
   return s;
 }
 
-/// A camera at the centre of an exact ball of radius 1 that emits 0.5 and
-/// reflects with albedo 0.6 (a share `mirror` of it specular), nothing else.
-inline sol::Scene furnace(double mirror) {
+/// A camera at the origin inside a solid that emits 0.5 and reflects with
+/// albedo 0.6 (a share `mirror` of it specular), nothing else, in Sol or a
+/// quotient: every path's expected radiance is 0.5 / (1 - 0.6) = 1.25
+/// (2.5 with a mirror share 0.5), whatever the solid's shape.
+inline sol::Scene furnace_in(const sol::Shape& solid, sol::Quotient quotient = sol::Quotient::None, double mirror = 0.0) {
   sol::Scene s;
+  s.quotient = quotient;
   s.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
-  sol::SceneObject ball{sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, {0.6, 0.6, 0.6}};
-  ball.emission = {0.5, 0.5, 0.5};
-  ball.mirror = mirror;
-  s.objects = {ball};
+  sol::SceneObject enclosure{solid, {0.6, 0.6, 0.6}};
+  enclosure.emission = {0.5, 0.5, 0.5};
+  enclosure.mirror = mirror;
+  s.objects = {enclosure};
   s.lights.clear();
   s.max_steps = 2000;
   return s;
+}
+
+/// The furnace in an exact ball of radius 1 about the camera.
+inline sol::Scene furnace(double mirror) {
+  return furnace_in(sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, sol::Quotient::None, mirror);
 }
 
 }  // namespace sol::test

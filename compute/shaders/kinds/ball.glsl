@@ -57,8 +57,8 @@ vec2 ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
 // clearance near the sphere are march/exact_balls.glsl's
 
 // Seen from inside (sol::sdf_ball_exact's sign; HAS_INSIDE, a frame whose
-// eye is inside an exact ball: no ray that starts outside every ball gets
-// inside one, it meets the sphere first): where q lies inside for
+// eye is inside a solid: no ray that starts outside every solid gets
+// inside one, it meets the surface first): where q lies inside for
 // certain, the sphere is at least r - L away, L the length of any curve
 // from the centre c to q, which bounds the distance from above. The curve:
 // the straight coordinate segment from c to q, in c's frame w = c⁻¹·q,
@@ -98,7 +98,14 @@ vec3 exact_ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius,
   return c;
 }
 
-vec3 exact_ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) { return ball_record_clearances(q, u, m, hz); }
+vec3 exact_ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  vec3 c = ball_record_clearances(q, u, m, hz);
+  if (HAS_INSIDE && c.x < 0.0) {
+    const float inside = exact_ball_inside(q, vec4(m.bound.xyz, 0.0), m.bound.w, hz, half_exp(m.bound.z));
+    if (inside > 0.0) c = vec3(inside);
+  }
+  return c;
+}
 
 // Where the march's last exact solve did not reach this ball: the bound's.
 vec3 exact_ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {

@@ -29,8 +29,10 @@ struct MarchResume {
 
 const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0, 0u);
 
-// A ray that leaves a hit of object k, entering it where `inside` (Sol).
-MarchResume march_leaving(int k, bool inside) { return MarchResume(0.0, 0u, 0, inside ? 1u << uint(k) : 0u); }
+// A ray that leaves a hit of object k, entering it where `inside` (an exact ball in Sol: others need no pass).
+MarchResume march_leaving(int k, bool inside) {
+  return MarchResume(0.0, 0u, 0, inside && !QUOTIENT && g_types[k] == kObjectExactBall ? 1u << uint(k) : 0u);
+}
 
 // What a march found.
 struct MarchHit {
@@ -43,7 +45,7 @@ struct MarchHit {
   // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
   int exact_k;
   SolEnd exact_end;
-  bool exact_inside;  // that geodesic is shorter than the ball's radius: the sphere seen from inside (Sol)
+  bool exact_inside;  // that geodesic is shorter than the ball's radius: the sphere seen from inside
   // The march pass left the ray to the resume pass, from `resume`.
   bool deferred;
   MarchResume resume;
@@ -198,20 +200,14 @@ bool planes_z_reachable(SolRay ray, float z0, float hit_epsilon) {
 
 // A step of the Sol march that came within kExactShell of an exact ball
 // (s.nearest_k), finished by its exact distance (steps, and hits on the
-// true sphere) against the least distance to every other object: the
-// step beyond the exact distance by the ball's clearance along the ray (its
-// rate from the sphere's normal, the gradient of d). Inside the ball (where
-// the solve landed) the sphere is -sdf away: it is seen from inside.
-//
-// Or (`entered`) a step of a ray that entered an exact ball at its start
-// (s.nearest_any, passed), near its sphere: there the ball's distance
-// (inside: r less an upper bound of the distance to the centre,
-// exact_ball_inside) is too loose to end the pass, so it is solved
-// exactly: the sphere is -sdf away, the step's bound for that ball; the
-// pass ends once that is 2 hit_epsilon (as march_objects' for the others),
-// and the ball is a hit candidate again, seen from inside; the other
-// objects' candidate hit stands.
-//
+// true sphere) against the least distance to every other object: the step
+// beyond it by the ball's clearance along the ray (its rate from the
+// sphere's normal). Inside the ball (where the solve landed) the sphere is
+// -sdf away. Or (`entered`) a step of a ray that entered an exact ball at
+// its start (s.nearest_any, passed), near its sphere, where the inside
+// bound (exact_ball_inside) is too loose to end the pass: solved exactly,
+// the pass ends once -sdf is 2 hit_epsilon (as march_objects' for the
+// others), the ball a hit candidate again; the others' candidate stands.
 // One exact solve for both (each call is inlined, a Newton loop each).
 // Returns whether the march goes on (march_step_end).
 bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool entered, inout MarchStep s,
@@ -540,8 +536,9 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       }
     } while (++s < listed);
     if (HAS_EXACT_BALLS && nearest_i >= 0 && image_type(images[nearest_i]) == kObjectExactBall && nearest < kExactShell) {
-      // Near an exact ball's image: its exact distance (as in Sol).
-      const float d = exact_ball_sdf(e, images[nearest_i].bound.xyz, images[nearest_i].bound.w, nearest_i, exact);
+      // Near an exact ball's image: its exact distance (as in Sol; inside, where the solve landed, -sdf).
+      const float sdf = exact_ball_sdf(e, images[nearest_i].bound.xyz, images[nearest_i].bound.w, nearest_i, exact);
+      const float d = HAS_INSIDE && exact.known ? abs(sdf) : sdf;
       nearest_i = d <= second ? nearest_i : second_i;
       nearest = min(d, second);
       clear_nearest = max(clear_nearest, d);
@@ -584,6 +581,8 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   }
   MarchHit found = march_found(hit_image, t, q, origin, steps, exact);
   found.u = u;
+  found.exact_inside = HAS_INSIDE && hit_image >= 0 && exact.k == hit_image && exact.known &&
+                       length(exact.v) < images[hit_image].bound.w;
   return found;
 }
 

@@ -58,16 +58,16 @@ vec2 clearance_roots(float h, float slope) {
 }
 
 // The dispatch by kind, defined below the kinds; declared here for them.
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius);
+float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius);
 
 // A solid's normal at q: the gradient of its bound by central differences
 // along E1, E2, E3 (kNormalStep; as the CPU reference).
 vec3 solid_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   float h = kNormalStep, ez = exp(q.z);
   vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-  vec3 g = vec3(object_distance(type, q + e1, rel, heading, radius) - object_distance(type, q - e1, rel, heading, radius),
-                object_distance(type, q + e2, rel, heading, radius) - object_distance(type, q - e2, rel, heading, radius),
-                object_distance(type, q + e3, rel, heading, radius) - object_distance(type, q - e3, rel, heading, radius));
+  vec3 g = vec3(object_bound(type, q + e1, rel, heading, radius) - object_bound(type, q - e1, rel, heading, radius),
+                object_bound(type, q + e2, rel, heading, radius) - object_bound(type, q - e2, rel, heading, radius),
+                object_bound(type, q + e3, rel, heading, radius) - object_bound(type, q - e3, rel, heading, radius));
   return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
 }
 
@@ -94,11 +94,38 @@ vec3 solid_relative(vec3 q, vec4 rel) {
 // its clearance (exact_ball_clearance).
 #define SOL_KIND_DISTANCE(Type, code_name, code, prefix, feature, solid) \
   if (feature_##feature && type == code_name) return prefix##_distance(q, rel, heading, radius, hz, hc);
-float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   SOL_OBJECT_KINDS(SOL_KIND_DISTANCE)
   return 1e30;  // no kind of this world's
 }
 #undef SOL_KIND_DISTANCE
+
+float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  return object_bound(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
+}
+
+// Whether the object is a solid (sol/object_kinds.h).
+#define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) || (solid && feature_##feature && type == code_name)
+bool object_is_solid(int type) { return false SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
+#undef SOL_KIND_SOLID
+
+// Solids seen from inside (HAS_INSIDE, a frame whose eye is inside a
+// solid: a ray that starts outside every solid meets a surface before it
+// is inside one). A solid's bound is 1-Lipschitz and the solid is where
+// it is <= 0 (sol::seen_distance in libsol/src/render.cpp), so inside,
+// where it is d < 0, the wall is at least -d away: the march's distance
+// and clearances (the outside's clearance does not hold there) are -d.
+// Exact balls have their own inside (exact_ball_inside, the exact solve).
+bool inside_by_bound(int type) { return HAS_INSIDE && type != kObjectExactBall && object_is_solid(type); }
+
+float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
+
+vec3 seen_from_inside(int type, vec3 c) { return inside_by_bound(type) && c.x < 0.0 ? vec3(-c.x) : c; }
+
+// The distance the march steps by: the bound, seen from inside where the ray is.
+float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return seen_from_inside(type, object_bound(type, q, rel, heading, radius, hz, hc));
+}
 
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   return object_distance(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
@@ -111,9 +138,13 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
 // quotient march's check of an over-relaxed step.
 #define SOL_KIND_CLEARANCES(Type, code_name, code, prefix, feature, solid) \
   if (feature_##feature && type == code_name) return prefix##_clearances(q, u, rel, heading, radius, hz, hc);
-vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+vec3 object_bound_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   SOL_OBJECT_KINDS(SOL_KIND_CLEARANCES)
   return vec3(1e30);
+}
+
+vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return seen_from_inside(type, object_bound_clearances(type, q, u, rel, heading, radius, hz, hc));
 }
 #undef SOL_KIND_CLEARANCES
 
@@ -127,9 +158,13 @@ vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float ra
 // reads its heading word too, and only its worlds load it).
 #define SOL_KIND_RECORD(Type, code_name, code, prefix, feature, solid) \
   if (feature_##feature && type == code_name) return prefix##_record_clearances(q, u, m, hz);
-vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
+vec3 image_bound_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
   SOL_OBJECT_KINDS(SOL_KIND_RECORD)
   return vec3(1e30);
+}
+
+vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
+  return seen_from_inside(type, image_bound_clearances(type, q, u, m, hz));
 }
 #undef SOL_KIND_RECORD
 
@@ -157,11 +192,6 @@ vec2 object_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, flo
   return vec2(0.0);
 }
 #undef SOL_KIND_PATTERN_UV
-
-// Whether the object is a solid (sol/object_kinds.h).
-#define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) || (solid && feature_##feature && type == code_name)
-bool object_is_solid(int type) { return false SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
-#undef SOL_KIND_SOLID
 
 // ---- Patterns
 

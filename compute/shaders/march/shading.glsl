@@ -140,7 +140,7 @@ struct Surface {
   vec3 n;
   vec2 uv;
   vec3 world;
-  bool inside;  // an exact ball seen from inside (Sol): its normal turned to face the ray
+  bool inside;  // a solid seen from inside: its normal turned to face the ray
 };
 
 Surface surface_at(MarchHit h) {
@@ -172,8 +172,11 @@ Surface surface_at(MarchHit h) {
   }
   f.n = HAS_EXACT_BALLS && type == kObjectExactBall && h.exact_k == h.k ? exact_sphere_normal(h.exact_end)
                                                                          : object_normal(type, q, rel, heading, radius, h.from);
-  // An exact ball seen from inside: its normal faces the ray (as the CPU's).
-  f.inside = HAS_INSIDE && type == kObjectExactBall && h.exact_k == h.k && h.exact_inside;
+  // A solid seen from inside: its normal faces the ray (as the CPU's). An
+  // exact ball's where the exact solve's geodesic from the centre is
+  // shorter than the radius, another solid's where its bound is negative.
+  f.inside = HAS_INSIDE && ((type == kObjectExactBall && h.exact_k == h.k && h.exact_inside) ||
+                            (inside_by_bound(type) && object_bound(type, q, rel, heading, radius) < 0.0));
   if (f.inside) f.n = -f.n;
   f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;

@@ -51,7 +51,7 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(ods,           HAS_ODS,         14) /* omnidirectional stereo eyes (binding 8) */                       \
   X(defer_shading, DEFER_SHADING,   19) /* hits shaded by the shade pass (exact lights) */                  \
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
-  X(inside,        HAS_INSIDE,      45) /* an eye inside an exact ball (Sol): exact balls seen from inside */
+  X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
