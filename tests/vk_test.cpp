@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <sol/vk/vk.hpp>
 
@@ -374,6 +375,49 @@ TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
   EXPECT_THROW(sol::vk::specialize_spirv(garbage, {}, "garbage"), VulkanError);
   const std::vector<std::string> errors = context.validation_errors();
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
+// Folded modules kept on disk (sol::vk::specialize_spirv_cached, what
+// pipelines use with spirv_cache_directory()): the first fold writes one
+// file, the module specialize_spirv makes; the same words and constants
+// in another order read that file back (shown by planting another valid
+// module there: it is what comes back); other constants make another
+// file; a file that is not SPIR-V is passed over, the module folded again
+// and the file mended; without a directory nothing is written.
+TEST(VkPipeline, FoldedModulesAreKeptOnDisk) {
+  const std::span<const std::uint32_t> words(specialised_comp_spv);
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sol-spirv-cache-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const std::vector<sol::vk::SpecializationConstant> square = {{0, 1u}, {1, 3u}, {2, std::bit_cast<std::uint32_t>(0.5f)}};
+  const std::vector<sol::vk::SpecializationConstant> reordered = {square[2], square[0], square[1]};
+  const std::vector<sol::vk::SpecializationConstant> plain = {{0, 0u}, {1, 3u}, {2, std::bit_cast<std::uint32_t>(0.5f)}};
+  const std::vector<std::uint32_t> expected = sol::vk::specialize_spirv(words, square, "specialised");
+  const std::vector<std::uint32_t> other = sol::vk::specialize_spirv(words, plain, "specialised");
+  ASSERT_NE(expected, other);
+  auto files = [&] {
+    std::vector<std::filesystem::path> found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) found.push_back(entry.path());
+    return found;
+  };
+  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected);
+  ASSERT_EQ(files().size(), 1u);
+  const std::filesystem::path kept = files().front();
+  {
+    std::ofstream plant(kept, std::ios::binary | std::ios::trunc);
+    plant.write(reinterpret_cast<const char*>(other.data()), static_cast<std::streamsize>(other.size() * 4));
+  }
+  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, reordered, "specialised", dir), other);  // read back, not folded
+  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, plain, "specialised", dir), other);
+  EXPECT_EQ(files().size(), 2u);
+  {
+    std::ofstream garbage(kept, std::ios::binary | std::ios::trunc);
+    garbage << "not a module";
+  }
+  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected);
+  EXPECT_EQ(std::filesystem::file_size(kept), expected.size() * 4);  // mended
+  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", std::nullopt), expected);
+  EXPECT_EQ(files().size(), 2u);  // no partial files left
+  std::filesystem::remove_all(dir);
 }
 
 // An indirect dispatch takes its workgroup counts from a buffer: (1, 1, 1)

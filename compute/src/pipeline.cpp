@@ -1,7 +1,12 @@
 #include "sol/vk/pipeline.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <functional>
+#include <random>
+#include <system_error>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -115,6 +120,92 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
   return folded;
 }
 
+std::optional<std::filesystem::path> spirv_cache_directory() {
+  if (const char* own = std::getenv("SOL_SPIRV_CACHE")) {
+    const std::string value(own);
+    if (value.empty() || value == "off") return std::nullopt;
+    return std::filesystem::path(value);
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "sol" / "spirv";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "sol" / "spirv";
+  return std::nullopt;
+}
+
+namespace {
+
+// 64-bit FNV-1a over 32-bit words, byte by byte (little-endian order).
+std::uint64_t fnv1a(std::uint64_t hash, std::uint32_t word) {
+  for (int byte = 0; byte < 4; ++byte) {
+    hash ^= (word >> (8 * byte)) & 0xffu;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+// The cache file's name: the words' count and the hash of the words and the constants.
+std::string cache_name(std::span<const std::uint32_t> words, std::span<const SpecializationConstant> constants) {
+  std::vector<SpecializationConstant> sorted(constants.begin(), constants.end());
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (std::uint32_t w : words) hash = fnv1a(hash, w);
+  for (const SpecializationConstant& c : sorted) hash = fnv1a(fnv1a(hash, c.id), c.value);
+  char name[64];
+  std::snprintf(name, sizeof name, "%zu-%016llx.spv", words.size(), static_cast<unsigned long long>(hash));
+  return name;
+}
+
+std::optional<std::vector<std::uint32_t>> read_words(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return std::nullopt;
+  const std::streamoff size = in.tellg();
+  if (size <= 0 || size % 4 != 0) return std::nullopt;
+  std::vector<std::uint32_t> words(static_cast<std::size_t>(size) / 4);
+  in.seekg(0);
+  if (!in.read(reinterpret_cast<char*>(words.data()), size)) return std::nullopt;
+  return words;
+}
+
+void write_words(const std::filesystem::path& file, const std::vector<std::uint32_t>& words) {
+  std::error_code error;
+  std::filesystem::create_directories(file.parent_path(), error);
+  if (error) return;
+  std::random_device random;
+  const std::filesystem::path partial = file.string() + ".partial-" + std::to_string(random());
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) return;
+    out.write(reinterpret_cast<const char*>(words.data()), static_cast<std::streamsize>(words.size() * 4));
+    if (!out.flush()) {
+      out.close();
+      std::filesystem::remove(partial, error);
+      return;
+    }
+  }
+  std::filesystem::rename(partial, file, error);
+  if (error) std::filesystem::remove(partial, error);
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t> words,
+                                                   std::span<const SpecializationConstant> constants,
+                                                   const std::string& pipeline,
+                                                   const std::optional<std::filesystem::path>& directory) {
+  if (!directory) return specialize_spirv(words, constants, pipeline);
+  const std::filesystem::path file = *directory / cache_name(words, constants);
+  if (std::optional<std::vector<std::uint32_t>> kept = read_words(file)) {
+    try {
+      validate_spirv(*kept, pipeline + " (specialised, from " + file.string() + ")");
+      return std::move(*kept);
+    } catch (const VulkanError&) {
+      // not a module: folded again below, and the file replaced
+    }
+  }
+  std::vector<std::uint32_t> folded = specialize_spirv(words, constants, pipeline);
+  write_words(file, folded);
+  return folded;
+}
+
 ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& desc)
     : m_owner(context.internals()),
       m_name(desc.name.empty() ? std::string("unnamed") : desc.name),
@@ -147,7 +238,7 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
                      (desc.specialization_folding == SpecializationFolding::Auto &&
                       d.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU));
   if (fold) {
-    folded = specialize_spirv(desc.spirv, desc.specialization, m_name);
+    folded = specialize_spirv_cached(desc.spirv, desc.specialization, m_name, spirv_cache_directory());
     code = folded;
   } else {
     validate_spirv(desc.spirv, m_name);

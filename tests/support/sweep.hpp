@@ -6,11 +6,14 @@
 // sanitizers look for (an out-of-bounds read, an overflow, a leak) lies on code
 // paths that a part of each sweep already takes. So a sanitizer build runs
 // every k-th case of these sweeps (the stiff and extreme cases are spread over
-// the list, and the first is always kept); the optimised build runs them all
-// and holds the figures the tests quote.
+// the list, and the first is always kept), and the optimised build every
+// second, which keeps the test command within its time; SOL_FULL_SWEEPS=1
+// runs them all, and holds the figures the tests quote.
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
+#include <string_view>
 #include <vector>
 
 namespace sol::test {
@@ -27,19 +30,36 @@ inline constexpr bool kSanitizedBuild = false;
 inline constexpr bool kSanitizedBuild = false;
 #endif
 
-/// Every case in an optimised build; every `stride`-th (from the first) in a sanitizer build.
+/// Whether every case of every sweep runs (SOL_FULL_SWEEPS=1): the figures
+/// the docs quote. Otherwise an optimised build runs every second case, so
+/// that the test command stays within its time.
+inline bool full_sweeps() {
+  const char* full = std::getenv("SOL_FULL_SWEEPS");
+  return full != nullptr && std::string_view(full) == "1";
+}
+
+/// How many cases a sweep steps over: 1 in a full sweep, 2 in an optimised
+/// build, `sanitized` in a sanitizer build.
+inline std::size_t sweep_stride(std::size_t sanitized) {
+  if (full_sweeps()) return 1;
+  return kSanitizedBuild ? sanitized : 2;
+}
+
+/// Every sweep_stride(stride)-th case, from the first.
 template <class T>
 std::vector<T> sweep(const std::vector<T>& cases, std::size_t stride = 4) {
-  if (!kSanitizedBuild || stride <= 1) return cases;
+  const std::size_t step = sweep_stride(stride);
+  if (step <= 1) return cases;
   std::vector<T> kept;
-  for (std::size_t i = 0; i < cases.size(); i += stride) kept.push_back(cases[i]);
+  for (std::size_t i = 0; i < cases.size(); i += step) kept.push_back(cases[i]);
   return kept;
 }
 
 /// `count` in an optimised build; count / `divisor` (at least 1) in a sanitizer build.
 inline int sweep_count(int count, int divisor = 4) {
-  if (!kSanitizedBuild || divisor <= 1) return count;
-  return count / divisor > 0 ? count / divisor : 1;
+  const int step = static_cast<int>(sweep_stride(static_cast<std::size_t>(divisor > 1 ? divisor : 1)));
+  if (step <= 1) return count;
+  return count / step > 0 ? count / step : 1;
 }
 
 }  // namespace sol::test

@@ -16,8 +16,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ranges>
 #include <span>
 #include <string>
@@ -100,6 +102,25 @@ struct ComputePipelineDesc {
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
                                             std::span<const SpecializationConstant> constants,
                                             const std::string& pipeline = "unnamed");
+
+/// Where pipelines keep their folded modules between runs: $SOL_SPIRV_CACHE
+/// (a directory; "off" or empty: none), else $XDG_CACHE_HOME/sol/spirv,
+/// else $HOME/.cache/sol/spirv; none where neither is set.
+std::optional<std::filesystem::path> spirv_cache_directory();
+
+/// specialize_spirv, kept in `directory` (none: folded every time): a file
+/// named by a 64-bit FNV-1a hash of the words and the constants (sorted by
+/// id), the folded module as it was made. A module folded before is read
+/// back and validated instead of folded again (folding the march kernel
+/// takes about a second; reading it, milliseconds); a new one is written
+/// to a temporary file and renamed into place, so that processes folding
+/// at once never read a partial file. A cache that cannot be read or
+/// written, or holds a file that does not validate, is passed over: the
+/// module is folded (and the file written again).
+std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t> words,
+                                                   std::span<const SpecializationConstant> constants,
+                                                   const std::string& pipeline,
+                                                   const std::optional<std::filesystem::path>& directory);
 
 /// Workgroups needed to cover `extent` invocations with groups of `local_size`.
 constexpr std::uint32_t group_count(std::uint32_t extent, std::uint32_t local_size) {
