@@ -83,7 +83,7 @@ Params world_params(const MarchWorld& prepared) {
     const SceneObject& o = world.objects[k];
     const KernelShape shape = kernel_shape(o.shape);
     g.objects[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
-    g.objects[k].color = vec4(o.color, 1.0);
+    g.objects[k].color = vec4(o.color, o.glow_reach);
     g.objects[k].material = vec4(o.emission, o.mirror);
   }
   // Objects (the quotient: the images around D).
@@ -780,6 +780,12 @@ std::string MarchRenderer::unsupported(const World& world) {
     }
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    if (world.objects[i].glow_reach > ConnectionTable::kReach) {
+      std::snprintf(message, sizeof message,
+                    "objects[%zu].glow_reach: glowing balls with a reach above %g render on the CPU only (--device cpu)",
+                    i, ConnectionTable::kReach);
+      return message;
+    }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {
       std::snprintf(message, sizeof message,

@@ -338,9 +338,9 @@ MarchFeatures features_of(const World& world) {
                                [](const Light& l) { return l.type == LightType::Point; });
   f.fog = world.fog_density > 0.0;
   f.exact_lights = uses_exact_lights(world);
-  f.light_reach = std::any_of(world.lights.begin(), world.lights.end(), [](const Light& l) {
-    return l.type == LightType::Point && l.exact && l.reach > 0.0;
-  });
+  f.light_reach = std::any_of(world.lights.begin(), world.lights.end(),
+                              [](const Light& l) { return l.type == LightType::Point && l.exact && l.reach > 0.0; }) ||
+                  std::any_of(world.objects.begin(), world.objects.end(), [](const SceneObject& o) { return o.glow_reach > 0.0; });
   f.shadows = std::any_of(world.lights.begin(), world.lights.end(), [](const Light& l) { return l.shadows; });
   return f;
 }

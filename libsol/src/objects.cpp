@@ -202,6 +202,16 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
     }
   }
   if (!(o.mirror >= 0.0 && o.mirror <= 1.0)) field_error(at + ".mirror", at + ".mirror must be in [0, 1]");
+  if (!(o.glow_reach >= 0.0 && o.glow_reach <= 10.0)) field_error(at + ".glow_reach", at + ".glow_reach must be in [0, 10]");
+  if (o.glow_reach > 0.0) {
+    const Ball* b = std::get_if<Ball>(&o.shape);
+    if (!b || !b->exact || o.emission == glm::dvec3(0.0)) {
+      field_error(at + ".glow_reach", at + ".glow_reach needs a glowing exact ball (\"exact\": true, an emission)");
+    }
+    if (quotient) {
+      field_error(at + ".glow_reach", at + ".glow_reach: in a quotient paths reach glowing balls by reflection alone");
+    }
+  }
 }
 
 SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
@@ -221,6 +231,7 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   if (o.contains("pattern")) obj.pattern = read_pattern(o["pattern"], r, at + ".pattern");
   if (o.contains("emission")) obj.emission = r.vec3(o["emission"], at + ".emission");
   if (o.contains("mirror")) obj.mirror = r.number(o["mirror"], at + ".mirror");
+  if (o.contains("glow_reach")) obj.glow_reach = r.number(o["glow_reach"], at + ".glow_reach");
   return obj;
 }
 
@@ -231,6 +242,7 @@ json write_object(const SceneObject& o, const Lattice* quotient) {
   j["pattern"] = std::string(to_string(o.pattern));
   if (o.emission != glm::dvec3(0.0)) j["emission"] = to_json(o.emission);
   if (o.mirror != 0.0) j["mirror"] = o.mirror;
+  if (o.glow_reach != 0.0) j["glow_reach"] = o.glow_reach;
   return j;
 }
 

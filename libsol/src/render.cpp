@@ -579,8 +579,11 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
 // is sampled by a direction w at its centre, uniform on S², whose point y =
 // exp_c(r w) has the area density 1 / (4π J_c(w, r)), J the spreading of
 // the geodesics from c (sol::sphere_area_density). y is connected to the
-// diffuse point x by its minimising geodesics, each a direction d at x and
-// a length L, and each is one way light comes: its geometric term is
+// diffuse point x by its minimising geodesics, or with the ball's
+// glow_reach by every geodesic up to their distance plus that reach, each
+// a direction d at x and a length L, and each is one way light comes
+// (next-event estimation picks it with the density below; a longer one is
+// left to reflection sampling, whose weight there is 1): its geometric term is
 // cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen from x, equal to
 // that seen from y: reciprocity), where plain space has 1 / |x - y|². A
 // connection counts where the march from x along d first meets that ball
@@ -590,6 +593,7 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
 struct GlowingBall {
   std::size_t object;
   Ball ball;
+  double reach = 0.0;  // SceneObject::glow_reach: the connections up to the distance plus this
 };
 
 std::vector<GlowingBall> glowing_balls(const World& world) {
@@ -597,9 +601,16 @@ std::vector<GlowingBall> glowing_balls(const World& world) {
   if (world.quotient != Quotient::None) return out;
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
     const Ball* b = std::get_if<Ball>(&world.objects[k].shape);
-    if (b && b->exact && world.objects[k].emission != glm::dvec3(0.0)) out.push_back({k, *b});
+    if (b && b->exact && world.objects[k].emission != glm::dvec3(0.0)) out.push_back({k, *b, world.objects[k].glow_reach});
   }
   return out;
+}
+
+// The geodesics next-event estimation connects x to y of glowing ball g
+// by: the minimising ones, or with a reach every one up to the distance
+// plus it (sol::geodesics_between), shortest first.
+std::vector<Connection> glow_connections(const GlowingBall& g, const glm::dvec3& x, const glm::dvec3& y) {
+  return g.reach > 0.0 ? geodesics_between(x, y, distance(x, y) + g.reach) : minimising_geodesics(x, y);
 }
 
 // |cos| between the geodesic from x along d at length L and ball's normal there (y on its sphere).
@@ -610,11 +621,12 @@ double cos_at_sphere(const Ball& ball, const glm::dvec3& d, double L, const glm:
 
 // The density, in solid angle at x, with which next-event estimation picks
 // the direction d whose geodesic first meets glowing ball `g` at y after L
-// (0 where no minimising geodesic from x to y runs along d).
+// (0 where the geodesic from x to y along d is longer than the distance
+// plus the ball's reach: next-event estimation never takes it).
 double glow_density(const GlowingBall& g, std::size_t count, const glm::dvec3& x, const glm::dvec3& d, double L,
                     const glm::dvec3& y) {
   try {
-    if (L > distance(x, y) * (1.0 + 1e-6) + 1e-9) return 0.0;  // not minimising: next-event estimation never takes it
+    if (L > (distance(x, y) + g.reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
     const std::vector<Connection> from_centre = minimising_geodesics(g.ball.center, y);
     const double j_centre = sphere_area_density(glm::normalize(from_centre.front().direction), g.ball.radius);
     const double cos_y = cos_at_sphere(g.ball, d, L, y);
@@ -627,7 +639,8 @@ double glow_density(const GlowingBall& g, std::size_t count, const glm::dvec3& x
 
 // Next-event estimation from a diffuse hit (normal n, albedo times the
 // path's weight in `weight`): the light of one sampled point of one glowing
-// ball, along each of its minimising geodesics, weighted for `sampling`.
+// ball, along each of its geodesics within reach (glow_connections), each
+// weighed by its own J, weighted for `sampling`.
 glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, const MarchHit& hit,
                        const glm::dvec3& n, PathSampling sampling, PathRandom& random) {
   const World& world = prepared.world();
@@ -642,7 +655,7 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
   glm::dvec3 light(0.0);
   std::vector<Connection> ways;
   try {
-    ways = minimising_geodesics(hit.point, y);
+    ways = glow_connections(g, hit.point, y);
   } catch (const OutOfRange&) {
     return light;
   }

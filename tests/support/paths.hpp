@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 
 #include <sol/sol.hpp>
@@ -52,6 +53,19 @@ inline std::size_t pixels_agreeing(const sol::RenderResult& a, const sol::Render
   return agree;
 }
 
+/// Path tracing options: `samples` paths a pixel from `seed`, by `sampling`.
+inline sol::RenderOptions path_options(int width, int height, int samples, std::uint64_t seed,
+                                       sol::PathSampling sampling = sol::PathSampling::Combined) {
+  sol::RenderOptions settings;
+  settings.width = width;
+  settings.height = height;
+  settings.samples = samples;
+  settings.transport = sol::Transport::Path;
+  settings.path_sampling = sampling;
+  settings.seed = seed;
+  return settings;
+}
+
 /// A small glowing exact ball over a diffuse plane, seen from above.
 inline sol::Scene glow_over_plane() {
   sol::Scene s;
@@ -64,18 +78,41 @@ inline sol::Scene glow_over_plane() {
   return s;
 }
 
+/// A glowing exact ball (radius 0.5 at (5, 5, 0)) about 6 from a diffuse
+/// ball (radius 0.5 at the origin) seen from between them, with
+/// next-event estimation's `reach` (SceneObject::glow_reach). At that
+/// distance points have several geodesics between them within 3 of the
+/// shortest (sol::geodesics_between), and the longer ones bring most of
+/// the glowing ball's light.
+inline sol::Scene far_glow(double reach) {
+  sol::Scene s;
+  s.camera = {{1.2, 1.2, 0.1}, {-1.0, -1.0, -0.1}, {0.0, 0.0, 1.0}, 40.0};
+  sol::SceneObject glow{sol::Ball{{5.0, 5.0, 0.0}, 0.5, true}, {0.5, 0.5, 0.5}};
+  glow.emission = {40.0, 40.0, 40.0};
+  glow.glow_reach = reach;
+  s.objects = {{sol::Ball{{0.0, 0.0, 0.0}, 0.5, false}, {0.7, 0.7, 0.7}}, glow};
+  s.lights.clear();
+  s.max_distance = 12.0;
+  return s;
+}
+
 /// A camera at the origin inside a solid that emits 0.5 and reflects with
 /// albedo 0.6 (a share `mirror` of it specular), nothing else, in Sol or a
 /// quotient: every path's expected radiance is 0.5 / (1 - 0.6) = 1.25
 /// (2.5 with a mirror share 0.5), whatever the solid's shape.
+/// The furnace's wall: `solid`, emitting 0.5, albedo 0.6 (a share `mirror` specular).
+inline sol::SceneObject furnace_wall(const sol::Shape& solid, double mirror = 0.0) {
+  sol::SceneObject wall{solid, {0.6, 0.6, 0.6}};
+  wall.emission = {0.5, 0.5, 0.5};
+  wall.mirror = mirror;
+  return wall;
+}
+
 inline sol::Scene furnace_in(const sol::Shape& solid, sol::Quotient quotient = sol::Quotient::None, double mirror = 0.0) {
   sol::Scene s;
   s.quotient = quotient;
   s.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
-  sol::SceneObject enclosure{solid, {0.6, 0.6, 0.6}};
-  enclosure.emission = {0.5, 0.5, 0.5};
-  enclosure.mirror = mirror;
-  s.objects = {enclosure};
+  s.objects = {furnace_wall(solid, mirror)};
   s.lights.clear();
   s.max_steps = 2000;
   return s;

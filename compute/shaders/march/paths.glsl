@@ -58,10 +58,11 @@ vec3 cosine_direction(vec3 n, inout uvec2 state) {
 // and glow_density in libsol/src/render.cpp, with the same numbers): a
 // point y = c·exp(r w) of a glowing ball's sphere, w uniform on S² (area
 // density 1 / (4π J_c(w, r))), connected to the diffuse point x by its
-// minimising geodesics (sol_connections, reach 0), each weighed by its own
-// J (sol_sphere_area_density) and counted where the march along it first
-// meets that ball at its length; combined with reflection sampling by the
-// balance heuristic.
+// geodesics up to the distance plus the ball's glow_reach
+// (params.objects[k].color.w; sol_connections, 0: the minimisers), each
+// weighed by its own J (sol_sphere_area_density) and counted where the
+// march along it first meets that ball at its length; combined with
+// reflection sampling by the balance heuristic.
 const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS && !QUOTIENT;
 
 bool glowing(int k) { return g_types[k] == kObjectExactBall && params.objects[k].material.rgb != vec3(0.0); }
@@ -81,10 +82,12 @@ vec3 seen_from(vec3 q, vec3 p) {
 
 // The density in solid angle at x with which glow_sample picks direction d
 // whose geodesic first meets glowing ball k at y after L (cos_y: the
-// cosine there with its normal): 0 where that geodesic is not minimising.
+// cosine there with its normal): 0 where that geodesic is longer than the
+// distance plus the ball's reach.
 float glow_density(int k, int count, vec3 x, vec3 d, float L, vec3 y, float cos_y) {
   vec4 found[SOL_FOUND_SLOTS];
-  if (sol_connections(seen_from(x, y), 0.0, found) == 0 || L > found[0].w * (1.0 + 1e-3) + 1e-4) return 0.0;
+  const float reach = params.objects[k].color.w;
+  if (sol_connections(seen_from(x, y), 0.0, found) == 0 || L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) return 0.0;
   if (sol_connections(seen_from(g_relative[k].xyz, y), 0.0, found) == 0) return 0.0;
   const float j_centre = sol_sphere_area_density(found[0].xyz, g_radii[k]);
   if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
@@ -92,7 +95,7 @@ float glow_density(int k, int count, vec3 x, vec3 d, float L, vec3 y, float cos_
 }
 
 // The light of one sampled point of one glowing ball at the diffuse hit h
-// (normal n), along each minimising geodesic to it, weighted for the
+// (normal n), along each geodesic to it within reach, weighted for the
 // sampling (params.path.w: kPathSampling*). One call of march.
 vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
   const int pick = min(count - 1, int(path_uniform(state) * float(count)));
@@ -109,7 +112,7 @@ vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
   const vec3 normal_y = normalize(on_sphere.direction);  // the sphere's outward normal at y
   const float area = 1.0 / (float(count) * 4.0 * SOL_PI * max(sol_sphere_area_density(w, g_radii[k]), 1e-30));
   vec4 ways[SOL_FOUND_SLOTS];
-  const int paths = sol_connections(seen_from(h.q, y), 0.0, ways);
+  const int paths = sol_connections(seen_from(h.q, y), params.objects[k].color.w, ways);
   vec3 light = vec3(0.0);
   for (int j = 0; j < paths; ++j) {
     const vec3 d = ways[j].xyz;

@@ -34,7 +34,7 @@
   X(fog,            HAS_FOG,              4)                                                                \
   X(cutout,         HAS_CUTOUT,           5)  /* cutout planes */                                             \
   X(exact_lights,   HAS_EXACT_LIGHTS,     9)  /* exact point lights */                                        \
-  X(light_reach,    HAS_LIGHT_REACH,      17) /* exact point lights with a reach: the longer connections */   \
+  X(light_reach,    HAS_LIGHT_REACH,      17) /* exact point lights or glowing balls with a reach: the longer connections */   \
   X(shadows,        HAS_SHADOWS,          15) /* exact point lights with shadows */ \
   X(mirrors,        HAS_MIRRORS,          43) /* mirrors: rays go on along the reflected geodesic */ \
   X(emission,       HAS_EMISSION,         44) /* glowing objects */

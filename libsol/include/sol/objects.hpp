@@ -76,6 +76,12 @@ struct SceneObject {
   /// along the geodesic reflected in the surface (the rest is diffuse, with
   /// albedo `color`); up to World::max_bounces reflections.
   double mirror = 0.0;
+  /// A glowing exact ball's reach for the path tracer's next-event
+  /// estimation, in [0, 10]: a diffuse point is connected to a sampled
+  /// point of its sphere along every geodesic up to their distance plus
+  /// this (0: the minimising ones alone). Sol only (in a quotient paths
+  /// reach glowing balls by reflection sampling).
+  double glow_reach = 0.0;
 };
 
 /// The kinds that close up in the compact quotient (planes z = c, balls,

@@ -133,7 +133,7 @@ SOL_CONSTANT(int, kGroupSize, 8);
 /// An object's appearance and kind.
 struct Object {
   vec4 plane;     ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
-  vec4 color;     ///< rgb: linear colour
+  vec4 color;     ///< rgb: linear colour; w: a glowing exact ball's glow_reach (next-event estimation)
   vec4 material;  ///< rgb: emitted radiance (linear); w: mirror, the specular reflectance
 };
 
