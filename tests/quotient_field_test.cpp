@@ -80,8 +80,8 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
   const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   auto in_d = [&](double s, double r, double z) { return s * g1 + r * g2 + dvec3(0, 0, z * h * (1 - 1e-12)); };
   std::vector<dvec3> samples;
-  for (int i = 0; i < sol::test::sweep_count(3000, 2); ++i) samples.push_back(in_d(unit(rng), unit(rng), unit(rng)));
-  for (int i = 0; i < sol::test::sweep_count(150, 2); ++i) {
+  for (int i = 0; i < sol::test::sweep_count(3000, 4); ++i) samples.push_back(in_d(unit(rng), unit(rng), unit(rng)));
+  for (int i = 0; i < sol::test::sweep_count(150, 4); ++i) {
     const double s = unit(rng), r = unit(rng), z = unit(rng);
     for (const dvec3& f : {in_d(0, r, z), in_d(1, r, z), in_d(s, 0, z), in_d(s, 1, z), in_d(s, r, 0), in_d(s, r, 1),
                            in_d(0, 0, z), in_d(1, 1, z), in_d(0, r, 1), in_d(s, 1, 0)}) {
@@ -152,7 +152,7 @@ TEST(QuotientField, NeverOverestimatesAndNamesTheNearestImages) {
     std::printf("world %zu: %zu images, %d of %zu samples near; mean reach %.3f, a non-candidate's bound at least "
                 "%.2e beyond it\n",
                 w, listed.size(), near, samples.size(), reach_sum / static_cast<double>(samples.size()), tightest);
-    EXPECT_GT(near, sol::test::sweep_count(100, 2));
+    EXPECT_GT(near, sol::test::sweep_count(100, 4));
     // Useful: the reach is, on average, well beyond kFieldNear (measured
     // mean reach: printed above).
     EXPECT_GT(reach_sum / static_cast<double>(samples.size()), sol::QuotientField::kNear + 0.05);

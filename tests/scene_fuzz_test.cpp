@@ -23,7 +23,7 @@
 
 namespace {
 
-constexpr int kDefaultMutants = 4000;
+constexpr int kDefaultMutants = 2500;
 
 std::vector<std::string> seed_corpus() {
   std::vector<std::string> seeds;

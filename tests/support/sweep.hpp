@@ -47,7 +47,7 @@ inline std::size_t sweep_stride(std::size_t sanitized) {
 
 /// Every sweep_stride(stride)-th case, from the first.
 template <class T>
-std::vector<T> sweep(const std::vector<T>& cases, std::size_t stride = 4) {
+std::vector<T> sweep(const std::vector<T>& cases, std::size_t stride = 8) {
   const std::size_t step = sweep_stride(stride);
   if (step <= 1) return cases;
   std::vector<T> kept;
