@@ -1,6 +1,7 @@
 #include "sol/vk/march.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -251,7 +252,7 @@ glm::ivec4 path_uniform(std::uint64_t seed, int index, PathSampling sampling) {
 // columns within its offset of it): only then can a ray be inside one (a
 // ray that starts outside every solid meets a surface first), so only
 // such frames take the solids' inside code (HAS_INSIDE). In the quotient
-// the eye's point of D against every image. An exact ball's signed
+// the eye's point of D against the images near it. An exact ball's signed
 // distance is solved only within its band of the sphere
 // (sol::sdf_ball_exact): a frame costs a bound per solid and eye.
 bool eye_inside_solid(const MarchWorld& prepared, std::span<const Camera> eyes) {
@@ -259,8 +260,17 @@ bool eye_inside_solid(const MarchWorld& prepared, std::span<const Camera> eyes) 
   for (const Camera& eye : eyes) {
     const double reach = std::abs(eye.eye_offset);
     if (prepared.features().quotient) {
+      // The images within the field's reach of p are its cell's candidates
+      // (sol::QuotientField): those alone, unless the eye's offset is longer.
       const glm::dvec3 p = prepared.lattice()->teleport(eye.position).point;
-      for (const MarchObject& image : prepared.objects()) {
+      const QuotientField& field = *prepared.field();
+      std::vector<int> all;
+      if (reach >= field.reach(p)) {
+        all.resize(prepared.objects().size());
+        std::iota(all.begin(), all.end(), 0);
+      }
+      for (int k : all.empty() ? field.candidates(p) : all) {
+        const MarchObject& image = prepared.objects()[static_cast<std::size_t>(k)];
         if (is_solid(image.shape) && object_distance(image, p) < reach) return true;
       }
     } else {
