@@ -1173,34 +1173,39 @@ TEST(Kernel, PathsRecordedOneByOneAreTheRenderedImage) {
 
 // Next-event estimation to a glowing exact ball on the kernel (the CPU's
 // glow_sample: a point of the exact sphere, connected by the connection
-// solver, visible by a march) with the same random numbers as the CPU: for
-// each of the three samplings, most pixels agree to float rounding with
-// the CPU's image of the same seed (as above: at least 80 %), and the
-// three kernel images agree with each other as unbiased estimators of one
-// image (their mean difference within 3 standard errors, as the CPU's
-// Path.ReflectionSamplingGlowSamplingAndBothAgree).
+// solver, visible by a march) with the same random numbers as the CPU, in
+// Sol and in the golden quotient (where the targets are the ball's images
+// around D): for each of the three samplings, most pixels agree to float
+// rounding with the CPU's image of the same seed (as above: at least
+// 80 %), and the three kernel images agree with each other as unbiased
+// estimators of one image (their mean difference within 3 standard
+// errors, as the CPU's Path.ReflectionSamplingGlowSamplingAndBothAgree).
 TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
-  const sol::Scene scene = sol::test::glow_over_plane();
   sol::vk::MarchRenderer renderer(vk_context());
-  std::vector<sol::RenderResult> images;
-  for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
-    const sol::RenderOptions settings{.width = 10, .height = 10, .samples = 4, .transport = sol::Transport::Path,
-                                      .seed = 21, .path_sampling = sampling};
-    images.push_back(sol::render_scene(renderer, scene, settings));
-    const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-    const std::size_t n = cpu.rgba.size() / 4;
-    const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
-    std::printf("glow, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", static_cast<int>(sampling), agree, n);
-    EXPECT_GE(agree, n * 8 / 10) << static_cast<int>(sampling);
+  for (const bool golden : {false, true}) {
+    const sol::Scene scene = golden ? sol::test::glow_over_plane_golden() : sol::test::glow_over_plane();
+    const char* name = golden ? "golden" : "Sol";
+    std::vector<sol::RenderResult> images;
+    for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
+      const sol::RenderOptions settings{.width = 10, .height = 10, .samples = 4, .transport = sol::Transport::Path,
+                                        .seed = 21, .path_sampling = sampling};
+      images.push_back(sol::render_scene(renderer, scene, settings));
+      const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+      const std::size_t n = cpu.rgba.size() / 4;
+      const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
+      std::printf("glow in %s, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", name,
+                  static_cast<int>(sampling), agree, n);
+      EXPECT_GE(agree, n * 8 / 10) << name << " " << static_cast<int>(sampling);
+    }
+    auto agree = [&](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
+      const sol::test::MeanAndError d = sol::test::red_difference(a, b);
+      std::printf("kernel in %s, %s: mean difference %.4f, standard error %.4f\n", name, what, d.mean, d.error);
+      EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << name << " " << what;
+    };
+    agree(images[0], images[1], "combined - reflection");
+    agree(images[0], images[2], "combined - glow");
+    agree(images[1], images[2], "reflection - glow");
   }
-  auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
-    std::printf("kernel %s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  };
-  agree(images[0], images[1], "combined - reflection");
-  agree(images[0], images[2], "combined - glow");
-  agree(images[1], images[2], "reflection - glow");
   expect_no_validation_errors();
 }
 

@@ -1853,19 +1853,47 @@ TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
   EXPECT_GT(lit, 0.0);
   // Convergence.
   const sol::RenderResult reference = render(sol::PathSampling::Combined, 32, 4);
-  auto median_error = [&](const sol::RenderResult& a) {
-    std::vector<double> errors;
-    for (std::size_t k = 0; k < a.object.size(); ++k) {
-      if (reference.object[k] == 1.0f) errors.push_back(std::abs(a.rgba[4 * k] - reference.rgba[4 * k]));  // the plane
-    }
-    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2), errors.end());
-    return errors[errors.size() / 2];
-  };
+  auto median_error = [&](const sol::RenderResult& a) { return sol::test::median_red_error_on(a, reference, 1); };
   const double two = median_error(render(sol::PathSampling::Combined, 2, 5));
   const double eight = median_error(render(sol::PathSampling::Combined, 8, 6));
   std::printf("median error against 32 samples: %.4f at 2, %.4f at 8 (ratio %.2f)\n", two, eight, two / eight);
   EXPECT_GT(two / eight, 1.3);
   EXPECT_LT(two / eight, 2.6);
+}
+
+// The same in the golden quotient (glow_over_plane_golden): next-event
+// estimation picks one of the glowing ball's images around D (the nearer
+// the likelier: glow_pick_weight) and joins the diffuse point of D to a
+// point of its sphere in the cover. The three estimators agree within 3
+// standard errors of their pixel-by-pixel differences, and next-event
+// estimation helps: against a 32-sample reference the combined image's
+// median error at 8 samples is below reflection sampling's alone
+// (measured: 0.084 against 0.187, ratio 2.2; with next-event estimation
+// off in the quotient the two are one estimator: 1.2). The sanitizers run
+// the code paths at 2 samples, without the ratio.
+TEST(Path, GlowSamplingInTheQuotientAgreesAndHelps) {
+  const sol::Scene scene = sol::test::glow_over_plane_golden();
+  auto render = [&](sol::PathSampling sampling, int samples, std::uint64_t seed) {
+    return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
+  };
+  const int samples = sol::test::kSanitizedBuild ? 2 : 8;
+  const sol::RenderResult both = render(sol::PathSampling::Combined, samples, 1);
+  const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, samples, 2);
+  const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, samples, 3);
+  for (const auto& [a, b, what] : {std::tuple{&both, &reflection, "combined - reflection"},
+                                   std::tuple{&both, &glow, "combined - glow"},
+                                   std::tuple{&reflection, &glow, "reflection - glow"}}) {
+    const sol::test::MeanAndError d = sol::test::red_difference(*a, *b);
+    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
+    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
+  }
+  if (sol::test::kSanitizedBuild) return;
+  const sol::RenderResult reference = render(sol::PathSampling::Combined, 32, 4);
+  auto median_error = [&](const sol::RenderResult& a) { return sol::test::median_red_error_on(a, reference, 1); };
+  const double combined = median_error(both), alone = median_error(reflection);
+  std::printf("median error at 8 samples: %.4f combined, %.4f by reflection alone (ratio %.2f)\n", combined, alone,
+              alone / combined);
+  EXPECT_GT(alone / combined, 1.3);
 }
 
 // Next-event estimation along every geodesic within the glowing ball's

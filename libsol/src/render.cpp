@@ -574,36 +574,58 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
   return glm::normalize(x * t + y * b + std::sqrt(std::max(0.0, 1.0 - x * x - y * y)) * n);
 }
 
-// Next-event estimation to glowing exact balls (in Sol; a quotient's paths
-// reach them by reflection alone). A glowing ball's sphere S = exp_c(r S²)
-// is sampled by a direction w at its centre, uniform on S², whose point y =
-// exp_c(r w) has the area density 1 / (4π J_c(w, r)), J the spreading of
-// the geodesics from c (sol::sphere_area_density). y is connected to the
-// diffuse point x by its minimising geodesics, or with the ball's
-// glow_reach by every geodesic up to their distance plus that reach, each
-// a direction d at x and a length L, and each is one way light comes
-// (next-event estimation picks it with the density below; a longer one is
-// left to reflection sampling, whose weight there is 1): its geometric term is
-// cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen from x, equal to
-// that seen from y: reciprocity), where plain space has 1 / |x - y|². A
-// connection counts where the march from x along d first meets that ball
-// at arc length L. The density of d in solid angle at x is then
-// p_pick p_area J_x / cos θ_y, which weighs both strategies (the balance
-// heuristic) when they are combined.
+// Next-event estimation to glowing exact balls. A glowing ball's sphere S
+// = exp_c(r S²) is sampled by a direction w at its centre, uniform on S²,
+// whose point y = exp_c(r w) has the area density 1 / (4π J_c(w, r)), J
+// the spreading of the geodesics from c (sol::sphere_area_density). y is
+// connected to the diffuse point x by its minimising geodesics, or with
+// the ball's glow_reach by every geodesic up to their distance plus that
+// reach, each a direction d at x and a length L, and each is one way light
+// comes (next-event estimation picks it with the density below; a longer
+// one is left to reflection sampling, whose weight there is 1): its
+// geometric term is cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen
+// from x, equal to that seen from y: reciprocity), where plain space has
+// 1 / |x - y|². A connection counts where the march from x along d first
+// meets that ball at arc length L. The density of d in solid angle at x is
+// then p_pick p_area J_x / cos θ_y, which weighs both strategies (the
+// balance heuristic) when they are combined.
+//
+// The targets: in Sol the glowing balls; in a quotient each glowing ball's
+// images around D (MarchWorld::objects), in the cover, whose points x of D
+// join by geodesics of the cover. One is picked with a probability that
+// depends on x alone (glow_pick_weight: about its solid angle), so that
+// the density of any direction can be evaluated again at a later hit. A
+// geodesic to an image no target lists is reflection sampling's alone.
 struct GlowingBall {
-  std::size_t object;
-  Ball ball;
+  std::size_t object;  // the scene object
+  Ball ball;           // in world coordinates (the quotient: one image of it, in the cover)
   double reach = 0.0;  // SceneObject::glow_reach: the connections up to the distance plus this
 };
 
-std::vector<GlowingBall> glowing_balls(const World& world) {
+std::vector<GlowingBall> glowing_balls(const MarchWorld& prepared) {
+  const World& world = prepared.world();
   std::vector<GlowingBall> out;
-  if (world.quotient != Quotient::None) return out;
-  for (std::size_t k = 0; k < world.objects.size(); ++k) {
-    const Ball* b = std::get_if<Ball>(&world.objects[k].shape);
-    if (b && b->exact && world.objects[k].emission != glm::dvec3(0.0)) out.push_back({k, *b, world.objects[k].glow_reach});
+  auto glowing = [&](std::size_t k) { return world.objects[k].emission != glm::dvec3(0.0); };
+  for (const MarchObject& o : prepared.objects()) {
+    const Ball* b = std::get_if<Ball>(&o.shape);
+    if (b && b->exact && glowing(o.owner)) out.push_back({o.owner, *b, world.objects[o.owner].glow_reach});
   }
   return out;
+}
+
+// The weight with which next-event estimation from x picks target g, about
+// the solid angle it fills: r² / (r² + |x⁻¹c|²), x⁻¹c the centre seen
+// from x (kernel: glow_pick_weight in march/paths.glsl).
+double glow_pick_weight(const GlowingBall& g, const glm::dvec3& x) {
+  const glm::dvec3 v = multiply(inverse(x), g.ball.center);
+  const double r2 = g.ball.radius * g.ball.radius;
+  return r2 / (r2 + glm::dot(v, v));
+}
+
+double glow_pick_total(const std::vector<GlowingBall>& glowing, const glm::dvec3& x) {
+  double total = 0.0;
+  for (const GlowingBall& g : glowing) total += glow_pick_weight(g, x);
+  return total;
 }
 
 // The geodesics next-event estimation connects x to y of glowing ball g
@@ -620,18 +642,33 @@ double cos_at_sphere(const Ball& ball, const glm::dvec3& d, double L, const glm:
 }
 
 // The density, in solid angle at x, with which next-event estimation picks
-// the direction d whose geodesic first meets glowing ball `g` at y after L
-// (0 where the geodesic from x to y along d is longer than the distance
-// plus the ball's reach: next-event estimation never takes it).
-double glow_density(const GlowingBall& g, std::size_t count, const glm::dvec3& x, const glm::dvec3& d, double L,
-                    const glm::dvec3& y) {
+// the direction d whose geodesic first meets the glowing scene object
+// `object` after L: at y = x exp(L d), on the sphere of one of its targets
+// (0 where none lists y, or where that geodesic is longer than the
+// distance plus the ball's reach: next-event estimation never takes it).
+double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object, const glm::dvec3& x,
+                    const glm::dvec3& d, double L) {
   try {
-    if (L > (distance(x, y) + g.reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
-    const std::vector<Connection> from_centre = minimising_geodesics(g.ball.center, y);
-    const double j_centre = sphere_area_density(glm::normalize(from_centre.front().direction), g.ball.radius);
-    const double cos_y = cos_at_sphere(g.ball, d, L, y);
+    const glm::dvec3 y = multiply(x, ClosedFormGeodesic<double>(d).at(L).position);
+    // The target whose sphere holds y: the object's own in Sol, its nearest image in a quotient.
+    const GlowingBall* g = nullptr;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const GlowingBall& b : glowing) {
+      if (b.object != object) continue;
+      const glm::dvec3 v = multiply(inverse(b.ball.center), y);
+      if (glm::dot(v, v) < nearest) {
+        nearest = glm::dot(v, v);
+        g = &b;
+      }
+    }
+    if (!g || L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
+    const std::vector<Connection> from_centre = minimising_geodesics(g->ball.center, y);
+    if (std::abs(from_centre.front().length - g->ball.radius) > 1e-3 * std::max(1.0, g->ball.radius)) return 0.0;
+    const double j_centre = sphere_area_density(glm::normalize(from_centre.front().direction), g->ball.radius);
+    const double cos_y = cos_at_sphere(g->ball, d, L, y);
     if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
-    return sphere_area_density(d, L) / (static_cast<double>(count) * 4.0 * std::numbers::pi * j_centre * cos_y);
+    const double pick = glow_pick_weight(*g, x) / glow_pick_total(glowing, x);
+    return pick * sphere_area_density(d, L) / (4.0 * std::numbers::pi * j_centre * cos_y);
   } catch (const OutOfRange&) {
     return 0.0;
   }
@@ -644,14 +681,20 @@ double glow_density(const GlowingBall& g, std::size_t count, const glm::dvec3& x
 glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, const MarchHit& hit,
                        const glm::dvec3& n, PathSampling sampling, PathRandom& random) {
   const World& world = prepared.world();
-  const std::size_t pick = std::min(glowing.size() - 1, static_cast<std::size_t>(random.uniform() * static_cast<double>(glowing.size())));
+  const double total = glow_pick_total(glowing, hit.point);
+  double left = random.uniform() * total;
+  std::size_t pick = 0;
+  while (pick + 1 < glowing.size() && left >= glow_pick_weight(glowing[pick], hit.point)) {
+    left -= glow_pick_weight(glowing[pick], hit.point);
+    ++pick;
+  }
   const GlowingBall& g = glowing[pick];
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
   const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
   const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
   const glm::dvec3 y = multiply(g.ball.center, ClosedFormGeodesic<double>(w).at(g.ball.radius).position);
-  const double area = 1.0 / (static_cast<double>(glowing.size()) * 4.0 * std::numbers::pi *
-                             std::max(sphere_area_density(w, g.ball.radius), 1e-300));
+  const double area = glow_pick_weight(g, hit.point) / total /
+                      (4.0 * std::numbers::pi * std::max(sphere_area_density(w, g.ball.radius), 1e-300));
   glm::dvec3 light(0.0);
   std::vector<Connection> ways;
   try {
@@ -698,7 +741,7 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
 glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& random, PathSampling sampling) {
   const World& world = prepared.world();
   const std::vector<GlowingBall> glowing =
-      sampling == PathSampling::ReflectionOnly ? std::vector<GlowingBall>() : glowing_balls(world);
+      sampling == PathSampling::ReflectionOnly ? std::vector<GlowingBall>() : glowing_balls(prepared);
   glm::dvec3 color(0.0), weight(1.0);
   // The last hit, where it was diffuse (for the emission's weight at the next).
   bool after_diffuse = false;
@@ -712,13 +755,13 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& r
     weight *= transmittance;
     if (o.emission != glm::dvec3(0.0)) {
       double share = 1.0;
-      const auto g = std::find_if(glowing.begin(), glowing.end(),
-                                  [&](const GlowingBall& b) { return b.object == static_cast<std::size_t>(hit.object - 1); });
-      if (after_diffuse && g != glowing.end()) {
+      const auto object = static_cast<std::size_t>(hit.object - 1);
+      const bool target = std::any_of(glowing.begin(), glowing.end(), [&](const GlowingBall& b) { return b.object == object; });
+      if (after_diffuse && target) {
         if (sampling == PathSampling::GlowOnly) {
           share = 0.0;  // next-event estimation counted it
         } else {
-          const double glow = glow_density(*g, glowing.size(), from, from_direction, hit.distance, hit.point);
+          const double glow = glow_density(glowing, object, from, from_direction, hit.distance);
           const double reflection = from_cosine / std::numbers::pi;
           share = reflection / (reflection + glow);
         }

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include <sol/sol.hpp>
 
@@ -53,6 +54,20 @@ inline std::size_t pixels_agreeing(const sol::RenderResult& a, const sol::Render
   return agree;
 }
 
+/// The median over the pixels where `reference` shows scene object
+/// `object` (1-based, RenderResult::object) of |a - reference| in red: an
+/// image's error robust to a path's long tail (a rare path that finds a
+/// glow from close by moves an RMS by a factor of 2 between runs).
+inline double median_red_error_on(const sol::RenderResult& a, const sol::RenderResult& reference, int object) {
+  std::vector<double> errors;
+  for (std::size_t k = 0; k < a.object.size(); ++k) {
+    if (reference.object[k] == static_cast<float>(object)) errors.push_back(std::abs(a.rgba[4 * k] - reference.rgba[4 * k]));
+  }
+  if (errors.empty()) return 0.0;
+  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2), errors.end());
+  return errors[errors.size() / 2];
+}
+
 /// Path tracing options: `samples` paths a pixel from `seed`, by `sampling`.
 inline sol::RenderOptions path_options(int width, int height, int samples, std::uint64_t seed,
                                        sol::PathSampling sampling = sol::PathSampling::Combined) {
@@ -78,6 +93,22 @@ inline sol::Scene glow_over_plane() {
   return s;
 }
 
+/// The same in the golden quotient: a small glowing exact ball over a
+/// diffuse torus fibre z = 0.1, each seen again in its images around D.
+inline sol::Scene glow_over_plane_golden() {
+  sol::Scene s;
+  s.quotient = sol::Quotient::Golden;
+  s.camera = {{0.6, 0.5, 0.85}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 80.0};
+  sol::SceneObject glow{sol::Ball{{0.5, 0.4, 0.45}, 0.12, true}, {0.5, 0.5, 0.5}};
+  glow.emission = {4.0, 3.0, 2.0};
+  s.objects.clear();  // (one by one: GCC's -Wmaybe-uninitialized misreads a list of them here)
+  s.objects.push_back({sol::PlaneZ{0.1}, {0.7, 0.7, 0.7}});
+  s.objects.push_back(glow);
+  s.lights.clear();
+  s.max_distance = 6.0;
+  return s;
+}
+
 /// A glowing exact ball (radius 0.5 at (5, 5, 0)) about 6 from a diffuse
 /// ball (radius 0.5 at the origin) seen from between them, with
 /// next-event estimation's `reach` (SceneObject::glow_reach). At that
@@ -90,7 +121,9 @@ inline sol::Scene far_glow(double reach) {
   sol::SceneObject glow{sol::Ball{{5.0, 5.0, 0.0}, 0.5, true}, {0.5, 0.5, 0.5}};
   glow.emission = {40.0, 40.0, 40.0};
   glow.glow_reach = reach;
-  s.objects = {{sol::Ball{{0.0, 0.0, 0.0}, 0.5, false}, {0.7, 0.7, 0.7}}, glow};
+  s.objects.clear();  // (one by one, as in glow_over_plane_golden)
+  s.objects.push_back({sol::Ball{{0.0, 0.0, 0.0}, 0.5, false}, {0.7, 0.7, 0.7}});
+  s.objects.push_back(glow);
   s.lights.clear();
   s.max_distance = 12.0;
   return s;

@@ -54,22 +54,47 @@ vec3 cosine_direction(vec3 n, inout uvec2 state) {
   return normalize(x * t + y * b + sqrt(max(0.0, 1.0 - x * x - y * y)) * n);
 }
 
-// ---- Next-event estimation to glowing exact balls (in Sol; glow_sample
-// and glow_density in libsol/src/render.cpp, with the same numbers): a
-// point y = c·exp(r w) of a glowing ball's sphere, w uniform on S² (area
-// density 1 / (4π J_c(w, r))), connected to the diffuse point x by its
-// geodesics up to the distance plus the ball's glow_reach
+// ---- Next-event estimation to glowing exact balls (glow_sample and
+// glow_density in libsol/src/render.cpp, with the same numbers): a target
+// (in Sol a glowing ball, in a quotient one of its images around D) picked
+// by glow_pick_weight at x, a point y = c·exp(r w) of its sphere, w uniform
+// on S² (area density 1 / (4π J_c(w, r))), connected to the diffuse point x
+// by its geodesics up to the distance plus the ball's glow_reach
 // (params.objects[k].color.w; sol_connections, 0: the minimisers), each
 // weighed by its own J (sol_sphere_area_density) and counted where the
 // march along it first meets that ball at its length; combined with
 // reflection sampling by the balance heuristic.
-const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS && !QUOTIENT;
+const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS;
 
-bool glowing(int k) { return g_types[k] == kObjectExactBall && params.objects[k].material.rgb != vec3(0.0); }
+// Scene object k (from the uniforms: a quotient's march loads no g_types).
+bool glowing(int k) {
+  return int(params.objects[k].plane.x) == kObjectExactBall && params.objects[k].material.rgb != vec3(0.0);
+}
+
+// The targets: Sol's objects, or the quotient's images.
+int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
+
+// Target i: whether it is one, and its scene object, centre (march
+// coordinates) and radius.
+bool glow_target(int i, out int object, out vec3 centre, out float radius) {
+  if (QUOTIENT) {
+    const Image m = images[i];
+    object = int(m.info.z);
+    centre = m.geometry.xyz;
+    radius = m.info.y;
+    return image_type(m) == kObjectExactBall && params.objects[object].material.rgb != vec3(0.0);
+  }
+  object = i;
+  centre = g_relative[i].xyz;
+  radius = g_radii[i];
+  return glowing(i);
+}
 
 int glowing_count() {
-  int n = 0;
-  for (int k = 0; k < g_count; ++k) n += glowing(k) ? 1 : 0;
+  int n = 0, object;
+  vec3 centre;
+  float radius;
+  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, radius) ? 1 : 0;
   return n;
 }
 
@@ -80,37 +105,83 @@ vec3 seen_from(vec3 q, vec3 p) {
   return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
 }
 
+// The weight with which x picks a target of centre c and radius r, about
+// its solid angle: r² / (r² + |x⁻¹c|²) (glow_pick_weight).
+float glow_pick_weight(vec3 x, vec3 c, float r) {
+  const vec3 v = seen_from(x, c);
+  return r * r / (r * r + dot(v, v));
+}
+
+float glow_pick_total(vec3 x) {
+  float total = 0.0, radius;
+  int object;
+  vec3 centre;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (glow_target(i, object, centre, radius)) total += glow_pick_weight(x, centre, radius);
+  }
+  return total;
+}
+
 // The density in solid angle at x with which glow_sample picks direction d
-// whose geodesic first meets glowing ball k at y after L (cos_y: the
-// cosine there with its normal): 0 where that geodesic is longer than the
+// whose geodesic first meets the glowing scene object k after L, at y on
+// the sphere of one of its targets (the nearest; in Sol the hit point, in
+// a quotient x exp(L d) in the cover; cos_y: the cosine there with its
+// normal): 0 where none holds y, or where that geodesic is longer than the
 // distance plus the ball's reach.
-float glow_density(int k, int count, vec3 x, vec3 d, float L, vec3 y, float cos_y) {
+float glow_density(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y) {
+  const vec3 y = QUOTIENT ? sol_translate(x, sol_exp(d, L).position) : hit;
+  vec3 c = vec3(0.0), centre;
+  float r = 0.0, radius, nearest = 1e30;
+  int object;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (!glow_target(i, object, centre, radius) || object != k) continue;
+    const vec3 v = seen_from(centre, y);
+    if (dot(v, v) < nearest) {
+      nearest = dot(v, v);
+      c = centre;
+      r = radius;
+    }
+  }
   vec4 found[SOL_FOUND_SLOTS];
   const float reach = params.objects[k].color.w;
-  if (sol_connections(seen_from(x, y), 0.0, found) == 0 || L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) return 0.0;
-  if (sol_connections(seen_from(g_relative[k].xyz, y), 0.0, found) == 0) return 0.0;
-  const float j_centre = sol_sphere_area_density(found[0].xyz, g_radii[k]);
+  if (!(nearest < 1e30) || sol_connections(seen_from(x, y), 0.0, found) == 0 ||
+      L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) {
+    return 0.0;
+  }
+  if (sol_connections(seen_from(c, y), 0.0, found) == 0 || abs(found[0].w - r) > 1e-3 * max(1.0, r)) return 0.0;
+  const float j_centre = sol_sphere_area_density(found[0].xyz, r);
   if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
-  return sol_sphere_area_density(d, L) / (float(count) * 4.0 * SOL_PI * j_centre * cos_y);
+  const float pick = glow_pick_weight(x, c, r) / glow_pick_total(x);
+  return pick * sol_sphere_area_density(d, L) / (4.0 * SOL_PI * j_centre * cos_y);
 }
 
 // The light of one sampled point of one glowing ball at the diffuse hit h
 // (normal n), along each geodesic to it within reach, weighted for the
 // sampling (params.path.w: kPathSampling*). One call of march.
-vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
-  const int pick = min(count - 1, int(path_uniform(state) * float(count)));
-  int k = 0, seen = -1;
-  for (int j = 0; j < g_count; ++j) {
-    seen += glowing(j) ? 1 : 0;
-    if (glowing(j) && seen == pick) k = j;
+vec3 glow_sample(MarchHit h, Surface f, vec3 n, inout uvec2 state) {
+  const float total = glow_pick_total(h.q);
+  float left = path_uniform(state) * total, weight_k = 0.0;
+  int k = -1, object;
+  vec3 c = vec3(0.0), centre;
+  float r = 0.0, radius;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (!glow_target(i, object, centre, radius)) continue;
+    const float w = glow_pick_weight(h.q, centre, radius);
+    if (k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
+      k = object;
+      c = centre;
+      r = radius;
+      weight_k = w;
+    }
+    left -= w;
   }
   const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
   const float s = sqrt(max(0.0, 1.0 - u * u));
   const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
-  const SolForward on_sphere = sol_exp(w, g_radii[k]);
-  const vec3 y = sol_translate(g_relative[k].xyz, on_sphere.position);
+  const SolForward on_sphere = sol_exp(w, r);
+  const vec3 y = sol_translate(c, on_sphere.position);
   const vec3 normal_y = normalize(on_sphere.direction);  // the sphere's outward normal at y
-  const float area = 1.0 / (float(count) * 4.0 * SOL_PI * max(sol_sphere_area_density(w, g_radii[k]), 1e-30));
+  const float area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
   vec4 ways[SOL_FOUND_SLOTS];
   const int paths = sol_connections(seen_from(h.q, y), params.objects[k].color.w, ways);
   vec3 light = vec3(0.0);
@@ -119,7 +190,8 @@ vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
     const float L = ways[j].w, cos_x = dot(n, d);
     if (!(L > 0.0) || cos_x <= 0.0) continue;
     const MarchHit to = march(h.q, d, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
-    if (to.k != k || abs(to.t - L) > 1e-3 * max(1.0, L)) continue;  // something, or the ball's nearer side, is in the way
+    const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
+    if (met != k || abs(to.t - L) > 1e-3 * max(1.0, L)) continue;  // something, or the ball's nearer side, is in the way
     const float cos_y = abs(dot(sol_exp(d, L).direction, normal_y));
     const float spreading = sol_sphere_area_density(d, L);
     if (!(spreading > 0.0)) continue;
@@ -140,8 +212,8 @@ vec3 glow_sample(MarchHit h, Surface f, vec3 n, int count, inout uvec2 state) {
 // next-event estimation (light_received: every geodesic to an exact light
 // with its 1/J, and shadows) times the albedo, and the path goes on along a
 // cosine-distributed direction, its weight times the albedo. Russian
-// roulette from the fourth hit. No ambient light. Glowing exact balls (in
-// Sol) by next-event estimation too (glow_sample), the emission a path
+// roulette from the fourth hit. No ambient light. Glowing exact balls by
+// next-event estimation too (glow_sample), the emission a path
 // meets after a diffuse bounce weighed by the balance heuristic. One call
 // of march here and one in glow_sample: the driver inlines each call, each
 // holding a march (see radiance).
@@ -168,7 +240,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         if (params.path.w == kPathSamplingGlowOnly) {
           share = 0.0;  // next-event estimation counted it
         } else {
-          const float glow = glow_density(f.object, glow_count, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
+          const float glow = glow_density(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
           const float reflection = from_cosine / SOL_PI;
           share = reflection / (reflection + glow);
         }
@@ -183,7 +255,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
     } else {
       const vec3 a = albedo(f.object, f.uv);
       if (light_count > 0) color += weight * a * light_received(n, h.q, eye, march_leaving(f.object, f.inside));
-      if (GLOW_SAMPLING && glow_count > 0) color += weight * a * glow_sample(h, f, n, glow_count, state);
+      if (GLOW_SAMPLING && glow_count > 0) color += weight * a * glow_sample(h, f, n, state);
       weight *= a;
       next = cosine_direction(n, state);
       after_diffuse = true;
