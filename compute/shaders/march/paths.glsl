@@ -155,20 +155,37 @@ float glow_density(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y) {
   return pick * sol_sphere_area_density(d, L) / (4.0 * SOL_PI * j_centre * cos_y);
 }
 
-// The light of one sampled point of one glowing ball at the diffuse hit h
-// (normal n), along each geodesic to it within reach, weighted for the
-// sampling (params.path.w: kPathSampling*). One call of march.
-vec3 glow_sample(MarchHit h, Surface f, vec3 n, inout uvec2 state) {
+// One sampled point of one glowing ball seen from a diffuse hit: the
+// ball (its scene object k), the normal at x and at y, the area density,
+// the path's weight times the albedo there, and the geodesics to y within
+// reach, which path_radiance marches one by one (glow_connection).
+struct GlowSample {
+  int k;
+  vec3 n;         // the normal at x, facing the ray that came
+  vec3 normal_y;  // the sphere's outward normal at y
+  float area;     // the density of y per unit area (with the pick's)
+  vec3 factor;    // the path's weight times the albedo at x
+  int count;      // geodesics in `ways`
+  vec4 ways[SOL_FOUND_SLOTS];
+};
+
+// Draws a target and a point y of its sphere at the diffuse hit h (normal
+// n), and finds the geodesics from h to y within its reach.
+GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
+  GlowSample g;
+  g.n = n;
+  g.factor = factor;
   const float total = glow_pick_total(h.q);
   float left = path_uniform(state) * total, weight_k = 0.0;
-  int k = -1, object;
+  int object;
   vec3 c = vec3(0.0), centre;
   float r = 0.0, radius;
+  g.k = -1;
   for (int i = 0; i < glow_target_slots(); ++i) {
     if (!glow_target(i, object, centre, radius)) continue;
     const float w = glow_pick_weight(h.q, centre, radius);
-    if (k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
-      k = object;
+    if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
+      g.k = object;
       c = centre;
       r = radius;
       weight_k = w;
@@ -180,29 +197,33 @@ vec3 glow_sample(MarchHit h, Surface f, vec3 n, inout uvec2 state) {
   const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
   const SolForward on_sphere = sol_exp(w, r);
   const vec3 y = sol_translate(c, on_sphere.position);
-  const vec3 normal_y = normalize(on_sphere.direction);  // the sphere's outward normal at y
-  const float area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
-  vec4 ways[SOL_FOUND_SLOTS];
-  const int paths = sol_connections(seen_from(h.q, y), params.objects[k].color.w, ways);
-  vec3 light = vec3(0.0);
-  for (int j = 0; j < paths; ++j) {
-    const vec3 d = ways[j].xyz;
-    const float L = ways[j].w, cos_x = dot(n, d);
-    if (!(L > 0.0) || cos_x <= 0.0) continue;
-    const MarchHit to = march(h.q, d, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
-    const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
-    if (met != k || abs(to.t - L) > 1e-3 * max(1.0, L)) continue;  // something, or the ball's nearer side, is in the way
-    const float cos_y = abs(dot(sol_exp(d, L).direction, normal_y));
-    const float spreading = sol_sphere_area_density(d, L);
-    if (!(spreading > 0.0)) continue;
-    float weight = 1.0;
-    if (params.path.w == kPathSamplingCombined) {
-      const float glow = area * spreading / max(cos_y, 1e-30), reflection = cos_x / SOL_PI;
-      weight = glow / (glow + reflection);
-    }
-    light += params.objects[k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * area));
+  g.normal_y = normalize(on_sphere.direction);
+  g.area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
+  g.count = sol_connections(seen_from(h.q, y), params.objects[g.k].color.w, g.ways);
+  return g;
+}
+
+// Whether geodesic j of g is one light can come along: of positive length,
+// leaving the surface's front (else it is not marched).
+bool glow_way_open(GlowSample g, int j) { return g.ways[j].w > 0.0 && dot(g.n, g.ways[j].xyz) > 0.0; }
+
+// The light along geodesic j of g, `to` the march along it: counted where
+// that march first meets the ball at the geodesic's length, weighted for the
+// sampling (params.path.w: kPathSampling*), times g.factor.
+vec3 glow_connection(GlowSample g, int j, MarchHit to) {
+  const vec3 d = g.ways[j].xyz;
+  const float L = g.ways[j].w, cos_x = dot(g.n, d);
+  const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
+  if (met != g.k || abs(to.t - L) > 1e-3 * max(1.0, L)) return vec3(0.0);  // something, or the ball's nearer side, is in the way
+  const float cos_y = abs(dot(sol_exp(d, L).direction, g.normal_y));
+  const float spreading = sol_sphere_area_density(d, L);
+  if (!(spreading > 0.0)) return vec3(0.0);
+  float weight = 1.0;
+  if (params.path.w == kPathSamplingCombined) {
+    const float glow = g.area * spreading / max(cos_y, 1e-30), reflection = cos_x / SOL_PI;
+    weight = glow / (glow + reflection);
   }
-  return light;
+  return g.factor * params.objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
 }
 
 // What one path from a camera ray's hit brings back (path_radiance in
@@ -213,10 +234,11 @@ vec3 glow_sample(MarchHit h, Surface f, vec3 n, inout uvec2 state) {
 // with its 1/J, and shadows) times the albedo, and the path goes on along a
 // cosine-distributed direction, its weight times the albedo. Russian
 // roulette from the fourth hit. No ambient light. Glowing exact balls by
-// next-event estimation too (glow_sample), the emission a path
-// meets after a diffuse bounce weighed by the balance heuristic. One call
-// of march here and one in glow_sample: the driver inlines each call, each
-// holding a march (see radiance).
+// next-event estimation too (glow_sample, glow_connection), the emission a
+// path meets after a diffuse bounce weighed by the balance heuristic.
+// One call of march, for the path's next segment and for the geodesics to
+// a glowing ball's point alike (those first, from the same hit): the driver
+// inlines each call, and each holds a march (see radiance).
 vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   uvec2 state = path_random_start(uvec2(params.path.xy), pixel, uint(params.path.z));
   const int light_count = min(int(params.shading.z), kMaxLights);
@@ -228,52 +250,75 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   float from_cosine = 0.0;
   const int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
   int depth = 0;
-  bool alive = true;
+  bool alive = true;  // the path goes on from h (h to shade, or its next segment to march)
+  bool fresh = true;  // h is a hit not yet shaded
+  GlowSample g;       // the hit's next-event estimation to a glowing ball: its geodesics from `way` on left to march
+  g.count = 0;
+  int way = 0;
+  vec3 next = vec3(0.0);
   do {
-    const vec4 material = params.objects[f.object].material;
-    const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-    color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
-    weight *= transmittance;
-    if (HAS_EMISSION) {
-      float share = 1.0;
-      if (GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
-        if (params.path.w == kPathSamplingGlowOnly) {
-          share = 0.0;  // next-event estimation counted it
-        } else {
-          const float glow = glow_density(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
-          const float reflection = from_cosine / SOL_PI;
-          share = reflection / (reflection + glow);
+    if (fresh) {
+      fresh = false;
+      const vec4 material = params.objects[f.object].material;
+      const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+      color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
+      weight *= transmittance;
+      if (HAS_EMISSION) {
+        float share = 1.0;
+        if (GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
+          if (params.path.w == kPathSamplingGlowOnly) {
+            share = 0.0;  // next-event estimation counted it
+          } else {
+            const float glow = glow_density(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
+            const float reflection = from_cosine / SOL_PI;
+            share = reflection / (reflection + glow);
+          }
+        }
+        color += weight * material.rgb * share;
+      }
+      const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+      g.count = 0;
+      way = 0;
+      if (HAS_MIRRORS && material.w > 0.0 && path_uniform(state) < material.w) {
+        next = normalize(h.u - 2.0 * dot(h.u, n) * n);
+        after_diffuse = false;
+      } else {
+        const vec3 a = albedo(f.object, f.uv);
+        if (light_count > 0) color += weight * a * light_received(n, h.q, eye, march_leaving(f.object, f.inside));
+        if (GLOW_SAMPLING && glow_count > 0) g = glow_sample(h, n, weight * a, state);
+        weight *= a;
+        next = cosine_direction(n, state);
+        after_diffuse = true;
+        from = h.q;
+        from_direction = next;
+        from_cosine = dot(n, next);
+      }
+      if (depth >= 3) {
+        const float q = min(0.95, max(weight.r, max(weight.g, weight.b)));
+        alive = q > 0.0 && path_uniform(state) < q;
+        weight /= max(q, 1e-30);
+      }
+    }
+    if (GLOW_SAMPLING) {
+      while (way < g.count && !glow_way_open(g, way)) ++way;
+    }
+    const bool to_glow = GLOW_SAMPLING && way < g.count;
+    if (to_glow || alive) {
+      const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, march_leaving(f.object, f.inside),
+                               kMarchShadow);
+      if (to_glow) {
+        color += glow_connection(g, way, m);
+        ++way;
+      } else {
+        h = m;
+        alive = h.k >= 0 && ++depth < kMaxDepth;
+        if (alive) {
+          f = surface_at(h);
+          fresh = true;
         }
       }
-      color += weight * material.rgb * share;
     }
-    const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
-    vec3 next;
-    if (HAS_MIRRORS && material.w > 0.0 && path_uniform(state) < material.w) {
-      next = normalize(h.u - 2.0 * dot(h.u, n) * n);
-      after_diffuse = false;
-    } else {
-      const vec3 a = albedo(f.object, f.uv);
-      if (light_count > 0) color += weight * a * light_received(n, h.q, eye, march_leaving(f.object, f.inside));
-      if (GLOW_SAMPLING && glow_count > 0) color += weight * a * glow_sample(h, f, n, state);
-      weight *= a;
-      next = cosine_direction(n, state);
-      after_diffuse = true;
-      from = h.q;
-      from_direction = next;
-      from_cosine = dot(n, next);
-    }
-    if (depth >= 3) {
-      const float q = min(0.95, max(weight.r, max(weight.g, weight.b)));
-      alive = q > 0.0 && path_uniform(state) < q;
-      weight /= max(q, 1e-30);
-    }
-    if (alive) {
-      h = march(h.q, next, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
-      alive = h.k >= 0;
-      if (alive) f = surface_at(h);
-    }
-  } while (alive && ++depth < kMaxDepth);
+  } while ((GLOW_SAMPLING && way < g.count) || alive);
   return vec4(color, 1.0);
 }
 
