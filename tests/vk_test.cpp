@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <sol/connection.hpp>
 #include <sol/vk/vk.hpp>
 
 #include "shaders/specialised_comp_spv.hpp"
@@ -417,6 +418,52 @@ TEST(VkPipeline, FoldedModulesAreKeptOnDisk) {
   EXPECT_EQ(std::filesystem::file_size(kept), expected.size() * 4);  // mended
   EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", std::nullopt), expected);
   EXPECT_EQ(files().size(), 2u);  // no partial files left
+  std::filesystem::remove_all(dir);
+}
+
+// The connection solver's seeds kept on disk (sol::vk::connection_seeds_cached,
+// what MarchRenderer uploads): the first call writes one file and returns
+// the table libsol's builder makes; a value planted in that file comes
+// back (it is read, not built again); a truncated file, or one whose
+// header names another build of the program, is passed over, the table
+// built again and the file mended; without a directory nothing is written.
+TEST(VkPipeline, ConnectionSeedsAreKeptOnDisk) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sol-seeds-cache-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const std::vector<float> built = sol::ConnectionTable::build(false).seeds;
+  auto files = [&] {
+    std::vector<std::filesystem::path> found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) found.push_back(entry.path());
+    return found;
+  };
+  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built);
+  ASSERT_EQ(files().size(), 1u);
+  const std::filesystem::path kept = files().front();
+  const std::uintmax_t whole = std::filesystem::file_size(kept);
+  ASSERT_GT(whole, built.size() * 4);  // a header, then the seeds
+  std::vector<std::uint32_t> words = *sol::vk::read_cache_file(kept);
+  const std::size_t header = words.size() - built.size();
+  auto rewrite = [&](const std::vector<std::uint32_t>& w) {
+    std::ofstream out(kept, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(w.data()), static_cast<std::streamsize>(w.size() * 4));
+  };
+  std::vector<std::uint32_t> planted = words;
+  planted.back() = std::bit_cast<std::uint32_t>(0.25f);
+  rewrite(planted);
+  std::vector<float> expected = built;
+  expected.back() = 0.25f;
+  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), expected);  // read back, not built
+  rewrite(std::vector<std::uint32_t>(words.begin(), words.end() - 1));
+  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built);
+  EXPECT_EQ(std::filesystem::file_size(kept), whole);  // mended
+  std::vector<std::uint32_t> rebuilt_program = planted;
+  rebuilt_program[4] ^= 1u;  // the program's modification time
+  rewrite(rebuilt_program);
+  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built);
+  EXPECT_EQ(*sol::vk::read_cache_file(kept), words);
+  EXPECT_GT(header, 0u);
+  EXPECT_EQ(sol::vk::connection_seeds_cached(false, std::nullopt), built);
+  EXPECT_EQ(files().size(), 1u);  // no partial files left
   std::filesystem::remove_all(dir);
 }
 

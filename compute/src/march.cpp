@@ -7,9 +7,11 @@
 #include <cmath>
 #include <numbers>
 #include <cstdint>
+#include <filesystem>
 #include <future>
 #include <cstdio>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -369,6 +371,56 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
 // Which connection table exact balls and point lights need: none, the
 // minimisers', or with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
+
+// A connection table's file: its name, from the program's path, and its
+// header (what must match for the seeds after it to be this program's).
+struct SeedsFile {
+  std::filesystem::path file;
+  std::vector<std::uint32_t> header;
+};
+
+std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& directory) {
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return std::nullopt;
+  const std::uintmax_t size = std::filesystem::file_size(program, error);
+  if (error) return std::nullopt;
+  const auto modified = std::filesystem::last_write_time(program, error).time_since_epoch().count();
+  if (error) return std::nullopt;
+  std::uint64_t path_hash = 0xcbf29ce484222325ull;  // FNV-1a
+  for (const char ch : program.string()) path_hash = (path_hash ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+  SeedsFile out;
+  auto put = [&](std::uint64_t v) {
+    out.header.push_back(static_cast<std::uint32_t>(v));
+    out.header.push_back(static_cast<std::uint32_t>(v >> 32));
+  };
+  out.header.push_back(0x53454544u);  // "SEED"
+  out.header.push_back(longer ? 1u : 0u);
+  put(size);
+  put(static_cast<std::uint64_t>(modified));
+  put(path_hash);
+  for (const double c : {ConnectionTable::kStep, ConnectionTable::kExtent, ConnectionTable::kHeight, ConnectionTable::kReach,
+                         ConnectionTable::kMargin, ConnectionTable::kMerge}) {
+    put(std::bit_cast<std::uint64_t>(c));
+  }
+  for (const int n : {ConnectionTable::kSlots, ConnectionTable::kCellsXY, ConnectionTable::kCellsZ}) out.header.push_back(static_cast<std::uint32_t>(n));
+  char name[80];
+  std::snprintf(name, sizeof name, "connections-%s-%016llx.bin", longer ? "longer" : "minimisers",
+                static_cast<unsigned long long>(path_hash));
+  out.file = directory / name;
+  return out;
+}
+
+// The seeds the renderers upload: connection_seeds_cached in
+// spirv_cache_directory(), once per process and table.
+const std::vector<float>& connection_seeds(bool longer) {
+  static std::mutex guard;
+  static std::array<std::optional<std::vector<float>>, 2> tables;
+  const std::lock_guard lock(guard);
+  std::optional<std::vector<float>>& table = tables[longer ? 1 : 0];
+  if (!table) table = connection_seeds_cached(longer, spirv_cache_directory());
+  return *table;
+}
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
   if (!f.exact_balls && !f.exact_lights) return SeedTable::None;
@@ -610,7 +662,7 @@ void MarchRenderer::set_world(const World& world) {
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
   if (!m.seeds || m.seeds_held != seeds) {
-    const std::vector<float>& values = seeds == SeedTable::None ? stub : ConnectionTable::shared(seeds == SeedTable::Longer).seeds;
+    const std::vector<float>& values = seeds == SeedTable::None ? stub : connection_seeds(seeds == SeedTable::Longer);
     m.retire(m.seeds);
     m.seeds.emplace(m.context, values.size() * sizeof(float));
     m.seeds->write(values);
@@ -953,6 +1005,28 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     r.pz[k] = points[4 * k + 2];
   }
   return r;
+}
+
+std::vector<float> connection_seeds_cached(bool longer, const std::optional<std::filesystem::path>& directory) {
+  const std::optional<SeedsFile> kept = directory ? seeds_file(longer, *directory) : std::nullopt;
+  constexpr std::size_t kCount = static_cast<std::size_t>(ConnectionTable::kCellsXY * ConnectionTable::kCellsXY *
+                                                          ConnectionTable::kCellsZ * ConnectionTable::kSlots * 4);
+  if (kept) {
+    if (const std::optional<std::vector<std::uint32_t>> words = read_cache_file(kept->file);
+        words && words->size() == kept->header.size() + kCount &&
+        std::equal(kept->header.begin(), kept->header.end(), words->begin())) {
+      std::vector<float> seeds(kCount);
+      for (std::size_t k = 0; k < kCount; ++k) seeds[k] = std::bit_cast<float>((*words)[kept->header.size() + k]);
+      if (std::all_of(seeds.begin(), seeds.end(), [](float v) { return std::isfinite(v); })) return seeds;
+    }
+  }
+  std::vector<float> seeds = ConnectionTable::build(longer).seeds;
+  if (kept) {
+    std::vector<std::uint32_t> words = kept->header;
+    for (const float v : seeds) words.push_back(std::bit_cast<std::uint32_t>(v));
+    write_cache_file(kept->file, words);
+  }
+  return seeds;
 }
 
 }  // namespace sol::vk

@@ -154,7 +154,9 @@ std::string cache_name(std::span<const std::uint32_t> words, std::span<const Spe
   return name;
 }
 
-std::optional<std::vector<std::uint32_t>> read_words(const std::filesystem::path& file) {
+}  // namespace
+
+std::optional<std::vector<std::uint32_t>> read_cache_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary | std::ios::ate);
   if (!in) return std::nullopt;
   const std::streamoff size = in.tellg();
@@ -165,27 +167,23 @@ std::optional<std::vector<std::uint32_t>> read_words(const std::filesystem::path
   return words;
 }
 
-void write_words(const std::filesystem::path& file, const std::vector<std::uint32_t>& words) {
+void write_cache_file(const std::filesystem::path& file, std::span<const std::uint32_t> words) {
   std::error_code error;
   std::filesystem::create_directories(file.parent_path(), error);
   if (error) return;
   std::random_device random;
   const std::filesystem::path partial = file.string() + ".partial-" + std::to_string(random());
+  bool whole = false;
   {
     std::ofstream out(partial, std::ios::binary | std::ios::trunc);
     if (!out) return;
     out.write(reinterpret_cast<const char*>(words.data()), static_cast<std::streamsize>(words.size() * 4));
-    if (!out.flush()) {
-      out.close();
-      std::filesystem::remove(partial, error);
-      return;
-    }
+    out.close();
+    whole = !out.fail();
   }
-  std::filesystem::rename(partial, file, error);
-  if (error) std::filesystem::remove(partial, error);
+  if (whole) std::filesystem::rename(partial, file, error);
+  if (!whole || error) std::filesystem::remove(partial, error);
 }
-
-}  // namespace
 
 std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t> words,
                                                    std::span<const SpecializationConstant> constants,
@@ -193,7 +191,7 @@ std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t
                                                    const std::optional<std::filesystem::path>& directory) {
   if (!directory) return specialize_spirv(words, constants, pipeline);
   const std::filesystem::path file = *directory / cache_name(words, constants);
-  if (std::optional<std::vector<std::uint32_t>> kept = read_words(file)) {
+  if (std::optional<std::vector<std::uint32_t>> kept = read_cache_file(file)) {
     try {
       validate_spirv(*kept, pipeline + " (specialised, from " + file.string() + ")");
       return std::move(*kept);
@@ -202,7 +200,7 @@ std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t
     }
   }
   std::vector<std::uint32_t> folded = specialize_spirv(words, constants, pipeline);
-  write_words(file, folded);
+  write_cache_file(file, folded);
   return folded;
 }
 

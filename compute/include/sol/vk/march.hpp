@@ -12,8 +12,10 @@
 #include <array>
 #include <cstdint>
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -224,5 +226,17 @@ class MarchRenderer final : public Renderer {
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };
+
+/// The connection solver's seeds the kernel reads (sol::ConnectionTable,
+/// with `longer` the longer connections'), kept in `directory` (none: built
+/// each call): about 1 s of CPU to build, 7 s with `longer`, and read back
+/// in milliseconds. The table is made by this program's own solver, so a
+/// file is named by the program's path and read back only while its header
+/// holds this program's size and modification time and the table's
+/// constants; any other (a rebuilt program, a truncated or foreign file) is
+/// passed over, the table built and the file written again
+/// (write_cache_file). MarchRenderer takes it from spirv_cache_directory()
+/// once per process.
+std::vector<float> connection_seeds_cached(bool longer, const std::optional<std::filesystem::path>& directory);
 
 }  // namespace sol::vk

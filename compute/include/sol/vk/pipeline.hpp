@@ -108,6 +108,15 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
 /// else $HOME/.cache/sol/spirv; none where neither is set.
 std::optional<std::filesystem::path> spirv_cache_directory();
 
+/// A file of a cache directory as 32-bit words (little-endian as written);
+/// none where it cannot be read, is empty or is not whole words.
+std::optional<std::vector<std::uint32_t>> read_cache_file(const std::filesystem::path& file);
+/// Writes `words` to a cache file whole or not at all: to a temporary name
+/// in the same directory (created if need be), closed and checked, then
+/// renamed into place, so that processes writing at once never leave or
+/// read a partial file. A failure is silent (the caller computes again).
+void write_cache_file(const std::filesystem::path& file, std::span<const std::uint32_t> words);
+
 /// specialize_spirv, kept in `directory` (none: folded every time): a file
 /// named by a 64-bit FNV-1a hash of the words and the constants (sorted by
 /// id), the folded module as it was made. A module folded before is read
