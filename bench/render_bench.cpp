@@ -56,6 +56,13 @@
 //     Written to path_convergence.csv (bench/plot_path_convergence.py
 //     draws it). Not in the default run.
 //
+//  8. Path samples per second (--only path-rate): every preset (or
+//     --scene) path traced on the kernel at --size², --spp paths a pixel
+//     in one render after a warm-up render (the pipelines built): the
+//     render's wall time (its dispatches and the read-back) and paths per
+//     second, best of --repeats (at most 3). Written to path_rate.csv. Not
+//     in the default run.
+//
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
 //     folded into the SPIR-V (the default on a CPU device) and handed to
@@ -122,7 +129,7 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
 }  // namespace
 
 int main(int argc, char** argv) {
-  int size = 512, error_size = 128, gpu_size = 2048, gpu_height = 0, repeats = 5;
+  int size = 512, error_size = 128, gpu_size = 2048, gpu_height = 0, repeats = 5, rate_spp = 16;
   std::string out_dir = ".", only, scene_name;
   bool kernel_only = false;
   sol::cli::CommandLine cl("render_bench", "[options]",
@@ -133,16 +140,18 @@ int main(int argc, char** argv) {
   cl.add_integer("--gpu-height", gpu_height, 1, 8192, "H",
                  "one eye's height for the headset section, its width --gpu-size (default: square)");
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
+  cl.add_integer("--spp", rate_spp, 1, 65536, "N", "paths a pixel for the path-rate section (default 16)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path"},
-                "run one section and write its files (lattices, path: only so)");
-  cl.add_choice("--scene", scene_name, sol::preset_names(), "throughput, headset and pipeline sections: this preset only");
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path", "path-rate"},
+                "run one section and write its files (lattices, path, path-rate: only so)");
+  cl.add_choice("--scene", scene_name, sol::preset_names(),
+                "throughput, headset, pipeline and path-rate sections: this preset only");
   cl.add_flag("--kernel-only", kernel_only,
               "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
                 "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu),\n"
-                "render_pipelines.csv, (--only lattices) render_lattices.csv and (--only path)\n"
-                "path_convergence.csv to DIR.");
+                "render_pipelines.csv, (--only lattices) render_lattices.csv, (--only path)\n"
+                "path_convergence.csv and (--only path-rate) path_rate.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
   if (!std::filesystem::is_directory(out_dir)) cl.fail("--out-dir " + out_dir + ": not a directory");
@@ -327,6 +336,34 @@ int main(int argc, char** argv) {
         }
       }
       files.emplace_back("path_convergence.csv", csv);
+    }
+
+    // 8. Path samples per second, per preset (asked for by name only).
+    if (only == "path-rate") {
+      std::string csv = "scene,device,width,height,spp,seconds,mpaths_per_s\n";
+      for (const std::string& name : presets) {
+        const sol::Scene scene = sol::preset_scene(name);
+        sol::vk::MarchRenderer kernel(context);
+        sol::RenderOptions settings;
+        settings.width = settings.height = size;
+        settings.transport = sol::Transport::Path;
+        settings.samples = 1;
+        sol::render_scene(kernel, scene, settings);  // warm-up: the path pipelines built
+        settings.samples = rate_spp;
+        double best = 1e300;
+        for (int k = 0; k < std::min(repeats, 3); ++k) {
+          settings.seed = static_cast<std::uint64_t>(k);
+          const auto start = std::chrono::steady_clock::now();
+          sol::render_scene(kernel, scene, settings);
+          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%.3f,%.3f\n", name.c_str(), quoted_device.c_str(), size, size, rate_spp,
+                      best, static_cast<double>(size) * size * rate_spp / best * 1e-6);
+        csv += line;
+        std::fprintf(stderr, "%s", line);
+      }
+      files.emplace_back("path_rate.csv", csv);
     }
 
     // 2. Image error against run time.

@@ -15,6 +15,8 @@
 #include <optional>
 #include <string>
 
+#include <dlfcn.h>
+
 #include <glm/geometric.hpp>
 #include <sol/connection.hpp>
 #include <sol/error.hpp>
@@ -381,8 +383,16 @@ struct SeedsFile {
 
 std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& directory) {
   std::error_code error;
-  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  // The file holding this code: the program, or the shared library that
+  // linked sol::vk into another program (dladdr names it).
+  std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
   if (error) return std::nullopt;
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&seeds_file), &info) != 0 && info.dli_fname && *info.dli_fname) {
+    const std::filesystem::path library = std::filesystem::canonical(info.dli_fname, error);
+    if (!error && library != std::filesystem::canonical(program, error) && !error) program = library;
+    error.clear();
+  }
   const std::uintmax_t size = std::filesystem::file_size(program, error);
   if (error) return std::nullopt;
   const auto modified = std::filesystem::last_write_time(program, error).time_since_epoch().count();

@@ -231,8 +231,9 @@ class MarchRenderer final : public Renderer {
 /// with `longer` the longer connections'), kept in `directory` (none: built
 /// each call): about 1 s of CPU to build, 7 s with `longer`, and read back
 /// in milliseconds. The table is made by this program's own solver, so a
-/// file is named by the program's path and read back only while its header
-/// holds this program's size and modification time and the table's
+/// file is named by the path of the file holding this code (the program,
+/// or the shared library that linked sol::vk) and read back only while its
+/// header holds that file's size and modification time and the table's
 /// constants; any other (a rebuilt program, a truncated or foreign file) is
 /// passed over, the table built and the file written again
 /// (write_cache_file). MarchRenderer takes it from spirv_cache_directory()
