@@ -24,6 +24,7 @@
 #include <sol/lattice.hpp>
 #include <sol/quotient_field.hpp>
 
+#include "fnv1a.hpp"
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
 #include "sol/vk/image.hpp"
@@ -397,8 +398,7 @@ std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& di
   if (error) return std::nullopt;
   const auto modified = std::filesystem::last_write_time(program, error).time_since_epoch().count();
   if (error) return std::nullopt;
-  std::uint64_t path_hash = 0xcbf29ce484222325ull;  // FNV-1a
-  for (const char ch : program.string()) path_hash = (path_hash ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+  const std::uint64_t path_hash = detail::fnv1a(detail::kFnvOffset, program.string());
   SeedsFile out;
   auto put = [&](std::uint64_t v) {
     out.header.push_back(static_cast<std::uint32_t>(v));

@@ -17,6 +17,7 @@
 #include <spirv-tools/optimizer.hpp>
 
 #include "device.hpp"
+#include "fnv1a.hpp"
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
 #include "sol/vk/error.hpp"
@@ -133,20 +134,13 @@ std::optional<std::filesystem::path> spirv_cache_directory() {
 
 namespace {
 
-// 64-bit FNV-1a over 32-bit words, byte by byte (little-endian order).
-std::uint64_t fnv1a(std::uint64_t hash, std::uint32_t word) {
-  for (int byte = 0; byte < 4; ++byte) {
-    hash ^= (word >> (8 * byte)) & 0xffu;
-    hash *= 0x100000001b3ull;
-  }
-  return hash;
-}
+using detail::fnv1a;
 
 // The cache file's name: the words' count and the hash of the words and the constants.
 std::string cache_name(std::span<const std::uint32_t> words, std::span<const SpecializationConstant> constants) {
   std::vector<SpecializationConstant> sorted(constants.begin(), constants.end());
   std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-  std::uint64_t hash = 0xcbf29ce484222325ull;
+  std::uint64_t hash = detail::kFnvOffset;
   for (std::uint32_t w : words) hash = fnv1a(hash, w);
   for (const SpecializationConstant& c : sorted) hash = fnv1a(fnv1a(hash, c.id), c.value);
   char name[64];

@@ -684,9 +684,9 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
   const double total = glow_pick_total(glowing, hit.point);
   double left = random.uniform() * total;
   std::size_t pick = 0;
-  while (pick + 1 < glowing.size() && left >= glow_pick_weight(glowing[pick], hit.point)) {
-    left -= glow_pick_weight(glowing[pick], hit.point);
-    ++pick;
+  for (double w = glow_pick_weight(glowing[0], hit.point); pick + 1 < glowing.size() && left >= w;
+       w = glow_pick_weight(glowing[++pick], hit.point)) {
+    left -= w;
   }
   const GlowingBall& g = glowing[pick];
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
@@ -738,10 +738,11 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
 // on with probability q = min(0.95, the weight's largest component), its
 // weight divided by q. Radiance is constant along a geodesic, so the
 // estimator needs no more than the geodesics themselves. No ambient light.
-glm::dvec3 path_radiance(const MarchWorld& prepared, MarchHit hit, PathRandom& random, PathSampling sampling) {
+// `glowing`: next-event estimation's targets (glowing_balls; none for
+// reflection sampling alone), found once per render.
+glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, MarchHit hit,
+                         PathRandom& random, PathSampling sampling) {
   const World& world = prepared.world();
-  const std::vector<GlowingBall> glowing =
-      sampling == PathSampling::ReflectionOnly ? std::vector<GlowingBall>() : glowing_balls(prepared);
   glm::dvec3 color(0.0), weight(1.0);
   // The last hit, where it was diffuse (for the emission's weight at the next).
   bool after_diffuse = false;
@@ -904,6 +905,9 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
     return march_view(prepared, views[c], glm::normalize(transports[c] * camera_ray(mono, i, j, w, h, offset)));
   };
   const bool path = settings.transport == Transport::Path;
+  const std::vector<GlowingBall> glowing = path && settings.path_sampling != PathSampling::ReflectionOnly
+                                               ? glowing_balls(prepared)
+                                               : std::vector<GlowingBall>();
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
   detail::for_each_row(h, threads, settings.progress, [&](int j, const std::atomic<bool>& stopping) {
@@ -920,7 +924,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       const auto colour = [&](const MarchHit& at, int s) {
         if (!path) return radiance(prepared, at);
         PathRandom random(settings.seed, k, static_cast<std::uint64_t>(s));
-        return path_radiance(prepared, at, random, settings.path_sampling);
+        return path_radiance(prepared, glowing, at, random, settings.path_sampling);
       };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
