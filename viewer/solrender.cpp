@@ -541,6 +541,16 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
   return film;
 }
 
+// "peak memory N MB" (sol::process_memory: the most this process held at
+// once), for the summary lines: a long render's memory must stay flat.
+std::string peak_memory() {
+  const double peak = sol::process_memory().peak_bytes;
+  if (!(peak > 0.0)) return "peak memory unknown";
+  char text[48];
+  std::snprintf(text, sizeof text, "peak memory %.0f MB", peak / 1e6);
+  return text;
+}
+
 // The progress line: finished fraction, rays per second so far, time left
 // (sol::programs::ProgressEstimate: at the rate since work was first seen
 // done); rewritten in place on a terminal, one line per 10% otherwise, the
@@ -677,9 +687,9 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   if (pending) complete(*pending);
   if (video) video->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
-  std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there -> %s\n",
+  std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there, %s -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
-               o.video_only ? o.video.c_str() : o.output.c_str());
+               peak_memory().c_str(), o.video_only ? o.video.c_str() : o.output.c_str());
   if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, o.fps, o.video);
 }
 
@@ -715,9 +725,10 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
                  "the scene and options)\n", non_finite);
   }
   const std::string samples = o.spp > 1 ? ", " + std::to_string(o.spp) + " samples per pixel" : "";
-  std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s -> %s\n", r.width, r.height,
+  std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s, %s -> %s\n", r.width, r.height,
                o.anaglyph() ? " (anaglyph)" : (o.stereo() ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,
-               r.width * static_cast<double>(r.height) * (o.anaglyph() ? 2 : 1) * o.spp / seconds * 1e-6, o.output.c_str());
+               r.width * static_cast<double>(r.height) * (o.anaglyph() ? 2 : 1) * o.spp / seconds * 1e-6,
+               peak_memory().c_str(), o.output.c_str());
 }
 
 }  // namespace

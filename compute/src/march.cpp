@@ -355,7 +355,7 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
 ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v, int pass) {
   return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ", pass " + std::to_string(pass) + ")",
                              .spirv = march_spirv(v),
-                             .bindings = {{kernel::kBindingParams, DescriptorType::UniformBuffer},
+                             .bindings = {{kernel::kBindingParams, DescriptorType::StorageBuffer},
                                           {kernel::kBindingColor, DescriptorType::StorageImage},
                                           {kernel::kBindingHit, DescriptorType::StorageImage},
                                           {kernel::kBindingPoint, DescriptorType::StorageImage},
@@ -519,7 +519,7 @@ struct MarchRenderer::Impl {
   std::uint64_t frames = 0;
   std::vector<std::pair<std::uint64_t, Buffer>> retired;  // (f, buffer)
 
-  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::Uniform) {
+  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::DeviceStorage) {
     columns.emplace(context, sizeof(kernel::Column), BufferUsage::DeviceStorage);  // a stub until an ODS frame
     reserve_queue(0);  // the header alone until a deferring frame
   }

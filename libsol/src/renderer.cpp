@@ -31,6 +31,18 @@ double available_memory_bytes() {
   return 0.0;
 }
 
+ProcessMemory process_memory() {
+  std::ifstream in("/proc/self/status");
+  ProcessMemory m;
+  std::string line;
+  while (std::getline(in, line)) {
+    double kib = 0.0;
+    if (std::sscanf(line.c_str(), "VmRSS: %lf kB", &kib) == 1) m.resident_bytes = kib * 1024.0;
+    if (std::sscanf(line.c_str(), "VmHWM: %lf kB", &kib) == 1) m.peak_bytes = kib * 1024.0;
+  }
+  return m;
+}
+
 void validate_render(std::span<const Camera> eyes, const RenderOptions& options, const char* who, double bytes_per_pixel) {
   const std::string at = std::string(who) + ": ";
   for (const auto& [value, name] : {std::pair{options.width, "width"}, std::pair{options.height, "height"}}) {

@@ -76,7 +76,7 @@ const bool DEFER_SMALL_MU = RESUME_WORLD && QUOTIENT;
 const bool SOL_ZETA = HAS_EXACT_BALLS && !QUOTIENT && INTEGRATOR == 0 && PASS == kPassMarch;
 const bool SOL_ZETA_ONLY = SOL_ZETA && DEFER_EXACT;
 
-layout(std140, set = 0, binding = kBindingParams) uniform ParamsBlock {
+layout(std430, set = 0, binding = kBindingParams) readonly buffer ParamsBlock {
   Params params;
 };
 

@@ -133,6 +133,15 @@ void validate_render(std::span<const Camera> eyes, const RenderOptions& options,
 /// MemAvailable), in bytes; 0 where it cannot be told.
 double available_memory_bytes();
 
+/// This process's memory: resident now and at its peak (Linux: VmRSS and
+/// VmHWM of /proc/self/status), in bytes; 0 where it cannot be told. The
+/// programs report the peak (a long render's memory must stay flat).
+struct ProcessMemory {
+  double resident_bytes = 0.0;
+  double peak_bytes = 0.0;
+};
+ProcessMemory process_memory();
+
 /// One-shot: renderer.set_world(scene), then the scene's camera.
 RenderResult render_scene(Renderer& renderer, const Scene& scene, const RenderOptions& options);
 

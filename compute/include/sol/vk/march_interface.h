@@ -1,6 +1,6 @@
 // The interface between the march kernel (march.comp) and its host
 // (compute/src/march.cpp), written once: binding numbers, specialisation-
-// constant ids, limits, and the layout of the uniform block and of the
+// constant ids, limits, and the layout of the parameters' block and of the
 // quotient's image buffer. Valid GLSL and C++: march.comp includes it as it
 // is; in C++ it declares the same names in namespace sol::vk::kernel, with
 // vec4 = glm::vec4 (std140 and std430 lay out arrays of vec4 without
@@ -24,7 +24,7 @@ using ivec4 = glm::ivec4;
 #endif
 
 // ---- Descriptor bindings (set 0)
-SOL_CONSTANT(int, kBindingParams, 0);       ///< uniform Params
+SOL_CONSTANT(int, kBindingParams, 0);       ///< storage buffer (read-only): Params
 SOL_CONSTANT(int, kBindingColor, 1);        ///< storage image: linear RGBA (or sRGB-encoded UNORM bytes)
 SOL_CONSTANT(int, kBindingHit, 2);          ///< storage image: object, distance, steps, 0 (AOVs)
 SOL_CONSTANT(int, kBindingPoint, 3);        ///< storage image: the hit point Px, Py, Pz, 0 (AOVs)
@@ -128,7 +128,8 @@ SOL_CONSTANT(int, kMaxLightImageSolves, 16);
 /// group_pixel lays the invocations out in 2 x 4 blocks of an 8 x 8 group).
 SOL_CONSTANT(int, kGroupSize, 8);
 
-// ---- The uniform block (std140; vec4 and ivec4 members only, so no padding)
+// ---- The parameters (binding kBindingParams: a read-only storage buffer, std430;
+// vec4 and ivec4 members only, so no padding and the offsets of std140)
 
 /// An object's appearance and kind.
 struct Object {
