@@ -27,6 +27,34 @@ PixelRect fovea_rect(const FoveaLevel& level, double cx, double cy, int width, i
   return {x0, y0, x0 + w, y0 + h};
 }
 
+// An eye's window widened by one pixel of an rw x rh image on every side.
+// Rendered at (rw + 2) x (rh + 2), the image holds a ring of the scene's
+// own pixels around the rw x rh inside, so that a linear blit of that
+// inside (a blit's filter clamps to the whole image, not to its region)
+// reads no texel the kernel did not write, nor the other eye's.
+Camera widened_by_a_pixel(const Camera& eye, int rw, int rh) {
+  const glm::dvec4 w = image_window(eye, rw, rh);  // left, right, top, bottom
+  const double dx = (w.y - w.x) / rw, dy = (w.z - w.w) / rh;
+  Camera wide = eye;
+  wide.frustum = Frustum{w.x - dx, w.y + dx, w.w - dy, w.z + dy};
+  return wide;
+}
+
+std::array<Camera, 2> widened_by_a_pixel(const std::array<Camera, 2>& eyes, int rw, int rh) {
+  return {widened_by_a_pixel(eyes[0], rw, rh), widened_by_a_pixel(eyes[1], rw, rh)};
+}
+
+/// The blit region of eye v's rw x rh inside in an image of both eyes
+/// rendered with a border (widened_by_a_pixel), each (rw + 2) x (rh + 2).
+VkImageBlit bordered_region(std::size_t v, int rw, int rh) {
+  VkImageBlit region{};
+  region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  const auto x0 = static_cast<std::int32_t>(v) * (rw + 2) + 1;
+  region.srcOffsets[0] = {x0, 1, 0};
+  region.srcOffsets[1] = {x0 + rw, rh + 1, 1};
+  return region;
+}
+
 }  // namespace
 
 void begin_transfer_to(VkCommandBuffer cmd, VkImage target) {
@@ -43,7 +71,11 @@ void end_transfer_to(VkCommandBuffer cmd, VkImage target) {
 
 DeviceFrames::DeviceFrames(vk::Context& context, vk::MarchRenderer& renderer, std::uint32_t width, std::uint32_t height,
                            bool foveation)
-    : m_context(context), m_renderer(renderer), m_width(width), m_height(height), m_rendered(context, 2 * width, height) {
+    : m_context(context),
+      m_renderer(renderer),
+      m_width(width),
+      m_height(height),
+      m_rendered(context, 2 * (width + 2), height + 2) {  // (room for the border of a scaled frame's eyes)
   try {
     VkFormatProperties props{};
     vkGetPhysicalDeviceFormatProperties(m_context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &props);
@@ -63,8 +95,9 @@ DeviceFrames::DeviceFrames(vk::Context& context, vk::MarchRenderer& renderer, st
     }
     if (foveation) {
       for (const FoveaLevel& level : kFoveation) {
-        const auto w = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * width)) + 1;
-        const auto h = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * height)) + 1;
+        // (Rounding, and a border of a pixel each side: widened_by_a_pixel.)
+        const auto w = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * width)) + 3;
+        const auto h = static_cast<std::uint32_t>(std::ceil(level.extent * level.scale * height)) + 3;
         m_fovea.emplace_back(m_context, 2 * w, h);
       }
     }
@@ -121,26 +154,35 @@ void DeviceFrames::record_eyes(VkCommandBuffer cmd, const std::array<Camera, 2>&
                                const FramePlan& plan) {
   const std::uint32_t width = m_width, height = m_height;
   const vk::StorageImage& rendered = m_rendered;
-  // Each eye at the plan's scale (the image's top-left 2 rw x rh); a
-  // refinement sample joins the running mean already there; a finished
-  // refinement is shown again without the kernel.
+  // Each eye at the plan's scale (the image's top-left 2 rw x rh; scaled,
+  // with a border of a pixel each side, widened_by_a_pixel, as the linear
+  // blit reads one beyond its region); a refinement sample (at full size)
+  // joins the running mean already there; a finished refinement is shown
+  // again without the kernel.
   const int rw = std::max(1, static_cast<int>(std::lround(width * plan.scale)));
   const int rh = std::max(1, static_cast<int>(std::lround(height * plan.scale)));
-  if (!plan.reuse) m_renderer.record(cmd, cameras, rw, rh, rendered, plan.sample.value_or(vk::PixelSample{}));
+  const auto w = static_cast<std::int32_t>(width), h = static_cast<std::int32_t>(height);
+  const bool scaled = rw != w || rh != h;
+  if (!plan.reuse) {
+    if (scaled) {
+      m_renderer.record(cmd, widened_by_a_pixel(cameras, rw, rh), rw + 2, rh + 2, rendered);
+    } else {
+      m_renderer.record(cmd, cameras, rw, rh, rendered, plan.sample.value_or(vk::PixelSample{}));
+    }
+  }
   // The kernel's writes must land before the blits read them, from the
   // layout made for reading by transfers (GENERAL costs some devices a
   // slower path, which the validation layers point out).
   vk::image_barrier(cmd, rendered.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  const auto w = static_cast<std::int32_t>(width), h = static_cast<std::int32_t>(height);
-  const bool scaled = rw != w || rh != h;
   for (std::size_t v = 0; v < targets.size(); ++v) {
     begin_transfer_to(cmd, targets[v]);
-    VkImageBlit region{};
-    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[0] = {static_cast<std::int32_t>(v) * rw, 0, 0};  // the left eye on the left
-    region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * rw, rh, 1};
+    VkImageBlit region = bordered_region(v, rw, rh);
+    if (!scaled) {  // 1:1, by the nearest texel: no border
+      region.srcOffsets[0] = {static_cast<std::int32_t>(v) * rw, 0, 0};  // the left eye on the left
+      region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * rw, rh, 1};
+    }
     region.dstOffsets[1] = {w, h, 1};
     vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets[v],
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
@@ -180,7 +222,9 @@ void DeviceFrames::record_foveated(VkCommandBuffer cmd, const std::array<Camera,
     const double resolution = kFoveation[l].scale * scale;
     sizes[l][0] = std::max(1, static_cast<int>(std::lround((rects[l][0].x1 - rects[l][0].x0) * resolution)));
     sizes[l][1] = std::max(1, static_cast<int>(std::lround((rects[l][0].y1 - rects[l][0].y0) * resolution)));
-    m_renderer.record(cmd, level, sizes[l][0], sizes[l][1], m_fovea[static_cast<std::size_t>(l)]);
+    // With a border (widened_by_a_pixel): the levels' blits filter linearly.
+    m_renderer.record(cmd, widened_by_a_pixel(level, sizes[l][0], sizes[l][1]), sizes[l][0] + 2, sizes[l][1] + 2,
+                      m_fovea[static_cast<std::size_t>(l)]);
   }
   for (const vk::StorageImage& image : m_fovea) {
     vk::image_barrier(cmd, image.handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -197,10 +241,7 @@ void DeviceFrames::record_foveated(VkCommandBuffer cmd, const std::array<Camera,
       }
       const PixelRect& r = rects[l][v];
       const int lw = sizes[l][0], lh = sizes[l][1];
-      VkImageBlit region{};
-      region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.srcOffsets[0] = {static_cast<std::int32_t>(v) * lw, 0, 0};
-      region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * lw, lh, 1};
+      VkImageBlit region = bordered_region(v, lw, lh);
       region.dstOffsets[0] = {r.x0, r.y0, 0};
       region.dstOffsets[1] = {r.x1, r.y1, 1};
       const bool scaled = lw != r.x1 - r.x0 || lh != r.y1 - r.y0;
