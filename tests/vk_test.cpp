@@ -3,6 +3,8 @@
 // kernel end to end under the validation layer, and errors that must be
 // exceptions rather than crashes.
 #include <array>
+#include <chrono>
+#include <functional>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -378,13 +380,49 @@ TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
 }
 
+// What a cache read must survive in place of its file: a FIFO (opening it
+// to read would wait for a writer), a link to /dev/zero (never ends), a
+// directory, a sparse file of a terabyte. Each is passed over at once.
+// `check` runs with the hostile file in place, under a watchdog.
+void expect_hostile_cache_files_passed_over(const std::filesystem::path& file, const std::function<void()>& check) {
+  namespace fs = std::filesystem;
+  const auto within_seconds = [&](const char* what) {
+    const auto begin = std::chrono::steady_clock::now();
+    check();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    EXPECT_LT(seconds, 30.0) << what;
+  };
+  fs::remove_all(file);
+  ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+  within_seconds("a FIFO");
+  fs::remove(file);
+  fs::create_symlink("/dev/zero", file);
+  within_seconds("a link to /dev/zero");
+  fs::remove(file);
+  fs::create_directory(file);
+  within_seconds("a directory");
+  fs::remove_all(file);
+  {
+    std::ofstream sparse(file, std::ios::binary);
+    sparse.seekp((std::streamoff{1} << 40) - 1);  // a terabyte, almost all holes
+    sparse.put('\0');
+  }
+  within_seconds("a sparse terabyte");  // (and `check` put a cache file in its place)
+}
+
 // Folded modules kept on disk (sol::vk::specialize_spirv_cached, what
 // pipelines use with spirv_cache_directory()): the first fold writes one
-// file, the module specialize_spirv makes; the same words and constants
-// in another order read that file back (shown by planting another valid
-// module there: it is what comes back); other constants make another
-// file; a file that is not SPIR-V is passed over, the module folded again
-// and the file mended; without a directory nothing is written.
+// cache file, holding the module specialize_spirv makes under its key; the
+// same words and constants in another order read that file back (shown by
+// planting another valid module there under the same key: it is what
+// comes back); other constants make another file. A file is read back
+// only when it holds what was written for its key: another variant's file
+// copied under this name (a valid module that would render garbage), a
+// body zeroed after its header, a truncated file or one that is not a
+// cache file at all is passed over, the module folded again and the file
+// mended; so is a FIFO, a link to /dev/zero, a directory or a sparse
+// terabyte, without waiting or reading it; without a directory nothing is
+// written.
 TEST(VkPipeline, FoldedModulesAreKeptOnDisk) {
   const std::span<const std::uint32_t> words(specialised_comp_spv);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sol-spirv-cache-" + std::to_string(::getpid()));
@@ -403,30 +441,59 @@ TEST(VkPipeline, FoldedModulesAreKeptOnDisk) {
   EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected);
   ASSERT_EQ(files().size(), 1u);
   const std::filesystem::path kept = files().front();
-  {
-    std::ofstream plant(kept, std::ios::binary | std::ios::trunc);
-    plant.write(reinterpret_cast<const char*>(other.data()), static_cast<std::streamsize>(other.size() * 4));
-  }
+  const std::uintmax_t whole = std::filesystem::file_size(kept);
+  const std::uint64_t key = sol::vk::spirv_cache_key(words, square);
+  ASSERT_EQ(sol::vk::read_cache_file(kept)->key, key);
+  EXPECT_EQ(sol::vk::read_cache_file(kept)->words, expected);
+  sol::vk::write_cache_file(kept, key, other);  // planted under this key
   EXPECT_EQ(sol::vk::specialize_spirv_cached(words, reordered, "specialised", dir), other);  // read back, not folded
   EXPECT_EQ(sol::vk::specialize_spirv_cached(words, plain, "specialised", dir), other);
-  EXPECT_EQ(files().size(), 2u);
-  {
-    std::ofstream garbage(kept, std::ios::binary | std::ios::trunc);
-    garbage << "not a module";
-  }
-  EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected);
-  EXPECT_EQ(std::filesystem::file_size(kept), expected.size() * 4);  // mended
+  ASSERT_EQ(files().size(), 2u);
+  const std::filesystem::path plain_file = files()[0] == kept ? files()[1] : files()[0];
+  auto raw = [](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+  };
+  auto rewrite = [](const std::filesystem::path& file, const std::vector<char>& bytes) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  };
+  auto mended = [&](const char* what) {
+    EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected) << what;
+    EXPECT_EQ(std::filesystem::file_size(kept), whole) << what;
+    EXPECT_EQ(sol::vk::read_cache_file(kept)->words, expected) << what;
+  };
+  // Another variant's file (a valid module, its own key) copied under this name.
+  rewrite(kept, raw(plain_file));
+  mended("another variant's file");
+  // The header kept, the body zeroed.
+  std::vector<char> zeroed = raw(kept);
+  std::fill(zeroed.begin() + 7 * 4, zeroed.end(), '\0');
+  rewrite(kept, zeroed);
+  mended("a zeroed body");
+  std::vector<char> truncated = raw(kept);
+  truncated.resize(truncated.size() - 4);
+  rewrite(kept, truncated);
+  mended("a truncated file");
+  rewrite(kept, {'n', 'o', 't', ' ', 'a', ' ', 'm', 'o', 'd', 'u', 'l', 'e'});
+  mended("not a cache file");
+  expect_hostile_cache_files_passed_over(kept, [&] {
+    EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", dir), expected);
+  });
   EXPECT_EQ(sol::vk::specialize_spirv_cached(words, square, "specialised", std::nullopt), expected);
   EXPECT_EQ(files().size(), 2u);  // no partial files left
   std::filesystem::remove_all(dir);
 }
 
 // The connection solver's seeds kept on disk (sol::vk::connection_seeds_cached,
-// what MarchRenderer uploads): the first call writes one file and returns
-// the table libsol's builder makes; a value planted in that file comes
-// back (it is read, not built again); a truncated file, or one whose
-// header names another build of the program, is passed over, the table
-// built again and the file mended; without a directory nothing is written.
+// what MarchRenderer uploads): the first call writes one cache file and
+// returns the table libsol's builder makes; a value planted in that file
+// under its key comes back (it is read, not built again); a file whose key
+// names another build of the program, a truncated one, one whose body was
+// zeroed or filled with values past float behind an intact header, and a
+// FIFO, a link to /dev/zero, a directory or a sparse terabyte in its place
+// are passed over at once, the table built again and the file mended;
+// without a directory nothing is written.
 TEST(VkPipeline, ConnectionSeedsAreKeptOnDisk) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sol-seeds-cache-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
@@ -440,28 +507,34 @@ TEST(VkPipeline, ConnectionSeedsAreKeptOnDisk) {
   ASSERT_EQ(files().size(), 1u);
   const std::filesystem::path kept = files().front();
   const std::uintmax_t whole = std::filesystem::file_size(kept);
-  ASSERT_GT(whole, built.size() * 4);  // a header, then the seeds
-  std::vector<std::uint32_t> words = *sol::vk::read_cache_file(kept);
-  const std::size_t header = words.size() - built.size();
-  auto rewrite = [&](const std::vector<std::uint32_t>& w) {
-    std::ofstream out(kept, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(w.data()), static_cast<std::streamsize>(w.size() * 4));
-  };
-  std::vector<std::uint32_t> planted = words;
+  const sol::vk::CacheFile written = *sol::vk::read_cache_file(kept);
+  ASSERT_EQ(written.words.size(), built.size());
+  std::vector<std::uint32_t> planted = written.words;
   planted.back() = std::bit_cast<std::uint32_t>(0.25f);
-  rewrite(planted);
+  sol::vk::write_cache_file(kept, written.key, planted);
   std::vector<float> expected = built;
   expected.back() = 0.25f;
   EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), expected);  // read back, not built
-  rewrite(std::vector<std::uint32_t>(words.begin(), words.end() - 1));
-  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built);
-  EXPECT_EQ(std::filesystem::file_size(kept), whole);  // mended
-  std::vector<std::uint32_t> rebuilt_program = planted;
-  rebuilt_program[4] ^= 1u;  // the program's modification time
-  rewrite(rebuilt_program);
-  EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built);
-  EXPECT_EQ(*sol::vk::read_cache_file(kept), words);
-  EXPECT_GT(header, 0u);
+  auto mended = [&](const char* what) {
+    EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built) << what;
+    EXPECT_EQ(std::filesystem::file_size(kept), whole) << what;
+    EXPECT_EQ(sol::vk::read_cache_file(kept)->words, written.words) << what;
+  };
+  sol::vk::write_cache_file(kept, written.key ^ 1u, planted);  // another build of the program
+  mended("another build's key");
+  sol::vk::write_cache_file(kept, written.key, std::vector<std::uint32_t>(written.words.begin(), written.words.end() - 1));
+  mended("a table too short");
+  auto raw = [&] {
+    std::ifstream in(kept, std::ios::binary);
+    return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const double fill : {0.0, 1e300}) {
+    std::vector<char> bytes = raw();
+    for (std::size_t at = 7 * 4; at + 8 <= bytes.size(); at += 8) std::memcpy(bytes.data() + at, &fill, 8);
+    std::ofstream(kept, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    mended(fill == 0.0 ? "a zeroed body" : "a body of 1e300");
+  }
+  expect_hostile_cache_files_passed_over(kept, [&] { EXPECT_EQ(sol::vk::connection_seeds_cached(false, dir), built); });
   EXPECT_EQ(sol::vk::connection_seeds_cached(false, std::nullopt), built);
   EXPECT_EQ(files().size(), 1u);  // no partial files left
   std::filesystem::remove_all(dir);

@@ -18,6 +18,8 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <sol/file_io.hpp>
+
 #include "device.hpp"
 #include "sol/vk/error.hpp"
 
@@ -29,44 +31,20 @@ namespace {
 // a device such as /dev/zero that never ends), larger than any cache, or
 // unreadable: a cache is optional and never stops a render.
 std::vector<char> read_pipeline_cache(const std::string& path) {
-  constexpr std::size_t kLargest = std::size_t{1} << 30;
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
-    if (errno != ENOENT) std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s\n", path.c_str(), std::strerror(errno));
-    return {};
-  }
-  struct stat st {};
-  const char* problem = nullptr;
-  if (::fstat(fd, &st) != 0) {
-    problem = std::strerror(errno);
-  } else if (S_ISDIR(st.st_mode)) {
-    problem = "it is a directory";
-  } else if (!S_ISREG(st.st_mode)) {
-    problem = "it is not a regular file";
-  } else if (static_cast<std::size_t>(st.st_size) > kLargest) {
-    problem = "it is larger than any pipeline cache (1 GiB)";
-  }
-  std::vector<char> data;
-  if (!problem) {
-    data.resize(static_cast<std::size_t>(st.st_size));
-    std::size_t done = 0;
-    while (done < data.size()) {
-      const ssize_t n = ::read(fd, data.data() + done, data.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        problem = n < 0 ? std::strerror(errno) : "it shrank while being read";
-        break;
-      }
-      done += static_cast<std::size_t>(n);
+  constexpr std::uintmax_t kLargest = std::uintmax_t{1} << 30;
+  std::string why;
+  const std::optional<std::string> bytes = read_regular_file(path, kLargest, &why);
+  if (!bytes) {
+    if (why != "no such file") {
+      if (why == "a directory") why = "it is a directory";
+      if (why.starts_with("not a regular file")) why = "it is not a regular file";
+      if (why.starts_with("larger than")) why = "it is larger than any pipeline cache (1 GiB)";
+      std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s (the kernels are compiled again)\n",
+                   path.c_str(), why.c_str());
     }
-  }
-  ::close(fd);
-  if (problem) {
-    std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s (the kernels are compiled again)\n",
-                 path.c_str(), problem);
     return {};
   }
-  return data;
+  return std::vector<char>(bytes->begin(), bytes->end());
 }
 
 // Mesa's drivers keep a shader cache of their own under $XDG_CACHE_HOME

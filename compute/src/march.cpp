@@ -376,10 +376,11 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
 enum class SeedTable { None, Minimisers, Longer };
 
 // A connection table's file: its name, from the program's path, and its
-// header (what must match for the seeds after it to be this program's).
+// key (what must match for the seeds in it to be this program's: its
+// identity and the table's constants, hashed).
 struct SeedsFile {
   std::filesystem::path file;
-  std::vector<std::uint32_t> header;
+  std::uint64_t key = 0;
 };
 
 std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& directory) {
@@ -400,12 +401,13 @@ std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& di
   if (error) return std::nullopt;
   const std::uint64_t path_hash = detail::fnv1a(detail::kFnvOffset, program.string());
   SeedsFile out;
+  std::vector<std::uint32_t> header;
   auto put = [&](std::uint64_t v) {
-    out.header.push_back(static_cast<std::uint32_t>(v));
-    out.header.push_back(static_cast<std::uint32_t>(v >> 32));
+    header.push_back(static_cast<std::uint32_t>(v));
+    header.push_back(static_cast<std::uint32_t>(v >> 32));
   };
-  out.header.push_back(0x53454544u);  // "SEED"
-  out.header.push_back(longer ? 1u : 0u);
+  header.push_back(0x53454544u);  // "SEED"
+  header.push_back(longer ? 1u : 0u);
   put(size);
   put(static_cast<std::uint64_t>(modified));
   put(path_hash);
@@ -413,7 +415,9 @@ std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& di
                          ConnectionTable::kMargin, ConnectionTable::kMerge}) {
     put(std::bit_cast<std::uint64_t>(c));
   }
-  for (const int n : {ConnectionTable::kSlots, ConnectionTable::kCellsXY, ConnectionTable::kCellsZ}) out.header.push_back(static_cast<std::uint32_t>(n));
+  for (const int n : {ConnectionTable::kSlots, ConnectionTable::kCellsXY, ConnectionTable::kCellsZ}) header.push_back(static_cast<std::uint32_t>(n));
+  out.key = detail::kFnvOffset;
+  for (const std::uint32_t w : header) out.key = detail::fnv1a(out.key, w);
   char name[80];
   std::snprintf(name, sizeof name, "connections-%s-%016llx.bin", longer ? "longer" : "minimisers",
                 static_cast<unsigned long long>(path_hash));
@@ -1021,20 +1025,21 @@ std::vector<float> connection_seeds_cached(bool longer, const std::optional<std:
   const std::optional<SeedsFile> kept = directory ? seeds_file(longer, *directory) : std::nullopt;
   constexpr std::size_t kCount = static_cast<std::size_t>(ConnectionTable::kCellsXY * ConnectionTable::kCellsXY *
                                                           ConnectionTable::kCellsZ * ConnectionTable::kSlots * 4);
+  // This program's table, whole (read_cache_file checks the body's checksum).
   if (kept) {
-    if (const std::optional<std::vector<std::uint32_t>> words = read_cache_file(kept->file);
-        words && words->size() == kept->header.size() + kCount &&
-        std::equal(kept->header.begin(), kept->header.end(), words->begin())) {
+    if (const std::optional<CacheFile> file = read_cache_file(kept->file);
+        file && file->key == kept->key && file->words.size() == kCount) {
       std::vector<float> seeds(kCount);
-      for (std::size_t k = 0; k < kCount; ++k) seeds[k] = std::bit_cast<float>((*words)[kept->header.size() + k]);
+      for (std::size_t k = 0; k < kCount; ++k) seeds[k] = std::bit_cast<float>(file->words[k]);
       if (std::all_of(seeds.begin(), seeds.end(), [](float v) { return std::isfinite(v); })) return seeds;
     }
   }
   std::vector<float> seeds = ConnectionTable::build(longer).seeds;
   if (kept) {
-    std::vector<std::uint32_t> words = kept->header;
+    std::vector<std::uint32_t> words;
+    words.reserve(seeds.size());
     for (const float v : seeds) words.push_back(std::bit_cast<std::uint32_t>(v));
-    write_cache_file(kept->file, words);
+    write_cache_file(kept->file, kept->key, words);
   }
   return seeds;
 }

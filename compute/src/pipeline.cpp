@@ -1,6 +1,7 @@
 #include "sol/vk/pipeline.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -15,6 +16,8 @@
 
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/optimizer.hpp>
+
+#include <sol/file_io.hpp>
 
 #include "device.hpp"
 #include "fnv1a.hpp"
@@ -136,41 +139,59 @@ namespace {
 
 using detail::fnv1a;
 
-// The cache file's name: the words' count and the hash of the words and the constants.
-std::string cache_name(std::span<const std::uint32_t> words, std::span<const SpecializationConstant> constants) {
-  std::vector<SpecializationConstant> sorted(constants.begin(), constants.end());
-  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+// A cache file's header, before its body (words, little-endian as written).
+constexpr std::uint32_t kCacheMagic = 0x434c4f53u;  // "SOLC"
+constexpr std::uint32_t kCacheFormat = 1;
+constexpr std::size_t kCacheHeaderWords = 7;  // magic, format, key (2), body words, checksum (2)
+
+std::uint64_t checksum(std::span<const std::uint32_t> words) {
   std::uint64_t hash = detail::kFnvOffset;
   for (std::uint32_t w : words) hash = fnv1a(hash, w);
-  for (const SpecializationConstant& c : sorted) hash = fnv1a(fnv1a(hash, c.id), c.value);
-  char name[64];
-  std::snprintf(name, sizeof name, "%zu-%016llx.spv", words.size(), static_cast<unsigned long long>(hash));
-  return name;
+  return hash;
 }
 
 }  // namespace
 
-std::optional<std::vector<std::uint32_t>> read_cache_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary | std::ios::ate);
-  if (!in) return std::nullopt;
-  const std::streamoff size = in.tellg();
-  if (size <= 0 || size % 4 != 0) return std::nullopt;
-  std::vector<std::uint32_t> words(static_cast<std::size_t>(size) / 4);
-  in.seekg(0);
-  if (!in.read(reinterpret_cast<char*>(words.data()), size)) return std::nullopt;
-  return words;
+std::uint64_t spirv_cache_key(std::span<const std::uint32_t> words, std::span<const SpecializationConstant> constants) {
+  std::vector<SpecializationConstant> sorted(constants.begin(), constants.end());
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  std::uint64_t hash = checksum(words);
+  for (const SpecializationConstant& c : sorted) hash = fnv1a(fnv1a(hash, c.id), c.value);
+  return hash;
 }
 
-void write_cache_file(const std::filesystem::path& file, std::span<const std::uint32_t> words) {
+std::optional<CacheFile> read_cache_file(const std::filesystem::path& file) {
+  const std::optional<std::string> bytes = read_regular_file(file, kMaxCacheFileBytes);
+  if (!bytes || bytes->size() % 4 != 0 || bytes->size() < 4 * kCacheHeaderWords) return std::nullopt;
+  std::vector<std::uint32_t> words(bytes->size() / 4);
+  std::memcpy(words.data(), bytes->data(), bytes->size());
+  auto u64 = [&](std::size_t at) { return static_cast<std::uint64_t>(words[at]) | static_cast<std::uint64_t>(words[at + 1]) << 32; };
+  if (words[0] != kCacheMagic || words[1] != kCacheFormat || words[4] != words.size() - kCacheHeaderWords) return std::nullopt;
+  CacheFile kept{u64(2), std::vector<std::uint32_t>(words.begin() + kCacheHeaderWords, words.end())};
+  if (checksum(kept.words) != u64(5)) return std::nullopt;  // a body that is not the one written
+  return kept;
+}
+
+void write_cache_file(const std::filesystem::path& file, std::uint64_t key, std::span<const std::uint32_t> words) {
+  if (words.size() > kMaxCacheFileBytes / 4 - kCacheHeaderWords) return;  // (never read back)
   std::error_code error;
   std::filesystem::create_directories(file.parent_path(), error);
   if (error) return;
+  const std::uint64_t sum = checksum(words);
+  const std::uint32_t header[kCacheHeaderWords] = {kCacheMagic,
+                                                   kCacheFormat,
+                                                   static_cast<std::uint32_t>(key),
+                                                   static_cast<std::uint32_t>(key >> 32),
+                                                   static_cast<std::uint32_t>(words.size()),
+                                                   static_cast<std::uint32_t>(sum),
+                                                   static_cast<std::uint32_t>(sum >> 32)};
   std::random_device random;
   const std::filesystem::path partial = file.string() + ".partial-" + std::to_string(random());
   bool whole = false;
   {
     std::ofstream out(partial, std::ios::binary | std::ios::trunc);
     if (!out) return;
+    out.write(reinterpret_cast<const char*>(header), sizeof header);
     out.write(reinterpret_cast<const char*>(words.data()), static_cast<std::streamsize>(words.size() * 4));
     out.close();
     whole = !out.fail();
@@ -184,17 +205,22 @@ std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t
                                                    const std::string& pipeline,
                                                    const std::optional<std::filesystem::path>& directory) {
   if (!directory) return specialize_spirv(words, constants, pipeline);
-  const std::filesystem::path file = *directory / cache_name(words, constants);
-  if (std::optional<std::vector<std::uint32_t>> kept = read_cache_file(file)) {
+  const std::uint64_t key = spirv_cache_key(words, constants);
+  char name[64];
+  std::snprintf(name, sizeof name, "%zu-%016llx.spv", words.size(), static_cast<unsigned long long>(key));
+  const std::filesystem::path file = *directory / name;
+  // Read back only where the file holds what was written for this key
+  // (read_cache_file checks the body's checksum); then validated.
+  if (std::optional<CacheFile> kept = read_cache_file(file); kept && kept->key == key) {
     try {
-      validate_spirv(*kept, pipeline + " (specialised, from " + file.string() + ")");
-      return std::move(*kept);
+      validate_spirv(kept->words, pipeline + " (specialised, from " + file.string() + ")");
+      return std::move(kept->words);
     } catch (const VulkanError&) {
       // not a module: folded again below, and the file replaced
     }
   }
   std::vector<std::uint32_t> folded = specialize_spirv(words, constants, pipeline);
-  write_cache_file(file, folded);
+  write_cache_file(file, key, folded);
   return folded;
 }
 

@@ -1,5 +1,7 @@
 #include "scene_reader.hpp"
 
+#include "sol/file_io.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -261,23 +263,16 @@ void check_json_text(std::string_view text, std::string_view source) {
 
 std::string read_text_file(const std::string& path, const char* kind) {
   // What is not a regular file is refused before it is read: a directory
-  // (not "malformed JSON"), a FIFO or a device (which could block or never end).
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (!ec && std::filesystem::is_directory(status)) throw InvalidArgument(path + ": a directory, not a " + kind + " file");
-  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    throw InvalidArgument(path + ": not a regular file, so not a " + kind + " file");
-  }
+  // (not "malformed JSON"), a FIFO or a device (which could block or never
+  // end), anything larger than any scene or path (sol::read_regular_file).
   constexpr std::uintmax_t kLargest = 64u << 20;
-  if (!ec && std::filesystem::exists(status) && std::filesystem::file_size(path, ec) > kLargest && !ec) {
-    throw InvalidArgument(path + ": larger than 64 MiB, more than any " + std::string(kind) + " file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidArgument(path + ": cannot open " + kind + " file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InvalidArgument(path + ": cannot read " + kind + " file");
-  return text.str();
+  std::string why;
+  std::optional<std::string> text = read_regular_file(path, kLargest, &why);
+  if (text) return std::move(*text);
+  if (why == "a directory") throw InvalidArgument(path + ": a directory, not a " + kind + " file");
+  if (why == "no such file") throw InvalidArgument(path + ": cannot open " + kind + " file (no such file)");
+  if (why.starts_with("larger than")) throw InvalidArgument(path + ": larger than 64 MiB, more than any " + kind + " file");
+  throw InvalidArgument(path + ": cannot read " + kind + " file: " + why);
 }
 
 }  // namespace sol::detail

@@ -9,6 +9,7 @@
 #include "sol/distance.hpp"
 #include "sol/elliptic.hpp"
 #include "sol/error.hpp"
+#include "sol/file_io.hpp"
 #include "sol/group.hpp"
 #include "sol/geodesic.hpp"
 #include "sol/lattice.hpp"

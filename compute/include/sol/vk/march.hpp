@@ -233,10 +233,11 @@ class MarchRenderer final : public Renderer {
 /// in milliseconds. The table is made by this program's own solver, so a
 /// file is named by the path of the file holding this code (the program,
 /// or the shared library that linked sol::vk) and read back only while its
-/// header holds that file's size and modification time and the table's
-/// constants; any other (a rebuilt program, a truncated or foreign file) is
-/// passed over, the table built and the file written again
-/// (write_cache_file). MarchRenderer takes it from spirv_cache_directory()
+/// key (read_cache_file) is the hash of that file's size and modification
+/// time and the table's constants, and its body's checksum holds; any
+/// other (a rebuilt program, a truncated, zeroed or foreign file, anything
+/// but a regular file) is passed over, the table built and the file
+/// written again (write_cache_file). MarchRenderer takes it from spirv_cache_directory()
 /// once per process.
 std::vector<float> connection_seeds_cached(bool longer, const std::optional<std::filesystem::path>& directory);
 

@@ -108,18 +108,38 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
 /// else $HOME/.cache/sol/spirv; none where neither is set.
 std::optional<std::filesystem::path> spirv_cache_directory();
 
-/// A file of a cache directory as 32-bit words (little-endian as written);
-/// none where it cannot be read, is empty or is not whole words.
-std::optional<std::vector<std::uint32_t>> read_cache_file(const std::filesystem::path& file);
-/// Writes `words` to a cache file whole or not at all: to a temporary name
-/// in the same directory (created if need be), closed and checked, then
-/// renamed into place, so that processes writing at once never leave or
-/// read a partial file. A failure is silent (the caller computes again).
-void write_cache_file(const std::filesystem::path& file, std::span<const std::uint32_t> words);
+/// The largest cache file read back (a folded kernel is about a megabyte,
+/// the connection seeds' table 400 KB): anything larger is passed over.
+inline constexpr std::uintmax_t kMaxCacheFileBytes = std::uintmax_t{64} << 20;
 
-/// specialize_spirv, kept in `directory` (none: folded every time): a file
-/// named by a 64-bit FNV-1a hash of the words and the constants (sorted by
-/// id), the folded module as it was made. A module folded before is read
+/// A cache file's contents: the key of what it holds (which the reader
+/// compares with the key it asks for) and its body.
+struct CacheFile {
+  std::uint64_t key = 0;
+  std::vector<std::uint32_t> words;
+};
+/// A cache file written by write_cache_file, read back: a header (the
+/// magic "SOLC", the format, the key, the body's length and a 64-bit
+/// FNV-1a checksum of it), then the body in 32-bit words. None where the
+/// file is not a regular file of at most kMaxCacheFileBytes (a FIFO or a
+/// device is never waited on; sol::read_regular_file), cannot be read, or
+/// its header, length or checksum do not hold: a truncated, zeroed or
+/// foreign file is passed over (and the caller writes it again).
+std::optional<CacheFile> read_cache_file(const std::filesystem::path& file);
+/// Writes `words` with `key` to a cache file whole or not at all: to a
+/// temporary name in the same directory (created if need be), closed and
+/// checked, then renamed into place, so that processes writing at once
+/// never leave or read a partial file. A failure is silent (the caller
+/// computes again).
+void write_cache_file(const std::filesystem::path& file, std::uint64_t key, std::span<const std::uint32_t> words);
+/// The key of specialize_spirv_cached's file for these words and
+/// constants (sorted by id): a 64-bit FNV-1a hash, which names the file too.
+std::uint64_t spirv_cache_key(std::span<const std::uint32_t> words, std::span<const SpecializationConstant> constants);
+
+/// specialize_spirv, kept in `directory` (none: folded every time): a cache
+/// file named by spirv_cache_key and holding it (a module another variant
+/// folded, copied under this name, is passed over), the folded module as it
+/// was made. A module folded before is read
 /// back and validated instead of folded again (folding the march kernel
 /// takes about a second; reading it, milliseconds); a new one is written
 /// to a temporary file and renamed into place, so that processes folding
