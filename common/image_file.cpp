@@ -52,6 +52,28 @@ bool can_write(const std::string& path) {
   return out != nullptr;
 }
 
+bool image_decodes(const std::string& path, int width, int height, std::string* why) {
+  auto fail = [&](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return fail("not a regular file");
+  if (std::filesystem::file_size(path, ec) == 0 || ec) return fail("empty");
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return fail("not an image (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width != width || spec.height != height) {
+    return fail(std::to_string(spec.width) + " x " + std::to_string(spec.height) + ", not " + std::to_string(width) +
+                " x " + std::to_string(height));
+  }
+  std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    return fail("it does not decode (" + in->geterror() + ")");
+  }
+  return true;
+}
+
 struct ImageWriter::Impl {
   explicit Impl(const OutputFile& f) : file(f) {}
   const OutputFile& file;

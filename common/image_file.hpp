@@ -65,4 +65,9 @@ std::size_t write_image(const OutputFile& file, int width, int height, const std
 /// Whether OpenImageIO can write files with this name's extension.
 bool can_write(const std::string& path);
 
+/// Whether `path` is a regular file holding a whole width × height image
+/// (opened and every pixel decoded); where not, `why` says what it is (an
+/// empty file, a directory, a truncated image, another size).
+bool image_decodes(const std::string& path, int width, int height, std::string* why = nullptr);
+
 }  // namespace sol::programs

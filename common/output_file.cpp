@@ -41,9 +41,17 @@ void release_slot(int slot) {
   if (slot >= 0) g_state[slot].store(0);
 }
 
+// The helper processes alive now (an encoder the program feeds), for the
+// signal handler: each slot 0 or a process id.
+std::atomic<pid_t> g_children[kSlots];
+
 extern "C" void remove_temporaries_and_reraise(int signal) {
   for (int i = 0; i < kSlots; ++i) {
     if (g_state[i].load() == 2) ::unlink(g_paths[i]);
+  }
+  // A helper that would outlive us (a hung encoder): stopped, not waited for.
+  for (int i = 0; i < kSlots; ++i) {
+    if (const pid_t child = g_children[i].load(); child > 0) ::kill(child, SIGKILL);
   }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
@@ -121,6 +129,20 @@ void OutputFile::commit() {
   m_committed = true;
   release_slot(m_slot);
   m_slot = -1;
+}
+
+ChildProcess::ChildProcess(pid_t pid) {
+  for (int i = 0; i < kSlots; ++i) {
+    pid_t expected = 0;
+    if (g_children[i].compare_exchange_strong(expected, pid)) {
+      m_slot = i;
+      return;
+    }
+  }
+}
+
+ChildProcess::~ChildProcess() {
+  if (m_slot >= 0) g_children[m_slot].store(0);
 }
 
 void install_signal_cleanup() {

@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include <sys/types.h>
+
 namespace sol::programs {
 
 class OutputFile {
@@ -45,9 +47,25 @@ class OutputFile {
   bool m_committed = false;
 };
 
+/// A helper process the program started (an encoder it feeds), listed
+/// while this object lives so that the signal handlers of
+/// install_signal_cleanup kill it (SIGKILL) rather than leave it running
+/// after the program: a hung helper would otherwise outlive it. The
+/// owner still stops and waits for it in the ordinary way.
+class ChildProcess {
+ public:
+  explicit ChildProcess(pid_t pid);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+ private:
+  int m_slot = -1;
+};
+
 /// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove every live
-/// OutputFile's temporary and then end the program as the signal would
-/// have (default action, re-raised).
+/// OutputFile's temporary, kill every live ChildProcess and then end the
+/// program as the signal would have (default action, re-raised).
 void install_signal_cleanup();
 
 /// Whether two paths name one file, however spelled (./b.exr, b.exr,

@@ -19,8 +19,13 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <utility>
+#include <cerrno>
+#include <cstring>
 #include <csignal>
 #include <spawn.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -149,16 +154,17 @@ const char* video_format(const std::string& video) {
   return nullptr;
 }
 
-// Encodes the film's frames (from first_frame on, the -o pattern) into
+// Encodes the film's frames first_frame..end_frame-1 (the -o pattern) into
 // `video` with ffmpeg: H.264 in yuv420p (sizes padded to even numbers),
 // written to a temporary and moved onto `video` when ffmpeg succeeds.
-void encode_video(const std::string& ffmpeg, const std::string& pattern, long first_frame, double fps,
+void encode_video(const std::string& ffmpeg, const std::string& pattern, long first_frame, long end_frame, double fps,
                   const std::string& video) {
   const char* format = video_format(video);  // checked before the first frame (film_of)
   sol::programs::OutputFile out(video);
   const std::string rate = std::to_string(fps), start = std::to_string(first_frame);
+  const std::string count = std::to_string(end_frame - first_frame);  // (not the frames beyond --frames)
   std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", rate, "-start_number", start,
-                                   "-i", pattern, "-c:v", "libx264", "-pix_fmt", "yuv420p",
+                                   "-i", pattern, "-frames:v", count, "-c:v", "libx264", "-pix_fmt", "yuv420p",
                                    "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", format, out.path()};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -167,8 +173,10 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
   if (posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
     throw std::runtime_error("--video: cannot run " + ffmpeg);
   }
+  const sol::programs::ChildProcess listed(pid);  // a signal ends it with us
   int status = 0;
-  waitpid(pid, &status, 0);
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("--video: ffmpeg failed to encode " + video);
   out.commit();
   std::fprintf(stderr, "solrender: encoded %s with ffmpeg\n", video.c_str());
@@ -207,6 +215,7 @@ class VideoPipe {
       throw std::runtime_error("--video: cannot run " + ffmpeg);
     }
     m_fd = fds[1];
+    m_listed.emplace(m_pid);  // a signal ends it with us
   }
   ~VideoPipe() {
     if (m_fd >= 0) close(m_fd);
@@ -252,6 +261,7 @@ class VideoPipe {
   sol::programs::OutputFile m_out;
   std::string m_video;
   pid_t m_pid = 0;
+  std::optional<sol::programs::ChildProcess> m_listed;
   int m_fd = -1;
   std::vector<std::uint8_t> m_bytes;
 };
@@ -397,12 +407,37 @@ void check_outputs(const Options& o, const sol::Scene& scene, const sol::cli::Co
   if (o.flow.rk4() && o.device == "cpu") cl.fail("--integrator rk4 needs the Vulkan kernel (--device vulkan or auto)");
 }
 
+// A descriptor closed when its owner goes (a lock held while it lives).
+struct FileDescriptor {
+  int fd = -1;
+  FileDescriptor() = default;
+  explicit FileDescriptor(int d) : fd(d) {}
+  FileDescriptor(FileDescriptor&& other) noexcept : fd(std::exchange(other.fd, -1)) {}
+  FileDescriptor& operator=(FileDescriptor&& other) noexcept {
+    if (this != &other) {
+      if (fd >= 0) ::close(fd);
+      fd = std::exchange(other.fd, -1);
+    }
+    return *this;
+  }
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
 // A film: its camera path, the frames to render and the encoder.
 struct Film {
   sol::CameraPath path;
   long first = 0, end = 0;  // frames first..end-1
   std::string ffmpeg;       // with --video
   std::string manifest;     // the settings' file beside the frames (film_manifest)
+  // The frames of first..end-1 already there whole (decoded), which a
+  // rerun skips; a frame file that does not decode is rendered again.
+  std::vector<bool> done;
+  // The manifest, open with a shared lock for as long as the film renders:
+  // shards of this film share the folder, another film cannot take it
+  // (check_film_folder).
+  FileDescriptor manifest_lock;
 };
 
 // The film's manifest file: beside the frames, named as the pattern with
@@ -424,10 +459,11 @@ std::string film_manifest(const Options& o, const sol::Scene& scene) {
   nlohmann::ordered_json m;
   m["solrender_film"] = 1;
   m["scene"] = nlohmann::ordered_json::parse(sol::to_json(scene));
-  std::ifstream in(o.path_file);  // read and checked by load_camera_path
-  std::stringstream text;
-  text << in.rdbuf();
-  m["path"] = nlohmann::ordered_json::parse(text.str());
+  // (Read and checked by load_camera_path; a file swapped since is refused as it was.)
+  std::string why;
+  const std::optional<std::string> text = sol::read_regular_file(o.path_file, std::uintmax_t{64} << 20, &why);
+  if (!text) throw std::runtime_error("--path " + o.path_file + ": " + why);
+  m["path"] = nlohmann::ordered_json::parse(*text);
   m["fps"] = o.fps;
   m["width"] = o.width;
   m["height"] = o.height;
@@ -454,24 +490,52 @@ std::string differing_fields(const std::string& was, const std::string& now) {
 // A film's frames are only ever one film's: the folder is made, and the
 // manifest there must be these settings' (written if there is none);
 // frames without one, or with another's, are refused unless --overwrite.
+// Films started at once are told apart under an exclusive lock of the
+// folder (flock), taken while the manifest is read and written; the film
+// then holds a shared lock of its manifest while it renders, which shards
+// of the same film share and which --overwrite (another film's frames to
+// replace) must take alone. A run alone there also removes the temporaries
+// a killed run left (.NAME.XXXXXX beside a frame). Frames already there
+// count as done only where they decode whole (image_decodes).
 void check_film_folder(const Options& o, const sol::Scene& scene, Film& film, const sol::cli::CommandLine& cl) {
   const std::filesystem::path folder = std::filesystem::path(frame_name(o.output, film.first)).parent_path();
   std::error_code ec;
   if (!folder.empty()) std::filesystem::create_directories(folder, ec);
   if (ec) cl.fail("-o " + o.output + ": cannot make the folder " + folder.string() + ": " + ec.message());
-  film.manifest = manifest_name(o.output);
-  const std::string now = film_manifest(o, scene);
-  if (std::filesystem::exists(film.manifest) && !o.overwrite) {
-    std::ifstream in(film.manifest);
-    std::stringstream was;
-    was << in.rdbuf();
-    if (was.str() != now) {
-      cl.fail("-o " + o.output + ": the frames there were rendered with other settings (" + film.manifest + ": " +
-              differing_fields(was.str(), now) + "); --overwrite renders them again with these, or give another -o");
-    }
-    return;
+  const std::string where = folder.empty() ? "." : folder.string();
+  const FileDescriptor folder_lock(::open(where.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folder_lock.fd < 0 || ::flock(folder_lock.fd, LOCK_EX) != 0) {
+    cl.fail("-o " + o.output + ": cannot lock the folder " + where + ": " + std::strerror(errno));
   }
-  if (!o.overwrite) {
+  film.manifest = manifest_name(o.output);
+  std::string now;
+  try {
+    now = film_manifest(o, scene);
+  } catch (const std::exception& e) {
+    cl.fail(e.what());
+  }
+  std::string why;
+  const std::optional<std::string> was = sol::read_regular_file(film.manifest, std::uintmax_t{16} << 20, &why);
+  if (!was && why != "no such file") {
+    cl.fail("-o " + o.output + ": " + film.manifest + " is not a film manifest (" + why + "); remove it, or give another -o");
+  }
+  // The manifest there, locked: none may be another film's running now where it is to be replaced.
+  auto lock_manifest = [&](int how) {
+    FileDescriptor m(::open(film.manifest.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+    if (m.fd < 0 || ::flock(m.fd, how | LOCK_NB) != 0) return FileDescriptor();
+    return m;
+  };
+  if (was && *was != now) {
+    if (!o.overwrite) {
+      cl.fail("-o " + o.output + ": the frames there were rendered with other settings (" + film.manifest + ": " +
+              differing_fields(*was, now) + "); --overwrite renders them again with these, or give another -o");
+    }
+    if (lock_manifest(LOCK_EX).fd < 0) {
+      cl.fail("-o " + o.output + ": another solrender is rendering the film of " + film.manifest +
+              " there now; --overwrite would mix its frames with these: wait for it, or give another -o");
+    }
+  }
+  if (!was && !o.overwrite) {
     for (long k = film.first; k < film.end; ++k) {
       if (std::filesystem::exists(frame_name(o.output, k))) {
         cl.fail("-o " + o.output + ": " + frame_name(o.output, k) + " is there without a film manifest (" + film.manifest +
@@ -479,10 +543,42 @@ void check_film_folder(const Options& o, const sol::Scene& scene, Film& film, co
       }
     }
   }
-  try {
-    sol::programs::write_text_file(film.manifest, now);
-  } catch (const std::exception& e) {
-    cl.fail(e.what());
+  if (!was || *was != now) {
+    try {
+      sol::programs::write_text_file(film.manifest, now);
+    } catch (const std::exception& e) {
+      cl.fail(e.what());
+    }
+  }
+  // Alone here (no other run holds the manifest): the temporaries of a run
+  // that was killed are removed. Then the shared lock, for the whole film.
+  if (FileDescriptor alone = lock_manifest(LOCK_EX); alone.fd >= 0) {
+    for (const auto& entry : std::filesystem::directory_iterator(where, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() < 9 || name[0] != '.' || name[name.size() - 7] != '.') continue;
+      const std::string frame = name.substr(1, name.size() - 8);  // .FRAME.XXXXXX
+      for (long k = 0; k < film.end; ++k) {
+        if (std::filesystem::path(frame_name(o.output, k)).filename() == frame) {
+          std::filesystem::remove(entry.path(), ec);
+          break;
+        }
+      }
+    }
+  }
+  film.manifest_lock = lock_manifest(LOCK_SH);
+  if (film.manifest_lock.fd < 0) cl.fail("-o " + o.output + ": cannot lock " + film.manifest + ": " + std::strerror(errno));
+  // The frames already there whole; anything else in a frame's place is
+  // rendered again (an empty or truncated file), or refused (a directory).
+  film.done.assign(static_cast<std::size_t>(film.end - film.first), false);
+  for (long k = film.first; k < film.end && !o.overwrite; ++k) {
+    const std::string name = frame_name(o.output, k);
+    if (std::filesystem::is_directory(name, ec)) cl.fail("-o " + o.output + ": " + name + " is a directory, not a frame");
+    if (!std::filesystem::exists(name, ec)) continue;
+    std::string broken;
+    film.done[static_cast<std::size_t>(k - film.first)] = sol::programs::image_decodes(name, image_width(o), o.height, &broken);
+    if (!film.done[static_cast<std::size_t>(k - film.first)]) {
+      std::fprintf(stderr, "solrender: %s is not a whole frame (%s): rendering it again\n", name.c_str(), broken.c_str());
+    }
   }
 }
 
@@ -536,6 +632,11 @@ std::optional<Film> film_of(const Options& o, const sol::Scene& scene, const sol
     }
     if (std::filesystem::is_directory(o.video)) cl.fail("--video " + o.video + ": it is a directory");
     if (!video_format(o.video)) cl.fail("--video " + o.video + ": give a .mp4, .mkv or .mov file");
+    try {  // that the video can be written there, now rather than after the frames
+      sol::programs::OutputFile probe(o.video);
+    } catch (const std::exception& e) {
+      cl.fail(std::string("--video ") + e.what());
+    }
   }
   if (!o.video_only) check_film_folder(o, scene, film, cl);  // (no frames, no manifest with --video-only)
   return film;
@@ -629,7 +730,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   const std::optional<sol::Lattice> lattice = scene.lattice();
   long to_render = 0;
   for (long k = film.first; k < film.end; ++k) {
-    to_render += o.video_only || o.overwrite || !std::filesystem::exists(frame_name(o.output, k));
+    to_render += o.video_only || o.overwrite || !film.done[static_cast<std::size_t>(k - film.first)];
   }
   // --video-only: every frame into ffmpeg as it renders, no frame files.
   std::optional<VideoPipe> video;
@@ -652,7 +753,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   };
   for (long k = film.first; k < film.end; ++k) {
     const std::string name = o.video_only ? std::string() : frame_name(o.output, k);
-    if (!o.video_only && !o.overwrite && std::filesystem::exists(name)) {
+    if (!o.video_only && !o.overwrite && film.done[static_cast<std::size_t>(k - film.first)]) {
       ++skipped;
       continue;
     }
@@ -690,7 +791,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there, %s -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
                peak_memory().c_str(), o.video_only ? o.video.c_str() : o.output.c_str());
-  if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, o.fps, o.video);
+  if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, film.end, o.fps, o.video);
 }
 
 // One image and its AOVs: both files complete before either replaces what
