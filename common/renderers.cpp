@@ -52,8 +52,8 @@ std::unique_ptr<sol::Renderer> make_renderer(const RendererChoice& choice, const
   if (choice.rk4 && choice.device == Device::Cpu) throw InvalidArgument("the RK4 integrator needs the Vulkan kernel");
 #ifdef SOL_HAVE_VULKAN
   if (choice.device != Device::Cpu) {
-    std::string why = vk::MarchRenderer::unsupported(world);
-    if (!why.empty() && choice.device == Device::Vulkan) throw NotImplemented(why);
+    std::string why = vk::MarchRenderer::unsupported(world, choice.transport);
+    if (!why.empty() && choice.device == Device::Vulkan) throw NotImplemented(why + " (--device cpu or auto)");
     if (!why.empty() && !choice.rk4) {
       note(why + "; rendering on the CPU");
     } else {
@@ -69,8 +69,13 @@ std::unique_ptr<sol::Renderer> make_renderer(const RendererChoice& choice, const
         note(std::string("no Vulkan device (") + e.what() + "); rendering on the CPU");
       }
       if (renderer) {
-        renderer->set_world(world);
-        return renderer;
+        try {
+          renderer->set_world(world);
+          return renderer;
+        } catch (const NotImplemented& e) {  // a world the kernel does not draw after all: the CPU does
+          if (choice.device == Device::Vulkan || choice.rk4) throw;
+          note(std::string(e.what()) + "; rendering on the CPU");
+        }
       }
     }
   }

@@ -28,6 +28,9 @@ struct RendererChoice {
   bool rk4 = false;        ///< the kernel's RK4 integrator (Vulkan only) instead of the closed form
   double rk4_step = 0.01;  ///< its substep in arc length, > 0
   bool validation = false; ///< the Vulkan validation layers
+  /// How the renders will be made: a world the kernel path-traces on the
+  /// CPU only (MarchRenderer::unsupported) takes the CPU then.
+  Transport transport = Transport::Direct;
 };
 
 /// Whether this build has the Vulkan kernel.

@@ -123,8 +123,14 @@ struct PyCpuRenderer {
   sol::CpuRenderer renderer;
   sol::Camera camera;
   int samples = 1;
+  // Safe while another Python thread renders with it (sol::CpuRenderer:
+  // that render finishes with the world it started with); the world is
+  // prepared without the GIL (a quotient's field takes a while).
   void set_scene(const sol::Scene& scene) {
-    renderer.set_world(scene);
+    {
+      py::gil_scoped_release release;
+      renderer.set_world(scene);
+    }
     camera = scene.camera;
     samples = scene.samples;
   }

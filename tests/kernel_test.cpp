@@ -1022,6 +1022,52 @@ TEST(Kernel, ManySamplesOfMirrorsAndGlowKeepMemoryFlat) {
   expect_no_validation_errors();
 }
 
+// A ray that runs out of march steps is counted on the kernel as on the
+// CPU (Render.RaysOutOfStepsAreCounted): with max_steps 3, counted over
+// every sample (Stats, the per-pixel AOV's sum equal to the count; its
+// own step rules: within a factor of two of the CPU's), with or without
+// the AOVs; at the default none.
+TEST(Kernel, RaysOutOfStepsAreCounted) {
+  sol::Scene scene = sol::preset_scene("sandwich");
+  sol::RenderOptions settings{.width = 16, .height = 12, .samples = 3};
+  sol::vk::MarchRenderer renderer(vk_context());
+  EXPECT_EQ(sol::render_scene(renderer, scene, settings).rays_out_of_steps, 0u);
+  scene.max_steps = 3;
+  const sol::RenderResult gpu = sol::render_scene(renderer, scene, settings);
+  const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+  double sum = 0.0;
+  for (const float n : gpu.out_of_steps) sum += n;
+  std::printf("max_steps 3: %llu rays out of steps on the kernel, %llu on the CPU\n",
+              static_cast<unsigned long long>(gpu.rays_out_of_steps), static_cast<unsigned long long>(cpu.rays_out_of_steps));
+  EXPECT_GT(gpu.rays_out_of_steps, 0u);
+  EXPECT_EQ(sum, static_cast<double>(gpu.rays_out_of_steps));
+  EXPECT_GT(2 * gpu.rays_out_of_steps, cpu.rays_out_of_steps);
+  EXPECT_LT(gpu.rays_out_of_steps, 2 * cpu.rays_out_of_steps);
+  settings.aovs = false;
+  EXPECT_EQ(sol::render_scene(renderer, scene, settings).rays_out_of_steps, gpu.rays_out_of_steps);
+  expect_no_validation_errors();
+}
+
+// World::max_bounces is a path's length on the kernel as on the CPU
+// (Path.MaxBouncesIsThePathLength): a box of perfect emitting mirrors
+// shows (B + 1) E by paths and by direct light (float: within 1e-5 per
+// unit).
+TEST(Kernel, MaxBouncesIsThePathLength) {
+  sol::Scene scene = sol::test::furnace_in(sol::Box{{0.1, -0.1, 0.05}, {0.6, 0.5, 0.4}}, sol::Quotient::None, 1.0);
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const int bounces : {0, 3}) {
+    scene.max_bounces = bounces;
+    renderer.set_world(scene);
+    for (const sol::Transport transport : {sol::Transport::Direct, sol::Transport::Path}) {
+      const sol::RenderResult r = renderer.render(scene.camera, {.width = 6, .height = 4, .samples = 2, .transport = transport});
+      for (std::size_t k = 0; k < 24; ++k) {
+        EXPECT_NEAR(r.rgba[4 * k], 0.5 * (bounces + 1), 1e-5 * (bounces + 1)) << bounces << " bounces, pixel " << k;
+      }
+    }
+  }
+  expect_no_validation_errors();
+}
+
 // The kernel's path tracer (march/paths.glsl) in furnaces: an eye inside a
 // closed enclosure that emits E = 0.5 and reflects with albedo 0.6, no
 // other light, sees E / (1 - ρ) = 1.25, and with half of the reflectance
@@ -1092,6 +1138,10 @@ TEST(Kernel, PathsInEveryEnclosureMakeAFurnaceWithTheCpuPaths) {
         const std::span<const sol::Camera> these(eyes.data() + first, std::min<std::size_t>(2, eyes.size() - first));
         const sol::RenderResult gpu = renderer.render(these, options);
         const sol::RenderResult cpu = cpu_renderer.render(these, options);
+        // At the default max_steps no ray runs out of steps in an enclosure
+        // (each wall met from inside by its faces' clearance).
+        EXPECT_EQ(gpu.rays_out_of_steps, 0u);
+        EXPECT_EQ(cpu.rays_out_of_steps, 0u);
         const int row = 6 * static_cast<int>(these.size());
         for (std::size_t eye = first; eye < first + these.size(); ++eye) {
           // A camera ray goes at least as far as the eye's own distance to the wall (-d there) guarantees.
@@ -1279,6 +1329,19 @@ TEST(Kernel, GlowReachConnectsAlongTheLongerGeodesicsAsTheCpu) {
 // hold (here a small fibre: 74 for [[3, 1], [2, 1]] with area 0.3) is one
 // the kernel does not render: unsupported() says so, naming what helps, so
 // that --device auto renders it on the CPU; the presets are rendered.
+// A glowing ball's glow_reach above the seed table's (3) keeps path
+// tracing on the CPU, and direct light, which never reads it, on the kernel.
+TEST(Kernel, GlowReachKeepsOnlyPathsOnTheCpu) {
+  sol::Scene scene = sol::test::far_glow(5.0);
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Direct), "");
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path).find("objects[1].glow_reach"), std::string::npos);
+  sol::vk::MarchRenderer renderer(vk_context());
+  renderer.set_world(scene);
+  EXPECT_NO_THROW(renderer.render(scene.camera, {.width = 4, .height = 4}));
+  EXPECT_THROW(renderer.render(scene.camera, {.width = 4, .height = 4, .transport = sol::Transport::Path}), sol::NotImplemented);
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, CrowdedQuotientsRenderOnTheCpu) {
   sol::Scene crowded = sol::preset_scene("trace4-balls");
   sol::set_quotient(crowded, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.3);
@@ -2006,8 +2069,15 @@ TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   EXPECT_THROW(sol::test::render(renderer, scene, 0, 10), sol::InvalidArgument);
+  // More objects than the kernel holds: not rendered here (NotImplemented,
+  // which --device auto takes as "render on the CPU"), and said so up front;
+  // more than any world holds: invalid on every renderer.
   scene.objects.resize(9, scene.objects[0]);
+  EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::NotImplemented);
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene).find("objects: 9 objects"), std::string::npos);
+  scene.objects.resize(sol::kMaxObjects + 1, scene.objects[0]);
   EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::InvalidArgument);
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "");  // (set_world says why)
   EXPECT_THROW(sol::vk::MarchRenderer(vk_context(), {.integrator = sol::vk::Integrator::RK4, .rk4_step = 0.0}),
                sol::InvalidArgument);
 }

@@ -1727,6 +1727,7 @@ TEST(Path, AnEmittingBallSeenFromInsideIsAFurnace) {
     settings.transport = sol::Transport::Path;
     settings.seed = 7;
     const sol::RenderResult r = sol::render_cpu(sol::test::furnace(mirror), settings);
+    EXPECT_EQ(r.rays_out_of_steps, 0u);  // (at the default max_steps)
     for (std::size_t k = 0; k < 36; ++k) {
       ASSERT_TRUE(std::isfinite(r.rgba[4 * k]));
       ASSERT_EQ(r.object[k], 1.0f);  // the inside of the sphere
@@ -1737,6 +1738,50 @@ TEST(Path, AnEmittingBallSeenFromInsideIsAFurnace) {
     EXPECT_GT(m.error, 0.0);
     EXPECT_LT(std::abs(m.mean - expected), 4.0 * m.error);
   }
+}
+
+// A ray that runs out of march steps is counted, never a silent miss:
+// with max_steps 3 the rays that neither hit nor reach max_distance in
+// three steps are counted in RenderResult::rays_out_of_steps, and the AOV
+// out_of_steps holds each pixel's own (over its samples: their sum is the
+// count); with the default max_steps none is. (The kernel's count, by its
+// own step rules, is checked in vk.Kernel.RaysOutOfStepsAreCounted.)
+TEST(Render, RaysOutOfStepsAreCounted) {
+  sol::Scene scene = sol::preset_scene("sandwich");
+  sol::RenderOptions settings{.width = 16, .height = 12, .samples = 3};
+  EXPECT_EQ(sol::render_cpu(scene, settings).rays_out_of_steps, 0u);
+  scene.max_steps = 3;
+  const sol::RenderResult r = sol::render_cpu(scene, settings);
+  double sum = 0.0;
+  for (const float n : r.out_of_steps) sum += n;
+  EXPECT_GT(r.rays_out_of_steps, 16u * 12u / 4u);
+  EXPECT_EQ(sum, static_cast<double>(r.rays_out_of_steps));
+  settings.aovs = false;
+  EXPECT_EQ(sol::render_cpu(scene, settings).rays_out_of_steps, r.rays_out_of_steps);  // counted without the AOVs too
+}
+
+// World::max_bounces is a path's length as it is a mirror chain's: inside
+// a closed box of perfect mirrors that emit E = 0.5 every vertex adds E
+// and no weight changes (a mirror of reflectance 1 is taken with
+// probability 1, and Russian roulette, with q = min(1, the weight), never
+// stops a path of weight 1), so a pixel sees (B + 1) E after B bounces,
+// by paths as by direct light. (Roulette capped at 0.95 made each mirror
+// bounce multiply the weight by 1/0.95: pixels of 30 and more; and paths
+// ignored max_bounces.) The kernel: vk.Kernel.MaxBouncesIsThePathLength.
+TEST(Path, MaxBouncesIsThePathLength) {
+  sol::Scene scene = sol::test::furnace_in(sol::Box{{0.1, -0.1, 0.05}, {0.6, 0.5, 0.4}}, sol::Quotient::None, 1.0);
+  for (const int bounces : {0, 3, 10}) {
+    scene.max_bounces = bounces;
+    for (const sol::Transport transport : {sol::Transport::Direct, sol::Transport::Path}) {
+      const sol::RenderResult r = sol::render_cpu(scene, {.width = 6, .height = 4, .samples = 2, .transport = transport});
+      for (std::size_t k = 0; k < 24; ++k) {
+        EXPECT_NEAR(r.rgba[4 * k], 0.5 * (bounces + 1), 1e-9) << bounces << " bounces, pixel " << k;
+      }
+    }
+  }
+  scene.max_bounces.reset();  // the default: 64 scatterings for paths, 4 reflections for direct light
+  EXPECT_NEAR(sol::render_cpu(scene, {.width = 2, .height = 2, .transport = sol::Transport::Path}).rgba[0], 32.5, 1e-9);
+  EXPECT_NEAR(sol::render_cpu(scene, {.width = 2, .height = 2}).rgba[0], 2.5, 1e-9);
 }
 
 // Every solid is seen from inside, in Sol and the quotient: the furnace of
@@ -1771,6 +1816,7 @@ TEST(Path, EverySolidSeenFromInsideIsAFurnace) {
     settings.transport = sol::Transport::Path;
     settings.seed = 7;
     const sol::RenderResult r = sol::render_cpu(scene, settings);
+    EXPECT_EQ(r.rays_out_of_steps, 0u) << name;  // (at the default max_steps)
     const double guaranteed = -sol::shape_distance(scene.objects[0].shape, scene.camera.position);
     ASSERT_GT(guaranteed, 0.0) << name;
     for (std::size_t k = 0; k < 36; ++k) {

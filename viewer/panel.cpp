@@ -191,7 +191,11 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
       out.world_changed = true;
     }
     out.world_changed |= drag_double("hit epsilon", m.scene.hit_epsilon, 1e-6, 1e-7, 0.1, "%.2e");
-    if (ImGui::DragInt("max bounces (mirrors)", &m.scene.max_bounces, 0.1f, 0, 64, "%d", ImGuiSliderFlags_AlwaysClamp)) {
+    // (Shown as it renders here: mirrors' reflections, or paths' scatterings when the view refines by paths.)
+    int bounces = m.refine_paths ? m.scene.path_bounces() : m.scene.mirror_bounces();
+    if (ImGui::DragInt(m.refine_paths ? "max bounces (paths)" : "max bounces (mirrors)", &bounces, 0.1f, 0, 64, "%d",
+                       ImGuiSliderFlags_AlwaysClamp)) {
+      m.scene.max_bounces = bounces;
       out.world_changed = true;
     }
     ImGui::Checkbox("stereo", &m.stereo);

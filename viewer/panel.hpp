@@ -38,6 +38,7 @@ struct PanelModel {
   int refined = -1;       ///< samples accumulated by progressive refinement (-1: moving)
   int refine_target = 0;  ///< --refine
   const std::string& message;  ///< the last error or notice (empty: none)
+  bool refine_paths = false;   ///< the refinement's samples are paths (max bounces: a path's scatterings)
 };
 
 /// What the user asked for in this frame besides the edits made in place.

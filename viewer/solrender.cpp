@@ -42,17 +42,21 @@
 
 namespace {
 
-// Interleaves the AOV planes into object, distance, Px, Py, Pz, steps.
+// The AOV file's channels, in interleave_aovs' order.
+const std::vector<std::string> kAovChannels = {"object", "distance", "Px", "Py", "Pz", "steps", "out_of_steps"};
+
+// Interleaves the AOV planes into object, distance, Px, Py, Pz, steps, out_of_steps.
 std::vector<float> interleave_aovs(const sol::RenderResult& r) {
-  const std::size_t n = r.object.size();
-  std::vector<float> out(6 * n);
+  const std::size_t n = r.object.size(), c = kAovChannels.size();
+  std::vector<float> out(c * n);
   for (std::size_t k = 0; k < n; ++k) {
-    out[6 * k + 0] = r.object[k];
-    out[6 * k + 1] = r.distance[k];
-    out[6 * k + 2] = r.px[k];
-    out[6 * k + 3] = r.py[k];
-    out[6 * k + 4] = r.pz[k];
-    out[6 * k + 5] = r.steps[k];
+    out[c * k + 0] = r.object[k];
+    out[c * k + 1] = r.distance[k];
+    out[c * k + 2] = r.px[k];
+    out[c * k + 3] = r.py[k];
+    out[c * k + 4] = r.pz[k];
+    out[c * k + 5] = r.steps[k];
+    out[c * k + 6] = r.out_of_steps[k];
   }
   return out;
 }
@@ -68,8 +72,9 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   r.rgba.resize(4 * n);
   const bool aovs = !both.object.empty();  // (rendered with RenderOptions::aovs)
   if (aovs) {
-    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->resize(n);
+    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->resize(n);
   }
+  r.rays_out_of_steps = both.rays_out_of_steps;
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * w + i;
@@ -85,6 +90,7 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
       r.py[k] = both.py[left];
       r.pz[k] = both.pz[left];
       r.steps[k] = both.steps[left];
+      r.out_of_steps[k] = both.out_of_steps[left] + both.out_of_steps[right];  // (both eyes' rays make the pixel)
     }
   }
   return r;
@@ -708,6 +714,7 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
                                        : sol::programs::Device::Auto;
   choice.rk4 = o.flow.rk4();
   choice.rk4_step = o.flow.rk_step;
+  choice.transport = o.transport == "path" ? sol::Transport::Path : sol::Transport::Direct;
 #ifndef NDEBUG
   choice.validation = true;  // validation layers in debug builds
 #endif
@@ -816,8 +823,7 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
   std::optional<sol::programs::OutputFile> aovs;
   if (!o.aov.empty()) {
     aovs.emplace(o.aov);
-    non_finite += sol::programs::write_image(*aovs, r.width, r.height, {"object", "distance", "Px", "Py", "Pz", "steps"},
-                                             interleave_aovs(r), false);
+    non_finite += sol::programs::write_image(*aovs, r.width, r.height, kAovChannels, interleave_aovs(r), false);
   }
   image.commit();
   if (aovs) aovs->commit();
@@ -867,11 +873,13 @@ int main(int argc, char** argv) {
     options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
+    std::uint64_t out_of_steps = 0;  // every image's rays that ran out of march steps
     const Render render = [&](const sol::Camera& camera, const RowSink* sink) {
       sol::RenderOptions these = options;
       if (sink != nullptr && !o.anaglyph()) these.rows = *sink;
       const sol::RenderResult both =
           o.stereo() ? renderer->render_stereo(camera, o.ipd, these) : renderer->render(camera, these);
+      out_of_steps += both.rays_out_of_steps;
       return o.anaglyph() ? to_anaglyph(both) : both;
     };
     progress.start();
@@ -879,6 +887,13 @@ int main(int argc, char** argv) {
       render_film(o, scene, *film, render, progress, tty, where);
     } else {
       render_still(o, scene, render, tty, !is_cpu(*renderer), where);
+    }
+    if (out_of_steps > 0) {
+      std::fprintf(stderr,
+                   "solrender: warning: %llu rays ran out of march steps (max_steps %d) before they met an object or "
+                   "max_distance, and were drawn as misses (shadow rays as unblocked): a larger --max-steps draws "
+                   "them (the AOV channel out_of_steps shows where)\n",
+                   static_cast<unsigned long long>(out_of_steps), scene.max_steps);
     }
   } catch (const std::exception& e) {
     if (tty) std::fprintf(stderr, "\n");

@@ -159,7 +159,11 @@ struct App : sol::viewer::ViewerState {
               }
               return names;
             }(),
-            [](const sol::World& world) { return sol::vk::MarchRenderer::unsupported(world); }) {}
+            [this](const sol::World& world) {
+              // (Called once the options are read: paths refine a still view with --refine-paths.)
+              return sol::vk::MarchRenderer::unsupported(world, options.refine_paths ? sol::Transport::Path
+                                                                                     : sol::Transport::Direct);
+            }) {}
 
   sol::cli::CommandLine command_line{"solview", "[options]",
                                      "Walks through Thurston's Sol geometry in a window: every pixel follows a Sol "
@@ -632,7 +636,7 @@ std::optional<sol::viewer::OverlayDraw> build_panel(App& app, const sol::viewer:
   sol::viewer::PanelModel model{app.scene, app.scene_name, app.presets, app.stereo, app.ipd, app.scale,
                                 app.adaptive, app.target_fps, app.options.min_scale, app.recording, app.observer,
                                 app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
-                                app.options.refine, app.message};
+                                app.options.refine, app.message, app.options.refine_paths};
   const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
   app.overlay->end_frame();
   app.act(actions, rw, rh);
@@ -650,8 +654,8 @@ void finish(const App& app, sol::viewer::Presenter& presenter, long frames) {
   if (!opt.screenshot.empty()) {
     try {
       presenter.save(opt.screenshot);
-    } catch (const std::runtime_error&) {
-      throw std::runtime_error("--screenshot " + opt.screenshot + ": no frame was rendered");
+    } catch (const std::runtime_error& e) {  // (no frame, or the file: the writer names it and why)
+      throw std::runtime_error(std::string("--screenshot ") + e.what());
     }
   }
   if (!opt.state.empty()) write_state(opt.state, app.observer, frames);
@@ -701,6 +705,7 @@ int run(App& app) {
   StepsProbe steps(context);
   long frame = 0;
   auto last = std::chrono::steady_clock::now();
+  std::optional<sol::World> prepared_world;  // the world the renderer holds
 
   while (!glfwWindowShouldClose(window.get()) && !app.quit && (opt.frames == 0 || frame < opt.frames)) {
     if (g_stop_signal != 0) {
@@ -757,8 +762,17 @@ int run(App& app) {
     const auto host_begin = std::chrono::steady_clock::now();
     // The world is prepared once per scene; per frame only the cameras change.
     if (app.world_changed) {
-      renderer.set_world(app.scene);  // frames in flight keep reading the old world's buffers
       app.world_changed = false;
+      try {
+        renderer.set_world(app.scene);  // frames in flight keep reading the old world's buffers
+        prepared_world = app.scene;
+        app.world_prepared();
+      } catch (const std::exception& e) {
+        // A world that validated but cannot be prepared: the renderer keeps the last one it held.
+        if (!prepared_world) throw;
+        app.world_refused(e.what(), *prepared_world);
+        app.world_changed = false;
+      }
     }
     const std::vector<sol::Camera> cameras = app.cameras();
     if (app.overlay_visible) steps.update(renderer, cameras[0], eye_w, eye_h);

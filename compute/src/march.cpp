@@ -84,7 +84,8 @@ Params world_params(const MarchWorld& prepared) {
     g.light_image_count[static_cast<glm::length_t>(i)] = count;
     first += count;
   }
-  g.limits = glm::vec4(world.max_distance, world.hit_epsilon, world.max_bounces, world.max_steps);
+  // (A path render's prepare_frame puts World::path_bounces in z.)
+  g.limits = glm::vec4(world.max_distance, world.hit_epsilon, world.mirror_bounces(), world.max_steps);
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
     const SceneObject& o = world.objects[k];
     const KernelShape shape = kernel_shape(o.shape);
@@ -364,7 +365,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingField, DescriptorType::StorageBuffer},
                                           {kernel::kBindingColumns, DescriptorType::StorageBuffer},
                                           {kernel::kBindingLightImages, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingQueue, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingQueue, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingStats, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -449,7 +451,7 @@ struct MarchRenderer::Impl {
   // What a descriptor set holds: the identity (Buffer::id, StorageImage::id)
   // of the resource at each binding; 0 for none or a caller's raw image
   // view, which is written again at every use.
-  using SetContents = std::array<std::uint64_t, kernel::kBindingQueue + 1>;
+  using SetContents = std::array<std::uint64_t, kernel::kBindingStats + 1>;
   // A variant's pipelines: the march pass, and the deferred passes it takes;
   // each with options.frames_in_flight descriptor sets, one per frame in flight.
   struct Built {
@@ -497,6 +499,9 @@ struct MarchRenderer::Impl {
   std::map<std::pair<std::uint32_t, LatticeConstants>, Built> pipelines;
   // The uniforms: one buffer, written by each frame's commands (vkCmdUpdateBuffer), never by the host.
   Buffer params;
+  // What the rays count (kernel::Stats): zeroed by render() before its
+  // dispatches and read after them (a presenter's frames add to it).
+  Buffer stats;
   // The prepared world and what set_world made of it.
   std::optional<MarchWorld> world;
   Params world_uniforms{};
@@ -523,7 +528,8 @@ struct MarchRenderer::Impl {
   std::uint64_t frames = 0;
   std::vector<std::pair<std::uint64_t, Buffer>> retired;  // (f, buffer)
 
-  Impl(Context& c, const MarchOptions& o) : context(c), options(o), params(c, sizeof(Params), BufferUsage::DeviceStorage) {
+  Impl(Context& c, const MarchOptions& o)
+      : context(c), options(o), params(c, sizeof(Params), BufferUsage::DeviceStorage), stats(c, sizeof(kernel::Stats)) {
     columns.emplace(context, sizeof(kernel::Column), BufferUsage::DeviceStorage);  // a stub until an ODS frame
     reserve_queue(0);  // the header alone until a deferring frame
   }
@@ -575,6 +581,7 @@ struct MarchRenderer::Impl {
     built.bind(set, kernel::kBindingLightImages, *light_images);
     built.bind(set, kernel::kBindingColumns, *columns);
     built.bind(set, kernel::kBindingQueue, *queue);
+    built.bind(set, kernel::kBindingStats, stats);
     return built;
   }
 
@@ -658,12 +665,8 @@ MarchRenderer& MarchRenderer::operator=(MarchRenderer&&) noexcept = default;
 
 void MarchRenderer::set_world(const World& world) {
   if (const std::string why = unsupported(world); !why.empty()) throw NotImplemented("sol::vk::MarchRenderer: " + why);
-  if (world.objects.size() > static_cast<std::size_t>(kMaxGpuObjects)) {
-    throw InvalidArgument("sol::vk::MarchRenderer: the scene has " + std::to_string(world.objects.size()) +
-                          " objects; the kernel takes at most " + std::to_string(kMaxGpuObjects));
-  }
   Impl& m = *m_impl;
-  MarchWorld prepared(world);  // validates
+  MarchWorld prepared(world);  // validates (and so at most sol::kMaxObjects objects; more than the kernel's are unsupported)
   const std::vector<kernel::Image> images = pack_images(prepared);
   const std::vector<glm::vec4> light_images = pack_light_images(prepared);
   const MarchFeatures& f = prepared.features();
@@ -773,6 +776,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
     g.path = path_uniform(sample.seed, sample.path, PathSampling::Combined);
   }
+  if (variant.path) g.limits.z = static_cast<float>(prepared.world().path_bounces());
   defer_passes(variant, m.options);
   // The lists hold a record per pixel of a dispatch, at most the whole
   // image; a frame whose lists one indirect dispatch or one storage buffer
@@ -839,7 +843,7 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                         group_count(f.height, kernel::kGroupSize), f.data());
 }
 
-std::string MarchRenderer::unsupported(const World& world) {
+std::string MarchRenderer::unsupported(const World& world, Transport transport) {
   // In the quotient a light's images within reach of D grow fast with the
   // reach (about 300 at 0, 2000 at 1): beyond reach 1 they outgrow
   // kMaxGpuLightImages.
@@ -850,25 +854,31 @@ std::string MarchRenderer::unsupported(const World& world) {
     if (l.type == LightType::Point && l.exact && l.reach > most) {
       std::snprintf(message, sizeof message,
                     "lights[%zu].reach: exact point lights with a reach above %g (1 in the quotient) render on the "
-                    "CPU only (--device cpu)",
+                    "CPU only",
                     i, ConnectionTable::kReach);
       return message;
     }
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    if (world.objects[i].glow_reach > ConnectionTable::kReach) {
+    // (Only paths connect to glowing balls: direct light never reads the reach.)
+    if (transport == Transport::Path && world.objects[i].glow_reach > ConnectionTable::kReach) {
       std::snprintf(message, sizeof message,
-                    "objects[%zu].glow_reach: glowing balls with a reach above %g render on the CPU only (--device cpu)",
+                    "objects[%zu].glow_reach: glowing balls with a reach above %g are path traced on the CPU only",
                     i, ConnectionTable::kReach);
       return message;
     }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {
       std::snprintf(message, sizeof message,
-                    "objects[%zu].radius: exact balls of a radius above %g render on the CPU only (--device cpu)", i,
+                    "objects[%zu].radius: exact balls of a radius above %g render on the CPU only", i,
                     kMaxExactBallRadius);
       return message;
     }
+  }
+  if (world.objects.size() > static_cast<std::size_t>(kMaxGpuObjects) && world.objects.size() <= sol::kMaxObjects) {
+    std::snprintf(message, sizeof message, "objects: %zu objects, more than the kernel's %d: they render on the CPU only",
+                  world.objects.size(), kMaxGpuObjects);
+    return message;
   }
   if (world.quotient != Quotient::None) {
     // More images near the domain than the kernel's records hold: a crowded
@@ -879,10 +889,11 @@ std::string MarchRenderer::unsupported(const World& world) {
     } catch (const std::exception&) {
       return {};  // an invalid world: set_world says why
     }
-    if (images > static_cast<std::size_t>(kMaxGpuImages)) {
+    // (More than the CPU's field takes: neither renders it, and set_world says why.)
+    if (images > static_cast<std::size_t>(kMaxGpuImages) && images <= QuotientField::kMaxImages) {
       std::snprintf(message, sizeof message,
                     "objects: %zu images of the objects lie near the quotient's domain, more than the kernel's %d: "
-                    "they render on the CPU only (--device cpu)%s",
+                    "they render on the CPU only%s",
                     images, kMaxGpuImages,
                     world.quotient == Quotient::Monodromy ? "; a larger quotient.fibre_area gives fewer" : "");
       return message;
@@ -891,7 +902,7 @@ std::string MarchRenderer::unsupported(const World& world) {
   return {};
 }
 
-bool MarchRenderer::supports(const World& world) { return unsupported(world).empty(); }
+bool MarchRenderer::supports(const World& world, Transport transport) { return unsupported(world, transport).empty(); }
 
 bool MarchRenderer::can_write_unorm(const Context& context, VkFormat format) {
   if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_B8G8R8A8_UNORM) return false;
@@ -931,7 +942,14 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
   const bool path = options.transport == Transport::Path;
+  if (path) {
+    if (const std::string why = unsupported(world().world(), Transport::Path); !why.empty()) {
+      throw NotImplemented("sol::vk::MarchRenderer::render: " + why);
+    }
+  }
   Frame f = prepare_frame(eyes, options.width, height, options.aovs, false, {}, true, path);
+  // The kernel is built: the work begins now (a progress estimate counts from here).
+  if (options.progress) options.progress(0.0);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
   // The AOV images only when asked for (the kernel variant without AOVs
   // never writes them: a 1 x 1 placeholder holds their bindings).
@@ -950,6 +968,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   Params& g = f.params;
   // Paths: the seed's halves and the sampling (each dispatch its sample's index, below).
   g.path = path_uniform(options.seed, 0, options.path_sampling);
+  // This render's counts from zero (its dispatches are waited for, one by one).
+  m.stats.write(std::array<kernel::Stats, 1>{});
   // Tiles: rows of tiles, the first a band of kGroupSize rows; each later
   // row sized from the time per pixel so far to take half the limit per
   // dispatch (whole bands of the image's width while those fit, else
@@ -1000,6 +1020,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   r.device_ms = ms;
   r.width = static_cast<int>(w);
   r.height = height;
+  std::array<kernel::Stats, 1> counted{};
+  m.stats.read(counted);
+  r.rays_out_of_steps = counted[0].out_of_steps.x;
   if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
   if (!options.aovs) return r;  // the colour alone: nothing more read back or held
   const std::vector<float> hits = hit->download(), points = point->download();
@@ -1007,6 +1030,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   r.object.resize(n);
   r.distance.resize(n);
   r.steps.resize(n);
+  r.out_of_steps.resize(n);
   r.px.resize(n);
   r.py.resize(n);
   r.pz.resize(n);
@@ -1014,6 +1038,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     r.object[k] = hits[4 * k + 0];
     r.distance[k] = hits[4 * k + 1];
     r.steps[k] = hits[4 * k + 2];
+    r.out_of_steps[k] = hits[4 * k + 3];
     r.px[k] = points[4 * k + 0];
     r.py[k] = points[4 * k + 1];
     r.pz[k] = points[4 * k + 2];

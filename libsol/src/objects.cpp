@@ -89,6 +89,19 @@ Clearances shape_clearances(const Shape& shape, const glm::dvec3& q, const glm::
   return std::visit([&](const auto& k) { return clearances(k.clearance_terms(q, u)); }, shape);
 }
 
+InsideClearances shape_inside_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
+  return std::visit(
+      [&](const auto& k) {
+        if constexpr (requires { k.inside_terms(q, u); }) {
+          return inside_clearances(k.inside_terms(q, u));
+        } else {
+          const double d = -k.distance(q);
+          return InsideClearances{d, d, 0.0};
+        }
+      },
+      shape);
+}
+
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q) {
   return std::visit([&](const auto& k) { return k.normal(q); }, shape);
 }

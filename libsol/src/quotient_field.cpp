@@ -55,8 +55,9 @@ void parallel_for(int count, F&& f) {
 
 QuotientField::QuotientField(const std::vector<MarchObject>& images, double max_step, const Lattice& lattice)
     : m_lattice(lattice), m_image_count(images.size()), m_max_step(max_step) {
-  if (images.size() > 254) {
-    throw std::invalid_argument("sol::QuotientField: at most 254 images, got " + std::to_string(images.size()));
+  if (images.size() > kMaxImages) {
+    throw std::invalid_argument("sol::QuotientField: at most " + std::to_string(kMaxImages) + " images, got " +
+                                std::to_string(images.size()));
   }
   if (!(max_step > 0.0 && max_step <= kQuotientMaxStep)) {
     throw std::invalid_argument("sol::QuotientField: max_step must be in (0, kQuotientMaxStep]");

@@ -1,6 +1,7 @@
 #include "sol/render.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -156,6 +157,16 @@ bool exact_ball(const Shape& shape) {
   return b && b->exact;
 }
 
+// The marches of this thread that stopped at max_steps (MarchHit::out_of_steps):
+// render_eye reads them pixel by pixel, whichever march (camera, mirror,
+// path, shadow) it was.
+thread_local std::uint64_t t_out_of_steps = 0;
+
+void count_out_of_steps(MarchHit& hit) {
+  hit.out_of_steps = true;
+  ++t_out_of_steps;
+}
+
 // A solid seen from inside: where its distance d is negative the ray is
 // inside it, and the surface is at least -d away. Every solid's distance
 // is 1-Lipschitz with the solid its sublevel set {d <= 0} (the exact
@@ -171,6 +182,53 @@ SeenDistance seen_distance(const MarchObject& object, bool solid, const glm::dve
   const double d = object_distance(object, q);
   const bool inside = solid && d < 0.0;
   return {inside ? -d : d, inside};
+}
+
+// An exact ball's clearance from q inside it along the unit tangent u
+// (sol::exact_ball_inside_clearance), from the shortest geodesic from its
+// centre: its length d and its tangent at q, the sphere's normal there.
+// At least `inside`, the exact distance to the sphere (r − d) the march
+// has, where the solve fails.
+double exact_ball_inside_step(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double inside, double eps) {
+  try {
+    const Connection c = minimising_geodesics(ball.center, q).front();
+    if (!(c.length > 0.0)) return inside;
+    const glm::dvec3 normal = glm::normalize(ClosedFormGeodesic<double>(glm::normalize(c.direction)).direction_at(c.length));
+    return std::max(inside, exact_ball_inside_clearance(ball.radius - c.length, c.length, glm::dot(normal, u), eps));
+  } catch (const OutOfRange&) {
+    return inside;
+  }
+}
+
+// The rate d' of the distance from an exact ball's centre along the unit
+// tangent u at q (its shortest geodesic's tangent at q against u); 0 where
+// the solve fails.
+double exact_ball_rate(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u) {
+  try {
+    const Connection c = minimising_geodesics(ball.center, q).front();
+    if (!(c.length > 0.0)) return 0.0;
+    return glm::dot(glm::normalize(ClosedFormGeodesic<double>(glm::normalize(c.direction)).direction_at(c.length)), u);
+  } catch (const OutOfRange&) {
+    return 0.0;
+  }
+}
+
+// A ray that leaves an exact ball's sphere passes it until it is 2
+// hit_epsilon away (as any surface it starts on), or until it turns back
+// towards the sphere: a ray that leaves the inner wall at a grazing angle
+// meets it again after a chord whose depth, r(1 − cos θ) for half-angle θ,
+// may never reach 2 hit_epsilon, and passing the sphere for the whole
+// chord it would go through the wall. `sign` holds the sign of the rate
+// at the first step (0 before it): the pass ends where the rate has the
+// other sign.
+bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double& sign) {
+  const double rate = exact_ball_rate(ball, q, u);
+  if (rate == 0.0) return false;
+  if (sign == 0.0) {
+    sign = rate > 0.0 ? 1.0 : -1.0;
+    return false;
+  }
+  return rate * sign < 0.0;
 }
 
 // The normal at a hit, turned to face the ray where it faces away and
@@ -234,6 +292,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (std::size_t k = 0; k < n; ++k) {
     if (is_solid(objects[k].shape)) solid |= std::uint64_t{1} << k;
   }
+  std::array<double, kMaxObjects> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
@@ -253,7 +312,16 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (o.cutout && std::holds_alternative<PlaneZ>(o.shape)) {
         d = std::max(d, cutout_gap_bound(o.pattern, multiply(origin, q)));
       }
-      if ((passing & bit) && d > 2.0 * world.hit_epsilon) passing &= ~bit;
+      // The surface it leaves: passed until 2 hit_epsilon away, or (seen
+      // from inside) until the ray heads for a face of it (an exact ball:
+      // turns back towards its sphere).
+      if ((passing & bit) && (d > 2.0 * world.hit_epsilon ||
+                              (exact_ball(objects[k].shape) && exact_ball_turned_back(std::get<Ball>(objects[k].shape), q,
+                                                                                      ray.direction_at(t), leave_sign[k])) ||
+                              (inside && !exact_ball(objects[k].shape) &&
+                               shape_inside_clearances(objects[k].shape, q, ray.direction_at(t)).nearest_rate < 0.0))) {
+        passing &= ~bit;
+      }
       if (d < nearest) {
         second = nearest;
         nearest = d;
@@ -271,6 +339,11 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     const Shape& nearest_shape = objects[nearest_k].shape;
     if (solids && others && is_solid(nearest_shape) && !nearest_inside) {  // (the clearance is the outside's)
       nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, ray.direction_at(t))));
+    } else if (nearest_inside && exact_ball(nearest_shape) && nearest > world.hit_epsilon) {
+      nearest = std::min(second, exact_ball_inside_step(std::get<Ball>(nearest_shape), q, ray.direction_at(t), nearest,
+                                                        world.hit_epsilon));
+    } else if (nearest_inside && others && !exact_ball(nearest_shape)) {  // inside a solid: its faces' clearance
+      nearest = std::min(second, std::max(nearest, shape_inside_clearances(nearest_shape, q, ray.direction_at(t)).ahead));
     }
     hit.steps = crossing.steps + step + 1;
     if (nearest_hit < world.hit_epsilon) {
@@ -298,6 +371,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     if (t > max_length) break;
   }
   hit.distance = std::min(t, max_length);
+  if (!(t > max_length)) count_out_of_steps(hit);  // the steps ran out first
   return hit;
 }
 
@@ -348,12 +422,14 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
     }
   }
+  std::vector<double> leave_sign(passing.size(), 0.0);  // (exact_ball_turned_back), one for each passed image
   const bool over_relax = !limits.leave_start;
   // The step from the last point the march moved to (0 before the first),
   // and the part of it that point's own bound covers (the step taken where
   // a proposal fails).
   double proposal = 0.0, covered = 0.0;
   QuotientField::Sample cell;  // q's cell: the reach and the candidates (one lookup a step)
+  bool reached = false;        // max_length (else the steps ran out first)
   for (int step = 0; step < world.max_steps; ++step) {
     // The position and the tangent (frame components, kept by the teleport's
     // left translation: the restarted ray starts along it).
@@ -378,10 +454,26 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       const SeenDistance seen = seen_distance(image, is_solid(image.shape), q);
       const double d = seen.d;
       auto left = std::find(passing.begin(), passing.end(), k);
-      if (left != passing.end() && d > 2.0 * world.hit_epsilon) left = passing.erase(left);
-      if (seen.inside) {  // inside: the distance alone, either way (the clearances are the outside's)
-        clear = std::min(clear, d);
-        back = std::min(back, d);
+      if (left != passing.end()) {  // (as march_cover's)
+        double& sign = leave_sign[static_cast<std::size_t>(left - passing.begin())];
+        if (d > 2.0 * world.hit_epsilon ||
+            (exact_ball(image.shape) && exact_ball_turned_back(std::get<Ball>(image.shape), q, u, sign)) ||
+            (seen.inside && !exact_ball(image.shape) && shape_inside_clearances(image.shape, q, u).nearest_rate < 0.0)) {
+          leave_sign.erase(leave_sign.begin() + (left - passing.begin()));
+          left = passing.erase(left);
+        }
+      }
+      if (seen.inside) {  // inside: the faces' clearances (an exact ball's ahead by its own, back by d)
+        if (exact_ball(image.shape)) {
+          clear = std::min(clear, d > world.hit_epsilon
+                                      ? exact_ball_inside_step(std::get<Ball>(image.shape), q, u, d, world.hit_epsilon)
+                                      : d);
+          back = std::min(back, d);
+        } else {
+          const InsideClearances both = shape_inside_clearances(image.shape, q, u);
+          clear = std::min(clear, std::max(d, both.ahead));
+          back = std::min(back, std::max(d, both.back));
+        }
       } else if (check) {
         const Clearances both = object_clearances(image, q, u);
         clear = std::min(clear, std::max(d, both.ahead));
@@ -423,6 +515,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
     if (!passing.empty()) step_length = std::max(step_length, 2.0 * world.hit_epsilon);
     if (t + step_length > max_length) {
       t += step_length;
+      reached = true;
       break;
     }
     covered = step_length;
@@ -432,6 +525,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
                    : step_length;
   }
   hit.distance = std::min(t, max_length);
+  if (!reached) count_out_of_steps(hit);
   return hit;
 }
 
@@ -499,7 +593,7 @@ glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
     const double transmittance = std::exp(-world.fog_density * hit.distance);
     color += weight * ((1.0 - transmittance) * world.fog_color);
     color += weight * transmittance * (o.emission + (1.0 - o.mirror) * diffuse_light(prepared, hit));
-    if (o.mirror == 0.0 || bounce == world.max_bounces) break;
+    if (o.mirror == 0.0 || bounce == world.mirror_bounces()) break;
     weight *= transmittance * o.mirror;
     const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
     const glm::dvec3 reflected = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
@@ -734,10 +828,16 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
 // with its 1/J, and shadows) times the albedo, the glowing balls' by
 // glow_sample, and the path goes on along a cosine-distributed direction,
 // its weight times the albedo (the Lambertian ρ/π times cos θ over the
-// density cos θ / π). Russian roulette from the fourth hit: the path goes
-// on with probability q = min(0.95, the weight's largest component), its
-// weight divided by q. Radiance is constant along a geodesic, so the
-// estimator needs no more than the geodesics themselves. No ambient light.
+// density cos θ / π). A path scatters at most World::path_bounces times
+// (the camera ray's hit is the first vertex: with 0 a hit's emission and
+// the lights' light alone); the glowing balls' next-event estimation, whose
+// weight counts on the path going on, is taken only where it may. Russian
+// roulette from the fourth hit: the path goes on with probability q =
+// min(1, the weight's largest component), its weight divided by q, so
+// that no weight ever grows past 1 (a perfect mirror keeps it at 1 and
+// the path goes on up to the bounces). Radiance is constant along a
+// geodesic, so the estimator needs no more than the geodesics themselves.
+// No ambient light.
 // `glowing`: next-event estimation's targets (glowing_balls; none for
 // reflection sampling alone), found once per render.
 glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, MarchHit hit,
@@ -748,8 +848,9 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
   bool after_diffuse = false;
   glm::dvec3 from(0.0), from_direction(0.0);
   double from_cosine = 0.0;
-  constexpr int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
-  for (int depth = 0; hit.object != 0 && depth < kMaxDepth; ++depth) {
+  const int bounces = world.path_bounces();
+  for (int depth = 0; hit.object != 0; ++depth) {
+    const bool goes_on = depth < bounces;  // this vertex may scatter the path further
     const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
     const double transmittance = std::exp(-world.fog_density * hit.distance);
     color += weight * ((1.0 - transmittance) * world.fog_color);
@@ -777,7 +878,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
     } else {
       const glm::dvec3 albedo = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
       if (!world.lights.empty()) color += weight * albedo * light_received(prepared, hit, n);
-      if (!glowing.empty()) color += weight * albedo * glow_sample(prepared, glowing, hit, n, sampling, random);
+      if (!glowing.empty() && goes_on) color += weight * albedo * glow_sample(prepared, glowing, hit, n, sampling, random);
       weight *= albedo;
       next = cosine_direction(n, random);
       after_diffuse = true;
@@ -785,8 +886,9 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
       from_direction = next;
       from_cosine = glm::dot(n, next);
     }
+    if (!goes_on) break;
     if (depth >= 3) {
-      const double q = std::min(0.95, std::max({weight.r, weight.g, weight.b}));
+      const double q = std::min(1.0, std::max({weight.r, weight.g, weight.b}));
       if (!(q > 0.0) || random.uniform() >= q) break;
       weight /= q;
     }
@@ -819,33 +921,57 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   r.py = join(left.py, right.py, 1);
   r.pz = join(left.pz, right.pz, 1);
   r.steps = join(left.steps, right.steps, 1);
+  r.out_of_steps = join(left.out_of_steps, right.out_of_steps, 1);
+  r.rays_out_of_steps = left.rays_out_of_steps + right.rays_out_of_steps;
   return r;
 }
 
 }  // namespace
 
-CpuRenderer::CpuRenderer() = default;
-CpuRenderer::CpuRenderer(const World& world) { set_world(world); }
+// The prepared world, shared with the renders that use it: set_world on
+// another thread swaps in a new one while they finish with theirs.
+struct CpuRenderer::Held {
+  mutable std::mutex guard;
+  std::shared_ptr<const MarchWorld> world;
+
+  std::shared_ptr<const MarchWorld> current() const {
+    const std::lock_guard lock(guard);
+    if (!world) throw std::logic_error("sol::CpuRenderer: no world (call set_world first)");
+    return world;
+  }
+};
+
+CpuRenderer::CpuRenderer() : m_held(std::make_unique<Held>()) {}
+CpuRenderer::CpuRenderer(const World& world) : CpuRenderer() { set_world(world); }
 CpuRenderer::~CpuRenderer() = default;
 CpuRenderer::CpuRenderer(CpuRenderer&&) noexcept = default;
 CpuRenderer& CpuRenderer::operator=(CpuRenderer&&) noexcept = default;
 
-void CpuRenderer::set_world(const World& world) { m_world = std::make_unique<MarchWorld>(world); }
-
-const MarchWorld& CpuRenderer::world() const {
-  if (!m_world) throw std::logic_error("sol::CpuRenderer: no world (call set_world first)");
-  return *m_world;
+void CpuRenderer::set_world(const World& world) {
+  if (!m_held) m_held = std::make_unique<Held>();  // (a moved-from renderer made whole again)
+  auto prepared = std::make_shared<const MarchWorld>(world);  // (outside the lock: a quotient's field takes a while)
+  const std::lock_guard lock(m_held->guard);
+  m_held->world = std::move(prepared);
 }
+
+std::shared_ptr<const MarchWorld> CpuRenderer::current_world() const {
+  if (!m_held) throw std::logic_error("sol::CpuRenderer: moved from");
+  return m_held->current();
+}
+
+const MarchWorld& CpuRenderer::world() const { return *current_world(); }
 
 MarchHit CpuRenderer::march(const Camera& camera, const glm::dvec3& direction) const {
   validate(camera);
-  return march_view(world(), view_from(world(), camera), direction);
+  const std::shared_ptr<const MarchWorld> prepared = current_world();
+  return march_view(*prepared, view_from(*prepared, camera), direction);
 }
 
-glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return radiance(world(), hit); }
+glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return radiance(*current_world(), hit); }
 
 RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
-  (void)world();  // a world first (logic_error)
+  // The world as it is now (logic_error without one), whatever set_world does meanwhile.
+  const std::shared_ptr<const MarchWorld> prepared = current_world();
   // Peak memory per pixel, measured: 55 bytes (the result's colour and
   // AOVs, 40, and the tiles' working copies), rounded up.
   validate_render(eyes, options, "sol::CpuRenderer::render", 64.0);
@@ -856,7 +982,7 @@ RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptio
     if (options.progress) {
       eye_options.progress = [&, e](double f) { options.progress((static_cast<double>(e) + f) / static_cast<double>(eyes.size())); };
     }
-    RenderResult eye = render_eye(eyes[e], eye_options);
+    RenderResult eye = render_eye(*prepared, eyes[e], eye_options);
     r = e == 0 ? std::move(eye) : side_by_side(r, eye);
   }
   if (options.rows) {  // the colour handed over, not kept
@@ -871,8 +997,7 @@ std::string CpuRenderer::description() const {
 }
 
 // One eye (validated by render()).
-RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& settings) const {
-  const MarchWorld& prepared = world();
+RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& camera, const RenderOptions& settings) {
   const int w = settings.width, h = settings.height;
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   RenderResult r;
@@ -881,8 +1006,9 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
   r.rgba.assign(4 * pixels, 0.0f);
   const bool aovs = settings.aovs;
   if (aovs) {
-    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps}) plane->assign(pixels, 0.0f);
+    for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->assign(pixels, 0.0f);
   }
+  std::atomic<std::uint64_t> out_of_steps{0};
 
   // Every ray starts at the camera, except an ODS eye's: each column at its
   // own eye (sol::column_eye), prepared once per column.
@@ -917,6 +1043,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       // error elsewhere, a cancelled progress), the rest of it is dropped.
       if (stopping.load(std::memory_order_relaxed)) return;
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      t_out_of_steps = 0;  // this pixel's marches from here
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
@@ -938,7 +1065,9 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       r.rgba[4 * k + 1] = static_cast<float>(c.g);
       r.rgba[4 * k + 2] = static_cast<float>(c.b);
       r.rgba[4 * k + 3] = 1.0f;
+      out_of_steps.fetch_add(t_out_of_steps, std::memory_order_relaxed);
       if (!aovs) continue;
+      r.out_of_steps[k] = static_cast<float>(t_out_of_steps);
       r.object[k] = static_cast<float>(hit.object);
       r.steps[k] = static_cast<float>(hit.steps);
       if (hit.object != 0) {
@@ -949,6 +1078,7 @@ RenderResult CpuRenderer::render_eye(const Camera& camera, const RenderOptions& 
       }
     }
   });
+  r.rays_out_of_steps = out_of_steps.load();
   return r;
 }
 

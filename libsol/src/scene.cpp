@@ -35,7 +35,9 @@ std::optional<Lattice> checked_lattice(const World& s) {
 // The checks behind validate(World), also run on the world of a scene file.
 void check_world(const World& s) {
   if (s.objects.empty()) field_error("objects", "the scene has no objects");
-  if (s.objects.size() > 64) field_error("objects", "at most 64 objects, got " + std::to_string(s.objects.size()));
+  if (s.objects.size() > kMaxObjects) {
+    field_error("objects", "at most " + std::to_string(kMaxObjects) + " objects, got " + std::to_string(s.objects.size()));
+  }
   const std::optional<Lattice> lattice = checked_lattice(s);
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);
@@ -61,7 +63,7 @@ void check_world(const World& s) {
   if (!(s.max_distance > 0.0 && s.max_distance <= 1e4)) field_error("max_distance", "max_distance must be in (0, 10000]");
   if (!(s.max_steps >= 1 && s.max_steps <= 100000)) field_error("max_steps", "max_steps must be in [1, 100000]");
   if (!(s.hit_epsilon > 0.0 && s.hit_epsilon <= 0.1)) field_error("hit_epsilon", "hit_epsilon must be in (0, 0.1]");
-  if (!(s.max_bounces >= 0 && s.max_bounces <= 64)) field_error("max_bounces", "max_bounces must be in [0, 64]");
+  if (s.max_bounces && !(*s.max_bounces >= 0 && *s.max_bounces <= 64)) field_error("max_bounces", "max_bounces must be in [0, 64]");
 }
 
 }  // namespace detail

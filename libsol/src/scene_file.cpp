@@ -304,7 +304,7 @@ std::string to_json(const Scene& s) {
   }
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
-  root["max_bounces"] = s.max_bounces;
+  if (s.max_bounces) root["max_bounces"] = *s.max_bounces;
   root["hit_epsilon"] = s.hit_epsilon;
   root["samples"] = s.samples;
   return root.dump(2);

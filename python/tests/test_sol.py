@@ -274,9 +274,39 @@ def test_cpu_renderer_keeps_its_world():
         renderer.render(0, 16)
 
 
+
+def test_cpu_renderer_takes_a_new_scene_while_a_thread_renders():
+    # set_scene from one thread while another renders with the same renderer (which once freed the world under
+    # the render: a segmentation fault): the render finishes with the world it started with, to the bit, and the
+    # renders after it take the new one.
+    import threading
+    import time
+    lattice, plane = sol.preset_scene("lattice-balls"), sol.preset_scene("plane")
+    renderer = sol.CpuRenderer(lattice)
+    results = {}
+    started = threading.Event()
+
+    def render():
+        started.set()
+        results["image"] = renderer.render(96, 96)
+
+    thread = threading.Thread(target=render)
+    thread.start()
+    started.wait()
+    time.sleep(0.05)
+    renderer.set_scene(plane)
+    thread.join()
+    assert np.array_equal(results["image"]["rgba"], sol.render_cpu(lattice, 96, 96)["rgba"])
+    assert np.array_equal(renderer.render(24, 16)["rgba"], sol.render_cpu(plane, 24, 16)["rgba"])
+
 def test_bad_arguments_raise_value_errors():
     with pytest.raises(ValueError, match="direction"):
         sol.flow((0, 0, 0), (0, 0, 0), 1.0)
+    # A NaN or infinite number in a scene names its field (JSON has neither: it was "malformed JSON").
+    with pytest.raises(sol.InvalidArgumentError, match=r"objects\[0\]\.radius must be a finite number, got nan"):
+        sol.scene([sol.ball((0, 0, 0), float("nan"))])
+    with pytest.raises(sol.InvalidArgumentError, match=r"camera\.position\[2\] must be a finite number, got inf"):
+        sol.scene([sol.plane_z(-1)], camera={"position": (0, 0, float("inf"))})
     with pytest.raises(ValueError, match="unknown preset 'tube'"):
         sol.preset_scene("tube")
     with pytest.raises(ValueError, match="shape"):

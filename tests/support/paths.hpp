@@ -132,7 +132,9 @@ inline sol::Scene far_glow(double reach) {
 /// A camera at the origin inside a solid that emits 0.5 and reflects with
 /// albedo 0.6 (a share `mirror` of it specular), nothing else, in Sol or a
 /// quotient: every path's expected radiance is 0.5 / (1 - 0.6) = 1.25
-/// (2.5 with a mirror share 0.5), whatever the solid's shape.
+/// (2.5 with a mirror share 0.5), whatever the solid's shape. At the
+/// world's default limits (max_steps 200): no ray may run out of steps in
+/// an enclosure (RenderResult::rays_out_of_steps).
 /// The furnace's wall: `solid`, emitting 0.5, albedo 0.6 (a share `mirror` specular).
 inline sol::SceneObject furnace_wall(const sol::Shape& solid, double mirror = 0.0) {
   sol::SceneObject wall{solid, {0.6, 0.6, 0.6}};
@@ -147,7 +149,6 @@ inline sol::Scene furnace_in(const sol::Shape& solid, sol::Quotient quotient = s
   s.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
   s.objects = {furnace_wall(solid, mirror)};
   s.lights.clear();
-  s.max_steps = 2000;
   return s;
 }
 

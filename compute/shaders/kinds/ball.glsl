@@ -27,6 +27,29 @@ vec3 ball_bound_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 h
   return vec3(distance, max(vec2(distance), max(clearance_roots(h.x, slope.x), clearance_roots(h.y, slope.y))));
 }
 
+// Seen from inside the bound's ball (sol::ball_inside_terms): the faces r
+// - d_xz and r - d_yz, d the projections' distances to the centre's, each
+// with bend coth(d/2) for steps of at most d/2. Returns (least g, ahead,
+// back, the nearest face's rate).
+vec4 ball_inside_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 hc) {
+  const float dx = q.x - c.x, dy = q.y - c.y;
+  const vec2 e = hz * hc, ec = hc * hc;
+  const float e2 = e.x * e.x, ie2 = e.y * e.y;
+  const float sh = 0.5 * (hz.x * hc.y - hz.y * hc.x), sh2 = sh * sh, half_sinh_dz = sh * sqrt(1.0 + sh2);
+  const vec2 s2 = vec2(sh2 + 0.25 * dx * dx * ie2, sh2 + 0.25 * dy * dy * e2);
+  const vec2 rate = vec2(half_sinh_dz * u.z + 0.5 * dx * u.x * ec.y - 0.25 * dx * dx * ie2 * u.z,
+                         half_sinh_dz * u.z + 0.5 * dy * u.y * ec.x + 0.25 * dy * dy * e2 * u.z);
+  const vec2 s = sqrt(s2), root = sqrt(1.0 + s2);
+  const vec2 d = 2.0 * log(s + root);  // the projections' distances
+  const vec2 slope = rate / max(s * root, 1e-30);
+  // coth(d/2) = √(1 + S²)/S with S = sinh(d/2) = s.
+  const vec2 bend = root / max(s, 1e-30);
+  vec4 least = vec4(1e30, 1e30, 1e30, 0.0);
+  inside_least(least, vec2(radius - d.x, -slope.x), bend.x, 0.5 * d.x);
+  inside_least(least, vec2(radius - d.y, -slope.y), bend.y, 0.5 * d.y);
+  return least;
+}
+
 // ---- ball: sol::sdf_ball, the distance lower bound to the centre less the radius
 
 float ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {

@@ -24,6 +24,21 @@ vec3 box_bound_clearances(vec3 q, vec3 u, vec3 center, vec3 half_width, vec2 hz)
                                                   clearance_roots(hz_term, sz))));
 }
 
+// Seen from inside (sol::Box::inside_terms): its six faces, each a plane's
+// signed distance, bend 1. Returns (least g, ahead, back, the nearest
+// face's rate).
+vec4 box_inside_clearances(vec3 q, vec3 u, vec3 center, vec3 half_width, vec2 hz) {
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
+  vec4 least = vec4(1e30, 1e30, 1e30, 0.0);
+  inside_least(least, face_x(q, u, center.x + half_width.x, -1.0, iez), 1.0, 1e30);
+  inside_least(least, face_x(q, u, center.x - half_width.x, 1.0, iez), 1.0, 1e30);
+  inside_least(least, face_y(q, u, center.y + half_width.y, -1.0, ez), 1.0, 1e30);
+  inside_least(least, face_y(q, u, center.y - half_width.y, 1.0, ez), 1.0, 1e30);
+  inside_least(least, vec2(center.z + half_width.z - q.z, -u.z), 1.0, 1e30);
+  inside_least(least, vec2(q.z - center.z + half_width.z, u.z), 1.0, 1e30);
+  return least;
+}
+
 float box_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return box_bound_clearances(q, vec3(0.0), rel.xyz, vec3(heading, rel.w), hz).x;
 }

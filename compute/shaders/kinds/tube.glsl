@@ -73,6 +73,45 @@ vec3 tube_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
   return vec3(distance, max(vec2(distance), max(clearance_roots(hw.x, sw.x), clearance_roots(hb, sb))));
 }
 
+// Seen from inside (sol::tube_inside_terms): vertical, the faces of the
+// slabs about x = x0 and y = y0 (bend 1); horizontal along h, the faces of
+// the across term asinh G (bend 1 along x or y, where it is a plane's
+// distance; else no established bound: g alone) and of |Δz| (bend 1).
+// `G` and its rate as tube_bound_clearances computes them.
+vec4 tube_faces_inside(vec3 q, vec3 u, bool vertical, vec2 G, vec2 sigma_y, float dz, float radius, float across_bend) {
+  vec4 least = vec4(1e30, 1e30, 1e30, 0.0);
+  const float root = sqrt(1.0 + G.x * G.x);
+  inside_slab(least, vec2(sign(G.x) * log(abs(G.x) + root), G.y / root), radius, vertical ? 1.0 : across_bend);
+  inside_slab(least, vertical ? sigma_y : vec2(dz, u.z), radius, 1.0);
+  return least;
+}
+
+vec4 tube_inside_clearances(vec3 q, vec3 u, vec3 through, bool vertical, vec2 h, float radius, vec2 hz) {
+  const vec3 d = q - through;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
+  // Vertical: G = Δx e^{-z} (the slab about x = x0 as an across term with h = (0, 1)).
+  const vec2 hh = vertical ? vec2(0.0, 1.0) : h;
+  const float inv_D = 1.0 / (abs(hh.x) * iez + abs(hh.y) * ez);
+  const float G = (hh.y * d.x - hh.x * d.y) * inv_D;
+  const float rate_G = ((hh.y * ez * u.x - hh.x * iez * u.y) - G * (abs(hh.y) * ez - abs(hh.x) * iez) * u.z) * inv_D;
+  return tube_faces_inside(q, u, vertical, vec2(G, rate_G), face_y(q, u, through.y, 1.0, ez), d.z, radius,
+                           h.x == 0.0 || h.y == 0.0 ? 1.0 : 1e30);
+}
+
+// The same from a quotient image's record (tube_record_clearances' words).
+vec4 tube_record_inside_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
+  const vec4 b = m.bound;
+  const bool vertical = b.x < 0.0;
+  const float ez = hz.x * hz.x, iez = hz.y * hz.y;
+  const float hx = vertical ? 0.0 : b.x, hy = vertical ? 1.0 : b.y, c = vertical ? b.y : b.z;
+  const float radius = vertical ? -b.x : b.x + abs(b.y);
+  const float inv_D = 1.0 / (hx * iez + abs(hy) * ez);
+  const float G = (hy * q.x - hx * q.y - c) * inv_D;
+  const float rate_G = ((hy * ez * u.x - hx * iez * u.y) - G * (abs(hy) * ez - hx * iez) * u.z) * inv_D;
+  return tube_faces_inside(q, u, vertical, vec2(G, rate_G), face_y(q, u, b.z, 1.0, ez), q.z - b.w, radius,
+                           hx == 0.0 || hy == 0.0 ? 1.0 : 1e30);
+}
+
 float tube_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return tube_bound(q, rel.xyz, int(rel.w), heading, radius, hz);
 }

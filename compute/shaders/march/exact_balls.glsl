@@ -58,4 +58,23 @@ float exact_ball_clearance(float f, float d, float slope, float eps) {
   return D < 3.0415927 ? max(f, s) : f;
 }
 
+// The clearance of an exact ball seen from inside: g = r - d > 0 the
+// exact distance to the sphere, `slope` = d' along the ray (so g' =
+// -slope), for steps of at most d/2 and kExactClearanceCap. Sol's
+// sectional curvatures are at least -1, so by the Hessian comparison
+// theorem Hess d <= coth(d) (g - ∇d ∇d) before any cut point (the
+// kernel's balls, r <= 2, lie well within the cut time, at least √2 π):
+// along the ray d'' <= coth(d), and over a step of at most d/2, d stays
+// above d/2, so g'' >= -M with M = coth(d/2). The step is the first root
+// of g - eps/2 - slope s - ½ M s² (aimed at g = eps/2, as
+// exact_ball_clearance), at least g itself. A ray that leaves the wall
+// inward at angle θ to the normal steps about the chord, 2 cos θ r / M,
+// instead of crawling out by sphere tracing.
+float exact_ball_inside_clearance(float g, float d, float slope, float eps) {
+  const float half_d = 0.5 * d;
+  const float bend = cosh(half_d) / max(sinh(half_d), 1e-30);
+  const float s = min(clearance_root(g - 0.5 * eps, -slope, bend), min(half_d, kExactClearanceCap));
+  return max(g, s);
+}
+
 #endif  // SOL_MARCH_EXACT_BALLS_GLSL

@@ -18,21 +18,14 @@ const int kMarchShadow = 1;  // from a hit point: towards a light, or a mirror's
 // Where a march picks a ray up: at arc length t, march step `step`,
 // passing the objects of the mask `passing` (cutout planes between their
 // discs, the surface a shadow ray leaves). A new ray starts at zero; the
-// resume pass goes on from the march pass's record (defer_exact). A ray
-// entering the exact ball it leaves (Surface::inside) names it in `entering`.
+// resume pass goes on from the march pass's record (defer_exact).
 struct MarchResume {
   float t;
   uint passing;
   int step;
-  uint entering;
 };
 
-const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0, 0u);
-
-// A ray that leaves a hit of object k, entering it where `inside` (an exact ball in Sol: others need no pass).
-MarchResume march_leaving(int k, bool inside) {
-  return MarchResume(0.0, 0u, 0, inside && !QUOTIENT && g_types[k] == kObjectExactBall ? 1u << uint(k) : 0u);
-}
+const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0);
 
 // What a march found.
 struct MarchHit {
@@ -148,7 +141,7 @@ MarchStep march_step_none() { return MarchStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0);
 // The objects' distances from q at arc length t (hz: q.z's half
 // exponentials), updating the mask of objects being passed. Planes x = c,
 // y = c whose crossing is solved (`xy`) answer the arc length left to it.
-MarchStep march_objects(vec3 q, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
+MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
                         PlaneRoot xy, inout uint passing) {
   MarchStep s = march_step_none();
   int k = 0;
@@ -165,7 +158,18 @@ MarchStep march_objects(vec3 q, vec2 hz, float t, float hit_epsilon, const bool 
     // a shadow ray leaves) are not hits until the ray is 2 hit_epsilon away
     // again (as the CPU reference).
     const uint bit = 1u << uint(k);
-    if (passes && (passing & bit) != 0u && d > 2.0 * hit_epsilon) passing &= ~bit;
+    // The surface it leaves: passed until 2 hit_epsilon away, or (seen from
+    // inside) until the ray heads for a face of it (sol::InsideClearances;
+    // exact balls: march_exact_step).
+    if (passes && (passing & bit) != 0u) {
+      bool heads = false;
+      if (HAS_INSIDE && inside_by_bound(g_types[k])) {
+        const float raw = object_bound(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
+        heads = raw < 0.0 && object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
+                                                      g_half_exp_z[k], -raw).w < 0.0;
+      }
+      if (d > 2.0 * hit_epsilon || heads) passing &= ~bit;
+    }
     if (d < s.nearest) {
       s.others = s.nearest;
       s.nearest_any = k;
@@ -202,29 +206,43 @@ bool planes_z_reachable(SolRay ray, float z0, float hit_epsilon) {
 // (s.nearest_k), finished by its exact distance (steps, and hits on the
 // true sphere) against the least distance to every other object: the step
 // beyond it by the ball's clearance along the ray (its rate from the
-// sphere's normal). Inside the ball (where the solve landed) the sphere is
-// -sdf away. Or (`entered`) a step of a ray that entered an exact ball at
-// its start (s.nearest_any, passed), near its sphere, where the inside
-// bound (exact_ball_inside) is too loose to end the pass: solved exactly,
-// the pass ends once -sdf is 2 hit_epsilon (as march_objects' for the
-// others), the ball a hit candidate again; the others' candidate stands.
-// One exact solve for both (each call is inlined, a Newton loop each).
-// Returns whether the march goes on (march_step_end).
-bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool entered, inout MarchStep s,
-                      inout ExactSolve x, inout uint passing, inout float t, inout int hit) {
-  const int e = entered ? s.nearest_any : s.nearest_k;
+// sphere's normal), outside or, seen from inside, inside. Or (`leaving`) a
+// step of a ray that leaves an exact ball's sphere (s.nearest_any, passed),
+// either way, near the sphere, where its bound is negative on both sides
+// (the bound's ball holds the exact one) and would hold the pass for every
+// step: solved exactly, the pass ends once |sdf| is 2 hit_epsilon (as
+// march_objects' for the others), the ball a hit candidate again; the
+// others' candidate stands. One exact solve for both (each call is
+// inlined, a Newton loop each). Returns whether the march goes on
+// (march_step_end).
+bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool leaving, inout MarchStep s,
+                      inout ExactSolve x, inout uint passing, inout float leave_sign, inout float t, inout int hit) {
+  const int e = leaving ? s.nearest_any : s.nearest_k;
   const float sdf = exact_ball_sdf(q, g_relative[e].xyz, g_radii[e], e, x);
-  if (HAS_INSIDE && entered) {
-    const float inside = x.known ? -sdf : 0.0;  // (where the solve did not land: the passing's least step)
-    if (inside > 2.0 * hit_epsilon) passing &= ~(1u << uint(e));
-    s.nearest = min(s.others, max(inside, 0.0));
+  const float slope = dot(x.end.tangent, u);  // the exact distance's rate along the ray (where x.known)
+  if (leaving) {
+    const float away = x.known ? abs(sdf) : 0.0;  // (where the solve did not land: the passing's least step)
+    // The pass ends 2 hit_epsilon away, or where the ray turns back
+    // towards the sphere (the rate's sign against its first: a grazing
+    // chord of the inner wall may never be 2 hit_epsilon deep;
+    // exact_ball_turned_back in libsol/src/render.cpp).
+    const bool turned = x.known && leave_sign != 0.0 && slope * leave_sign < 0.0;
+    if (x.known && leave_sign == 0.0 && slope != 0.0) leave_sign = sign(slope);
+    if (away > 2.0 * hit_epsilon || turned) {
+      passing &= ~(1u << uint(e));
+      leave_sign = 0.0;
+    }
+    const float beyond = HAS_INSIDE && x.known && sdf < 0.0 ? exact_ball_inside_clearance(away, length(x.v), slope, hit_epsilon)
+                                                             : away;
+    s.nearest = min(s.others, beyond);
     return march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, true, passing, t, hit);
   }
   const float exact = HAS_INSIDE && x.known ? abs(sdf) : sdf;
   float exact_step = exact;
-  if (x.known && sdf > hit_epsilon) {  // (the clearance is the outside's)
-    const float slope = dot(x.end.tangent, u);
+  if (x.known && sdf > hit_epsilon) {
     exact_step = exact_ball_clearance(exact, length(x.v), slope, hit_epsilon);
+  } else if (HAS_INSIDE && x.known && sdf < -hit_epsilon) {
+    exact_step = exact_ball_inside_clearance(exact, length(x.v), slope, hit_epsilon);
   }
   s.nearest = min(s.nearest_any == s.nearest_k ? s.others : s.nearest, exact_step);
   if (exact <= s.second_hit) {
@@ -282,10 +300,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
 
   int hit = 0, steps = 0;
   uint passing = resume.passing;
-  // The exact ball it starts on and enters (march_exact_step), passed.
-  const uint entering = HAS_INSIDE && !camera ? resume.entering : 0u;
   if (!camera) {  // the surfaces it starts on
-    passing |= entering;
     for (int k = 0; k < g_count; ++k) {
       if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) passing |= 1u << uint(k);
     }
@@ -316,7 +331,8 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   int step = resume.step;
   MarchStep s = march_step_none();
   bool shell = false;  // the step's nearest is an exact ball within kExactShell: finished exactly
-  bool inside_shell = false;  // the step's nearest is an exact ball the ray entered at its start (passed)
+  bool leaving_shell = false;  // the step's nearest is an exact ball the ray leaves (passed), near its sphere
+  float leave_sign = 0.0;      // the sign of its exact distance's rate at the first such step (march_exact_step)
   vec3 u = vec3(0.0);  // the ray's tangent at q (frame components), for the clearances
   // (Without exact balls one round, a loop the compiler unrolls; with
   // PLANES_XY_ONLY none: the roots did all, and a loop whose condition is
@@ -346,44 +362,48 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
       }
       if (translated) q = sol_translate(origin, q);
       const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
-      s = march_objects(q, hz, t, hit_epsilon, heights_only, passes, xy, passing);
+      s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, passing);
       // The nearest object, where it is a ball or a tube, lets a camera
       // ray's step be its clearance along the ray (object_clearance) up to
       // the others' least distance (as the CPU's march_cover: one clearance
       // a step). (Shadow rays step by the bound: inside the light's loop
       // over its geodesics one clearance a step made shadowed scenes 10-25 %
       // slower on lavapipe though the steps fell tenfold.)
-      if (camera && object_is_solid(g_types[s.nearest_any])) {
+      // (In a frame whose eye is inside a solid every ray: object_inside_clearances.)
+      if ((camera || HAS_INSIDE) && object_is_solid(g_types[s.nearest_any])) {
         s.nearest = min(s.others, object_clearance(g_types[s.nearest_any], q, u, g_relative[s.nearest_any],
                                                    g_headings[s.nearest_any], g_radii[s.nearest_any], hz,
                                                    g_half_exp_z[s.nearest_any]).y);
       }
       shell = HAS_EXACT_BALLS && g_types[s.nearest_k] == kObjectExactBall && s.nearest_hit < kExactShell;
-      // The ball the ray entered, still passed, near enough to hold the step back: its exact distance below.
-      inside_shell = HAS_INSIDE && !camera && (entering & passing & (1u << uint(s.nearest_any))) != 0u &&
-                     s.nearest < kExactShell;
-      if (shell || inside_shell) break;  // finished below
+      // The exact ball the ray leaves, still passed, near enough to hold the step back: its exact distance below.
+      leaving_shell = HAS_EXACT_BALLS && !camera && g_types[s.nearest_any] == kObjectExactBall &&
+                      (passing & (1u << uint(s.nearest_any))) != 0u && s.nearest < kExactShell;
+      if (shell || leaving_shell) break;  // finished below
       steps = root_steps + step + 1;
       alive = march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, passes, passing, t, hit);
     } while (++step < max_steps && alive);
     if (defer_shell) {
       if (shell && alive) {  // the rest of this ray in the resume pass
         h.deferred = true;
-        h.resume = MarchResume(t, passing, step, 0u);
+        h.resume = MarchResume(t, passing, step);
         return h;
       }
     } else if (zeta && zeta_round && shell && alive) {
       zeta_round = false;  // this step again, by Carlson's integrals (as the resume pass)
       shell = false;
-    } else if (HAS_EXACT_BALLS && (shell || inside_shell) && alive) {
+    } else if (HAS_EXACT_BALLS && (shell || leaving_shell) && alive) {
       steps = root_steps + step + 1;
-      alive = march_exact_step(q, u, hit_epsilon, limit, passes, inside_shell && !shell, s, exact, passing, t, hit);
-      shell = inside_shell = false;
+      alive = march_exact_step(q, u, hit_epsilon, limit, passes, leaving_shell && !shell, s, exact, passing, leave_sign,
+                               t, hit);
+      shell = leaving_shell = false;
       ++step;
     }
     alive = alive && step < max_steps;
   } while (rounds && ++round < max_steps && alive);
 
+  // Neither an object nor the limit: the steps ran out first.
+  if (!planes_xy_only && reachable && hit == 0 && !(t > limit)) ++g_out_of_steps;
   // A camera ray that marched by heights alone takes its full position at the hit.
   if (hit != 0 && INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
     sol_ray_integrals(ray);
@@ -465,8 +485,11 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   int hit_image = -1, steps = 0;
   vec3 q = origin;
   ExactSolve exact = exact_solve_none();
-  // A shadow ray's images it leaves: up to four, by index.
+  // A shadow ray's images it leaves: up to four, by index (and for exact
+  // balls the sign of the rate of their distance at the first solve, as
+  // march_exact_step's `leave_sign`).
   ivec4 passing = ivec4(-1);
+  vec4 leave_signs = vec4(0.0);
   if (!camera) {
     const uint word = field_candidates(field_cell(q));
     const bool all = word == kFieldAllImages;
@@ -482,6 +505,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   // march moved to, and `covered` the part of it q's own bounds clear.
   float proposal = 0.0, covered = 0.0;
   vec3 u = vec3(0.0, 0.0, 1.0);  // with mirrors: the tangent at q (frame components)
+  bool ended = false;  // at a hit or the limit (else the steps ran out first)
   for (int step = 0; step < max_steps; ++step) {
     SolForward forward = camera ? quotient_forward(qray, local_t + proposal, by_zeta)
                                 : sol_forward(qray, local_t + proposal, false);
@@ -495,56 +519,11 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
     const uint word = field_candidates(cell);
     const bool all = word == kFieldAllImages;
     const vec2 hz = half_exp(e.z);  // shared by the candidates' clearances
-    float nearest = 1e30;
-    int nearest_i = -1;
-    float second = 1e30;  // the least distance but the nearest's, and its image
-    int second_i = -1;
-    // The clearances (object_clearances) of the nearest and the least of
-    // the others' ahead, and the least back.
-    float clear_nearest = 1e30, clear_rest = 1e30, back = 1e30;
-    // (A do-while, tested at its end: see march.comp and candidate_clearances.)
-    const int listed = all ? image_count : field_candidate_count(word);
-    int s = 0;
-    do {
-      int i;
-      Image m;
-      const vec3 dc = candidate_clearances(word, all, s, listed, e, forward.direction, hz, i, m);
-      const float d = dc.x;
-      bool leaving = false;  // an image a shadow ray leaves, until it is 2 hit_epsilon away
-      if (!camera) {
-        for (int p = 0; p < 4; ++p) {
-          if (passing[p] == i) {
-            if (d > 2.0 * hit_epsilon) passing[p] = -1;
-            else leaving = true;
-          }
-        }
-      }
-      back = min(back, dc.z);
-      if (!leaving && d < nearest) {
-        second = nearest;
-        second_i = nearest_i;
-        nearest = d;
-        nearest_i = i;
-        clear_rest = min(clear_rest, clear_nearest);
-        clear_nearest = dc.y;
-      } else {
-        clear_rest = min(clear_rest, dc.y);
-        if (!leaving && d < second) {
-          second = d;
-          second_i = i;
-        }
-      }
-    } while (++s < listed);
-    if (HAS_EXACT_BALLS && nearest_i >= 0 && image_type(images[nearest_i]) == kObjectExactBall && nearest < kExactShell) {
-      // Near an exact ball's image: its exact distance (as in Sol; inside, where the solve landed, -sdf).
-      const float sdf = exact_ball_sdf(e, images[nearest_i].bound.xyz, images[nearest_i].bound.w, nearest_i, exact);
-      const float d = HAS_INSIDE && exact.known ? abs(sdf) : sdf;
-      nearest_i = d <= second ? nearest_i : second_i;
-      nearest = min(d, second);
-      clear_nearest = max(clear_nearest, d);
-    }
+    QuotientCandidates c = quotient_candidates(word, all, all ? image_count : field_candidate_count(word), e,
+                                               forward.direction, hz, camera, hit_epsilon, passing);
+    quotient_exact_step(e, forward.direction, hit_epsilon, c, exact, passing, leave_signs);
     const float reach = field_reach(cell);
-    if (camera && proposal > covered && covered + min(back, reach) < proposal) {
+    if (camera && proposal > covered && covered + min(c.back, reach) < proposal) {
       proposal = covered;  // not covered: the plain step instead
       continue;
     }
@@ -567,18 +546,23 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
     }
     q = e;
     if (HAS_MIRRORS || PATH_TRACING) u = forward.direction;
-    if (nearest < hit_epsilon) {
-      hit_image = nearest_i;
+    if (c.nearest < hit_epsilon) {
+      hit_image = c.nearest_i;
+      ended = true;
       break;
     }
-    const float clear = min(clear_nearest, clear_rest);
+    const float clear = min(c.clear_nearest, c.clear_rest);
     float step_length = min(clear, reach);
     if (!camera && any(greaterThanEqual(passing, ivec4(0)))) step_length = max(step_length, 2.0 * hit_epsilon);
-    if (t + step_length > limit) break;
+    if (t + step_length > limit) {
+      ended = true;
+      break;
+    }
     covered = step_length;
     proposal = camera && reach < clear ? min(max(step_length, min(kQuotientOverRelax * step_length, kQuotientMaxStep)), limit - t)
                                        : step_length;
   }
+  if (!ended) ++g_out_of_steps;
   MarchHit found = march_found(hit_image, t, q, origin, steps, exact);
   found.u = u;
   found.exact_inside = HAS_INSIDE && hit_image >= 0 && exact.k == hit_image && exact.known &&

@@ -57,6 +57,44 @@ vec2 clearance_roots(float h, float slope) {
   return h > 0.0 ? s : vec2(0.0);
 }
 
+// ---- Seen from inside a solid (sol/clearance.hpp, "Seen from inside a
+// solid"): each face a distance g > 0 with rate g' and g'' >= -bend for
+// steps up to `reach`; its clearances ahead and back, the larger of g and
+// the first root of g ± g' s - ½ bend s² (at most the reach). A bend of
+// 1e30 (no established bound): g alone.
+vec2 inside_face(float g, float slope, float bend, float reach) {
+  const float big = abs(slope) + sqrt(slope * slope + 2.0 * bend * max(g, 0.0));
+  const float small = 2.0 * g / max(big, 1e-30);
+  const vec2 s = slope >= 0.0 ? vec2(big / bend, small) : vec2(small, big / bend);
+  return max(vec2(g), min(s, vec2(reach)));
+}
+
+// The face of the plane x = c seen from inside, `side` +1 where the solid
+// lies at x > c: (g, g') of side · asinh((x - c) e^{-z}) (iez = e^{-z}).
+vec2 face_x(vec3 q, vec3 u, float c, float side, float iez) {
+  const float w = (q.x - c) * iez, root = sqrt(1.0 + w * w);
+  return side * vec2(sign(w) * log(abs(w) + root), (u.x - w * u.z) / root);
+}
+
+// The same for y = c: side · asinh((y - c) e^{z}) (ez = e^{z}).
+vec2 face_y(vec3 q, vec3 u, float c, float side, float ez) {
+  const float w = (q.y - c) * ez, root = sqrt(1.0 + w * w);
+  return side * vec2(sign(w) * log(abs(w) + root), (u.y + w * u.z) / root);
+}
+
+// A face's (g, g') and bend into the least clearances so far (x: g, yz:
+// ahead and back, w: the rate of the nearest face, sol::InsideClearances).
+void inside_least(inout vec4 least, vec2 face, float bend, float reach) {
+  least.w = face.x < least.x ? face.y : least.w;
+  least.xyz = min(least.xyz, vec3(face.x, inside_face(face.x, face.y, bend, reach)));
+}
+
+// A slab |σ| <= r about a signed distance (σ, σ'): its faces r - σ and r + σ.
+void inside_slab(inout vec4 least, vec2 sigma, float r, float bend) {
+  inside_least(least, vec2(r - sigma.x, -sigma.y), bend, 1e30);
+  inside_least(least, vec2(r + sigma.x, sigma.y), bend, 1e30);
+}
+
 // The dispatch by kind, defined below the kinds; declared here for them.
 float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius);
 
@@ -120,7 +158,24 @@ bool inside_by_bound(int type) { return HAS_INSIDE && type != kObjectExactBall &
 
 float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
 
-vec3 seen_from_inside(int type, vec3 c) { return inside_by_bound(type) && c.x < 0.0 ? vec3(-c.x) : c; }
+// Inside a solid drawn by its bound (the bound -d < 0 given): its faces'
+// clearances (-d, ahead, back) and the rate of its nearest face
+// (sol::shape_inside_clearances). An object's record, or a quotient image's.
+vec4 object_inside_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc, float d) {
+  vec4 c = vec4(d, d, d, 0.0);
+  if (feature_bound_balls && type == kObjectBall) c = ball_inside_clearances(q, u, rel.xyz, radius, hz, hc);
+  if (feature_boxes && type == kObjectBox) c = box_inside_clearances(q, u, rel.xyz, vec3(heading, rel.w), hz);
+  if (feature_tubes && type == kObjectTube) c = tube_inside_clearances(q, u, rel.xyz, int(rel.w) == kTubeVertical, heading, radius, hz);
+  return vec4(d, max(vec2(d), c.yz), c.w);
+}
+
+vec4 image_inside_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz, float d) {
+  vec4 c = vec4(d, d, d, 0.0);
+  if (feature_bound_balls && type == kObjectBall) c = ball_inside_clearances(q, u, m.bound.xyz, m.bound.w, hz, half_exp(m.bound.z));
+  if (feature_boxes && type == kObjectBox) c = box_inside_clearances(q, u, m.bound.xyz, vec3(m.heading.xy, m.bound.w), hz);
+  if (feature_tubes && type == kObjectTube) c = tube_record_inside_clearances(q, u, m, hz);
+  return vec4(d, max(vec2(d), c.yz), c.w);
+}
 
 // The distance the march steps by: the bound, seen from inside where the ray is.
 float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
@@ -144,7 +199,8 @@ vec3 object_bound_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, f
 }
 
 vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  return seen_from_inside(type, object_bound_clearances(type, q, u, rel, heading, radius, hz, hc));
+  const vec3 c = object_bound_clearances(type, q, u, rel, heading, radius, hz, hc);
+  return inside_by_bound(type) && c.x < 0.0 ? object_inside_clearances(type, q, u, rel, heading, radius, hz, hc, -c.x).xyz : c;
 }
 #undef SOL_KIND_CLEARANCES
 
@@ -164,7 +220,8 @@ vec3 image_bound_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
 }
 
 vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
-  return seen_from_inside(type, image_bound_clearances(type, q, u, m, hz));
+  const vec3 c = image_bound_clearances(type, q, u, m, hz);
+  return inside_by_bound(type) && c.x < 0.0 ? image_inside_clearances(type, q, u, m, hz, -c.x).xyz : c;
 }
 #undef SOL_KIND_RECORD
 

@@ -6,6 +6,16 @@
 #ifndef SOL_MARCH_PASSES_GLSL
 #define SOL_MARCH_PASSES_GLSL
 
+// This invocation's marches that ran out of steps (g_out_of_steps) into the
+// frame's count and the pixel's AOV (the hit AOV's w): written with the
+// AOVs (`written`: the sample that writes them, its count in `hit_aov`),
+// or added to what an earlier sample or pass wrote.
+void report_out_of_steps(ivec2 pixel, bool written) {
+  if (g_out_of_steps == 0) return;
+  atomicAdd(stats.out_of_steps.x, uint(g_out_of_steps));
+  if (WRITE_AOVS && !written) imageStore(aov_hit, pixel, imageLoad(aov_hit, pixel) + vec4(0.0, 0.0, 0.0, float(g_out_of_steps)));
+}
+
 // The march and resume passes: a pixel's camera ray, marched (the resume
 // pass goes on with a ray the march pass listed), and its colour and AOVs
 // written, or its hit listed for the shade pass.
@@ -59,7 +69,7 @@ void march_pass() {
     load_objects(eye);
   }
   const MarchHit h = march(origin, direction, params.limits.x,
-                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w), 0u), kMarchCamera);
+                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
   if (h.deferred) {  // the rest of this ray in the resume pass
     defer_exact(pixel, h.resume.t, h.resume.passing, h.resume.step);
     return;
@@ -85,9 +95,11 @@ void march_pass() {
   // (A hit's colour comes from the shade pass.)
   if (!DEFER_SHADING || h.k < 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
   if (write_aovs) {
+    hit_aov.w = float(g_out_of_steps);
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);
   }
+  report_out_of_steps(pixel, write_aovs);
 }
 
 // The shade pass: the hits the march pass listed (defer_shading), shaded
@@ -118,6 +130,7 @@ void shade_pass() {
   }
   const vec4 color = shade_hit(k, n, uv, t, q, eye);
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+  report_out_of_steps(pixel, false);  // (its shadow rays')
 }
 
 #endif  // SOL_MARCH_PASSES_GLSL

@@ -232,8 +232,9 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // the reflected geodesic, else it is diffuse: the lights' light by
 // next-event estimation (light_received: every geodesic to an exact light
 // with its 1/J, and shadows) times the albedo, and the path goes on along a
-// cosine-distributed direction, its weight times the albedo. Russian
-// roulette from the fourth hit. No ambient light. Glowing exact balls by
+// cosine-distributed direction, its weight times the albedo; at most
+// World::path_bounces scatterings (params.limits.z), Russian roulette from
+// the fourth hit with q = min(1, the weight's largest). No ambient light. Glowing exact balls by
 // next-event estimation too (glow_sample, glow_connection), the emission a
 // path meets after a diffuse bounce weighed by the balance heuristic.
 // One call of march, for the path's next segment and for the geodesics to
@@ -248,7 +249,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   bool after_diffuse = false;
   vec3 from = vec3(0.0), from_direction = vec3(0.0);
   float from_cosine = 0.0;
-  const int kMaxDepth = 1000;  // Russian roulette ends paths long before (a guard)
+  const int bounces = int(params.limits.z);  // World::path_bounces: the scatterings a path takes
   int depth = 0;
   bool alive = true;  // the path goes on from h (h to shade, or its next segment to march)
   bool fresh = true;  // h is a hit not yet shaded
@@ -277,6 +278,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         color += weight * material.rgb * share;
       }
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+      const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       g.count = 0;
       way = 0;
       if (HAS_MIRRORS && material.w > 0.0 && path_uniform(state) < material.w) {
@@ -284,8 +286,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         after_diffuse = false;
       } else {
         const vec3 a = albedo(f.object, f.uv);
-        if (light_count > 0) color += weight * a * light_received(n, h.q, eye, march_leaving(f.object, f.inside));
-        if (GLOW_SAMPLING && glow_count > 0) g = glow_sample(h, n, weight * a, state);
+        if (light_count > 0) color += weight * a * light_received(n, h.q, eye);
+        if (GLOW_SAMPLING && glow_count > 0 && goes_on) g = glow_sample(h, n, weight * a, state);
         weight *= a;
         next = cosine_direction(n, state);
         after_diffuse = true;
@@ -293,8 +295,9 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         from_direction = next;
         from_cosine = dot(n, next);
       }
-      if (depth >= 3) {
-        const float q = min(0.95, max(weight.r, max(weight.g, weight.b)));
+      alive = goes_on;
+      if (goes_on && depth >= 3) {
+        const float q = min(1.0, max(weight.r, max(weight.g, weight.b)));
         alive = q > 0.0 && path_uniform(state) < q;
         weight /= max(q, 1e-30);
       }
@@ -304,14 +307,15 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
     }
     const bool to_glow = GLOW_SAMPLING && way < g.count;
     if (to_glow || alive) {
-      const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, march_leaving(f.object, f.inside),
+      const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, kMarchFromStart,
                                kMarchShadow);
       if (to_glow) {
         color += glow_connection(g, way, m);
         ++way;
       } else {
         h = m;
-        alive = h.k >= 0 && ++depth < kMaxDepth;
+        alive = h.k >= 0;
+        ++depth;
         if (alive) {
           f = surface_at(h);
           fresh = true;

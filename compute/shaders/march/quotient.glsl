@@ -1,9 +1,10 @@
 // A quotient Γ\Sol (sol::Lattice, docs/mathematics.md): lattice
 // coordinates, the fundamental domain D and the teleport back into it, the
 // distance field over D (sol::QuotientField) with each cell's candidate
-// images, and the positions of the quotient march (by Jacobi's zeta
-// function or by Carlson's integrals, split between the march and resume
-// passes). The lattice is the specialisation constants LATTICE_*
+// images, the candidates' findings at a step of the quotient march
+// (quotient_candidates, quotient_exact_step), and the positions of the
+// quotient march (by Jacobi's zeta function or by Carlson's integrals,
+// split between the march and resume passes). The lattice is the specialisation constants LATTICE_*
 // (SOL_LATTICE_CONSTANTS): folded in as the golden constants once were.
 #ifndef SOL_MARCH_QUOTIENT_GLSL
 #define SOL_MARCH_QUOTIENT_GLSL
@@ -103,6 +104,103 @@ vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u
   // more words read (docs/history.md, "Tubes in four words").
   const vec3 dc = image_clearances(image_type(m), q, u, m, hz);
   return s < listed ? dc : vec3(1e30);
+}
+
+// One quotient march step's findings over the cell's candidates: the
+// nearest (to hit) and the runner-up, the clearances ahead of the nearest
+// and of the others and the least back (object_clearances), and an exact
+// ball's image the ray leaves (passed) near its sphere, whose bound is
+// negative on both sides there: its exact distance decides
+// (quotient_exact_step, as march_exact_step's `leaving` in Sol).
+struct QuotientCandidates {
+  float nearest, second, clear_nearest, clear_rest, back;
+  int nearest_i, second_i, leaving_exact;
+};
+
+// The cell's `listed` candidates (`word`, or every image where `all`) at e
+// along `direction`, updating the images a shadow ray leaves (`passing`).
+QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, vec3 direction, vec2 hz, bool camera,
+                                       float hit_epsilon, inout ivec4 passing) {
+  QuotientCandidates c = QuotientCandidates(1e30, 1e30, 1e30, 1e30, 1e30, -1, -1, -1);
+  // (A do-while, tested at its end: see march.comp and candidate_clearances.)
+  int s = 0;
+  do {
+    int i;
+    Image m;
+    const vec3 dc = candidate_clearances(word, all, s, listed, e, direction, hz, i, m);
+    const float d = dc.x;
+    bool leaving = false;  // an image a shadow ray leaves, until it is 2 hit_epsilon away
+    if (!camera) {
+      for (int p = 0; p < 4; ++p) {
+        if (passing[p] == i) {
+          // Until 2 hit_epsilon away, or (seen from inside) headed for a
+          // face of it (sol::InsideClearances::nearest_rate; exact balls:
+          // quotient_exact_step).
+          const int type = image_type(m);
+          const bool heads = HAS_INSIDE && inside_by_bound(type) && image_bound_clearances(type, e, direction, m, hz).x < 0.0 &&
+                             image_inside_clearances(type, e, direction, m, hz, d).w < 0.0;
+          if (d > 2.0 * hit_epsilon || heads) passing[p] = -1;
+          else leaving = true;
+        }
+      }
+    }
+    const bool held = HAS_EXACT_BALLS && leaving && image_type(m) == kObjectExactBall && d < kExactShell;
+    if (held) c.leaving_exact = i;
+    c.back = min(c.back, held ? 1e30 : dc.z);
+    if (!leaving && d < c.nearest) {
+      c.second = c.nearest;
+      c.second_i = c.nearest_i;
+      c.nearest = d;
+      c.nearest_i = i;
+      c.clear_rest = min(c.clear_rest, c.clear_nearest);
+      c.clear_nearest = dc.y;
+    } else {
+      c.clear_rest = min(c.clear_rest, held ? 1e30 : dc.y);
+      if (!leaving && d < c.second) {
+        c.second = d;
+        c.second_i = i;
+      }
+    }
+  } while (++s < listed);
+  return c;
+}
+
+// One exact solve a step (each call is inlined, a Newton loop each): the
+// exact ball the ray leaves (until 2 hit_epsilon away, or turned back
+// towards the sphere: the passing's least step meanwhile), else the
+// nearest where it is an exact ball within kExactShell (its exact
+// distance, as in Sol; inside, where the solve landed, -sdf and the inside
+// clearance).
+void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, inout QuotientCandidates c, inout ExactSolve exact,
+                         inout ivec4 passing, inout vec4 leave_signs) {
+  const bool solve_leaving = HAS_EXACT_BALLS && c.leaving_exact >= 0;
+  const bool solve_nearest = HAS_EXACT_BALLS && !solve_leaving && c.nearest_i >= 0 &&
+                             image_type(images[c.nearest_i]) == kObjectExactBall && c.nearest < kExactShell;
+  if (!(solve_leaving || solve_nearest)) return;
+  const int ei = solve_leaving ? c.leaving_exact : c.nearest_i;
+  const float sdf = exact_ball_sdf(e, images[ei].bound.xyz, images[ei].bound.w, ei, exact);
+  const float slope = dot(exact.end.tangent, direction);
+  const float away = exact.known ? abs(sdf) : 0.0;
+  const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
+  const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
+  if (solve_leaving) {
+    for (int p = 0; p < 4; ++p) {
+      if (passing[p] != ei) continue;
+      const bool turned = exact.known && leave_signs[p] != 0.0 && slope * leave_signs[p] < 0.0;
+      if (exact.known && leave_signs[p] == 0.0 && slope != 0.0) leave_signs[p] = sign(slope);
+      if (away > 2.0 * hit_epsilon || turned) {
+        passing[p] = -1;
+        leave_signs[p] = 0.0;
+      }
+    }
+    c.clear_rest = min(c.clear_rest, beyond);
+    c.back = min(c.back, away);
+  } else {
+    const float d = HAS_INSIDE && exact.known ? away : sdf;
+    c.nearest_i = d <= c.second ? c.nearest_i : c.second_i;
+    c.nearest = min(d, c.second);
+    c.clear_nearest = max(c.clear_nearest, inside ? beyond : d);
+  }
 }
 
 #endif  // SOL_MARCH_QUOTIENT_GLSL

@@ -92,7 +92,8 @@ layout(set = 0, binding = kBindingColor) uniform writeonly image2D color_image;
 // Read as well as written: anti-aliasing accumulates its samples here (accumulate()).
 layout(set = 0, binding = kBindingColor, rgba32f) uniform image2D color_image;
 #endif
-layout(set = 0, binding = kBindingHit, rgba32f) uniform writeonly image2D aov_hit;      // object, distance, steps, 0
+// (Read too: a later sample adds its marches that ran out of steps to w.)
+layout(set = 0, binding = kBindingHit, rgba32f) uniform image2D aov_hit;      // object, distance, steps, out of steps
 layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
 // Quotient scenes: the images of the objects around D, in world coordinates
 // (sol::quotient_images).
@@ -127,5 +128,16 @@ layout(std430, set = 0, binding = kBindingQueue) buffer Queue {
   QueueHeader queue;
   uvec4 queue_records[];
 };
+
+// What the frame's rays counted (Stats; report_out_of_steps).
+layout(std430, set = 0, binding = kBindingStats) buffer FrameStats {
+  Stats stats;
+};
+
+// The marches of this invocation's ray (and its bounces, paths and shadow
+// rays) that stopped at max_steps before they met an object or reached
+// their limit (march_sol, march_quotient): counted into Stats and the
+// pixel's AOV (report_out_of_steps), never a silent miss alone.
+int g_out_of_steps = 0;
 
 #endif  // SOL_MARCH_RESOURCES_GLSL

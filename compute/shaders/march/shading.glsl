@@ -59,8 +59,8 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL
 // CPU's `blocked` in libsol/src/render.cpp): the shadow ray's march,
 // passing the objects within 2 hit_epsilon of q (the surface it leaves)
 // until it is 2 hit_epsilon away from them.
-bool shadow_blocked(vec3 q, vec3 direction, float len, MarchResume leaving) {
-  return march(q, direction, min(len, params.limits.x), leaving, kMarchShadow).k >= 0;
+bool shadow_blocked(vec3 q, vec3 direction, float len) {
+  return march(q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow).k >= 0;
 }
 
 // The light the lights bring to a point q with unit normal n (frame
@@ -74,7 +74,7 @@ bool shadow_blocked(vec3 q, vec3 direction, float len, MarchResume leaving) {
 // 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
 // light where none is found; with shadows, each geodesic marched to the
 // light first (shadow_blocked).
-vec3 light_received(vec3 n, vec3 q, int eye, MarchResume leaving) {
+vec3 light_received(vec3 n, vec3 q, int eye) {
   const int light_count = min(int(params.shading.z), kMaxLights);
   vec3 light = vec3(0.0);
   int i = 0;
@@ -96,7 +96,7 @@ vec3 light_received(vec3 n, vec3 q, int eye, MarchResume leaving) {
           // from q is its J seen from the light (reciprocity).
           const float cosine = max(0.0, dot(n, found[j].xyz));
           if (cosine == 0.0) continue;
-          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w, leaving)) continue;
+          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w)) continue;
           const float spread = lc.w == float(kLightExactGeodesic)
                                    ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
                                    : 1.0 + found[j].w * found[j].w;
@@ -119,13 +119,13 @@ vec3 albedo(int k, vec2 uv) { return params.objects[k].color.rgb * pattern_facto
 
 // The light object k's surface reflects diffusely at q, with plane
 // coordinates uv, before fog (shade_hit adds the fog over the arc length).
-vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye, MarchResume leaving) {
+vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
   const float ambient = params.shading.x;
-  return albedo(k, uv) * (ambient + (1.0 - ambient) * light_received(n, q, eye, leaving));
+  return albedo(k, uv) * (ambient + (1.0 - ambient) * light_received(n, q, eye));
 }
 
 vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
-  const vec3 surface = diffuse_light(k, n, uv, q, eye, kMarchFromStart);
+  const vec3 surface = diffuse_light(k, n, uv, q, eye);
   const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
   return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
 }
@@ -189,7 +189,7 @@ Surface surface_at(MarchHit h) {
 float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
   const vec4 material = params.objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye, march_leaving(f.object, f.inside));
+  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye);
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
   return material.w * transmittance;
 }
@@ -213,7 +213,7 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
     if (alive) {
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
-      h = march(h.q, reflected, params.limits.x, march_leaving(f.object, f.inside), kMarchShadow);
+      h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
       alive = h.k >= 0;
       if (alive) f = surface_at(h);
     }

@@ -110,6 +110,13 @@ double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3
 /// The same ahead along u and back along -u, from one evaluation of the
 /// terms (sol::clearances).
 Clearances shape_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u);
+/// Seen from a point q inside a solid (its distance below 0): how far the
+/// geodesic from q goes along u, and back along −u, before it can reach
+/// the solid's surface (sol::inside_clearances of the kind's inside_terms;
+/// an exact ball's are its bound's, which is larger: the march takes the
+/// exact ball's own), and the rate of its nearest face. Not a solid, or no
+/// inside terms: −distance both ways.
+InsideClearances shape_inside_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u);
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q);
 /// Whether the shape is a solid (its kind's kSolid).
 bool is_solid(const Shape& shape);

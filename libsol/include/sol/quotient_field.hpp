@@ -49,9 +49,13 @@ class QuotientField {
   static constexpr int kLayers = kernel::kFieldLayers;
   static constexpr double kNear = kernel::kFieldNear;
   static constexpr int kCandidates = kernel::kFieldCandidates;
+  /// The most images a field takes (a cell's candidates are bytes, two of
+  /// whose values mark an empty slot and every image): the CPU renderer's
+  /// limit on a quotient world.
+  static constexpr std::size_t kMaxImages = 254;
 
   /// The cells of the field for `images` (sol::quotient_images of a
-  /// quotient world for the longest step `max_step`, at most 254 of them;
+  /// quotient world for the longest step `max_step`, at most kMaxImages of them;
   /// std::invalid_argument beyond, or for a step outside (0,
   /// kQuotientMaxStep]), over the fundamental domain of `lattice` (the
   /// world's, World::lattice). About 131 000 cells times the images' bounds.

@@ -53,6 +53,10 @@ struct MarchHit {
   glm::dvec2 pattern_uv{0.0};  ///< the object's pattern coordinates at the hit (sol::shape_pattern_uv)
   glm::dvec3 direction{0.0};   ///< the ray's unit tangent at the hit, frame components (a mirror reflects it)
   int steps = 0;               ///< march steps used (0: culled by its height range)
+  /// The march stopped at the world's max_steps before it met an object or
+  /// reached max_distance: what lies beyond is unknown (drawn as a miss,
+  /// counted in RenderResult::out_of_steps).
+  bool out_of_steps = false;
 };
 
 /// The CPU reference renderer (sol::Renderer): double precision, the
@@ -69,9 +73,12 @@ class CpuRenderer final : public Renderer {
 
   /// Prepares the world once for every later render: validates it
   /// (InvalidArgument naming the field), finds its features and, in the
-  /// quotient, its objects' images around D.
+  /// quotient, its objects' images around D. Safe while another thread
+  /// renders: that render finishes with the world it started with (each
+  /// render, march and shade takes the world as it is when it starts).
   void set_world(const World& world) override;
-  /// The prepared world (logic_error before set_world).
+  /// The prepared world (logic_error before set_world), valid until the
+  /// next set_world.
   const MarchWorld& world() const override;
 
   /// Renders the world from each eye (sol::Renderer::render); any number of
@@ -88,8 +95,10 @@ class CpuRenderer final : public Renderer {
   glm::dvec3 shade(const MarchHit& hit) const;
 
  private:
-  RenderResult render_eye(const Camera& camera, const RenderOptions& options) const;
-  std::unique_ptr<MarchWorld> m_world;
+  static RenderResult render_eye(const MarchWorld& prepared, const Camera& camera, const RenderOptions& options);
+  std::shared_ptr<const MarchWorld> current_world() const;
+  struct Held;
+  std::unique_ptr<Held> m_held;
 };
 
 /// One-shot forms for a scene (its world seen from its camera), preparing

@@ -92,6 +92,15 @@ struct RenderResult {
   std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
   std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
   std::vector<float> steps;     ///< march steps used
+  /// Per pixel: how many of its marches (over all its samples: the camera
+  /// rays, mirrors' reflected rays, paths' segments, shadow rays) stopped at
+  /// the world's max_steps before they met an object or reached
+  /// max_distance. Such a ray is drawn as a miss (a shadow ray as
+  /// unblocked): a pixel with a count here may be darker (or lighter) than
+  /// the scene is; a larger max_steps draws it.
+  std::vector<float> out_of_steps;
+  /// The same over the whole image, counted with or without the AOVs.
+  std::uint64_t rays_out_of_steps = 0;
   double device_ms = 0.0;       ///< a device renderer's time on the device (its dispatches'); 0 on the CPU
 };
 

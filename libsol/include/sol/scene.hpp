@@ -34,6 +34,10 @@ namespace sol {
 /// (docs/scene-format.md).
 enum class Quotient { None, Golden, Monodromy, ZLoop, XYLoops };
 
+/// The most objects a world holds (World::objects; the CPU renderer marks
+/// the objects a ray passes in a 64-bit mask).
+inline constexpr std::size_t kMaxObjects = 64;
+
 /// Everything that is seen, and how the march looks for it.
 struct World {
   Quotient quotient = Quotient::None;
@@ -48,7 +52,7 @@ struct World {
   double z_loop = 1.0;
   /// Quotient::XYLoops: its loops γ1 = (x1, y1, 0) and γ2 = (x2, y2, 0).
   std::array<glm::dvec2, 2> xy_loops{glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
-  std::vector<SceneObject> objects;
+  std::vector<SceneObject> objects;      ///< at most kMaxObjects
   std::vector<Light> lights{Light{}};    ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                 ///< light reaching surfaces facing away, in [0, 1]
   glm::dvec3 fog_color{0.0, 0.0, 0.0};   ///< exponential fog: colour = mix(fog_color, colour, e^{-density t})
@@ -56,7 +60,22 @@ struct World {
   double max_distance = 30.0;            ///< arc length after which a ray misses
   int max_steps = 200;                   ///< march steps after which a ray misses
   double hit_epsilon = 5e-5;             ///< a ray hits when the distance falls below this
-  int max_bounces = 4;                   ///< reflections a ray takes in mirrors (SceneObject::mirror), in [0, 64]
+  /// How far light is followed from a camera ray's hit, in [0, 64]: in
+  /// direct light the reflections a ray takes in mirrors (past them a
+  /// mirror's share is black), in path tracing the scatterings a path takes
+  /// (each a mirror's reflection or a diffuse bounce; 0: the hit's emission
+  /// and the lights' light alone), as other path tracers' maximum depth.
+  /// None: mirror_bounces() and path_bounces() give each its default.
+  std::optional<int> max_bounces;
+
+  /// Direct light's reflections in mirrors: max_bounces, else 4.
+  int mirror_bounces() const { return max_bounces.value_or(kDefaultMirrorBounces); }
+  /// A path's scatterings: max_bounces, else 64, where the furnace E / (1 − ρ)
+  /// of a wall of albedo 0.6 misses 0.6^65 of its light and Russian roulette
+  /// has ended nearly every path long before.
+  int path_bounces() const { return max_bounces.value_or(kDefaultPathBounces); }
+  static constexpr int kDefaultMirrorBounces = 4;
+  static constexpr int kDefaultPathBounces = 64;
 
   /// The lattice Γ of the quotient the rays live in (sol/lattice.hpp), or
   /// none in Sol itself: everything that teleports, lists images or binds an

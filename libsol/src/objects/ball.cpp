@@ -31,6 +31,10 @@ std::array<BoundTerm, 2> Ball::clearance_terms(const glm::dvec3& q, const glm::d
   return ball_terms(q, u, center, radius);
 }
 
+std::array<InsideTerm, 2> Ball::inside_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return ball_inside_terms(q, u, center, radius);
+}
+
 glm::dvec3 Ball::normal(const glm::dvec3& q) const {
   if (exact) {
     try {

@@ -55,6 +55,13 @@ std::array<BoundTerm, 3> Box::clearance_terms(const glm::dvec3& q, const glm::dv
           BoundTerm{std::abs(dz) - half_size.z, dz >= 0.0 ? u.z : -u.z, 1.0}};
 }
 
+std::array<InsideTerm, 6> Box::inside_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  const glm::dvec2 w = coordinate_half_widths();
+  return {face_x(q, u, center.x + w.x, -1.0), face_x(q, u, center.x - w.x, 1.0),
+          face_y(q, u, center.y + w.y, -1.0), face_y(q, u, center.y - w.y, 1.0),
+          face_z(q, u, center.z + half_size.z, -1.0), face_z(q, u, center.z - half_size.z, 1.0)};
+}
+
 glm::dvec3 Box::normal(const glm::dvec3& q) const { return gradient_normal(*this, q); }
 
 // The face nearest q is the slab whose term is largest (left-invariant: in

@@ -81,6 +81,10 @@ std::array<BoundTerm, 2> Tube::clearance_terms(const glm::dvec3& q, const glm::d
   return tube_terms(q, u, through, vertical(), {direction.x, direction.y}, radius);
 }
 
+std::array<InsideTerm, 4> Tube::inside_terms(const glm::dvec3& q, const glm::dvec3& u) const {
+  return tube_inside_terms(q, u, through, vertical(), {direction.x, direction.y}, radius);
+}
+
 glm::dvec3 Tube::normal(const glm::dvec3& q) const { return gradient_normal(*this, q); }
 
 glm::dvec2 Tube::pattern_uv(const glm::dvec3& q) const {

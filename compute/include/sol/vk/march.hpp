@@ -125,9 +125,10 @@ class MarchRenderer final : public Renderer {
   MarchRenderer& operator=(MarchRenderer&&) noexcept;
 
   /// Prepares `world` for every later frame. Throws sol::InvalidArgument for
-  /// an invalid world, more than kMaxGpuObjects objects or, in the
-  /// quotient, more than kMaxGpuImages images; sol::NotImplemented for a
-  /// world the kernel does not render (supports()). Frames recorded before
+  /// an invalid world (one the CPU renderer refuses too); sol::NotImplemented
+  /// for a world the kernel does not render (supports(): more than
+  /// kMaxGpuObjects objects, in the quotient more than kMaxGpuImages images,
+  /// ...), which the CPU renderer does. Frames recorded before
   /// may still run: they keep reading the previous world's buffers, which
   /// live until they are done (MarchOptions::frames_in_flight).
   void set_world(const World& world) override;
@@ -206,18 +207,24 @@ class MarchRenderer final : public Renderer {
   /// and below every hit lies within 1e-4 of the geodesic sphere).
   static constexpr double kMaxExactBallRadius = 2.0;
 
-  /// Whether the kernel renders the world: all but those with exact point
+  /// Whether the kernel renders the world: all but those of more than
+  /// kMaxGpuObjects objects, those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach
   /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages),
   /// those with exact balls above kMaxExactBallRadius, and quotients with
   /// more than kMaxGpuImages images near the domain (a crowded world, or a
   /// monodromy's small fibre). set_world throws sol::NotImplemented for
-  /// those; the CPU renderer takes every world (up to its field's 254 images).
-  static bool supports(const World& world);
-  /// Why the kernel does not render the world, naming the field and saying
-  /// where it renders ("" when it does: supports()).
-  static std::string unsupported(const World& world);
+  /// those; the CPU renderer takes each of them. A world neither renders
+  /// (invalid, or more images than the CPU's field takes) is supported
+  /// here: set_world says why it is refused.
+  static bool supports(const World& world, Transport transport = Transport::Direct);
+  /// Why the kernel does not render the world by `transport`, naming the
+  /// field and saying that the CPU renderer does ("" when it does:
+  /// supports()). A glowing ball's glow_reach above the seed table's reach
+  /// keeps path tracing on the CPU alone (render() refuses it with this
+  /// reason); direct light never reads it.
+  static std::string unsupported(const World& world, Transport transport = Transport::Direct);
 
  private:
   struct Frame;

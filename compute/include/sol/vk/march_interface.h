@@ -21,6 +21,7 @@ namespace sol::vk::kernel {
 using namespace sol::kernel;
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
 #endif
 
 // ---- Descriptor bindings (set 0)
@@ -35,6 +36,7 @@ SOL_CONSTANT(int, kBindingField, 7);        ///< storage buffer: sol::QuotientFi
 SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' Column records
 SOL_CONSTANT(int, kBindingLightImages, 9);  ///< storage buffer: the quotient's light images (vec4, xyz world)
 SOL_CONSTANT(int, kBindingQueue, 10);       ///< storage buffer: the deferred passes' lists (QueueHeader, then records)
+SOL_CONSTANT(int, kBindingStats, 11);       ///< storage buffer: Stats, what the frame's rays counted
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
@@ -214,6 +216,14 @@ struct QueueHeader {
 SOL_CONSTANT(int, kQueueResumeRecord, 1);
 SOL_CONSTANT(int, kQueueShadeRecord, 2);
 
+// ---- What a frame's rays counted (binding kBindingStats, std430): the
+// host zeroes it before a render and reads it after (RenderResult).
+struct Stats {
+  /// Marches that stopped at max_steps before they met an object or
+  /// reached max_distance (RenderResult::rays_out_of_steps); x alone, yzw 0.
+  uvec4 out_of_steps;
+};
+
 // ---- An omnidirectional stereo eye's column (binding 8, std430): sol::column_eye
 struct Column {
   vec4 offset;        ///< xyz: where the column's rays start, relative to the eye's camera
@@ -239,7 +249,8 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16,
+static_assert(sizeof(Object) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+                  sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
                   offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&

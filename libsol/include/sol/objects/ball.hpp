@@ -20,6 +20,9 @@ struct Ball {
 
   double distance(const glm::dvec3& q) const;
   std::array<BoundTerm, 2> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
+  /// Seen from inside the bound's ball (sol/clearance.hpp): an exact ball
+  /// lies inside it, so the march takes its own (exact_ball_inside_clearance).
+  std::array<InsideTerm, 2> inside_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The true sphere's normal when exact, else the bound's gradient by
   /// central differences (kernel::kNormalStep along E1, E2, E3).
   glm::dvec3 normal(const glm::dvec3& q) const;

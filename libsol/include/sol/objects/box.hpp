@@ -29,6 +29,8 @@ struct Box {
   /// The three slabs' terms (sol/clearance.hpp: each a distance to a plane,
   /// bend 1).
   std::array<BoundTerm, 3> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
+  /// Seen from inside: its six faces (sol/clearance.hpp, bend 1).
+  std::array<InsideTerm, 6> inside_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The bound's gradient by central differences (kernel::kNormalStep along E1, E2, E3).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& q) const;

@@ -42,6 +42,8 @@ struct Tube {
   bool vertical() const { return direction.x == 0.0 && direction.y == 0.0; }
   double distance(const glm::dvec3& q) const;
   std::array<BoundTerm, 2> clearance_terms(const glm::dvec3& q, const glm::dvec3& u) const;
+  /// Seen from inside: its faces (sol::tube_inside_terms).
+  std::array<InsideTerm, 4> inside_terms(const glm::dvec3& q, const glm::dvec3& u) const;
   /// The bound's gradient by central differences (as Ball's).
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& q) const;
