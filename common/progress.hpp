@@ -11,13 +11,17 @@ namespace sol::programs {
 /// done, not from the start: what comes before it (a kernel compiled on a
 /// cold cache, a world prepared) is no guide to the rest, and counting it
 /// made a 12.5 s render say 306 s left at 4 %. Until a second such report,
-/// the time so far over the fraction done (an upper bound when the start
-/// was slow). No estimate before any work is done.
+/// the time since the last report of no work done (a renderer reports 0
+/// again once its kernel is built and the work begins) over the fraction
+/// done. No estimate before any work is done.
 class ProgressEstimate {
  public:
   /// Records a report; returns the estimated seconds left, or none yet.
   std::optional<double> report(double seconds, double fraction) {
-    if (!(fraction > 0.0)) return std::nullopt;
+    if (!(fraction > 0.0)) {
+      if (!m_first) m_begun = seconds;  // the work begins (as far as is known) now
+      return std::nullopt;
+    }
     if (fraction >= 1.0) return 0.0;
     if (!m_first) {
       m_first_seconds = seconds;
@@ -27,11 +31,12 @@ class ProgressEstimate {
     if (fraction > m_first_fraction && seconds > m_first_seconds) {
       return (seconds - m_first_seconds) / (fraction - m_first_fraction) * (1.0 - fraction);
     }
-    return seconds / fraction * (1.0 - fraction);
+    return (seconds - m_begun) / fraction * (1.0 - fraction);
   }
 
  private:
   bool m_first = false;
+  double m_begun = 0.0;
   double m_first_seconds = 0.0, m_first_fraction = 0.0;
 };
 

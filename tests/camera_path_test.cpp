@@ -97,6 +97,30 @@ TEST(CameraPath, TheQuotientKeepsTheCameraInTheDomain) {
   EXPECT_LT(diff(end.forward, free_walker.forward()), 1e-9);
 }
 
+// A long walk in a compact quotient (125 units, as far as solview walks):
+// every frame's camera, in D, as an observer walking it metre by metre in
+// the quotient (each step teleported) finds it. In one flow the walk's
+// point left D by a lattice element whose word was no longer exact in
+// double past about 35 units, and the path was refused.
+TEST(CameraPath, ALongWalkInTheQuotientIsTheObserversWalk) {
+  const sol::CameraPath path = sol::parse_camera_path(
+      R"({"segments": [{"walk": "forward", "distance": 125, "duration": 5}]})");
+  const sol::Scene scene = sol::preset_scene("lattice-balls");
+  const sol::Lattice lattice = sol::Lattice::golden();
+  sol::Observer walker(scene.camera.position, dvec3(0.3, 0.5, 0.81), scene.camera.up);
+  walker.bind(lattice);
+  sol::Camera start = scene.camera;
+  start.forward = dvec3(0.3, 0.5, 0.81);
+  for (int k = 1; k <= 125; ++k) {
+    walker.move({0, 0, 1}, 1.0);
+    if (k % 25 != 0) continue;
+    const sol::Camera c = path.at(k / 25.0, start, lattice);
+    ASSERT_TRUE(lattice.contains(c.position)) << k;
+    // The same steps in the same order: equal up to rounding, which the walk's instability (e^t) grows.
+    EXPECT_LT(diff(c.position, walker.position()), 1e-6 * std::exp(0.1 * k)) << k;
+  }
+}
+
 TEST(CameraPath, ErrorsNameTheField) {
   const std::pair<const char*, const char*> bad[] = {
       {R"({"segments": []})", "'segments' must be a non-empty array"},

@@ -401,6 +401,9 @@ TEST(Lattice, NonCompactQuotientsTeleportByTheirOwnLoops) {
   refused([] { return sol::Lattice::z_loop(0.5); }, "must be in [1, 20]");
   refused([] { return sol::Lattice::z_loop(21.0); }, "must be in [1, 20]");
   refused([] { return sol::Lattice::z_loop(std::nan("")); }, "must be in [1, 20]");
+  // The value as it was given: not "0.000000", nor 300 digits.
+  refused([] { return sol::Lattice::z_loop(1e-300); }, "got 1e-300");
+  refused([] { return sol::Lattice::z_loop(1e300); }, "got 1e+300");
   refused([] { return sol::Lattice::xy_loops({1.0, 2.0}, {2.0, 4.0}); }, "(they are parallel)");
   refused([] { return sol::Lattice::xy_loops({0.01, 0.0}, {0.0, 0.5}); }, "area |det| in [0.01, 10000]");
   refused([] { return sol::Lattice::xy_loops({std::numeric_limits<double>::infinity(), 0.0}, {0.0, 1.0}); },

@@ -388,6 +388,15 @@ TEST(ProgressEstimate, IsWithinAFactorTwoAfterTenPercent) {
     }
     EXPECT_EQ(estimate.report(end, 1.0), 0.0);
   }
+  // A kernel built before the first tile: the renderer reports 0 again when
+  // the work begins (MarchRenderer::render), and the first estimate counts
+  // from there, not from the build (which made 1.5 s of work say 164 s).
+  sol::programs::ProgressEstimate estimate;
+  EXPECT_FALSE(estimate.report(0.0, 0.0));
+  EXPECT_FALSE(estimate.report(30.0, 0.0));  // built
+  const std::optional<double> first = estimate.report(30.1, 0.1);  // the first tile
+  ASSERT_TRUE(first);
+  EXPECT_NEAR(*first, 0.9, 1e-9);
 }
 
 // The presenters' frame figures (solview and solxr --stats): the mean and

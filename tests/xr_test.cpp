@@ -349,6 +349,10 @@ TEST(XrSolxr, DeviceAndHostCopiesGiveTheSameEyes) {
   }
   // The default takes the device path on lavapipe.
   EXPECT_TRUE(contains(run_solxr("copy_default", R"({"frames": [{}]})", "--scene plane").err, "device copy"));
+  // The host copy says that it neither adapts the render scale nor refines.
+  const SolxrRun host = run_solxr("copy_host_options", R"({"frames": [{}]})", "--scene plane --copy host --adaptive on --refine 4");
+  expect_clean(host);
+  EXPECT_TRUE(contains(host.err, "no adaptive render scale (--adaptive) and no refinement (--refine)")) << host.err;
 }
 
 TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {

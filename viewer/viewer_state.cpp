@@ -95,6 +95,7 @@ void ViewerState::poll_reload() {
     const bool camera_moved = fresh.camera.position != scene.camera.position ||
                               fresh.camera.forward != scene.camera.forward || fresh.camera.up != scene.camera.up;
     const bool quotient_changed = !same_space(fresh, scene);
+    m_before_reload.emplace(scene, observer);
     scene = fresh;
     good_world = scene;
     world_changed = true;
@@ -106,6 +107,22 @@ void ViewerState::poll_reload() {
     message = std::string(e.what()) + " (the last good scene stays)";
     std::fprintf(stderr, "solview: %s\n", message.c_str());
   }
+}
+
+void ViewerState::world_refused(const std::string& why, const World& last) {
+  if (m_before_reload) {  // a reload: its camera goes too
+    scene = m_before_reload->first;
+    observer = m_before_reload->second;
+    m_before_reload.reset();
+  } else if (!same_space(last, scene)) {
+    observer.bind(last.lattice());  // an edit's quotient undone
+  }
+  static_cast<World&>(scene) = last;
+  good_world = last;
+  world_changed = true;
+  ++world_version;
+  message = why + " (the last good scene stays)";
+  std::fprintf(stderr, "solview: %s\n", message.c_str());
 }
 
 void ViewerState::world_edited() {

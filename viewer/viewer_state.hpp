@@ -45,6 +45,13 @@ class ViewerState {
   /// when it validates, else the last good world comes back and `message`
   /// says why. The observer follows a change of quotient.
   void world_edited();
+  /// The renderer could not prepare the world that validated (a
+  /// monodromy whose lattice needs over a million words, say): `last`, the
+  /// world it holds, stays (scene and good_world), and the message says why.
+  void world_refused(const std::string& why, const World& last);
+  /// The renderer prepared the world: a later refusal no longer undoes the
+  /// reload before it.
+  void world_prepared() { m_before_reload.reset(); }
 
   // ---- Input
   /// What the panel asked for besides its edits in place (the render's
@@ -100,6 +107,9 @@ class ViewerState {
   std::function<std::string(const World&)> m_supported;
   std::optional<std::filesystem::file_time_type> m_watched;  ///< the file's time when last read (none: a preset)
   std::chrono::steady_clock::time_point m_next_poll{};
+  /// The scene and observer a reload replaced, until the renderer prepares
+  /// the reloaded world (world_refused puts them back).
+  std::optional<std::pair<Scene, Observer>> m_before_reload;
 };
 
 /// solview's help on its keys (H prints it).

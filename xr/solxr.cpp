@@ -679,6 +679,10 @@ int run(const Options& o, const sol::Scene& scene) {
   if (o.foveation == "on" && !device_copy) {
     std::fprintf(stderr, "solxr: --foveation: the host copy renders every pixel (no foveation)\n");
   }
+  if (!device_copy && (o.adaptive == "on" || o.refine > 0)) {
+    std::fprintf(stderr, "solxr: the host copy renders every frame at full size, once: no adaptive render scale "
+                         "(--adaptive) and no refinement (--refine), which the device copy does\n");
+  }
   if (device_copy) {
     app.frames.emplace(*app.context, *app.renderer, width, height, foveation);
   } else {

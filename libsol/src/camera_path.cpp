@@ -1,5 +1,6 @@
 #include "sol/camera_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -69,11 +70,21 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
 }
 
 // One segment applied to the observer, a fraction f of it.
-void apply(const PathSegment& s, double f, Observer& o) {
+// In a quotient a walk goes in steps of at most this, each teleported back
+// into D as it ends (as solview walks, frame by frame): in one flow a long
+// walk's point leaves D by a lattice element whose word grows with e^t and
+// past about 35 units is no longer exact in double (Lattice::word_of).
+constexpr double kQuotientWalkStep = 1.0;
+
+void apply(const PathSegment& s, double f, Observer& o, bool quotient) {
   if (f <= 0.0) return;
   switch (s.kind) {
     case PathSegment::Kind::Walk:
-      if (s.distance != 0.0) o.move(s.direction, s.distance * f);
+      if (s.distance != 0.0) {
+        const double length = s.distance * f;
+        const int steps = quotient ? std::max(1, static_cast<int>(std::ceil(std::abs(length) / kQuotientWalkStep))) : 1;
+        for (int k = 0; k < steps; ++k) o.move(s.direction, length / steps);
+      }
       break;
     case PathSegment::Kind::Turn:
       if (s.axis == PathSegment::Axis::Yaw) o.yaw(s.angle * f);
@@ -112,7 +123,7 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   for (const PathSegment& s : segments) {
     if (t <= begin) break;
     const double end = begin + s.duration;
-    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o);
+    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o, lattice.has_value());
     begin = end;
   }
   c.position = o.position();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -9,6 +10,15 @@
 #include "sol/error.hpp"
 
 namespace sol::detail {
+
+/// A number as a message shows it: %g's six significant digits, so that
+/// 1e-300 reads "1e-300" (std::to_string's fixed "0.000000") and 1e300
+/// "1e+300" (not 300 digits).
+inline std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 inline void require_finite(double value, const char* function, const char* argument) {
   if (!std::isfinite(value)) {

@@ -28,7 +28,7 @@ Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, cons
 
 Lattice Lattice::z_loop(double height) {
   if (!(height >= 1.0 && height <= 20.0)) {
-    throw InvalidArgument("sol::Lattice::z_loop: the loop's height must be in [1, 20], got " + std::to_string(height));
+    throw InvalidArgument("sol::Lattice::z_loop: the loop's height must be in [1, 20], got " + detail::number_text(height));
   }
   return Lattice({0.0, 0.0}, {0.0, 0.0}, height, Monodromy{1, 0, 0, 1}, false, Loops::Z);
 }
@@ -42,7 +42,7 @@ Lattice Lattice::xy_loops(const glm::dvec2& g1, const glm::dvec2& g2) {
   }
   const double area = std::abs(g1.x * g2.y - g2.x * g1.y);
   if (!(area >= 0.01 && area <= 10000.0)) {
-    throw InvalidArgument(name + "the two loops must span an area |det| in [0.01, 10000], got " + std::to_string(area) +
+    throw InvalidArgument(name + "the two loops must span an area |det| in [0.01, 10000], got " + detail::number_text(area) +
                           (area == 0.0 ? " (they are parallel)" : ""));
   }
   return Lattice(g1, g2, 0.0, Monodromy{1, 0, 0, 1}, false, Loops::XY);

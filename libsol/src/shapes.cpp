@@ -1,5 +1,7 @@
 #include "sol/shapes.hpp"
 
+#include "check.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -302,13 +304,13 @@ Mesh geodesic_sphere(const glm::dvec3& center, double radius, int subdivisions) 
   check_center(center, "sol::geodesic_sphere");
   if (!(radius > 0.0) || !(radius <= kMaxMeshedSphereRadius)) {
     throw InvalidArgument("sol::geodesic_sphere: radius must be in (0, " + std::to_string(kMaxMeshedSphereRadius) +
-                          "], got " + std::to_string(radius));
+                          "], got " + detail::number_text(radius));
   }
   if (subdivisions < 1 || subdivisions > 512) {
     throw InvalidArgument("sol::geodesic_sphere: subdivisions must be in [1, 512], got " + std::to_string(subdivisions));
   }
   if (radius > kCoarseSphereRadius && subdivisions < kMinCoarseSubdivisions) {
-    throw InvalidArgument("sol::geodesic_sphere: radius " + std::to_string(radius) + " needs at least " +
+    throw InvalidArgument("sol::geodesic_sphere: radius " + detail::number_text(radius) + " needs at least " +
                           std::to_string(kMinCoarseSubdivisions) + " subdivisions (coarser meshes cross themselves), got " +
                           std::to_string(subdivisions));
   }
@@ -383,7 +385,7 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
   for (double r : radii) {
     if (!(r > kSmoothSphereRadius) || !(r <= kMaxMeshedSphereRadius)) {
       throw InvalidArgument("sol::cut_locus_curves: radii must be in (sqrt(2) pi, " + std::to_string(kMaxMeshedSphereRadius) +
-                            "], got " + std::to_string(r));
+                            "], got " + detail::number_text(r));
     }
     for (double sx : {1.0, -1.0}) {
       for (double sy : {1.0, -1.0}) {

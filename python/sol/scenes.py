@@ -11,6 +11,7 @@ out takes the file's default, a bad one raises sol.InvalidArgumentError naming i
     closer = scene.replace(camera={"position": (0.5, 0, 0.5)})   # the rest of the camera as it was
 """
 import json as _json
+import math as _math
 
 from . import _sol
 
@@ -36,8 +37,23 @@ def _camera_fields(c):
     return _json.loads(_sol._scene_with_camera(c).to_json())["camera"]
 
 
+def _check_finite(value, path, source):
+    """JSON has no NaN or infinity: a non-finite number is refused here, naming its field (as the scene file's
+    reader names a bad value), rather than written as JSON no reader takes."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _check_finite(v, f"{path}.{k}" if path else k, source)
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            _check_finite(v, f"{path}[{i}]", source)
+    elif isinstance(value, float) and not _math.isfinite(value):
+        raise _sol.InvalidArgumentError(f"{source}: {path} must be a finite number, got {value}")
+
+
 def _parse(fields, source):
-    return _sol.parse_scene(_json.dumps(_plain(fields)), source)
+    plain = _plain(fields)
+    _check_finite(plain, "", source)
+    return _sol.parse_scene(_json.dumps(plain), source)
 
 
 def scene(objects, *, camera=None, lights=None, **world):

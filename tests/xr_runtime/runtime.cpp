@@ -273,7 +273,10 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   bi.size = size;
   bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   VkBuffer buffer;
-  vk_check(vkCreateBuffer(st.device, &bi, nullptr, &buffer), "vkCreateBuffer");
+  if (vkCreateBuffer(st.device, &bi, nullptr, &buffer) != VK_SUCCESS) {
+    say("cannot save " + path + ": no buffer of " + std::to_string(size) + " bytes");  // (the frame goes on)
+    return;
+  }
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(st.device, buffer, &req);
   VkMemoryAllocateInfo ai{};
@@ -282,7 +285,11 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   ai.memoryTypeIndex =
       memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory memory;
-  vk_check(vkAllocateMemory(st.device, &ai, nullptr, &memory), "vkAllocateMemory");
+  if (vkAllocateMemory(st.device, &ai, nullptr, &memory) != VK_SUCCESS) {
+    say("cannot save " + path + ": out of memory for " + std::to_string(size) + " bytes");
+    vkDestroyBuffer(st.device, buffer, nullptr);
+    return;
+  }
   vk_check(vkBindBufferMemory(st.device, buffer, memory, 0), "vkBindBufferMemory");
 
   VkCommandPoolCreateInfo pi{};
@@ -674,17 +681,29 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSwapchain(XrSession session, const XrSwapch
     ii.tiling = VK_IMAGE_TILING_OPTIMAL;
     ii.usage = usage;
     ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkImage image;
-    vk_check(vkCreateImage(st.device, &ii, nullptr, &image), "vkCreateImage");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(st.device, image, &req);
-    VkMemoryAllocateInfo ai{};
-    ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memory_type(req.memoryTypeBits, 0);
-    VkDeviceMemory memory;
-    vk_check(vkAllocateMemory(st.device, &ai, nullptr, &memory), "vkAllocateMemory");
-    vk_check(vkBindImageMemory(st.device, image, memory, 0), "vkBindImageMemory");
+    VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    // An image the device cannot make or hold (a 16384² RGBA32F eye is 4
+    // GiB): the call fails as a runtime's does, out of memory, not the process.
+    bool made = vkCreateImage(st.device, &ii, nullptr, &image) == VK_SUCCESS;
+    if (made) {
+      VkMemoryRequirements req;
+      vkGetImageMemoryRequirements(st.device, image, &req);
+      VkMemoryAllocateInfo ai{};
+      ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+      ai.allocationSize = req.size;
+      ai.memoryTypeIndex = memory_type(req.memoryTypeBits, 0);
+      made = vkAllocateMemory(st.device, &ai, nullptr, &memory) == VK_SUCCESS &&
+             vkBindImageMemory(st.device, image, memory, 0) == VK_SUCCESS;
+    }
+    if (!made) {
+      say("xrCreateSwapchain: cannot make a " + std::to_string(sc.width) + " x " + std::to_string(sc.height) +
+          " image: out of memory");
+      if (memory != VK_NULL_HANDLE) vkFreeMemory(st.device, memory, nullptr);
+      if (image != VK_NULL_HANDLE) vkDestroyImage(st.device, image, nullptr);
+      destroy_swapchain_images(sc);
+      return XR_ERROR_OUT_OF_MEMORY;
+    }
     sc.images.push_back(image);
     sc.memory.push_back(memory);
   }
