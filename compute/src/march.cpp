@@ -880,6 +880,13 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
                   world.objects.size(), kMaxGpuObjects);
     return message;
   }
+  if (world.quotient == Quotient::Monodromy && std::abs(world.monodromy.trace()) > kMaxMonodromyTrace) {
+    std::snprintf(message, sizeof message,
+                  "quotient.monodromy: trace %lld, above %lld, where the kernel's float no longer resolves the "
+                  "lattice (γ3 scales x by about the trace): it renders on the CPU only",
+                  world.monodromy.trace(), kMaxMonodromyTrace);
+    return message;
+  }
   if (world.quotient != Quotient::None) {
     // More images near the domain than the kernel's records hold: a crowded
     // world, or a monodromy's small fibre.

@@ -207,8 +207,17 @@ class MarchRenderer final : public Renderer {
   /// and below every hit lies within 1e-4 of the geodesic sphere).
   static constexpr double kMaxExactBallRadius = 2.0;
 
+  /// Monodromies of a larger |trace| render on the CPU only: γ3 scales x
+  /// by λ ≈ |trace| (and y by 1/λ), and past this the kernel's float no
+  /// longer places a teleported ray in D as the CPU's double does (a ball in
+  /// the bundle of [[t - 1, 1], [t - 2, 1]], 48 × 32, pixels more than 0.05
+  /// off the CPU's: none up to t = 200, 0.1 % at 300, 0.7 % at 1000, 3.7 %
+  /// at 10^4, 36 % at 10^9 + 1; test Kernel.LargeMonodromyTracesRenderOnTheCpu).
+  static constexpr long long kMaxMonodromyTrace = 200;
+
   /// Whether the kernel renders the world: all but those of more than
-  /// kMaxGpuObjects objects, those with exact point
+  /// kMaxGpuObjects objects, monodromies of |trace| above
+  /// kMaxMonodromyTrace, those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach
   /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages),
