@@ -60,8 +60,15 @@ bool image_decodes(const std::string& path, int width, int height, std::string* 
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return fail("not a regular file");
   if (std::filesystem::file_size(path, ec) == 0 || ec) return fail("empty");
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return fail("not an image (" + OIIO::geterror() + ")");
+  // (Made and opened in two steps: ImageInput::open keeps a failed open's
+  // message in a global that the sanitizers count as a leak; the reader's
+  // own message goes with it.)
+  auto in = OIIO::ImageInput::create(path);
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(path, opened)) {
+    if (in) (void)in->geterror();
+    return fail("not an image this program reads");
+  }
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width != width || spec.height != height) {
     return fail(std::to_string(spec.width) + " x " + std::to_string(spec.height) + ", not " + std::to_string(width) +
@@ -69,7 +76,8 @@ bool image_decodes(const std::string& path, int width, int height, std::string* 
   }
   std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    return fail("it does not decode (" + in->geterror() + ")");
+    (void)in->geterror();
+    return fail("it does not decode");
   }
   return true;
 }
