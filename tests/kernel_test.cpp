@@ -997,10 +997,10 @@ TEST(Kernel, MirrorsShowTheReflectedSceneAndMatchTheCpuRenderer) {
 // Many samples of a world with mirrors and glowing objects keep the
 // process's memory flat. Each sample is a dispatch with its own point of
 // the pixel and weight; a driver that compiles and keeps a variant of the
-// kernel for every distinct value of its parameters (lavapipe inlines up
-// to four values of a uniform buffer that decide branches: the kernel's
-// parameters live in a storage buffer for that reason) grew by about 6 MB
-// a dispatch there, 570 MB over these 192 samples. The bound, 48 MB, is far
+// kernel whenever its parameters are written (lavapipe inlines up to four
+// values of a uniform buffer that decide branches and compiles again at
+// every write: the kernel's parameters live in a storage buffer for that
+// reason) grew by about 6 MB a dispatch there, 570 MB over these 192 samples. The bound, 48 MB, is far
 // above what a flat render moves (the colour and AOV images of 64 x 48
 // pixels are 150 KB) and far below one variant every eighth sample.
 TEST(Kernel, ManySamplesOfMirrorsAndGlowKeepMemoryFlat) {
