@@ -1325,10 +1325,6 @@ TEST(Kernel, GlowReachConnectsAlongTheLongerGeodesicsAsTheCpu) {
   expect_no_validation_errors();
 }
 
-// A quotient with more images near its domain than the kernel's records
-// hold (here a small fibre: 74 for [[3, 1], [2, 1]] with area 0.3) is one
-// the kernel does not render: unsupported() says so, naming what helps, so
-// that --device auto renders it on the CPU; the presets are rendered.
 // A glowing ball's glow_reach above the seed table's (3) keeps path
 // tracing on the CPU, and direct light, which never reads it, on the kernel.
 TEST(Kernel, GlowReachKeepsOnlyPathsOnTheCpu) {
@@ -1339,6 +1335,11 @@ TEST(Kernel, GlowReachKeepsOnlyPathsOnTheCpu) {
   renderer.set_world(scene);
   EXPECT_NO_THROW(renderer.render(scene.camera, {.width = 4, .height = 4}));
   EXPECT_THROW(renderer.render(scene.camera, {.width = 4, .height = 4, .transport = sol::Transport::Path}), sol::NotImplemented);
+  // A presenter's path sample (record) is refused as well, before anything is recorded.
+  sol::vk::StorageImage target(vk_context(), 4, 4);
+  EXPECT_THROW(vk_context().submit_and_wait([&](VkCommandBuffer cb) {
+    renderer.record(cb, std::span(&scene.camera, 1), 4, 4, target, sol::vk::PixelSample{{0.5, 0.5}, 1.0, 0, 1});
+  }), sol::NotImplemented);
   expect_no_validation_errors();
 }
 
@@ -1376,6 +1377,10 @@ TEST(Kernel, LargeMonodromyTracesRenderOnTheCpu) {
   expect_no_validation_errors();
 }
 
+// A quotient with more images near its domain than the kernel's records
+// hold (here a small fibre: 74 for [[3, 1], [2, 1]] with area 0.3) is one
+// the kernel does not render: unsupported() says so, naming what helps, so
+// that --device auto renders it on the CPU; the presets are rendered.
 TEST(Kernel, CrowdedQuotientsRenderOnTheCpu) {
   sol::Scene crowded = sol::preset_scene("trace4-balls");
   sol::set_quotient(crowded, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.3);

@@ -466,9 +466,9 @@ std::string film_manifest(const Options& o, const sol::Scene& scene) {
   m["solrender_film"] = 1;
   m["scene"] = nlohmann::ordered_json::parse(sol::to_json(scene));
   // (Read and checked by load_camera_path; a file swapped since is refused as it was.)
-  std::string why;
+  sol::FileRefusal why;
   const std::optional<std::string> text = sol::read_regular_file(o.path_file, std::uintmax_t{64} << 20, &why);
-  if (!text) throw std::runtime_error("--path " + o.path_file + ": " + why);
+  if (!text) throw std::runtime_error("--path " + o.path_file + ": " + why.text);
   m["path"] = nlohmann::ordered_json::parse(*text);
   m["fps"] = o.fps;
   m["width"] = o.width;
@@ -520,10 +520,10 @@ void check_film_folder(const Options& o, const sol::Scene& scene, Film& film, co
   } catch (const std::exception& e) {
     cl.fail(e.what());
   }
-  std::string why;
+  sol::FileRefusal why;
   const std::optional<std::string> was = sol::read_regular_file(film.manifest, std::uintmax_t{16} << 20, &why);
-  if (!was && why != "no such file") {
-    cl.fail("-o " + o.output + ": " + film.manifest + " is not a film manifest (" + why + "); remove it, or give another -o");
+  if (!was && why.kind != sol::FileRefusal::Kind::Missing) {
+    cl.fail("-o " + o.output + ": " + film.manifest + " is not a film manifest (" + why.text + "); remove it, or give another -o");
   }
   // The manifest there, locked: none may be another film's running now where it is to be replaced.
   auto lock_manifest = [&](int how) {

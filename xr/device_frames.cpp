@@ -44,14 +44,15 @@ std::array<Camera, 2> widened_by_a_pixel(const std::array<Camera, 2>& eyes, int 
   return {widened_by_a_pixel(eyes[0], rw, rh), widened_by_a_pixel(eyes[1], rw, rh)};
 }
 
-/// The blit region of eye v's rw x rh inside in an image of both eyes
-/// rendered with a border (widened_by_a_pixel), each (rw + 2) x (rh + 2).
-VkImageBlit bordered_region(std::size_t v, int rw, int rh) {
+/// The blit region of eye v's rw x rh inside in an image of both eyes side
+/// by side (the left eye on the left), each rendered with a border of
+/// `border` pixels (1: widened_by_a_pixel; 0: none), (rw + 2 border) x (rh + 2 border).
+VkImageBlit eye_region(std::size_t v, int rw, int rh, int border) {
   VkImageBlit region{};
   region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  const auto x0 = static_cast<std::int32_t>(v) * (rw + 2) + 1;
-  region.srcOffsets[0] = {x0, 1, 0};
-  region.srcOffsets[1] = {x0 + rw, rh + 1, 1};
+  const auto x0 = static_cast<std::int32_t>(v) * (rw + 2 * border) + border;
+  region.srcOffsets[0] = {x0, border, 0};
+  region.srcOffsets[1] = {x0 + rw, rh + border, 1};
   return region;
 }
 
@@ -178,11 +179,7 @@ void DeviceFrames::record_eyes(VkCommandBuffer cmd, const std::array<Camera, 2>&
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   for (std::size_t v = 0; v < targets.size(); ++v) {
     begin_transfer_to(cmd, targets[v]);
-    VkImageBlit region = bordered_region(v, rw, rh);
-    if (!scaled) {  // 1:1, by the nearest texel: no border
-      region.srcOffsets[0] = {static_cast<std::int32_t>(v) * rw, 0, 0};  // the left eye on the left
-      region.srcOffsets[1] = {static_cast<std::int32_t>(v + 1) * rw, rh, 1};
-    }
+    VkImageBlit region = eye_region(v, rw, rh, scaled ? 1 : 0);  // (1:1, by the nearest texel: no border)
     region.dstOffsets[1] = {w, h, 1};
     vkCmdBlitImage(cmd, rendered.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets[v],
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
@@ -241,7 +238,7 @@ void DeviceFrames::record_foveated(VkCommandBuffer cmd, const std::array<Camera,
       }
       const PixelRect& r = rects[l][v];
       const int lw = sizes[l][0], lh = sizes[l][1];
-      VkImageBlit region = bordered_region(v, lw, lh);
+      VkImageBlit region = eye_region(v, lw, lh, 1);
       region.dstOffsets[0] = {r.x0, r.y0, 0};
       region.dstOffsets[1] = {r.x1, r.y1, 1};
       const bool scaled = lw != r.x1 - r.x0 || lh != r.y1 - r.y0;

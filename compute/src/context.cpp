@@ -32,15 +32,17 @@ namespace {
 // unreadable: a cache is optional and never stops a render.
 std::vector<char> read_pipeline_cache(const std::string& path) {
   constexpr std::uintmax_t kLargest = std::uintmax_t{1} << 30;
-  std::string why;
+  FileRefusal why;
   const std::optional<std::string> bytes = read_regular_file(path, kLargest, &why);
   if (!bytes) {
-    if (why != "no such file") {
-      if (why == "a directory") why = "it is a directory";
-      if (why.starts_with("not a regular file")) why = "it is not a regular file";
-      if (why.starts_with("larger than")) why = "it is larger than any pipeline cache (1 GiB)";
+    using Kind = FileRefusal::Kind;
+    const std::string problem = why.kind == Kind::Directory    ? "it is a directory"
+                                : why.kind == Kind::NotRegular ? "it is not a regular file"
+                                : why.kind == Kind::TooLarge   ? "it is larger than any pipeline cache (1 GiB)"
+                                                               : why.text;
+    if (why.kind != Kind::Missing) {
       std::fprintf(stderr, "sol::vk: warning: ignoring the pipeline cache %s: %s (the kernels are compiled again)\n",
-                   path.c_str(), why.c_str());
+                   path.c_str(), problem.c_str());
     }
     return {};
   }

@@ -352,6 +352,22 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
   return values;
 }
 
+// Why the kernel does not path-trace the world though it renders its
+// direct light ("" when it does): only paths connect to glowing balls,
+// along geodesics up to the seed table's reach.
+std::string path_unsupported(const World& world) {
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    if (world.objects[i].glow_reach > ConnectionTable::kReach) {
+      char message[160];
+      std::snprintf(message, sizeof message,
+                    "objects[%zu].glow_reach: glowing balls with a reach above %g are path traced on the CPU only", i,
+                    ConnectionTable::kReach);
+      return message;
+    }
+  }
+  return {};
+}
+
 // The variant's pipeline for one pass (kernel::kPass*).
 ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v, int pass) {
   return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ", pass " + std::to_string(pass) + ")",
@@ -505,6 +521,9 @@ struct MarchRenderer::Impl {
   // The prepared world and what set_world made of it.
   std::optional<MarchWorld> world;
   Params world_uniforms{};
+  // Why its paths are the CPU's alone (path_unsupported; "" when not): a
+  // path frame (render() by paths, a presenter's path sample) is refused.
+  std::string path_refused;
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns: a replaced one is retired (below).
   std::optional<Buffer> images;
@@ -695,6 +714,7 @@ void MarchRenderer::set_world(const World& world) {
   m.light_images.emplace(m.context, light_images.size() * sizeof(glm::vec4));
   m.light_images->write(light_images);
   m.world_uniforms = world_params(prepared);
+  m.path_refused = path_unsupported(world);
   m.world.emplace(std::move(prepared));
 }
 
@@ -772,6 +792,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.projections = projections;
   variant.ods = ods;
   variant.path = path || sample.path >= 0;
+  if (variant.path && !m.path_refused.empty()) throw NotImplemented("sol::vk::MarchRenderer: " + m.path_refused);
   variant.inside = eye_inside_solid(prepared, eyes);
   if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
     g.path = path_uniform(sample.seed, sample.path, PathSampling::Combined);
@@ -859,14 +880,10 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
       return message;
     }
   }
+  if (transport == Transport::Path) {
+    if (std::string why = path_unsupported(world); !why.empty()) return why;
+  }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    // (Only paths connect to glowing balls: direct light never reads the reach.)
-    if (transport == Transport::Path && world.objects[i].glow_reach > ConnectionTable::kReach) {
-      std::snprintf(message, sizeof message,
-                    "objects[%zu].glow_reach: glowing balls with a reach above %g are path traced on the CPU only",
-                    i, ConnectionTable::kReach);
-      return message;
-    }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {
       std::snprintf(message, sizeof message,
@@ -949,11 +966,6 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
   const bool path = options.transport == Transport::Path;
-  if (path) {
-    if (const std::string why = unsupported(world().world(), Transport::Path); !why.empty()) {
-      throw NotImplemented("sol::vk::MarchRenderer::render: " + why);
-    }
-  }
   Frame f = prepare_frame(eyes, options.width, height, options.aovs, false, {}, true, path);
   // The kernel is built: the work begins now (a progress estimate counts from here).
   if (options.progress) options.progress(0.0);

@@ -11,24 +11,24 @@
 namespace sol {
 
 std::optional<std::string> read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes,
-                                             std::string* why) {
-  auto refuse = [&](const std::string& reason) -> std::optional<std::string> {
-    if (why) *why = reason;
+                                             FileRefusal* why) {
+  using Kind = FileRefusal::Kind;
+  auto refuse = [&](Kind kind, const std::string& text) -> std::optional<std::string> {
+    if (why) *why = {kind, text};
     return std::nullopt;
   };
+  const auto too_large = [&] { return refuse(Kind::TooLarge, "larger than " + std::to_string(max_bytes) + " bytes"); };
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return refuse(errno == ENOENT ? "no such file" : std::strerror(errno));
+  if (fd < 0) return errno == ENOENT ? refuse(Kind::Missing, "no such file") : refuse(Kind::Error, std::strerror(errno));
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
   struct stat st {};
-  if (::fstat(fd, &st) != 0) return refuse(std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) return refuse("a directory");
-  if (!S_ISREG(st.st_mode)) return refuse("not a regular file (a FIFO, a device or a socket)");
-  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes) {
-    return refuse("larger than " + std::to_string(max_bytes) + " bytes");
-  }
+  if (::fstat(fd, &st) != 0) return refuse(Kind::Error, std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) return refuse(Kind::Directory, "a directory");
+  if (!S_ISREG(st.st_mode)) return refuse(Kind::NotRegular, "not a regular file (a FIFO, a device or a socket)");
+  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes) return too_large();
   std::string data(static_cast<std::size_t>(st.st_size), '\0');
   std::size_t done = 0;
   while (true) {
@@ -37,9 +37,9 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& path, 
       char extra = 0;
       const ssize_t n = ::read(fd, &extra, 1);
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0) return refuse(std::strerror(errno));
+      if (n < 0) return refuse(Kind::Error, std::strerror(errno));
       if (n == 0) break;
-      if (data.size() >= max_bytes) return refuse("larger than " + std::to_string(max_bytes) + " bytes");
+      if (data.size() >= max_bytes) return too_large();
       data.push_back(extra);  // it grew: go on, within the bound
       ++done;
       data.resize(std::min<std::uintmax_t>(max_bytes, data.size() + 65536));
@@ -47,7 +47,7 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& path, 
     }
     const ssize_t n = ::read(fd, data.data() + done, data.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return refuse(std::strerror(errno));
+    if (n < 0) return refuse(Kind::Error, std::strerror(errno));
     if (n == 0) {  // it shrank
       data.resize(done);
       break;

@@ -10,6 +10,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -184,33 +185,30 @@ SeenDistance seen_distance(const MarchObject& object, bool solid, const glm::dve
   return {inside ? -d : d, inside};
 }
 
-// An exact ball's clearance from q inside it along the unit tangent u
-// (sol::exact_ball_inside_clearance), from the shortest geodesic from its
-// centre: its length d and its tangent at q, the sphere's normal there.
-// At least `inside`, the exact distance to the sphere (r − d) the march
-// has, where the solve fails.
-double exact_ball_inside_step(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double inside, double eps) {
+// The shortest geodesic from an exact ball's centre to q: its length and
+// its unit tangent at q, the sphere's normal there; none where the solve
+// fails or q is the centre.
+struct FromCentre {
+  double length = 0.0;
+  glm::dvec3 normal{0.0};
+};
+std::optional<FromCentre> from_centre(const Ball& ball, const glm::dvec3& q) {
   try {
     const Connection c = minimising_geodesics(ball.center, q).front();
-    if (!(c.length > 0.0)) return inside;
-    const glm::dvec3 normal = glm::normalize(ClosedFormGeodesic<double>(glm::normalize(c.direction)).direction_at(c.length));
-    return std::max(inside, exact_ball_inside_clearance(ball.radius - c.length, c.length, glm::dot(normal, u), eps));
+    if (!(c.length > 0.0)) return std::nullopt;
+    return FromCentre{c.length, glm::normalize(ClosedFormGeodesic<double>(glm::normalize(c.direction)).direction_at(c.length))};
   } catch (const OutOfRange&) {
-    return inside;
+    return std::nullopt;
   }
 }
 
-// The rate d' of the distance from an exact ball's centre along the unit
-// tangent u at q (its shortest geodesic's tangent at q against u); 0 where
-// the solve fails.
-double exact_ball_rate(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u) {
-  try {
-    const Connection c = minimising_geodesics(ball.center, q).front();
-    if (!(c.length > 0.0)) return 0.0;
-    return glm::dot(glm::normalize(ClosedFormGeodesic<double>(glm::normalize(c.direction)).direction_at(c.length)), u);
-  } catch (const OutOfRange&) {
-    return 0.0;
-  }
+// An exact ball's clearance from q inside it along the unit tangent u
+// (sol::exact_ball_inside_clearance). At least `inside`, the exact
+// distance to the sphere (r − d) the march has, where the solve fails.
+double exact_ball_inside_step(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double inside, double eps) {
+  const std::optional<FromCentre> g = from_centre(ball, q);
+  if (!g) return inside;
+  return std::max(inside, exact_ball_inside_clearance(ball.radius - g->length, g->length, glm::dot(g->normal, u), eps));
 }
 
 // A ray that leaves an exact ball's sphere passes it until it is 2
@@ -219,16 +217,29 @@ double exact_ball_rate(const Ball& ball, const glm::dvec3& q, const glm::dvec3& 
 // meets it again after a chord whose depth, r(1 − cos θ) for half-angle θ,
 // may never reach 2 hit_epsilon, and passing the sphere for the whole
 // chord it would go through the wall. `sign` holds the sign of the rate
-// at the first step (0 before it): the pass ends where the rate has the
-// other sign.
+// d' of the distance from the centre at the first step (0 before it): the
+// pass ends where the rate has the other sign.
 bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double& sign) {
-  const double rate = exact_ball_rate(ball, q, u);
+  const std::optional<FromCentre> g = from_centre(ball, q);
+  const double rate = g ? glm::dot(g->normal, u) : 0.0;
   if (rate == 0.0) return false;
   if (sign == 0.0) {
     sign = rate > 0.0 ? 1.0 : -1.0;
     return false;
   }
   return rate * sign < 0.0;
+}
+
+// Whether a ray passing the surface of `shape` it leaves (at distance d
+// from q, `inside` the solid) stops passing it at q, the surface a hit
+// candidate again: 2 hit_epsilon away, or, seen from inside, where it heads
+// for a face (sol::InsideClearances::nearest_rate; an exact ball: where it
+// turns back towards its sphere, `leave_sign` as exact_ball_turned_back's).
+bool pass_ends(const Shape& shape, double d, bool inside, const glm::dvec3& q, const glm::dvec3& u, double hit_epsilon,
+               double& leave_sign) {
+  if (d > 2.0 * hit_epsilon) return true;
+  if (exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
+  return inside && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
 }
 
 // The normal at a hit, turned to face the ray where it faces away and
@@ -312,14 +323,9 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (o.cutout && std::holds_alternative<PlaneZ>(o.shape)) {
         d = std::max(d, cutout_gap_bound(o.pattern, multiply(origin, q)));
       }
-      // The surface it leaves: passed until 2 hit_epsilon away, or (seen
-      // from inside) until the ray heads for a face of it (an exact ball:
-      // turns back towards its sphere).
-      if ((passing & bit) && (d > 2.0 * world.hit_epsilon ||
-                              (exact_ball(objects[k].shape) && exact_ball_turned_back(std::get<Ball>(objects[k].shape), q,
-                                                                                      ray.direction_at(t), leave_sign[k])) ||
-                              (inside && !exact_ball(objects[k].shape) &&
-                               shape_inside_clearances(objects[k].shape, q, ray.direction_at(t)).nearest_rate < 0.0))) {
+      // The surface it leaves (pass_ends).
+      if ((passing & bit) &&
+          pass_ends(objects[k].shape, d, inside, q, ray.direction_at(t), world.hit_epsilon, leave_sign[k])) {
         passing &= ~bit;
       }
       if (d < nearest) {
@@ -456,9 +462,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       auto left = std::find(passing.begin(), passing.end(), k);
       if (left != passing.end()) {  // (as march_cover's)
         double& sign = leave_sign[static_cast<std::size_t>(left - passing.begin())];
-        if (d > 2.0 * world.hit_epsilon ||
-            (exact_ball(image.shape) && exact_ball_turned_back(std::get<Ball>(image.shape), q, u, sign)) ||
-            (seen.inside && !exact_ball(image.shape) && shape_inside_clearances(image.shape, q, u).nearest_rate < 0.0)) {
+        if (pass_ends(image.shape, d, seen.inside, q, u, world.hit_epsilon, sign)) {
           leave_sign.erase(leave_sign.begin() + (left - passing.begin()));
           left = passing.erase(left);
         }

@@ -266,13 +266,15 @@ std::string read_text_file(const std::string& path, const char* kind) {
   // (not "malformed JSON"), a FIFO or a device (which could block or never
   // end), anything larger than any scene or path (sol::read_regular_file).
   constexpr std::uintmax_t kLargest = 64u << 20;
-  std::string why;
+  FileRefusal why;
   std::optional<std::string> text = read_regular_file(path, kLargest, &why);
   if (text) return std::move(*text);
-  if (why == "a directory") throw InvalidArgument(path + ": a directory, not a " + kind + " file");
-  if (why == "no such file") throw InvalidArgument(path + ": cannot open " + kind + " file (no such file)");
-  if (why.starts_with("larger than")) throw InvalidArgument(path + ": larger than 64 MiB, more than any " + kind + " file");
-  throw InvalidArgument(path + ": cannot read " + kind + " file: " + why);
+  switch (why.kind) {
+    case FileRefusal::Kind::Directory: throw InvalidArgument(path + ": a directory, not a " + kind + " file");
+    case FileRefusal::Kind::Missing: throw InvalidArgument(path + ": cannot open " + kind + " file (no such file)");
+    case FileRefusal::Kind::TooLarge: throw InvalidArgument(path + ": larger than 64 MiB, more than any " + kind + " file");
+    default: throw InvalidArgument(path + ": cannot read " + kind + " file: " + why.text);
+  }
 }
 
 }  // namespace sol::detail

@@ -274,7 +274,6 @@ def test_cpu_renderer_keeps_its_world():
         renderer.render(0, 16)
 
 
-
 def test_cpu_renderer_takes_a_new_scene_while_a_thread_renders():
     # set_scene from one thread while another renders with the same renderer (which once freed the world under
     # the render: a segmentation fault): the render finishes with the world it started with, to the bit, and the
@@ -298,6 +297,7 @@ def test_cpu_renderer_takes_a_new_scene_while_a_thread_renders():
     thread.join()
     assert np.array_equal(results["image"]["rgba"], sol.render_cpu(lattice, 96, 96)["rgba"])
     assert np.array_equal(renderer.render(24, 16)["rgba"], sol.render_cpu(plane, 24, 16)["rgba"])
+
 
 def test_bad_arguments_raise_value_errors():
     with pytest.raises(ValueError, match="direction"):

@@ -45,6 +45,20 @@ wait_log() {
   done
   fail "no '$1' on stderr"
 }
+# Saves the scene text $1, waits for the message $2 and three more frames,
+# and checks that the frame is still the last good one ($good); $3 says
+# what the edit was. Sets $kept to the newest frame's number.
+expect_kept() {
+  sleep 1.1  # a new modification time even where it has one-second resolution
+  printf '%s' "$1" > scene.json
+  wait_log "$2"
+  local mark
+  mark=$(newest)
+  wait_frames "$mark" 3
+  kept=$(newest)
+  "$idiff" -q "rec/frame-$good.png" "rec/frame-$kept.png" > /dev/null 2>&1 ||
+    fail "the frame changed after $3 (frames $good and $kept differ)"
+}
 wait_frames 0 3
 first=$(newest)
 
@@ -60,27 +74,19 @@ if "$idiff" -q "rec/frame-$first.png" "rec/frame-$good.png" > /dev/null 2>&1; th
 fi
 
 # A broken edit: a misspelt key on line 2; the last good scene stays.
-sleep 1.1
-printf '{"camera": {"position": [0, 0, 0], "forward": [0, 0, -1], "up": [0, 1, 0], "fov": 90},\n "objects": [{"type": "plane_z", "colour": [1, 0, 0]}]}\n' > scene.json
-wait_log "scene.json.*unknown key 'colour'.*line 2.*the last good scene stays"
-mark=$(newest)
-wait_frames "$mark" 3
-kept=$(newest)
-"$idiff" -q "rec/frame-$good.png" "rec/frame-$kept.png" > /dev/null 2>&1 ||
-  fail "the frame changed after a broken edit (frames $good and $kept differ)"
+expect_kept '{"camera": {"position": [0, 0, 0], "forward": [0, 0, -1], "up": [0, 1, 0], "fov": 90},
+ "objects": [{"type": "plane_z", "colour": [1, 0, 0]}]}
+' "scene.json.*unknown key 'colour'.*line 2.*the last good scene stays" "a broken edit"
+broken=$kept
 
 # A scene that validates but cannot be prepared (a monodromy of trace 3,
 # within the kernel's bound, whose entries of a million make its lattice
 # need over a million words): solview goes on with the last good scene (it
 # exited 4), and says why.
-sleep 1.1
-printf '{"camera": {"position": [0.1, 0.1, 0.1], "forward": [0, 0, -1], "up": [0, 1, 0], "fov": 90},\n "quotient": {"monodromy": [[1002, -1000999], [1, -999]]},\n "objects": [{"type": "ball", "center": [0, 0, 0], "radius": 0.1}]}\n' > scene.json
-wait_log "million.*the last good scene stays"
-mark=$(newest)
-wait_frames "$mark" 3
-after=$(newest)
-"$idiff" -q "rec/frame-$good.png" "rec/frame-$after.png" > /dev/null 2>&1 ||
-  fail "the frame changed after a scene that cannot be prepared (frames $good and $after differ)"
+expect_kept '{"camera": {"position": [0.1, 0.1, 0.1], "forward": [0, 0, -1], "up": [0, 1, 0], "fov": 90},
+ "quotient": {"monodromy": [[1002, -1000999], [1, -999]]},
+ "objects": [{"type": "ball", "center": [0, 0, 0], "radius": 0.1}]}
+' "million.*the last good scene stays" "a scene that cannot be prepared"
 
 # A clean end on SIGTERM: the session's summary, exit 0, nothing from the validation layer.
 kill -TERM $pid
@@ -90,4 +96,4 @@ trap - EXIT
 [ "$status" -eq 0 ] || fail "solview exited with $status after SIGTERM"
 grep -q "signal 15: ending the session" log || fail "no clean end on SIGTERM"
 if grep -Eq "validation|VUID" log; then fail "validation messages"; fi
-echo "hot_reload: frames $first (first), $good (after the good edit), $kept (after the broken edit)"
+echo "hot_reload: frames $first (first), $good (after the good edit), $broken (after the broken edit), $kept (after the scene that cannot be prepared)"

@@ -77,4 +77,20 @@ float exact_ball_inside_clearance(float g, float d, float slope, float eps) {
   return max(g, s);
 }
 
+// Whether a ray that leaves an exact ball's sphere (passing it) stops
+// passing it at this step, the ball a hit candidate again: once it is 2
+// hit_epsilon away (`away`, |sdf|, where the solve landed: `known`), or
+// where it turns back towards the sphere, the rate of its distance from
+// the centre (`slope`) of the other sign than at the first step
+// (`leave_sign`, 0 before it and again once the pass ends): a grazing chord
+// of the inner wall may never be 2 hit_epsilon deep (exact_ball_turned_back
+// in libsol/src/render.cpp).
+bool exact_pass_ends(bool known, float away, float slope, float hit_epsilon, inout float leave_sign) {
+  const bool turned = known && leave_sign != 0.0 && slope * leave_sign < 0.0;
+  if (known && leave_sign == 0.0 && slope != 0.0) leave_sign = sign(slope);
+  const bool ends = away > 2.0 * hit_epsilon || turned;
+  if (ends) leave_sign = 0.0;
+  return ends;
+}
+
 #endif  // SOL_MARCH_EXACT_BALLS_GLSL

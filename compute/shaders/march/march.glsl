@@ -222,16 +222,7 @@ bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool
   const float slope = dot(x.end.tangent, u);  // the exact distance's rate along the ray (where x.known)
   if (leaving) {
     const float away = x.known ? abs(sdf) : 0.0;  // (where the solve did not land: the passing's least step)
-    // The pass ends 2 hit_epsilon away, or where the ray turns back
-    // towards the sphere (the rate's sign against its first: a grazing
-    // chord of the inner wall may never be 2 hit_epsilon deep;
-    // exact_ball_turned_back in libsol/src/render.cpp).
-    const bool turned = x.known && leave_sign != 0.0 && slope * leave_sign < 0.0;
-    if (x.known && leave_sign == 0.0 && slope != 0.0) leave_sign = sign(slope);
-    if (away > 2.0 * hit_epsilon || turned) {
-      passing &= ~(1u << uint(e));
-      leave_sign = 0.0;
-    }
+    if (exact_pass_ends(x.known, away, slope, hit_epsilon, leave_sign)) passing &= ~(1u << uint(e));
     const float beyond = HAS_INSIDE && x.known && sdf < 0.0 ? exact_ball_inside_clearance(away, length(x.v), slope, hit_epsilon)
                                                              : away;
     s.nearest = min(s.others, beyond);

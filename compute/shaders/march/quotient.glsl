@@ -186,12 +186,9 @@ void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, inout Quotie
   if (solve_leaving) {
     for (int p = 0; p < 4; ++p) {
       if (passing[p] != ei) continue;
-      const bool turned = exact.known && leave_signs[p] != 0.0 && slope * leave_signs[p] < 0.0;
-      if (exact.known && leave_signs[p] == 0.0 && slope != 0.0) leave_signs[p] = sign(slope);
-      if (away > 2.0 * hit_epsilon || turned) {
-        passing[p] = -1;
-        leave_signs[p] = 0.0;
-      }
+      float leave_sign = leave_signs[p];
+      if (exact_pass_ends(exact.known, away, slope, hit_epsilon, leave_sign)) passing[p] = -1;
+      leave_signs[p] = leave_sign;
     }
     c.clear_rest = min(c.clear_rest, beyond);
     c.back = min(c.back, away);

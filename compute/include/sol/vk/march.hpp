@@ -231,8 +231,9 @@ class MarchRenderer final : public Renderer {
   /// Why the kernel does not render the world by `transport`, naming the
   /// field and saying that the CPU renderer does ("" when it does:
   /// supports()). A glowing ball's glow_reach above the seed table's reach
-  /// keeps path tracing on the CPU alone (render() refuses it with this
-  /// reason); direct light never reads it.
+  /// keeps path tracing on the CPU alone (a path frame, render() by paths
+  /// or a presenter's path sample, is refused with this reason); direct
+  /// light never reads it.
   static std::string unsupported(const World& world, Transport transport = Transport::Direct);
 
  private:
