@@ -63,6 +63,15 @@
 //     second, best of --repeats (at most 3). Written to path_rate.csv. Not
 //     in the default run.
 //
+//  9. Objects (--only objects): a frame's time against the number of
+//     objects: 10, 100, 1,000 and 10,000 small balls (radius 0.04) scattered
+//     in the box [-2, 2]² x [-1, 1] over a floor (tests/support/crowd.hpp),
+//     seen from outside the box and from inside it, at min(--size, 128)²,
+//     on the kernel (where it takes the world) and the CPU renderer, best
+//     of min(--repeats, 3) after a warm-up: wall time, M rays/s, mean steps
+//     and the time against the 10 objects'. Written to render_objects.csv
+//     (bench/plot_objects.py draws it). Not in the default run.
+//
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
 //     folded into the SPIR-V (the default on a CPU device) and handed to
@@ -72,7 +81,8 @@
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu|pipelines|lattices|path] [--scene PRESET] [--kernel-only]
+//                [--only throughput|error|exact|gpu|pipelines|lattices|path|path-rate|objects]
+//                [--scene PRESET] [--kernel-only]
 //
 // For quick before/after figures of one change: --only throughput --scene
 // lattice-balls --kernel-only (the specialised kernel alone, one preset).
@@ -96,6 +106,7 @@
 
 #include "command_line.hpp"
 #include "output_file.hpp"
+#include "support/crowd.hpp"
 
 namespace {
 
@@ -126,6 +137,469 @@ ImageError compare(const sol::RenderResult& a, const sol::RenderResult& referenc
   return e;
 }
 
+// What every section shares: the device, the options, the presets, and
+// the files written at the end (name, contents).
+struct Bench {
+  sol::vk::Context& context;
+  std::string quoted_device;
+  int size, error_size, gpu_size, gpu_height, repeats, rate_spp;
+  bool kernel_only;
+  std::vector<std::string> presets;
+  std::vector<std::pair<std::string, std::string>> files;
+};
+
+// 1. Throughput.
+void section_throughput(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  const int size = b.size;
+  const int repeats = b.repeats;
+  const bool kernel_only = b.kernel_only;
+  const std::vector<std::string>& presets = b.presets;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string throughput = "scene,device,width,height,ms,mrays_per_s,mean_steps\n";
+  sol::vk::MarchRenderer general(context, {.all_features = true});
+  std::string features = "scene,specialised_ms,general_ms,speedup\n";
+  // The specialised kernels' times in rounds, each round one frame of
+  // every preset: the shared machine's bursts of other work (seconds
+  // long, longer than a preset's repeats) fall on all presets alike, so
+  // that their ratios within one run hold. One renderer per preset
+  // keeps its pipelines between rounds.
+  const std::vector<std::string>& names = presets;
+  std::vector<sol::Scene> scenes;
+  for (const std::string& name : names) scenes.push_back(sol::preset_scene(name));
+  std::vector<std::unique_ptr<sol::vk::MarchRenderer>> renderers;
+  std::vector<double> bests(names.size(), 1e300);
+  std::vector<sol::RenderResult> results(names.size());
+  for (const sol::Scene& scene : scenes) {
+    renderers.push_back(std::make_unique<sol::vk::MarchRenderer>(context));
+    sol::render_scene(*renderers.back(), scene, {.width = size, .height = size});  // warm-up: shader compilation and caches
+  }
+  for (int k = 0; k < repeats; ++k) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      results[i] = sol::render_scene(*renderers[i], scenes[i], {.width = size, .height = size});
+      bests[i] = std::min(bests[i], results[i].device_ms);
+    }
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    const sol::Scene& scene = scenes[i];
+    const double best = bests[i];
+    const sol::RenderResult& r = results[i];
+    const double rays = static_cast<double>(size) * size;
+    double best_general = 1e300;
+    if (!kernel_only) sol::render_scene(general, scene, {.width = size, .height = size});  // warm-up
+    for (int k = 0; k < (kernel_only ? 0 : repeats); ++k) {
+      best_general = std::min(best_general, sol::render_scene(general, scene, {.width = size, .height = size}).device_ms);
+    }
+    char line[512];
+    if (!kernel_only) {
+      std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
+      features += line;
+      std::fprintf(stderr, "features: %s", line);
+    }
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), quoted_device.c_str(), size, size,
+                  best, rays / best * 1e-3, mean(r.steps));
+    throughput += line;
+    std::fprintf(stderr, "%s", line);
+    if (kernel_only || sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
+    sol::RenderOptions settings;
+    settings.width = settings.height = size;
+    const auto begin = std::chrono::steady_clock::now();
+    const sol::RenderResult c = sol::render_cpu(scene, settings);
+    const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    std::snprintf(line, sizeof line, "%s,\"cpu reference (double)\",%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
+                  cpu_ms, rays / cpu_ms * 1e-3, mean(c.steps));
+    throughput += line;
+    std::fprintf(stderr, "%s", line);
+  }
+  files.emplace_back("render_throughput.csv", throughput);
+  if (!kernel_only) files.emplace_back("render_features.csv", features);
+}
+
+// 6. Every lattice: the same world in several (asked for by name only).
+void section_lattices(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  const int size = b.size;
+  const int repeats = b.repeats;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  struct Case {
+    const char* name;
+    sol::Monodromy monodromy;
+  };
+  const Case cases[] = {{"golden", {2, 1, 1, 1}},
+                        {"trace4", {3, 1, 2, 1}},
+                        {"trace6", {5, 2, 2, 1}},
+                        {"trace10", {9, 4, 2, 1}},
+                        {"trace-4", {-3, -1, -2, -1}}};
+  struct Run {
+    std::string label;
+    sol::Scene scene;
+    std::size_t images = 0;
+    std::unique_ptr<sol::vk::MarchRenderer> renderer;
+    double best = 1e300;
+    sol::RenderResult result;
+  };
+  std::vector<Run> runs_of;
+  for (const Case& c : cases) {
+    for (const auto& [view, forward, up] : {std::tuple{"z", glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0)},
+                                            std::tuple{"xy", glm::dvec3(1, 1, 0), glm::dvec3(0, 0, 1)}}) {
+      Run r;
+      r.label = std::string(c.name) + "," + view;
+      sol::set_quotient(r.scene, sol::Quotient::Monodromy, c.monodromy);
+      const sol::Lattice lattice = *r.scene.lattice();
+      r.scene.camera = {0.5 * (lattice.generators()[0] + lattice.generators()[1]) +
+                            glm::dvec3(0.0, 0.0, 0.5 * lattice.height()),
+                        forward, up, 90.0};
+      r.scene.objects = {{sol::Ball{{0.0, 0.0, 0.0}, 0.3}, {0.9, 0.55, 0.3}}};
+      r.scene.fog_density = 1.0 / 12.0;
+      r.scene.max_distance = 12.0;
+      r.scene.max_steps = 400;
+      r.images = sol::quotient_images(r.scene).size();
+      r.renderer = std::make_unique<sol::vk::MarchRenderer>(context);
+      sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});  // warm-up
+      runs_of.push_back(std::move(r));
+    }
+  }
+  for (int k = 0; k < repeats; ++k) {
+    for (Run& r : runs_of) {
+      r.result = sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});
+      r.best = std::min(r.best, r.result.device_ms);
+    }
+  }
+  std::string csv = "lattice,view,device,width,height,images,ms,mrays_per_s,mean_steps,time_vs_golden\n";
+  for (std::size_t i = 0; i < runs_of.size(); ++i) {
+    const Run& r = runs_of[i];
+    const Run& golden = runs_of[i % 2];  // the golden lattice's run of the same view
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%zu,%.2f,%.3f,%.2f,%.3f\n", r.label.c_str(), quoted_device.c_str(), size,
+                  size, r.images, r.best, static_cast<double>(size) * size / r.best * 1e-3, mean(r.result.steps),
+                  r.best / golden.best);
+    csv += line;
+    std::fprintf(stderr, "%s", line);
+  }
+  files.emplace_back("render_lattices.csv", csv);
+}
+
+// 7. Light transport: the path tracer's error against samples and seconds (asked for by name only).
+void section_path(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  sol::Scene scene = sol::preset_scene("lattice-balls");
+  scene.objects[0].emission = {0.6, 0.35, 0.2};
+  sol::vk::MarchRenderer kernel(context);
+  sol::CpuRenderer cpu;
+  auto render = [&](sol::Renderer& renderer, int samples, std::uint64_t seed, double& seconds) {
+    sol::RenderOptions settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.samples = samples;
+    settings.transport = sol::Transport::Path;
+    settings.seed = seed;
+    const auto start = std::chrono::steady_clock::now();
+    sol::RenderResult r = sol::render_scene(renderer, scene, settings);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  };
+  // One reference for both: the CPU's, in double.
+  double reference_seconds = 0.0;
+  const sol::RenderResult reference = render(cpu, 2048, 1000, reference_seconds);
+  double reference_squares = 0.0;
+  for (std::size_t k = 0; k < reference.rgba.size(); ++k) {
+    if (k % 4 != 3) reference_squares += static_cast<double>(reference.rgba[k]) * reference.rgba[k];
+  }
+  double warm = 0.0;
+  render(kernel, 1, 0, warm);  // the kernel's pipelines built first
+  std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp\n";
+  for (sol::Renderer* renderer : {static_cast<sol::Renderer*>(&cpu), static_cast<sol::Renderer*>(&kernel)}) {
+    const std::string where = renderer == &cpu ? "cpu" : quoted_device;
+    for (int spp = 1; spp <= 256; spp *= 2) {
+      double seconds = 0.0;
+      const sol::RenderResult r = render(*renderer, spp, static_cast<std::uint64_t>(spp), seconds);
+      double squares = 0.0;
+      for (std::size_t k = 0; k < r.rgba.size(); ++k) {
+        if (k % 4 != 3) squares += std::pow(static_cast<double>(r.rgba[k]) - reference.rgba[k], 2.0);
+      }
+      char line[512];
+      std::snprintf(line, sizeof line, "lattice-balls-glowing,%s,64,48,%d,%.3f,%.5f,2048\n", where.c_str(), spp,
+                    seconds, std::sqrt(squares / reference_squares));
+      csv += line;
+      std::fprintf(stderr, "%s", line);
+    }
+  }
+  files.emplace_back("path_convergence.csv", csv);
+}
+
+// 8. Path samples per second, per preset (asked for by name only).
+void section_path_rate(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  const int size = b.size;
+  const int repeats = b.repeats;
+  const int rate_spp = b.rate_spp;
+  const std::vector<std::string>& presets = b.presets;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string csv = "scene,device,width,height,spp,seconds,mpaths_per_s\n";
+  for (const std::string& name : presets) {
+    const sol::Scene scene = sol::preset_scene(name);
+    sol::vk::MarchRenderer kernel(context);
+    sol::RenderOptions settings;
+    settings.width = settings.height = size;
+    settings.transport = sol::Transport::Path;
+    settings.samples = 1;
+    sol::render_scene(kernel, scene, settings);  // warm-up: the path pipelines built
+    settings.samples = rate_spp;
+    double best = 1e300;
+    for (int k = 0; k < std::min(repeats, 3); ++k) {
+      settings.seed = static_cast<std::uint64_t>(k);
+      const auto start = std::chrono::steady_clock::now();
+      sol::render_scene(kernel, scene, settings);
+      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%.3f,%.3f\n", name.c_str(), quoted_device.c_str(), size, size, rate_spp,
+                  best, static_cast<double>(size) * size * rate_spp / best * 1e-6);
+    csv += line;
+    std::fprintf(stderr, "%s", line);
+  }
+  files.emplace_back("path_rate.csv", csv);
+}
+
+// 2. Image error against run time.
+void section_error(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const int error_size = b.error_size;
+  const int repeats = b.repeats;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string errors = "scene,integrator,setting,mask_mismatch_fraction,max_distance_error,max_point_error,ms\n";
+  for (const char* name : {"plane", "sandwich"}) {
+    sol::Scene scene = sol::preset_scene(name);
+    // A hit epsilon near float resolution, so that the march's own stopping
+    // tolerance does not hide the flow's error.
+    scene.hit_epsilon = 2e-6;
+    sol::RenderOptions settings;
+    settings.width = settings.height = error_size;
+    const sol::RenderResult reference = sol::render_cpu(scene, settings);
+    struct Variant {
+      const char* integrator;
+      double step;
+    };
+    for (const Variant v : {Variant{"closed", 0.0}, Variant{"rk4", 0.1}, Variant{"rk4", 0.03}, Variant{"rk4", 0.01},
+                            Variant{"rk4", 0.003}}) {
+      sol::vk::MarchOptions options;
+      if (std::strcmp(v.integrator, "rk4") == 0) {
+        options.integrator = sol::vk::Integrator::RK4;
+        options.rk4_step = v.step;
+      }
+      sol::vk::MarchRenderer r(context, options);
+      sol::render_scene(r, scene, {.width = error_size, .height = error_size});  // warm-up
+      double best = 1e300;
+      sol::RenderResult image;
+      for (int k = 0; k < std::min(repeats, 3); ++k) {
+        image = sol::render_scene(r, scene, {.width = error_size, .height = error_size});
+        best = std::min(best, image.device_ms);
+      }
+      const ImageError e = compare(image, reference);
+      char line[512];
+      char setting[64];
+      std::snprintf(setting, sizeof setting, v.step > 0 ? "h=%g" : "-", v.step);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%.5f,%.3e,%.3e,%.2f\n", name, v.integrator, setting,
+                    e.mask_fraction, e.distance, e.point, best);
+      errors += line;
+      std::fprintf(stderr, "%s", line);
+    }
+  }
+  files.emplace_back("render_error_vs_time.csv", errors);
+}
+
+// 3. Exact spheres and lights against the bound-based ones.
+void section_exact(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const int size = b.size;
+  const int repeats = b.repeats;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string exact = "balls,light,falloff,shadows,width,height,ms,us_per_ray,ratio_to_bound\n";
+  const int w = size, h = std::max(1, size * 3 / 4);
+  sol::vk::MarchRenderer renderer(context);
+  double bound_ms = 0;
+  struct Variant {
+    bool exact_balls, exact_light;
+    double reach;
+    sol::Falloff falloff;
+    bool shadows;
+  };
+  using F = sol::Falloff;
+  for (const Variant v : {Variant{false, false, 0.0, F::Auto, false}, Variant{true, false, 0.0, F::Auto, false},
+                          Variant{false, true, 0.0, F::InverseSquare, false}, Variant{false, true, 0.0, F::Geodesic, false},
+                          Variant{false, true, 0.0, F::Geodesic, true}, Variant{true, true, 0.0, F::Geodesic, false},
+                          Variant{true, true, 0.0, F::Geodesic, true}, Variant{false, true, 2.0, F::Geodesic, false},
+                          Variant{false, true, 2.0, F::Geodesic, true}}) {
+    sol::Scene scene = sol::preset_scene("spheres");
+    for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = v.exact_balls;
+    for (sol::Light& l : scene.lights) {
+      l.exact = v.exact_light;
+      l.reach = v.reach;
+      l.falloff = v.falloff;
+      l.shadows = v.shadows;
+    }
+    sol::render_scene(renderer, scene, {.width = w, .height = h});  // warm-up: tables, shader compilation
+    double best = 1e300;
+    for (int k = 0; k < repeats; ++k) best = std::min(best, sol::render_scene(renderer, scene, {.width = w, .height = h}).device_ms);
+    if (!v.exact_balls && !v.exact_light) bound_ms = best;
+    char light[32];
+    std::snprintf(light, sizeof light, v.exact_light ? "exact reach %g" : "coordinate", v.reach);
+    const char* falloff = sol::falloff_of(scene.lights[0]) == F::Geodesic ? "geodesic" : "inverse-square";
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%d,%.2f,%.3f,%.2f\n", v.exact_balls ? "exact" : "bound", light,
+                  falloff, v.shadows ? "yes" : "no", w, h, best, best * 1e3 / (static_cast<double>(w) * h),
+                  best / bound_ms);
+    exact += line;
+    std::fprintf(stderr, "exact: %s", line);
+  }
+  files.emplace_back("render_exact.csv", exact);
+}
+
+// 5. Pipeline builds: a new renderer's first frame (16², the world's
+// pipelines built) with the specialisation constants folded into the
+// SPIR-V and handed to the driver. Each variant is built once first, so
+// that the driver's own disk cache (Mesa's) is warm for both, as for a
+// program run before.
+void section_pipelines(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  const std::vector<std::string>& presets = b.presets;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string builds = "scene,device,folded_s,driver_s,ratio\n";
+  for (const std::string& name : presets) {
+    const sol::Scene scene = sol::preset_scene(name);
+    double seconds[2] = {0.0, 0.0};
+    for (const bool fold : {true, false}) {
+      const sol::vk::SpecializationFolding folding =
+          fold ? sol::vk::SpecializationFolding::Folded : sol::vk::SpecializationFolding::Driver;
+      {
+        sol::vk::MarchRenderer warm(context, {.specialization_folding = folding});
+        sol::render_scene(warm, scene, {.width = 16, .height = 16});  // warms the driver's cache
+      }
+      sol::vk::MarchRenderer renderer(context, {.specialization_folding = folding});
+      const auto start = std::chrono::steady_clock::now();
+      sol::render_scene(renderer, scene, {.width = 16, .height = 16});
+      seconds[fold ? 0 : 1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%s,%.2f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(), seconds[0],
+                  seconds[1], seconds[1] / seconds[0]);
+    builds += line;
+    std::fprintf(stderr, "pipelines: %s", line);
+  }
+  files.emplace_back("render_pipelines.csv", builds);
+}
+
+// 4. Headset sizes: one eye at gpu_size × gpu_height (square by default), and a stereo frame of two in one dispatch.
+void section_headset(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const std::string& quoted_device = b.quoted_device;
+  const int gpu_size = b.gpu_size;
+  const int gpu_height = b.gpu_height;
+  const int repeats = b.repeats;
+  const std::vector<std::string>& presets = b.presets;
+  std::vector<std::pair<std::string, std::string>>& files = b.files;
+  std::string gpu = "scene,device,width,height,mono_ms,mrays_per_s,stereo_ms,stereo_hz\n";
+  sol::vk::MarchRenderer renderer(context);
+  const int batches = std::min(repeats, 3);
+  constexpr int kBackToBack = 8;
+  constexpr double kWarmUpSeconds = 1.5;
+  sol::vk::StorageImage target(context, 2 * static_cast<std::uint32_t>(gpu_size),
+                               static_cast<std::uint32_t>(gpu_height));
+  // Each frame's writes (the target, the deferred passes' lists) complete
+  // before the next frame's commands touch them.
+  const auto between_frames = [](VkCommandBuffer cb) {
+    sol::vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+  };
+  // The mean time of one frame of `eyes` over a batch recorded back to back.
+  const auto batch_ms = [&](std::span<const sol::Camera> eyes) {
+    return sol::vk::run_recorded(context, [&](VkCommandBuffer cb) {
+             for (int f = 0; f < kBackToBack; ++f) {
+               if (f > 0) between_frames(cb);
+               renderer.record(cb, eyes, gpu_size, gpu_height, target);
+             }
+           }) /
+           kBackToBack;
+  };
+  for (const std::string& name : presets) {
+    const sol::Scene scene = sol::preset_scene(name);
+    renderer.set_world(scene);
+    const sol::StereoEyes stereo_eyes = sol::stereo_eyes(scene.camera, 0.064);
+    const sol::Camera both[] = {stereo_eyes.left, stereo_eyes.right};
+    const std::span<const sol::Camera> one(&scene.camera, 1);
+    const auto start = std::chrono::steady_clock::now();
+    do {
+      batch_ms(both);  // warm-up: compilation, caches and the device's clocks
+    } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kWarmUpSeconds);
+    double mono = 1e300, stereo = 1e300;
+    for (int k = 0; k < batches; ++k) {
+      mono = std::min(mono, batch_ms(one));
+      stereo = std::min(stereo, batch_ms(both));
+    }
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(),
+                  gpu_size, gpu_height, mono, static_cast<double>(gpu_size) * gpu_height / mono * 1e-3, stereo,
+                  1e3 / stereo);
+    gpu += line;
+    std::fprintf(stderr, "gpu: %s", line);
+  }
+  files.emplace_back("render_gpu.csv", gpu);
+}
+
+// 9. Objects: a frame's time against the number of objects (see the top).
+void section_objects(Bench& b) {
+  sol::vk::Context& context = b.context;
+  const int size = std::min(b.size, 128), repeats = b.repeats;
+  std::string csv = "objects,camera,device,width,height,ms,mrays_per_s,mean_steps,time_vs_10\n";
+  const double rays = static_cast<double>(size) * size;
+  for (const char* device : {"kernel", "cpu"}) {
+    double first[2] = {0.0, 0.0};
+    for (const std::size_t count : {10, 100, 1000, 10000}) {
+      sol::Scene scene;
+      scene.objects = sol::test::scattered_balls(count);  // (and the default light)
+      for (int c = 0; c < 2; ++c) {
+        scene.camera = c == 0 ? sol::test::crowd_camera_outside() : sol::test::crowd_camera_inside();
+        const char* camera = c == 0 ? "outside" : "inside";
+        std::unique_ptr<sol::Renderer> renderer;
+        if (std::strcmp(device, "cpu") == 0) {
+          renderer = std::make_unique<sol::CpuRenderer>();
+        } else if (const std::string why = sol::vk::MarchRenderer::unsupported(scene); why.empty()) {
+          renderer = std::make_unique<sol::vk::MarchRenderer>(context);
+        } else {
+          std::fprintf(stderr, "objects: %zu, %s: not on the kernel (%s)\n", count, camera, why.c_str());
+          csv += std::to_string(count) + "," + camera + ",kernel,,,,,,\n";
+          continue;
+        }
+        const sol::RenderOptions options{.width = size, .height = size};
+        sol::render_scene(*renderer, scene, options);  // warm-up: the world prepared, pipelines built
+        double best = 1e300;
+        sol::RenderResult r;
+        for (int k = 0; k < std::min(repeats, 3); ++k) {
+          const auto begin = std::chrono::steady_clock::now();
+          r = sol::render_scene(*renderer, scene, options);
+          best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+        }
+        if (count == 10) first[c] = best;
+        char line[512];
+        std::snprintf(line, sizeof line, "%zu,%s,\"%s\",%d,%d,%.2f,%.4f,%.2f,%.2f\n", count, camera,
+                      renderer->description().c_str(), size, size, best, rays / best * 1e-3, mean(r.steps), best / first[c]);
+        csv += line;
+        std::fprintf(stderr, "%s", line);
+      }
+    }
+  }
+  b.files.emplace_back("render_objects.csv", csv);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,7 +616,7 @@ int main(int argc, char** argv) {
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_integer("--spp", rate_spp, 1, 65536, "N", "paths a pixel for the path-rate section (default 16)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path", "path-rate"},
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path", "path-rate", "objects"},
                 "run one section and write its files (lattices, path, path-rate: only so)");
   cl.add_choice("--scene", scene_name, sol::preset_names(),
                 "throughput, headset, pipeline and path-rate sections: this preset only");
@@ -150,7 +624,8 @@ int main(int argc, char** argv) {
               "throughput section: the specialised kernel alone (no all-features kernel, no CPU reference)");
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
                 "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu),\n"
-                "render_pipelines.csv, (--only lattices) render_lattices.csv, (--only path)\n"
+                "render_pipelines.csv, (--only lattices) render_lattices.csv, (--only objects)\n"
+                "render_objects.csv, (--only path)\n"
                 "path_convergence.csv and (--only path-rate) path_rate.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
@@ -167,381 +642,26 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "render_bench: Vulkan device '%s'\n", device.c_str());
 
     auto runs = [&](const char* section) { return only.empty() || only == section; };
-    std::vector<std::pair<std::string, std::string>> files;  // (name, contents) written at the end
-
-    // 1. Throughput.
-    if (runs("throughput")) {
-      std::string throughput = "scene,device,width,height,ms,mrays_per_s,mean_steps\n";
-      sol::vk::MarchRenderer general(context, {.all_features = true});
-      std::string features = "scene,specialised_ms,general_ms,speedup\n";
-      // The specialised kernels' times in rounds, each round one frame of
-      // every preset: the shared machine's bursts of other work (seconds
-      // long, longer than a preset's repeats) fall on all presets alike, so
-      // that their ratios within one run hold. One renderer per preset
-      // keeps its pipelines between rounds.
-      const std::vector<std::string>& names = presets;
-      std::vector<sol::Scene> scenes;
-      for (const std::string& name : names) scenes.push_back(sol::preset_scene(name));
-      std::vector<std::unique_ptr<sol::vk::MarchRenderer>> renderers;
-      std::vector<double> bests(names.size(), 1e300);
-      std::vector<sol::RenderResult> results(names.size());
-      for (const sol::Scene& scene : scenes) {
-        renderers.push_back(std::make_unique<sol::vk::MarchRenderer>(context));
-        sol::render_scene(*renderers.back(), scene, {.width = size, .height = size});  // warm-up: shader compilation and caches
-      }
-      for (int k = 0; k < repeats; ++k) {
-        for (std::size_t i = 0; i < names.size(); ++i) {
-          results[i] = sol::render_scene(*renderers[i], scenes[i], {.width = size, .height = size});
-          bests[i] = std::min(bests[i], results[i].device_ms);
-        }
-      }
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        const std::string& name = names[i];
-        const sol::Scene& scene = scenes[i];
-        const double best = bests[i];
-        const sol::RenderResult& r = results[i];
-        const double rays = static_cast<double>(size) * size;
-        double best_general = 1e300;
-        if (!kernel_only) sol::render_scene(general, scene, {.width = size, .height = size});  // warm-up
-        for (int k = 0; k < (kernel_only ? 0 : repeats); ++k) {
-          best_general = std::min(best_general, sol::render_scene(general, scene, {.width = size, .height = size}).device_ms);
-        }
-        char line[512];
-        if (!kernel_only) {
-          std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.2f\n", name.c_str(), best, best_general, best_general / best);
-          features += line;
-          std::fprintf(stderr, "features: %s", line);
-        }
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), quoted_device.c_str(), size, size,
-                      best, rays / best * 1e-3, mean(r.steps));
-        throughput += line;
-        std::fprintf(stderr, "%s", line);
-        if (kernel_only || sol::uses_exact(scene)) continue;  // its CPU cost: distance_bench (175 us per ray)
-        sol::RenderOptions settings;
-        settings.width = settings.height = size;
-        const auto begin = std::chrono::steady_clock::now();
-        const sol::RenderResult c = sol::render_cpu(scene, settings);
-        const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-        std::snprintf(line, sizeof line, "%s,\"cpu reference (double)\",%d,%d,%.2f,%.3f,%.2f\n", name.c_str(), size, size,
-                      cpu_ms, rays / cpu_ms * 1e-3, mean(c.steps));
-        throughput += line;
-        std::fprintf(stderr, "%s", line);
-      }
-      files.emplace_back("render_throughput.csv", throughput);
-      if (!kernel_only) files.emplace_back("render_features.csv", features);
-    }
-
-    // 6. Every lattice: the same world in several (asked for by name only).
-    if (only == "lattices") {
-      struct Case {
-        const char* name;
-        sol::Monodromy monodromy;
-      };
-      const Case cases[] = {{"golden", {2, 1, 1, 1}},
-                            {"trace4", {3, 1, 2, 1}},
-                            {"trace6", {5, 2, 2, 1}},
-                            {"trace10", {9, 4, 2, 1}},
-                            {"trace-4", {-3, -1, -2, -1}}};
-      struct Run {
-        std::string label;
-        sol::Scene scene;
-        std::size_t images = 0;
-        std::unique_ptr<sol::vk::MarchRenderer> renderer;
-        double best = 1e300;
-        sol::RenderResult result;
-      };
-      std::vector<Run> runs_of;
-      for (const Case& c : cases) {
-        for (const auto& [view, forward, up] : {std::tuple{"z", glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0)},
-                                                std::tuple{"xy", glm::dvec3(1, 1, 0), glm::dvec3(0, 0, 1)}}) {
-          Run r;
-          r.label = std::string(c.name) + "," + view;
-          sol::set_quotient(r.scene, sol::Quotient::Monodromy, c.monodromy);
-          const sol::Lattice lattice = *r.scene.lattice();
-          r.scene.camera = {0.5 * (lattice.generators()[0] + lattice.generators()[1]) +
-                                glm::dvec3(0.0, 0.0, 0.5 * lattice.height()),
-                            forward, up, 90.0};
-          r.scene.objects = {{sol::Ball{{0.0, 0.0, 0.0}, 0.3}, {0.9, 0.55, 0.3}}};
-          r.scene.fog_density = 1.0 / 12.0;
-          r.scene.max_distance = 12.0;
-          r.scene.max_steps = 400;
-          r.images = sol::quotient_images(r.scene).size();
-          r.renderer = std::make_unique<sol::vk::MarchRenderer>(context);
-          sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});  // warm-up
-          runs_of.push_back(std::move(r));
-        }
-      }
-      for (int k = 0; k < repeats; ++k) {
-        for (Run& r : runs_of) {
-          r.result = sol::render_scene(*r.renderer, r.scene, {.width = size, .height = size});
-          r.best = std::min(r.best, r.result.device_ms);
-        }
-      }
-      std::string csv = "lattice,view,device,width,height,images,ms,mrays_per_s,mean_steps,time_vs_golden\n";
-      for (std::size_t i = 0; i < runs_of.size(); ++i) {
-        const Run& r = runs_of[i];
-        const Run& golden = runs_of[i % 2];  // the golden lattice's run of the same view
-        char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%zu,%.2f,%.3f,%.2f,%.3f\n", r.label.c_str(), quoted_device.c_str(), size,
-                      size, r.images, r.best, static_cast<double>(size) * size / r.best * 1e-3, mean(r.result.steps),
-                      r.best / golden.best);
-        csv += line;
-        std::fprintf(stderr, "%s", line);
-      }
-      files.emplace_back("render_lattices.csv", csv);
-    }
-
-    // 7. Light transport: the path tracer's error against samples and seconds (asked for by name only).
-    if (only == "path") {
-      sol::Scene scene = sol::preset_scene("lattice-balls");
-      scene.objects[0].emission = {0.6, 0.35, 0.2};
-      sol::vk::MarchRenderer kernel(context);
-      sol::CpuRenderer cpu;
-      auto render = [&](sol::Renderer& renderer, int samples, std::uint64_t seed, double& seconds) {
-        sol::RenderOptions settings;
-        settings.width = 64;
-        settings.height = 48;
-        settings.samples = samples;
-        settings.transport = sol::Transport::Path;
-        settings.seed = seed;
-        const auto start = std::chrono::steady_clock::now();
-        sol::RenderResult r = sol::render_scene(renderer, scene, settings);
-        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return r;
-      };
-      // One reference for both: the CPU's, in double.
-      double reference_seconds = 0.0;
-      const sol::RenderResult reference = render(cpu, 2048, 1000, reference_seconds);
-      double reference_squares = 0.0;
-      for (std::size_t k = 0; k < reference.rgba.size(); ++k) {
-        if (k % 4 != 3) reference_squares += static_cast<double>(reference.rgba[k]) * reference.rgba[k];
-      }
-      double warm = 0.0;
-      render(kernel, 1, 0, warm);  // the kernel's pipelines built first
-      std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp\n";
-      for (sol::Renderer* renderer : {static_cast<sol::Renderer*>(&cpu), static_cast<sol::Renderer*>(&kernel)}) {
-        const std::string where = renderer == &cpu ? "cpu" : quoted_device;
-        for (int spp = 1; spp <= 256; spp *= 2) {
-          double seconds = 0.0;
-          const sol::RenderResult r = render(*renderer, spp, static_cast<std::uint64_t>(spp), seconds);
-          double squares = 0.0;
-          for (std::size_t k = 0; k < r.rgba.size(); ++k) {
-            if (k % 4 != 3) squares += std::pow(static_cast<double>(r.rgba[k]) - reference.rgba[k], 2.0);
-          }
-          char line[512];
-          std::snprintf(line, sizeof line, "lattice-balls-glowing,%s,64,48,%d,%.3f,%.5f,2048\n", where.c_str(), spp,
-                        seconds, std::sqrt(squares / reference_squares));
-          csv += line;
-          std::fprintf(stderr, "%s", line);
-        }
-      }
-      files.emplace_back("path_convergence.csv", csv);
-    }
-
-    // 8. Path samples per second, per preset (asked for by name only).
-    if (only == "path-rate") {
-      std::string csv = "scene,device,width,height,spp,seconds,mpaths_per_s\n";
-      for (const std::string& name : presets) {
-        const sol::Scene scene = sol::preset_scene(name);
-        sol::vk::MarchRenderer kernel(context);
-        sol::RenderOptions settings;
-        settings.width = settings.height = size;
-        settings.transport = sol::Transport::Path;
-        settings.samples = 1;
-        sol::render_scene(kernel, scene, settings);  // warm-up: the path pipelines built
-        settings.samples = rate_spp;
-        double best = 1e300;
-        for (int k = 0; k < std::min(repeats, 3); ++k) {
-          settings.seed = static_cast<std::uint64_t>(k);
-          const auto start = std::chrono::steady_clock::now();
-          sol::render_scene(kernel, scene, settings);
-          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        }
-        char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%.3f,%.3f\n", name.c_str(), quoted_device.c_str(), size, size, rate_spp,
-                      best, static_cast<double>(size) * size * rate_spp / best * 1e-6);
-        csv += line;
-        std::fprintf(stderr, "%s", line);
-      }
-      files.emplace_back("path_rate.csv", csv);
-    }
-
-    // 2. Image error against run time.
-    if (runs("error")) {
-      std::string errors = "scene,integrator,setting,mask_mismatch_fraction,max_distance_error,max_point_error,ms\n";
-      for (const char* name : {"plane", "sandwich"}) {
-        sol::Scene scene = sol::preset_scene(name);
-        // A hit epsilon near float resolution, so that the march's own stopping
-        // tolerance does not hide the flow's error.
-        scene.hit_epsilon = 2e-6;
-        sol::RenderOptions settings;
-        settings.width = settings.height = error_size;
-        const sol::RenderResult reference = sol::render_cpu(scene, settings);
-        struct Variant {
-          const char* integrator;
-          double step;
-        };
-        for (const Variant v : {Variant{"closed", 0.0}, Variant{"rk4", 0.1}, Variant{"rk4", 0.03}, Variant{"rk4", 0.01},
-                                Variant{"rk4", 0.003}}) {
-          sol::vk::MarchOptions options;
-          if (std::strcmp(v.integrator, "rk4") == 0) {
-            options.integrator = sol::vk::Integrator::RK4;
-            options.rk4_step = v.step;
-          }
-          sol::vk::MarchRenderer r(context, options);
-          sol::render_scene(r, scene, {.width = error_size, .height = error_size});  // warm-up
-          double best = 1e300;
-          sol::RenderResult image;
-          for (int k = 0; k < std::min(repeats, 3); ++k) {
-            image = sol::render_scene(r, scene, {.width = error_size, .height = error_size});
-            best = std::min(best, image.device_ms);
-          }
-          const ImageError e = compare(image, reference);
-          char line[512];
-          char setting[64];
-          std::snprintf(setting, sizeof setting, v.step > 0 ? "h=%g" : "-", v.step);
-          std::snprintf(line, sizeof line, "%s,%s,%s,%.5f,%.3e,%.3e,%.2f\n", name, v.integrator, setting,
-                        e.mask_fraction, e.distance, e.point, best);
-          errors += line;
-          std::fprintf(stderr, "%s", line);
-        }
-      }
-      files.emplace_back("render_error_vs_time.csv", errors);
-    }
-
-    // 3. Exact spheres and lights against the bound-based ones.
-    if (runs("exact")) {
-      std::string exact = "balls,light,falloff,shadows,width,height,ms,us_per_ray,ratio_to_bound\n";
-      const int w = size, h = std::max(1, size * 3 / 4);
-      sol::vk::MarchRenderer renderer(context);
-      double bound_ms = 0;
-      struct Variant {
-        bool exact_balls, exact_light;
-        double reach;
-        sol::Falloff falloff;
-        bool shadows;
-      };
-      using F = sol::Falloff;
-      for (const Variant v : {Variant{false, false, 0.0, F::Auto, false}, Variant{true, false, 0.0, F::Auto, false},
-                              Variant{false, true, 0.0, F::InverseSquare, false}, Variant{false, true, 0.0, F::Geodesic, false},
-                              Variant{false, true, 0.0, F::Geodesic, true}, Variant{true, true, 0.0, F::Geodesic, false},
-                              Variant{true, true, 0.0, F::Geodesic, true}, Variant{false, true, 2.0, F::Geodesic, false},
-                              Variant{false, true, 2.0, F::Geodesic, true}}) {
-        sol::Scene scene = sol::preset_scene("spheres");
-        for (sol::SceneObject& o : scene.objects) std::get<sol::Ball>(o.shape).exact = v.exact_balls;
-        for (sol::Light& l : scene.lights) {
-          l.exact = v.exact_light;
-          l.reach = v.reach;
-          l.falloff = v.falloff;
-          l.shadows = v.shadows;
-        }
-        sol::render_scene(renderer, scene, {.width = w, .height = h});  // warm-up: tables, shader compilation
-        double best = 1e300;
-        for (int k = 0; k < repeats; ++k) best = std::min(best, sol::render_scene(renderer, scene, {.width = w, .height = h}).device_ms);
-        if (!v.exact_balls && !v.exact_light) bound_ms = best;
-        char light[32];
-        std::snprintf(light, sizeof light, v.exact_light ? "exact reach %g" : "coordinate", v.reach);
-        const char* falloff = sol::falloff_of(scene.lights[0]) == F::Geodesic ? "geodesic" : "inverse-square";
-        char line[256];
-        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%d,%.2f,%.3f,%.2f\n", v.exact_balls ? "exact" : "bound", light,
-                      falloff, v.shadows ? "yes" : "no", w, h, best, best * 1e3 / (static_cast<double>(w) * h),
-                      best / bound_ms);
-        exact += line;
-        std::fprintf(stderr, "exact: %s", line);
-      }
-      files.emplace_back("render_exact.csv", exact);
-    }
-
-    // 4. Headset sizes: one eye at gpu_size × gpu_height (square by default), and a stereo frame of two in one dispatch.
     if (gpu_height == 0) gpu_height = gpu_size;
-    const bool gpu_section = only == "gpu" || (only.empty() && !context.is_cpu());
+    Bench b{context, quoted_device, size, error_size, gpu_size, gpu_height, repeats, rate_spp, kernel_only, presets, {}};
+    // The sections in the order they run; lattices, path, path-rate and
+    // objects only when asked for by name.
+    if (runs("throughput")) section_throughput(b);
+    if (only == "lattices") section_lattices(b);
+    if (only == "path") section_path(b);
+    if (only == "path-rate") section_path_rate(b);
+    if (only == "objects") section_objects(b);
+    if (runs("error")) section_error(b);
+    if (runs("exact")) section_exact(b);
+    // Headset sizes: on a CPU device only when asked for (many minutes there).
     if (only.empty() && context.is_cpu()) {
       std::fprintf(stderr, "render_bench: '%s' is a CPU device: section 4 (headset sizes) only with --only gpu\n",
                    device.c_str());
     }
-    if (gpu_section) {
-      std::string gpu = "scene,device,width,height,mono_ms,mrays_per_s,stereo_ms,stereo_hz\n";
-      sol::vk::MarchRenderer renderer(context);
-      const int batches = std::min(repeats, 3);
-      constexpr int kBackToBack = 8;
-      constexpr double kWarmUpSeconds = 1.5;
-      sol::vk::StorageImage target(context, 2 * static_cast<std::uint32_t>(gpu_size),
-                                   static_cast<std::uint32_t>(gpu_height));
-      // Each frame's writes (the target, the deferred passes' lists) complete
-      // before the next frame's commands touch them.
-      const auto between_frames = [](VkCommandBuffer cb) {
-        sol::vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-      };
-      // The mean time of one frame of `eyes` over a batch recorded back to back.
-      const auto batch_ms = [&](std::span<const sol::Camera> eyes) {
-        return sol::vk::run_recorded(context, [&](VkCommandBuffer cb) {
-                 for (int f = 0; f < kBackToBack; ++f) {
-                   if (f > 0) between_frames(cb);
-                   renderer.record(cb, eyes, gpu_size, gpu_height, target);
-                 }
-               }) /
-               kBackToBack;
-      };
-      for (const std::string& name : presets) {
-        const sol::Scene scene = sol::preset_scene(name);
-        renderer.set_world(scene);
-        const sol::StereoEyes stereo_eyes = sol::stereo_eyes(scene.camera, 0.064);
-        const sol::Camera both[] = {stereo_eyes.left, stereo_eyes.right};
-        const std::span<const sol::Camera> one(&scene.camera, 1);
-        const auto start = std::chrono::steady_clock::now();
-        do {
-          batch_ms(both);  // warm-up: compilation, caches and the device's clocks
-        } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kWarmUpSeconds);
-        double mono = 1e300, stereo = 1e300;
-        for (int k = 0; k < batches; ++k) {
-          mono = std::min(mono, batch_ms(one));
-          stereo = std::min(stereo, batch_ms(both));
-        }
-        char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.2f,%.3f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(),
-                      gpu_size, gpu_height, mono, static_cast<double>(gpu_size) * gpu_height / mono * 1e-3, stereo,
-                      1e3 / stereo);
-        gpu += line;
-        std::fprintf(stderr, "gpu: %s", line);
-      }
-      files.emplace_back("render_gpu.csv", gpu);
-    }
+    if (only == "gpu" || (only.empty() && !context.is_cpu())) section_headset(b);
+    if (runs("pipelines")) section_pipelines(b);
 
-    // 5. Pipeline builds: a new renderer's first frame (16², the world's
-    // pipelines built) with the specialisation constants folded into the
-    // SPIR-V and handed to the driver. Each variant is built once first, so
-    // that the driver's own disk cache (Mesa's) is warm for both, as for a
-    // program run before.
-    if (runs("pipelines")) {
-      std::string builds = "scene,device,folded_s,driver_s,ratio\n";
-      for (const std::string& name : presets) {
-        const sol::Scene scene = sol::preset_scene(name);
-        double seconds[2] = {0.0, 0.0};
-        for (const bool fold : {true, false}) {
-          const sol::vk::SpecializationFolding folding =
-              fold ? sol::vk::SpecializationFolding::Folded : sol::vk::SpecializationFolding::Driver;
-          {
-            sol::vk::MarchRenderer warm(context, {.specialization_folding = folding});
-            sol::render_scene(warm, scene, {.width = 16, .height = 16});  // warms the driver's cache
-          }
-          sol::vk::MarchRenderer renderer(context, {.specialization_folding = folding});
-          const auto start = std::chrono::steady_clock::now();
-          sol::render_scene(renderer, scene, {.width = 16, .height = 16});
-          seconds[fold ? 0 : 1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        }
-        char line[256];
-        std::snprintf(line, sizeof line, "%s,%s,%.2f,%.2f,%.1f\n", name.c_str(), quoted_device.c_str(), seconds[0],
-                      seconds[1], seconds[1] / seconds[0]);
-        builds += line;
-        std::fprintf(stderr, "pipelines: %s", line);
-      }
-      files.emplace_back("render_pipelines.csv", builds);
-    }
-
-    for (const auto& [name, text] : files) {
+    for (const auto& [name, text] : b.files) {
       sol::programs::write_text_file(out_dir + "/" + name, text);  // complete or absent
       std::fprintf(stderr, "render_bench: wrote %s/%s\n", out_dir.c_str(), name.c_str());
     }

@@ -373,6 +373,12 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
     }
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
+    if (m_objects.size() > kListedObjects) {
+      std::vector<CoordinateBox> boxes;
+      boxes.reserve(m_objects.size());
+      for (const MarchObject& o : m_objects) boxes.push_back(shape_coordinate_box(o.shape));
+      m_tree = std::make_shared<const BoundsTree>(boxes);
+    }
   }
 }
 

@@ -110,6 +110,10 @@ Shape shape_seen_from(const Shape& shape, const glm::dvec3& p) {
   return std::visit([&](const auto& k) { return Shape(k.seen_from(p)); }, shape);
 }
 
+CoordinateBox shape_coordinate_box(const Shape& shape) {
+  return std::visit([](const auto& k) { return k.coordinate_box(); }, shape);
+}
+
 bool is_solid(const Shape& shape) {
   return std::visit([](const auto& k) { return std::decay_t<decltype(k)>::kSolid; }, shape);
 }

@@ -303,7 +303,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (std::size_t k = 0; k < n; ++k) {
     if (is_solid(objects[k].shape)) solid |= std::uint64_t{1} << k;
   }
-  std::array<double, kMaxObjects> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
+  std::array<double, kListedObjects> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
@@ -378,6 +378,133 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   }
   hit.distance = std::min(t, max_length);
   if (!(t > max_length)) count_out_of_steps(hit);  // the steps ran out first
+  return hit;
+}
+
+// The march in Sol through a world of more than kListedObjects objects:
+// march_cover's, with the objects in world coordinates (the ray's point
+// left-translated by `origin`, an isometry, so distances and frame
+// components are those relative to it) and each step's objects those the
+// tree of bounds can put nearer than the two nearest found so far, or
+// within hit_epsilon (sol::BoundsTree::search: every other object's
+// distance bound exceeds that limit, so neither the step nor the hit can
+// depend on it). The surfaces the ray passes are few and kept in a list,
+// each evaluated at every step. Planes x = c, y = c are marched by their
+// distance (no crossing solved), and positions are always full.
+// How near the runner-up a node's bound may be taken for its objects
+// (march_crowd): in Sol the objects seen from above or below a crowd are
+// nearly equidistant (the horizontal offsets shrink by e^{∓z}), and
+// opening every node whose bound is a shade below the runner-up would
+// visit most of them for a step that is hardly longer.
+constexpr double kCrowdCover = 0.8;
+
+MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const glm::dvec3& direction,
+                     const MarchLimits& limits = {}) {
+  const World& world = prepared.world();
+  const std::vector<MarchObject>& objects = prepared.objects();
+  const BoundsTree& tree = *prepared.tree();
+  const double eps = world.hit_epsilon;
+  const ClosedFormGeodesic<double> ray(direction);
+  MarchHit hit;
+  double t = 0.0;
+  const double max_length = std::min(world.max_distance, limits.length);
+  struct Passed {
+    std::uint32_t k;
+    double leave_sign;  // (exact_ball_turned_back)
+  };
+  std::vector<Passed> passing;  // the surfaces it passes (march_cover's mask)
+  if (limits.leave_start) {
+    tree.search(origin, 2.0 * eps, [&](std::uint32_t k) {
+      if (object_distance(objects[k], origin) < 2.0 * eps) passing.push_back({k, 0.0});
+      return 2.0 * eps;
+    });
+  }
+  std::vector<std::uint32_t> passed;  // this step's passed surfaces, evaluated before the search
+  for (int step = 0; step < world.max_steps; ++step) {
+    const glm::dvec3 q = multiply(origin, ray.at(t).position);
+    const glm::dvec3 u = ray.direction_at(t);
+    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
+    std::uint32_t hit_k = 0, nearest_k = 0;
+    bool nearest_inside = false, hit_inside = false;
+    const auto distance = [&](std::uint32_t k, bool& inside) {
+      const SeenDistance seen = seen_distance(objects[k], is_solid(objects[k].shape), q);
+      inside = seen.inside;
+      const SceneObject& o = world.objects[k];
+      return o.cutout && std::holds_alternative<PlaneZ>(o.shape) ? std::max(seen.d, cutout_gap_bound(o.pattern, q)) : seen.d;
+    };
+    const auto consider = [&](std::uint32_t k, double d, bool inside, bool candidate) {
+      if (d < nearest) {
+        second = nearest;
+        nearest = d;
+        nearest_k = k;
+        nearest_inside = inside;
+      } else {
+        second = std::min(second, d);
+      }
+      if (candidate && d < nearest_hit) {
+        nearest_hit = d;
+        hit_k = k;
+        hit_inside = inside;
+      }
+    };
+    passed.clear();
+    for (auto it = passing.begin(); it != passing.end();) {
+      bool inside = false;
+      const double d = distance(it->k, inside);
+      const bool ends = pass_ends(objects[it->k].shape, d, inside, q, u, eps, it->leave_sign);
+      consider(it->k, d, inside, ends);
+      passed.push_back(it->k);
+      it = ends ? passing.erase(it) : it + 1;
+    }
+    tree.search(
+        q, std::max(second, eps),
+        [&](std::uint32_t k) {
+          if (std::find(passed.begin(), passed.end(), k) == passed.end()) {
+            bool inside = false;
+            const double d = distance(k, inside);
+            consider(k, d, inside, true);
+          }
+          return std::max(second, eps);
+        },
+        [&](double bound) {
+          // A node no nearer than the nearest object, within kCrowdCover of
+          // the runner-up and clear of hit_epsilon: its bound stands for
+          // all it holds (the step can be that much shorter, but is safe).
+          if (!(bound >= nearest && bound >= kCrowdCover * second && bound > 2.0 * eps)) return -1.0;
+          second = std::min(second, bound);
+          return std::max(second, eps);
+        });
+    const Shape& nearest_shape = objects[nearest_k].shape;
+    if (is_solid(nearest_shape) && !nearest_inside) {
+      nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, u)));
+    } else if (nearest_inside && exact_ball(nearest_shape) && nearest > eps) {
+      nearest = std::min(second, exact_ball_inside_step(std::get<Ball>(nearest_shape), q, u, nearest, eps));
+    } else if (nearest_inside && !exact_ball(nearest_shape)) {
+      nearest = std::min(second, std::max(nearest, shape_inside_clearances(nearest_shape, q, u).ahead));
+    }
+    hit.steps = step + 1;
+    if (nearest_hit < eps) {
+      const SceneObject& o = world.objects[hit_k];
+      const glm::dvec2 uv = shape_pattern_uv(objects[hit_k].shape, q, q);
+      if (o.cutout && pattern_factor(o.pattern, uv.x, uv.y) != 1.0) {
+        passing.push_back({hit_k, 0.0});  // between the discs: go through
+        t += std::max(nearest, 2.0 * eps);
+        if (t > max_length) break;
+        continue;
+      }
+      hit.object = static_cast<int>(objects[hit_k].owner) + 1;
+      hit.distance = t;
+      hit.point = q;
+      hit.direction = u;
+      hit.pattern_uv = uv;
+      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, hit_inside || exact_ball(objects[hit_k].shape));
+      return hit;
+    }
+    t += passing.empty() ? nearest : std::max(nearest, 2.0 * eps);
+    if (t > max_length) break;
+  }
+  hit.distance = std::min(t, max_length);
+  if (!(t > max_length)) count_out_of_steps(hit);
   return hit;
 }
 
@@ -541,12 +668,14 @@ struct CameraView {
 };
 
 CameraView view_from(const MarchWorld& world, const Camera& camera) {
-  return {camera.position, world.features().quotient ? std::vector<MarchObject>() : world.seen_from(camera.position)};
+  const bool listed = !world.features().quotient && !world.tree();
+  return {camera.position, listed ? world.seen_from(camera.position) : std::vector<MarchObject>()};
 }
 
 MarchHit march_view(const MarchWorld& world, const CameraView& view, const glm::dvec3& direction) {
-  return world.features().quotient ? march_quotient(world, view.position, direction)
-                                   : march_cover(world, view.position, view.objects, direction);
+  if (world.features().quotient) return march_quotient(world, view.position, direction);
+  return world.tree() ? march_crowd(world, view.position, direction)
+                      : march_cover(world, view.position, view.objects, direction);
 }
 
 // The march of a ray that leaves a surface (a shadow ray, a mirror's
@@ -557,8 +686,9 @@ MarchHit march_view(const MarchWorld& world, const CameraView& view, const glm::
 MarchHit march_from(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction,
                     double length = std::numeric_limits<double>::infinity()) {
   const MarchLimits limits{length, true};
-  return prepared.features().quotient ? march_quotient(prepared, from, direction, limits)
-                                      : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
+  if (prepared.features().quotient) return march_quotient(prepared, from, direction, limits);
+  return prepared.tree() ? march_crowd(prepared, from, direction, limits)
+                         : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
 }
 
 // Whether the geodesic from a hit point along `direction` meets an object

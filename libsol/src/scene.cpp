@@ -38,6 +38,11 @@ void check_world(const World& s) {
   if (s.objects.size() > kMaxObjects) {
     field_error("objects", "at most " + std::to_string(kMaxObjects) + " objects, got " + std::to_string(s.objects.size()));
   }
+  if (s.quotient != Quotient::None && s.objects.size() > kListedObjects) {
+    field_error("objects", "a quotient world holds at most " + std::to_string(kListedObjects) + " objects, got " +
+                               std::to_string(s.objects.size()) + " (Sol itself holds up to " + std::to_string(kMaxObjects) +
+                               ")");
+  }
   const std::optional<Lattice> lattice = checked_lattice(s);
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);

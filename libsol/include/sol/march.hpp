@@ -23,6 +23,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sol/bounds_tree.hpp"
 #include "sol/kernel_constants.h"
 #include "sol/march_features.h"
 #include "sol/objects.hpp"
@@ -137,6 +138,9 @@ class MarchWorld {
   /// Sol: the objects relative to `origin` (left-translated by origin⁻¹),
   /// what a ray from `origin` marches through.
   std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
+  /// Sol worlds of more than kListedObjects objects: the tree of bounds over
+  /// objects() (item k is objects()[k]); null otherwise.
+  const BoundsTree* tree() const { return m_tree.get(); }
   /// The quotient: the distance field of objects() over D (null in Sol).
   const QuotientField* field() const { return m_field.get(); }
   /// The quotient: the longest march step (sol::quotient_max_step; 0 in Sol).
@@ -150,6 +154,7 @@ class MarchWorld {
   MarchFeatures m_features;
   std::optional<Lattice> m_lattice;
   std::vector<MarchObject> m_objects;
+  std::shared_ptr<const BoundsTree> m_tree;
   std::shared_ptr<const QuotientField> m_field;
   double m_max_step = 0.0;
   std::vector<std::vector<glm::dvec3>> m_light_images;

@@ -121,6 +121,8 @@ glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q);
 /// Whether the shape is a solid (its kind's kSolid).
 bool is_solid(const Shape& shape);
 Shape shape_seen_from(const Shape& shape, const glm::dvec3& p);
+/// The kind's coordinate_box(): every point of the shape (distance <= 0) lies in it.
+CoordinateBox shape_coordinate_box(const Shape& shape);
 KernelShape kernel_shape(const Shape& shape);
 /// Planes: their own coordinates of the world point; solids: of the point
 /// relative to their centre (axis point), left-invariant, so any

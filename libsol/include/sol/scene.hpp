@@ -34,9 +34,16 @@ namespace sol {
 /// (docs/scene-format.md).
 enum class Quotient { None, Golden, Monodromy, ZLoop, XYLoops };
 
-/// The most objects a world holds (World::objects; the CPU renderer marks
-/// the objects a ray passes in a 64-bit mask).
-inline constexpr std::size_t kMaxObjects = 64;
+/// The most objects a world holds (World::objects): about 200 MB of scene
+/// objects, a limit against runaway files rather than of the march, which
+/// visits the objects of a large world through their tree of bounds
+/// (sol/bounds_tree.hpp).
+inline constexpr std::size_t kMaxObjects = std::size_t{1} << 20;
+/// A Sol world of up to this many objects is marched through its list,
+/// every object at every step; a larger one through its tree of bounds
+/// (sol::MarchWorld::tree). A quotient's images stay a list
+/// (sol::QuotientField), so a quotient world holds at most this many objects.
+inline constexpr std::size_t kListedObjects = 64;
 
 /// Everything that is seen, and how the march looks for it.
 struct World {

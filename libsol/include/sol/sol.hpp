@@ -1,11 +1,13 @@
 // libsol: the whole public API.
 #pragma once
 
+#include "sol/bounds_tree.hpp"
 #include "sol/camera.hpp"
 #include "sol/camera_path.hpp"
 #include "sol/clearance.hpp"
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
+#include "sol/coordinate_box.hpp"
 #include "sol/distance.hpp"
 #include "sol/elliptic.hpp"
 #include "sol/error.hpp"

@@ -53,6 +53,20 @@ glm::dvec2 Ball::pattern_uv(const glm::dvec3& q) const {
 
 Ball Ball::seen_from(const glm::dvec3& p) const { return {multiply(inverse(p), center), radius, exact}; }
 
+// The bound's ball (which holds the exact one): d_bound <= r needs
+// sinh²(Δz/2) + ¼ Δx² e^{-(z + z0)} <= S², S = sinh(r/2)
+// (sol::distance_lower_bound), so |Δz| <= r and, with s = Δz/2,
+// |Δx| <= 2 e^{z0} f(s), f(s)² = e^{2s} (S² - sinh² s). f² is largest where
+// S² - sinh² s = sinh s cosh s, that is where e^{2s} = 1 + 2S² = cosh r,
+// and there f² = cosh r (cosh r - 1/cosh r)/4 = sinh² r / 4: |Δx| <=
+// sinh(r) e^{z0}, reached. Likewise |Δy| <= sinh(r) e^{-z0} (s → -s).
+// Widened by a few ulps against the rounding of the bound's own evaluation.
+CoordinateBox Ball::coordinate_box() const {
+  const double s = std::sinh(radius) * (1.0 + 1e-12);
+  const glm::dvec3 extent(s * std::exp(center.z), s * std::exp(-center.z), radius * (1.0 + 1e-12));
+  return {center - extent, center + extent};
+}
+
 KernelShape Ball::kernel_shape() const {
   return {.code = exact ? kernel::kObjectExactBall : kernel::kObjectBall,
           .geometry = {center, 0.0},

@@ -80,6 +80,13 @@ glm::dvec2 Box::pattern_uv(const glm::dvec3& q) const {
 // p⁻¹·(center·B) = (p⁻¹·center)·B.
 Box Box::seen_from(const glm::dvec3& p) const { return {multiply(inverse(p), center), half_size}; }
 
+// Its bound is <= 0 exactly on the coordinate box of its half widths.
+CoordinateBox Box::coordinate_box() const {
+  const glm::dvec2 w = coordinate_half_widths();
+  const glm::dvec3 extent = glm::dvec3(w, half_size.z) * (1.0 + 1e-12);
+  return {center - extent, center + extent};
+}
+
 // The kernels' record (compute/shaders/kinds/box.glsl): geometry (centre, c),
 // heading the coordinate half widths (a e^{z0}, b e^{-z0}), computed here in
 // double; in the quotient its image's bound (centre, c), its heading word

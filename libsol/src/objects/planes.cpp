@@ -36,6 +36,12 @@ glm::dvec3 PlaneX::normal(const glm::dvec3& q) const {
 // p⁻¹ maps (x, y, z) to (e^{-p_z}(x - p_x), e^{p_z}(y - p_y), z - p_z).
 PlaneX PlaneX::seen_from(const glm::dvec3& p) const { return {std::exp(-p.z) * (c - p.x)}; }
 
+CoordinateBox PlaneX::coordinate_box() const {
+  CoordinateBox b = CoordinateBox::everywhere();
+  b.lo.x = b.hi.x = c;
+  return b;
+}
+
 KernelShape PlaneX::kernel_shape() const {
   return {.code = kernel::kObjectPlaneX, .geometry = {c, 0.0, 0.0, 0.0}, .bound = {c, 0.0, 0.0, 0.0}};
 }
@@ -56,6 +62,12 @@ glm::dvec3 PlaneY::normal(const glm::dvec3& q) const {
 
 PlaneY PlaneY::seen_from(const glm::dvec3& p) const { return {std::exp(p.z) * (c - p.y)}; }
 
+CoordinateBox PlaneY::coordinate_box() const {
+  CoordinateBox b = CoordinateBox::everywhere();
+  b.lo.y = b.hi.y = c;
+  return b;
+}
+
 KernelShape PlaneY::kernel_shape() const {
   return {.code = kernel::kObjectPlaneY, .geometry = {c, 0.0, 0.0, 0.0}, .bound = {c, 0.0, 0.0, 0.0}};
 }
@@ -71,6 +83,12 @@ std::array<BoundTerm, 1> PlaneZ::clearance_terms(const glm::dvec3& q, const glm:
 glm::dvec3 PlaneZ::normal(const glm::dvec3&) const { return {0.0, 0.0, origin_side(c)}; }
 
 PlaneZ PlaneZ::seen_from(const glm::dvec3& p) const { return {c - p.z}; }
+
+CoordinateBox PlaneZ::coordinate_box() const {
+  CoordinateBox b = CoordinateBox::everywhere();
+  b.lo.z = b.hi.z = c;
+  return b;
+}
 
 KernelShape PlaneZ::kernel_shape() const {
   return {.code = kernel::kObjectPlaneZ, .geometry = {c, 0.0, 0.0, 0.0}, .bound = {c, 0.0, 0.0, 0.0}};

@@ -109,6 +109,27 @@ Tube Tube::seen_from(const glm::dvec3& p) const {
   return t;
 }
 
+// Vertical: unbounded (its x and y widths grow as e^{±z}). Horizontal:
+// |Δz| <= r; along x (h = (1, 0)) asinh(|Δy| e^{z}) <= r bounds |Δy| by
+// sinh(r) e^{-z} <= sinh(r) e^{r - z0}, along y |Δx| by sinh(r) e^{z0 + r}
+// (sol::sdf_tube_horizontal); along another direction x and y are unbounded.
+CoordinateBox Tube::coordinate_box() const {
+  CoordinateBox b = CoordinateBox::everywhere();
+  if (vertical()) return b;
+  const double r = radius * (1.0 + 1e-12), s = std::sinh(r) * (1.0 + 1e-12);
+  b.lo.z = through.z - r;
+  b.hi.z = through.z + r;
+  if (direction.y == 0.0) {
+    b.lo.y = through.y - s * std::exp(r - through.z);
+    b.hi.y = through.y + s * std::exp(r - through.z);
+  }
+  if (direction.x == 0.0) {
+    b.lo.x = through.x - s * std::exp(through.z + r);
+    b.hi.x = through.x + s * std::exp(through.z + r);
+  }
+  return b;
+}
+
 // The bound's record (kernel::Image::bound): a vertical tube (-radius, x0,
 // y0, 0); a horizontal one along h through (x0, y0, z0) (k h_x, k h_y,
 // k (h_y x0 - h_x y0), z0), k = ±radius / (|h_x| + |h_y|) with the sign

@@ -35,6 +35,9 @@ struct Box {
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& q) const;
   Box seen_from(const glm::dvec3& p) const;
+  /// A coordinate box that holds every point where distance(q) <= 0
+  /// (sol/coordinate_box.hpp; infinite where the object is unbounded).
+  CoordinateBox coordinate_box() const;
   KernelShape kernel_shape() const;
   Box into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;

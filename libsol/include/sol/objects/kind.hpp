@@ -22,6 +22,8 @@
 //   pattern_uv(q)    the coordinates its pattern is drawn in (planes: of
 //                    the world point; solids: of q relative to the object);
 //   seen_from(p)     the same object left-translated by p⁻¹ (relative to p);
+//   coordinate_box() a coordinate box holding the solid (planes: the plane)
+//                    for the tree of bounds (sol/bounds_tree.hpp);
 //   kernel_shape()   what the GLSL kernels read of it (KernelShape);
 //   visit_fields(v)  its parameters as a program's controls edit them;
 // and for kinds that close up in the compact quotient (planes z = c,
@@ -42,6 +44,7 @@
 #include <glm/vec4.hpp>
 
 #include "sol/clearance.hpp"
+#include "sol/coordinate_box.hpp"
 #include "sol/kernel_constants.h"
 
 namespace sol {

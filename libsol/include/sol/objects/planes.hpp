@@ -20,6 +20,9 @@ struct PlaneX {
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.y, world.z}; }
   PlaneX seen_from(const glm::dvec3& p) const;
+  /// A coordinate box that holds every point where distance(q) <= 0
+  /// (sol/coordinate_box.hpp; infinite where the object is unbounded).
+  CoordinateBox coordinate_box() const;
   KernelShape kernel_shape() const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {
@@ -40,6 +43,9 @@ struct PlaneY {
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.z}; }
   PlaneY seen_from(const glm::dvec3& p) const;
+  /// A coordinate box that holds every point where distance(q) <= 0
+  /// (sol/coordinate_box.hpp; infinite where the object is unbounded).
+  CoordinateBox coordinate_box() const;
   KernelShape kernel_shape() const;
   template <class Visitor>
   void visit_fields(Visitor&& visit) {
@@ -60,6 +66,9 @@ struct PlaneZ {
   glm::dvec3 normal(const glm::dvec3& q) const;
   glm::dvec2 pattern_uv(const glm::dvec3& world) const { return {world.x, world.y}; }
   PlaneZ seen_from(const glm::dvec3& p) const;
+  /// A coordinate box that holds every point where distance(q) <= 0
+  /// (sol/coordinate_box.hpp; infinite where the object is unbounded).
+  CoordinateBox coordinate_box() const;
   KernelShape kernel_shape() const;
   // The quotient: γ3 moves it by the lattice height; γ1, γ2 fix it.
   PlaneZ into_domain(const Lattice& lattice) const;
