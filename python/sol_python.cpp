@@ -190,36 +190,8 @@ void set_error(PyObject* type, const char* what) {
   Py_DECREF(text);
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_sol, m) {
-  m.doc() = "libsol: Thurston's Sol geometry (group law, geodesics, distances, the lattice, scenes, the CPU renderer)";
-  // Errors: all sol.SolError, and the builtin a caller may already catch
-  // (names that shadow no builtin under `from sol import *`).
-  PyObject* sol_error = PyErr_NewExceptionWithDoc("sol.SolError", "Every error sol raises.", PyExc_Exception, nullptr);
-  if (!sol_error) throw py::error_already_set();
-  m.add_object("SolError", py::handle(sol_error));
-  g_invalid_argument = exception_type(m, "InvalidArgumentError", sol_error, PyExc_ValueError,
-                                      "An argument or a scene field out of its domain; the message names it.");
-  g_out_of_range = exception_type(m, "OutOfRangeError", sol_error, PyExc_ValueError,
-                                  "A result beyond what double (or the renderer) can represent, or work beyond its bounds.");
-  g_unsupported = exception_type(m, "UnsupportedError", sol_error, PyExc_NotImplementedError,
-                                 "Something libsol does not do (yet).");
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const sol::InvalidArgument& e) {
-      set_error(g_invalid_argument, e.what());
-    } catch (const sol::OutOfRange& e) {
-      set_error(g_out_of_range, e.what());
-    } catch (const sol::NotImplemented& e) {
-      set_error(g_unsupported, e.what());
-    } catch (const sol::Cancelled& e) {
-      set_error(PyExc_KeyboardInterrupt, e.what());
-    }
-  });
-  m.attr("__version__") = SOL_VERSION_STRING;
-
+// The group law and the geodesics.
+void bind_group_and_geodesics(py::module_& m) {
   // ---- The group
   m.def("multiply", [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return array(sol::multiply(vec3(p), vec3(q))); },
         py::arg("p"), py::arg("q"), "The group law p * q.");
@@ -274,7 +246,10 @@ PYBIND11_MODULE(_sol, m) {
       py::arg("position"), py::arg("direction"), py::arg("t"),
       "The parallel-transport matrix along the geodesic: column i holds the frame components at the end of "
       "the frame vector E_i at the start, transported.");
+}
 
+// Distances, connections and the shapes.
+void bind_distances_and_shapes(py::module_& m) {
   // ---- Distances and connections
   m.def("distance", [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return sol::distance(vec3(p), vec3(q)); },
         py::arg("p"), py::arg("q"), "The exact Sol distance from p to q.");
@@ -381,7 +356,10 @@ PYBIND11_MODULE(_sol, m) {
       py::arg("center"), py::arg("radii"), py::arg("samples") = 64,
       "The cut locus of center where it meets the spheres of the given radii (in (sqrt(2) pi, 6]): four (samples, 3) "
       "arcs per radius, each point with two minimising geodesics.");
+}
 
+// The lattice.
+void bind_lattice(py::module_& m) {
   // ---- The lattice
   py::class_<sol::Lattice>(m, "Lattice",
                            "A lattice Γ of Sol, whose compact quotient Γ\\Sol is the torus bundle of a hyperbolic "
@@ -478,7 +456,10 @@ PYBIND11_MODULE(_sol, m) {
             return py::make_tuple(array(t.point), py::make_tuple(w.a, w.b, w.c));
           },
           py::arg("p"), "The point of D equivalent to p and the word (a, b, c) of the element taking p there.");
+}
 
+// Scenes and the CPU renderer.
+void bind_scenes(py::module_& m) {
   // ---- Scenes and the CPU renderer
   py::class_<sol::Camera>(m, "Camera",
                           "A camera (make one with sol.camera(...), or take a scene's: scene.camera): where it is, "
@@ -624,4 +605,40 @@ PYBIND11_MODULE(_sol, m) {
       "A linear image as the 8-bit sRGB bytes solrender writes (alpha of an (H, W, 4) image scaled, not encoded): a "
       "uint8 array of the same shape.");
 #endif
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_sol, m) {
+  m.doc() = "libsol: Thurston's Sol geometry (group law, geodesics, distances, the lattice, scenes, the CPU renderer)";
+  // Errors: all sol.SolError, and the builtin a caller may already catch
+  // (names that shadow no builtin under `from sol import *`).
+  PyObject* sol_error = PyErr_NewExceptionWithDoc("sol.SolError", "Every error sol raises.", PyExc_Exception, nullptr);
+  if (!sol_error) throw py::error_already_set();
+  m.add_object("SolError", py::handle(sol_error));
+  g_invalid_argument = exception_type(m, "InvalidArgumentError", sol_error, PyExc_ValueError,
+                                      "An argument or a scene field out of its domain; the message names it.");
+  g_out_of_range = exception_type(m, "OutOfRangeError", sol_error, PyExc_ValueError,
+                                  "A result beyond what double (or the renderer) can represent, or work beyond its bounds.");
+  g_unsupported = exception_type(m, "UnsupportedError", sol_error, PyExc_NotImplementedError,
+                                 "Something libsol does not do (yet).");
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const sol::InvalidArgument& e) {
+      set_error(g_invalid_argument, e.what());
+    } catch (const sol::OutOfRange& e) {
+      set_error(g_out_of_range, e.what());
+    } catch (const sol::NotImplemented& e) {
+      set_error(g_unsupported, e.what());
+    } catch (const sol::Cancelled& e) {
+      set_error(PyExc_KeyboardInterrupt, e.what());
+    }
+  });
+  m.attr("__version__") = SOL_VERSION_STRING;
+
+  bind_group_and_geodesics(m);
+  bind_distances_and_shapes(m);
+  bind_lattice(m);
+  bind_scenes(m);
 }

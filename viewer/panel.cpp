@@ -108,18 +108,9 @@ std::string quotient_refusal(const World& world) {
   return {};
 }
 
-PanelActions draw_panel(PanelModel& m, PanelText& text) {
-  PanelActions out;
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("solview (F1)", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::End();
-    return out;
-  }
-  ImGui::PushItemWidth(180);
-
-  // ---- Readouts
+// The readouts: rate, frame times, refinement, steps, the observer and its
+// copy of the domain, the last message.
+void draw_readouts(const PanelModel& m) {
   char line[256];
   std::snprintf(line, sizeof line, "%.1f fps  %.2f M rays/s  %dx%d (scale %.2f%s)", m.fps, m.rays_per_second * 1e-6,
                 m.render_width, m.render_height, m.scale, m.adaptive ? ", adaptive" : "");
@@ -167,6 +158,90 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::TextWrapped("%s", m.message.c_str());
     ImGui::PopStyleColor();
   }
+}
+
+  // The space: Sol, the golden quotient, the torus bundle of a monodromy
+  // typed in (applied on Enter), a z loop or xy loops; tubes along γ1, γ2
+  // follow the lattice. A space the objects do not fit is not applied,
+  // and the reason is shown.
+void space_controls(PanelModel& m, PanelText& text, PanelActions& out) {
+  char line[256];
+  int quotient = static_cast<int>(m.scene.quotient);
+  const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A", "z loop (Sol/<(0, 0, h)>)",
+                                   "xy loops (torus x line)"};
+  auto apply_space = [&](Quotient q, const Scene& from) {
+    try {
+      Scene next = from;
+      set_quotient(next, q, to_monodromy(text.monodromy), from.fibre_area);
+      validate(next);
+      m.scene = std::move(next);
+      text.refusal.clear();
+      out.world_changed = true;
+    } catch (const std::exception& e) {
+      text.refusal = e.what();
+    }
+  };
+  if (ImGui::Combo("quotient", &quotient, quotients, 5)) apply_space(static_cast<Quotient>(quotient), m.scene);
+  if (m.scene.quotient == Quotient::ZLoop) {
+    Scene next = m.scene;
+    if (drag_double("loop height h", next.z_loop, 0.01, 1.0, 20.0, "%.3f")) apply_space(Quotient::ZLoop, next);
+  }
+  if (m.scene.quotient == Quotient::XYLoops) {
+    Scene next = m.scene;
+    double loops[4] = {next.xy_loops[0].x, next.xy_loops[0].y, next.xy_loops[1].x, next.xy_loops[1].y};
+    if (ImGui::InputScalarN("gamma1, gamma2 (x, y)", ImGuiDataType_Double, loops, 4, nullptr, nullptr, "%.3f",
+                            ImGuiInputTextFlags_EnterReturnsTrue)) {
+      next.xy_loops = {glm::dvec2(loops[0], loops[1]), glm::dvec2(loops[2], loops[3])};
+      apply_space(Quotient::XYLoops, next);
+    }
+  }
+  if (m.scene.quotient != Quotient::Monodromy && !text.refusal.empty()) {
+    ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
+  }
+  if (m.scene.quotient == Quotient::Monodromy) {
+    bool apply = ImGui::InputInt4("A = [[a, b], [c, d]]", text.monodromy.data(), ImGuiInputTextFlags_EnterReturnsTrue);
+    bool custom_area = m.scene.fibre_area.has_value();
+    double area = m.scene.fibre_area.value_or(m.scene.lattice() ? m.scene.lattice()->fibre_area() : 1.0);
+    if (ImGui::Checkbox("fibre area", &custom_area)) apply = true;
+    if (custom_area) {
+      ImGui::SameLine();
+      apply |= drag_double("##area", area, 0.01, 0.5, 100.0, "%.3f");
+    }
+    if (apply) {
+      try {
+        set_quotient(m.scene, Quotient::Monodromy, to_monodromy(text.monodromy),
+                     custom_area ? std::optional<double>(area) : std::nullopt);
+        text.refusal.clear();
+        out.world_changed = true;
+      } catch (const std::exception& e) {
+        text.refusal = e.what();
+      }
+    }
+    const Monodromy& a = m.scene.monodromy;
+    std::snprintf(line, sizeof line, "shown: [[%lld, %lld], [%lld, %lld]], trace %lld, h = ln lambda = %.4f", a.a, a.b, a.c,
+                  a.d, a.trace(), m.scene.lattice() ? m.scene.lattice()->height() : 0.0);
+    ImGui::TextUnformatted(line);
+    if (!text.refusal.empty()) ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
+  } else {
+    text.monodromy = from_monodromy(m.scene.monodromy);
+  }
+  if (m.scene.quotient == Quotient::None) {
+    const std::string why = quotient_refusal(m.scene);
+    if (!why.empty()) ImGui::TextWrapped("golden quotient not possible: %s", why.c_str());
+  }
+}
+
+PanelActions draw_panel(PanelModel& m, PanelText& text) {
+  PanelActions out;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (!ImGui::Begin("solview (F1)", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    return out;
+  }
+  ImGui::PushItemWidth(180);
+  draw_readouts(m);
 
   // ---- Actions
   if (ImGui::Button("screenshot")) out.screenshot = true;
@@ -221,77 +296,13 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::SameLine();
     if (ImGui::Button("load file") && text.file[0] != '\0') out.load = std::string(text.file.data());
 
-    // The space: Sol, the golden quotient, the torus bundle of a monodromy
-    // typed in (applied on Enter), a z loop or xy loops; tubes along γ1, γ2
-    // follow the lattice. A space the objects do not fit is not applied,
-    // and the reason is shown.
-    int quotient = static_cast<int>(m.scene.quotient);
-    const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A", "z loop (Sol/<(0, 0, h)>)",
-                                     "xy loops (torus x line)"};
-    auto apply_space = [&](Quotient q, const Scene& from) {
-      try {
-        Scene next = from;
-        set_quotient(next, q, to_monodromy(text.monodromy), from.fibre_area);
-        validate(next);
-        m.scene = std::move(next);
-        text.refusal.clear();
-        out.world_changed = true;
-      } catch (const std::exception& e) {
-        text.refusal = e.what();
-      }
-    };
-    if (ImGui::Combo("quotient", &quotient, quotients, 5)) apply_space(static_cast<Quotient>(quotient), m.scene);
-    if (m.scene.quotient == Quotient::ZLoop) {
-      Scene next = m.scene;
-      if (drag_double("loop height h", next.z_loop, 0.01, 1.0, 20.0, "%.3f")) apply_space(Quotient::ZLoop, next);
-    }
-    if (m.scene.quotient == Quotient::XYLoops) {
-      Scene next = m.scene;
-      double loops[4] = {next.xy_loops[0].x, next.xy_loops[0].y, next.xy_loops[1].x, next.xy_loops[1].y};
-      if (ImGui::InputScalarN("gamma1, gamma2 (x, y)", ImGuiDataType_Double, loops, 4, nullptr, nullptr, "%.3f",
-                              ImGuiInputTextFlags_EnterReturnsTrue)) {
-        next.xy_loops = {glm::dvec2(loops[0], loops[1]), glm::dvec2(loops[2], loops[3])};
-        apply_space(Quotient::XYLoops, next);
-      }
-    }
-    if (m.scene.quotient != Quotient::Monodromy && !text.refusal.empty()) {
-      ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
-    }
-    if (m.scene.quotient == Quotient::Monodromy) {
-      bool apply = ImGui::InputInt4("A = [[a, b], [c, d]]", text.monodromy.data(), ImGuiInputTextFlags_EnterReturnsTrue);
-      bool custom_area = m.scene.fibre_area.has_value();
-      double area = m.scene.fibre_area.value_or(m.scene.lattice() ? m.scene.lattice()->fibre_area() : 1.0);
-      if (ImGui::Checkbox("fibre area", &custom_area)) apply = true;
-      if (custom_area) {
-        ImGui::SameLine();
-        apply |= drag_double("##area", area, 0.01, 0.5, 100.0, "%.3f");
-      }
-      if (apply) {
-        try {
-          set_quotient(m.scene, Quotient::Monodromy, to_monodromy(text.monodromy),
-                       custom_area ? std::optional<double>(area) : std::nullopt);
-          text.refusal.clear();
-          out.world_changed = true;
-        } catch (const std::exception& e) {
-          text.refusal = e.what();
-        }
-      }
-      const Monodromy& a = m.scene.monodromy;
-      std::snprintf(line, sizeof line, "shown: [[%lld, %lld], [%lld, %lld]], trace %lld, h = ln lambda = %.4f", a.a, a.b, a.c,
-                    a.d, a.trace(), m.scene.lattice() ? m.scene.lattice()->height() : 0.0);
-      ImGui::TextUnformatted(line);
-      if (!text.refusal.empty()) ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
-    } else {
-      text.monodromy = from_monodromy(m.scene.monodromy);
-    }
-    if (m.scene.quotient == Quotient::None) {
-      const std::string why = quotient_refusal(m.scene);
-      if (!why.empty()) ImGui::TextWrapped("golden quotient not possible: %s", why.c_str());
-    }
+    space_controls(m, text, out);
     out.world_changed |= drag_double("ambient", m.scene.ambient, 0.005, 0.0, 1.0, "%.3f");
     out.world_changed |= drag_double("fog density", m.scene.fog_density, 0.001, 0.0, 10.0, "%.3f");
     out.world_changed |= color_edit("fog colour", m.scene.fog_color);
+    char line[64];
     for (std::size_t i = 0; i < m.scene.objects.size(); ++i) {
+      ImGui::PushID("object");
       ImGui::PushID(static_cast<int>(i));
       SceneObject& o = m.scene.objects[i];
       std::snprintf(line, sizeof line, "object %zu: %s", i + 1, std::string(kind_name(o.shape)).c_str());
@@ -300,14 +311,17 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
         ImGui::TreePop();
       }
       ImGui::PopID();
+      ImGui::PopID();
     }
     for (std::size_t i = 0; i < m.scene.lights.size(); ++i) {
-      ImGui::PushID(1000 + static_cast<int>(i));
+      ImGui::PushID("light");
+      ImGui::PushID(static_cast<int>(i));
       std::snprintf(line, sizeof line, "light %zu", i + 1);
       if (ImGui::TreeNode(line)) {
         out.world_changed |= light_controls(m.scene.lights[i]);
         ImGui::TreePop();
       }
+      ImGui::PopID();
       ImGui::PopID();
     }
   }

@@ -658,6 +658,51 @@ std::array<sol::Camera, 2> eye_cameras(const sol::Scene& scene, const sol::Obser
   return cameras;
 }
 
+// The runtime's events: the session state machine (begin when ready, end
+// when stopping, `quit` on exiting or loss), `running` between begin and end.
+void poll_events(App& app, bool& running, bool& quit) {
+  auto event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+  while (xr_check(xrPollEvent(app.instance, &event), "xrPollEvent") == XR_SUCCESS) {
+    if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
+      const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+      switch (changed.state) {
+        case XR_SESSION_STATE_READY: {
+          auto begin = xr_struct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
+          begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+          xr_check(xrBeginSession(app.session, &begin), "xrBeginSession");
+          running = true;
+          std::fprintf(stderr, "solxr: session running\n");
+          break;
+        }
+        case XR_SESSION_STATE_FOCUSED:
+          std::fprintf(stderr, "solxr: focused\n");
+          break;
+        case XR_SESSION_STATE_VISIBLE:
+          std::fprintf(stderr, "solxr: visible, not focused\n");
+          break;
+        case XR_SESSION_STATE_STOPPING:
+          xr_check(xrEndSession(app.session), "xrEndSession");
+          running = false;
+          std::fprintf(stderr, "solxr: session ended\n");
+          break;
+        case XR_SESSION_STATE_EXITING:
+          quit = true;
+          break;
+        case XR_SESSION_STATE_LOSS_PENDING:
+          std::fprintf(stderr, "solxr: the runtime is losing the session; exiting\n");
+          quit = true;
+          break;
+        default:
+          break;
+      }
+    } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
+      std::fprintf(stderr, "solxr: the runtime is going away; exiting\n");
+      quit = true;
+    }
+    event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+  }
+}
+
 int run(const Options& o, const sol::Scene& scene) {
   App app;
   create_instance(app);
@@ -707,47 +752,7 @@ int run(const Options& o, const sol::Scene& scene) {
   sol::programs::Refinement refinement(device_copy ? o.refine : 0);
   XrTime last_time = 0;
   while (!quit) {
-    // Session state machine: begin when ready, end when stopping, leave on exiting or loss.
-    auto event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
-    while (xr_check(xrPollEvent(app.instance, &event), "xrPollEvent") == XR_SUCCESS) {
-      if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
-        const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
-        switch (changed.state) {
-          case XR_SESSION_STATE_READY: {
-            auto begin = xr_struct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
-            begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
-            xr_check(xrBeginSession(app.session, &begin), "xrBeginSession");
-            running = true;
-            std::fprintf(stderr, "solxr: session running\n");
-            break;
-          }
-          case XR_SESSION_STATE_FOCUSED:
-            std::fprintf(stderr, "solxr: focused\n");
-            break;
-          case XR_SESSION_STATE_VISIBLE:
-            std::fprintf(stderr, "solxr: visible, not focused\n");
-            break;
-          case XR_SESSION_STATE_STOPPING:
-            xr_check(xrEndSession(app.session), "xrEndSession");
-            running = false;
-            std::fprintf(stderr, "solxr: session ended\n");
-            break;
-          case XR_SESSION_STATE_EXITING:
-            quit = true;
-            break;
-          case XR_SESSION_STATE_LOSS_PENDING:
-            std::fprintf(stderr, "solxr: the runtime is losing the session; exiting\n");
-            quit = true;
-            break;
-          default:
-            break;
-        }
-      } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
-        std::fprintf(stderr, "solxr: the runtime is going away; exiting\n");
-        quit = true;
-      }
-      event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
-    }
+    poll_events(app, running, quit);
     if (quit) break;
     if (!running) {  // idle until the runtime says ready (or exiting)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));

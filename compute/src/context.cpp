@@ -404,6 +404,56 @@ double Device::elapsed_ms(std::uint64_t from, std::uint64_t to) const {
 
 }  // namespace detail
 
+namespace {
+
+// The device's pipeline cache: the file's contents in `dir` when this device
+// and driver wrote it, else empty (a foreign or broken file is warned about
+// and rewritten later).
+void create_pipeline_cache(detail::Device& d, const std::string& dir) {
+  std::vector<char> initial;
+  if (!dir.empty()) {
+    char name[96];
+    std::snprintf(name, sizeof name, "pipelines-%04x-%04x-%08x.bin", d.properties.vendorID, d.properties.deviceID,
+                  d.properties.driverVersion);
+    d.pipeline_cache_path = (std::filesystem::path(dir) / name).string();
+    initial = read_pipeline_cache(d.pipeline_cache_path);
+    if (!initial.empty()) {
+      // VkPipelineCacheHeaderVersionOne: header size, version, vendor, device, cache UUID (32 bytes).
+      std::uint32_t header[4] = {};
+      const bool sized = initial.size() >= 16 + VK_UUID_SIZE;
+      if (sized) std::memcpy(header, initial.data(), sizeof header);
+      const bool ours = sized && header[0] >= 16 + VK_UUID_SIZE && header[0] <= initial.size() &&
+                        header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[2] == d.properties.vendorID &&
+                        header[3] == d.properties.deviceID &&
+                        std::memcmp(initial.data() + 16, d.properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+      if (!ours) {
+        std::fprintf(stderr,
+                     "sol::vk: warning: ignoring the pipeline cache %s: %s (it is rewritten for this device)\n",
+                     d.pipeline_cache_path.c_str(),
+                     sized && header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[0] >= 16 + VK_UUID_SIZE &&
+                             header[0] <= initial.size()
+                         ? "written by another device or driver"
+                         : "truncated or not a pipeline cache");
+        initial.clear();
+      }
+    }
+  }
+  VkPipelineCacheCreateInfo cache_info{};
+  cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+  cache_info.initialDataSize = initial.size();
+  cache_info.pInitialData = initial.empty() ? nullptr : initial.data();
+  if (vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache) != VK_SUCCESS) {
+    // A cache the driver refuses: start empty rather than fail.
+    cache_info.initialDataSize = 0;
+    cache_info.pInitialData = nullptr;
+    initial.clear();
+    check(vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache), "vkCreatePipelineCache");
+  }
+  d.pipeline_cache_loaded = initial.size();
+}
+
+}  // namespace
+
 Context::Context(const ContextOptions& options) : m_device(std::make_shared<detail::Device>()) {
   detail::Device& d = *m_device;
   const DevicePreference preference = resolve_preference(options.preference);
@@ -567,49 +617,7 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
   pool_info.queueFamilyIndex = d.queue_family;
   check(vkCreateCommandPool(d.device, &pool_info, nullptr, &d.command_pool), "vkCreateCommandPool");
 
-  // The pipeline cache: the file's contents when this device and driver wrote it.
-  {
-    std::vector<char> initial;
-    if (!options.pipeline_cache_dir.empty()) {
-      char name[96];
-      std::snprintf(name, sizeof name, "pipelines-%04x-%04x-%08x.bin", d.properties.vendorID, d.properties.deviceID,
-                    d.properties.driverVersion);
-      d.pipeline_cache_path = (std::filesystem::path(options.pipeline_cache_dir) / name).string();
-      initial = read_pipeline_cache(d.pipeline_cache_path);
-      if (!initial.empty()) {
-        // VkPipelineCacheHeaderVersionOne: header size, version, vendor, device, cache UUID (32 bytes).
-        std::uint32_t header[4] = {};
-        const bool sized = initial.size() >= 16 + VK_UUID_SIZE;
-        if (sized) std::memcpy(header, initial.data(), sizeof header);
-        const bool ours = sized && header[0] >= 16 + VK_UUID_SIZE && header[0] <= initial.size() &&
-                          header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[2] == d.properties.vendorID &&
-                          header[3] == d.properties.deviceID &&
-                          std::memcmp(initial.data() + 16, d.properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
-        if (!ours) {
-          std::fprintf(stderr,
-                       "sol::vk: warning: ignoring the pipeline cache %s: %s (it is rewritten for this device)\n",
-                       d.pipeline_cache_path.c_str(),
-                       sized && header[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header[0] >= 16 + VK_UUID_SIZE &&
-                               header[0] <= initial.size()
-                           ? "written by another device or driver"
-                           : "truncated or not a pipeline cache");
-          initial.clear();
-        }
-      }
-    }
-    VkPipelineCacheCreateInfo cache_info{};
-    cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
-    cache_info.initialDataSize = initial.size();
-    cache_info.pInitialData = initial.empty() ? nullptr : initial.data();
-    if (vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache) != VK_SUCCESS) {
-      // A cache the driver refuses: start empty rather than fail.
-      cache_info.initialDataSize = 0;
-      cache_info.pInitialData = nullptr;
-      initial.clear();
-      check(vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache), "vkCreatePipelineCache");
-    }
-    d.pipeline_cache_loaded = initial.size();
-  }
+  create_pipeline_cache(d, options.pipeline_cache_dir);
 
   if (chosen.timestamp_valid_bits > 0 && d.properties.limits.timestampPeriod > 0.0f) {
     VkQueryPoolCreateInfo query_info{};
