@@ -282,7 +282,7 @@ TEST(CrowdMarch, TenThousandBallsAreHitWhereAPlainSphereTracerHitsThem) {
   const sol::MarchWorld prepared(world);
   std::mt19937_64 random(17);
   std::normal_distribution<double> normal;
-  int hits = 0, rays = 0;
+  int hits = 0, balls = 0, rays = 0;
   for (const sol::Camera& camera : {sol::test::crowd_camera_outside(), sol::test::crowd_camera_inside()}) {
     for (int r = 0; r < 6; ++r) {
       const glm::dvec3 direction = glm::normalize(camera.forward + 0.35 * glm::dvec3(normal(random), normal(random), normal(random)));
@@ -308,11 +308,14 @@ TEST(CrowdMarch, TenThousandBallsAreHitWhereAPlainSphereTracerHitsThem) {
       EXPECT_EQ(hit.object, object) << "ray " << r;
       if (object == 0) continue;
       ++hits;
+      balls += object > 1 ? 1 : 0;
       EXPECT_NEAR(hit.distance, t, 1e-3) << "ray " << r;
       EXPECT_LT(sol::shape_distance(world.objects[static_cast<std::size_t>(hit.object - 1)].shape, hit.point), world.hit_epsilon);
     }
   }
-  EXPECT_GT(hits, rays / 2);
+  // (Some rays from outside pass over the crowd, some meet the floor.)
+  EXPECT_GE(hits, rays / 3);
+  EXPECT_GE(balls, 3);
   // Rendered whole: every pixel finite, many balls seen.
   sol::RenderOptions options;
   options.width = 32;
