@@ -154,7 +154,7 @@ TEST(SceneFuzz, MutantsAreRefusedCleanlyOrRenderFinite) {
       scene = sol::parse_scene(text, "fuzz.json");
     } catch (const sol::InvalidArgument& e) {
       ++refused;
-      // Messages are short: values are quoted cut (issue 16, item 11).
+      // Messages are short: values are quoted cut.
       EXPECT_LT(std::string(e.what()).size(), 1200u) << shown(text);
       continue;
     } catch (const std::exception& e) {
