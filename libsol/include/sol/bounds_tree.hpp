@@ -7,11 +7,15 @@
 // so a step visits about the logarithm of the number of objects.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include <cmath>
+
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "sol/coordinate_box.hpp"
@@ -63,7 +67,8 @@ class BoundsTree {
     };
     Pending stack[kMaxDepth + 2];
     int top = 0;
-    stack[top++] = {0, box_distance_lower_bound(m_nodes[0].box, q)};
+    const glm::dvec2 e(std::exp(-q.z), std::exp(q.z));  // (box_distance_lower_bound's, once)
+    stack[top++] = {0, box_distance_lower_bound(m_nodes[0].box, q, e)};
     while (top > 0) {
       const Pending p = stack[--top];
       if (!(p.bound < limit)) continue;
@@ -77,7 +82,7 @@ class BoundsTree {
         continue;
       }
       const std::uint32_t a = p.node + 1, b = n.first;
-      const double da = box_distance_lower_bound(m_nodes[a].box, q), db = box_distance_lower_bound(m_nodes[b].box, q);
+      const double da = box_distance_lower_bound(m_nodes[a].box, q, e), db = box_distance_lower_bound(m_nodes[b].box, q, e);
       // The nearer child on top, visited first.
       if (da <= db) {
         if (db < limit) stack[top++] = {b, db};

@@ -27,6 +27,7 @@
 #include <limits>
 
 #include <glm/common.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace sol {
@@ -64,9 +65,12 @@ struct CoordinateBox {
 
 namespace detail {
 // The distance in the plane e^{-2 side z}dw² + dz² from (0, q_z) to the
-// rectangle of horizontal gap g (>= 0) and heights [lo, hi] (see above).
-inline double projected_box_distance(double g, double qz, double side, double lo, double hi) {
-  const double w = g * std::exp(-side * qz), a = 0.5 * w * w;
+// rectangle of horizontal gap g (>= 0) and heights [lo, hi] (see above);
+// e = e^{-side q_z}. Without a gap it is the height's gap alone (s* = 0:
+// 2 asinh |sinh(s/2)| = |s|).
+inline double projected_box_distance(double g, double qz, double e, double side, double lo, double hi) {
+  if (g == 0.0) return std::abs(std::clamp(qz, lo, hi) - qz);
+  const double w = g * e, a = 0.5 * w * w;
   const double s = std::clamp(qz + side * 0.5 * std::log1p(2.0 * a), lo, hi) - qz;
   const double h = std::sinh(0.5 * s);
   return 2.0 * std::asinh(std::sqrt(h * h + 0.5 * a * std::exp(-side * s)));
@@ -74,13 +78,18 @@ inline double projected_box_distance(double g, double qz, double side, double lo
 }  // namespace detail
 
 /// A lower bound of the Sol distance from q to every point of the box (see
-/// above): 0 inside it, +infinity for an empty box.
-inline double box_distance_lower_bound(const CoordinateBox& box, const glm::dvec3& q) {
+/// above): 0 inside it, +infinity for an empty box. `e` = (e^{-q_z}, e^{q_z}),
+/// which a search of many boxes from one point takes once.
+inline double box_distance_lower_bound(const CoordinateBox& box, const glm::dvec3& q, const glm::dvec2& e) {
   if (box.empty()) return std::numeric_limits<double>::infinity();
   const double gx = std::max({0.0, box.lo.x - q.x, q.x - box.hi.x});
   const double gy = std::max({0.0, box.lo.y - q.y, q.y - box.hi.y});
-  return std::max(detail::projected_box_distance(gx, q.z, 1.0, box.lo.z, box.hi.z),
-                  detail::projected_box_distance(gy, q.z, -1.0, box.lo.z, box.hi.z));
+  return std::max(detail::projected_box_distance(gx, q.z, e.x, 1.0, box.lo.z, box.hi.z),
+                  detail::projected_box_distance(gy, q.z, e.y, -1.0, box.lo.z, box.hi.z));
+}
+
+inline double box_distance_lower_bound(const CoordinateBox& box, const glm::dvec3& q) {
+  return box_distance_lower_bound(box, q, glm::dvec2(std::exp(-q.z), std::exp(q.z)));
 }
 
 }  // namespace sol
