@@ -331,9 +331,9 @@ TEST(Clearance, BothWaysAreTheClearancesAlongTheTangentAndItsReverse) {
       {"plane y", sol::PlaneY{-0.3}},
       {"plane z", sol::PlaneZ{0.2}},
       {"ball", sol::Ball{through, 0.25}},
-      {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.06)},
-      {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.06)},
-      {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3)},
+      {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.06, sol::Lattice::golden())},
+      {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.06, sol::Lattice::golden())},
+      {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3, sol::Lattice::golden())},
       {"box", sol::Box{through, {0.25, 0.15, 0.2}}},
   };
   for (const auto& [name, shape] : shapes) {
@@ -368,9 +368,9 @@ std::vector<InsideSolid> inside_solids() {
           {"flat box", sol::Box{dvec3(1.0, 2.0, -1.2), {0.6, 0.1, 0.35}}, dvec3(1.0, 2.0, -1.2)},
           {"ball", sol::Ball{dvec3(0.3, -0.2, 0.4), 0.5, false}, dvec3(0.3, -0.2, 0.4)},
           {"large ball", sol::Ball{dvec3(1.0, 2.0, -1.0), 1.5, false}, dvec3(1.0, 2.0, -1.0)},
-          {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.3), through},
-          {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3), through},
-          {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.3), through}};
+          {"vertical tube", sol::make_tube(sol::TubeAxis::Z, through, 0.3, sol::Lattice::golden()), through},
+          {"tube along x", sol::make_tube(sol::TubeAxis::X, through, 0.3, sol::Lattice::golden()), through},
+          {"tube along gamma1", sol::make_tube(sol::TubeAxis::Gamma1, through, 0.3, sol::Lattice::golden()), through}};
 }
 
 }  // namespace

@@ -471,9 +471,9 @@ TEST(Kernel, BallsMatchTheCpuRenderer) {
   scene.camera = {{0.3, -0.2, 0.1}, {1, 0.2, 0.1}, {0, 0, 1}, 70.0};
   const sol::SceneObject ball{sol::Ball{{2.0, 0.5, 0.2}, 0.6}, {0.3, 0.8, 0.4}, sol::Pattern::Circles};
   const sol::SceneObject floor{sol::PlaneZ{-0.8}, {0.8, 0.8, 0.8}, sol::Pattern::Checker};
-  const sol::SceneObject tube{sol::make_tube(sol::TubeAxis::Z, {1.5, -0.8, 0.0}, 0.2), {0.8, 0.3, 0.8}, sol::Pattern::Checker};
+  const sol::SceneObject tube{sol::make_tube(sol::TubeAxis::Z, {1.5, -0.8, 0.0}, 0.2, sol::Lattice::golden()), {0.8, 0.3, 0.8}, sol::Pattern::Checker};
   // A tube along γ1 (a horizontal line of irrational slope), patterned.
-  const sol::SceneObject slanted{sol::make_tube(sol::TubeAxis::Gamma1, {2.4, 0.3, -0.35}, 0.15), {0.9, 0.8, 0.2},
+  const sol::SceneObject slanted{sol::make_tube(sol::TubeAxis::Gamma1, {2.4, 0.3, -0.35}, 0.15, sol::Lattice::golden()), {0.9, 0.8, 0.2},
                                  sol::Pattern::Checker};
   scene.objects = {ball, floor, tube, slanted};
   // A point light and coloured fog: shading as sol::light_at on both sides.
@@ -1516,11 +1516,11 @@ TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
   tubes.max_distance = 6.0;
   tubes.max_steps = 400;
   tubes.fog_density = 1.0 / 5.0;
-  const dvec3 gamma1 = sol::tube_axis_direction(sol::TubeAxis::Gamma1), gamma2 = sol::tube_axis_direction(sol::TubeAxis::Gamma2);
+  const dvec3 gamma1 = sol::tube_axis_direction(sol::TubeAxis::Gamma1, sol::Lattice::golden()), gamma2 = sol::tube_axis_direction(sol::TubeAxis::Gamma2, sol::Lattice::golden());
   tubes.objects = {{sol::Tube{{0.0, 0.9, 0.3}, -gamma1, 0.08}, {0.9, 0.35, 0.3}, sol::Pattern::Checker},
                    {sol::Tube{{1.6, 0.0, 0.7}, -gamma2, 0.07}, {0.35, 0.8, 0.4}, sol::Pattern::Checker},
-                   {sol::make_tube(sol::TubeAxis::Gamma2, {0.4, 0.2, 0.1}, 0.09), {0.9, 0.8, 0.2}, sol::Pattern::Checker},
-                   {sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, 0, 0), dvec3(0.0)), 0.1), {0.35, 0.5, 0.95},
+                   {sol::make_tube(sol::TubeAxis::Gamma2, {0.4, 0.2, 0.1}, 0.09, sol::Lattice::golden()), {0.9, 0.8, 0.2}, sol::Pattern::Checker},
+                   {sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, 0, 0), dvec3(0.0)), 0.1, sol::Lattice::golden()), {0.35, 0.5, 0.95},
                     sol::Pattern::Checker}};
   sol::RenderOptions settings;
   settings.width = 32;

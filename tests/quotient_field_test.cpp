@@ -65,10 +65,10 @@ sol::World mixed_world(std::mt19937_64& rng) {
     const dvec3 c(coord(rng), coord(rng), coord(rng));
     w.objects.push_back({sol::Ball{c, 0.45, i == 1}});
     const dvec3 through(coord(rng), coord(rng), coord(rng));
-    w.objects.push_back({sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, through, 0.3)});
+    w.objects.push_back({sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, through, 0.3, sol::Lattice::golden())});
   }
   w.objects.push_back({sol::PlaneZ{0.3}});
-  w.objects.push_back({sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, -2, 0), dvec3(0, 0, 0.4)), 0.2)});
+  w.objects.push_back({sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(1, -2, 0), dvec3(0, 0, 0.4)), 0.2, sol::Lattice::golden())});
   return w;
 }
 

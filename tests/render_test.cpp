@@ -518,7 +518,7 @@ TEST(Render, HorizontalTubeBoundsNeverExceedPathLengths) {
   const dvec3 through(0.2, -0.3, 0.4);
   std::vector<glm::dvec2> headings;
   for (sol::TubeAxis axis : {sol::TubeAxis::X, sol::TubeAxis::Y, sol::TubeAxis::Gamma1, sol::TubeAxis::Gamma2}) {
-    const dvec3 d = sol::tube_axis_direction(axis);
+    const dvec3 d = sol::tube_axis_direction(axis, sol::Lattice::golden());
     headings.emplace_back(d.x, d.y);
   }
   for (int i = 0; i < 4; ++i) {
@@ -559,7 +559,7 @@ TEST(Render, PatternsOnBallsAndTubesFollowTheirCoordinates) {
   sol::Scene scene;
   scene.camera = {{0, 0, 0}, {1, 0.1, 0.05}, {0, 0, 1}, 70.0};
   const sol::Ball ball{{2.0, 0.6, 0.2}, 0.6};
-  const sol::Tube tube = sol::make_tube(sol::TubeAxis::Z, {1.6, -0.7, 0.3}, 0.25);
+  const sol::Tube tube = sol::make_tube(sol::TubeAxis::Z, {1.6, -0.7, 0.3}, 0.25, sol::Lattice::golden());
   scene.objects = {{ball}, {tube}};
   sol::RenderOptions settings;
   settings.width = 40;
@@ -1337,10 +1337,10 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
     const dvec3 centre_of_ball(coord(rng), coord(rng), coord(rng));
     mixed.objects.push_back({sol::Ball{centre_of_ball, 0.45}});  // the largest radius allowed in the quotient
     const dvec3 through(coord(rng), coord(rng), coord(rng));
-    mixed.objects.push_back({sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, through, 0.45)});
+    mixed.objects.push_back({sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, through, 0.45, sol::Lattice::golden())});
   }
   mixed.objects.push_back({sol::PlaneZ{0.3}});
-  mixed.objects.push_back({sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(2, -3, 0), dvec3(0, 0, 1.7)), 0.3)});
+  mixed.objects.push_back({sol::make_tube(sol::TubeAxis::Z, sol::multiply(lattice.element(2, -3, 0), dvec3(0, 0, 1.7)), 0.3, sol::Lattice::golden())});
   sol::validate(mixed);
   scenes.push_back(mixed);
   for (const sol::Scene& scene : scenes) expect_images_complete(scene, samples, 30, 6);
@@ -1361,7 +1361,7 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
           {sol::make_tube(i == 0 ? sol::TubeAxis::Gamma1 : sol::TubeAxis::Gamma2, about_d(), 0.45, other_lattice)});
     }
     other.objects.push_back({sol::PlaneZ{0.3}});
-    other.objects.push_back({sol::make_tube(sol::TubeAxis::Z, other_lattice.element(1, -1, 0), 0.3)});
+    other.objects.push_back({sol::make_tube(sol::TubeAxis::Z, other_lattice.element(1, -1, 0), 0.3, sol::Lattice::golden())});
     sol::validate(other);
     expect_images_complete(other, domain_samples(other_lattice, rng, 1500), 40, 3);
   }
@@ -1804,7 +1804,7 @@ std::vector<std::pair<std::string, sol::Scene>> inside_views() {
           {"exact ball, golden", sol::test::furnace_in(sol::Ball{{0.05, 0.0, 0.0}, 0.4, true}, Quotient::Golden)},
           {"box, golden", sol::test::furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.15, 0.15, 0.15}}, Quotient::Golden)},
           {"z tube, golden",
-           sol::test::furnace_in(sol::make_tube(sol::TubeAxis::Z, {0.0, 0.0, 0.0}, 0.3), Quotient::Golden)}};
+           sol::test::furnace_in(sol::make_tube(sol::TubeAxis::Z, {0.0, 0.0, 0.0}, 0.3, sol::Lattice::golden()), Quotient::Golden)}};
 }
 
 TEST(Path, EverySolidSeenFromInsideIsAFurnace) {
@@ -1843,7 +1843,7 @@ TEST(Render, SolidsSeenFromInsideStopAtTheirInnerWall) {
     if (furnace.quotient != sol::Quotient::None) continue;
     sol::Scene scene = furnace;
     scene.objects[0].emission = glm::dvec3(0.0);
-    scene.objects.push_back({sol::make_tube(sol::TubeAxis::Y, {0.0, 0.0, 0.0}, 0.3)});  // the camera inside a second solid
+    scene.objects.push_back({sol::make_tube(sol::TubeAxis::Y, {0.0, 0.0, 0.0}, 0.3, sol::Lattice::golden())});  // the camera inside a second solid
     const sol::Shape& wall = scene.objects[0].shape;
     const double guaranteed = -sol::shape_distance(wall, scene.camera.position);
     ASSERT_GT(guaranteed, 0.0) << name;

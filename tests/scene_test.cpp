@@ -169,14 +169,14 @@ TEST(Scene, TubeAxesAndPatternsOnSolids) {
     {"type": "tube", "axis": "gamma3", "through": [1, 1.618033988749895, 5], "radius": 0.1},
     {"type": "ball", "center": [0, 0, 0], "radius": 0.2, "pattern": "circles"}]})");
   auto axis = [](const sol::SceneObject& o) { return std::get<sol::Tube>(o.shape).direction; };
-  EXPECT_EQ(axis(s.objects[0]), sol::tube_axis_direction(sol::TubeAxis::Gamma1));
+  EXPECT_EQ(axis(s.objects[0]), sol::tube_axis_direction(sol::TubeAxis::Gamma1, sol::Lattice::golden()));
   EXPECT_EQ(s.objects[0].pattern, sol::Pattern::Checker);
-  EXPECT_EQ(axis(s.objects[1]), sol::tube_axis_direction(sol::TubeAxis::Gamma2));
-  EXPECT_EQ(axis(s.objects[2]), sol::tube_axis_direction(sol::TubeAxis::Z));  // gamma3's closed curve is the vertical line
+  EXPECT_EQ(axis(s.objects[1]), sol::tube_axis_direction(sol::TubeAxis::Gamma2, sol::Lattice::golden()));
+  EXPECT_EQ(axis(s.objects[2]), sol::tube_axis_direction(sol::TubeAxis::Z, sol::Lattice::golden()));  // gamma3's closed curve is the vertical line
   EXPECT_EQ(s.objects[3].pattern, sol::Pattern::Circles);
   // The axes are the lattice's directions: γ1 = (φ, -1, 0), γ2 = (1, φ, 0).
   const double phi = 0.5 * (1.0 + std::sqrt(5.0));
-  const glm::dvec3 g1 = sol::tube_axis_direction(sol::TubeAxis::Gamma1), g2 = sol::tube_axis_direction(sol::TubeAxis::Gamma2);
+  const glm::dvec3 g1 = sol::tube_axis_direction(sol::TubeAxis::Gamma1, sol::Lattice::golden()), g2 = sol::tube_axis_direction(sol::TubeAxis::Gamma2, sol::Lattice::golden());
   EXPECT_NEAR(g1.x * -1.0 - g1.y * phi, 0.0, 1e-15);
   EXPECT_NEAR(g2.x * phi - g2.y * 1.0, 0.0, 1e-15);
   EXPECT_NEAR(glm::length(g1), 1.0, 1e-15);
@@ -214,7 +214,7 @@ TEST(Scene, TubeAxesAsDirections) {
   const sol::Scene along = sol::parse_scene(
       golden + R"({"type": "tube", "axis": [-1.618033988749895, 1, 0], "through": [0, 0, 0], "radius": 0.1}]})");
   const glm::dvec3 d = std::get<sol::Tube>(along.objects[0].shape).direction;
-  EXPECT_NEAR(glm::length(glm::cross(d, sol::tube_axis_direction(sol::TubeAxis::Gamma1))), 0.0, 1e-15);
+  EXPECT_NEAR(glm::length(glm::cross(d, sol::tube_axis_direction(sol::TubeAxis::Gamma1, sol::Lattice::golden()))), 0.0, 1e-15);
 }
 
 // "quotient": {"monodromy": A, "fibre_area": S}: the torus bundle of A. Its
@@ -254,7 +254,7 @@ TEST(Scene, QuotientOfAMonodromy) {
   const sol::Scene golden = sol::parse_scene(R"({"quotient": {"monodromy": [[2, 1], [1, 1]]}, "objects": [
     {"type": "tube", "axis": "gamma1", "through": [0, 0, 0], "radius": 0.1}]})");
   EXPECT_EQ(golden.lattice()->generators(), sol::Lattice::golden().generators());
-  EXPECT_EQ(std::get<sol::Tube>(golden.objects[0].shape).direction, sol::tube_axis_direction(sol::TubeAxis::Gamma1));
+  EXPECT_EQ(std::get<sol::Tube>(golden.objects[0].shape).direction, sol::tube_axis_direction(sol::TubeAxis::Gamma1, sol::Lattice::golden()));
 
   // Refusals name the field and the reason.
   const std::string objects = R"("objects": [{"type": "plane_z"}])";

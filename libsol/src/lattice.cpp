@@ -54,6 +54,11 @@ Lattice Lattice::golden() {
   return Lattice({phi, -1.0}, {1.0, phi}, kernel::kLatticeHeight, Monodromy{});
 }
 
+const Lattice& Lattice::default_axes() {
+  static const Lattice golden = Lattice::golden();
+  return golden;
+}
+
 std::string Monodromy::str() const {
   return "[[" + std::to_string(a) + ", " + std::to_string(b) + "], [" + std::to_string(c) + ", " + std::to_string(d) +
          "]]";

@@ -120,8 +120,8 @@ void set_quotient(World& world, Quotient quotient, const Monodromy& monodromy, s
   next.quotient = quotient;
   next.monodromy = quotient == Quotient::Monodromy ? monodromy : Monodromy{};
   next.fibre_area = quotient == Quotient::Monodromy ? fibre_area : std::nullopt;
-  const Lattice before = world.lattice().value_or(Lattice::golden());
-  const Lattice after = next.lattice().value_or(Lattice::golden());  // throws for a bad monodromy
+  const Lattice before = world.lattice().value_or(Lattice::default_axes());
+  const Lattice after = next.lattice().value_or(Lattice::default_axes());  // throws for a bad monodromy
   for (SceneObject& o : next.objects) {
     if (Tube* t = std::get_if<Tube>(&o.shape)) {
       const std::optional<TubeAxis> axis = tube_axis_of(t->direction, before);
@@ -170,7 +170,7 @@ Scene preset_scene(std::string_view name) {
     for (const auto& [axis, color] : {std::pair{TubeAxis::Gamma1, glm::dvec3(0.9, 0.35, 0.3)},
                                       std::pair{TubeAxis::Gamma2, glm::dvec3(0.35, 0.8, 0.4)},
                                       std::pair{TubeAxis::Z, glm::dvec3(0.35, 0.5, 0.95)}}) {
-      s.objects.push_back({make_tube(axis, {0.0, 0.0, 0.0}, 0.06), color});
+      s.objects.push_back({make_tube(axis, {0.0, 0.0, 0.0}, 0.06, Lattice::golden()), color});
     }
     s.fog_density = 1.0 / 5.0;
     s.max_distance = 10.0;

@@ -18,7 +18,7 @@ namespace sol::test {
   s.camera = {{0.2, -0.1, 0.6}, {1.0, 0.9, 0.15}, {0.0, 0.0, 1.0}, 100.0};
   s.objects = {{sol::Ball{{1.1, 0.9, 0.4}, 0.35}, {0.9, 0.55, 0.3}},
                {sol::Box{{-0.5, 1.4, 1.0}, {0.2, 0.15, 0.1}}, {0.35, 0.65, 0.9}, sol::Pattern::Checker},
-               {sol::make_tube(sol::TubeAxis::Z, {0.0, 0.0, 0.0}, 0.08), {0.35, 0.5, 0.95}},
+               {sol::make_tube(sol::TubeAxis::Z, {0.0, 0.0, 0.0}, 0.08, sol::Lattice::golden()), {0.35, 0.5, 0.95}},
                {sol::Tube{{0.0, 0.8, 0.9}, glm::normalize(glm::dvec3(1.0, 1.0, 0.0)), 0.06}, {0.9, 0.35, 0.3}}};
   s.fog_density = 1.0 / 12.0;
   s.max_distance = 8.0;

@@ -76,6 +76,9 @@ class Lattice {
 
   /// The lattice Γ of docs/mathematics.md: from_monodromy of [[2, 1], [1, 1]].
   static Lattice golden();
+  /// The lattice whose γ1 and γ2 name the tube axes "gamma1" and "gamma2"
+  /// where a world has none of its own (Sol itself, a z loop): golden().
+  static const Lattice& default_axes();
 
   /// The lattice Γ_A of a hyperbolic A in SL(2, Z): for trace > 2
   /// (docs/mathematics.md, "Every lattice"): with λ > 1 A's larger

@@ -21,13 +21,6 @@ using namespace detail;
 
 // ---- Tube ----------------------------------------------------------------
 
-namespace {
-const Lattice& golden_lattice() {
-  static const Lattice golden = Lattice::golden();
-  return golden;
-}
-}  // namespace
-
 glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice) {
   switch (axis) {
     case TubeAxis::X:
@@ -38,8 +31,8 @@ glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice) {
       return {0.0, 0.0, 1.0};
     case TubeAxis::Gamma1:
     case TubeAxis::Gamma2: {
-      // A z loop has no γ1, γ2: the golden lattice's directions stand in.
-      const Lattice& own = lattice.loops() == Lattice::Loops::Z ? golden_lattice() : lattice;
+      // A z loop has no γ1, γ2: the default's directions stand in.
+      const Lattice& own = lattice.loops() == Lattice::Loops::Z ? Lattice::default_axes() : lattice;
       return glm::normalize(own.generators()[axis == TubeAxis::Gamma1 ? 0 : 1]);
     }
   }
@@ -222,7 +215,7 @@ void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
   } else if (parallel(d, tube_axis_direction(TubeAxis::Gamma1, *quotient)) ||
              parallel(d, tube_axis_direction(TubeAxis::Gamma2, *quotient))) {
     return;  // the closed curve of γ1 or γ2 (its period: sol::quotient_images)
-  } else if (parallel(d, tube_axis_direction(TubeAxis::X)) || parallel(d, tube_axis_direction(TubeAxis::Y))) {
+  } else if (parallel(d, tube_axis_direction(TubeAxis::X, *quotient)) || parallel(d, tube_axis_direction(TubeAxis::Y, *quotient))) {
     field_error(at + ".axis", at + ".axis: tubes along x or y do not close up in the quotient (their images are dense); "
                                    "use gamma1, gamma2 or z");
   } else {
@@ -248,9 +241,9 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
     const std::string name = SceneFileReader::text(axis);
     const auto known = std::find_if(std::begin(kTubeAxes), std::end(kTubeAxes), [&](TubeAxis a) { return to_string(a) == name; });
     if (name == "gamma3") {
-      t.direction = tube_axis_direction(TubeAxis::Z);  // the closed curve of γ3 is the vertical line
+      t.direction = {0.0, 0.0, 1.0};  // the closed curve of γ3 is the vertical line
     } else if (known != std::end(kTubeAxes)) {
-      t.direction = quotient ? tube_axis_direction(*known, *quotient) : tube_axis_direction(*known);
+      t.direction = tube_axis_direction(*known, quotient ? *quotient : Lattice::default_axes());
     } else {
       r.fail(at + ".axis", "'" + at + ".axis' must be x, y, z, gamma1, gamma2 or gamma3, got " + SceneFileReader::json_text(axis) +
                                " (or a vertical or horizontal direction [a, b, c])");
@@ -261,7 +254,7 @@ void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, c
 }
 
 json write_kind(const Tube& t, const SceneObject&, const Lattice* quotient) {
-  const std::optional<TubeAxis> name = quotient ? tube_axis_of(t.direction, *quotient) : tube_axis_of(t.direction);
+  const std::optional<TubeAxis> name = tube_axis_of(t.direction, quotient ? *quotient : Lattice::default_axes());
   return {{"axis", name ? json(std::string(to_string(*name))) : to_json(t.direction)},
           {"through", to_json(t.through)},
           {"radius", t.radius}};

@@ -18,10 +18,11 @@ namespace sol {
 enum class TubeAxis { X, Y, Z, Gamma1, Gamma2 };
 
 /// Unit coordinate direction of a named axis: (1,0,0), (0,1,0), (0,0,1),
-/// γ1/|γ1|, γ2/|γ2| of `lattice` (the golden one's unless given).
-glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice = Lattice::golden());
+/// γ1/|γ1|, γ2/|γ2| of `lattice` (the world's quotient's, or
+/// Lattice::default_axes(); a z loop's are the default's).
+glm::dvec3 tube_axis_direction(TubeAxis axis, const Lattice& lattice);
 /// The name of a direction when it is one of the named axes' (exactly).
-std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction, const Lattice& lattice = Lattice::golden());
+std::optional<TubeAxis> tube_axis_of(const glm::dvec3& direction, const Lattice& lattice);
 /// The scene file's name of an axis: "x", "y", "z", "gamma1", "gamma2".
 std::string_view to_string(TubeAxis axis);
 
@@ -66,7 +67,7 @@ struct Tube {
 };
 
 /// A tube along a named axis (of `lattice`: gamma1 and gamma2 are its generators').
-inline Tube make_tube(TubeAxis axis, const glm::dvec3& through, double radius, const Lattice& lattice = Lattice::golden()) {
+inline Tube make_tube(TubeAxis axis, const glm::dvec3& through, double radius, const Lattice& lattice) {
   return {through, tube_axis_direction(axis, lattice), radius};
 }
 
