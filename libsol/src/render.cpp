@@ -414,9 +414,12 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
   };
   std::vector<Passed> passing;  // the surfaces it passes (march_cover's mask)
   if (limits.leave_start) {
-    tree.search(origin, 2.0 * eps, [&](std::uint32_t k) {
+    // (A solid's distance may be below its box's bound near its surface, where
+    // the bound's gradient is short: the boxes within a generous reach.)
+    const double reach = std::max(2.0 * eps, 0.01);
+    tree.search(origin, reach, [&](std::uint32_t k) {
       if (object_distance(objects[k], origin) < 2.0 * eps) passing.push_back({k, 0.0});
-      return 2.0 * eps;
+      return reach;
     });
   }
   std::vector<std::uint32_t> passed;  // this step's passed surfaces, evaluated before the search
