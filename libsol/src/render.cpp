@@ -248,6 +248,53 @@ glm::dvec3 facing_normal(const glm::dvec3& normal, const glm::dvec3& direction, 
   return turn && glm::dot(normal, direction) > 0.0 ? -normal : normal;
 }
 
+// One march step's nearest objects, whichever way the march visits them
+// (its list, march_cover; its tree, march_crowd): the least distance and
+// its object, the runner-up's distance, and the least among the hit
+// candidates (the objects not being passed).
+struct StepNearest {
+  static constexpr double kFar = std::numeric_limits<double>::infinity();
+  double nearest = kFar, second = kFar, nearest_hit = kFar;
+  std::size_t nearest_k = 0, hit_k = 0;
+  bool nearest_inside = false, hit_inside = false;  // the nearest (to hit) is a solid the ray is inside
+
+  void consider(std::size_t k, double d, bool inside, bool candidate) {
+    if (d < nearest) {
+      second = nearest;
+      nearest = d;
+      nearest_k = k;
+      nearest_inside = inside;
+    } else {
+      second = std::min(second, d);
+    }
+    if (candidate && d < nearest_hit) {
+      nearest_hit = d;
+      hit_k = k;
+      hit_inside = inside;
+    }
+  }
+
+  // The step from q along u: where the nearest object (`o`) is a solid, its
+  // clearance along the ray (sol/clearance.hpp; longer than its bound beside
+  // it) up to the runner-up's distance, seen from outside (`outside`) or
+  // from inside (`inside`: its faces'; an exact ball's own solve always).
+  // Only the nearest's: it is what limits the step, and the kernel
+  // evaluates one clearance a step.
+  double step(const MarchObject& o, const glm::dvec3& q, const glm::dvec3& u, double eps, bool outside, bool inside) const {
+    const Shape& shape = o.shape;
+    if (outside && is_solid(shape) && !nearest_inside) {  // (the clearance is the outside's)
+      return std::min(second, std::max(nearest, object_clearance(o, q, u)));
+    }
+    if (nearest_inside && exact_ball(shape) && nearest > eps) {
+      return std::min(second, exact_ball_inside_step(std::get<Ball>(shape), q, u, nearest, eps));
+    }
+    if (nearest_inside && inside && !exact_ball(shape)) {  // inside a solid: its faces' clearance
+      return std::min(second, std::max(nearest, shape_inside_clearances(shape, q, u).ahead));
+    }
+    return nearest;
+  }
+};
+
 // The march in Sol: `objects` relative to `origin`, so the ray starts at
 // the origin of their coordinates. Solids are seen from inside as well as
 // from outside.
@@ -294,10 +341,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     hit.distance = max_length;
     return hit;
   }
-  // The nearest object, where it is a ball or a tube, lets the step be its
-  // clearance along the ray (sol/clearance.hpp; longer than its bound
-  // beside it) up to the next object's distance. (Only the nearest's: it
-  // is what limits the step, and the kernel evaluates one clearance a step.)
+  // The nearest solid's clearance (StepNearest::step) needs full positions.
   const bool solids = prepared.features().solids && full;
   std::uint64_t solid = 0;  // which objects are solids
   for (std::size_t k = 0; k < n; ++k) {
@@ -307,9 +351,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
-    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
-    std::size_t hit_k = 0, nearest_k = 0;
-    bool nearest_inside = false, hit_inside = false;  // the nearest (to hit) is a solid the ray is inside
+    StepNearest s;
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint64_t bit = std::uint64_t{1} << k;
       const SeenDistance seen = seen_distance(objects[k], (solid & bit) != 0, q);
@@ -328,31 +370,13 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
           pass_ends(objects[k].shape, d, inside, q, ray.direction_at(t), world.hit_epsilon, leave_sign[k])) {
         passing &= ~bit;
       }
-      if (d < nearest) {
-        second = nearest;
-        nearest = d;
-        nearest_k = k;
-        nearest_inside = inside;
-      } else {
-        second = std::min(second, d);
-      }
-      if (!(passing & bit) && d < nearest_hit) {
-        nearest_hit = d;
-        hit_k = k;
-        hit_inside = inside;
-      }
+      s.consider(k, d, inside, !(passing & bit));
     }
-    const Shape& nearest_shape = objects[nearest_k].shape;
-    if (solids && others && is_solid(nearest_shape) && !nearest_inside) {  // (the clearance is the outside's)
-      nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, ray.direction_at(t))));
-    } else if (nearest_inside && exact_ball(nearest_shape) && nearest > world.hit_epsilon) {
-      nearest = std::min(second, exact_ball_inside_step(std::get<Ball>(nearest_shape), q, ray.direction_at(t), nearest,
-                                                        world.hit_epsilon));
-    } else if (nearest_inside && others && !exact_ball(nearest_shape)) {  // inside a solid: its faces' clearance
-      nearest = std::min(second, std::max(nearest, shape_inside_clearances(nearest_shape, q, ray.direction_at(t)).ahead));
-    }
+    const double nearest =
+        s.step(objects[s.nearest_k], q, ray.direction_at(t), world.hit_epsilon, solids && others, others);
+    const std::size_t hit_k = s.hit_k;
     hit.steps = crossing.steps + step + 1;
-    if (nearest_hit < world.hit_epsilon) {
+    if (s.nearest_hit < world.hit_epsilon) {
       const glm::dvec3 p = full ? q : ray.at(t).position;  // the full position, once
       const SceneObject& o = world.objects[hit_k];
       const glm::dvec3 world_point = multiply(origin, p);
@@ -370,7 +394,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.pattern_uv = uv;
       hit.direction = ray.direction_at(t);
       // (In Sol an exact ball's normal faces the ray wherever it faces away.)
-      hit.normal = facing_normal(hit.normal, hit.direction, hit_inside || exact_ball(objects[hit_k].shape));
+      hit.normal = facing_normal(hit.normal, hit.direction, s.hit_inside || exact_ball(objects[hit_k].shape));
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -426,67 +450,44 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (int step = 0; step < world.max_steps; ++step) {
     const glm::dvec3 q = multiply(origin, ray.at(t).position);
     const glm::dvec3 u = ray.direction_at(t);
-    double nearest = std::numeric_limits<double>::infinity(), nearest_hit = nearest, second = nearest;
-    std::uint32_t hit_k = 0, nearest_k = 0;
-    bool nearest_inside = false, hit_inside = false;
+    StepNearest s;
     const auto distance = [&](std::uint32_t k, bool& inside) {
       const SeenDistance seen = seen_distance(objects[k], is_solid(objects[k].shape), q);
       inside = seen.inside;
       const SceneObject& o = world.objects[k];
       return o.cutout && std::holds_alternative<PlaneZ>(o.shape) ? std::max(seen.d, cutout_gap_bound(o.pattern, q)) : seen.d;
     };
-    const auto consider = [&](std::uint32_t k, double d, bool inside, bool candidate) {
-      if (d < nearest) {
-        second = nearest;
-        nearest = d;
-        nearest_k = k;
-        nearest_inside = inside;
-      } else {
-        second = std::min(second, d);
-      }
-      if (candidate && d < nearest_hit) {
-        nearest_hit = d;
-        hit_k = k;
-        hit_inside = inside;
-      }
-    };
     passed.clear();
     for (auto it = passing.begin(); it != passing.end();) {
       bool inside = false;
       const double d = distance(it->k, inside);
       const bool ends = pass_ends(objects[it->k].shape, d, inside, q, u, eps, it->leave_sign);
-      consider(it->k, d, inside, ends);
+      s.consider(it->k, d, inside, ends);
       passed.push_back(it->k);
       it = ends ? passing.erase(it) : it + 1;
     }
     tree.search(
-        q, std::max(second, eps),
+        q, std::max(s.second, eps),
         [&](std::uint32_t k) {
           if (std::find(passed.begin(), passed.end(), k) == passed.end()) {
             bool inside = false;
             const double d = distance(k, inside);
-            consider(k, d, inside, true);
+            s.consider(k, d, inside, true);
           }
-          return std::max(second, eps);
+          return std::max(s.second, eps);
         },
         [&](double bound) {
           // A node no nearer than the nearest object, within kCrowdCover of
           // the runner-up and clear of hit_epsilon: its bound stands for
           // all it holds (the step can be that much shorter, but is safe).
-          if (!(bound >= nearest && bound >= kCrowdCover * second && bound > 2.0 * eps)) return -1.0;
-          second = std::min(second, bound);
-          return std::max(second, eps);
+          if (!(bound >= s.nearest && bound >= kCrowdCover * s.second && bound > 2.0 * eps)) return -1.0;
+          s.second = std::min(s.second, bound);
+          return std::max(s.second, eps);
         });
-    const Shape& nearest_shape = objects[nearest_k].shape;
-    if (is_solid(nearest_shape) && !nearest_inside) {
-      nearest = std::min(second, std::max(nearest, object_clearance(objects[nearest_k], q, u)));
-    } else if (nearest_inside && exact_ball(nearest_shape) && nearest > eps) {
-      nearest = std::min(second, exact_ball_inside_step(std::get<Ball>(nearest_shape), q, u, nearest, eps));
-    } else if (nearest_inside && !exact_ball(nearest_shape)) {
-      nearest = std::min(second, std::max(nearest, shape_inside_clearances(nearest_shape, q, u).ahead));
-    }
+    const double nearest = s.step(objects[s.nearest_k], q, u, eps, true, true);
+    const auto hit_k = static_cast<std::uint32_t>(s.hit_k);
     hit.steps = step + 1;
-    if (nearest_hit < eps) {
+    if (s.nearest_hit < eps) {
       const SceneObject& o = world.objects[hit_k];
       const glm::dvec2 uv = shape_pattern_uv(objects[hit_k].shape, q, q);
       if (o.cutout && pattern_factor(o.pattern, uv.x, uv.y) != 1.0) {
@@ -500,7 +501,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.point = q;
       hit.direction = u;
       hit.pattern_uv = uv;
-      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, hit_inside || exact_ball(objects[hit_k].shape));
+      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, s.hit_inside || exact_ball(objects[hit_k].shape));
       return hit;
     }
     t += passing.empty() ? nearest : std::max(nearest, 2.0 * eps);
