@@ -8,9 +8,10 @@ describes, so that a change cannot quietly grow them back into one file:
   - one march: within the march kernel (march.comp and march/*.glsl), a
     ray's positions are taken (sol_forward, sol_forward_zeta,
     sol_position_forward, quotient_forward, rk4_advance) by the march alone
-    (march/march.glsl, and march/plane_roots.glsl, which solves a ray's
-    crossings of planes x = c, y = c for it), and march/march.glsl defines
-    march() once.
+    (march/march.glsl; march/plane_roots.glsl, which solves a ray's
+    crossings of planes x = c, y = c for it; march/crowd.glsl, the march
+    through a crowd's tree of bounds, which march() takes for a crowd), and
+    march/march.glsl defines march() once.
 
 Usage: check_kernel_structure.py [SHADER_DIR]   (default: compute/shaders
 beside this script). Prints each violation; exits 1 if there is one, 2 on
@@ -25,7 +26,7 @@ MAX_FUNCTION_LINES = 150
 # The calls that advance a ray along its geodesic.
 POSITION_CALLS = ("sol_forward", "sol_forward_zeta", "sol_position_forward", "quotient_forward", "rk4_advance")
 MARCH_MODULE = "march/march.glsl"
-MARCH_FILES = (MARCH_MODULE, "march/plane_roots.glsl")
+MARCH_FILES = (MARCH_MODULE, "march/plane_roots.glsl", "march/crowd.glsl")
 
 # A function definition at the top level: a return type, a name, '(' and
 # (on this line or a later one) '{', never ';'.

@@ -180,50 +180,6 @@ TEST(BoundsTree, TheSearchFindsTheNearestBoxOfABruteForceSearch) {
 }
 
 
-// A world of every kind the list march takes, under kListedObjects objects:
-// bound and exact balls, boxes, tubes horizontal and vertical, planes x, y,
-// z, a cutout checkerboard, a mirror and a glowing ball.
-sol::World mixed_world() {
-  sol::World w;
-  const auto add = [&](sol::Shape shape, glm::dvec3 color) {
-    sol::SceneObject o;
-    o.shape = shape;
-    o.color = color;
-    w.objects.push_back(o);
-    return w.objects.size() - 1;
-  };
-  add(sol::PlaneZ{-1.5}, {0.7, 0.7, 0.7});
-  w.objects.back().pattern = sol::Pattern::Checker;
-  add(sol::PlaneX{6.0}, {0.5, 0.6, 0.8});
-  add(sol::PlaneY{-4.0}, {0.8, 0.6, 0.5});
-  add(sol::PlaneZ{2.5}, {0.6, 0.8, 0.6});
-  w.objects.back().pattern = sol::Pattern::Checker;
-  w.objects.back().cutout = true;
-  for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      const glm::dvec3 c(1.0 + 0.8 * i, -2.0 + 0.9 * j, -0.6 + 0.25 * ((i + j) % 4));
-      switch ((i + 2 * j) % 4) {
-        case 0: add(sol::Ball{c, 0.25, false}, {0.9, 0.3, 0.2}); break;
-        case 1: add(sol::Box{c, {0.15, 0.2, 0.25}}, {0.2, 0.8, 0.3}); break;
-        case 2: add(sol::Ball{c, 0.2, true}, {0.3, 0.4, 0.9}); break;
-        default: add(sol::Box{c, {0.25, 0.1, 0.1}}, {0.9, 0.9, 0.2}); break;
-      }
-    }
-  }
-  add(sol::Tube{{0.0, 1.8, 0.9}, {1.0, 0.0, 0.0}, 0.15}, {0.8, 0.2, 0.8});
-  add(sol::Tube{{2.5, 2.5, 0.0}, {0.0, 0.0, 1.0}, 0.2}, {0.2, 0.8, 0.8});
-  w.objects[add(sol::Ball{{3.0, 0.3, 1.2}, 0.4, false}, {0.9, 0.9, 0.9})].mirror = 0.8;
-  w.objects[add(sol::Ball{{2.0, -0.8, 1.4}, 0.3, false}, {1.0, 0.9, 0.7})].emission = {2.0, 1.6, 1.0};
-  sol::Light lamp;
-  lamp.type = sol::LightType::Point;
-  lamp.position = {1.5, 0.0, 2.0};
-  lamp.intensity = 3.0;
-  lamp.exact = true;
-  lamp.shadows = true;
-  w.lights.push_back(lamp);
-  return w;
-}
-
 TEST(CrowdMarch, TheTreesMarchSeesWhatTheListsMarchSees) {
   // The same world marched through its list, and, with tiny balls added far
   // below the floor (never seen: every ray and shadow ray stays above it),
@@ -234,10 +190,10 @@ TEST(CrowdMarch, TheTreesMarchSeesWhatTheListsMarchSees) {
   // and its colour and distance by what hit_epsilon moves them: at most
   // 0.5 % of pixels differ in object, colour by more than 1e-3 or distance
   // by more than 1e-3 (5 of 3072 do).
-  sol::World listed = mixed_world();
-  ASSERT_LE(listed.objects.size(), sol::kListedObjects);
+  sol::World listed = sol::test::mixed_world();
+  ASSERT_LE(listed.objects.size(), sol::MarchWorld::kMostListed);
   sol::World crowd = listed;
-  while (crowd.objects.size() <= sol::kListedObjects + 8) {
+  while (crowd.objects.size() <= sol::MarchWorld::kMostListed + 8) {
     sol::SceneObject hidden;
     hidden.shape = sol::Ball{{0.1 * static_cast<double>(crowd.objects.size()), 0.0, -9.0}, 0.05, false};
     crowd.objects.push_back(hidden);
@@ -249,9 +205,12 @@ TEST(CrowdMarch, TheTreesMarchSeesWhatTheListsMarchSees) {
   sol::RenderOptions options;
   options.width = 64;
   options.height = 48;
-  sol::CpuRenderer by_list(listed), by_tree(crowd);
-  ASSERT_EQ(sol::MarchWorld(listed).tree(), nullptr);
-  ASSERT_NE(sol::MarchWorld(crowd).tree(), nullptr);
+  // (The mixed world is listed as a whole, more than sol::kListedObjects.)
+  sol::CpuRenderer by_list, by_tree;
+  by_list.set_world(std::make_shared<const sol::MarchWorld>(listed, sol::MarchWorld::kMostListed));
+  by_tree.set_world(std::make_shared<const sol::MarchWorld>(crowd, sol::MarchWorld::kMostListed));
+  ASSERT_EQ(by_list.world().tree(), nullptr);
+  ASSERT_NE(by_tree.world().tree(), nullptr);
   const sol::RenderResult a = by_list.render(std::span(&camera, 1), options);
   const sol::RenderResult b = by_tree.render(std::span(&camera, 1), options);
   int differ = 0, hits = 0;
@@ -330,7 +289,7 @@ TEST(CrowdMarch, TenThousandBallsAreHitWhereAPlainSphereTracerHitsThem) {
 
 TEST(CrowdMarch, AQuotientHoldsAListOfObjects) {
   sol::World w;
-  w.objects = sol::test::scattered_balls(sol::kListedObjects);  // one more: the floor
+  w.objects = sol::test::scattered_balls(sol::kQuotientObjects);  // one more: the floor
   w.quotient = sol::Quotient::ZLoop;
   w.z_loop = 4.0;
   EXPECT_THROW(sol::validate(w), sol::InvalidArgument);

@@ -2111,12 +2111,16 @@ TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   EXPECT_THROW(sol::test::render(renderer, scene, 0, 10), sol::InvalidArgument);
-  // More objects than the kernel holds: not rendered here (NotImplemented,
-  // which --device auto takes as "render on the CPU"), and said so up front;
-  // more than any world holds: invalid on every renderer.
+  // An exact ball among more objects than the kernel lists: not rendered
+  // here (NotImplemented, which --device auto takes as "render on the
+  // CPU"), and said so up front, naming the object; more objects than any
+  // world holds: invalid on every renderer.
   scene.objects.resize(9, scene.objects[0]);
+  scene.objects[7].shape = sol::Ball{{0.0, 0.0, 1.0}, 0.3, true};
   EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::NotImplemented);
-  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene).find("objects: 9 objects"), std::string::npos);
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene).find("objects[7].exact: exact balls in a world of more than 8"),
+            std::string::npos);
+  scene.objects[7] = scene.objects[0];
   scene.objects.resize(sol::kMaxObjects + 1, scene.objects[0]);
   EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::InvalidArgument);
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "");  // (set_world says why)

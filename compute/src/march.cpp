@@ -86,13 +86,6 @@ Params world_params(const MarchWorld& prepared) {
   }
   // (A path render's prepare_frame puts World::path_bounces in z.)
   g.limits = glm::vec4(world.max_distance, world.hit_epsilon, world.mirror_bounces(), world.max_steps);
-  for (std::size_t k = 0; k < world.objects.size(); ++k) {
-    const SceneObject& o = world.objects[k];
-    const KernelShape shape = kernel_shape(o.shape);
-    g.objects[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
-    g.objects[k].color = vec4(o.color, o.glow_reach);
-    g.objects[k].material = vec4(o.emission, o.mirror);
-  }
   // Objects (the quotient: the images around D).
   g.counts.x = static_cast<int>(prepared.objects().size());
   return g;
@@ -125,8 +118,9 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   // Pattern phase: the camera position modulo 2, the common period of the
   // circles (1) and the checkerboard's parity (2), exact in double.
   e.camera_frac = vec4(p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
-  if (!quotient) {
-    // Camera-relative, as the CPU reference (sol::MarchWorld::seen_from).
+  if (!quotient && !prepared.tree()) {
+    // A listed world's objects camera-relative, as the CPU reference
+    // (sol::MarchWorld::seen_from); a crowd's the kernel sees from the eye.
     const std::vector<MarchObject> relative = prepared.seen_from(p);
     for (std::size_t k = 0; k < relative.size(); ++k) {
       const KernelShape shape = kernel_shape(relative[k].shape);
@@ -141,6 +135,59 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
                        l.type == LightType::Point && l.exact ? l.reach : 0.0);
   }
   return e;
+}
+
+// The scene objects' records (binding kBindingObjects), at least
+// kListedObjects of them (a listed world's kernel reads that many).
+std::vector<kernel::Object> pack_objects(const World& world) {
+  std::vector<kernel::Object> out(std::max(world.objects.size(), static_cast<std::size_t>(kListedObjects)));
+  for (std::size_t k = 0; k < world.objects.size(); ++k) {
+    const SceneObject& o = world.objects[k];
+    const KernelShape shape = kernel_shape(o.shape);
+    out[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
+    out[k].color = vec4(o.color, o.glow_reach);
+    out[k].material = vec4(o.emission, o.mirror);
+  }
+  return out;
+}
+
+// A crowd's tree of bounds and its objects in leaf order (bindings
+// kBindingCrowdNodes, kBindingCrowdItems; sol/vk/march_interface.h); a
+// stub record of each otherwise. The boxes are widened by a relative 1e-6
+// (and 1e-6 absolutely) against their rounding to float.
+struct PackedCrowd {
+  std::vector<kernel::CrowdNode> nodes;
+  std::vector<kernel::CrowdItem> items;
+};
+PackedCrowd pack_crowd(const MarchWorld& prepared) {
+  PackedCrowd out;
+  const BoundsTree* tree = prepared.tree();
+  if (!tree) {
+    out.nodes.resize(1);
+    out.items.resize(1);
+    return out;
+  }
+  constexpr double kFar = 1e30;  // an unbounded side (finite: float arithmetic on it stays finite)
+  const auto corner = [&](double v, double side) {
+    if (!std::isfinite(v) || std::abs(v) >= kFar) return side * kFar;
+    return v + side * (1e-6 * std::abs(v) + 1e-6);
+  };
+  for (const BoundsTree::Node& n : tree->nodes()) {
+    kernel::CrowdNode node;
+    node.lo = glm::vec4(corner(n.box.lo.x, -1.0), corner(n.box.lo.y, -1.0), corner(n.box.lo.z, -1.0), n.first);
+    node.hi = glm::vec4(corner(n.box.hi.x, 1.0), corner(n.box.hi.y, 1.0), corner(n.box.hi.z, 1.0), n.count);
+    out.nodes.push_back(node);
+  }
+  const World& world = prepared.world();
+  for (const std::uint32_t k : tree->items()) {
+    const SceneObject& o = world.objects[prepared.objects()[k].owner];
+    const KernelShape shape = kernel_shape(o.shape);
+    const bool cutout = o.cutout && shape.code == kernel::kObjectPlaneZ;
+    out.items.push_back({glm::vec4(shape.geometry), glm::vec4(shape.heading.x, shape.heading.y, shape.radius, shape.code),
+                         glm::vec4(static_cast<float>(prepared.objects()[k].owner), cutout ? pattern_code(o.pattern) : 0, 0.0f,
+                                   0.0f)});
+  }
+  return out;
 }
 
 // The quotient images (sol::quotient_images, shared with the CPU reference)
@@ -228,6 +275,10 @@ struct KernelVariant {
   // The quotient's lattice, SOL_LATTICE_CONSTANTS's floats as bits (all 0 in Sol).
   LatticeConstants lattice{};
   // A bit per flag: the features', the variant's, the build's.
+#define SOL_COUNT_FLAG(member, constant, id) +1
+  static_assert(0 SOL_MARCH_FEATURES(SOL_COUNT_FLAG) SOL_KERNEL_VARIANT_FLAGS(SOL_COUNT_FLAG) + 2 <= 32,
+                "a pipeline's key holds a bit per flag");
+#undef SOL_COUNT_FLAG
   std::uint32_t key() const {
     const MarchFeatures& f = features;
     std::uint32_t k = 0, bit = 1;
@@ -279,6 +330,16 @@ bool eye_inside_solid(const MarchWorld& prepared, std::span<const Camera> eyes) 
         const MarchObject& image = prepared.objects()[static_cast<std::size_t>(k)];
         if (is_solid(image.shape) && object_distance(image, p) < reach) return true;
       }
+    } else if (const BoundsTree* tree = prepared.tree()) {
+      // A crowd: the objects whose boxes lie within the reach (a box's
+      // bound is 0 at a point inside it, so the search's limit is above 0).
+      bool inside = false;
+      tree->search(eye.position, std::max(reach, 1e-9), [&](std::uint32_t k) {
+        const Shape& shape = prepared.objects()[k].shape;
+        inside = inside || (is_solid(shape) && shape_distance(shape, eye.position) < reach);
+        return inside ? 0.0 : std::max(reach, 1e-9);
+      });
+      if (inside) return true;
     } else {
       for (const SceneObject& o : prepared.world().objects) {
         if (is_solid(o.shape) && shape_distance(o.shape, eye.position) < reach) return true;
@@ -382,7 +443,10 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingColumns, DescriptorType::StorageBuffer},
                                           {kernel::kBindingLightImages, DescriptorType::StorageBuffer},
                                           {kernel::kBindingQueue, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingStats, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingStats, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingObjects, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingCrowdNodes, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingCrowdItems, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -467,7 +531,7 @@ struct MarchRenderer::Impl {
   // What a descriptor set holds: the identity (Buffer::id, StorageImage::id)
   // of the resource at each binding; 0 for none or a caller's raw image
   // view, which is written again at every use.
-  using SetContents = std::array<std::uint64_t, kernel::kBindingStats + 1>;
+  using SetContents = std::array<std::uint64_t, kernel::kBindingCount>;
   // A variant's pipelines: the march pass, and the deferred passes it takes;
   // each with options.frames_in_flight descriptor sets, one per frame in flight.
   struct Built {
@@ -526,6 +590,9 @@ struct MarchRenderer::Impl {
   std::string path_refused;
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns: a replaced one is retired (below).
+  std::optional<Buffer> objects;      // the scene objects' records
+  std::optional<Buffer> crowd_nodes;  // a crowd: its tree of bounds (else a stub)
+  std::optional<Buffer> crowd_items;  // a crowd: its objects in leaf order (else a stub)
   std::optional<Buffer> images;
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
@@ -601,6 +668,9 @@ struct MarchRenderer::Impl {
     built.bind(set, kernel::kBindingColumns, *columns);
     built.bind(set, kernel::kBindingQueue, *queue);
     built.bind(set, kernel::kBindingStats, stats);
+    built.bind(set, kernel::kBindingObjects, *objects);
+    built.bind(set, kernel::kBindingCrowdNodes, *crowd_nodes);
+    built.bind(set, kernel::kBindingCrowdItems, *crowd_items);
     return built;
   }
 
@@ -694,6 +764,17 @@ void MarchRenderer::set_world(const World& world) {
   const std::vector<float> stub(4, 0.0f);
   const SeedTable seeds = seed_table_of(f);
   // Frames still in flight read the old buffers: they are retired, not destroyed.
+  const std::vector<kernel::Object> objects = pack_objects(world);
+  const PackedCrowd crowd = pack_crowd(prepared);
+  m.retire(m.objects);
+  m.objects.emplace(m.context, objects.size() * sizeof(kernel::Object));
+  m.objects->write(objects);
+  m.retire(m.crowd_nodes);
+  m.crowd_nodes.emplace(m.context, crowd.nodes.size() * sizeof(kernel::CrowdNode));
+  m.crowd_nodes->write(crowd.nodes);
+  m.retire(m.crowd_items);
+  m.crowd_items.emplace(m.context, crowd.items.size() * sizeof(kernel::CrowdItem));
+  m.crowd_items->write(crowd.items);
   m.retire(m.images);
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
@@ -892,10 +973,17 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
       return message;
     }
   }
-  if (world.objects.size() > static_cast<std::size_t>(kMaxGpuObjects) && world.objects.size() <= sol::kMaxObjects) {
-    std::snprintf(message, sizeof message, "objects: %zu objects, more than the kernel's %d: they render on the CPU only",
-                  world.objects.size(), kMaxGpuObjects);
-    return message;
+  if (world.quotient == Quotient::None && world.objects.size() > sol::kListedObjects) {
+    // A crowd's march (march/crowd.glsl) draws every kind by its bound.
+    for (std::size_t i = 0; i < world.objects.size(); ++i) {
+      const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
+      if (b && b->exact) {
+        std::snprintf(message, sizeof message,
+                      "objects[%zu].exact: exact balls in a world of more than %zu objects render on the CPU only", i,
+                      sol::kListedObjects);
+        return message;
+      }
+    }
   }
   if (world.quotient == Quotient::Monodromy && std::abs(world.monodromy.trace()) > kMaxMonodromyTrace) {
     std::snprintf(message, sizeof message,

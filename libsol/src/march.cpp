@@ -352,7 +352,8 @@ std::string crowded_quotient_hint(const World& world) {
   return std::string("(fewer or smaller objects") + more;
 }
 
-MarchWorld::MarchWorld(const World& world) : m_world(world) {
+MarchWorld::MarchWorld(const World& world, std::size_t listed) : m_world(world) {
+  if (listed > kMostListed) throw InvalidArgument("sol::MarchWorld: the list march takes at most 64 objects");
   validate(world);
   m_features = features_of(world);
   m_lattice = world.lattice();
@@ -373,7 +374,10 @@ MarchWorld::MarchWorld(const World& world) : m_world(world) {
     }
   } else {
     for (std::size_t k = 0; k < world.objects.size(); ++k) m_objects.push_back({world.objects[k].shape, k});
-    if (m_objects.size() > kListedObjects) {
+    if (m_objects.size() > listed) {
+      // (The tree's march takes neither short cut of the list's.)
+      m_features.crowd = true;
+      m_features.heights_only = m_features.planes_xy_only = false;
       std::vector<CoordinateBox> boxes;
       boxes.reserve(m_objects.size());
       for (const MarchObject& o : m_objects) boxes.push_back(shape_coordinate_box(o.shape));

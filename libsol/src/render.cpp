@@ -347,7 +347,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (std::size_t k = 0; k < n; ++k) {
     if (is_solid(objects[k].shape)) solid |= std::uint64_t{1} << k;
   }
-  std::array<double, kListedObjects> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
+  std::array<double, MarchWorld::kMostListed> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
@@ -405,7 +405,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   return hit;
 }
 
-// The march in Sol through a world of more than kListedObjects objects:
+// The march in Sol through a world of more than its listed objects:
 // march_cover's, with the objects in world coordinates (the ray's point
 // left-translated by `origin`, an isometry, so distances and frame
 // components are those relative to it) and each step's objects those the
@@ -1087,7 +1087,12 @@ CpuRenderer& CpuRenderer::operator=(CpuRenderer&&) noexcept = default;
 
 void CpuRenderer::set_world(const World& world) {
   if (!m_held) m_held = std::make_unique<Held>();  // (a moved-from renderer made whole again)
-  auto prepared = std::make_shared<const MarchWorld>(world);  // (outside the lock: a quotient's field takes a while)
+  set_world(std::make_shared<const MarchWorld>(world));  // (outside the lock: a quotient's field takes a while)
+}
+
+void CpuRenderer::set_world(std::shared_ptr<const MarchWorld> prepared) {
+  if (!prepared) throw InvalidArgument("sol::CpuRenderer::set_world: no world");
+  if (!m_held) m_held = std::make_unique<Held>();
   const std::lock_guard lock(m_held->guard);
   m_held->world = std::move(prepared);
 }

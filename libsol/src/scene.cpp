@@ -38,8 +38,8 @@ void check_world(const World& s) {
   if (s.objects.size() > kMaxObjects) {
     field_error("objects", "at most " + std::to_string(kMaxObjects) + " objects, got " + std::to_string(s.objects.size()));
   }
-  if (s.quotient != Quotient::None && s.objects.size() > kListedObjects) {
-    field_error("objects", "a quotient world holds at most " + std::to_string(kListedObjects) + " objects, got " +
+  if (s.quotient != Quotient::None && s.objects.size() > kQuotientObjects) {
+    field_error("objects", "a quotient world holds at most " + std::to_string(kQuotientObjects) + " objects, got " +
                                std::to_string(s.objects.size()) + " (Sol itself holds up to " + std::to_string(kMaxObjects) +
                                ")");
   }

@@ -76,6 +76,11 @@ vec2 ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
   return kPatternCellsPerRadian * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
 }
 
+// Seen from the eye at p (sol::Ball::seen_from): its centre p⁻¹·c.
+void ball_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  rel.xyz = seen_point(rel.xyz, camera, camera_frac);
+}
+
 // ---- exact_ball: approached as a ball; its exact distance, normal and
 // clearance near the sphere are march/exact_balls.glsl's
 
@@ -137,6 +142,10 @@ vec3 exact_ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) 
 
 vec2 exact_ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
   return ball_pattern_uv(q, phase, rel, heading, radius);
+}
+
+void exact_ball_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  ball_seen_from(rel, heading, camera, camera_frac);
 }
 
 #endif  // SOL_KINDS_BALL_GLSL

@@ -71,4 +71,11 @@ vec2 box_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
   return cells * w.xy;
 }
 
+// Seen from the eye at p (sol::Box::seen_from): its centre p⁻¹·c; its
+// coordinate half widths (a e^{c_z}, b e^{-c_z}) with c_z - p_z for c_z.
+void box_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  rel.xyz = seen_point(rel.xyz, camera, camera_frac);
+  heading *= vec2(camera_frac.w, camera.w);
+}
+
 #endif  // SOL_KINDS_BOX_GLSL

@@ -9,11 +9,14 @@
 //       sol::KernelShape::bound; m.heading its heading);
 //   vec3 prefix_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from)
 //   vec2 prefix_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius)
+//   void prefix_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac)
+//       its record (world coordinates) seen from the eye (a crowd's,
+//       march/crowd.glsl; the host does a listed world's in double)
 // with rel, heading and radius from sol::KernelShape (geometry, heading,
 // radius), q and rel in the same coordinates, hz and hc the half
 // exponentials of q.z and rel.z. march/objects.glsl dispatches to them and
 // provides what they share (half_exp, distance_lower_bound,
-// clearance_roots, solid_normal, solid_relative). A new kind's file is
+// clearance_roots, solid_normal, solid_relative, seen_point). A new kind's file is
 // included here.
 #ifndef SOL_KINDS_GLSL
 #define SOL_KINDS_GLSL

@@ -34,6 +34,11 @@ vec3 plane_x_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 // Its own coordinates (y, z) of the world point (`phase`: modulo 2).
 vec2 plane_x_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.yz; }
 
+// Seen from the eye at p (sol::PlaneX::seen_from): c -> e^{-p_z} (c - p_x).
+void plane_x_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  rel.x = (rel.x - camera.x) * camera_frac.w;
+}
+
 // ---- plane_y: asinh(|y - c| e^{z})
 
 float plane_y_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
@@ -58,6 +63,11 @@ vec3 plane_y_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 
 vec2 plane_y_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.xz; }
 
+// c -> e^{p_z} (c - p_y).
+void plane_y_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  rel.x = (rel.x - camera.y) * camera.w;
+}
+
 // ---- plane_z: |z - c|, flat
 
 float plane_z_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) { return abs(q.z - rel.x); }
@@ -80,5 +90,8 @@ vec3 plane_z_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 }
 
 vec2 plane_z_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) { return phase.xy; }
+
+// c -> c - p_z.
+void plane_z_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) { rel.x -= camera.z; }
 
 #endif  // SOL_KINDS_PLANES_GLSL

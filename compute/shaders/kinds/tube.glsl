@@ -135,4 +135,11 @@ vec2 tube_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
   return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
 }
 
+// Seen from the eye at p (sol::Tube::seen_from): its axis point p⁻¹·a, a
+// horizontal axis's direction (h_x, h_y) scaled to (e^{-p_z} h_x, e^{p_z} h_y), a unit vector again.
+void tube_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  rel.xyz = seen_point(rel.xyz, camera, camera_frac);
+  if (int(rel.w) != kTubeVertical) heading = normalize(heading * vec2(camera_frac.w, camera.w));
+}
+
 #endif  // SOL_KINDS_TUBE_GLSL

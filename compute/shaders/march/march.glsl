@@ -30,10 +30,11 @@ const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0);
 // What a march found.
 struct MarchHit {
   int k;       // the object hit: the scene object in Sol, the image in the quotient; -1 for none
+  int item;    // a crowd's item hit (march/crowd.glsl); -1 otherwise
   float t;     // the arc length marched (to the hit)
   vec3 q;      // the point reached, in the march's coordinates
   vec3 from;   // the start of the ray's last segment (planes face its side)
-  vec3 u;      // with mirrors (HAS_MIRRORS): the ray's unit tangent at q, frame components
+  vec3 u;      // with mirrors, paths or an eye inside a solid: the ray's unit tangent at q, frame components
   int steps;   // positions evaluated
   // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
   int exact_k;
@@ -47,6 +48,7 @@ struct MarchHit {
 MarchHit march_hit_none(MarchResume resume) {
   MarchHit h;
   h.k = -1;
+  h.item = -1;
   h.t = resume.t;
   h.q = vec3(0.0);
   h.from = vec3(0.0);
@@ -109,11 +111,11 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, float hit_epsilon, float limit,
                     const bool passes, inout uint passing, inout float t, inout int hit) {
   if (nearest_hit < hit_epsilon) {
-    if (HAS_CUTOUT && params.objects[nearest_k].plane.w != 0.0) {
+    if (HAS_CUTOUT && scene_objects[nearest_k].plane.w != 0.0) {
       // (Full positions whenever the scene has cutouts.)
       const vec2 uv = object_pattern_uv(g_types[nearest_k], q, pattern_phase(q, g_eye_camera, g_eye_frac),
                                         g_relative[nearest_k], g_headings[nearest_k], g_radii[nearest_k]);
-      if (pattern_factor(int(params.objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
+      if (pattern_factor(int(scene_objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
         passing |= 1u << uint(nearest_k);  // between the discs: go through
         t += max(nearest, 2.0 * hit_epsilon);
         return !(t > limit);
@@ -403,8 +405,8 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   }
   MarchHit found = march_found(hit - 1, t, q, origin, steps, exact);
   // A mirror reflects the ray's tangent at the hit (the positions above may
-  // have left it out).
-  if ((HAS_MIRRORS || PATH_TRACING) && hit != 0) found.u = rk4 ? rk_u : sol_forward(ray, t).direction;
+  // have left it out); seen from inside a solid the normal faces it (surface_at).
+  if ((HAS_MIRRORS || PATH_TRACING || HAS_INSIDE) && hit != 0) found.u = rk4 ? rk_u : sol_forward(ray, t).direction;
   found.exact_inside = HAS_INSIDE && exact.k == hit - 1 && exact.known && length(exact.v) < g_radii[exact.k];
   return found;
 }
@@ -536,7 +538,7 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       local_t += proposal;
     }
     q = e;
-    if (HAS_MIRRORS || PATH_TRACING) u = forward.direction;
+    if (HAS_MIRRORS || PATH_TRACING || HAS_INSIDE) u = forward.direction;
     if (c.nearest < hit_epsilon) {
       hit_image = c.nearest_i;
       ended = true;
@@ -561,12 +563,15 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
   return found;
 }
 
+#include "crowd.glsl"
+
 // The march of any ray: from `origin` (march coordinates: relative to the
 // eye in Sol, world coordinates in D in the quotient) along the unit
 // `direction` up to arc length `limit`, picked up at `resume` (Sol; the
 // quotient's deferred rays start afresh).
 MarchHit march(vec3 origin, vec3 direction, float limit, MarchResume resume, const int purpose) {
   if (QUOTIENT) return march_quotient(origin, direction, limit, purpose);
+  if (CROWD) return march_crowd(origin, direction, limit, purpose);
   return march_sol(origin, direction, limit, resume, purpose);
 }
 

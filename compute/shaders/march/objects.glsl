@@ -116,6 +116,12 @@ vec3 solid_relative(vec3 q, vec4 rel) {
   return vec3((q.x - rel.x) / ez, (q.y - rel.y) * ez, q.z - rel.z);
 }
 
+// A world point seen from the eye at p (p⁻¹·w): camera = (p, e^{p_z}),
+// camera_frac.w = e^{-p_z} (Eye::camera, Eye::camera_frac).
+vec3 seen_point(vec3 w, vec4 camera, vec4 camera_frac) {
+  return vec3((w.x - camera.x) * camera_frac.w, (w.y - camera.y) * camera.w, w.z - camera.z);
+}
+
 #include "../kinds/kinds.glsl"
 
 // ---- The dispatch by kind. Each kind only when the world has it (its
@@ -141,6 +147,16 @@ float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 
 float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   return object_bound(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
 }
+
+// An object's record (world coordinates) as seen from the eye at p
+// (camera, camera_frac: seen_point's), as the host's Eye::relative and
+// Eye::heading hold a listed world's (there in double).
+#define SOL_KIND_SEEN_FROM(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) prefix##_seen_from(rel, heading, camera, camera_frac);
+void object_seen_from(int type, inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
+  SOL_OBJECT_KINDS(SOL_KIND_SEEN_FROM)
+}
+#undef SOL_KIND_SEEN_FROM
 
 // Whether the object is a solid (sol/object_kinds.h).
 #define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) || (solid && feature_##feature && type == code_name)
@@ -286,25 +302,26 @@ float cutout_gap_bound(int pattern, vec2 uv, float ez) {
 // ---- The objects of a world in Sol, relative to one eye (its uniforms
 // copied once: lavapipe does not hoist uniform loads out of loops).
 
-int g_count;
-int g_types[kMaxGpuObjects];
-float g_constants[kMaxGpuObjects];  // planes: c
-float g_radii[kMaxGpuObjects];
-vec4 g_relative[kMaxGpuObjects];
-vec2 g_headings[kMaxGpuObjects];
-int g_cutouts[kMaxGpuObjects];      // cutout planes z = c: their pattern code; else kPatternNone
-vec2 g_half_exp_z[kMaxGpuObjects];  // balls: the centre's half exponentials (half_exp)
+int g_count;  // a listed world's objects (0 for a crowd: march/crowd.glsl)
+int g_types[kListedObjects];
+float g_constants[kListedObjects];  // planes: c
+float g_radii[kListedObjects];
+vec4 g_relative[kListedObjects];
+vec2 g_headings[kListedObjects];
+int g_cutouts[kListedObjects];      // cutout planes z = c: their pattern code; else kPatternNone
+vec2 g_half_exp_z[kListedObjects];  // balls: the centre's half exponentials (half_exp)
 vec4 g_eye_camera, g_eye_frac;
 float g_rk4_step;  // RK4's substep (INTEGRATOR = 1)
 
 void load_objects(int eye) {
-  g_count = min(params.counts.x, kMaxGpuObjects);
-  for (int k = 0; k < kMaxGpuObjects; ++k) {
-    g_types[k] = int(params.objects[k].plane.x);
-    g_cutouts[k] = HAS_CUTOUT && g_types[k] == kObjectPlaneZ && params.objects[k].plane.w != 0.0
-                       ? int(params.objects[k].plane.z)
+  // (The host pads the objects' records to kListedObjects.)
+  g_count = CROWD ? 0 : min(params.counts.x, kListedObjects);
+  for (int k = 0; k < (CROWD ? 0 : kListedObjects); ++k) {
+    g_types[k] = int(scene_objects[k].plane.x);
+    g_cutouts[k] = HAS_CUTOUT && g_types[k] == kObjectPlaneZ && scene_objects[k].plane.w != 0.0
+                       ? int(scene_objects[k].plane.z)
                        : 0;
-    g_radii[k] = params.objects[k].plane.y;
+    g_radii[k] = scene_objects[k].plane.y;
     g_relative[k] = params.eyes[eye].relative[k];
     g_headings[k] = params.eyes[eye].heading[k].xy;
     g_constants[k] = g_relative[k].x;

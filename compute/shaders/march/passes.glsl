@@ -80,7 +80,7 @@ void march_pass() {
   if (h.k >= 0) {
     const Surface f = surface_at(h);
     if (DEFER_SHADING) {
-      defer_shading(pixel, h.q, h.t, f.n, h.k);
+      defer_shading(pixel, h.q, h.t, f.n, CROWD ? h.item : h.k);
     } else {
 #ifdef SOL_PATH_BUILD
       color = path_radiance(h, f, eye, uint(local.y * width + local.x));
@@ -122,10 +122,15 @@ void shade_pass() {
     const Image m = images[index];
     k = int(m.info.z);
     uv = object_pattern_uv(image_type(m), q, q, m.geometry, m.heading.xy, m.info.y);
+  } else if (CROWD) {  // the record holds the crowd's item
+    load_objects(eye);
+    const SeenObject o = crowd_item_seen(index);
+    k = o.object;
+    uv = object_pattern_uv(o.type, q, pattern_phase(q, g_eye_camera, g_eye_frac), o.rel, o.heading, o.radius);
   } else {
-    uv = object_pattern_uv(int(params.objects[k].plane.x), q,
+    uv = object_pattern_uv(int(scene_objects[k].plane.x), q,
                            pattern_phase(q, params.eyes[eye].camera, params.eyes[eye].camera_frac),
-                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, params.objects[k].plane.y);
+                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, scene_objects[k].plane.y);
     if (HAS_SHADOWS) load_objects(eye);
   }
   const vec4 color = shade_hit(k, n, uv, t, q, eye);

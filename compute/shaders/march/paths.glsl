@@ -60,7 +60,7 @@ vec3 cosine_direction(vec3 n, inout uvec2 state) {
 // by glow_pick_weight at x, a point y = c·exp(r w) of its sphere, w uniform
 // on S² (area density 1 / (4π J_c(w, r))), connected to the diffuse point x
 // by its geodesics up to the distance plus the ball's glow_reach
-// (params.objects[k].color.w; sol_connections, 0: the minimisers), each
+// (scene_objects[k].color.w; sol_connections, 0: the minimisers), each
 // weighed by its own J (sol_sphere_area_density) and counted where the
 // march along it first meets that ball at its length; combined with
 // reflection sampling by the balance heuristic.
@@ -68,7 +68,7 @@ const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS;
 
 // Scene object k (from the uniforms: a quotient's march loads no g_types).
 bool glowing(int k) {
-  return int(params.objects[k].plane.x) == kObjectExactBall && params.objects[k].material.rgb != vec3(0.0);
+  return int(scene_objects[k].plane.x) == kObjectExactBall && scene_objects[k].material.rgb != vec3(0.0);
 }
 
 // The targets: Sol's objects, or the quotient's images.
@@ -82,7 +82,7 @@ bool glow_target(int i, out int object, out vec3 centre, out float radius) {
     object = int(m.info.z);
     centre = m.geometry.xyz;
     radius = m.info.y;
-    return image_type(m) == kObjectExactBall && params.objects[object].material.rgb != vec3(0.0);
+    return image_type(m) == kObjectExactBall && scene_objects[object].material.rgb != vec3(0.0);
   }
   object = i;
   centre = g_relative[i].xyz;
@@ -143,7 +143,7 @@ float glow_density(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y) {
     }
   }
   vec4 found[SOL_FOUND_SLOTS];
-  const float reach = params.objects[k].color.w;
+  const float reach = scene_objects[k].color.w;
   if (!(nearest < 1e30) || sol_connections(seen_from(x, y), 0.0, found) == 0 ||
       L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) {
     return 0.0;
@@ -199,7 +199,7 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   const vec3 y = sol_translate(c, on_sphere.position);
   g.normal_y = normalize(on_sphere.direction);
   g.area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
-  g.count = sol_connections(seen_from(h.q, y), params.objects[g.k].color.w, g.ways);
+  g.count = sol_connections(seen_from(h.q, y), scene_objects[g.k].color.w, g.ways);
   return g;
 }
 
@@ -223,7 +223,7 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
     const float glow = g.area * spreading / max(cos_y, 1e-30), reflection = cos_x / SOL_PI;
     weight = glow / (glow + reflection);
   }
-  return g.factor * params.objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
+  return g.factor * scene_objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
 }
 
 // What one path from a camera ray's hit brings back (path_radiance in
@@ -260,7 +260,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   do {
     if (fresh) {
       fresh = false;
-      const vec4 material = params.objects[f.object].material;
+      const vec4 material = scene_objects[f.object].material;
       const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
       color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
       weight *= transmittance;

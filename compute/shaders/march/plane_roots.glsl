@@ -30,7 +30,7 @@ struct PlaneRoot {
   float t;      // its arc length
   vec3 q;       // the point there (coordinates of the march's q)
 };
-PlaneRoot plane_xy_roots(SolRay ray, vec3 start, int count, int types[kMaxGpuObjects], float constants[kMaxGpuObjects],
+PlaneRoot plane_xy_roots(SolRay ray, vec3 start, int count, int types[kListedObjects], float constants[kListedObjects],
                          float limit, float eps, int max_steps, inout int steps) {
   PlaneRoot r;
   r.solved = true;

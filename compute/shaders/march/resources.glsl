@@ -95,6 +95,20 @@ layout(set = 0, binding = kBindingColor, rgba32f) uniform image2D color_image;
 // (Read too: a later sample adds its marches that ran out of steps to w.)
 layout(set = 0, binding = kBindingHit, rgba32f) uniform image2D aov_hit;      // object, distance, steps, out of steps
 layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
+// The scene objects' appearance and kind (Object records, one per object).
+layout(std430, set = 0, binding = kBindingObjects) readonly buffer SceneObjects {
+  Object scene_objects[];
+};
+
+// A crowd (CROWD): its tree of bounds and its objects in leaf order, in
+// world coordinates (march/crowd.glsl).
+layout(std430, set = 0, binding = kBindingCrowdNodes) readonly buffer CrowdNodes {
+  CrowdNode crowd_nodes[];
+};
+layout(std430, set = 0, binding = kBindingCrowdItems) readonly buffer CrowdItems {
+  CrowdItem crowd_items[];
+};
+
 // Quotient scenes: the images of the objects around D, in world coordinates
 // (sol::quotient_images).
 layout(std430, set = 0, binding = kBindingImages) readonly buffer Images {

@@ -115,7 +115,7 @@ vec3 light_received(vec3 n, vec3 q, int eye) {
 }
 
 // The surface's albedo: its colour times its pattern.
-vec3 albedo(int k, vec2 uv) { return params.objects[k].color.rgb * pattern_factor(int(params.objects[k].plane.z), uv.x, uv.y); }
+vec3 albedo(int k, vec2 uv) { return scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y); }
 
 // The light object k's surface reflects diffusely at q, with plane
 // coordinates uv, before fog (shade_hit adds the fog over the arc length).
@@ -161,10 +161,18 @@ Surface surface_at(MarchHit h) {
     f.object = int(m.info.z);
     f.world = q;
   } else {  // the object's, relative to the eye
-    type = g_types[h.k];
-    rel = g_relative[h.k];
-    heading = g_headings[h.k];
-    radius = g_radii[h.k];
+    if (CROWD) {
+      const SeenObject o = crowd_item_seen(h.item);
+      type = o.type;
+      rel = o.rel;
+      heading = o.heading;
+      radius = o.radius;
+    } else {
+      type = g_types[h.k];
+      rel = g_relative[h.k];
+      heading = g_headings[h.k];
+      radius = g_radii[h.k];
+    }
     phase = pattern_phase(q, g_eye_camera, g_eye_frac);
     f.object = h.k;
     // World coordinates: camera * q = (x_c + e^{z_c} q.x, y_c + e^{-z_c} q.y, z_c + q.z).
@@ -174,9 +182,12 @@ Surface surface_at(MarchHit h) {
                                                                          : object_normal(type, q, rel, heading, radius, h.from);
   // A solid seen from inside: its normal faces the ray (as the CPU's). An
   // exact ball's where the exact solve's geodesic from the centre is
-  // shorter than the radius, another solid's where its bound is negative.
+  // shorter than the radius; another solid's where its bound grows along
+  // the ray (it falls towards a surface met from outside): the float
+  // march's last step may end a little either side of the surface, where
+  // the bound's sign would flip the normal at random.
   f.inside = HAS_INSIDE && ((type == kObjectExactBall && h.exact_k == h.k && h.exact_inside) ||
-                            (inside_by_bound(type) && object_bound(type, q, rel, heading, radius) < 0.0));
+                            (inside_by_bound(type) && dot(f.n, h.u) > 0.0));
   if (f.inside) f.n = -f.n;
   f.uv = object_pattern_uv(type, q, phase, rel, heading, radius);
   return f;
@@ -187,7 +198,7 @@ Surface surface_at(MarchHit h) {
 // times the fog's transmittance. Written as shade_hit's fog, so that a hit
 // without emission or mirror (weight 1) adds exactly what shade_hit gives.
 float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
-  const vec4 material = params.objects[f.object].material;
+  const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye);
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
@@ -209,7 +220,7 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
   // call, and each holds a march. Tested at its end: see march.comp.)
   do {
     weight *= radiance_of_hit(h, f, eye, weight, color);
-    alive = HAS_MIRRORS && params.objects[f.object].material.w > 0.0 && bounce < bounces;
+    alive = HAS_MIRRORS && scene_objects[f.object].material.w > 0.0 && bounce < bounces;
     if (alive) {
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);

@@ -13,12 +13,11 @@
 #include <span>
 #include <vector>
 
-#include <cmath>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "sol/coordinate_box.hpp"
+#include "sol/kernel_constants.h"
 
 namespace sol {
 
@@ -34,7 +33,7 @@ class BoundsTree {
   /// The most items a leaf holds.
   static constexpr std::size_t kLeafSize = 4;
   /// The deepest a tree grows (a median split halves the items: 2^40 of them).
-  static constexpr int kMaxDepth = 40;
+  static constexpr int kMaxDepth = kernel::kTreeMaxDepth;
 
   /// The tree over `boxes` (item i is boxes[i]; at least one box). Each
   /// node splits its items at the median of their boxes' anchors

@@ -27,6 +27,17 @@ SOL_CONSTANT(SOL_REAL, kPhi, 1.6180339887498948482);
 /// The height of the fundamental domain D, the z of γ3: 2 ln φ.
 SOL_CONSTANT(SOL_REAL, kLatticeHeight, 0.96242365011920689500);
 
+// ---- The objects of a world in Sol
+/// A Sol world of up to this many objects is marched through its list,
+/// every object at every step (the kernel holds their records relative to
+/// each eye in its uniforms); a larger one, on both devices, through its
+/// tree of bounds (sol::BoundsTree, docs/renderer.md "Crowds").
+SOL_CONSTANT(int, kListedObjects, 8);
+/// The deepest a tree of bounds grows (sol::BoundsTree; a median split
+/// halves the items, so 2^40 of them): the kernel's search holds a stack
+/// of two more nodes.
+SOL_CONSTANT(int, kTreeMaxDepth, 40);
+
 // ---- The march in the quotient (docs/renderer.md "The quotient")
 /// The longest march step: only the objects' images a step this long can
 /// reach from D are listed (sol::quotient_images). Below kLatticeHeight,

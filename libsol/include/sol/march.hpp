@@ -125,8 +125,13 @@ std::string crowded_quotient_hint(const World& world);
 /// What depends on the camera is not here.
 class MarchWorld {
  public:
-  /// Validates the world (sol::validate) and prepares it.
-  explicit MarchWorld(const World& world);
+  /// The most objects the list march takes (its masks of passed objects are 64 bits).
+  static constexpr std::size_t kMostListed = 64;
+  /// Validates the world (sol::validate) and prepares it. A Sol world of
+  /// more than `listed` objects (sol::kListedObjects, the kernel's too;
+  /// at most kMostListed) is marched through its tree of bounds: a larger
+  /// `listed` is for comparing the two marches on one world.
+  explicit MarchWorld(const World& world, std::size_t listed = kListedObjects);
 
   const World& world() const { return m_world; }
   const MarchFeatures& features() const { return m_features; }
@@ -138,8 +143,9 @@ class MarchWorld {
   /// Sol: the objects relative to `origin` (left-translated by origin⁻¹),
   /// what a ray from `origin` marches through.
   std::vector<MarchObject> seen_from(const glm::dvec3& origin) const;
-  /// Sol worlds of more than kListedObjects objects: the tree of bounds over
-  /// objects() (item k is objects()[k]); null otherwise.
+  /// Sol worlds of more than the listed objects (the constructor's
+  /// `listed`): the tree of bounds over objects() (item k is
+  /// objects()[k]); null otherwise.
   const BoundsTree* tree() const { return m_tree.get(); }
   /// The quotient: the distance field of objects() over D (null in Sol).
   const QuotientField* field() const { return m_field.get(); }

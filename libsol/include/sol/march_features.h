@@ -37,7 +37,8 @@
   X(light_reach,    HAS_LIGHT_REACH,      17) /* exact point lights or glowing balls with a reach: the longer connections */   \
   X(shadows,        HAS_SHADOWS,          15) /* exact point lights with shadows */ \
   X(mirrors,        HAS_MIRRORS,          43) /* mirrors: rays go on along the reflected geodesic */ \
-  X(emission,       HAS_EMISSION,         44) /* glowing objects */
+  X(emission,       HAS_EMISSION,         44) /* glowing objects */                                           \
+  X(crowd,          CROWD,                46) /* a Sol world of more than kListedObjects objects: marched through its tree of bounds */
 // clang-format on
 
 #endif  // SOL_MARCH_FEATURES_H

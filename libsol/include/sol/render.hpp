@@ -77,6 +77,9 @@ class CpuRenderer final : public Renderer {
   /// renders: that render finishes with the world it started with (each
   /// render, march and shade takes the world as it is when it starts).
   void set_world(const World& world) override;
+  /// The same with a world prepared already (for instance through its list
+  /// beyond sol::kListedObjects, to compare the two marches).
+  void set_world(std::shared_ptr<const MarchWorld> prepared);
   /// The prepared world (logic_error before set_world), valid until the
   /// next set_world.
   const MarchWorld& world() const override;

@@ -39,11 +39,13 @@ enum class Quotient { None, Golden, Monodromy, ZLoop, XYLoops };
 /// visits the objects of a large world through their tree of bounds
 /// (sol/bounds_tree.hpp).
 inline constexpr std::size_t kMaxObjects = std::size_t{1} << 20;
-/// A Sol world of up to this many objects is marched through its list,
-/// every object at every step; a larger one through its tree of bounds
-/// (sol::MarchWorld::tree). A quotient's images stay a list
-/// (sol::QuotientField), so a quotient world holds at most this many objects.
-inline constexpr std::size_t kListedObjects = 64;
+/// A Sol world of up to this many objects is marched through its list; a
+/// larger one through its tree of bounds (sol::MarchWorld::tree), on the
+/// CPU and the kernel alike (sol/kernel_constants.h).
+inline constexpr std::size_t kListedObjects = static_cast<std::size_t>(kernel::kListedObjects);
+/// A quotient's images stay a list (sol::QuotientField), so a quotient
+/// world holds at most this many objects.
+inline constexpr std::size_t kQuotientObjects = 64;
 
 /// Everything that is seen, and how the march looks for it.
 struct World {

@@ -75,11 +75,10 @@ struct MarchOptions {
 /// The most frames a MarchRenderer keeps in flight (MarchOptions::frames_in_flight).
 inline constexpr int kMaxFramesInFlight = 8;
 
-/// Most objects a scene may hold on the GPU, and most images of the objects
-/// around the domain in a quotient scene (sol::quotient_images): the
-/// kernel's limits (sol/vk/march_interface.h).
+/// Most images of the objects around the domain in a quotient scene
+/// (sol::quotient_images): the kernel's limit (sol/vk/march_interface.h).
+/// (A Sol world holds as many objects as on the CPU, sol::kMaxObjects.)
 using kernel::kMaxGpuImages;
-using kernel::kMaxGpuObjects;
 
 /// A presenter's 8-bit image that MarchRenderer::record writes the colour
 /// into, sRGB-encoded (standard sRGB OETF, clamped to [0, 1]): for example a
@@ -126,8 +125,9 @@ class MarchRenderer final : public Renderer {
 
   /// Prepares `world` for every later frame. Throws sol::InvalidArgument for
   /// an invalid world (one the CPU renderer refuses too); sol::NotImplemented
-  /// for a world the kernel does not render (supports(): more than
-  /// kMaxGpuObjects objects, in the quotient more than kMaxGpuImages images,
+  /// for a world the kernel does not render (supports(): exact balls in a
+  /// world of more than sol::kListedObjects objects, in the quotient more
+  /// than kMaxGpuImages images,
   /// ...), which the CPU renderer does. Frames recorded before
   /// may still run: they keep reading the previous world's buffers, which
   /// live until they are done (MarchOptions::frames_in_flight).
@@ -215,8 +215,8 @@ class MarchRenderer final : public Renderer {
   /// at 10^4, 36 % at 10^9 + 1; test Kernel.LargeMonodromyTracesRenderOnTheCpu).
   static constexpr long long kMaxMonodromyTrace = 200;
 
-  /// Whether the kernel renders the world: all but those of more than
-  /// kMaxGpuObjects objects, monodromies of |trace| above
+  /// Whether the kernel renders the world: all but those with exact balls
+  /// among more than sol::kListedObjects objects, monodromies of |trace| above
   /// kMaxMonodromyTrace, those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach

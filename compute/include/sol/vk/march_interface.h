@@ -14,6 +14,14 @@
 #include "sol/kernel_constants.h"
 #include "sol/march_features.h"
 
+// (kListedObjects of sol/kernel_constants.h, named so in both languages:
+// in C++ sol::kListedObjects, libsol's size_t, is in scope too.)
+#ifdef __cplusplus
+#define SOL_LISTED_OBJECTS sol::kernel::kListedObjects
+#else
+#define SOL_LISTED_OBJECTS kListedObjects
+#endif
+
 #ifdef __cplusplus
 #include <cstddef>
 #include <glm/vec4.hpp>
@@ -37,6 +45,11 @@ SOL_CONSTANT(int, kBindingColumns, 8);      ///< storage buffer: the ODS eyes' C
 SOL_CONSTANT(int, kBindingLightImages, 9);  ///< storage buffer: the quotient's light images (vec4, xyz world)
 SOL_CONSTANT(int, kBindingQueue, 10);       ///< storage buffer: the deferred passes' lists (QueueHeader, then records)
 SOL_CONSTANT(int, kBindingStats, 11);       ///< storage buffer: Stats, what the frame's rays counted
+SOL_CONSTANT(int, kBindingObjects, 12);     ///< storage buffer (read-only): the scene objects' Object records
+SOL_CONSTANT(int, kBindingCrowdNodes, 13);  ///< storage buffer (read-only): a crowd's tree of bounds (CrowdNode)
+SOL_CONSTANT(int, kBindingCrowdItems, 14);  ///< storage buffer (read-only): a crowd's objects in leaf order (CrowdItem)
+/// The number of bindings (the last one's, plus one).
+SOL_CONSTANT(int, kBindingCount, 15);
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
@@ -114,8 +127,10 @@ SOL_CONSTANT(int, kPathSamplingGlowOnly, 2);
 SOL_CONSTANT(SOL_REAL, kZetaLeastMu, 0.01);
 
 // ---- Limits
-/// Most objects a scene may hold on the GPU.
-SOL_CONSTANT(int, kMaxGpuObjects, 8);
+// (A Sol world holds up to sol::kMaxObjects objects on the kernel as on the
+// CPU: up to kListedObjects (sol/kernel_constants.h) relative to each eye
+// in its Eye record, more through the tree of bounds, bindings
+// kBindingCrowdNodes and kBindingCrowdItems.)
 /// Most images of the objects around the domain in a quotient scene
 /// (sol::quotient_images; lattice-balls has 50, lattice-pillars 27; a
 /// world with more than kQuotientLongStepImages takes the short step).
@@ -133,7 +148,8 @@ SOL_CONSTANT(int, kGroupSize, 8);
 // ---- The parameters (binding kBindingParams: a read-only storage buffer, std430;
 // vec4 and ivec4 members only, so no padding and the offsets of std140)
 
-/// An object's appearance and kind.
+/// A scene object's appearance and kind (binding kBindingObjects, std430;
+/// one per scene object, whatever the world's size).
 struct Object {
   vec4 plane;     ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
   vec4 color;     ///< rgb: linear colour; w: a glowing exact ball's glow_reach (next-event estimation)
@@ -150,8 +166,11 @@ struct Eye {
   vec4 camera_frac;  ///< xyz: camera position modulo 2 (the patterns' phase, from double); w: e^{-z}
   vec4 window;       ///< sol::image_window: s_x at the left and right edges, s_y at the top and bottom
   vec4 projection;   ///< x: kProjection* code, y: a fisheye's half angle across its image circle (radians)
-  vec4 relative[kMaxGpuObjects];  ///< relative to the eye: planes (c, 0, 0, 0), balls (centre, 0), tubes (point, axis code)
-  vec4 heading[kMaxGpuObjects];   ///< horizontal tubes: xy the axis's unit coordinate direction relative to the eye
+  /// A listed world's objects (at most kListedObjects; a crowd's are in
+  /// bindings 13 and 14) relative to the eye: sol::KernelShape's geometry
+  /// and heading of the object seen from the eye (computed in double).
+  vec4 relative[SOL_LISTED_OBJECTS];
+  vec4 heading[SOL_LISTED_OBJECTS];
   vec4 lights[kMaxLights];        ///< directional: unit direction; point: position relative to the eye
                                   ///< (world in the quotient); w: an exact light's reach
 };
@@ -176,7 +195,6 @@ struct Params {
   ivec4 light_image_first;
   ivec4 light_image_count;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
-  Object objects[kMaxGpuObjects];
   /// Path tracing (the march_path builds, march/paths.glsl): xy the seed's low and high 32 bits, z this
   /// dispatch's sample (the index of the pixel's path), w the sampling of
   /// glowing balls (kPathSampling*).
@@ -198,6 +216,23 @@ struct Image {
   /// invariant under scaling h, so the scale carries the radius,
   /// |k h_x| + |k h_y|, and the first word's sign the axis).
   vec4 bound;
+};
+
+// ---- A crowd (a Sol world of more than kListedObjects objects): its tree
+// of bounds (sol::BoundsTree, depth-first: an inner node's first child is
+// the next node), binding kBindingCrowdNodes, and its objects in the
+// tree's leaf order, binding kBindingCrowdItems, in world coordinates
+// (the kernel sees them from the eye as it reads them:
+// march/crowd.glsl). Indices and counts are floats, exact below 2^24
+// (sol::kMaxObjects is 2^20).
+struct CrowdNode {
+  vec4 lo;  ///< xyz: the node's coordinate box's least corner (±1e30 where unbounded); w: a leaf's first item, an inner node's second child
+  vec4 hi;  ///< xyz: its largest corner; w: a leaf's item count, 0 for an inner node
+};
+struct CrowdItem {
+  vec4 geometry;  ///< sol::KernelShape::geometry (world coordinates)
+  vec4 shape;     ///< xy: sol::KernelShape::heading; z: radius; w: object code (kObject*)
+  vec4 info;      ///< x: the scene object (0-based); y: a cutout plane's pattern code, else kPatternNone
 };
 
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
@@ -249,13 +284,13 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 3 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
-                  offsetof(Eye, heading) == (7 + kMaxGpuObjects) * 16 &&
-                  offsetof(Eye, lights) == (7 + 2 * kMaxGpuObjects) * 16 &&
-                  sizeof(Eye) == (7 + 2 * kMaxGpuObjects + kMaxLights) * 16,
+                  offsetof(Eye, heading) == (7 + SOL_LISTED_OBJECTS) * 16 &&
+                  offsetof(Eye, lights) == (7 + 2 * SOL_LISTED_OBJECTS) * 16 &&
+                  sizeof(Eye) == (7 + 2 * SOL_LISTED_OBJECTS + kMaxLights) * 16,
               "std140 layout of Eye");
 static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, counts) == 2 * sizeof(Eye) + 3 * 16 &&
                   offsetof(Params, pixel_sample) == 2 * sizeof(Eye) + 4 * 16 &&
@@ -263,8 +298,8 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, light_shadows) == 2 * sizeof(Eye) + 6 * 16 &&
                   offsetof(Params, light_image_count) == 2 * sizeof(Eye) + 8 * 16 &&
                   offsetof(Params, light_color) == 2 * sizeof(Eye) + 9 * 16 &&
-                  offsetof(Params, objects) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + kMaxGpuObjects * sizeof(Object) + 16,
+                  offsetof(Params, path) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + 16,
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif

@@ -1,0 +1,264 @@
+// The march through a crowd (CROWD: a Sol world of more than
+// kListedObjects objects), the GLSL twin of march_crowd in
+// libsol/src/render.cpp: at each step the objects come from the world's
+// tree of bounds (sol::BoundsTree, bindings kBindingCrowdNodes and
+// kBindingCrowdItems, in world coordinates): a node whose box's distance
+// bound from the ray's point is not below the runner-up found so far is
+// skipped with all it holds. The nodes and objects are seen from the eye
+// as they are read (seen_point, object_seen_from: left translation by the
+// eye's position⁻¹ maps a coordinate box to a coordinate box), so the
+// march, the shading and the shadow rays stay in the eye's coordinates as
+// in a listed world. The surfaces a ray passes (cutout planes between
+// their discs, the surface a shadow ray leaves) are a short list of items.
+#ifndef SOL_MARCH_CROWD_GLSL
+#define SOL_MARCH_CROWD_GLSL
+
+// A crowd's object as the march sees it: its kind's record seen from the
+// eye (as a listed world's g_* arrays), its cutout pattern and scene object.
+struct SeenObject {
+  int type;
+  vec4 rel;
+  vec2 heading;
+  float radius;
+  vec2 hc;     // rel.z's half exponentials (half_exp)
+  int cutout;  // a cutout plane z = c: its pattern code; else kPatternNone
+  int object;  // the scene object (0-based)
+};
+
+// Item i (leaf order) seen from the eye of load_objects.
+SeenObject crowd_item_seen(int i) {
+  const CrowdItem c = crowd_items[i];
+  SeenObject o;
+  o.type = int(c.shape.w);
+  o.rel = c.geometry;
+  o.heading = c.shape.xy;
+  o.radius = c.shape.z;
+  object_seen_from(o.type, o.rel, o.heading, g_eye_camera, g_eye_frac);
+  o.hc = HAS_SOLIDS ? half_exp(o.rel.z) : vec2(1.0);
+  o.cutout = HAS_CUTOUT ? int(c.info.y) : kPatternNone;
+  o.object = int(c.info.x);
+  return o;
+}
+
+// The distance the march takes for the object at q (hz: q.z's half
+// exponentials): its bound, seen from inside where q is inside a solid
+// drawn by its bound (`inside`), at least a cutout plane's gap bound.
+float crowd_distance(SeenObject o, vec3 q, vec2 hz, out bool inside) {
+  const float raw = object_bound(o.type, q, o.rel, o.heading, o.radius, hz, o.hc);
+  inside = inside_by_bound(o.type) && raw < 0.0;
+  float d = inside ? -raw : raw;
+  if (HAS_CUTOUT && o.cutout != kPatternNone) {
+    d = max(d, cutout_gap_bound(o.cutout, pattern_phase(q, g_eye_camera, g_eye_frac).xy, g_eye_camera.w * exp(q.z)));
+  }
+  return d;
+}
+
+// sol::box_distance_lower_bound in float: the hyperbolic distance from q's
+// projection on the (x, z) plane (side 1; e = e^{-q_z}) or the (y, z)
+// plane (side -1; e = e^{q_z}) to the box's, a rectangle of horizontal gap
+// g and heights [lo, hi]. (Evaluated at the float root of its convex
+// minimisation in the height, it exceeds the exact minimum by a term of
+// the root's error squared, far below float rounding.)
+float projected_box_distance(float g, float qz, float e, float side, float lo, float hi) {
+  if (g == 0.0) return abs(clamp(qz, lo, hi) - qz);
+  const float w = g * e, a = 0.5 * w * w;
+  const float s = clamp(qz + side * 0.5 * log(1.0 + 2.0 * a), lo, hi) - qz;
+  const float h = sinh(0.5 * s);
+  return 2.0 * asinh(sqrt(h * h + 0.5 * a * exp(-side * s)));
+}
+
+// Node n's box seen from the eye, and its bound from q (e = (e^{-q_z}, e^{q_z})).
+float crowd_node_bound(int n, vec3 q, vec2 e) {
+  const CrowdNode node = crowd_nodes[n];
+  const vec3 lo = seen_point(node.lo.xyz, g_eye_camera, g_eye_frac);
+  const vec3 hi = seen_point(node.hi.xyz, g_eye_camera, g_eye_frac);
+  const float gx = max(0.0, max(lo.x - q.x, q.x - hi.x));
+  const float gy = max(0.0, max(lo.y - q.y, q.y - hi.y));
+  return max(projected_box_distance(gx, q.z, e.x, 1.0, lo.z, hi.z), projected_box_distance(gy, q.z, e.y, -1.0, lo.z, hi.z));
+}
+
+// One step's nearest objects (sol's StepNearest in libsol/src/render.cpp):
+// the least distance and its item, the runner-up's distance, and the least
+// among the hit candidates (the items not being passed).
+struct CrowdStep {
+  float nearest, second, nearest_hit;
+  int nearest_i, hit_i;
+  bool nearest_inside, hit_inside;
+};
+
+CrowdStep crowd_step_none() { return CrowdStep(1e30, 1e30, 1e30, 0, 0, false, false); }
+
+void crowd_consider(inout CrowdStep s, int i, float d, bool inside, bool candidate) {
+  if (d < s.nearest) {
+    s.second = s.nearest;
+    s.nearest = d;
+    s.nearest_i = i;
+    s.nearest_inside = inside;
+  } else {
+    s.second = min(s.second, d);
+  }
+  if (candidate && d < s.nearest_hit) {
+    s.nearest_hit = d;
+    s.hit_i = i;
+    s.hit_inside = inside;
+  }
+}
+
+// How near the runner-up a node's bound may be taken for its objects
+// (march_crowd's kCrowdCover): seen from above or below a crowd, its
+// objects are nearly equidistant.
+const float kCrowdCover = 0.8;
+
+bool crowd_passed(ivec4 passed, int i) { return any(equal(passed, ivec4(i))); }
+
+// The tree's search from q (sol::BoundsTree::search, nearer child first):
+// every item whose node's bound is below the limit, max(runner-up,
+// hit_epsilon), that is not in `passed`, into s; a node no nearer than the
+// nearest, within kCrowdCover of the runner-up and clear of hit_epsilon is
+// taken whole (its bound as the runner-up). With `starts` instead the
+// items within 2 hit_epsilon of q (the surfaces a shadow ray leaves, up to
+// four), from the nodes within `reach`.
+void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool starts, float reach, inout CrowdStep s,
+                  inout ivec4 started) {
+  const vec2 e = vec2(hz.y * hz.y, hz.x * hz.x);  // e^{-q_z}, e^{q_z}
+  int stack_node[kTreeMaxDepth + 2];
+  float stack_bound[kTreeMaxDepth + 2];
+  int top = 0;
+  stack_node[0] = 0;
+  stack_bound[0] = crowd_node_bound(0, q, e);
+  top = 1;
+  float limit = starts ? reach : max(s.second, hit_epsilon);
+  int held = 0;
+  while (top > 0) {
+    --top;
+    const int n = stack_node[top];
+    const float bound = stack_bound[top];
+    if (!(bound < limit)) continue;
+    if (!starts && bound >= s.nearest && bound >= kCrowdCover * s.second && bound > 2.0 * hit_epsilon) {
+      s.second = min(s.second, bound);  // taken whole
+      limit = max(s.second, hit_epsilon);
+      continue;
+    }
+    const CrowdNode node = crowd_nodes[n];
+    const int count = int(node.hi.w), first = int(node.lo.w);
+    if (count > 0) {
+      for (int i = first; i < first + count; ++i) {
+        if (starts) {
+          bool inside;
+          const float d = crowd_distance(crowd_item_seen(i), q, hz, inside);
+          if (d < 2.0 * hit_epsilon && held < 4) started[held++] = i;
+        } else if (!crowd_passed(passed, i)) {
+          bool inside;
+          const float d = crowd_distance(crowd_item_seen(i), q, hz, inside);
+          crowd_consider(s, i, d, inside, true);
+          limit = max(s.second, hit_epsilon);
+        }
+      }
+      continue;
+    }
+    const int a = n + 1, b = first;
+    const float da = crowd_node_bound(a, q, e), db = crowd_node_bound(b, q, e);
+    // The nearer child on top, visited first.
+    const int near_n = da <= db ? a : b, far_n = da <= db ? b : a;
+    const float near_d = min(da, db), far_d = max(da, db);
+    if (far_d < limit && top < kTreeMaxDepth + 2) {
+      stack_node[top] = far_n;
+      stack_bound[top++] = far_d;
+    }
+    if (near_d < limit && top < kTreeMaxDepth + 2) {
+      stack_node[top] = near_n;
+      stack_bound[top++] = near_d;
+    }
+  }
+}
+
+// The march of a ray from `origin` (relative to the eye) with unit
+// direction `direction` up to arc length `limit` through the crowd (as
+// march_sol; closed-form positions, every step's full position). The hit's
+// k is the scene object, its `item` the crowd's item.
+MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose) {
+  const bool camera = purpose == kMarchCamera;
+  const float hit_epsilon = params.limits.y;
+  const int max_steps = int(params.limits.w);
+  const bool translated = !camera || HAS_ODS;
+  MarchHit h = march_hit_none(kMarchFromStart);
+  h.from = origin;
+  SolRay ray = sol_ray(direction);
+  sol_ray_integrals(ray);
+  ivec4 passing = ivec4(-1);  // the items it passes
+  if (!camera) {
+    // (A solid's distance may be below its box's bound near its surface,
+    // where the bound's gradient is short: the boxes within a generous reach.)
+    CrowdStep unused = crowd_step_none();
+    crowd_search(origin, half_exp(origin.z), hit_epsilon, passing, true, max(2.0 * hit_epsilon, 0.01), unused, passing);
+  }
+  float t = 0.0;
+  vec3 q = origin, u = direction;
+  int hit_item = -1, steps = 0;
+  bool ended = false;
+  for (int step = 0; step < max_steps; ++step) {
+    const SolForward forward = sol_forward(ray, t);
+    q = translated ? sol_translate(origin, forward.position) : forward.position;
+    u = forward.direction;
+    const vec2 hz = half_exp(q.z);
+    CrowdStep s = crowd_step_none();
+    // The passed surfaces first (until each is 2 hit_epsilon away again,
+    // or, seen from inside, the ray heads for a face of it), then the tree.
+    const ivec4 passed = passing;
+    for (int j = 0; j < 4; ++j) {
+      if (passed[j] < 0) continue;
+      const SeenObject o = crowd_item_seen(passed[j]);
+      bool inside;
+      const float d = crowd_distance(o, q, hz, inside);
+      bool ends = d > 2.0 * hit_epsilon;
+      if (HAS_INSIDE && inside) {
+        ends = ends || object_inside_clearances(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc, d).w < 0.0;
+      }
+      crowd_consider(s, passed[j], d, inside, ends);
+      if (ends) passing[j] = -1;
+    }
+    crowd_search(q, hz, hit_epsilon, passed, false, 0.0, s, passing);
+    // The nearest solid's clearance along the ray, up to the runner-up
+    // (seen from inside: its faces'; object_clearances), as march_sol.
+    float nearest = s.nearest;
+    const SeenObject o = crowd_item_seen(s.nearest_i);
+    if (object_is_solid(o.type)) {
+      nearest = min(s.second, max(s.nearest, object_clearance(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc).y));
+    }
+    steps = step + 1;
+    if (s.nearest_hit < hit_epsilon) {
+      const SeenObject m = crowd_item_seen(s.hit_i);
+      bool through = false;
+      if (HAS_CUTOUT && m.cutout != kPatternNone) {
+        const vec2 uv = object_pattern_uv(m.type, q, pattern_phase(q, g_eye_camera, g_eye_frac), m.rel, m.heading, m.radius);
+        through = pattern_factor(m.cutout, uv.x, uv.y) != 1.0;
+      }
+      if (!through) {
+        hit_item = s.hit_i;
+        ended = true;
+        break;
+      }
+      // Between the discs: go through.
+      for (int j = 0; j < 4; ++j) {
+        if (passing[j] < 0) {
+          passing[j] = s.hit_i;
+          break;
+        }
+      }
+    }
+    const bool any_passed = any(greaterThanEqual(passing, ivec4(0)));
+    t += any_passed ? max(nearest, 2.0 * hit_epsilon) : nearest;
+    if (t > limit) {
+      ended = true;
+      break;
+    }
+  }
+  if (!ended) ++g_out_of_steps;
+  const int object = hit_item >= 0 ? int(crowd_items[hit_item].info.x) : -1;
+  MarchHit found = march_found(object, t, q, origin, steps, exact_solve_none());
+  found.item = hit_item;
+  found.u = u;
+  return found;
+}
+
+#endif  // SOL_MARCH_CROWD_GLSL

@@ -1,0 +1,130 @@
+// The kernel's march through a crowd (a Sol world of more than
+// sol::kListedObjects objects, marched through its tree of bounds:
+// compute/shaders/march/crowd.glsl) against the CPU reference's
+// (march_crowd in libsol/src/render.cpp), on lavapipe.
+#include <cstdio>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <sol/sol.hpp>
+#include <sol/vk/march.hpp>
+
+#include "support/crowd.hpp"
+#include "support/kernel.hpp"
+
+namespace {
+
+using sol::test::vk_context;
+
+sol::Scene scene_of(const sol::World& world, const sol::Camera& camera) {
+  sol::Scene scene;
+  static_cast<sol::World&>(scene) = world;
+  scene.camera = camera;
+  return scene;
+}
+
+// Every kind the crowd's kernel march takes (exact balls are the CPU's in a
+// crowd): planes x, y, z, a cutout checkerboard, bound balls, boxes, tubes
+// horizontal and vertical, a mirror, a glowing ball, an exact point light
+// with shadows. Float against double: a pixel's object may differ on an
+// edge, where the two stop within hit_epsilon of different surfaces, and
+// its colour where the float march's hit point lies a little off (the
+// checkerboard's edges); 1 % of the pixels either way is the budget of the
+// other kernel-against-CPU comparisons (MirrorsShowTheReflectedScene...).
+TEST(KernelCrowd, EveryKindInACrowdMatchesTheCpuRenderer) {
+  sol::World world = sol::test::mixed_world(false);
+  ASSERT_GT(world.objects.size(), sol::kListedObjects);
+  sol::Camera camera;
+  camera.position = {3.0, -0.2, 2.0};  // under the cutout, looking down on the grid
+  camera.forward = {0.0, 0.0, -1.0};
+  camera.up = {1.0, 0.0, 0.0};
+  const sol::Scene scene = scene_of(world, camera);
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::RenderResult gpu = sol::test::render(renderer, scene, 64, 48);
+  ASSERT_NE(renderer.world().tree(), nullptr);
+  sol::RenderOptions options;
+  options.width = 64;
+  options.height = 48;
+  const sol::RenderResult cpu = sol::render_cpu(scene, options);
+  const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
+  std::printf("every kind in a crowd: %d of %d pixels hit another object, %d differ in colour (worst %.2g), distance %.2g\n",
+              c.mask_differs, c.pixels, c.color_differs, c.worst_color, c.distance);
+  EXPECT_LE(c.mask_differs, c.pixels / 100);
+  EXPECT_LE(c.color_differs, c.pixels / 100);
+  // (Distances where both hit one object: the float march's hit_epsilon
+  // stop and rounding, far below an object's size.)
+  EXPECT_LT(c.distance, 2e-3);
+  std::set<float> seen(gpu.object.begin(), gpu.object.end());
+  EXPECT_GT(seen.size(), 20u);  // many of the objects, not only the floor
+  sol::test::expect_no_validation_errors();
+}
+
+// 10,000 small balls seen from outside the crowd and from inside it: the
+// kernel and the CPU hit the same object in every pixel but for edges
+// (0.5 %), at the same arc length within 1e-3 (each stops within
+// hit_epsilon = 5e-5 of the bound's surface; a grazing ray runs on further).
+TEST(KernelCrowd, TenThousandBallsAreHitWhereTheCpuHitsThem) {
+  sol::World world;
+  world.objects = sol::test::scattered_balls(10000);
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const sol::Camera& camera : {sol::test::crowd_camera_outside(), sol::test::crowd_camera_inside()}) {
+    const sol::Scene scene = scene_of(world, camera);
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, 48, 36);
+    sol::RenderOptions options;
+    options.width = 48;
+    options.height = 36;
+    const sol::RenderResult cpu = sol::render_cpu(scene, options);
+    const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
+    std::set<float> seen(cpu.object.begin(), cpu.object.end());
+    std::printf("10,000 balls: %d of %d pixels hit another object, distance %.2g, %zu objects seen\n", c.mask_differs,
+                c.pixels, c.distance, seen.size());
+    EXPECT_LE(c.mask_differs, c.pixels / 200);
+    EXPECT_LT(c.distance, 1e-3);
+    EXPECT_GT(seen.size(), 30u);
+    EXPECT_LE(c.color_differs, c.pixels / 100);
+    EXPECT_EQ(gpu.rays_out_of_steps, cpu.rays_out_of_steps);
+  }
+  sol::test::expect_no_validation_errors();
+}
+
+// An eye inside a solid (a box the size of a room, balls in it), in a
+// listed world and in a crowd: the kernel's inside clearances (HAS_INSIDE)
+// and its walls' normals facing the eye as the CPU's. (The float march's
+// last step may end a little beyond a wall, where the bound's sign once
+// turned the normal away at random: speckled walls.)
+TEST(KernelCrowd, AnEyeInsideABoxSeesWhatTheCpuSees) {
+  for (const std::size_t balls : {std::size_t{6}, std::size_t{200}}) {
+    sol::World world;
+    world.objects = sol::test::scattered_balls(balls, 0.08);
+    sol::SceneObject room;
+    room.shape = sol::Box{{0.0, 0.0, 0.0}, {3.0, 3.0, 1.4}};
+    room.color = {0.8, 0.75, 0.7};
+    room.pattern = sol::Pattern::Checker;
+    world.objects.push_back(room);
+    sol::Light lamp;
+    lamp.type = sol::LightType::Point;
+    lamp.position = {0.3, 0.1, 0.9};
+    lamp.intensity = 2.0;
+    world.lights.push_back(lamp);
+    const sol::Scene scene = scene_of(world, sol::test::crowd_camera_inside());
+    sol::vk::MarchRenderer renderer(vk_context());
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, 48, 36);
+    EXPECT_EQ(renderer.world().tree() != nullptr, world.objects.size() > sol::kListedObjects);
+    sol::RenderOptions options;
+    options.width = 48;
+    options.height = 36;
+    const sol::RenderResult cpu = sol::render_cpu(scene, options);
+    const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
+    std::printf("inside a room of %zu objects: %d of %d pixels hit another object, %d differ in colour, distance %.2g\n",
+                world.objects.size(), c.mask_differs, c.pixels, c.color_differs, c.distance);
+    int walls = 0;
+    for (float o : cpu.object) walls += o == static_cast<float>(world.objects.size()) ? 1 : 0;
+    EXPECT_GT(walls, c.pixels / 4);  // the room's walls seen from inside
+    EXPECT_LE(c.mask_differs, c.pixels / 100);
+    EXPECT_LE(c.color_differs, c.pixels / 100);
+    EXPECT_LT(c.distance, 2e-3);
+  }
+  sol::test::expect_no_validation_errors();
+}
+
+}  // namespace
