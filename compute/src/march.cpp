@@ -183,9 +183,11 @@ PackedCrowd pack_crowd(const MarchWorld& prepared) {
     const SceneObject& o = world.objects[prepared.objects()[k].owner];
     const KernelShape shape = kernel_shape(o.shape);
     const bool cutout = o.cutout && shape.code == kernel::kObjectPlaneZ;
+    const bool solid = is_solid(o.shape);
     out.items.push_back({glm::vec4(shape.geometry), glm::vec4(shape.heading.x, shape.heading.y, shape.radius, shape.code),
-                         glm::vec4(static_cast<float>(prepared.objects()[k].owner), cutout ? pattern_code(o.pattern) : 0, 0.0f,
-                                   0.0f)});
+                         glm::vec4(glm::dvec4(static_cast<double>(prepared.objects()[k].owner), cutout ? pattern_code(o.pattern) : 0,
+                                              solid ? std::exp(0.5 * shape.geometry.z) : 1.0,
+                                              solid ? std::exp(-0.5 * shape.geometry.z) : 1.0))});
   }
   return out;
 }

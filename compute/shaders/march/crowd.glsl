@@ -34,7 +34,7 @@ SeenObject crowd_item_seen(int i) {
   o.heading = c.shape.xy;
   o.radius = c.shape.z;
   object_seen_from(o.type, o.rel, o.heading, g_eye_camera, g_eye_frac);
-  o.hc = HAS_SOLIDS ? half_exp(o.rel.z) : vec2(1.0);
+  o.hc = c.info.zw * g_eye_half_exp;  // half_exp(rel.z), from the world z's and the eye's
   o.cutout = HAS_CUTOUT ? int(c.info.y) : kPatternNone;
   o.object = int(c.info.x);
   return o;
@@ -63,8 +63,11 @@ float projected_box_distance(float g, float qz, float e, float side, float lo, f
   if (g == 0.0) return abs(clamp(qz, lo, hi) - qz);
   const float w = g * e, a = 0.5 * w * w;
   const float s = clamp(qz + side * 0.5 * log(1.0 + 2.0 * a), lo, hi) - qz;
-  const float h = sinh(0.5 * s);
-  return 2.0 * asinh(sqrt(h * h + 0.5 * a * exp(-side * s)));
+  // One exponential for sinh(s/2) and e^{-side s}; 2 asinh √x = 2 ln(√x + √(1 + x)).
+  const float half_s = exp(0.5 * s), inverse = 1.0 / half_s;
+  const float h = 0.5 * (half_s - inverse);
+  const float x = h * h + 0.5 * a * (side > 0.0 ? inverse * inverse : half_s * half_s);
+  return 2.0 * log(sqrt(x) + sqrt(1.0 + x));
 }
 
 // Node n's box seen from the eye, and its bound from q (e = (e^{-q_z}, e^{q_z})).

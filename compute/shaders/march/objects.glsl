@@ -311,6 +311,7 @@ vec2 g_headings[kListedObjects];
 int g_cutouts[kListedObjects];      // cutout planes z = c: their pattern code; else kPatternNone
 vec2 g_half_exp_z[kListedObjects];  // balls: the centre's half exponentials (half_exp)
 vec4 g_eye_camera, g_eye_frac;
+vec2 g_eye_half_exp;  // e^{-z/2}, e^{z/2} of the eye's z (a crowd's objects' half exponentials: march/crowd.glsl)
 float g_rk4_step;  // RK4's substep (INTEGRATOR = 1)
 
 void load_objects(int eye) {
@@ -329,6 +330,7 @@ void load_objects(int eye) {
   }
   g_eye_camera = params.eyes[eye].camera;
   g_eye_frac = params.eyes[eye].camera_frac;
+  g_eye_half_exp = CROWD ? sqrt(vec2(g_eye_frac.w, g_eye_camera.w)) : vec2(1.0);
   g_rk4_step = params.eyes[eye].forward.w;
 }
 

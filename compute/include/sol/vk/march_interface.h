@@ -232,7 +232,8 @@ struct CrowdNode {
 struct CrowdItem {
   vec4 geometry;  ///< sol::KernelShape::geometry (world coordinates)
   vec4 shape;     ///< xy: sol::KernelShape::heading; z: radius; w: object code (kObject*)
-  vec4 info;      ///< x: the scene object (0-based); y: a cutout plane's pattern code, else kPatternNone
+  vec4 info;      ///< x: the scene object (0-based); y: a cutout plane's pattern code, else kPatternNone;
+                  ///< zw: e^{z/2}, e^{-z/2} of geometry.z (solids' centres and axis points; 1 for planes)
 };
 
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
