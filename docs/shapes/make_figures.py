@@ -5,7 +5,7 @@ radius 1 to 4 and beyond sqrt(2) pi (with the cut locus on their creases)
 as shaded meshes, the rays of the plane scene coloured by hit or miss beside
 the renderer's image, and an exact ball seen from inside beside its mesh.
 
-    PYTHONPATH=build/release/python/package python3 docs/shapes/make_figures.py OUT_DIR
+    PYTHONPATH=build/ci/python/package python3 docs/shapes/make_figures.py OUT_DIR
 (docs/shapes as OUT_DIR replaces the figures the docs show)
 """
 import json
@@ -22,7 +22,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 import sol  # noqa: E402
 
 if len(sys.argv) != 2:
-    sys.exit("usage: PYTHONPATH=build/release/python/package python3 docs/shapes/make_figures.py OUT_DIR")
+    sys.exit("usage: PYTHONPATH=build/ci/python/package python3 docs/shapes/make_figures.py OUT_DIR")
 out = sys.argv[1]
 os.makedirs(out, exist_ok=True)
 
