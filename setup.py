@@ -8,11 +8,13 @@ into the wheel beside python/sol/__init__.py. SOL_CMAKE_BUILD_DIR names a
 build folder already configured for this interpreter to build in instead
 (the tests use the CI build's); CMAKE_BUILD_PARALLEL_LEVEL sets the jobs.
 """
+import importlib.util
 import os
 import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
 from setuptools import Extension, setup
@@ -27,6 +29,44 @@ def project_version():
     if not match:
         raise RuntimeError("setup.py: no 'project(Sol VERSION x.y.z' in CMakeLists.txt")
     return match.group(1)
+
+
+def missing_prerequisites(building_wheel):
+    """What the build needs that this interpreter's environment lacks, each
+    with where it comes from (pip, or Debian's package)."""
+    missing = []
+    if building_wheel and importlib.util.find_spec("wheel") is None:
+        missing.append("the Python package wheel (python3 -m pip install wheel; Debian: python3-wheel)")
+    if importlib.util.find_spec("numpy") is None:
+        missing.append("the Python package numpy (python3 -m pip install numpy; Debian: python3-numpy)")
+    if not shutil.which("cmake"):
+        missing.append("CMake 3.25 or newer (Debian: cmake)")
+    if not (os.environ.get("CXX") or any(shutil.which(c) for c in ("c++", "g++", "clang++"))):
+        missing.append("a C++20 compiler (Debian: g++)")
+    include = sysconfig.get_paths().get("include", "")
+    if not include or not (Path(include) / "Python.h").exists():
+        missing.append(f"this Python's headers, Python.h, in {include or '(no include path)'} "
+                       "(Debian: python3-dev; pyenv builds have them)")
+    pybind11_dirs = [Path(p) / "pybind11" for p in ("/usr/lib/cmake", "/usr/share/cmake", "/usr/local/lib/cmake",
+                                                     "/usr/local/share/cmake")]
+    if importlib.util.find_spec("pybind11") is None and not any((d / "pybind11Config.cmake").exists() for d in pybind11_dirs):
+        missing.append("pybind11 2.10 or newer (Debian: pybind11-dev; or python3 -m pip install pybind11)")
+    return missing
+
+
+def check_prerequisites():
+    """Stops a build whose prerequisites are missing with one message that
+    names them all and the interpreter it ran under (pip's own error for a
+    missing wheel, "invalid command 'bdist_wheel'", names neither)."""
+    # (pip's metadata step runs dist_info, which takes setuptools' bdist_wheel
+    # from the wheel package before setuptools 70.1.)
+    wheel = any(a in sys.argv for a in ("bdist_wheel", "dist_info"))
+    building = wheel or any(a in sys.argv for a in ("build_ext", "build", "install", "develop", "editable_wheel"))
+    missing = missing_prerequisites(wheel) if building else []
+    if missing:
+        lines = "\n".join(f"  - {m}" for m in missing)
+        sys.exit(f"setup.py: building sol under {sys.executable} (Python {sys.version.split()[0]}) needs:\n{lines}\n"
+                 "(docs/python.md: Installing)")
 
 
 class CMakeBuild(build_ext):
@@ -51,6 +91,7 @@ class CMakeBuild(build_ext):
         shutil.copyfile(package / "_build.py", target.parent / "_build.py")
 
 
+check_prerequisites()
 setup(
     version=project_version(),
     ext_modules=[Extension("sol._sol", sources=[])],

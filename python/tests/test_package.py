@@ -21,16 +21,21 @@ def run(*args, **kwargs):
     return subprocess.run([str(a) for a in args], capture_output=True, text=True, **kwargs)
 
 
+def copy_sources(work):
+    """What the build reads of the tree (pip builds in the source folder: a copy keeps the repository clean)."""
+    src = work / "src"
+    for name in ("pyproject.toml", "setup.py", "CMakeLists.txt", "docs/python.md", "python/sol/__init__.py",
+                 "python/sol/scenes.py", "python/sol/_build.py.in"):
+        (src / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(Path(SOURCE) / name, src / name)
+    return src
+
+
 @pytest.mark.skipif(not SOURCE or not BUILD, reason="needs SOL_SOURCE_DIR and SOL_CMAKE_BUILD_DIR (ctest sets them)")
 def test_pip_installs_the_package_into_a_fresh_venv():
     with tempfile.TemporaryDirectory() as work:
         work = Path(work)
-        # What the build reads of the tree (pip builds in the source folder: a copy keeps the repository clean).
-        src = work / "src"
-        for name in ("pyproject.toml", "setup.py", "CMakeLists.txt", "docs/python.md", "python/sol/__init__.py",
-                     "python/sol/scenes.py", "python/sol/_build.py.in"):
-            (src / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copyfile(Path(SOURCE) / name, src / name)
+        src = copy_sources(work)
         venv = work / "venv"
         made = run(sys.executable, "-m", "venv", "--system-site-packages", venv)
         assert made.returncode == 0, made.stderr
@@ -48,6 +53,27 @@ def test_pip_installs_the_package_into_a_fresh_venv():
         assert lines[0].startswith(str(venv)), lines[0]
         assert lines[1] == sol.__version__
         assert lines[2:] == ["(6,", "8,", "4)"]
+
+
+@pytest.mark.skipif(not SOURCE, reason="needs SOL_SOURCE_DIR (ctest sets it)")
+def test_a_build_without_its_prerequisites_names_them_and_the_interpreter():
+    # A venv of its own (no system packages): pip and setuptools, but neither wheel nor NumPy. pip's own
+    # error would be "invalid command 'bdist_wheel'"; setup.py names both and the interpreter, before any build.
+    with tempfile.TemporaryDirectory() as work:
+        work = Path(work)
+        src = copy_sources(work)
+        venv = work / "bare"
+        made = run(sys.executable, "-m", "venv", venv)
+        assert made.returncode == 0, made.stderr
+        python = venv / "bin" / "python"
+        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SOL_CMAKE_BUILD_DIR")}
+        pip = run(python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--no-deps", src, env=env)
+        out = pip.stdout + pip.stderr
+        assert pip.returncode != 0, out
+        assert f"building sol under {python}" in out, out
+        assert "the Python package wheel" in out, out
+        assert "the Python package numpy" in out, out
+        assert "invalid command" not in out, out
 
 
 def test_another_python_version_is_named():
