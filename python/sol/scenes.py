@@ -12,6 +12,7 @@ out takes the file's default, a bad one raises sol.InvalidArgumentError naming i
 """
 import json as _json
 import math as _math
+import re as _re
 
 from . import _sol
 
@@ -50,10 +51,18 @@ def _check_finite(value, path, source):
         raise _sol.InvalidArgumentError(f"{source}: {path} must be a finite number, got {value}")
 
 
+# The scene file reader's "(line L, column C)": a place in JSON that sol.scene and its kin wrote, not the user.
+_JSON_PLACE = _re.compile(r" \(line [0-9]+, column [0-9]+\)$")
+
+
 def _parse(fields, source):
     plain = _plain(fields)
     _check_finite(plain, "", source)
-    return _sol.parse_scene(_json.dumps(plain), source)
+    try:
+        return _sol.parse_scene(_json.dumps(plain), source)
+    except _sol.InvalidArgumentError as e:
+        # The field's name stays (objects[0].radius: the list's index and the builder's keyword).
+        raise _sol.InvalidArgumentError(_JSON_PLACE.sub("", str(e))) from None
 
 
 def scene(objects, *, camera=None, lights=None, **world):

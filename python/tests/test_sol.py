@@ -409,6 +409,12 @@ def test_scenes_built_from_python_are_the_scene_files():
         sol.scene([sol.ball((0, 0, 0), 1, colour=(1, 0, 0))])
     with pytest.raises(ValueError, match=r"camera.fov must be in \(0, 180\)"):
         sol.camera(fov=200)
+    # ... and no place in the JSON that sol.scene wrote for them.
+    for build in (lambda: sol.scene([sol.ball((0, 0, 0), -1)]), lambda: sol.camera(fov=200),
+                  lambda: sol.scene([sol.plane_z()], max_steps=-3), lambda: sol.preset_scene("plane").replace(ambient=2)):
+        with pytest.raises(sol.InvalidArgumentError) as raised:
+            build()
+        assert "line 1" not in str(raised.value) and "column" not in str(raised.value), raised.value
 
 
 def test_replace_changes_only_what_it_names():
