@@ -13,6 +13,8 @@
 #ifndef SOL_MARCH_CROWD_GLSL
 #define SOL_MARCH_CROWD_GLSL
 
+#include "sol/box_bound.h"  // sol_projected_box_distance, shared with libsol
+
 // A crowd's object as the march sees it: its kind's record seen from the
 // eye (as a listed world's g_* arrays), its cutout pattern and scene object.
 struct SeenObject {
@@ -53,31 +55,16 @@ float crowd_distance(SeenObject o, vec3 q, vec2 hz, out bool inside) {
   return d;
 }
 
-// sol::box_distance_lower_bound in float: the hyperbolic distance from q's
-// projection on the (x, z) plane (side 1; e = e^{-q_z}) or the (y, z)
-// plane (side -1; e = e^{q_z}) to the box's, a rectangle of horizontal gap
-// g and heights [lo, hi]. (Evaluated at the float root of its convex
-// minimisation in the height, it exceeds the exact minimum by a term of
-// the root's error squared, far below float rounding.)
-float projected_box_distance(float g, float qz, float e, float side, float lo, float hi) {
-  if (g == 0.0) return abs(clamp(qz, lo, hi) - qz);
-  const float w = g * e, a = 0.5 * w * w;
-  const float s = clamp(qz + side * 0.5 * log(1.0 + 2.0 * a), lo, hi) - qz;
-  // One exponential for sinh(s/2) and e^{-side s}; 2 asinh √x = 2 ln(√x + √(1 + x)).
-  const float half_s = exp(0.5 * s), inverse = 1.0 / half_s;
-  const float h = 0.5 * (half_s - inverse);
-  const float x = h * h + 0.5 * a * (side > 0.0 ? inverse * inverse : half_s * half_s);
-  return 2.0 * log(sqrt(x) + sqrt(1.0 + x));
-}
-
-// Node n's box seen from the eye, and its bound from q (e = (e^{-q_z}, e^{q_z})).
+// Node n's box seen from the eye, and its bound from q (e = (e^{-q_z}, e^{q_z})):
+// sol::box_distance_lower_bound in float.
 float crowd_node_bound(int n, vec3 q, vec2 e) {
   const CrowdNode node = crowd_nodes[n];
   const vec3 lo = seen_point(node.lo.xyz, g_eye_camera, g_eye_frac);
   const vec3 hi = seen_point(node.hi.xyz, g_eye_camera, g_eye_frac);
   const float gx = max(0.0, max(lo.x - q.x, q.x - hi.x));
   const float gy = max(0.0, max(lo.y - q.y, q.y - hi.y));
-  return max(projected_box_distance(gx, q.z, e.x, 1.0, lo.z, hi.z), projected_box_distance(gy, q.z, e.y, -1.0, lo.z, hi.z));
+  return max(sol_projected_box_distance(gx, q.z, e.x, 1.0, lo.z, hi.z),
+             sol_projected_box_distance(gy, q.z, e.y, -1.0, lo.z, hi.z));
 }
 
 // One step's nearest objects (sol's StepNearest in libsol/src/render.cpp):

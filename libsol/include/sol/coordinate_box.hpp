@@ -16,7 +16,8 @@
 // d = 2 asinh √(sinh²(s/2) + ½ A e^{-s}) for small distances' accuracy. The
 // (y, z) plane is the same with z -> -z (A = ½ (g_y e^{q_z})²). The larger
 // of the two is the bound: exact for a box that is a point (it is then
-// sol::distance_lower_bound), 0 inside the box, and 1-Lipschitz. With z
+// sol::distance_lower_bound), 0 inside the box, and 1-Lipschitz. Its
+// projected part is sol/box_bound.h, which the kernel compiles too. With z
 // unbounded it is the distance to the slab's nearer face plane, asinh(g
 // e^{∓q_z}); a box's own bound of slab distances (sol::Box::distance) is
 // weaker away from the box, where it is about half of this one.
@@ -29,6 +30,8 @@
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include "sol/box_bound.h"
 
 namespace sol {
 
@@ -63,19 +66,6 @@ struct CoordinateBox {
   }
 };
 
-namespace detail {
-// The distance in the plane e^{-2 side z}dw² + dz² from (0, q_z) to the
-// rectangle of horizontal gap g (>= 0) and heights [lo, hi] (see above);
-// e = e^{-side q_z}. Without a gap it is the height's gap alone (s* = 0:
-// 2 asinh |sinh(s/2)| = |s|).
-inline double projected_box_distance(double g, double qz, double e, double side, double lo, double hi) {
-  if (g == 0.0) return std::abs(std::clamp(qz, lo, hi) - qz);
-  const double w = g * e, a = 0.5 * w * w;
-  const double s = std::clamp(qz + side * 0.5 * std::log1p(2.0 * a), lo, hi) - qz;
-  const double h = std::sinh(0.5 * s);
-  return 2.0 * std::asinh(std::sqrt(h * h + 0.5 * a * std::exp(-side * s)));
-}
-}  // namespace detail
 
 /// A lower bound of the Sol distance from q to every point of the box (see
 /// above): 0 inside it, +infinity for an empty box. `e` = (e^{-q_z}, e^{q_z}),
@@ -84,8 +74,8 @@ inline double box_distance_lower_bound(const CoordinateBox& box, const glm::dvec
   if (box.empty()) return std::numeric_limits<double>::infinity();
   const double gx = std::max({0.0, box.lo.x - q.x, q.x - box.hi.x});
   const double gy = std::max({0.0, box.lo.y - q.y, q.y - box.hi.y});
-  return std::max(detail::projected_box_distance(gx, q.z, e.x, 1.0, box.lo.z, box.hi.z),
-                  detail::projected_box_distance(gy, q.z, e.y, -1.0, box.lo.z, box.hi.z));
+  return std::max(kernel::sol_projected_box_distance(gx, q.z, e.x, 1.0, box.lo.z, box.hi.z),
+                  kernel::sol_projected_box_distance(gy, q.z, e.y, -1.0, box.lo.z, box.hi.z));
 }
 
 inline double box_distance_lower_bound(const CoordinateBox& box, const glm::dvec3& q) {
