@@ -2,6 +2,7 @@
 through --system-site-packages), and clear errors when the interpreter cannot load the module (no NumPy, another
 Python version). ctest names the source tree in SOL_SOURCE_DIR and the CMake build folder to build in (the CI
 build's, configured for Debian's python3) in SOL_CMAKE_BUILD_DIR."""
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -53,6 +54,27 @@ def test_pip_installs_the_package_into_a_fresh_venv():
         assert lines[0].startswith(str(venv)), lines[0]
         assert lines[1] == sol.__version__
         assert lines[2:] == ["(6,", "8,", "4)"]
+        # The notebook from the venv, as docs/python.md says: a kernel installed into the venv, which Jupyter
+        # run from it finds; its cells import the venv's sol (the first prints where from), and the tour runs.
+        if importlib.util.find_spec("ipykernel") is None or importlib.util.find_spec("nbclient") is None:
+            return
+        kernel = run(python, "-m", "ipykernel", "install", "--prefix", venv, "--name", "sol-venv", env=env)
+        assert kernel.returncode == 0, kernel.stderr
+        tour = Path(SOURCE) / "docs" / "notebooks" / "tour.ipynb"
+        execute = ("import sys, nbformat, nbclient\n"
+                   "probe = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell('import sol; print(sol.__file__)')])\n"
+                   "nbclient.NotebookClient(probe, timeout=120, kernel_name='sol-venv').execute()\n"
+                   "print(probe.cells[0].outputs[0]['text'].strip())\n"
+                   "tour = nbformat.read(sys.argv[1], as_version=4)\n"
+                   "nbclient.NotebookClient(tour, timeout=300, kernel_name='sol-venv').execute()\n"
+                   "print(sum(o.output_type == 'error' for c in tour.cells if c.cell_type == 'code' for o in c.outputs))\n")
+        env["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+        env["PYDEVD_DISABLE_FILE_VALIDATION"] = "1"
+        ran = run(python, "-c", execute, tour, env=env, cwd=work)
+        assert ran.returncode == 0, ran.stdout + ran.stderr
+        where, errors = ran.stdout.split()[-2:]
+        assert where.startswith(str(venv)), where
+        assert errors == "0"
 
 
 @pytest.mark.skipif(not SOURCE, reason="needs SOL_SOURCE_DIR (ctest sets it)")
