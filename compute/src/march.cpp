@@ -145,8 +145,9 @@ std::vector<kernel::Object> pack_objects(const World& world) {
     const SceneObject& o = world.objects[k];
     const KernelShape shape = kernel_shape(o.shape);
     out[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
-    out[k].color = vec4(o.color, o.glow_reach);
+    out[k].color = vec4(o.color, 0.0);
     out[k].material = vec4(o.emission, o.mirror);
+    out[k].glow = glm::vec4(static_cast<float>(o.glow_reach), 0.0f, 0.0f, 0.0f);
   }
   return out;
 }

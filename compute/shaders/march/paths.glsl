@@ -60,7 +60,7 @@ vec3 cosine_direction(vec3 n, inout uvec2 state) {
 // by glow_pick_weight at x, a point y = c·exp(r w) of its sphere, w uniform
 // on S² (area density 1 / (4π J_c(w, r))), connected to the diffuse point x
 // by its geodesics up to the distance plus the ball's glow_reach
-// (scene_objects[k].color.w; sol_connections, 0: the minimisers), each
+// (scene_objects[k].glow.x; sol_connections, 0: the minimisers), each
 // weighed by its own J (sol_sphere_area_density) and counted where the
 // march along it first meets that ball at its length; combined with
 // reflection sampling by the balance heuristic.
@@ -143,7 +143,7 @@ float glow_density(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y) {
     }
   }
   vec4 found[SOL_FOUND_SLOTS];
-  const float reach = scene_objects[k].color.w;
+  const float reach = scene_objects[k].glow.x;
   if (!(nearest < 1e30) || sol_connections(seen_from(x, y), 0.0, found) == 0 ||
       L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) {
     return 0.0;
@@ -199,7 +199,7 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   const vec3 y = sol_translate(c, on_sphere.position);
   g.normal_y = normalize(on_sphere.direction);
   g.area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
-  g.count = sol_connections(seen_from(h.q, y), scene_objects[g.k].color.w, g.ways);
+  g.count = sol_connections(seen_from(h.q, y), scene_objects[g.k].glow.x, g.ways);
   return g;
 }
 

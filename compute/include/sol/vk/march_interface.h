@@ -152,8 +152,9 @@ SOL_CONSTANT(int, kGroupSize, 8);
 /// one per scene object, whatever the world's size).
 struct Object {
   vec4 plane;     ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
-  vec4 color;     ///< rgb: linear colour; w: a glowing exact ball's glow_reach (next-event estimation)
+  vec4 color;     ///< rgb: linear colour; w: 0
   vec4 material;  ///< rgb: emitted radiance (linear); w: mirror, the specular reflectance
+  vec4 glow;      ///< x: a glowing exact ball's glow_reach (next-event estimation); yzw: 0
 };
 
 /// One eye: a mono image has one, a side-by-side stereo image two, rendered
@@ -285,7 +286,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 3 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 4 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
