@@ -112,8 +112,10 @@ std::string quotient_refusal(const World& world) {
 // copy of the domain, the last message.
 void draw_readouts(const PanelModel& m) {
   char line[256];
-  std::snprintf(line, sizeof line, "%.1f fps  %.2f M rays/s  %dx%d (scale %.2f%s)", m.fps, m.rays_per_second * 1e-6,
-                m.render_width, m.render_height, m.scale, m.adaptive ? ", adaptive" : "");
+  // (Two lines: one was cut at the panel's edge.)
+  std::snprintf(line, sizeof line, "%.1f fps  %.2f M rays/s (rendered frames)", m.fps, m.rays_per_second * 1e-6);
+  ImGui::TextUnformatted(line);
+  std::snprintf(line, sizeof line, "%dx%d, scale %.2f%s", m.render_width, m.render_height, m.scale, m.adaptive ? ", adaptive" : "");
   ImGui::TextUnformatted(line);
   if (!m.frame_ms.empty()) {
     const float worst = *std::max_element(m.frame_ms.begin(), m.frame_ms.end());

@@ -513,11 +513,14 @@ class RunFigures {
   std::chrono::steady_clock::time_point last_shown_ = std::chrono::steady_clock::now();
 };
 
-// The window's title: the frame rate (also the panel's), twice a second.
+// The window's title: the frame rate (also the panel's), twice a second:
+// the frames the kernel rendered, as the exit summary counts them (a
+// finished refinement shown again is not a rendered frame; while only
+// that is shown the rate is 0).
 class Title {
  public:
-  void frame(App& app) {
-    ++frames_;
+  void frame(App& app, bool rendered) {
+    if (rendered) ++frames_;
     const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - since_).count();
     if (since < 0.5) return;
     app.fps = static_cast<double>(frames_) / since;
@@ -799,7 +802,7 @@ int run(App& app) {
       presenter.save(name);
       std::printf("solview: screenshot %s\n", name);
     }
-    title.frame(app);
+    title.frame(app, shown->rendered);
   }
   presenter.wait_for_frame();  // the frames still in flight: done, and counted
   context.wait_idle();
