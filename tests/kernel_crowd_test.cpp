@@ -23,6 +23,24 @@ sol::Scene scene_of(const sol::World& world, const sol::Camera& camera) {
   return scene;
 }
 
+// A scene rendered by the kernel and by the CPU reference at one size, and
+// the two compared pixel by pixel (colour threshold 2e-3 a channel).
+struct AgainstCpu {
+  sol::RenderResult gpu, cpu;
+  sol::test::ImageComparison c;
+};
+
+AgainstCpu against_cpu(sol::vk::MarchRenderer& renderer, const sol::Scene& scene, int width, int height) {
+  AgainstCpu r;
+  r.gpu = sol::test::render(renderer, scene, width, height);
+  sol::RenderOptions options;
+  options.width = width;
+  options.height = height;
+  r.cpu = sol::render_cpu(scene, options);
+  r.c = sol::test::compare_images(r.gpu, r.cpu, 2e-3f);
+  return r;
+}
+
 // Every kind the crowd's kernel march takes (exact balls are the CPU's in a
 // crowd): planes x, y, z, a cutout checkerboard, bound balls, boxes, tubes
 // horizontal and vertical, a mirror, a glowing ball, an exact point light
@@ -40,13 +58,8 @@ TEST(KernelCrowd, EveryKindInACrowdMatchesTheCpuRenderer) {
   camera.up = {1.0, 0.0, 0.0};
   const sol::Scene scene = scene_of(world, camera);
   sol::vk::MarchRenderer renderer(vk_context());
-  const sol::RenderResult gpu = sol::test::render(renderer, scene, 64, 48);
+  const auto [gpu, cpu, c] = against_cpu(renderer, scene, 64, 48);
   ASSERT_NE(renderer.world().tree(), nullptr);
-  sol::RenderOptions options;
-  options.width = 64;
-  options.height = 48;
-  const sol::RenderResult cpu = sol::render_cpu(scene, options);
-  const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
   std::printf("every kind in a crowd: %d of %d pixels hit another object, %d differ in colour (worst %.2g), distance %.2g\n",
               c.mask_differs, c.pixels, c.color_differs, c.worst_color, c.distance);
   EXPECT_LE(c.mask_differs, c.pixels / 100);
@@ -69,12 +82,7 @@ TEST(KernelCrowd, TenThousandBallsAreHitWhereTheCpuHitsThem) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const sol::Camera& camera : {sol::test::crowd_camera_outside(), sol::test::crowd_camera_inside()}) {
     const sol::Scene scene = scene_of(world, camera);
-    const sol::RenderResult gpu = sol::test::render(renderer, scene, 48, 36);
-    sol::RenderOptions options;
-    options.width = 48;
-    options.height = 36;
-    const sol::RenderResult cpu = sol::render_cpu(scene, options);
-    const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
+    const auto [gpu, cpu, c] = against_cpu(renderer, scene, 48, 36);
     std::set<float> seen(cpu.object.begin(), cpu.object.end());
     std::printf("10,000 balls: %d of %d pixels hit another object, distance %.2g, %zu objects seen\n", c.mask_differs,
                 c.pixels, c.distance, seen.size());
@@ -108,13 +116,8 @@ TEST(KernelCrowd, AnEyeInsideABoxSeesWhatTheCpuSees) {
     world.lights.push_back(lamp);
     const sol::Scene scene = scene_of(world, sol::test::crowd_camera_inside());
     sol::vk::MarchRenderer renderer(vk_context());
-    const sol::RenderResult gpu = sol::test::render(renderer, scene, 48, 36);
+    const auto [gpu, cpu, c] = against_cpu(renderer, scene, 48, 36);
     EXPECT_EQ(renderer.world().tree() != nullptr, world.objects.size() > sol::kListedObjects);
-    sol::RenderOptions options;
-    options.width = 48;
-    options.height = 36;
-    const sol::RenderResult cpu = sol::render_cpu(scene, options);
-    const sol::test::ImageComparison c = sol::test::compare_images(gpu, cpu, 2e-3f);
     std::printf("inside a room of %zu objects: %d of %d pixels hit another object, %d differ in colour, distance %.2g\n",
                 world.objects.size(), c.mask_differs, c.pixels, c.color_differs, c.distance);
     int walls = 0;

@@ -1086,13 +1086,12 @@ CpuRenderer::CpuRenderer(CpuRenderer&&) noexcept = default;
 CpuRenderer& CpuRenderer::operator=(CpuRenderer&&) noexcept = default;
 
 void CpuRenderer::set_world(const World& world) {
-  if (!m_held) m_held = std::make_unique<Held>();  // (a moved-from renderer made whole again)
   set_world(std::make_shared<const MarchWorld>(world));  // (outside the lock: a quotient's field takes a while)
 }
 
 void CpuRenderer::set_world(std::shared_ptr<const MarchWorld> prepared) {
   if (!prepared) throw InvalidArgument("sol::CpuRenderer::set_world: no world");
-  if (!m_held) m_held = std::make_unique<Held>();
+  if (!m_held) m_held = std::make_unique<Held>();  // (a moved-from renderer made whole again)
   const std::lock_guard lock(m_held->guard);
   m_held->world = std::move(prepared);
 }
