@@ -206,6 +206,45 @@ TEST(VkContext, CreationHooksSupplyTheInstanceAndDevice) {
   }
 }
 
+// A Context on an application's device (here another Context's, standing
+// for the application) works on it and leaves it alive: the owner's device
+// still runs work after the adopting Context and its objects are gone (the
+// validation layer would report a destroyed device's use).
+TEST(VkContext, AdoptsAnApplicationsDeviceAndLeavesIt) {
+  Context owner(validated());
+  {
+    Context adopted(sol::vk::ExternalDevice{.instance = owner.instance(),
+                                            .physical_device = owner.physical_device(),
+                                            .device = owner.device(),
+                                            .queue_family = owner.queue_family_index()});
+    EXPECT_EQ(adopted.device(), owner.device());
+    EXPECT_EQ(adopted.queue(), owner.queue());
+    EXPECT_EQ(adopted.device_name(), owner.device_name());
+    StorageImage image(adopted, 4, 2);
+    ComputePipeline fill(adopted, fill_desc());
+    fill.bind(0, image);
+    fill.run(1u, 1u, 5.0f);
+    expect_fill(image.download(), 4, 2, 5.0f);
+  }
+  StorageImage image(owner, 3, 3);
+  ComputePipeline fill(owner, fill_desc());
+  fill.bind(0, image);
+  fill.run(1u, 1u, 6.0f);
+  expect_fill(image.download(), 3, 3, 6.0f);
+  EXPECT_TRUE(owner.validation_errors().empty());
+
+  EXPECT_THROW(Context(sol::vk::ExternalDevice{}), std::invalid_argument);
+  try {
+    const Context bad(sol::vk::ExternalDevice{.instance = owner.instance(),
+                                              .physical_device = owner.physical_device(),
+                                              .device = owner.device(),
+                                              .queue_family = 99});
+    FAIL() << "queue family 99 was accepted";
+  } catch (const VulkanError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a compute queue"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VkContext, MovesKeepResourcesValid) {
   Context first(validated());
   StorageImage image(first, 5, 3);

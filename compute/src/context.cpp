@@ -315,10 +315,10 @@ Device::~Device() {
     }
     if (timestamp_pool != VK_NULL_HANDLE) vkDestroyQueryPool(device, timestamp_pool, nullptr);
     if (command_pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, command_pool, nullptr);
-    vkDestroyDevice(device, nullptr);
+    if (owns_device) vkDestroyDevice(device, nullptr);
   }
   if (messenger != VK_NULL_HANDLE && destroy_messenger != nullptr) destroy_messenger(instance, messenger, nullptr);
-  if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
+  if (instance != VK_NULL_HANDLE && owns_device) vkDestroyInstance(instance, nullptr);
 }
 
 std::uint32_t Device::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
@@ -450,6 +450,31 @@ void create_pipeline_cache(detail::Device& d, const std::string& dir) {
     check(vkCreatePipelineCache(d.device, &cache_info, nullptr, &d.pipeline_cache), "vkCreatePipelineCache");
   }
   d.pipeline_cache_loaded = initial.size();
+}
+
+}  // namespace
+
+namespace {
+
+// What a Context makes on its device, its own or an application's: the
+// command pool, the pipeline cache and the timestamp queries.
+void create_device_objects(detail::Device& d, const std::string& pipeline_cache_dir, std::uint32_t timestamp_valid_bits) {
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pool_info.queueFamilyIndex = d.queue_family;
+  check(vkCreateCommandPool(d.device, &pool_info, nullptr, &d.command_pool), "vkCreateCommandPool");
+
+  create_pipeline_cache(d, pipeline_cache_dir);
+
+  if (timestamp_valid_bits > 0 && d.properties.limits.timestampPeriod > 0.0f) {
+    VkQueryPoolCreateInfo query_info{};
+    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    query_info.queryCount = 2;
+    check(vkCreateQueryPool(d.device, &query_info, nullptr, &d.timestamp_pool), "vkCreateQueryPool");
+    d.timestamp_valid_bits = timestamp_valid_bits;
+  }
 }
 
 }  // namespace
@@ -610,23 +635,41 @@ Context::Context(const ContextOptions& options) : m_device(std::make_shared<deta
         "vkCreateDevice");
   vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
 
-  VkCommandPoolCreateInfo pool_info{};
+  create_device_objects(d, options.pipeline_cache_dir, chosen.timestamp_valid_bits);
+}
 
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool_info.queueFamilyIndex = d.queue_family;
-  check(vkCreateCommandPool(d.device, &pool_info, nullptr, &d.command_pool), "vkCreateCommandPool");
-
-  create_pipeline_cache(d, options.pipeline_cache_dir);
-
-  if (chosen.timestamp_valid_bits > 0 && d.properties.limits.timestampPeriod > 0.0f) {
-    VkQueryPoolCreateInfo query_info{};
-    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    query_info.queryCount = 2;
-    check(vkCreateQueryPool(d.device, &query_info, nullptr, &d.timestamp_pool), "vkCreateQueryPool");
-    d.timestamp_valid_bits = chosen.timestamp_valid_bits;
+Context::Context(const ExternalDevice& external) : m_device(std::make_shared<detail::Device>()) {
+  if (external.instance == VK_NULL_HANDLE || external.physical_device == VK_NULL_HANDLE ||
+      external.device == VK_NULL_HANDLE) {
+    throw std::invalid_argument("sol::vk::Context: ExternalDevice needs the instance, physical_device and device");
   }
+  detail::Device& d = *m_device;
+  d.owns_device = false;
+  d.instance = external.instance;
+  d.physical_device = external.physical_device;
+  vkGetPhysicalDeviceProperties(d.physical_device, &d.properties);
+  d.name = d.properties.deviceName;
+  if (d.properties.apiVersion < VK_API_VERSION_1_2) {
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "sol::vk::Context: the application's device '" + d.name +
+                                                          "' has Vulkan " + version_string(d.properties.apiVersion) +
+                                                          "; Sol needs 1.2");
+  }
+  std::uint32_t family_count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(d.physical_device, &family_count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(family_count);
+  vkGetPhysicalDeviceQueueFamilyProperties(d.physical_device, &family_count, families.data());
+  if (external.queue_family >= family_count || (families[external.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0 ||
+      external.queue_index >= families[external.queue_family].queueCount) {
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED,
+                      "sol::vk::Context: the application's queue (family " + std::to_string(external.queue_family) +
+                          ", index " + std::to_string(external.queue_index) + ") is not a compute queue of '" + d.name + "'");
+  }
+  d.device = external.device;
+  d.queue_family = external.queue_family;
+  vkGetDeviceQueue(d.device, d.queue_family, external.queue_index, &d.queue);
+  vkGetPhysicalDeviceMemoryProperties(d.physical_device, &d.memory_properties);
+  d.storage_write_without_format = external.storage_write_without_format;
+  create_device_objects(d, external.pipeline_cache_dir, families[d.queue_family].timestampValidBits);
 }
 
 Context::~Context() = default;

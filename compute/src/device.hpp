@@ -51,6 +51,7 @@ struct Device {
   std::string name;  // properties.deviceName
   VkPhysicalDeviceMemoryProperties memory_properties{};
   bool validation = false;
+  bool owns_device = true;  // false: an application's device and instance (ExternalDevice), not destroyed here
   bool storage_write_without_format = false;  // shaderStorageImageWriteWithoutFormat, enabled
 
   VkPipelineCache pipeline_cache = VK_NULL_HANDLE;

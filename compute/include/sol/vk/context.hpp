@@ -5,7 +5,8 @@
 // supports compute, and submits work to it. Buffers, images and pipelines are
 // created from a Context and share ownership of its device: whatever order
 // they are destroyed in, the device goes last. A Context and the objects made
-// from it are for one thread at a time.
+// from it are for one thread at a time. An application with a Vulkan device
+// of its own hands it over instead (ExternalDevice) and keeps it.
 //
 // Device choice: ContextOptions::preference, where Auto (the default) takes a
 // GPU (discrete before integrated before virtual) when there is one and else
@@ -81,6 +82,27 @@ struct ContextOptions {
       create_device{};
 };
 
+/// An application's own Vulkan objects, which a Context adopts instead of
+/// creating its own (Context(const ExternalDevice&)): Sol's pipelines,
+/// buffers and images are then made on the application's device and its
+/// commands recorded into the application's command buffers
+/// (MarchRenderer::record) or submitted to the given queue. The application
+/// keeps ownership: it destroys the device (and instance) after every Sol
+/// object made from them. The device must be Vulkan 1.2 or newer; the queue
+/// family must support compute.
+struct ExternalDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  std::uint32_t queue_family = 0;
+  std::uint32_t queue_index = 0;
+  /// Whether the application enabled shaderStorageImageWriteWithoutFormat
+  /// (MarchRenderer's 8-bit sRGB output into UnormTarget images needs it).
+  bool storage_write_without_format = false;
+  /// As ContextOptions::pipeline_cache_dir.
+  std::string pipeline_cache_dir{};
+};
+
 class Context {
  public:
   /// Throws VulkanError when there is no Vulkan driver or device, or no
@@ -88,6 +110,12 @@ class Context {
   /// std::invalid_argument when SOL_VK_DEVICE has a value other than
   /// gpu, cpu or auto.
   explicit Context(const ContextOptions& options = {});
+  /// A Context on an application's device (see ExternalDevice), which it
+  /// does not destroy; its own command pool, timestamp queries and pipeline
+  /// cache are made on that device and destroyed with it. Throws
+  /// std::invalid_argument for a null handle and VulkanError for a device
+  /// below Vulkan 1.2 or a queue family without compute.
+  explicit Context(const ExternalDevice& external);
   ~Context();
   Context(Context&&) noexcept;
   Context& operator=(Context&&) noexcept;
