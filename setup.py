@@ -4,7 +4,10 @@ pyproject.toml names setuptools as the backend; this file gives it the one
 thing it cannot do alone: the compiled module sol._sol comes from CMake
 (python/CMakeLists.txt), configured for the interpreter running the build
 (its Python3_EXECUTABLE) with only libsol and the module, built, and copied
-into the wheel beside python/sol/__init__.py. SOL_CMAKE_BUILD_DIR names a
+into the wheel beside python/sol/__init__.py, with the Vulkan kernel where
+its dependencies are installed (SOL_BUILD_VULKAN=AUTO; the environment's
+SOL_BUILD_VULKAN=OFF leaves it out, ON requires it; sol.has_vulkan() and
+sol.vulkan_missing() tell which). SOL_CMAKE_BUILD_DIR names a
 build folder already configured for this interpreter to build in instead
 (the tests use the CI build's); CMAKE_BUILD_PARALLEL_LEVEL sets the jobs.
 """
@@ -15,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+import time
 from pathlib import Path
 
 from setuptools import Extension, setup
@@ -69,6 +73,57 @@ def check_prerequisites():
                  "(docs/python.md: Installing)")
 
 
+class BuildProgress:
+    """The CMake build's progress, one line a second at most: the share of its steps done (Ninja's [n/N], Make's
+    [ p%]) and the time left at the rate so far. pip keeps a build's output to itself unless asked (-v), so the
+    line also goes to the terminal (/dev/tty) where there is one."""
+
+    STEP = re.compile(r"^\[\s*(\d+)/(\d+)\]|^\[\s*(\d+)%\]")
+
+    def __init__(self):
+        self.start = time.monotonic()
+        self.shown = 0.0
+        try:
+            self.tty = open("/dev/tty", "w")  # noqa: SIM115 (closed in close())
+        except OSError:
+            self.tty = None
+
+    def line(self, text):
+        match = self.STEP.match(text)
+        if not match:
+            return
+        fraction = int(match[1]) / int(match[2]) if match[1] else int(match[3]) / 100
+        now = time.monotonic()
+        if now - self.shown < 1.0 and fraction < 1.0:
+            return
+        self.shown = now
+        elapsed = now - self.start
+        left = f", about {elapsed * (1 - fraction) / fraction:.0f} s left" if 0.02 < fraction < 1 else ""
+        message = f"setup.py: building sol's compiled module: {100 * fraction:3.0f}% after {elapsed:.0f} s{left}"
+        print(message, file=sys.stderr, flush=True)
+        if self.tty:
+            self.tty.write(f"\r{message}   ")
+            self.tty.flush()
+
+    def close(self):
+        if self.tty:
+            self.tty.write("\n")
+            self.tty.close()
+
+
+def build_with_progress(command):
+    """Runs the build, its output passed on as it comes and its progress reported; fails as spawn would."""
+    progress = BuildProgress()
+    print(" ".join(command), flush=True)
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace") as build:
+        for text in build.stdout:
+            sys.stdout.write(text)
+            progress.line(text)
+    progress.close()
+    if build.returncode != 0:
+        raise RuntimeError(f"setup.py: the CMake build failed (exit {build.returncode}): {' '.join(command)}")
+
+
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         given = os.environ.get("SOL_CMAKE_BUILD_DIR")
@@ -78,9 +133,10 @@ class CMakeBuild(build_ext):
             self.spawn(["cmake", "-S", str(ROOT), "-B", str(build), *generator,
                         "-DCMAKE_BUILD_TYPE=Release", f"-DPython3_EXECUTABLE={sys.executable}",
                         "-DSOL_BUILD_PYTHON=ON", "-DSOL_BUILD_TESTS=OFF", "-DSOL_BUILD_BENCH=OFF",
-                        "-DSOL_BUILD_VULKAN=OFF", "-DSOL_BUILD_VIEWER=OFF", "-DSOL_BUILD_XR=OFF"])
+                        f"-DSOL_BUILD_VULKAN={os.environ.get('SOL_BUILD_VULKAN', 'AUTO')}", "-DSOL_BUILD_VIEWER=OFF",
+                        "-DSOL_BUILD_XR=OFF"])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
-        self.spawn(["cmake", "--build", str(build), "--target", "sol_python", "--parallel", jobs])
+        build_with_progress(["cmake", "--build", str(build), "--target", "sol_python", "--parallel", jobs])
         package = build / "python" / "package" / "sol"
         built = sorted(package.glob("_sol*.so"))
         if not built:

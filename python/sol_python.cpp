@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -26,6 +27,7 @@
 
 #ifdef SOL_PYTHON_IMAGES
 #include "image_file.hpp"  // Sol::programs: solrender's image writer and sRGB bytes
+#include "renderers.hpp"   // and its choice of renderer (make_renderer)
 #include "srgb.hpp"
 #endif
 
@@ -102,18 +104,20 @@ py::array_t<float> image(const std::vector<float>& values, int height, int width
 // A render's images as the Python module hands them out: a dict of float32
 // arrays (rgba, object, distance, point, steps).
 py::dict render_dict(const sol::RenderResult& r) {
+  py::dict out;
+  out["rgba"] = image(r.rgba, r.height, r.width, 4);
+  if (r.object.empty()) return out;  // the colour alone (aovs=False)
   std::vector<float> point(3 * r.px.size());
   for (std::size_t i = 0; i < r.px.size(); ++i) {
     point[3 * i] = r.px[i];
     point[3 * i + 1] = r.py[i];
     point[3 * i + 2] = r.pz[i];
   }
-  py::dict out;
-  out["rgba"] = image(r.rgba, r.height, r.width, 4);
   out["object"] = image(r.object, r.height, r.width, 1);
   out["distance"] = image(r.distance, r.height, r.width, 1);
   out["point"] = image(point, r.height, r.width, 3);
   out["steps"] = image(r.steps, r.height, r.width, 1);
+  if (!r.out_of_steps.empty()) out["out_of_steps"] = image(r.out_of_steps, r.height, r.width, 1);
   return out;
 }
 
@@ -161,6 +165,117 @@ struct PyCpuRenderer {
     return renderer.render(from, interruptible);
   }
 };
+
+#ifndef SOL_VULKAN_MISSING
+#define SOL_VULKAN_MISSING ""
+#endif
+// What the build lacked for the Vulkan kernel ("" where it has it, or was not asked for it).
+constexpr const char* sol_vulkan_missing() { return SOL_VULKAN_MISSING; }
+
+#ifdef SOL_PYTHON_IMAGES
+// sol._Renderer (sol.Renderer wraps it): either device behind
+// sol::Renderer, chosen as solrender's --device chooses (make_renderer).
+// Renders with the GIL released; the progress callback and Python's
+// signal handlers run on the calling thread at most every 100 ms (a
+// device's dispatches are tiled to about 50 ms, as solrender's), and what
+// they raise cancels the render (sol::RenderOptions::cancel) and reaches
+// the caller.
+struct PyRenderer {
+  sol::programs::RendererChoice choice;
+  std::unique_ptr<sol::Renderer> renderer;
+  sol::Camera camera;
+  int samples = 1;
+  std::vector<std::string> notes;  // why auto took the CPU, if it did
+
+  static sol::programs::Device device_named(const std::string& name) {
+    if (name == "auto") return sol::programs::Device::Auto;
+    if (name == "vulkan") return sol::programs::Device::Vulkan;
+    if (name == "cpu") return sol::programs::Device::Cpu;
+    throw sol::InvalidArgument("sol.Renderer: device must be \"auto\", \"vulkan\" or \"cpu\", not \"" + name + "\"");
+  }
+  static sol::Transport transport_named(const std::string& name, const char* who) {
+    if (name == "direct") return sol::Transport::Direct;
+    if (name == "path") return sol::Transport::Path;
+    throw sol::InvalidArgument(std::string(who) + ": transport must be \"direct\" or \"path\", not \"" + name + "\"");
+  }
+
+  void set_scene(const sol::Scene& scene) {
+    if (choice.device == sol::programs::Device::Vulkan && !sol::programs::has_vulkan()) {
+      throw sol::NotImplemented(std::string("sol.Renderer: device=\"vulkan\": this sol was built without the Vulkan kernel") +
+                                (sol_vulkan_missing()[0] ? std::string(" (missing when it was built: ") + sol_vulkan_missing() + ")"
+                                                         : std::string()) +
+                                "; device=\"cpu\" or \"auto\" render on the CPU (docs/python.md)");
+    }
+    std::vector<std::string> said;
+    try {
+      py::gil_scoped_release release;  // a kernel's first build and a quotient's field take a while
+      renderer = sol::programs::make_renderer(choice, scene, [&said](const std::string& note) { said.push_back(note); });
+    } catch (const sol::NotImplemented& e) {
+      std::string what = e.what();
+      const std::string cli = "(--device cpu or auto)";
+      if (const auto at = what.find(cli); at != std::string::npos) what.replace(at, cli.size(), "(device=\"cpu\" or \"auto\")");
+      throw sol::NotImplemented("sol.Renderer: " + what);
+    }
+    notes = std::move(said);
+    camera = scene.camera;
+    samples = scene.samples;
+  }
+
+  bool on_cpu() const { return dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr; }
+
+  py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
+                  long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress) {
+    if (seed < 0 || seed > 2147483647LL) {
+      throw sol::InvalidArgument("sol.Renderer.render: seed must be in [0, 2^31-1] (solrender's --seed), not " + std::to_string(seed));
+    }
+    if (stereo_ipd && !(*stereo_ipd >= 0.0 && *stereo_ipd <= 10.0)) {
+      throw sol::InvalidArgument("sol.Renderer.render: ipd must be in [0, 10] (solrender's --ipd), not " + std::to_string(*stereo_ipd));
+    }
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr())) {
+      throw sol::InvalidArgument("sol.Renderer.render: progress must be a callable taking the finished fraction, or None");
+    }
+    sol::RenderOptions options{.width = width,
+                               .height = height,
+                               .samples = samples_given == 0 ? samples : samples_given,
+                               .threads = threads,
+                               .transport = transport_named(transport, "sol.Renderer.render"),
+                               .seed = static_cast<std::uint64_t>(seed)};
+    options.aovs = aovs;
+    options.max_dispatch_ms = 100.0;  // as solrender: tiles of about 50 ms, so progress and Ctrl-C are heard
+    const sol::Camera from = eye.value_or(camera);
+    std::atomic<bool> cancel{false};
+    std::optional<py::error_already_set> raised;  // what a handler or the callback raised
+    auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    options.cancel = &cancel;
+    options.progress = [&](double fraction) {
+      const auto now = std::chrono::steady_clock::now();
+      if (cancel.load() || (now - last < std::chrono::milliseconds(100) && fraction < 1.0)) return;
+      last = now;
+      const py::gil_scoped_acquire gil;
+      try {
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!progress.is_none()) progress(fraction);
+      } catch (py::error_already_set& e) {
+        raised.emplace(std::move(e));
+        cancel.store(true);
+      }
+    };
+    sol::RenderResult result;
+    try {
+      py::gil_scoped_release release;
+      result = stereo_ipd ? renderer->render_stereo(from, *stereo_ipd, options) : renderer->render(from, options);
+    } catch (const sol::Cancelled&) {
+      if (raised) throw *raised;
+      throw;
+    }
+    if (raised) throw *raised;  // raised by the last report, after the work was done
+    py::dict out = render_dict(result);
+    out["rays_out_of_steps"] = result.rays_out_of_steps;
+    out["device_ms"] = result.device_ms;
+    return out;
+  }
+};
+#endif
 
 // The module's exception types (made in PYBIND11_MODULE).
 PyObject* g_invalid_argument = nullptr;
@@ -543,6 +658,41 @@ void bind_scenes(py::module_& m) {
           "\"samples\", as solrender's --spp), on `threads` threads (0: all), by `transport` (\"direct\" light, the "
           "default, or \"path\" tracing, each sample one path whose random numbers come from `seed`, 0 or more, as "
           "solrender's --transport and --seed): a dict of float32 arrays as render_cpu's.");
+#ifdef SOL_PYTHON_IMAGES
+  py::class_<PyRenderer>(m, "_Renderer", "(sol.Renderer: the renderer of either device.)")
+      .def(py::init([](const sol::Scene& scene, const std::string& device, const std::string& transport, bool rk4,
+                       double rk4_step) {
+             auto r = std::make_unique<PyRenderer>();
+             r->choice.device = PyRenderer::device_named(device);
+             r->choice.transport = PyRenderer::transport_named(transport, "sol.Renderer");
+             if (!(rk4_step > 0.0 && rk4_step <= 1.0)) {
+               throw sol::InvalidArgument("sol.Renderer: rk4_step must be in (0, 1], not " + std::to_string(rk4_step));
+             }
+             r->choice.rk4 = rk4;
+             r->choice.rk4_step = rk4_step;
+             r->set_scene(scene);
+             return r;
+           }),
+           py::arg("scene"), py::arg("device"), py::arg("transport"), py::arg("rk4"), py::arg("rk4_step"))
+      .def("set_scene", &PyRenderer::set_scene, py::arg("scene"))
+      .def("render", &PyRenderer::render, py::arg("width"), py::arg("height"), py::arg("samples"), py::arg("camera"),
+           py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"))
+      .def_property_readonly("description", [](const PyRenderer& r) { return r.renderer->description(); })
+      .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu() ? "cpu" : "vulkan"; })
+      .def_property_readonly("notes", [](const PyRenderer& r) { return r.notes; });
+#endif
+  m.def("has_vulkan",
+        []() {
+#ifdef SOL_PYTHON_IMAGES
+          return sol::programs::has_vulkan();
+#else
+          return false;
+#endif
+        },
+        "Whether this sol has the Vulkan kernel (sol.Renderer(device=\"vulkan\")); sol.vulkan_missing() says what its "
+        "build lacked when it has not.");
+  m.def("vulkan_missing", []() { return std::string(sol_vulkan_missing()); },
+        "What the build lacked for the Vulkan kernel, for people (\"\" when it has it or was built without asking).");
   m.def(
       "render_cpu",
       [](const sol::Scene& scene, int width, int height, int samples, unsigned threads, const std::optional<sol::Camera>& camera,

@@ -1101,6 +1101,12 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         ms += m.run_passes(pipeline, f.set, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
                            group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize), f.data());
         pixels_timed += static_cast<double>(cols) * rows;
+        // Heard after every dispatch, not only every band (a band of many
+        // samples is many dispatches): progress in pixel samples done.
+        if (options.progress) options.progress(pixels_timed / (static_cast<double>(w) * h * samples));
+        if (options.cancel && options.cancel->load() && pixels_timed < static_cast<double>(w) * h * samples) {
+          throw Cancelled("sol::vk::MarchRenderer::render: cancelled");
+        }
       }
     }
     // The band's colour is done: handed over now (RenderOptions::rows), so
@@ -1111,8 +1117,6 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
       }, static_cast<std::uint32_t>(y), static_cast<std::uint32_t>(rows));
     }
     y += rows;
-    if (options.progress) options.progress(static_cast<double>(y) / h);
-    if (options.cancel && options.cancel->load() && y < h) throw Cancelled("sol::vk::MarchRenderer::render: cancelled");
     if (!whole && ms > 0.0) {
       const double budget = 0.5 * options.max_dispatch_ms / (ms / pixels_timed);  // pixels per dispatch
       if (budget >= static_cast<double>(w) * step) {

@@ -35,3 +35,7 @@ from . import scenes as _scenes  # noqa: E402
 from .scenes import *  # noqa: E402,F401,F403
 
 __all__ = [_name for _name in dir(_sol) if not _name.startswith("_")] + _scenes.__all__
+if hasattr(_sol, "_Renderer"):  # (a module built with solrender's image and renderer code: every build but the bare library's)
+    from .renderer import Renderer  # noqa: E402,F401
+
+    __all__.append("Renderer")

@@ -26,7 +26,7 @@ def copy_sources(work):
     """What the build reads of the tree (pip builds in the source folder: a copy keeps the repository clean)."""
     src = work / "src"
     for name in ("pyproject.toml", "setup.py", "CMakeLists.txt", "docs/python.md", "python/sol/__init__.py",
-                 "python/sol/scenes.py", "python/sol/_build.py.in"):
+                 "python/sol/scenes.py", "python/sol/renderer.py", "python/sol/_build.py.in"):
         (src / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(Path(SOURCE) / name, src / name)
     return src
@@ -54,6 +54,20 @@ def test_pip_installs_the_package_into_a_fresh_venv():
         assert lines[0].startswith(str(venv)), lines[0]
         assert lines[1] == sol.__version__
         assert lines[2:] == ["(6,", "8,", "4)"]
+        # The kernel from the venv: sol.Renderer(device="vulkan") writes the image solrender --device vulkan
+        # writes for the same scene, options and seed (both float EXR, idiff without tolerance).
+        if sol.has_vulkan() and os.environ.get("SOLRENDER") and os.environ.get("IDIFF"):
+            ours, theirs = work / "venv-kernel.exr", work / "solrender-kernel.exr"
+            kernel = ("import sol, sys; r = sol.Renderer(sol.preset_scene('sandwich'), device='vulkan', "
+                      "transport='path'); assert r.device == 'vulkan'; "
+                      "sol.save(sys.argv[1], r.render(20, 14, samples=2, transport='path', seed=5)['rgba'])")
+            made = run(python, "-c", kernel, ours, env=env)
+            assert made.returncode == 0, made.stderr
+            rendered = run(os.environ["SOLRENDER"], "--scene", "sandwich", "--device", "vulkan", "--width", 20,
+                           "--height", 14, "--spp", 2, "--transport", "path", "--seed", 5, "-o", theirs)
+            assert rendered.returncode == 0, rendered.stderr
+            same = run(os.environ["IDIFF"], "-fail", "0", "-warn", "0", ours, theirs)
+            assert same.returncode == 0, same.stdout + same.stderr
         # The notebook from the venv, as docs/python.md says: a kernel installed into the venv, which Jupyter
         # run from it finds; its cells import the venv's sol (the first prints where from), and the tour runs.
         if importlib.util.find_spec("ipykernel") is None or importlib.util.find_spec("nbclient") is None:

@@ -1,0 +1,162 @@
+"""sol.Renderer, either device behind one class: against solrender with the same device, options and seed (both
+as float EXR, compared by idiff without tolerance), the CPU device against sol.render_cpu, the choice of device and its
+errors, progress and Ctrl-C. ctest names solrender in SOLRENDER and idiff in IDIFF."""
+import json
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+import pytest
+
+import sol
+
+SOLRENDER = os.environ.get("SOLRENDER")
+IDIFF = os.environ.get("IDIFF")
+needs_vulkan = pytest.mark.skipif(not sol.has_vulkan(), reason="this sol has no Vulkan kernel")
+needs_solrender = pytest.mark.skipif(not SOLRENDER or not IDIFF, reason="solrender or idiff not there")
+
+
+def same_as_solrender(scene, image, *args):
+    """Whether solrender with `args` writes the float image `image` is: both as EXR (float32, lossless), compared
+    by OpenImageIO's idiff with no tolerance (a failure shows idiff's report)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "scene.json")
+        with open(path, "w") as f:
+            f.write(scene.to_json())
+        theirs, ours = os.path.join(tmp, "solrender.exr"), os.path.join(tmp, "python.exr")
+        subprocess.run([SOLRENDER, "--scene", path, *[str(a) for a in args], "-o", theirs], check=True,
+                       capture_output=True)
+        assert sol.save(ours, image) == 0
+        compared = subprocess.run([IDIFF, "-fail", "0", "-warn", "0", ours, theirs], capture_output=True, text=True)
+        assert compared.returncode == 0, compared.stdout + compared.stderr
+        return True
+
+
+@needs_vulkan
+@needs_solrender
+@pytest.mark.parametrize("preset, options", [
+    ("lattice-balls", {"samples": 2}),
+    ("sandwich", {"samples": 3, "transport": "path", "seed": 7}),
+    ("plane", {"samples": 1, "stereo": True, "ipd": 0.2}),
+])
+def test_the_kernel_from_python_is_solrenders(preset, options):
+    # The same kernel on the same device with the same options and seed: the same float image, bit for bit (the
+    # renderer's tiling of long renders into dispatches changes no pixel).
+    scene = sol.preset_scene(preset)
+    r = sol.Renderer(scene, device="vulkan", transport=options.get("transport", "direct"))
+    assert r.device == "vulkan" and r.description.startswith("vulkan")
+    got = r.render(24, 16, progress=False, **options)
+    args = ["--device", "vulkan", "--width", 24, "--height", 16, "--spp", options["samples"]]
+    if options.get("transport") == "path":
+        args += ["--transport", "path", "--seed", options["seed"]]
+    if options.get("stereo"):
+        args += ["--stereo", "--ipd", options["ipd"]]
+    assert got["rgba"].shape == (16, 48 if options.get("stereo") else 24, 4)
+    assert same_as_solrender(scene, got["rgba"], *args)
+    assert got["device_ms"] > 0
+
+
+@needs_vulkan
+def test_kernel_and_cpu_agree_on_hits():
+    # The kernel (float) and the CPU reference (double) through one interface: the same objects hit at the same
+    # points, to the kernel's float tolerance, in a world of the quotient.
+    scene = sol.preset_scene("lattice-balls")
+    kernel = sol.Renderer(scene, device="vulkan").render(20, 14, progress=False)
+    cpu = sol.Renderer(scene, device="cpu").render(20, 14, progress=False)
+    same = kernel["object"] == cpu["object"]
+    assert same.mean() > 0.95  # pixels at an object's silhouette may differ
+    hit = same & (cpu["object"] > 0)
+    assert hit.any()
+    # (float arithmetic along geodesics of length up to 12 here: 1.2e-4 relative measured, 5e-4 allowed)
+    assert (np.abs(kernel["distance"][hit] - cpu["distance"][hit]) / np.maximum(1.0, cpu["distance"][hit])).max() < 5e-4
+
+
+def test_the_cpu_device_is_render_cpu():
+    scene = sol.preset_scene("sandwich")
+    r = sol.Renderer(scene, device="cpu")
+    assert r.device == "cpu" and r.notes == []
+    got = r.render(16, 12, samples=2, progress=False)
+    want = sol.render_cpu(scene, 16, 12, samples=2)
+    for key in ("rgba", "object", "distance", "point", "steps"):
+        assert np.array_equal(got[key], want[key]), key
+    colour_only = r.render(16, 12, samples=2, aovs=False, progress=False)
+    assert set(colour_only) == {"rgba", "rays_out_of_steps", "device_ms"}
+    assert np.array_equal(colour_only["rgba"], want["rgba"])
+
+
+def test_the_device_is_chosen_and_errors_name_the_keyword():
+    with pytest.raises(sol.InvalidArgumentError, match='device must be "auto", "vulkan" or "cpu", not "gpu"'):
+        sol.Renderer(sol.preset_scene("plane"), device="gpu")
+    with pytest.raises(sol.InvalidArgumentError, match="transport"):
+        sol.Renderer(sol.preset_scene("plane"), transport="paths")
+    with pytest.raises(sol.InvalidArgumentError, match="seed"):
+        sol.Renderer(sol.preset_scene("plane"), device="cpu").render(4, 4, seed=-1)
+    # Exact balls in a world of more than eight objects render on the CPU only: "auto" takes it and says why;
+    # "vulkan" refuses, naming the keyword that would render it.
+    scene = json.loads(sol.preset_scene("plane").to_json())
+    scene["objects"] = [{"type": "ball", "center": [1 + 0.3 * i, 0, 0], "radius": 0.1, "exact": True} for i in range(9)]
+    crowd = sol.parse_scene(json.dumps(scene))
+    auto = sol.Renderer(crowd)
+    assert auto.device == "cpu"
+    if sol.has_vulkan():
+        assert any("exact" in note and "CPU" in note for note in auto.notes), auto.notes
+        with pytest.raises(sol.UnsupportedError, match='device="cpu" or "auto"'):
+            sol.Renderer(crowd, device="vulkan")
+    else:
+        with pytest.raises(sol.UnsupportedError, match="without the Vulkan kernel"):
+            sol.Renderer(crowd, device="vulkan")
+
+
+def test_progress_is_reported_and_its_errors_stop_the_render():
+    fractions = []
+    sol.Renderer(sol.preset_scene("plane"), device="auto").render(32, 32, progress=fractions.append)
+    assert fractions and fractions[-1] == 1.0 and fractions == sorted(fractions)
+
+    class Stop(Exception):
+        pass
+
+    def stop(fraction):
+        raise Stop(fraction)
+
+    with pytest.raises(Stop):
+        sol.Renderer(sol.preset_scene("plane"), device="cpu").render(64, 64, progress=stop)
+    with pytest.raises(sol.InvalidArgumentError, match="progress must be a callable"):
+        sol.Renderer(sol.preset_scene("plane"), device="cpu").render(4, 4, progress=3)
+
+
+def test_the_text_bar_ends_its_line(capsys):
+    # A bar shows for renders over half a second only; asked for, it goes to stderr and ends its line.
+    import sol.renderer as module
+
+    bar = module._ProgressBar("sol.Renderer (cpu)")
+    bar._start -= 1.0
+    bar(0.25)
+    bar(1.0)
+    bar.close()
+    err = capsys.readouterr().err
+    assert "25.0%" in err and "100.0%" in err and err.endswith("\n")
+    assert "left" in err.split("\r")[1]
+
+
+@pytest.mark.parametrize("device", ["cpu", "vulkan"])
+def test_renders_hear_ctrl_c(device):
+    # As sol.render_cpu: KeyboardInterrupt within a fraction of a second of device work (the kernel's dispatches
+    # are tiled to about 50 ms).
+    import _thread
+    import threading
+    import time
+
+    if device == "vulkan" and not sol.has_vulkan():
+        pytest.skip("this sol has no Vulkan kernel")
+    r = sol.Renderer(sol.preset_scene("spheres"), device=device)
+    r.render(4, 4, progress=False)  # the kernel built before the clock starts
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    started = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        r.render(1024, 4096, samples=16, progress=False)  # minutes on lavapipe or the CPU (rows of 16 samples: the CPU hears Ctrl-C between rows)
+        time.sleep(30)
+    elapsed = time.monotonic() - started
+    timer.cancel()
+    assert elapsed < 5.0, f"stopped {elapsed:.1f} s after it started (interrupted at 0.5 s)"
