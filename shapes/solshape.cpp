@@ -12,7 +12,10 @@
 #include <assimp/scene.h>
 #include <glm/geometric.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -29,6 +32,7 @@
 
 #include "command_line.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 
 namespace {
 
@@ -265,7 +269,21 @@ int cut_locus(int argc, char** argv) {
 // least feature) and the share of vertices where it is thinner than that.
 void report_printability(const sol::Mesh& mesh, double scale, double size_mm, double min_feature_mm) {
   const double reach_mm = 2.0 * min_feature_mm;
-  const std::vector<double> thickness = sol::vertex_thickness(mesh, reach_mm / scale);
+  // Progress on a terminal for a search that takes more than a second (a
+  // fine mesh: a minute at --resolution 512), with the time left.
+  const bool tty = isatty(fileno(stderr)) != 0;
+  const auto started = std::chrono::steady_clock::now();
+  sol::programs::ProgressEstimate estimate;
+  bool shown = false;
+  const std::vector<double> thickness = sol::vertex_thickness(mesh, reach_mm / scale, [&](double fraction) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const std::optional<double> left = estimate.report(seconds, fraction);
+    if (!tty || (seconds < 1.0 && !shown)) return;
+    shown = true;
+    std::fprintf(stderr, "\rsolshape: printability: %3.0f %%", 100.0 * fraction);
+    if (left && fraction < 1.0) std::fprintf(stderr, ", about %.0f s left", *left);
+    std::fprintf(stderr, "        %s", fraction >= 1.0 ? "\n" : "");
+  });
   double least = std::numeric_limits<double>::infinity();
   std::size_t at = 0, thin = 0;
   for (std::size_t k = 0; k < thickness.size(); ++k) {

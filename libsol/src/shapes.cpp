@@ -3,6 +3,8 @@
 #include "check.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <numeric>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -431,7 +433,132 @@ double ray_triangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& 
 
 }  // namespace
 
-std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
+namespace {
+
+// A bounding volume hierarchy over a mesh's triangles (boxes split at the
+// median of their centres along the longest axis), for rays that look for
+// their first triangle within a reach: each ray visits the nodes its
+// segment meets, nearer child first, and skips those beyond the nearest
+// hit so far, so its cost grows with the logarithm of the triangles
+// whatever their sizes (a uniform grid is quadratic for a geodesic
+// sphere's triangles, which range over orders of magnitude).
+class TriangleTree {
+ public:
+  explicit TriangleTree(const Mesh& mesh) : m_mesh(mesh), m_order(mesh.triangles.size()) {
+    std::iota(m_order.begin(), m_order.end(), std::size_t{0});
+    m_boxes.reserve(m_order.size());
+    for (const auto& t : mesh.triangles) {
+      const glm::dvec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+      // (Widened as ray_triangle's margin widens the triangle, and for rounding.)
+      const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+      const glm::dvec3 pad = 1e-8 * (hi - lo) + 1e-12 * (glm::abs(lo) + glm::abs(hi)) + glm::dvec3(1e-300);
+      m_boxes.push_back({lo - pad, hi + pad});
+    }
+    if (!m_order.empty()) build(0, m_order.size());
+  }
+
+  // The least t in (0, reach] where o + t d (d unit) meets a triangle not
+  // incident to vertex `skip`, or +infinity.
+  double first_hit(const glm::dvec3& o, const glm::dvec3& d, double reach, std::size_t skip) const {
+    double least = std::numeric_limits<double>::infinity();
+    if (m_nodes.empty()) return least;
+    const glm::dvec3 inverse(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+    std::vector<std::size_t>& stack = m_stack;
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const Node& node = m_nodes[stack.back()];
+      stack.pop_back();
+      if (entry(node.box, o, inverse, std::min(least, reach)) == std::numeric_limits<double>::infinity()) continue;
+      if (node.count > 0) {
+        for (std::size_t i = node.first; i < node.first + node.count; ++i) {
+          const auto& t = m_mesh.triangles[m_order[i]];
+          if (static_cast<std::size_t>(t[0]) == skip || static_cast<std::size_t>(t[1]) == skip ||
+              static_cast<std::size_t>(t[2]) == skip) {
+            continue;
+          }
+          const double hit = ray_triangle(o, d, m_mesh.vertices[t[0]], m_mesh.vertices[t[1]], m_mesh.vertices[t[2]]);
+          if (hit > 0.0 && hit < least) least = hit;
+        }
+        continue;
+      }
+      // The nearer child on top of the stack.
+      const double a = entry(m_nodes[node.first].box, o, inverse, std::min(least, reach));
+      const double b = entry(m_nodes[node.second].box, o, inverse, std::min(least, reach));
+      stack.push_back(a <= b ? node.second : node.first);
+      stack.push_back(a <= b ? node.first : node.second);
+    }
+    return least <= reach ? least : std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  struct Box {
+    glm::dvec3 lo, hi;
+  };
+  struct Node {
+    Box box;
+    std::size_t first = 0;   // a leaf's first triangle in m_order; an inner node's first child
+    std::size_t second = 0;  // an inner node's second child
+    std::size_t count = 0;   // a leaf's triangles; 0 for an inner node
+  };
+
+  // Where the segment o + t d, t in [0, until], enters `box` (slab test),
+  // or +infinity where it misses it.
+  static double entry(const Box& box, const glm::dvec3& o, const glm::dvec3& inverse, double until) {
+    double t0 = 0.0, t1 = until;
+    for (int axis = 0; axis < 3; ++axis) {
+      double near = (box.lo[axis] - o[axis]) * inverse[axis], far = (box.hi[axis] - o[axis]) * inverse[axis];
+      if (std::isnan(near) || std::isnan(far)) {  // d[axis] = 0 with o on a slab's face: inside if within it
+        if (o[axis] < box.lo[axis] || o[axis] > box.hi[axis]) return std::numeric_limits<double>::infinity();
+        continue;
+      }
+      if (near > far) std::swap(near, far);
+      t0 = std::max(t0, near);
+      t1 = std::min(t1, far);
+      if (t0 > t1) return std::numeric_limits<double>::infinity();
+    }
+    return t0;
+  }
+
+  std::size_t build(std::size_t first, std::size_t end) {
+    const std::size_t index = m_nodes.size();
+    m_nodes.push_back({});
+    Box box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (std::size_t i = first; i < end; ++i) {
+      box.lo = glm::min(box.lo, m_boxes[m_order[i]].lo);
+      box.hi = glm::max(box.hi, m_boxes[m_order[i]].hi);
+    }
+    m_nodes[index].box = box;
+    constexpr std::size_t kLeaf = 4;
+    if (end - first <= kLeaf) {
+      m_nodes[index].first = first;
+      m_nodes[index].count = end - first;
+      return index;
+    }
+    const glm::dvec3 extent = box.hi - box.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const std::size_t middle = first + (end - first) / 2;
+    std::nth_element(m_order.begin() + static_cast<std::ptrdiff_t>(first), m_order.begin() + static_cast<std::ptrdiff_t>(middle),
+                     m_order.begin() + static_cast<std::ptrdiff_t>(end), [&](std::size_t a, std::size_t b) {
+                       return m_boxes[a].lo[axis] + m_boxes[a].hi[axis] < m_boxes[b].lo[axis] + m_boxes[b].hi[axis];
+                     });
+    const std::size_t left = build(first, middle);
+    const std::size_t right = build(middle, end);
+    m_nodes[index].first = left;
+    m_nodes[index].second = right;
+    return index;
+  }
+
+  const Mesh& m_mesh;
+  std::vector<std::size_t> m_order;
+  std::vector<Box> m_boxes;
+  std::vector<Node> m_nodes;
+  mutable std::vector<std::size_t> m_stack;
+};
+
+}  // namespace
+
+std::vector<double> vertex_thickness(const Mesh& mesh, double up_to, const std::function<void(double)>& progress) {
   if (!(up_to > 0.0) || !std::isfinite(up_to)) throw InvalidArgument("sol::vertex_thickness: up_to must be finite and > 0");
   const std::size_t n = mesh.vertices.size();
   for (const auto& t : mesh.triangles) {
@@ -446,65 +573,16 @@ std::vector<double> vertex_thickness(const Mesh& mesh, double up_to) {
     const glm::dvec3 area = glm::cross(b - a, c - a);
     for (int k : t) normals[static_cast<std::size_t>(k)] += area;
   }
-  // The grid: each triangle in every cell its bounding box meets. Cells of
-  // at least the longest edge (a triangle meets at most 2 x 2 x 2 of them,
-  // however small up_to), and no thickness is looked for beyond the mesh's
-  // diagonal (however large up_to): the work stays bounded.
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& v : mesh.vertices) {
-    lo = glm::min(lo, v);
-    hi = glm::max(hi, v);
-  }
-  double longest_edge = 0.0;
-  for (const auto& t : mesh.triangles) {
-    for (int e = 0; e < 3; ++e) {
-      longest_edge = std::max(longest_edge, glm::length(mesh.vertices[t[(e + 1) % 3]] - mesh.vertices[t[e]]));
-    }
-  }
-  const double reach = std::min(up_to, n > 0 ? glm::length(hi - lo) : up_to);
-  const double cell = std::max({reach, longest_edge, 1e-300});
-  auto cell_of = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor((p - lo) / cell)); };
-  auto key = [](const glm::i64vec3& c) {
-    return (static_cast<std::uint64_t>(c.x) * 73856093u) ^ (static_cast<std::uint64_t>(c.y) * 19349663u) ^
-           (static_cast<std::uint64_t>(c.z) * 83492791u);
-  };
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const auto& t = mesh.triangles[i];
-    const glm::dvec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-    const glm::i64vec3 c0 = cell_of(glm::min(a, glm::min(b, c))), c1 = cell_of(glm::max(a, glm::max(b, c)));
-    for (auto x = c0.x; x <= c1.x; ++x) {
-      for (auto y = c0.y; y <= c1.y; ++y) {
-        for (auto z = c0.z; z <= c1.z; ++z) grid[key({x, y, z})].push_back(i);
-      }
-    }
-  }
+  const TriangleTree tree(mesh);
   std::vector<double> thickness(n, std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> seen;
+  if (progress) progress(0.0);
   for (std::size_t k = 0; k < n; ++k) {
+    if (progress && k % 4096 == 4095) progress(static_cast<double>(k) / static_cast<double>(n));
     const double length = glm::length(normals[k]);
     if (!(length > 0.0)) continue;  // a vertex of no triangle
-    const glm::dvec3 o = mesh.vertices[k], d = -normals[k] / length;
-    // The cells the segment [o, o + reach d] meets lie within its box.
-    const glm::i64vec3 c0 = cell_of(glm::min(o, o + reach * d)), c1 = cell_of(glm::max(o, o + reach * d));
-    seen.clear();
-    for (auto x = c0.x; x <= c1.x; ++x) {
-      for (auto y = c0.y; y <= c1.y; ++y) {
-        for (auto z = c0.z; z <= c1.z; ++z) {
-          const auto it = grid.find(key({x, y, z}));
-          if (it != grid.end()) seen.insert(seen.end(), it->second.begin(), it->second.end());
-        }
-      }
-    }
-    double least = std::numeric_limits<double>::infinity();
-    for (const std::size_t i : seen) {
-      const auto& t = mesh.triangles[i];
-      if (static_cast<std::size_t>(t[0]) == k || static_cast<std::size_t>(t[1]) == k || static_cast<std::size_t>(t[2]) == k) continue;
-      const double hit = ray_triangle(o, d, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
-      if (hit > 0.0 && hit < least) least = hit;
-    }
-    if (least <= reach) thickness[k] = least;
+    thickness[k] = tree.first_hit(mesh.vertices[k], -normals[k] / length, up_to, k);
   }
+  if (progress) progress(1.0);
   return thickness;
 }
 

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <cstddef>
 #include <vector>
 
@@ -116,11 +117,12 @@ std::vector<std::vector<glm::dvec3>> cut_locus_curves(const glm::dvec3& center, 
 /// How thick a closed mesh is at each vertex, for printing: the distance
 /// from the vertex along its inward normal (the area-weighted mean of its
 /// triangles' normals, reversed) to the first triangle not incident to it,
-/// or +infinity where none is within `up_to` (only thin parts matter, and
-/// looking no farther keeps the search local: a uniform grid of cells of
-/// `up_to` or the longest edge, whichever is larger, and no farther than
-/// the mesh's diagonal). In the mesh's units. Throws InvalidArgument for
+/// or +infinity where none is within `up_to` (only thin parts matter). In
+/// the mesh's units. The rays search a bounding volume hierarchy over the
+/// triangles, so the work grows as n log n with the mesh's size, whatever
+/// its triangles' sizes. `progress`, when given, is called now and then
+/// with the finished fraction (0 first, 1 last). Throws InvalidArgument for
 /// `up_to` not finite and > 0 or an index outside the vertices.
-std::vector<double> vertex_thickness(const Mesh& mesh, double up_to);
+std::vector<double> vertex_thickness(const Mesh& mesh, double up_to, const std::function<void(double)>& progress = {});
 
 }  // namespace sol
