@@ -162,24 +162,56 @@ const char* video_format(const std::string& video) {
 
 // Encodes the film's frames first_frame..end_frame-1 (the -o pattern) into
 // `video` with ffmpeg: H.264 in yuv420p (sizes padded to even numbers),
-// written to a temporary and moved onto `video` when ffmpeg succeeds.
+// written to a temporary and moved onto `video` when ffmpeg succeeds. With
+// `tty`, a progress line (frames encoded, percent, time left) from
+// ffmpeg's own progress reports (-progress on a pipe).
 void encode_video(const std::string& ffmpeg, const std::string& pattern, long first_frame, long end_frame, double fps,
-                  const std::string& video) {
+                  const std::string& video, bool tty) {
   const char* format = video_format(video);  // checked before the first frame (film_of)
   sol::programs::OutputFile out(video);
   const std::string rate = std::to_string(fps), start = std::to_string(first_frame);
-  const std::string count = std::to_string(end_frame - first_frame);  // (not the frames beyond --frames)
-  std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", rate, "-start_number", start,
-                                   "-i", pattern, "-frames:v", count, "-c:v", "libx264", "-pix_fmt", "yuv420p",
-                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", format, out.path()};
+  const long frames = end_frame - first_frame;
+  const std::string count = std::to_string(frames);  // (not the frames beyond --frames)
+  std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-nostats", "-progress", "pipe:1", "-framerate",
+                                   rate, "-start_number", start, "-i", pattern, "-frames:v", count, "-c:v", "libx264",
+                                   "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", format, out.path()};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  int report[2] = {-1, -1};
+  if (pipe2(report, O_CLOEXEC) != 0) throw std::runtime_error("--video: cannot make a pipe for ffmpeg's progress");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, report[1], STDOUT_FILENO);  // (dup2 clears close-on-exec)
   pid_t pid = 0;
-  if (posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+  const int spawned = posix_spawn(&pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(report[1]);
+  if (spawned != 0) {
+    ::close(report[0]);
     throw std::runtime_error("--video: cannot run " + ffmpeg);
   }
   const sol::programs::ChildProcess listed(pid);  // a signal ends it with us
+  // ffmpeg's reports: key=value lines, "frame=N" among them, until it ends.
+  std::FILE* reports = fdopen(report[0], "r");
+  if (reports == nullptr) ::close(report[0]);
+  const auto started = std::chrono::steady_clock::now();
+  sol::programs::ProgressEstimate estimate;
+  char line[256];
+  bool shown = false;
+  while (reports != nullptr && std::fgets(line, sizeof line, reports) != nullptr) {
+    long done = 0;
+    if (!tty || std::sscanf(line, "frame=%ld", &done) != 1 || frames <= 0) continue;
+    const double fraction = std::clamp(static_cast<double>(done) / static_cast<double>(frames), 0.0, 1.0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const std::optional<double> left = estimate.report(seconds, fraction);
+    std::fprintf(stderr, "\rsolrender: encoding %s: %ld of %ld frames (%.0f %%)", video.c_str(), done, frames, 100.0 * fraction);
+    if (left && fraction < 1.0) std::fprintf(stderr, ", about %.0f s left", *left);
+    std::fprintf(stderr, "      ");
+    shown = true;
+  }
+  if (reports != nullptr) std::fclose(reports);
+  if (shown) std::fprintf(stderr, "\n");
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -798,7 +830,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there, %s -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
                peak_memory().c_str(), o.video_only ? o.video.c_str() : o.output.c_str());
-  if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, film.end, o.fps, o.video);
+  if (!o.video.empty() && !o.video_only) encode_video(film.ffmpeg, o.output, film.first, film.end, o.fps, o.video, tty || o.progress);
 }
 
 // One image and its AOVs: both files complete before either replaces what
