@@ -24,7 +24,7 @@ presets=${PRESETS:-"plane sandwich sheets lattice-balls lattice-pillars lattice-
 for f in "$build/xr/solxr" "$build/bench/render_bench" "$build/viewer/solrender"; do
   [ -x "$f" ] || { echo "presenter_ratio: $f not built" >&2; exit 2; }
 done
-runtime=$build/tests/xr_runtime/sol_xr_test_runtime.json
+runtime=$build/xr/test_runtime/sol-xr-test-runtime.json
 [ -f "$runtime" ] || { echo "presenter_ratio: $runtime not built (the tests' OpenXR runtime)" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -17,7 +17,7 @@ frames=${2:-600}
 presets=${PRESETS:-"plane sandwich sheets lattice-balls lattice-pillars lattice-boxes spheres"}
 sizes=${SIZES:-"2000x2000@90 2064x2208@120"}
 solxr=$build/xr/solxr
-runtime=$build/tests/xr_runtime/sol_xr_test_runtime.json
+runtime=$build/xr/test_runtime/sol-xr-test-runtime.json
 [ -x "$solxr" ] || { echo "xr_headset: $solxr not built" >&2; exit 2; }
 [ -f "$runtime" ] || { echo "xr_headset: $runtime not built (the tests' OpenXR runtime)" >&2; exit 2; }
 work=$(mktemp -d)

@@ -19,7 +19,7 @@ import re
 import sys
 
 MAX_FUNCTION_LINES = 200
-DEFAULT_DIRS = ("libsol", "compute", "viewer", "xr", "python", "common", "bench", "tests/xr_runtime")
+DEFAULT_DIRS = ("libsol", "compute", "viewer", "xr", "python", "common", "bench")
 SKIP = re.compile(r"^(namespace|struct|class|enum|union|extern|template|using|static_assert|typedef|#|//|/\*|\}|\{)")
 START = re.compile(r"^[A-Za-z_~].*\(")
 

@@ -1,4 +1,4 @@
-// solxr through the headless OpenXR test runtime (tests/xr_runtime/), loaded
+// solxr through the headless OpenXR test runtime (xr/test_runtime/), loaded
 // by the real OpenXR loader (XR_RUNTIME_JSON), on lavapipe with the Vulkan
 // validation layer on: eye images against the CPU reference renderer for
 // the eyes the head poses give, head motion, locomotion, the session's life
@@ -17,6 +17,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 #include "eye_pose.hpp"
 
@@ -80,17 +82,29 @@ struct Image {
   std::vector<float> rgba;
 };
 
-Image load_eye(const fs::path& dir, int frame, int view) {
+/// A saved eye image (the runtime's "image_format": EXR, linear, or PNG,
+/// 8-bit sRGB, decoded here to linear by the sRGB curve) as linear RGBA.
+Image load_eye(const fs::path& dir, int frame, int view, const std::string& format = "exr") {
   Image image;
-  const fs::path path = dir / ("frame" + std::to_string(frame) + "_view" + std::to_string(view) + ".rgba32f");
-  std::ifstream in(path, std::ios::binary);
-  std::string magic, type;
-  in >> magic >> type >> image.width >> image.height;
-  in.get();  // the newline
-  EXPECT_EQ(magic, "SOLXR") << path;
+  const fs::path path = dir / ("frame" + std::to_string(frame) + "_view" + std::to_string(view) + "." + format);
+  const auto in = OIIO::ImageInput::open(path.string());
+  if (!in) {
+    ADD_FAILURE() << "cannot open " << path << ": " << OIIO::geterror();
+    return image;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  image.width = spec.width;
+  image.height = spec.height;
+  EXPECT_EQ(spec.nchannels, 4) << path;
   image.rgba.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(image.rgba.size() * sizeof(float)));
-  EXPECT_TRUE(in.good()) << "cannot read " << path;
+  EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data())) << path << ": " << in->geterror();
+  if (format == "png") {
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+      if (i % 4 == 3) continue;
+      const double c = image.rgba[i];
+      image.rgba[i] = static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+  }
   return image;
 }
 
@@ -356,15 +370,17 @@ TEST(XrSolxr, DeviceAndHostCopiesGiveTheSameEyes) {
 }
 
 TEST(XrSolxr, SrgbSwapchainsGetTheSameImage) {
+  // (Saved as PNG: the 8-bit sRGB swapchain's bytes as they were, so the tolerance is the same.)
   const SolxrRun r = run_solxr("srgb", R"({"width": 24, "height": 16, "fov": 50, "ipd": 0.1, "formats": ["srgb8"],
-                                      "frames": [{}]})",
+                                      "image_format": "png", "frames": [{}]})",
                                "--scene sandwich");
   expect_clean(r);
   sol::Scene scene = sol::preset_scene("sandwich");
   scene.camera.fov = 50;
   const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.1);
-  const Image l = load_eye(r.dir, 0, 0);
+  const Image l = load_eye(r.dir, 0, 0, "png");
   EXPECT_LE(differing_pixels(l, cpu_render(scene, eyes.left, 24, 16), kSrgbTolerance), allowed(l));
+  EXPECT_FALSE(fs::exists(r.dir / "frame0_view0.exr"));
 }
 
 // The quotient Γ\Sol and the lights come from the scene, as for solrender.
@@ -517,7 +533,7 @@ TEST(XrSolxr, TimingModeReadsNoImageBack) {
   expect_clean(r);
   EXPECT_TRUE(contains(r.err, "0 images saved")) << r.err;
   EXPECT_TRUE(fs::exists(r.dir / "views.txt"));
-  EXPECT_FALSE(fs::exists(r.dir / "frame0_view0.rgba32f"));
+  EXPECT_FALSE(fs::exists(r.dir / "frame0_view0.exr"));
 }
 
 TEST(XrSolxr, NoRuntimeIsAClearError) {

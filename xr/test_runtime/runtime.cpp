@@ -19,6 +19,7 @@
 //    "formats": ["rgba32f", "srgb8"],  swapchain formats, runtime preference first
 //    "controllers": true,              false: no interaction profile, inactive actions
 //    "output": "DIR",                  where eye images go (none: not saved)
+//    "image_format": "exr",            "exr" (linear float) or "png" (8-bit sRGB)
 //    "read_back": true,                false: the timing mode: no eye image is read
 //                                      back or saved (views.txt is still written)
 //    "refresh_hz": 90,                 the display's rate: predictedDisplayPeriod (not paced)
@@ -28,11 +29,15 @@
 // Frame k (counted by xrWaitFrame) uses entry min(k, last); events fire when
 // frame k is waited for. After the last entry the runtime asks the
 // application to exit (state STOPPING), so a script of N entries runs N frames.
-// Saved images: DIR/frame<k>_view<v>.rgba32f: a text line
-// "SOLXR RGBA32F <width> <height>\n", then linear float RGBA, row 0 at the top
-// (8-bit sRGB swapchains are decoded to linear); DIR/views.txt gets a line per
-// image: "k v px py pz qx qy qz qw angleLeft angleRight angleUp angleDown".
+// Saved images: DIR/frame<k>_view<v>.exr (or .png), RGBA, row 0 at the top,
+// written as solrender writes its images (8-bit sRGB swapchains are decoded
+// to linear first, so an EXR holds linear colour either way); DIR/views.txt
+// gets a line per image:
+// "k v px py pz qx qy qz qw angleLeft angleRight angleUp angleDown".
+// docs/solxr.md documents the script and the files for users.
 #include <vulkan/vulkan.h>
+
+#include "image_file.hpp"  // Sol::programs: solrender's image writer
 
 #include <algorithm>
 #include <cmath>
@@ -40,6 +45,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -108,6 +114,7 @@ struct Script {
   bool controllers = true;
   std::string output;
   bool read_back = true;
+  std::string image_format = "exr";
   double refresh_hz = 90.0;
   std::vector<Frame> frames{Frame{}};
 };
@@ -131,6 +138,19 @@ Script load_script() {
   s.controllers = j.value("controllers", s.controllers);
   s.output = j.value("output", s.output);
   s.read_back = j.value("read_back", s.read_back);
+  if (!s.output.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(s.output, error);
+    if (error) {
+      say("SOLXR_TEST_SCRIPT: cannot make the output folder " + s.output + ": " + error.message());
+      std::abort();
+    }
+  }
+  s.image_format = j.value("image_format", s.image_format);
+  if (s.image_format != "exr" && s.image_format != "png") {
+    say("SOLXR_TEST_SCRIPT: image_format must be \"exr\" or \"png\", not \"" + s.image_format + "\"");
+    std::abort();
+  }
   s.refresh_hz = j.value("refresh_hz", s.refresh_hz);
   if (!(s.refresh_hz >= 1.0 && s.refresh_hz <= 1000.0)) s.refresh_hz = 90.0;
   if (j.contains("formats")) {
@@ -364,14 +384,12 @@ void save_image(const Swapchain& sc, VkImage image, const std::string& path) {
   vkDestroyBuffer(st.device, buffer, nullptr);
   vkFreeMemory(st.device, memory, nullptr);
 
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) {
-    say("cannot write " + path);
+  try {
+    sol::programs::write_image(path, static_cast<int>(sc.width), static_cast<int>(sc.height), {"R", "G", "B", "A"}, rgba, true);
+  } catch (const std::exception& e) {
+    say("cannot write " + path + ": " + e.what());
     std::abort();
   }
-  std::fprintf(f, "SOLXR RGBA32F %u %u\n", sc.width, sc.height);
-  std::fwrite(rgba.data(), sizeof(float), n, f);
-  std::fclose(f);
   ++st.saved;
 }
 
@@ -836,7 +854,7 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
       }
       if (st.script.output.empty()) continue;
       const std::string stem = st.script.output + "/frame" + std::to_string(k) + "_view" + std::to_string(v);
-      if (st.script.read_back) save_image(*sc, sc->images[static_cast<std::size_t>(sc->released)], stem + ".rgba32f");
+      if (st.script.read_back) save_image(*sc, sc->images[static_cast<std::size_t>(sc->released)], stem + "." + st.script.image_format);
       std::FILE* f = std::fopen((st.script.output + "/views.txt").c_str(), "a");
       if (f != nullptr) {
         const XrPosef& p = view.pose;
