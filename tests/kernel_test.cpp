@@ -1232,6 +1232,50 @@ TEST(Kernel, PathsAreTheCpuPathsForTheSameSeed) {
   expect_no_validation_errors();
 }
 
+// The mirror material (sol/materials/mirror.h, one function both devices
+// compile) on the kernel: a white one is the diffuse material with mirror
+// share 1 to the bit, with direct light and with paths of one seed; a
+// coloured one is the CPU's, with direct light (the mirror scene, pixels
+// within the float-vs-double 2e-3 as MirrorsShowTheReflectedScene...) and
+// with paths (as PathsAreTheCpuPathsForTheSameSeed: 80 % of the pixels to
+// 1e-3, the mean difference within 3 standard errors).
+TEST(Kernel, TheMirrorMaterialIsTheCpusTintedMirror) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::Scene diffuse = sol::test::mirror_scene(true);  // its last object: a plane x = 0, mirror 1
+  sol::Scene white = diffuse, tinted = diffuse;
+  for (sol::Scene* s : {&white, &tinted}) {
+    s->objects.back().material = sol::Material::Mirror;
+    s->objects.back().mirror = 0.0;
+  }
+  white.objects.back().color = glm::dvec3(1.0);
+  tinted.objects.back().color = {0.9, 0.5, 0.25};
+  for (const sol::Transport transport : {sol::Transport::Direct, sol::Transport::Path}) {
+    const sol::RenderOptions settings{.width = 32, .height = 24, .samples = 2, .transport = transport, .seed = 3};
+    EXPECT_EQ(sol::render_scene(renderer, white, settings).rgba, sol::render_scene(renderer, diffuse, settings).rgba);
+  }
+  const sol::RenderOptions direct{.width = 48, .height = 32};
+  const int differ = sol::test::colour_differences(sol::render_scene(renderer, tinted, direct), sol::render_cpu(tinted, direct), 2e-3);
+  std::printf("tinted mirror material: %d of %d pixels differ from the CPU's\n", differ, 48 * 32);
+  EXPECT_LE(differ, 48 * 32 / 100);
+
+  sol::Scene paths = floor_glow_and_mirror();
+  paths.objects[2].material = sol::Material::Mirror;
+  paths.objects[2].mirror = 0.0;
+  paths.objects[2].color = {0.9, 0.7, 0.4};
+  const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
+  const sol::RenderResult gpu = sol::render_scene(renderer, paths, settings);
+  const sol::RenderResult cpu = sol::render_cpu(paths, settings);
+  const std::size_t n = cpu.rgba.size() / 4;
+  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
+  const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
+  const sol::test::MeanAndError d = sol::test::red_difference(gpu, cpu);
+  std::printf("paths with a mirror-material ball, kernel against CPU: %zu of %zu pixels agree to 1e-3; mean difference "
+              "%.4f, standard error %.4f\n", agree, n, d.mean, d.error);
+  EXPECT_GE(agree, n * 8 / 10);
+  EXPECT_LE(std::abs(d.mean), 3.0 * d.error + 1e-6);
+  expect_no_validation_errors();
+}
+
 // A presenter's refinement by paths (solview --refine-paths): the k-th
 // path of every pixel recorded into the running mean, one frame after the
 // other (PixelSample::path), is render()'s image of as many paths, to the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <span>
 #include <string>
 #include <variant>
 
@@ -48,8 +49,20 @@ bool object_controls(SceneObject& o) {
   };
   std::visit([&](auto& kind) { kind.visit_fields(FieldControls{changed}); }, o.shape);
   if (!is_solid(o.shape)) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
-  // Materials: the mirror's share, and the emitted radiance (linear, may exceed 1).
-  changed |= drag_double("mirror", o.mirror, 0.01, 0.0, 1.0, "%.2f");
+  // The material (one of SOL_MATERIALS), the diffuse one's mirror share,
+  // and the emitted radiance (every material's; linear, may exceed 1).
+  const std::span<const Material> all = materials();
+  if (ImGui::BeginCombo("material", std::string(to_string(o.material)).c_str())) {
+    for (const Material m : all) {
+      if (ImGui::Selectable(std::string(to_string(m)).c_str(), m == o.material) && m != o.material) {
+        o.material = m;
+        if (m != Material::Diffuse) o.mirror = 0.0;  // (the diffuse material's share alone)
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (o.material == Material::Diffuse) changed |= drag_double("mirror", o.mirror, 0.01, 0.0, 1.0, "%.2f");
   float e[3] = {static_cast<float>(o.emission.x), static_cast<float>(o.emission.y), static_cast<float>(o.emission.z)};
   if (ImGui::DragFloat3("emission", e, 0.01f, 0.0f, 100.0f, "%.2f")) {
     o.emission = glm::dvec3(std::max(e[0], 0.0f), std::max(e[1], 0.0f), std::max(e[2], 0.0f));

@@ -47,6 +47,7 @@
 #include "march/quotient.glsl"
 #include "march/plane_roots.glsl"
 #include "march/march.glsl"
+#include "sol/materials.h"  // the materials' lobes, shared with libsol
 #include "march/shading.glsl"
 #ifdef SOL_PATH_BUILD
 #include "march/paths.glsl"

@@ -146,7 +146,8 @@ std::vector<kernel::Object> pack_objects(const World& world) {
     const KernelShape shape = kernel_shape(o.shape);
     out[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
     out[k].color = vec4(o.color, 0.0);
-    out[k].material = vec4(o.emission, o.mirror);
+    out[k].material = vec4(o.emission, static_cast<int>(o.material));
+    out[k].params = glm::vec4(static_cast<float>(o.mirror), 0.0f, 0.0f, 0.0f);
     out[k].glow = glm::vec4(static_cast<float>(o.glow_reach), 0.0f, 0.0f, 0.0f);
   }
   return out;

@@ -330,7 +330,7 @@ MarchFeatures features_of(const World& world) {
     f.heights_only = f.heights_only && plane_z;
     f.planes_xy_only = f.planes_xy_only && (code == kernel::kObjectPlaneX || code == kernel::kObjectPlaneY);
     f.cutout = f.cutout || o.cutout;
-    f.mirrors = f.mirrors || o.mirror > 0.0;
+    f.mirrors = f.mirrors || material_reflects(o);
     f.emission = f.emission || o.emission != glm::dvec3(0.0);
     f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);
   }

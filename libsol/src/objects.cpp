@@ -1,4 +1,5 @@
 #include "sol/objects.hpp"
+#include "sol/materials.h"
 
 #include <algorithm>
 #include <cmath>
@@ -137,6 +138,30 @@ glm::dvec2 shape_pattern_uv(const Shape& shape, const glm::dvec3& q, const glm::
 
 // ---- Patterns --------------------------------------------------------------
 
+std::string_view to_string(Material material) {
+#define SOL_MATERIAL_NAME(Enum, code_name, code, prefix, name) \
+  if (material == Material::Enum) return name;
+  SOL_MATERIALS(SOL_MATERIAL_NAME)
+#undef SOL_MATERIAL_NAME
+  return "?";
+}
+
+std::span<const Material> materials() {
+#define SOL_MATERIAL_ITEM(Enum, code_name, code, prefix, name) Material::Enum,
+  static constexpr Material all[] = {SOL_MATERIALS(SOL_MATERIAL_ITEM)};
+#undef SOL_MATERIAL_ITEM
+  return all;
+}
+
+kernel::SolLobes material_lobes(const SceneObject& object, const glm::dvec3& albedo) {
+  return kernel::sol_material_lobes(static_cast<int>(object.material), albedo, glm::dvec4(object.mirror, 0.0, 0.0, 0.0));
+}
+
+bool material_reflects(const SceneObject& object) {
+  const glm::dvec3 specular = material_lobes(object, glm::dvec3(1.0)).specular;
+  return specular.x > 0.0 || specular.y > 0.0 || specular.z > 0.0;
+}
+
 std::string_view to_string(Pattern p) {
   switch (p) {
     case Pattern::None:
@@ -219,6 +244,10 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
     }
   }
   if (!(o.mirror >= 0.0 && o.mirror <= 1.0)) field_error(at + ".mirror", at + ".mirror must be in [0, 1]");
+  if (o.mirror != 0.0 && o.material != Material::Diffuse) {
+    field_error(at + ".mirror", at + ".mirror is the diffuse material's share of mirror reflection; material \"" +
+                                    std::string(to_string(o.material)) + "\" takes none");
+  }
   if (!(o.glow_reach >= 0.0 && o.glow_reach <= 10.0)) field_error(at + ".glow_reach", at + ".glow_reach must be in [0, 10]");
   if (o.glow_reach > 0.0) {
     const Ball* b = std::get_if<Ball>(&o.shape);
@@ -246,6 +275,9 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at, quotient); }, obj.shape);
   if (o.contains("color")) obj.color = r.vec3(o["color"], at + ".color");
   if (o.contains("pattern")) obj.pattern = read_pattern(o["pattern"], r, at + ".pattern");
+#define SOL_MATERIAL_OPTION(Enum, code_name, code, prefix, name) {name, Material::Enum},
+  if (o.contains("material")) obj.material = r.choice<Material>(o["material"], at + ".material", {SOL_MATERIALS(SOL_MATERIAL_OPTION)});
+#undef SOL_MATERIAL_OPTION
   if (o.contains("emission")) obj.emission = r.vec3(o["emission"], at + ".emission");
   if (o.contains("mirror")) obj.mirror = r.number(o["mirror"], at + ".mirror");
   if (o.contains("glow_reach")) obj.glow_reach = r.number(o["glow_reach"], at + ".glow_reach");
@@ -257,6 +289,7 @@ json write_object(const SceneObject& o, const Lattice* quotient) {
   j["type"] = std::string(kind_name(o.shape));
   j["color"] = to_json(o.color);
   j["pattern"] = std::string(to_string(o.pattern));
+  if (o.material != Material::Diffuse) j["material"] = std::string(to_string(o.material));
   if (o.emission != glm::dvec3(0.0)) j["emission"] = to_json(o.emission);
   if (o.mirror != 0.0) j["mirror"] = o.mirror;
   if (o.glow_reach != 0.0) j["glow_reach"] = o.glow_reach;

@@ -713,6 +713,11 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   return world.fog_color + (surface - world.fog_color) * transmittance;
 }
 
+// The albedo of object `o` at a hit: its colour times its pattern there.
+glm::dvec3 albedo_at(const SceneObject& o, const MarchHit& hit) {
+  return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
+}
+
 // What a ray brings back where the world has mirrors or glowing objects:
 // at each hit, over the fog of its segment (each segment its own
 // max_distance), the object's emission, (1 - mirror) times its diffuse
@@ -730,9 +735,13 @@ glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
     const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
     const double transmittance = std::exp(-world.fog_density * hit.distance);
     color += weight * ((1.0 - transmittance) * world.fog_color);
-    color += weight * transmittance * (o.emission + (1.0 - o.mirror) * diffuse_light(prepared, hit));
-    if (o.mirror == 0.0 || bounce == world.mirror_bounces()) break;
-    weight *= transmittance * o.mirror;
+    // The material's lobes (sol/materials.h): its diffuse share of the
+    // diffuse light, and the reflected ray's weight.
+    const kernel::SolLobes lobes = material_lobes(o, albedo_at(o, hit));
+    const glm::dvec3 diffuse = lobes.diffuse > 0.0 ? lobes.diffuse * diffuse_light(prepared, hit) : glm::dvec3(0.0);
+    color += weight * transmittance * (o.emission + diffuse);
+    if (lobes.specular == glm::dvec3(0.0) || bounce == world.mirror_bounces()) break;
+    weight *= transmittance * lobes.specular;
     const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
     const glm::dvec3 reflected = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
     hit = march_from(prepared, hit.point, reflected);
@@ -1010,11 +1019,17 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
     }
     const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
     glm::dvec3 next;
-    if (o.mirror > 0.0 && random.uniform() < o.mirror) {
+    // The material's lobes (sol/materials.h): the specular one with its
+    // probability (a random number drawn wherever it has one), its weight
+    // over that; else the diffuse one, its share over its probability.
+    const glm::dvec3 surface_albedo = albedo_at(o, hit);
+    const kernel::SolLobes lobes = material_lobes(o, surface_albedo);
+    if (lobes.specular_probability > 0.0 && random.uniform() < lobes.specular_probability) {
       next = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
+      weight *= lobes.specular / lobes.specular_probability;
       after_diffuse = false;
     } else {
-      const glm::dvec3 albedo = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
+      const glm::dvec3 albedo = surface_albedo * (lobes.diffuse / (1.0 - lobes.specular_probability));
       if (!world.lights.empty()) color += weight * albedo * light_received(prepared, hit, n);
       if (!glowing.empty() && goes_on) color += weight * albedo * glow_sample(prepared, glowing, hit, n, sampling, random);
       weight *= albedo;

@@ -1,5 +1,9 @@
 #include "scene_reader.hpp"
 
+#include <algorithm>
+#include <iterator>
+#include <vector>
+
 #include "sol/file_io.hpp"
 
 #include <cctype>
@@ -213,6 +217,22 @@ void SceneFileReader::require_known_keys(const json& object, std::initializer_li
     if (known) continue;
     std::string list;
     for (std::string_view k : keys) list += std::string(list.empty() ? "" : ", ") + std::string(k);
+    fail(path.empty() ? item.key() : path + "." + item.key(),
+         "unknown key '" + shown(item.key()) + "' in " + what + " (known: " + list + ")");
+  }
+}
+
+void SceneFileReader::require_known_object_keys(const json& object, std::initializer_list<std::string_view> keys,
+                                                const std::string& what, const std::string& path) const {
+  // What every object takes, whatever its kind: its colour and pattern,
+  // and its material's keys (sol/material_kinds.h; read_object).
+  static constexpr std::string_view kObjectKeys[] = {"color", "pattern", "material", "emission", "mirror"};
+  std::vector<std::string_view> all(keys);
+  all.insert(all.end(), std::begin(kObjectKeys), std::end(kObjectKeys));
+  for (const auto& item : object.items()) {
+    if (std::find(all.begin(), all.end(), item.key()) != all.end()) continue;
+    std::string list;
+    for (std::string_view k : all) list += std::string(list.empty() ? "" : ", ") + std::string(k);
     fail(path.empty() ? item.key() : path + "." + item.key(),
          "unknown key '" + shown(item.key()) + "' in " + what + " (known: " + list + ")");
   }

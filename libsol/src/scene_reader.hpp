@@ -57,6 +57,10 @@ class SceneFileReader {
   /// object in the message ("objects[0] (a ball)"), `path` is its path.
   void require_known_keys(const json& object, std::initializer_list<std::string_view> keys, const std::string& what,
                           const std::string& path) const;
+  /// The same for an object of a scene: its kind's `keys`, then the keys
+  /// every object takes (kObjectKeys: its appearance and material).
+  void require_known_object_keys(const json& object, std::initializer_list<std::string_view> keys, const std::string& what,
+                                 const std::string& path) const;
   /// Fails unless `object` has `key`: "<what> needs <noun>".
   void require_key(const json& object, const char* key, const std::string& what, const std::string& noun,
                    const std::string& path) const;

@@ -149,6 +149,11 @@ def test_materials():
     assert fields["max_bounces"] == 2
     image = sol.render_cpu(scene, 9, 9)
     assert np.allclose(image["rgba"][4, 4, :3], (0.45, 0.7, 1.2), atol=1e-6)
+    # The material by the file's name: a mirror-material floor round-trips, and its mirror share is refused by name.
+    tinted = scene.replace(objects=[fields["objects"][0], sol.plane_z(-1.0, material="mirror", color=(0.9, 0.5, 0.25))])
+    assert tinted.to_dict()["objects"][1]["material"] == "mirror"
+    with pytest.raises(sol.InvalidArgumentError, match=r"objects\[1\].mirror is the diffuse material's share"):
+        sol.scene([sol.ball((0.7, 0.7, 0.0), 0.3), sol.plane_z(-1.0, material="mirror", mirror=0.5)])
 
 
 def test_spreading_along_the_z_axis():

@@ -281,11 +281,15 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       g.count = 0;
       way = 0;
-      if (HAS_MIRRORS && material.w > 0.0 && path_uniform(state) < material.w) {
+      // The material's lobes (sol/materials.h), as path_radiance in libsol.
+      const vec3 surface_albedo = albedo(f.object, f.uv);
+      const SolLobes lobes = lobes_of(f.object, surface_albedo);
+      if (HAS_MIRRORS && lobes.specular_probability > 0.0 && path_uniform(state) < lobes.specular_probability) {
         next = normalize(h.u - 2.0 * dot(h.u, n) * n);
+        weight *= lobes.specular / lobes.specular_probability;
         after_diffuse = false;
       } else {
-        const vec3 a = albedo(f.object, f.uv);
+        const vec3 a = surface_albedo * (lobes.diffuse / (1.0 - lobes.specular_probability));
         if (light_count > 0) color += weight * a * light_received(n, h.q, eye);
         if (GLOW_SAMPLING && glow_count > 0 && goes_on) g = glow_sample(h, n, weight * a, state);
         weight *= a;

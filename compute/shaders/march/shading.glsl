@@ -114,6 +114,12 @@ vec3 light_received(vec3 n, vec3 q, int eye) {
   return light;
 }
 
+// The material's lobes at a point of the surface of object k of albedo a
+// (sol/materials.h: the dispatch libsol shares).
+SolLobes lobes_of(int k, vec3 a) {
+  return sol_material_lobes(int(scene_objects[k].material.w), a, scene_objects[k].params);
+}
+
 // The surface's albedo: its colour times its pattern.
 vec3 albedo(int k, vec2 uv) { return scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y); }
 
@@ -194,15 +200,17 @@ Surface surface_at(MarchHit h) {
 }
 
 // One hit's share (radiance): over the fog of its segment, its emission and
-// (1 - mirror) times its diffuse light, times `weight`; returns its mirror
-// times the fog's transmittance. Written as shade_hit's fog, so that a hit
+// its material's diffuse share of its diffuse light, times `weight`;
+// returns its material's specular weight times the fog's transmittance. Written as shade_hit's fog, so that a hit
 // without emission or mirror (weight 1) adds exactly what shade_hit gives.
-float radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
+vec3 radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-  const vec3 surface = material.rgb + (1.0 - material.w) * diffuse_light(f.object, f.n, f.uv, h.q, eye);
+  const SolLobes lobes = lobes_of(f.object, albedo(f.object, f.uv));
+  const vec3 diffuse = lobes.diffuse > 0.0 ? lobes.diffuse * diffuse_light(f.object, f.n, f.uv, h.q, eye) : vec3(0.0);
+  const vec3 surface = material.rgb + diffuse;
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
-  return material.w * transmittance;
+  return lobes.specular * transmittance;
 }
 
 // What a camera ray brings back where the world has mirrors or glowing
@@ -219,8 +227,9 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
   // (One call of radiance_of_hit and of march: the driver inlines each
   // call, and each holds a march. Tested at its end: see march.comp.)
   do {
-    weight *= radiance_of_hit(h, f, eye, weight, color);
-    alive = HAS_MIRRORS && scene_objects[f.object].material.w > 0.0 && bounce < bounces;
+    const vec3 specular = radiance_of_hit(h, f, eye, weight, color);
+    weight *= specular;
+    alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
     if (alive) {
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);

@@ -9,6 +9,7 @@
 #ifndef SOL_KERNEL_CONSTANTS_H
 #define SOL_KERNEL_CONSTANTS_H
 
+#include "sol/material_kinds.h"
 #include "sol/object_kinds.h"
 
 #ifdef __cplusplus
@@ -76,6 +77,10 @@ SOL_CONSTANT(SOL_REAL, kFieldRounding, 1e-4);
 #define SOL_KIND_CODE(Type, code_name, code, prefix, feature, solid) SOL_CONSTANT(int, code_name, code);
 SOL_OBJECT_KINDS(SOL_KIND_CODE)
 #undef SOL_KIND_CODE
+// The materials' codes: kMaterialDiffuse, ..., one per line of SOL_MATERIALS.
+#define SOL_MATERIAL_CODE(Enum, code_name, code, prefix, name) SOL_CONSTANT(int, code_name, code);
+SOL_MATERIALS(SOL_MATERIAL_CODE)
+#undef SOL_MATERIAL_CODE
 /// The axis code of a vertical tube (any other code: horizontal, along its heading).
 SOL_CONSTANT(int, kTubeVertical, 2);
 

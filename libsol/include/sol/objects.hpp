@@ -7,17 +7,20 @@
 
 #include <concepts>
 #include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <variant>
 
+#include "sol/material_kinds.h"
 #include "sol/object_kinds.h"
 #include "sol/objects/ball.hpp"
 #include "sol/objects/box.hpp"
 #include "sol/objects/kind.hpp"
 #include "sol/objects/planes.hpp"
 #include "sol/objects/tube.hpp"
+#include "sol/materials/lobes.h"
 
 namespace sol {
 
@@ -49,6 +52,16 @@ using Shape = typename detail::DistinctKinds<std::variant<>, SOL_OBJECT_KINDS(SO
 SOL_OBJECT_KINDS(SOL_KIND_SOLID)
 #undef SOL_KIND_SOLID
 
+#define SOL_MATERIAL_ENUM(Enum, code_name, code, prefix, name) Enum = code,
+/// How an object's surface scatters light: one per line of SOL_MATERIALS
+/// (sol/material_kinds.h), its value the kernels' code.
+enum class Material { SOL_MATERIALS(SOL_MATERIAL_ENUM) };
+#undef SOL_MATERIAL_ENUM
+/// The scene file's name of a material ("diffuse", "mirror", ...).
+std::string_view to_string(Material material);
+/// Every material, in the list's order.
+std::span<const Material> materials();
+
 /// The scene file's name of the shape's kind ("plane_z", "ball", ...).
 std::string_view kind_name(const Shape& shape);
 
@@ -69,12 +82,16 @@ struct SceneObject {
   Pattern pattern = Pattern::None;
   /// Planes: only the pattern's bright cells (discs, light squares) are solid.
   bool cutout = false;
+  /// How the surface scatters light (sol/materials/<name>.h): diffuse
+  /// (Lambertian, with `mirror` on top) or a mirror coloured by `color`.
+  Material material = Material::Diffuse;
   /// Emitted radiance, linear RGB (>= 0): a glowing object shows it on top
-  /// of the light it reflects.
+  /// of the light it reflects (every material).
   glm::dvec3 emission{0.0, 0.0, 0.0};
-  /// Specular reflectance in [0, 1]: the share of the light that comes
-  /// along the geodesic reflected in the surface (the rest is diffuse, with
-  /// albedo `color`); up to World::max_bounces reflections.
+  /// The diffuse material's specular reflectance in [0, 1]: the share of
+  /// the light that comes along the geodesic reflected in the surface (the
+  /// rest is diffuse, with albedo `color`); up to World::max_bounces
+  /// reflections.
   double mirror = 0.0;
   /// A glowing exact ball's reach for the path tracer's next-event
   /// estimation, in [0, 10]: a diffuse point is connected to a sampled
@@ -83,6 +100,15 @@ struct SceneObject {
   /// reach glowing balls by reflection sampling).
   double glow_reach = 0.0;
 };
+
+/// How the object's material scatters light at a point of albedo `albedo`
+/// (its colour times its pattern there): sol_material_lobes, the kernels'
+/// own function, in double.
+kernel::SolLobes material_lobes(const SceneObject& object, const glm::dvec3& albedo);
+/// Whether the object's material may reflect specularly (its lobes under a
+/// white albedo have a specular weight): a world with one marches
+/// reflected rays (MarchFeatures::mirrors).
+bool material_reflects(const SceneObject& object);
 
 /// The kinds that close up in the compact quotient (planes z = c, balls,
 /// tubes along γ1, γ2, γ3, boxes): those sol::quotient_images moves by Γ.

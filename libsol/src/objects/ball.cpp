@@ -97,8 +97,7 @@ void check_kind(const Ball& b, const std::string& at, const Lattice* quotient) {
 
 void read_kind(Ball& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   const std::string what = at + " (a ball)";
-  r.require_known_keys(o, {"type", "center", "radius", "color", "pattern", "exact", "emission", "mirror", "glow_reach"}, what,
-                      at);
+  r.require_known_object_keys(o, {"type", "center", "radius", "exact", "glow_reach"}, what, at);
   r.require_key(o, "center", what, "a 'center'", at);
   r.require_key(o, "radius", what, "a 'radius'", at);
   b.center = r.vec3(o["center"], at + ".center");

@@ -156,7 +156,7 @@ void check_kind(const Box& b, const std::string& at, const Lattice* quotient) {
 
 void read_kind(Box& b, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at, const Lattice*) {
   const std::string what = at + " (a box)";
-  r.require_known_keys(o, {"type", "center", "half_size", "color", "pattern", "emission", "mirror"}, what, at);
+  r.require_known_object_keys(o, {"type", "center", "half_size"}, what, at);
   r.require_key(o, "center", what, "a 'center'", at);
   r.require_key(o, "half_size", what, "a 'half_size'", at);
   b.center = r.vec3(o["center"], at + ".center");

@@ -129,7 +129,7 @@ void check_kind(const PlaneY& p, const std::string& at, const Lattice* quotient)
 void check_kind(const PlaneZ& p, const std::string& at, const Lattice* quotient) { check_plane(p, at, quotient); }
 
 void read_plane(const json& o, double& c, bool& cutout, const SceneFileReader& r, const std::string& at) {
-  r.require_known_keys(o, {"type", "c", "color", "pattern", "cutout", "emission", "mirror"}, at, at);
+  r.require_known_object_keys(o, {"type", "c", "cutout"}, at, at);
   if (o.contains("c")) c = r.number(o["c"], at + ".c");
   if (o.contains("cutout")) cutout = r.boolean(o["cutout"], at + ".cutout");
 }

@@ -228,7 +228,7 @@ void check_kind(const Tube& t, const std::string& at, const Lattice* quotient) {
 void read_kind(Tube& t, SceneObject&, const json& o, const SceneFileReader& r, const std::string& at,
                const Lattice* quotient) {
   const std::string what = at + " (a tube)";
-  r.require_known_keys(o, {"type", "axis", "through", "radius", "color", "pattern", "emission", "mirror"}, what, at);
+  r.require_known_object_keys(o, {"type", "axis", "through", "radius"}, what, at);
   for (const char* key : {"axis", "through", "radius"}) r.require_key(o, key, what, std::string("'") + key + "'", at);
   const json& axis = o["axis"];
   if (axis.is_array()) {

@@ -153,7 +153,8 @@ SOL_CONSTANT(int, kGroupSize, 8);
 struct Object {
   vec4 plane;     ///< x: object code (kObject*), y: radius, z: pattern code (kPattern*), w: 1 for a cutout
   vec4 color;     ///< rgb: linear colour; w: 0
-  vec4 material;  ///< rgb: emitted radiance (linear); w: mirror, the specular reflectance
+  vec4 material;  ///< rgb: emitted radiance (linear); w: the material's code (kMaterial*, sol/material_kinds.h)
+  vec4 params;    ///< the material's parameters (sol_material_lobes): x the diffuse material's mirror share
   vec4 glow;      ///< x: a glowing exact ball's glow_reach (next-event estimation); yzw: 0
 };
 
@@ -286,7 +287,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 4 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
