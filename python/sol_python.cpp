@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -186,6 +187,11 @@ struct PyRenderer {
   sol::Camera camera;
   int samples = 1;
   std::vector<std::string> notes;  // why auto took the CPU, if it did
+  std::string description;         // the renderer's, for people
+  bool on_cpu = false;
+  // Held by a render and by set_scene (both without the GIL): another
+  // Python thread's set_scene waits for the render under way to finish.
+  std::mutex busy;
 
   static sol::programs::Device device_named(const std::string& name) {
     if (name == "auto") return sol::programs::Device::Auto;
@@ -209,6 +215,7 @@ struct PyRenderer {
     std::vector<std::string> said;
     try {
       py::gil_scoped_release release;  // a kernel's first build and a quotient's field take a while
+      const std::lock_guard lock(busy);
       renderer = sol::programs::make_renderer(choice, scene, [&said](const std::string& note) { said.push_back(note); });
     } catch (const sol::NotImplemented& e) {
       std::string what = e.what();
@@ -217,11 +224,12 @@ struct PyRenderer {
       throw sol::NotImplemented("sol.Renderer: " + what);
     }
     notes = std::move(said);
+    description = renderer->description();  // (read under the GIL, never while another thread swaps the renderer)
+    on_cpu = dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr;
     camera = scene.camera;
     samples = scene.samples;
   }
 
-  bool on_cpu() const { return dynamic_cast<const sol::CpuRenderer*>(renderer.get()) != nullptr; }
 
   py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
                   long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress) {
@@ -263,6 +271,7 @@ struct PyRenderer {
     sol::RenderResult result;
     try {
       py::gil_scoped_release release;
+      const std::lock_guard lock(busy);
       result = stereo_ipd ? renderer->render_stereo(from, *stereo_ipd, options) : renderer->render(from, options);
     } catch (const sol::Cancelled&) {
       if (raised) throw *raised;
@@ -677,8 +686,8 @@ void bind_scenes(py::module_& m) {
       .def("set_scene", &PyRenderer::set_scene, py::arg("scene"))
       .def("render", &PyRenderer::render, py::arg("width"), py::arg("height"), py::arg("samples"), py::arg("camera"),
            py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"))
-      .def_property_readonly("description", [](const PyRenderer& r) { return r.renderer->description(); })
-      .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu() ? "cpu" : "vulkan"; })
+      .def_property_readonly("description", [](const PyRenderer& r) { return r.description; })
+      .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu ? "cpu" : "vulkan"; })
       .def_property_readonly("notes", [](const PyRenderer& r) { return r.notes; });
 #endif
   m.def("has_vulkan",

@@ -160,3 +160,22 @@ def test_renders_hear_ctrl_c(device):
     elapsed = time.monotonic() - started
     timer.cancel()
     assert elapsed < 5.0, f"stopped {elapsed:.1f} s after it started (interrupted at 0.5 s)"
+
+
+def test_set_scene_waits_for_a_render_under_way():
+    # Another thread's set_scene while a render runs (both without the GIL) waits for that render, which finishes
+    # with the world it started with: its image is the first scene's.
+    import threading
+
+    first, second = sol.preset_scene("sandwich"), sol.preset_scene("plane")
+    r = sol.Renderer(first, device="cpu")
+    want = sol.render_cpu(first, 96, 64, samples=4)["rgba"]
+    got, under_way = {}, threading.Event()
+    worker = threading.Thread(
+        target=lambda: got.update(image=r.render(96, 64, samples=4, progress=lambda f: under_way.set())["rgba"]))
+    worker.start()
+    assert under_way.wait(30)  # (the render has begun: it reports from within)
+    r.set_scene(second)
+    worker.join()
+    assert np.array_equal(got["image"], want)
+    assert np.array_equal(r.render(16, 12, progress=False)["rgba"], sol.render_cpu(second, 16, 12)["rgba"])
