@@ -995,6 +995,27 @@ TEST(Kernel, MirrorsShowTheReflectedSceneAndMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+// A half-silvered ball in the quotient (docs/gallery/mirror-balls.json with
+// one reflection and no fog): its reflected rays leave the ball as the
+// CPU's do. A shading of the hit that called the diffuse light only where
+// the material had a diffuse share made them hit their own ball on
+// lavapipe in 16.6 % of the pixels of a 160 x 120 image (against 1.5 %
+// differing by more than 2e-3 otherwise: rays that graze the quotient's
+// balls); 5 % allowed.
+TEST(Kernel, HalfSilveredBallsInTheQuotientReflectAsTheCpu) {
+  const sol::Scene scene = sol::parse_scene(R"({"camera": {"position": [0.9, 0.3, 0.45], "forward": [0, 0, -1],
+    "up": [0, 1, 0], "fov": 90}, "quotient": "golden", "objects": [{"type": "ball", "center": [0, 0, 0], "radius": 0.3,
+    "color": [0.6, 0.6, 0.65], "mirror": 0.85}, {"type": "ball", "center": [0.75, 0.05, 0.3], "radius": 0.1,
+    "color": [0.9, 0.55, 0.3], "emission": [0.6, 0.3, 0.1]}], "lights": [{"type": "directional", "direction": [0.3, 0.5, 1]}],
+    "max_distance": 12, "max_steps": 400, "max_bounces": 1})");
+  sol::vk::MarchRenderer renderer(vk_context());
+  const sol::RenderOptions settings{.width = 80, .height = 60};
+  const int differ = sol::test::colour_differences(sol::render_scene(renderer, scene, settings), sol::render_cpu(scene, settings), 2e-3);
+  std::printf("half-silvered balls in the quotient: %d of %d pixels differ from the CPU's\n", differ, 80 * 60);
+  EXPECT_LE(differ, 80 * 60 / 20);
+  expect_no_validation_errors();
+}
+
 // Many samples of a world with mirrors and glowing objects keep the
 // process's memory flat. Each sample is a dispatch with its own point of
 // the pixel and weight; a driver that compiles and keeps a variant of the
@@ -1208,6 +1229,20 @@ sol::Scene floor_glow_and_mirror() {
   return scene;
 }
 
+// The kernel's paths against the CPU's for the same seed: every value
+// finite, 80 % of the pixels within 1e-3 (paths that part by rounding make
+// the rest) and the mean difference within 3 standard errors.
+void expect_paths_agree(const sol::RenderResult& gpu, const sol::RenderResult& cpu, const char* what) {
+  const std::size_t n = cpu.rgba.size() / 4;
+  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v)) << what;
+  const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
+  const sol::test::MeanAndError d = sol::test::red_difference(gpu, cpu);
+  std::printf("%s, kernel against CPU: %zu of %zu pixels agree to 1e-3; mean difference %.4f, standard error %.4f\n",
+              what, agree, n, d.mean, d.error);
+  EXPECT_GE(agree, n * 8 / 10) << what;
+  EXPECT_LE(std::abs(d.mean), 3.0 * d.error + 1e-6) << what;
+}
+
 TEST(Kernel, PathsAreTheCpuPathsForTheSameSeed) {
   const sol::Scene scene = floor_glow_and_mirror();
   const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
@@ -1215,13 +1250,7 @@ TEST(Kernel, PathsAreTheCpuPathsForTheSameSeed) {
   const sol::RenderResult gpu = sol::render_scene(renderer, scene, settings);
   const sol::RenderResult cpu = sol::render_cpu(scene, settings);
   const std::size_t n = cpu.rgba.size() / 4;
-  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
-  const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
-  const sol::test::MeanAndError d = sol::test::red_difference(gpu, cpu);
-  std::printf("paths, kernel against CPU: %zu of %zu pixels agree to 1e-3; mean difference %.4f, standard error %.4f\n",
-              agree, n, d.mean, d.error);
-  EXPECT_GE(agree, n * 8 / 10);
-  EXPECT_LE(std::abs(d.mean), 3.0 * d.error + 1e-6);
+  expect_paths_agree(gpu, cpu, "paths");
   double lit = 0.0;
   for (std::size_t k = 0; k < n; ++k) lit += gpu.object[k] == 1.0f ? gpu.rgba[4 * k] : 0.0;
   EXPECT_GT(lit, 0.0);  // the floor is lit
@@ -1263,16 +1292,8 @@ TEST(Kernel, TheMirrorMaterialIsTheCpusTintedMirror) {
   paths.objects[2].mirror = 0.0;
   paths.objects[2].color = {0.9, 0.7, 0.4};
   const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
-  const sol::RenderResult gpu = sol::render_scene(renderer, paths, settings);
-  const sol::RenderResult cpu = sol::render_cpu(paths, settings);
-  const std::size_t n = cpu.rgba.size() / 4;
-  for (float v : gpu.rgba) ASSERT_TRUE(std::isfinite(v));
-  const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
-  const sol::test::MeanAndError d = sol::test::red_difference(gpu, cpu);
-  std::printf("paths with a mirror-material ball, kernel against CPU: %zu of %zu pixels agree to 1e-3; mean difference "
-              "%.4f, standard error %.4f\n", agree, n, d.mean, d.error);
-  EXPECT_GE(agree, n * 8 / 10);
-  EXPECT_LE(std::abs(d.mean), 3.0 * d.error + 1e-6);
+  expect_paths_agree(sol::render_scene(renderer, paths, settings), sol::render_cpu(paths, settings),
+                     "paths with a mirror-material ball");
   expect_no_validation_errors();
 }
 

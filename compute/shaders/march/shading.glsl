@@ -207,8 +207,11 @@ vec3 radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 col
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   const SolLobes lobes = lobes_of(f.object, albedo(f.object, f.uv));
-  const vec3 diffuse = lobes.diffuse > 0.0 ? lobes.diffuse * diffuse_light(f.object, f.n, f.uv, h.q, eye) : vec3(0.0);
-  const vec3 surface = material.rgb + diffuse;
+  // (diffuse_light is called whatever the share, as before materials: a
+  // call under `lobes.diffuse > 0.0` made the quotient's reflected rays
+  // hit their own surface on lavapipe, which the CPU never does; the cause,
+  // the driver or a value the quotient march leaves unset, is not found.)
+  const vec3 surface = material.rgb + lobes.diffuse * diffuse_light(f.object, f.n, f.uv, h.q, eye);
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
   return lobes.specular * transmittance;
 }
