@@ -83,10 +83,12 @@ class BuildProgress:
     def __init__(self):
         self.start = time.monotonic()
         self.shown = 0.0
-        try:
-            self.tty = open("/dev/tty", "w")  # noqa: SIM115 (closed in close())
-        except OSError:
-            self.tty = None
+        self.tty = None
+        if not sys.stderr.isatty():  # (on a terminal already: the lines below reach it)
+            try:
+                self.tty = open("/dev/tty", "w")  # noqa: SIM115 (closed in close())
+            except OSError:
+                pass
 
     def line(self, text):
         match = self.STEP.match(text)

@@ -2,6 +2,7 @@
 // progress callback), for the programs' progress lines.
 #pragma once
 
+#include <chrono>
 #include <optional>
 
 namespace sol::programs {
@@ -38,6 +39,20 @@ class ProgressEstimate {
   bool m_first = false;
   double m_begun = 0.0;
   double m_first_seconds = 0.0, m_first_fraction = 0.0;
+};
+
+/// A ProgressEstimate with its own clock, started when it is made: the
+/// seconds since, and the time left after a report of the finished fraction.
+class ProgressTimer {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_started).count();
+  }
+  std::optional<double> report(double fraction) { return m_estimate.report(seconds(), fraction); }
+
+ private:
+  std::chrono::steady_clock::time_point m_started = std::chrono::steady_clock::now();
+  ProgressEstimate m_estimate;
 };
 
 }  // namespace sol::programs

@@ -122,6 +122,13 @@ py::dict render_dict(const sol::RenderResult& r) {
   return out;
 }
 
+// solrender's --transport by name, for `who`'s keyword.
+sol::Transport transport_named(const std::string& name, const char* who) {
+  if (name == "direct") return sol::Transport::Direct;
+  if (name == "path") return sol::Transport::Path;
+  throw sol::InvalidArgument(std::string(who) + ": transport must be \"direct\" or \"path\", not \"" + name + "\"");
+}
+
 // sol.CpuRenderer: the renderer with its world prepared once, the scene's
 // camera and samples its defaults.
 struct PyCpuRenderer {
@@ -145,15 +152,12 @@ struct PyCpuRenderer {
   sol::RenderResult render(int width, int height, int samples_given, unsigned threads, const std::optional<sol::Camera>& eye,
                            const std::string& transport = "direct", long long seed = 0) {
     const sol::Camera from = eye.value_or(camera);
-    if (transport != "direct" && transport != "path") {
-      throw sol::InvalidArgument("sol.CpuRenderer.render: transport must be \"direct\" or \"path\", not \"" + transport + "\"");
-    }
     if (seed < 0) throw sol::InvalidArgument("sol.CpuRenderer.render: seed must be 0 or more, not " + std::to_string(seed));
     const sol::RenderOptions options{.width = width,
                                      .height = height,
                                      .samples = samples_given == 0 ? samples : samples_given,
                                      .threads = threads,
-                                     .transport = transport == "path" ? sol::Transport::Path : sol::Transport::Direct,
+                                     .transport = transport_named(transport, "sol.CpuRenderer.render"),
                                      .seed = static_cast<std::uint64_t>(seed)};
     // The CPU renderer's 64 bytes a pixel and the arrays it becomes here,
     // 40 more (the result lives until they are made): refused up front
@@ -199,11 +203,6 @@ struct PyRenderer {
     if (name == "cpu") return sol::programs::Device::Cpu;
     throw sol::InvalidArgument("sol.Renderer: device must be \"auto\", \"vulkan\" or \"cpu\", not \"" + name + "\"");
   }
-  static sol::Transport transport_named(const std::string& name, const char* who) {
-    if (name == "direct") return sol::Transport::Direct;
-    if (name == "path") return sol::Transport::Path;
-    throw sol::InvalidArgument(std::string(who) + ": transport must be \"direct\" or \"path\", not \"" + name + "\"");
-  }
 
   void set_scene(const sol::Scene& scene) {
     if (choice.device == sol::programs::Device::Vulkan && !sol::programs::has_vulkan()) {
@@ -229,7 +228,6 @@ struct PyRenderer {
     camera = scene.camera;
     samples = scene.samples;
   }
-
 
   py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
                   long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress) {
@@ -673,7 +671,7 @@ void bind_scenes(py::module_& m) {
                        double rk4_step) {
              auto r = std::make_unique<PyRenderer>();
              r->choice.device = PyRenderer::device_named(device);
-             r->choice.transport = PyRenderer::transport_named(transport, "sol.Renderer");
+             r->choice.transport = transport_named(transport, "sol.Renderer");
              if (!(rk4_step > 0.0 && rk4_step <= 1.0)) {
                throw sol::InvalidArgument("sol.Renderer: rk4_step must be in (0, 1], not " + std::to_string(rk4_step));
              }

@@ -15,7 +15,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -272,13 +271,11 @@ void report_printability(const sol::Mesh& mesh, double scale, double size_mm, do
   // Progress on a terminal for a search that takes more than a second (a
   // fine mesh: a minute at --resolution 512), with the time left.
   const bool tty = isatty(fileno(stderr)) != 0;
-  const auto started = std::chrono::steady_clock::now();
-  sol::programs::ProgressEstimate estimate;
+  sol::programs::ProgressTimer timer;
   bool shown = false;
   const std::vector<double> thickness = sol::vertex_thickness(mesh, reach_mm / scale, [&](double fraction) {
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    const std::optional<double> left = estimate.report(seconds, fraction);
-    if (!tty || (seconds < 1.0 && !shown)) return;
+    const std::optional<double> left = timer.report(fraction);
+    if (!tty || (timer.seconds() < 1.0 && !shown)) return;
     shown = true;
     std::fprintf(stderr, "\rsolshape: printability: %3.0f %%", 100.0 * fraction);
     if (left && fraction < 1.0) std::fprintf(stderr, ", about %.0f s left", *left);

@@ -162,6 +162,15 @@ TEST(VkContext, MissingDeviceExtensionIsAClearError) {
 // The creation hooks (how an OpenXR runtime supplies the instance and the
 // device): each is called once with the Context's create info, and the
 // Context runs on what they return; a null device is a clear error.
+// The fill kernel runs on `context`: a w x h image filled with `value`.
+void expect_fill_runs(Context& context, std::uint32_t w, std::uint32_t h, float value) {
+  StorageImage image(context, w, h);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, image);
+  fill.run(1u, 1u, value);
+  expect_fill(image.download(), w, h, value);
+}
+
 TEST(VkContext, CreationHooksSupplyTheInstanceAndDevice) {
   ContextOptions options = validated();
   int instances = 0, choices = 0, devices = 0;
@@ -186,11 +195,7 @@ TEST(VkContext, CreationHooksSupplyTheInstanceAndDevice) {
   {
     Context context(options);
     EXPECT_EQ(context.physical_device(), picked);
-    StorageImage image(context, 4, 2);
-    ComputePipeline fill(context, fill_desc());
-    fill.bind(0, image);
-    fill.run(1u, 1u, 3.0f);
-    expect_fill(image.download(), 4, 2, 3.0f);
+    expect_fill_runs(context, 4, 2, 3.0f);
     EXPECT_TRUE(context.validation_errors().empty());
   }
   EXPECT_EQ(instances, 1);
@@ -220,17 +225,9 @@ TEST(VkContext, AdoptsAnApplicationsDeviceAndLeavesIt) {
     EXPECT_EQ(adopted.device(), owner.device());
     EXPECT_EQ(adopted.queue(), owner.queue());
     EXPECT_EQ(adopted.device_name(), owner.device_name());
-    StorageImage image(adopted, 4, 2);
-    ComputePipeline fill(adopted, fill_desc());
-    fill.bind(0, image);
-    fill.run(1u, 1u, 5.0f);
-    expect_fill(image.download(), 4, 2, 5.0f);
+    expect_fill_runs(adopted, 4, 2, 5.0f);
   }
-  StorageImage image(owner, 3, 3);
-  ComputePipeline fill(owner, fill_desc());
-  fill.bind(0, image);
-  fill.run(1u, 1u, 6.0f);
-  expect_fill(image.download(), 3, 3, 6.0f);
+  expect_fill_runs(owner, 3, 3, 6.0f);
   EXPECT_TRUE(owner.validation_errors().empty());
 
   EXPECT_THROW(Context(sol::vk::ExternalDevice{}), std::invalid_argument);

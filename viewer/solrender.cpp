@@ -195,16 +195,14 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
   // ffmpeg's reports: key=value lines, "frame=N" among them, until it ends.
   std::FILE* reports = fdopen(report[0], "r");
   if (reports == nullptr) ::close(report[0]);
-  const auto started = std::chrono::steady_clock::now();
-  sol::programs::ProgressEstimate estimate;
+  sol::programs::ProgressTimer timer;
   char line[256];
   bool shown = false;
   while (reports != nullptr && std::fgets(line, sizeof line, reports) != nullptr) {
     long done = 0;
     if (!tty || std::sscanf(line, "frame=%ld", &done) != 1 || frames <= 0) continue;
     const double fraction = std::clamp(static_cast<double>(done) / static_cast<double>(frames), 0.0, 1.0);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    const std::optional<double> left = estimate.report(seconds, fraction);
+    const std::optional<double> left = timer.report(fraction);
     std::fprintf(stderr, "\rsolrender: encoding %s: %ld of %ld frames (%.0f %%)", video.c_str(), done, frames, 100.0 * fraction);
     if (left && fraction < 1.0) std::fprintf(stderr, ", about %.0f s left", *left);
     std::fprintf(stderr, "      ");
@@ -701,15 +699,14 @@ class ProgressLine {
   // A new image (a film's frame: `prefix` names it).
   void start(std::string prefix = {}) {
     prefix_ = std::move(prefix);
-    started_ = std::chrono::steady_clock::now();
     last_tenth_ = -1;
-    estimate_ = {};
+    timer_ = {};
   }
 
   void report(double fraction) {
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    const double seconds = timer_.seconds();
     const double rate = seconds > 0 ? fraction * rays_ / seconds : 0.0;
-    const std::optional<double> left = estimate_.report(seconds, fraction);
+    const std::optional<double> left = timer_.report(fraction);
     if (!tty_) {
       const int tenth = static_cast<int>(fraction * 10.0 + 1e-9);
       if (tenth == last_tenth_) return;
@@ -733,9 +730,8 @@ class ProgressLine {
   bool tty_;
   double rays_;
   std::string prefix_;
-  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   int last_tenth_ = -1;
-  sol::programs::ProgressEstimate estimate_;
+  sol::programs::ProgressTimer timer_;
 };
 
 // The renderer, made once (a film's frames share it): the kernel, or the CPU.

@@ -1089,6 +1089,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   const bool whole = !std::isfinite(options.max_dispatch_ms);
   int tile_w = w, tile_h = whole ? h : std::min(h, step);
   double ms = 0.0, pixels_timed = 0.0;
+  const double work = static_cast<double>(w) * h * samples;  // the pixel samples of all dispatches
   for (int y = 0; y < h;) {
     const int rows = std::min(tile_h, h - y);
     for (int x = 0; x < w; x += tile_w) {
@@ -1104,8 +1105,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         pixels_timed += static_cast<double>(cols) * rows;
         // Heard after every dispatch, not only every band (a band of many
         // samples is many dispatches): progress in pixel samples done.
-        if (options.progress) options.progress(pixels_timed / (static_cast<double>(w) * h * samples));
-        if (options.cancel && options.cancel->load() && pixels_timed < static_cast<double>(w) * h * samples) {
+        if (options.progress) options.progress(pixels_timed / work);
+        if (options.cancel && options.cancel->load() && pixels_timed < work) {
           throw Cancelled("sol::vk::MarchRenderer::render: cancelled");
         }
       }

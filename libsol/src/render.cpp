@@ -775,8 +775,7 @@ glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
   const World& world = prepared.world();
   const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
   const glm::dvec3 light = light_received(prepared, hit, hit.normal);
-  return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y) *
-         (world.ambient + (1.0 - world.ambient) * light);
+  return albedo_at(o, hit) * (world.ambient + (1.0 - world.ambient) * light);
 }
 
 // ---- Path tracing (RenderOptions::transport = Transport::Path)

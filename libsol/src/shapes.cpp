@@ -463,13 +463,16 @@ class TriangleTree {
     double least = std::numeric_limits<double>::infinity();
     if (m_nodes.empty()) return least;
     const glm::dvec3 inverse(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
-    std::vector<std::size_t>& stack = m_stack;
+    // Nodes to visit with where the ray enters them (taken when the node
+    // was pushed): one beyond the nearest hit since found is skipped.
+    std::vector<std::pair<std::size_t, double>>& stack = m_stack;
     stack.clear();
-    stack.push_back(0);
+    stack.emplace_back(0, entry(m_nodes[0].box, o, inverse, reach));
     while (!stack.empty()) {
-      const Node& node = m_nodes[stack.back()];
+      const auto [index, at] = stack.back();
       stack.pop_back();
-      if (entry(node.box, o, inverse, std::min(least, reach)) == std::numeric_limits<double>::infinity()) continue;
+      if (!(at <= std::min(least, reach))) continue;  // (a miss is +infinity)
+      const Node& node = m_nodes[index];
       if (node.count > 0) {
         for (std::size_t i = node.first; i < node.first + node.count; ++i) {
           const auto& t = m_mesh.triangles[m_order[i]];
@@ -485,8 +488,13 @@ class TriangleTree {
       // The nearer child on top of the stack.
       const double a = entry(m_nodes[node.first].box, o, inverse, std::min(least, reach));
       const double b = entry(m_nodes[node.second].box, o, inverse, std::min(least, reach));
-      stack.push_back(a <= b ? node.second : node.first);
-      stack.push_back(a <= b ? node.first : node.second);
+      if (a <= b) {
+        stack.emplace_back(node.second, b);
+        stack.emplace_back(node.first, a);
+      } else {
+        stack.emplace_back(node.first, a);
+        stack.emplace_back(node.second, b);
+      }
     }
     return least <= reach ? least : std::numeric_limits<double>::infinity();
   }
@@ -553,7 +561,7 @@ class TriangleTree {
   std::vector<std::size_t> m_order;
   std::vector<Box> m_boxes;
   std::vector<Node> m_nodes;
-  mutable std::vector<std::size_t> m_stack;
+  mutable std::vector<std::pair<std::size_t, double>> m_stack;
 };
 
 }  // namespace

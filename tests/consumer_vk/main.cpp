@@ -92,13 +92,20 @@ struct App {
   App(const App&) = delete;
   App& operator=(const App&) = delete;
 
-  std::uint32_t memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
+  // Memory of a type with `flags` for what `needs` describes.
+  VkDeviceMemory allocate(const VkMemoryRequirements& needs, VkMemoryPropertyFlags flags) const {
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(physical, &memory);
-    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-      if ((bits & (1u << i)) != 0 && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = needs.size;
+    info.memoryTypeIndex = memory.memoryTypeCount;
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount && info.memoryTypeIndex == memory.memoryTypeCount; ++i) {
+      if ((needs.memoryTypeBits & (1u << i)) != 0 && (memory.memoryTypes[i].propertyFlags & flags) == flags) info.memoryTypeIndex = i;
     }
-    throw std::runtime_error("no suitable memory type");
+    if (info.memoryTypeIndex == memory.memoryTypeCount) throw std::runtime_error("no suitable memory type");
+    VkDeviceMemory out = VK_NULL_HANDLE;
+    check(vkAllocateMemory(device, &info, nullptr, &out), "vkAllocateMemory");
+    return out;
   }
 };
 
@@ -122,11 +129,7 @@ std::vector<std::uint8_t> app_frame(App& app, sol::vk::MarchRenderer& renderer, 
   check(vkCreateImage(app.device, &image_info, nullptr, &image), "vkCreateImage");
   VkMemoryRequirements image_needs{};
   vkGetImageMemoryRequirements(app.device, image, &image_needs);
-  VkMemoryAllocateInfo image_alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  image_alloc.allocationSize = image_needs.size;
-  image_alloc.memoryTypeIndex = app.memory_type(image_needs.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory image_memory = VK_NULL_HANDLE;
-  check(vkAllocateMemory(app.device, &image_alloc, nullptr, &image_memory), "vkAllocateMemory");
+  const VkDeviceMemory image_memory = app.allocate(image_needs, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   check(vkBindImageMemory(app.device, image, image_memory, 0), "vkBindImageMemory");
   VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view_info.image = image;
@@ -142,12 +145,8 @@ std::vector<std::uint8_t> app_frame(App& app, sol::vk::MarchRenderer& renderer, 
   check(vkCreateBuffer(app.device, &buffer_info, nullptr, &buffer), "vkCreateBuffer");
   VkMemoryRequirements buffer_needs{};
   vkGetBufferMemoryRequirements(app.device, buffer, &buffer_needs);
-  VkMemoryAllocateInfo buffer_alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  buffer_alloc.allocationSize = buffer_needs.size;
-  buffer_alloc.memoryTypeIndex = app.memory_type(buffer_needs.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                                  VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VkDeviceMemory buffer_memory = VK_NULL_HANDLE;
-  check(vkAllocateMemory(app.device, &buffer_alloc, nullptr, &buffer_memory), "vkAllocateMemory");
+  const VkDeviceMemory buffer_memory =
+      app.allocate(buffer_needs, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   check(vkBindBufferMemory(app.device, buffer, buffer_memory, 0), "vkBindBufferMemory");
 
   // Its command buffer: the image into GENERAL, Sol's frame, then the copy.
