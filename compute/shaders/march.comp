@@ -20,7 +20,7 @@
 //   plane_roots.glsl  planes x = c, y = c met as roots
 //   march.glsl        the one march of every ray (camera and shadow)
 //   shading.glsl      lights, shadows, colour, mirrors
-//   paths.glsl        path tracing (the path builds: SOL_PATH_BUILD)
+//   paths.glsl        path tracing (PATH_TRACING; its paths in the shade pass)
 //   passes.glsl       the march, resume and shade passes: a pixel's ray and what becomes of it
 // and the geodesics themselves in sol_geodesic.glsl (the closed form),
 // sol_connection.glsl and sol_spreading.glsl (exact lights and balls).
@@ -49,9 +49,7 @@
 #include "march/march.glsl"
 #include "sol/materials.h"  // the materials' lobes, shared with libsol
 #include "march/shading.glsl"
-#ifdef SOL_PATH_BUILD
 #include "march/paths.glsl"
-#endif
 #include "march/passes.glsl"
 
 void main() {

@@ -34,8 +34,6 @@
 #include "shaders/march_reach_comp_spv.hpp"
 #include "shaders/march_reach_srgb_unorm_comp_spv.hpp"
 #include "shaders/march_srgb_unorm_comp_spv.hpp"
-#include "shaders/march_path_comp_spv.hpp"
-#include "shaders/march_path_reach_comp_spv.hpp"
 
 namespace sol::vk {
 namespace {
@@ -275,12 +273,11 @@ struct KernelVariant {
   SOL_KERNEL_VARIANT_FLAGS(SOL_VARIANT_MEMBER)
 #undef SOL_VARIANT_MEMBER
   bool srgb_unorm = false;  // 8-bit sRGB-encoded colour (the march_srgb_unorm build; record with a UnormTarget)
-  bool path = false;        // path tracing (the march_path build; Params::path)
   // The quotient's lattice, SOL_LATTICE_CONSTANTS's floats as bits (all 0 in Sol).
   LatticeConstants lattice{};
   // A bit per flag: the features', the variant's, the build's.
 #define SOL_COUNT_FLAG(member, constant, id) +1
-  static_assert(0 SOL_MARCH_FEATURES(SOL_COUNT_FLAG) SOL_KERNEL_VARIANT_FLAGS(SOL_COUNT_FLAG) + 2 <= 32,
+  static_assert(0 SOL_MARCH_FEATURES(SOL_COUNT_FLAG) SOL_KERNEL_VARIANT_FLAGS(SOL_COUNT_FLAG) + 1 <= 32,
                 "a pipeline's key holds a bit per flag");
 #undef SOL_COUNT_FLAG
   std::uint32_t key() const {
@@ -288,7 +285,7 @@ struct KernelVariant {
     std::uint32_t k = 0, bit = 1;
 #define SOL_FLAG_OF_FEATURES(member, constant, id) f.member,
 #define SOL_FLAG_OF_VARIANT(member, constant, id) member,
-    for (bool b : {SOL_MARCH_FEATURES(SOL_FLAG_OF_FEATURES) SOL_KERNEL_VARIANT_FLAGS(SOL_FLAG_OF_VARIANT) srgb_unorm, path}) {
+    for (bool b : {SOL_MARCH_FEATURES(SOL_FLAG_OF_FEATURES) SOL_KERNEL_VARIANT_FLAGS(SOL_FLAG_OF_VARIANT) srgb_unorm}) {
 #undef SOL_FLAG_OF_FEATURES
 #undef SOL_FLAG_OF_VARIANT
       if (b) k |= bit;
@@ -369,13 +366,9 @@ MarchFeatures kernel_features(const MarchFeatures& world, bool all_features) {
 }
 
 // The build of march.comp for the variant: 8-bit sRGB output or linear,
-// lights with a reach (every connection kept) or not (the minimisers'), and
-// path tracing (march/paths.glsl) or direct light.
+// lights with a reach (every connection kept) or not (the minimisers').
+// Direct light and paths are the same build (PATH_TRACING).
 std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
-  if (v.path) {  // (linear colour only: render())
-    return v.features.light_reach ? std::span<const std::uint32_t>(march_path_reach_comp_spv)
-                                  : std::span<const std::uint32_t>(march_path_comp_spv);
-  }
   if (v.features.light_reach) {
     return v.srgb_unorm ? std::span<const std::uint32_t>(march_reach_srgb_unorm_comp_spv)
                         : std::span<const std::uint32_t>(march_reach_comp_spv);
@@ -385,15 +378,17 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
 }
 
 // Which deferred passes a variant of the world takes (MarchOptions::deferred):
-// the shade pass for exact point lights (their connections are the dear
-// part of shading), the resume pass for exact balls in Sol with the closed
+// the shade pass for paths (a path's marches and its connections to glowing
+// balls in a pipeline of their own, which the camera rays' march pass and
+// resume pass do not compile) and for exact point lights (their connections
+// are the dear part of shading), the resume pass for exact balls in Sol with the closed
 // form (the kernel's exact solves) and in the quotient for the rays whose
 // positions take Carlson's integrals (μ below kZetaLeastMu), so that the
 // march pass holds the zeta function's positions alone.
 void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
-  // (Not with mirrors or paths: a reflected ray is marched where its hit is shaded.)
-  v.defer_shading = o.deferred && f.exact_lights && !f.mirrors && !v.path;
+  // (Direct light with mirrors is not: a reflected ray is marched where its hit is shaded.)
+  v.defer_shading = o.deferred && (v.path || (f.exact_lights && !f.mirrors));
   v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 

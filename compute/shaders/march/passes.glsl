@@ -80,13 +80,11 @@ void march_pass() {
   if (h.k >= 0) {
     const Surface f = surface_at(h);
     if (DEFER_SHADING) {
-      defer_shading(pixel, h.q, h.t, f.n, CROWD ? h.item : h.k);
-    } else {
-#ifdef SOL_PATH_BUILD
+      defer_shading(pixel, h.q, h.t, f.n, f.object, f.uv, h.u);
+    } else if (PATH_TRACING) {
       color = path_radiance(h, f, eye, uint(local.y * width + local.x));
-#else
+    } else {
       color = radiance(h, f, eye);  // (without mirrors and emission: shade_hit's colour, to the bit)
-#endif
     }
     hit_aov.x = float(f.object + 1);
     hit_aov.y = h.t;
@@ -103,39 +101,34 @@ void march_pass() {
 }
 
 // The shade pass: the hits the march pass listed (defer_shading), shaded
-// into their pixels as the march would have (shade_hit; the pattern's
-// coordinates from the hit point, as main()).
+// into their pixels as the march pass would have: by shade_hit, or with
+// paths by path_radiance from the hit (its marches in this pass alone).
 void shade_pass() {
   const int slot = queue_slot();
   if (slot >= queue.shade.w) return;
   const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
-  const uvec4 a = queue_records[at], b = queue_records[at + 1];
+  const uvec4 a = queue_records[at], b = queue_records[at + 1], c = queue_records[at + 2];
   const ivec2 pixel = unpack_pixel(b.z);
-  const int eye = pixel.x >= params.counts.y ? 1 : 0;
-  const vec3 q = uintBitsToFloat(a.xyz);
-  const float t = uintBitsToFloat(a.w);
-  const vec3 n = octahedral_decode(uintBitsToFloat(b.xy));
-  const int index = int(b.w);
-  int k = index;
-  vec2 uv;
-  if (QUOTIENT) {
-    const Image m = images[index];
-    k = int(m.info.z);
-    uv = object_pattern_uv(image_type(m), q, q, m.geometry, m.heading.xy, m.info.y);
-  } else if (CROWD) {  // the record holds the crowd's item
-    load_objects(eye);
-    const SeenObject o = crowd_item_seen(index);
-    k = o.object;
-    uv = object_pattern_uv(o.type, q, pattern_phase(q, g_eye_camera, g_eye_frac), o.rel, o.heading, o.radius);
+  const int width = params.counts.y;
+  const int eye = pixel.x >= width ? 1 : 0;
+  MarchHit h = march_hit_none(kMarchFromStart);
+  h.q = uintBitsToFloat(a.xyz);
+  h.t = uintBitsToFloat(a.w);
+  h.u = octahedral_decode(uintBitsToFloat(c.zw));
+  Surface f;
+  f.object = int(b.w);
+  f.n = octahedral_decode(uintBitsToFloat(b.xy));
+  f.uv = uintBitsToFloat(c.xy);
+  if (!QUOTIENT && (HAS_SHADOWS || PATH_TRACING)) load_objects(eye);  // (the shadows' and paths' marches)
+  vec4 color;
+  if (PATH_TRACING) {
+    const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
+    color = path_radiance(h, f, eye, uint(local.y * width + local.x));
   } else {
-    uv = object_pattern_uv(int(scene_objects[k].plane.x), q,
-                           pattern_phase(q, params.eyes[eye].camera, params.eyes[eye].camera_frac),
-                           params.eyes[eye].relative[k], params.eyes[eye].heading[k].xy, scene_objects[k].plane.y);
-    if (HAS_SHADOWS) load_objects(eye);
+    color = shade_hit(f.object, f.n, f.uv, h.t, h.q, eye);
   }
-  const vec4 color = shade_hit(k, n, uv, t, q, eye);
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
-  report_out_of_steps(pixel, false);  // (its shadow rays')
+  report_out_of_steps(pixel, false);  // (its shadow rays' and paths')
 }
 
 #endif  // SOL_MARCH_PASSES_GLSL

@@ -1,6 +1,8 @@
-// Path tracing (the SOL_PATH_BUILD builds; path_radiance in libsol/src/render.cpp, the
+// Path tracing (PATH_TRACING; path_radiance in libsol/src/render.cpp, the
 // same estimator with the same random numbers): one path per pixel and
-// dispatch, from the camera ray's hit. docs/lighting.md, "Path tracing".
+// dispatch, from the camera ray's hit, in the shade pass (the march pass
+// lists the hits), so that the camera rays' pipelines never hold a path's
+// march nor its connection solves. docs/lighting.md, "Path tracing".
 #ifndef SOL_MARCH_PATHS_GLSL
 #define SOL_MARCH_PATHS_GLSL
 
@@ -127,32 +129,54 @@ float glow_pick_total(vec3 x) {
 // the sphere of one of its targets (the nearest; in Sol the hit point, in
 // a quotient x exp(L d) in the cover; cos_y: the cosine there with its
 // normal): 0 where none holds y, or where that geodesic is longer than the
-// distance plus the ball's reach.
-float glow_density(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y) {
-  const vec3 y = QUOTIENT ? sol_translate(x, sol_exp(d, L).position) : hit;
-  vec3 c = vec3(0.0), centre;
-  float r = 0.0, radius, nearest = 1e30;
+// distance plus the ball's reach. Its two connection solves (x to y, and
+// the target's centre c to y) are path_radiance's (path_solves), between
+// glow_density_target, which finds y, c and r (false: no target holds y),
+// and glow_density_of, which takes the second solve's minimiser.
+struct GlowDensity {
+  int k;
+  vec3 x, d, y, c;
+  float L, r, cos_y;
+};
+
+bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
+  q.k = k;
+  q.x = x;
+  q.d = d;
+  q.L = L;
+  q.cos_y = cos_y;
+  q.y = QUOTIENT ? sol_translate(x, sol_exp(d, L).position) : hit;
+  q.c = vec3(0.0);
+  q.r = 0.0;
+  vec3 centre;
+  float radius, nearest = 1e30;
   int object;
   for (int i = 0; i < glow_target_slots(); ++i) {
     if (!glow_target(i, object, centre, radius) || object != k) continue;
-    const vec3 v = seen_from(centre, y);
+    const vec3 v = seen_from(centre, q.y);
     if (dot(v, v) < nearest) {
       nearest = dot(v, v);
-      c = centre;
-      r = radius;
+      q.c = centre;
+      q.r = radius;
     }
   }
-  vec4 found[SOL_FOUND_SLOTS];
-  const float reach = scene_objects[k].glow.x;
-  if (!(nearest < 1e30) || sol_connections(seen_from(x, y), 0.0, found) == 0 ||
-      L > (found[0].w + reach) * (1.0 + 1e-3) + 1e-4) {
-    return 0.0;
-  }
-  if (sol_connections(seen_from(c, y), 0.0, found) == 0 || abs(found[0].w - r) > 1e-3 * max(1.0, r)) return 0.0;
-  const float j_centre = sol_sphere_area_density(found[0].xyz, r);
-  if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
-  const float pick = glow_pick_weight(x, c, r) / glow_pick_total(x);
-  return pick * sol_sphere_area_density(d, L) / (4.0 * SOL_PI * j_centre * cos_y);
+  return nearest < 1e30;
+}
+
+// The first solve's verdict: whether the geodesic of length L is within the
+// ball's reach of the minimiser from x to y (`count` connections, found[0]
+// the shortest).
+bool glow_density_reached(GlowDensity q, int count, vec4 shortest) {
+  return count > 0 && !(q.L > (shortest.w + scene_objects[q.k].glow.x) * (1.0 + 1e-3) + 1e-4);
+}
+
+// The density from the second solve (the minimiser from c to y).
+float glow_density_of(GlowDensity q, int count, vec4 shortest) {
+  if (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r)) return 0.0;
+  const float j_centre = sol_sphere_area_density(shortest.xyz, q.r);
+  if (!(q.cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
+  const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
+  return pick * sol_sphere_area_density(q.d, q.L) / (4.0 * SOL_PI * j_centre * q.cos_y);
 }
 
 // One sampled point of one glowing ball seen from a diffuse hit: the
@@ -165,12 +189,14 @@ struct GlowSample {
   vec3 normal_y;  // the sphere's outward normal at y
   float area;     // the density of y per unit area (with the pick's)
   vec3 factor;    // the path's weight times the albedo at x
+  vec3 towards;   // y seen from x (frame components at x): the target of its connections' solve
   int count;      // geodesics in `ways`
   vec4 ways[SOL_FOUND_SLOTS];
 };
 
 // Draws a target and a point y of its sphere at the diffuse hit h (normal
-// n), and finds the geodesics from h to y within its reach.
+// n); the geodesics from h to y within its reach are path_radiance's solve
+// (path_solves).
 GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   GlowSample g;
   g.n = n;
@@ -199,8 +225,35 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   const vec3 y = sol_translate(c, on_sphere.position);
   g.normal_y = normalize(on_sphere.direction);
   g.area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
-  g.count = sol_connections(seen_from(h.q, y), scene_objects[g.k].glow.x, g.ways);
+  g.towards = seen_from(h.q, y);
+  g.count = 0;
   return g;
+}
+
+// A path vertex's connection solves, in one call of sol_connections (the
+// driver inlines each call, and a solve is the dearest code of the path
+// kernel): solves `first` to `last` - 1 of 0, the density's from x to y
+// (glow_density_reached), 1, the density's from c to y (skipped when 0
+// failed), 2, the sample's from x to its point (kept in g.ways). Returns the
+// density (0 without solve 1).
+float path_solves(int first, int last, GlowDensity q, inout GlowSample g) {
+  float density = 0.0;
+  int i = first;
+  if (first < last) do {
+    const vec3 target = i == 0 ? seen_from(q.x, q.y) : (i == 1 ? seen_from(q.c, q.y) : g.towards);
+    const float reach = i == 2 ? scene_objects[g.k].glow.x : 0.0;
+    vec4 found[SOL_FOUND_SLOTS];
+    const int count = sol_connections(target, reach, found);
+    if (i == 0) {
+      if (!glow_density_reached(q, count, found[0])) i = 1;  // (no second solve)
+    } else if (i == 1) {
+      density = glow_density_of(q, count, found[0]);
+    } else {
+      g.count = count;
+      g.ways = found;
+    }
+  } while (++i < last);
+  return density;
 }
 
 // Whether geodesic j of g is one light can come along: of positive length,
@@ -238,8 +291,9 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // next-event estimation too (glow_sample, glow_connection), the emission a
 // path meets after a diffuse bounce weighed by the balance heuristic.
 // One call of march, for the path's next segment and for the geodesics to
-// a glowing ball's point alike (those first, from the same hit): the driver
-// inlines each call, and each holds a march (see radiance).
+// a glowing ball's point alike (those first, from the same hit), and one of
+// sol_connections (path_solves): the driver inlines each call, and each
+// holds a march or a solve (see radiance).
 vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   uvec2 state = path_random_start(uvec2(params.path.xy), pixel, uint(params.path.z));
   const int light_count = min(int(params.shading.z), kMaxLights);
@@ -264,21 +318,23 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
       const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
       color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
       weight *= transmittance;
-      if (HAS_EMISSION) {
-        float share = 1.0;
-        if (GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
-          if (params.path.w == kPathSamplingGlowOnly) {
-            share = 0.0;  // next-event estimation counted it
-          } else {
-            const float glow = glow_density(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)));
-            const float reflection = from_cosine / SOL_PI;
-            share = reflection / (reflection + glow);
-          }
+      const vec3 emission_weight = weight;
+      // The emission's share, where next-event estimation could have found
+      // this hit: its density solved below (path_solves).
+      float share = 1.0;
+      bool density = false;
+      GlowDensity dq;
+      const float reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
+      if (HAS_EMISSION && GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
+        if (params.path.w == kPathSamplingGlowOnly) {
+          share = 0.0;  // next-event estimation counted it
+        } else {
+          density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
         }
-        color += weight * material.rgb * share;
       }
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
+      bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
       g.count = 0;
       way = 0;
       // The material's lobes (sol/materials.h), as path_radiance in libsol.
@@ -291,7 +347,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
       } else {
         const vec3 a = surface_albedo * (lobes.diffuse / (1.0 - lobes.specular_probability));
         if (light_count > 0) color += weight * a * light_received(n, h.q, eye);
-        if (GLOW_SAMPLING && glow_count > 0 && goes_on) g = glow_sample(h, n, weight * a, state);
+        if (GLOW_SAMPLING && glow_count > 0 && goes_on) {
+          g = glow_sample(h, n, weight * a, state);
+          sampled = true;
+        }
         weight *= a;
         next = cosine_direction(n, state);
         after_diffuse = true;
@@ -305,6 +364,11 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         alive = q > 0.0 && path_uniform(state) < q;
         weight /= max(q, 1e-30);
       }
+      if (GLOW_SAMPLING && (density || sampled)) {
+        const float glow = path_solves(density ? 0 : 2, sampled ? 3 : 2, dq, g);
+        if (density) share = reflection / (reflection + glow);
+      }
+      if (HAS_EMISSION) color += emission_weight * material.rgb * share;
     }
     if (GLOW_SAMPLING) {
       while (way < g.count && !glow_way_open(g, way)) ++way;

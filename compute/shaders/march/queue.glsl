@@ -34,14 +34,16 @@ vec3 octahedral_decode(vec2 p) {
   return normalize(n);
 }
 
-// The march pass: a hit for the shade pass (q, t, its normal, and the scene
-// object, or in the quotient the image, it lies on).
-void defer_shading(ivec2 pixel, vec3 q, float t, vec3 n, int index) {
+// The march pass: a hit for the shade pass (q, t, its normal, the scene
+// object it lies on, its pattern's coordinates and the ray's unit tangent u
+// there, which a path goes on from).
+void defer_shading(ivec2 pixel, vec3 q, float t, vec3 n, int object, vec2 uv, vec3 u) {
   int slot;
   SOL_QUEUE_APPEND(queue.shade, slot);
   const int at = kQueueResumeRecord * queue_capacity() + kQueueShadeRecord * slot;
   queue_records[at] = uvec4(floatBitsToUint(q), floatBitsToUint(t));
-  queue_records[at + 1] = uvec4(floatBitsToUint(octahedral_encode(n)), pack_pixel(pixel), uint(index));
+  queue_records[at + 1] = uvec4(floatBitsToUint(octahedral_encode(n)), pack_pixel(pixel), uint(object));
+  queue_records[at + 2] = uvec4(floatBitsToUint(uv), floatBitsToUint(octahedral_encode(u)));
 }
 
 // The march pass: a ray for the resume pass. In Sol one that reached an

@@ -44,15 +44,6 @@ const bool PLANES_XY_ONLY = PLANES_XY_ONLY_WORLD && INTEGRATOR == 0;
 // every connection found (sol_connection.glsl): a separate build of this
 // kernel for lights with a reach (SOL_LIGHT_REACH_BUILD, march_reach_*),
 // whose pipelines set HAS_LIGHT_REACH.
-// Path tracing (march/paths.glsl) is a build of its own too
-// (SOL_PATH_BUILD, march_path_*): a path holds more marches, each inlined,
-// which every other pipeline would compile (and the driver's specialisation
-// of this module, MarchOptions::specialization_folding, before it drops them).
-#ifdef SOL_PATH_BUILD
-const bool PATH_TRACING = true;
-#else
-const bool PATH_TRACING = false;
-#endif
 #ifdef SOL_LIGHT_REACH_BUILD
 #define SOL_FOUND_SLOTS kSeedSlots
 #else

@@ -66,7 +66,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(ods,           HAS_ODS,         14) /* omnidirectional stereo eyes (binding 8) */                       \
   X(defer_shading, DEFER_SHADING,   19) /* hits shaded by the shade pass (exact lights) */                  \
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
-  X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */
+  X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */ \
+  X(path,          PATH_TRACING,    47) /* light transport by paths (march/paths.glsl), else direct light */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
@@ -197,7 +198,7 @@ struct Params {
   ivec4 light_image_first;
   ivec4 light_image_count;
   vec4 light_color[kMaxLights];  ///< rgb: colour times intensity; w: light code (kLight*)
-  /// Path tracing (the march_path builds, march/paths.glsl): xy the seed's low and high 32 bits, z this
+  /// Path tracing (PATH_TRACING, march/paths.glsl): xy the seed's low and high 32 bits, z this
   /// dispatch's sample (the index of the pixel's path), w the sampling of
   /// glowing balls (kPathSampling*).
   ivec4 path;
@@ -241,8 +242,9 @@ struct CrowdItem {
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
 // header, then for a dispatch of n pixels (Params::tile: n = tile.z ·
 // tile.w) n resume records (uvec4: pixel, t, passing mask, march step) and
-// n shade records (2 uvec4: the hit point and t; the normal's octahedral
-// code, pixel, object or quotient image). A list's dispatch (x, y, z) counts
+// n shade records (3 uvec4: the hit point and t; the normal's octahedral
+// code, the pixel, the scene object; the pattern's coordinates and the
+// ray's unit tangent's octahedral code). A list's dispatch (x, y, z) counts
 // its workgroups of kGroupSize² records: the march pass adds one for every
 // kGroupSize²-th record it appends. The host resets the header each frame
 // (QueueHeader{} with y = z = 1).
@@ -252,7 +254,7 @@ struct QueueHeader {
 };
 /// The records' sizes in uvec4s: a resume record, a shade record.
 SOL_CONSTANT(int, kQueueResumeRecord, 1);
-SOL_CONSTANT(int, kQueueShadeRecord, 2);
+SOL_CONSTANT(int, kQueueShadeRecord, 3);
 
 // ---- What a frame's rays counted (binding kBindingStats, std430): the
 // host zeroes it before a render and reads it after (RenderResult).
