@@ -131,3 +131,36 @@ TEST(KernelCrowd, AnEyeInsideABoxSeesWhatTheCpuSees) {
 }
 
 }  // namespace
+
+// Arrays of objects (the scene file's "array": left translates of one
+// object) on the kernel as on the CPU: in Sol a street of boxes and a
+// lattice of balls (a crowd: 2 + 40 + 36 objects), in the golden quotient a
+// 2 × 2 array of balls (listed with its images). The budgets are the other
+// kernel-against-CPU comparisons' (1 % of the pixels on edges).
+TEST(KernelCrowd, ArraysOfObjectsMatchTheCpuRenderer) {
+  const char* sol_street = R"({"camera": {"position": [-1, -2.5, 0.6], "forward": [0.6, 1, -0.25], "up": [0, 0, 1]},
+    "objects": [{"type": "plane_z", "c": -0.5, "pattern": "checker"},
+      {"type": "array", "count": [10, 2, 2], "step": [0.8, 1.6, 0.5],
+       "of": {"type": "box", "center": [0, 0, -0.3], "half_size": [0.2, 0.2, 0.15], "color": [0.9, 0.5, 0.3]}},
+      {"type": "array", "count": [6, 3, 2], "step": [0.5, 0.5, 0.4],
+       "of": {"type": "ball", "center": [0.5, 0.8, 0.4], "radius": 0.12, "color": [0.3, 0.6, 0.9]}},
+      {"type": "plane_y", "c": 4}],
+    "lights": [{"type": "point", "position": [1, 0, 2], "intensity": 3}]})";
+  const char* golden = R"({"quotient": "golden", "camera": {"position": [0.1, 0.1, 0.2], "forward": [1, 0.3, 0.1]},
+    "objects": [{"type": "plane_z", "c": 0.05, "pattern": "circles"},
+      {"type": "array", "count": [2, 2, 1], "step": [0.5, 0.5, 0.3],
+       "of": {"type": "ball", "center": [0.4, 0.3, 0.5], "radius": 0.1, "color": [0.9, 0.3, 0.3]}}]})";
+  for (const char* text : {sol_street, golden}) {
+    const sol::Scene scene = sol::parse_scene(text);
+    sol::vk::MarchRenderer renderer(vk_context());
+    const auto [gpu, cpu, c] = against_cpu(renderer, scene, 48, 36);
+    std::set<float> seen(cpu.object.begin(), cpu.object.end());
+    std::printf("arrays (%zu objects): %d of %d pixels hit another object, %d differ in colour, distance %.2g, %zu objects seen\n",
+                scene.objects.size(), c.mask_differs, c.pixels, c.color_differs, c.distance, seen.size());
+    EXPECT_LE(c.mask_differs, c.pixels / 100);
+    EXPECT_LE(c.color_differs, c.pixels / 100);
+    EXPECT_LT(c.distance, 2e-3);
+    EXPECT_GE(seen.size(), scene.quotient == sol::Quotient::None ? 20u : 3u);  // the copies, not the floor alone
+  }
+  sol::test::expect_no_validation_errors();
+}

@@ -1,6 +1,7 @@
 // Scene files: the documented schema parses, every malformed or inconsistent
 // input is rejected with a message naming the problem, presets are valid and
 // to_json round-trips.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -519,6 +520,91 @@ TEST(Scene, LightsAndFog) {
   EXPECT_EQ(s.fog_density, 0.05);
   // The first schema's keys still read: fog_distance d is density 1/d.
   EXPECT_EQ(sol::parse_scene(R"({"objects": [{"type": "plane_z"}], "fog_distance": 4})").fog_density, 0.25);
+}
+
+// Arrays: {"type": "array", "of": o, "count": [nx, ny, nz], "step": s} is
+// the nx·ny·nz left translates g·o, g = (i sx, j sy, k sz). Checked by the
+// isometry itself: the distance bound of copy (i, j, k) at g·q is the
+// original's at q (every kind's bound is left-invariant), with g·q written
+// out here from the group law (x, y, z)·(x', y', z') = (x + e^z x',
+// y + e^{-z} y', z + z'), and a ball's centre moved to g·c.
+glm::dvec3 times(const glm::dvec3& g, const glm::dvec3& q) {
+  return {g.x + std::exp(g.z) * q.x, g.y + std::exp(-g.z) * q.y, g.z + q.z};
+}
+
+TEST(Scene, ArraysAreLeftTranslatesOfTheirObject) {
+  const glm::dvec3 step{0.7, -0.4, 0.3};
+  const std::string kinds[] = {
+      R"({"type": "ball", "center": [0.2, -0.1, 0.4], "radius": 0.3})",
+      R"({"type": "ball", "center": [0.2, -0.1, 0.4], "radius": 0.3, "exact": true})",
+      R"({"type": "box", "center": [-0.3, 0.2, 0.1], "half_size": [0.2, 0.1, 0.3]})",
+      R"({"type": "tube", "axis": "x", "through": [0.1, 0.5, -0.2], "radius": 0.2})",
+      R"({"type": "tube", "axis": "z", "through": [0.1, 0.5, -0.2], "radius": 0.2})",
+      R"({"type": "tube", "axis": [1, 2, 0], "through": [0.1, 0.5, -0.2], "radius": 0.2})",
+      R"({"type": "plane_x", "c": 0.6})",
+      R"({"type": "plane_y", "c": -0.6})",
+      R"({"type": "plane_z", "c": -0.5})"};
+  const glm::dvec3 points[] = {{0.3, 0.2, -0.4}, {-1.2, 0.7, 0.9}, {0.05, -0.3, 0.35}, {2.0, 1.5, -1.1}};
+  for (const std::string& kind : kinds) {
+    const sol::Scene original = sol::parse_scene(R"({"objects": [)" + kind + "]}");
+    const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "array", "count": [2, 3, 2], "step": [0.7, -0.4, 0.3],
+      "of": )" + kind + "}]}");
+    ASSERT_EQ(s.objects.size(), 12u) << kind;
+    const sol::Shape& o = original.objects[0].shape;
+    for (int k = 0, n = 0; k < 2; ++k) {
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 2; ++i, ++n) {  // i the fastest
+          const glm::dvec3 g = glm::dvec3(i, j, k) * step;
+          const sol::Shape& copy = s.objects[static_cast<std::size_t>(n)].shape;
+          EXPECT_EQ(copy.index(), o.index()) << kind;
+          for (const glm::dvec3& q : points) {
+            const double d = sol::shape_distance(o, q);
+            EXPECT_NEAR(sol::shape_distance(copy, times(g, q)), d, 1e-12 * std::max(1.0, std::abs(d)))
+                << kind << " copy " << i << j << k;
+          }
+          if (const auto* ball = std::get_if<sol::Ball>(&copy)) {
+            const glm::dvec3 c = times(g, std::get<sol::Ball>(o).center);
+            EXPECT_NEAR(glm::length(ball->center - c), 0.0, 1e-14) << kind;
+            EXPECT_EQ(ball->radius, 0.3);
+          }
+        }
+      }
+    }
+  }
+  // An array of an array: the copies of the copies; beside plain objects.
+  const sol::Scene nested = sol::parse_scene(R"({"objects": [{"type": "plane_z", "c": -1},
+    {"type": "array", "count": [1, 1, 3], "step": [0, 0, 1],
+     "of": {"type": "array", "count": [4, 1, 1], "step": [1, 0, 0], "of": {"type": "ball", "center": [0, 0, 0], "radius": 0.2}}}]})");
+  ASSERT_EQ(nested.objects.size(), 13u);
+  // The twelfth ball: i = 3 of the inner array, k = 2 of the outer: (0, 0, 2)·(3, 0, 0).
+  EXPECT_NEAR(glm::length(std::get<sol::Ball>(nested.objects[12].shape).center - glm::dvec3(3.0 * std::exp(2.0), 0.0, 2.0)), 0.0,
+              1e-12);
+  // In a quotient, as any objects of it.
+  const sol::Scene golden = sol::parse_scene(R"({"quotient": "golden", "objects": [{"type": "array", "count": [2, 2, 1],
+    "step": [0.5, 0.5, 0], "of": {"type": "ball", "center": [0.2, 0.2, 0.5], "radius": 0.1}}]})");
+  EXPECT_EQ(golden.objects.size(), 4u);
+  EXPECT_NO_THROW(sol::validate(golden));
+}
+
+TEST(Scene, ArraysNameTheirFieldInErrors) {
+  const std::string ball = R"({"type": "ball", "center": [0, 0, 0], "radius": 0.1})";
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 0, 1], "step": [1, 1, 1], "of": )" + ball + "}]}",
+                  "'objects[0].count' must be three integers of at least 1");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1.5, 1], "step": [1, 1, 1], "of": )" + ball + "}]}",
+                  "'objects[0].count' must be three integers");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1], "step": [1, 1, 1], "of": )" + ball + "}]}",
+                  "'objects[0].count' must be three integers");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1, 1], "of": )" + ball + "}]}", "objects[0] (an array) needs 'step'");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1, 1], "step": [1, 1, 1]}]})", "needs 'of'");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1, 1], "step": [1, 1], "of": )" + ball + "}]}",
+                  "objects[0].step");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1, 1], "step": [1, 1, 1], "by": 2, "of": )" + ball + "}]}",
+                  "unknown key 'by'");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [2, 1, 1], "step": [1, 1, 1], "of": {"type": "ball", "center": [0, 0, 0], "radius": -1}}]})",
+                  "objects[0].of");
+  expect_rejected(R"({"objects": [{"type": "array", "count": [1024, 1024, 2], "step": [1, 1, 1], "of": )" + ball + "}]}",
+                  "'objects[0].count' makes more than 1048576 objects");
+  expect_rejected(R"({"objects": [{"type": "sphere"}]})", "(or array: copies of an object)");
 }
 
 TEST(Scene, PresetsAreValidAndRoundTrip) {

@@ -267,7 +267,8 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   const std::optional<Shape> shape = shape_named(type);
   if (!shape) {
     r.fail(at + ".type", "'" + at + ".type' must be one of " +
-                             kind_names(std::make_index_sequence<std::variant_size_v<Shape>>()) + ", got " +
+                             kind_names(std::make_index_sequence<std::variant_size_v<Shape>>()) +
+                             " (or array: copies of an object), got " +
                              SceneFileReader::json_text(o["type"]));
   }
   SceneObject obj;

@@ -1,6 +1,10 @@
 #include "sol/scene_file.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <numbers>
@@ -10,6 +14,7 @@
 #include "objects_internal.hpp"
 #include "scene_reader.hpp"
 #include "sol/error.hpp"
+#include "sol/group.hpp"
 
 namespace sol {
 namespace detail {
@@ -148,6 +153,67 @@ void read_quotient(const json& q, const SceneFileReader& r, Scene& s) {
   if (q.contains("fibre_area")) s.fibre_area = r.number(q["fibre_area"], "quotient.fibre_area");
 }
 
+// An entry of "objects" (`at` its path) into `out`: an object, or an array
+// of one, {"type": "array", "of": {...}, "count": [nx, ny, nz], "step":
+// [sx, sy, sz]}: the nx·ny·nz left translates g·o of its object o (itself
+// an object or an array) by the points g = (i sx, j sy, k sz), 0 <= i < nx,
+// 0 <= j < ny, 0 <= k < nz, i the fastest. Left translations are Sol's
+// isometries and take every kind to itself (shape_seen_from(o, g⁻¹)), so
+// the copies are objects of the scene like any other. `origins` receives
+// the path of each object's entry in the file (a copy's: its array's
+// object), which the scene's checks name.
+void read_objects(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* lattice,
+                  std::vector<SceneObject>& out, std::vector<std::string>& origins) {
+  if (!o.is_object() || !o.contains("type") || o["type"] != "array") {
+    out.push_back(detail::read_object(o, r, at, lattice));
+    origins.push_back(at);
+    return;
+  }
+  r.require_known_keys(o, {"type", "of", "count", "step"}, at + " (an array)", at);
+  r.require_key(o, "of", at + " (an array)", "'of', the object it repeats", at);
+  r.require_key(o, "count", at + " (an array)", "'count', its copies along x, y and z: [nx, ny, nz]", at);
+  r.require_key(o, "step", at + " (an array)", "'step', the translation between copies: [sx, sy, sz]", at);
+  const json& count = o["count"];
+  std::array<std::uint64_t, 3> n{};
+  const auto bad_count = [&] {
+    r.fail(at + ".count", "'" + at + ".count' must be three integers of at least 1, got " + SceneFileReader::json_text(count));
+  };
+  if (!count.is_array() || count.size() != 3) bad_count();
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!count[a].is_number_integer() || count[a].get<std::int64_t>() < 1) bad_count();
+    n[a] = count[a].get<std::uint64_t>();
+    if (n[a] > kMaxObjects) {
+      r.fail(at + ".count", "'" + at + ".count' makes more than " + std::to_string(kMaxObjects) + " objects");
+    }
+  }
+  const std::uint64_t copies = n[0] * n[1] * n[2];  // each at most 2^20: no overflow
+  if (copies > kMaxObjects) {
+    r.fail(at + ".count", "'" + at + ".count' makes more than " + std::to_string(kMaxObjects) + " objects");
+  }
+  const glm::dvec3 step = r.vec3(o["step"], at + ".step");
+  std::vector<SceneObject> one;
+  std::vector<std::string> from;
+  read_objects(o["of"], r, at + ".of", lattice, one, from);
+  if (one.size() * copies > kMaxObjects - std::min<std::size_t>(out.size(), kMaxObjects)) {
+    r.fail(at + ".count", "'" + at + ".count' makes more than " + std::to_string(kMaxObjects) + " objects in the scene");
+  }
+  out.reserve(out.size() + one.size() * copies);
+  for (std::uint64_t k = 0; k < n[2]; ++k) {
+    for (std::uint64_t j = 0; j < n[1]; ++j) {
+      for (std::uint64_t i = 0; i < n[0]; ++i) {
+        const glm::dvec3 g = glm::dvec3(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)) * step;
+        const glm::dvec3 back = inverse(g);
+        for (std::size_t m = 0; m < one.size(); ++m) {
+          SceneObject copy = one[m];
+          copy.shape = shape_seen_from(one[m].shape, back);
+          out.push_back(std::move(copy));
+          origins.push_back(from[m]);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, std::string_view source) {
@@ -177,8 +243,9 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     r.fail(e.path(), e.what());
   }
   const json& objects = root["objects"];
+  std::vector<std::string> origins;  // each object's entry in the file
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    s.objects.push_back(detail::read_object(objects[i], r, "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr));
+    read_objects(objects[i], r, "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr, s.objects, origins);
   }
   // "light" and "fog_distance": the first schema's single directional light and fog.
   if (root.contains("light")) {
@@ -238,7 +305,18 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     detail::check_camera(s.camera);
     detail::check_world(s);
   } catch (const detail::FieldError& e) {
-    r.fail(e.path(), e.what());
+    // An object's field: named by its entry in the file (an array's copy by
+    // the array's object), where the world's check counts the copies.
+    std::string path = e.path(), what = e.what();
+    std::size_t k = 0;
+    if (std::sscanf(path.c_str(), "objects[%zu]", &k) == 1 && k < origins.size()) {
+      const std::string counted = "objects[" + std::to_string(k) + "]";
+      if (path.compare(0, counted.size(), counted) == 0 && origins[k] != counted) {
+        path = origins[k] + path.substr(counted.size());
+        if (const std::size_t at = what.find(counted); at != std::string::npos) what.replace(at, counted.size(), origins[k]);
+      }
+    }
+    r.fail(path, what);
   }
   return s;
 }
