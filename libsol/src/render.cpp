@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -1078,6 +1079,54 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   return r;
 }
 
+// ---- Light transport: what a camera ray's hit brings back, behind one
+// interface (RenderOptions::transport chooses): the direct light
+// (radiance) or one path a sample (path_radiance).
+class LightTransport {
+ public:
+  virtual ~LightTransport() = default;
+  /// The colour that sample `sample` of pixel `pixel` (its index in the
+  /// eye's image) brings back from its camera ray's hit.
+  virtual glm::dvec3 radiance(const MarchHit& hit, std::uint64_t pixel, int sample) const = 0;
+};
+
+class DirectLight final : public LightTransport {
+ public:
+  explicit DirectLight(const MarchWorld& prepared) : m_prepared(prepared) {}
+  glm::dvec3 radiance(const MarchHit& hit, std::uint64_t, int) const override { return sol::radiance(m_prepared, hit); }
+
+ private:
+  const MarchWorld& m_prepared;
+};
+
+// One path a sample, its random numbers from the seed, the pixel and the
+// sample (the kernel draws the same); next-event estimation's targets
+// found once.
+class PathTracer final : public LightTransport {
+ public:
+  PathTracer(const MarchWorld& prepared, const RenderOptions& settings)
+      : m_prepared(prepared),
+        m_glowing(settings.path_sampling != PathSampling::ReflectionOnly ? glowing_balls(prepared)
+                                                                         : std::vector<GlowingBall>()),
+        m_seed(settings.seed),
+        m_sampling(settings.path_sampling) {}
+  glm::dvec3 radiance(const MarchHit& hit, std::uint64_t pixel, int sample) const override {
+    PathRandom random(m_seed, pixel, static_cast<std::uint64_t>(sample));
+    return path_radiance(m_prepared, m_glowing, hit, random, m_sampling);
+  }
+
+ private:
+  const MarchWorld& m_prepared;
+  std::vector<GlowingBall> m_glowing;
+  std::uint64_t m_seed;
+  PathSampling m_sampling;
+};
+
+std::unique_ptr<LightTransport> make_transport(const MarchWorld& prepared, const RenderOptions& settings) {
+  if (settings.transport == Transport::Path) return std::make_unique<PathTracer>(prepared, settings);
+  return std::make_unique<DirectLight>(prepared);
+}
+
 }  // namespace
 
 // The prepared world, shared with the renders that use it: set_world on
@@ -1186,10 +1235,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
     const std::size_t c = static_cast<std::size_t>(i);
     return march_view(prepared, views[c], glm::normalize(transports[c] * camera_ray(mono, i, j, w, h, offset)));
   };
-  const bool path = settings.transport == Transport::Path;
-  const std::vector<GlowingBall> glowing = path && settings.path_sampling != PathSampling::ReflectionOnly
-                                               ? glowing_balls(prepared)
-                                               : std::vector<GlowingBall>();
+  const std::unique_ptr<LightTransport> transport = make_transport(prepared, settings);
   unsigned threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(h));
   detail::for_each_row(h, threads, settings.progress, [&](int j, const std::atomic<bool>& stopping) {
@@ -1203,12 +1249,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       // Outside a fisheye's image circle there is no ray: black, no hit.
       const bool sees = camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
-      // A sample's colour: the direct light at its hit, or one path's.
-      const auto colour = [&](const MarchHit& at, int s) {
-        if (!path) return radiance(prepared, at);
-        PathRandom random(settings.seed, k, static_cast<std::uint64_t>(s));
-        return path_radiance(prepared, glowing, at, random, settings.path_sampling);
-      };
+      const auto colour = [&](const MarchHit& at, int s) { return transport->radiance(at, k, s); };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
