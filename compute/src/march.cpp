@@ -7,15 +7,12 @@
 #include <cmath>
 #include <numbers>
 #include <cstdint>
-#include <filesystem>
 #include <future>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <string>
 
-#include <dlfcn.h>
 
 #include <glm/geometric.hpp>
 #include <sol/connection.hpp>
@@ -24,7 +21,6 @@
 #include <sol/lattice.hpp>
 #include <sol/quotient_field.hpp>
 
-#include "fnv1a.hpp"
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
 #include "sol/vk/image.hpp"
@@ -34,6 +30,7 @@
 #include "shaders/march_reach_comp_spv.hpp"
 #include "shaders/march_reach_srgb_unorm_comp_spv.hpp"
 #include "shaders/march_srgb_unorm_comp_spv.hpp"
+#include "seed_tables.hpp"
 
 namespace sol::vk {
 namespace {
@@ -456,65 +453,19 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
 // minimisers', or with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
 
-// A connection table's file: its name, from the program's path, and its
-// key (what must match for the seeds in it to be this program's: its
-// identity and the table's constants, hashed).
-struct SeedsFile {
-  std::filesystem::path file;
-  std::uint64_t key = 0;
-};
-
-std::optional<SeedsFile> seeds_file(bool longer, const std::filesystem::path& directory) {
-  std::error_code error;
-  // The file holding this code: the program, or the shared library that
-  // linked sol::vk into another program (dladdr names it).
-  std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error) return std::nullopt;
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<const void*>(&seeds_file), &info) != 0 && info.dli_fname && *info.dli_fname) {
-    const std::filesystem::path library = std::filesystem::canonical(info.dli_fname, error);
-    if (!error && library != std::filesystem::canonical(program, error) && !error) program = library;
-    error.clear();
-  }
-  const std::uintmax_t size = std::filesystem::file_size(program, error);
-  if (error) return std::nullopt;
-  const auto modified = std::filesystem::last_write_time(program, error).time_since_epoch().count();
-  if (error) return std::nullopt;
-  const std::uint64_t path_hash = detail::fnv1a(detail::kFnvOffset, program.string());
-  SeedsFile out;
-  std::vector<std::uint32_t> header;
-  auto put = [&](std::uint64_t v) {
-    header.push_back(static_cast<std::uint32_t>(v));
-    header.push_back(static_cast<std::uint32_t>(v >> 32));
-  };
-  header.push_back(0x53454544u);  // "SEED"
-  header.push_back(longer ? 1u : 0u);
-  put(size);
-  put(static_cast<std::uint64_t>(modified));
-  put(path_hash);
-  for (const double c : {ConnectionTable::kStep, ConnectionTable::kExtent, ConnectionTable::kHeight, ConnectionTable::kReach,
-                         ConnectionTable::kMargin, ConnectionTable::kMerge}) {
-    put(std::bit_cast<std::uint64_t>(c));
-  }
-  for (const int n : {ConnectionTable::kSlots, ConnectionTable::kCellsXY, ConnectionTable::kCellsZ}) header.push_back(static_cast<std::uint32_t>(n));
-  out.key = detail::kFnvOffset;
-  for (const std::uint32_t w : header) out.key = detail::fnv1a(out.key, w);
-  char name[80];
-  std::snprintf(name, sizeof name, "connections-%s-%016llx.bin", longer ? "longer" : "minimisers",
-                static_cast<unsigned long long>(path_hash));
-  out.file = directory / name;
-  return out;
-}
-
-// The seeds the renderers upload: connection_seeds_cached in
-// spirv_cache_directory(), once per process and table.
-const std::vector<float>& connection_seeds(bool longer) {
-  static std::mutex guard;
-  static std::array<std::optional<std::vector<float>>, 2> tables;
-  const std::lock_guard lock(guard);
-  std::optional<std::vector<float>>& table = tables[longer ? 1 : 0];
-  if (!table) table = connection_seeds_cached(longer, spirv_cache_directory());
-  return *table;
+// The seeds the renderers upload: the tables compiled in (seed_tables.hpp),
+// as floats, once per process and table.
+const std::vector<float>& seed_table(bool longer) {
+  static const std::array<std::vector<float>, 2> tables = [] {
+    std::array<std::vector<float>, 2> out;
+    for (int t = 0; t < 2; ++t) {
+      const std::uint32_t* words = t == 0 ? detail::kSeedsMinimisers : detail::kSeedsLonger;
+      out[static_cast<std::size_t>(t)].resize(detail::kSeedTableWords);
+      for (std::size_t k = 0; k < detail::kSeedTableWords; ++k) out[static_cast<std::size_t>(t)][k] = std::bit_cast<float>(words[k]);
+    }
+    return out;
+  }();
+  return tables[longer ? 1 : 0];
 }
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
@@ -778,7 +729,7 @@ void MarchRenderer::set_world(const World& world) {
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
   if (!m.seeds || m.seeds_held != seeds) {
-    const std::vector<float>& values = seeds == SeedTable::None ? stub : connection_seeds(seeds == SeedTable::Longer);
+    const std::vector<float>& values = seeds == SeedTable::None ? stub : seed_table(seeds == SeedTable::Longer);
     m.retire(m.seeds);
     m.seeds.emplace(m.context, values.size() * sizeof(float));
     m.seeds->write(values);
@@ -1157,27 +1108,6 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   return r;
 }
 
-std::vector<float> connection_seeds_cached(bool longer, const std::optional<std::filesystem::path>& directory) {
-  const std::optional<SeedsFile> kept = directory ? seeds_file(longer, *directory) : std::nullopt;
-  constexpr std::size_t kCount = static_cast<std::size_t>(ConnectionTable::kCellsXY * ConnectionTable::kCellsXY *
-                                                          ConnectionTable::kCellsZ * ConnectionTable::kSlots * 4);
-  // This program's table, whole (read_cache_file checks the body's checksum).
-  if (kept) {
-    if (const std::optional<CacheFile> file = read_cache_file(kept->file);
-        file && file->key == kept->key && file->words.size() == kCount) {
-      std::vector<float> seeds(kCount);
-      for (std::size_t k = 0; k < kCount; ++k) seeds[k] = std::bit_cast<float>(file->words[k]);
-      if (std::all_of(seeds.begin(), seeds.end(), [](float v) { return std::isfinite(v); })) return seeds;
-    }
-  }
-  std::vector<float> seeds = ConnectionTable::build(longer).seeds;
-  if (kept) {
-    std::vector<std::uint32_t> words;
-    words.reserve(seeds.size());
-    for (const float v : seeds) words.push_back(std::bit_cast<std::uint32_t>(v));
-    write_cache_file(kept->file, kept->key, words);
-  }
-  return seeds;
-}
+std::span<const float> connection_seeds(bool longer) { return seed_table(longer); }
 
 }  // namespace sol::vk

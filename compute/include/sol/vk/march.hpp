@@ -12,7 +12,6 @@
 #include <array>
 #include <cstdint>
 #include <atomic>
-#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -244,18 +243,9 @@ class MarchRenderer final : public Renderer {
   std::unique_ptr<Impl> m_impl;
 };
 
-/// The connection solver's seeds the kernel reads (sol::ConnectionTable,
-/// with `longer` the longer connections'), kept in `directory` (none: built
-/// each call): about 1 s of CPU to build, 7 s with `longer`, and read back
-/// in milliseconds. The table is made by this program's own solver, so a
-/// file is named by the path of the file holding this code (the program,
-/// or the shared library that linked sol::vk) and read back only while its
-/// key (read_cache_file) is the hash of that file's size and modification
-/// time and the table's constants, and its body's checksum holds; any
-/// other (a rebuilt program, a truncated, zeroed or foreign file, anything
-/// but a regular file) is passed over, the table built and the file
-/// written again (write_cache_file). MarchRenderer takes it from spirv_cache_directory()
-/// once per process.
-std::vector<float> connection_seeds_cached(bool longer, const std::optional<std::filesystem::path>& directory);
+/// The connection solver's seeds the kernel reads (sol::ConnectionTable:
+/// the minimisers', or with `longer` the longer connections'), built by
+/// libsol's solver when sol::vk was built and compiled in.
+std::span<const float> connection_seeds(bool longer);
 
 }  // namespace sol::vk
