@@ -386,7 +386,9 @@ void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
   // (Direct light with mirrors is not: a reflected ray is marched where its hit is shaded.)
   v.defer_shading = o.deferred && (v.path || (f.exact_lights && !f.mirrors));
-  v.resume = o.deferred && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
+  // (Paths take none: their camera rays are a small part of their cost,
+  // and a resume pipeline would be one more march for the driver to compile.)
+  v.resume = o.deferred && !v.path && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
 }
 
 // The specialisation constants of a variant's pipeline for one pass: the

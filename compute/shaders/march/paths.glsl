@@ -172,11 +172,18 @@ bool glow_density_reached(GlowDensity q, int count, vec4 shortest) {
 
 // The density from the second solve (the minimiser from c to y).
 float glow_density_of(GlowDensity q, int count, vec4 shortest) {
-  if (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r)) return 0.0;
-  const float j_centre = sol_sphere_area_density(shortest.xyz, q.r);
-  if (!(q.cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
+  if (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r) || !(q.cos_y > 0.0)) return 0.0;
+  // The spreading from the centre to y, then from x to y: one call of
+  // sol_sphere_area_density in a loop whose count the compiler cannot fold.
+  float spreading[2];
+  int i = 0;
+  do {
+    spreading[i] = sol_sphere_area_density(i == 0 ? shortest.xyz : q.d, i == 0 ? q.r : q.L);
+  } while (++i < count + 1 && spreading[0] > 0.0 && i < 2);
+  const float j_centre = spreading[0];
+  if (!(j_centre > 0.0)) return 0.0;
   const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
-  return pick * sol_sphere_area_density(q.d, q.L) / (4.0 * SOL_PI * j_centre * q.cos_y);
+  return pick * spreading[1] / (4.0 * SOL_PI * j_centre * q.cos_y);
 }
 
 // One sampled point of one glowing ball seen from a diffuse hit: the
@@ -268,7 +275,11 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   const float L = g.ways[j].w, cos_x = dot(g.n, d);
   const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
   if (met != g.k || abs(to.t - L) > 1e-3 * max(1.0, L)) return vec3(0.0);  // something, or the ball's nearer side, is in the way
-  const float cos_y = abs(dot(sol_exp(d, L).direction, g.normal_y));
+  // The tangent at y: in Sol the march's own at its hit (met at L, within
+  // the check above), which saves the path kernel a closed form; in a
+  // quotient the march's frame may be turned by Γ, so the geodesic's own.
+  const vec3 arriving = QUOTIENT ? sol_exp(d, L).direction : to.u;
+  const float cos_y = abs(dot(arriving, g.normal_y));
   const float spreading = sol_sphere_area_density(d, L);
   if (!(spreading > 0.0)) return vec3(0.0);
   float weight = 1.0;
