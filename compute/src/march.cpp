@@ -375,17 +375,19 @@ std::span<const std::uint32_t> march_spirv(const KernelVariant& v) {
 }
 
 // Which deferred passes a variant of the world takes (MarchOptions::deferred):
-// the shade pass for paths (a path's marches and its connections to glowing
-// balls in a pipeline of their own, which the camera rays' march pass and
-// resume pass do not compile) and for exact point lights (their connections
-// are the dear part of shading), the resume pass for exact balls in Sol with the closed
+// the shade pass for paths and mirrors (a path's marches and its
+// connections to glowing balls, a reflected ray's march, in a pipeline of
+// their own, which the camera rays' march pass and resume pass do not
+// compile) and for exact point lights (their connections are the dear part
+// of shading), the resume pass for exact balls in Sol with the closed
 // form (the kernel's exact solves) and in the quotient for the rays whose
 // positions take Carlson's integrals (μ below kZetaLeastMu), so that the
 // march pass holds the zeta function's positions alone.
 void defer_passes(KernelVariant& v, const MarchOptions& o) {
   const MarchFeatures& f = v.features;
-  // (Direct light with mirrors is not: a reflected ray is marched where its hit is shaded.)
-  v.defer_shading = o.deferred && (v.path || (f.exact_lights && !f.mirrors));
+  // (With mirrors the shade pass marches the reflected rays: the camera
+  // rays' pipelines hold one march.)
+  v.defer_shading = o.deferred && (v.path || f.exact_lights || f.mirrors);
   // (Paths take none: their camera rays are a small part of their cost,
   // and a resume pipeline would be one more march for the driver to compile.)
   v.resume = o.deferred && !v.path && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));

@@ -101,8 +101,9 @@ void march_pass() {
 }
 
 // The shade pass: the hits the march pass listed (defer_shading), shaded
-// into their pixels as the march pass would have: by shade_hit, or with
-// paths by path_radiance from the hit (its marches in this pass alone).
+// into their pixels as the march pass would have: by shade_hit, with
+// mirrors or emission by radiance (its reflected rays marched in this pass
+// alone), with paths by path_radiance from the hit (its marches too).
 void shade_pass() {
   const int slot = queue_slot();
   if (slot >= queue.shade.w) return;
@@ -119,11 +120,13 @@ void shade_pass() {
   f.object = int(b.w);
   f.n = octahedral_decode(uintBitsToFloat(b.xy));
   f.uv = uintBitsToFloat(c.xy);
-  if (!QUOTIENT && (HAS_SHADOWS || PATH_TRACING)) load_objects(eye);  // (the shadows' and paths' marches)
+  if (!QUOTIENT && (HAS_SHADOWS || HAS_MIRRORS || PATH_TRACING)) load_objects(eye);  // (this pass's marches)
   vec4 color;
   if (PATH_TRACING) {
     const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
     color = path_radiance(h, f, eye, uint(local.y * width + local.x));
+  } else if (HAS_MIRRORS || HAS_EMISSION) {
+    color = radiance(h, f, eye);  // (its reflected rays marched here)
   } else {
     color = shade_hit(f.object, f.n, f.uv, h.t, h.q, eye);
   }
