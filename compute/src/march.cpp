@@ -457,20 +457,6 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
 // minimisers', or with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
 
-// The seeds the renderers upload: the tables compiled in (seed_tables.hpp),
-// as floats, once per process and table.
-const std::vector<float>& seed_table(bool longer) {
-  static const std::array<std::vector<float>, 2> tables = [] {
-    std::array<std::vector<float>, 2> out;
-    for (int t = 0; t < 2; ++t) {
-      const std::uint32_t* words = t == 0 ? detail::kSeedsMinimisers : detail::kSeedsLonger;
-      out[static_cast<std::size_t>(t)].resize(detail::kSeedTableWords);
-      for (std::size_t k = 0; k < detail::kSeedTableWords; ++k) out[static_cast<std::size_t>(t)][k] = std::bit_cast<float>(words[k]);
-    }
-    return out;
-  }();
-  return tables[longer ? 1 : 0];
-}
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
   if (!f.exact_balls && !f.exact_lights) return SeedTable::None;
@@ -733,7 +719,8 @@ void MarchRenderer::set_world(const World& world) {
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
   if (!m.seeds || m.seeds_held != seeds) {
-    const std::vector<float>& values = seeds == SeedTable::None ? stub : seed_table(seeds == SeedTable::Longer);
+    const std::span<const float> values = seeds == SeedTable::None ? std::span<const float>(stub)
+                                                                  : connection_seeds(seeds == SeedTable::Longer);
     m.retire(m.seeds);
     m.seeds.emplace(m.context, values.size() * sizeof(float));
     m.seeds->write(values);
@@ -1112,6 +1099,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   return r;
 }
 
-std::span<const float> connection_seeds(bool longer) { return seed_table(longer); }
+std::span<const float> connection_seeds(bool longer) {
+  return longer ? std::span<const float>(detail::kSeedsLonger) : std::span<const float>(detail::kSeedsMinimisers);
+}
 
 }  // namespace sol::vk

@@ -3,23 +3,27 @@
 // connections') as the source of sol::vk's compiled-in tables
 // (src/seed_tables.hpp). Run by the build; written to a temporary file and
 // renamed, so a failed run leaves no partial source.
-#include <bit>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <sol/connection.hpp>
 
 namespace {
 
+// The table as a C++ array of hexadecimal float literals (exact; the
+// solver's seeds are finite).
 void write_table(std::ofstream& out, const char* name, const sol::ConnectionTable& table) {
-  out << "extern const std::uint32_t " << name << "[kSeedTableWords] = {\n";
-  char word[16];
+  out << "extern const float " << name << "[kSeedTableFloats] = {\n";
+  char value[40];
   for (std::size_t k = 0; k < table.seeds.size(); ++k) {
-    std::snprintf(word, sizeof word, "0x%08xu,", std::bit_cast<std::uint32_t>(table.seeds[k]));
-    out << word << ((k + 1) % 8 == 0 ? "\n" : "");
+    if (!std::isfinite(table.seeds[k])) throw std::runtime_error(std::string(name) + ": a seed is not finite");
+    std::snprintf(value, sizeof value, "%af,", static_cast<double>(table.seeds[k]));
+    out << value << ((k + 1) % 8 == 0 ? "\n" : "");
   }
   out << "};\n";
 }
@@ -43,6 +47,7 @@ int main(int argc, char** argv) {
       write_table(out, "kSeedsMinimisers", minimisers);
       write_table(out, "kSeedsLonger", longer);
       out << "}  // namespace sol::vk::detail\n";
+      out.close();  // (flushed here, so that a full disk shows)
       if (!out) throw std::runtime_error("cannot write " + temporary.string());
     }
     std::filesystem::rename(temporary, target);

@@ -159,14 +159,16 @@ void read_quotient(const json& q, const SceneFileReader& r, Scene& s) {
 // an object or an array) by the points g = (i sx, j sy, k sz), 0 <= i < nx,
 // 0 <= j < ny, 0 <= k < nz, i the fastest. Left translations are Sol's
 // isometries and take every kind to itself (shape_seen_from(o, g⁻¹)), so
-// the copies are objects of the scene like any other. `origins` receives
-// the path of each object's entry in the file (a copy's: its array's
-// object), which the scene's checks name.
+// the copies are objects of the scene like any other. `origins` receives,
+// for each object, the index in `paths` of its entry in the file (a copy's:
+// its array's object), which the scene's checks name; `paths` holds each
+// entry once, however many copies it makes.
 void read_objects(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* lattice,
-                  std::vector<SceneObject>& out, std::vector<std::string>& origins) {
+                  std::vector<SceneObject>& out, std::vector<std::string>& paths, std::vector<std::uint32_t>& origins) {
   if (!o.is_object() || !o.contains("type") || o["type"] != "array") {
     out.push_back(detail::read_object(o, r, at, lattice));
-    origins.push_back(at);
+    paths.push_back(at);
+    origins.push_back(static_cast<std::uint32_t>(paths.size() - 1));
     return;
   }
   r.require_known_keys(o, {"type", "of", "count", "step"}, at + " (an array)", at);
@@ -192,8 +194,8 @@ void read_objects(const json& o, const SceneFileReader& r, const std::string& at
   }
   const glm::dvec3 step = r.vec3(o["step"], at + ".step");
   std::vector<SceneObject> one;
-  std::vector<std::string> from;
-  read_objects(o["of"], r, at + ".of", lattice, one, from);
+  std::vector<std::uint32_t> from;
+  read_objects(o["of"], r, at + ".of", lattice, one, paths, from);
   if (one.size() * copies > kMaxObjects - std::min<std::size_t>(out.size(), kMaxObjects)) {
     r.fail(at + ".count", "'" + at + ".count' makes more than " + std::to_string(kMaxObjects) + " objects in the scene");
   }
@@ -243,9 +245,10 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     r.fail(e.path(), e.what());
   }
   const json& objects = root["objects"];
-  std::vector<std::string> origins;  // each object's entry in the file
+  std::vector<std::string> paths;       // the file's object entries
+  std::vector<std::uint32_t> origins;  // each object's entry among them
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    read_objects(objects[i], r, "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr, s.objects, origins);
+    read_objects(objects[i], r, "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr, s.objects, paths, origins);
   }
   // "light" and "fog_distance": the first schema's single directional light and fog.
   if (root.contains("light")) {
@@ -311,9 +314,10 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     std::size_t k = 0;
     if (std::sscanf(path.c_str(), "objects[%zu]", &k) == 1 && k < origins.size()) {
       const std::string counted = "objects[" + std::to_string(k) + "]";
-      if (path.compare(0, counted.size(), counted) == 0 && origins[k] != counted) {
-        path = origins[k] + path.substr(counted.size());
-        if (const std::size_t at = what.find(counted); at != std::string::npos) what.replace(at, counted.size(), origins[k]);
+      const std::string& entry = paths[origins[k]];
+      if (path.compare(0, counted.size(), counted) == 0 && entry != counted) {
+        path = entry + path.substr(counted.size());
+        if (const std::size_t at = what.find(counted); at != std::string::npos) what.replace(at, counted.size(), entry);
       }
     }
     r.fail(path, what);

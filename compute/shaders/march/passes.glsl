@@ -101,9 +101,9 @@ void march_pass() {
 }
 
 // The shade pass: the hits the march pass listed (defer_shading), shaded
-// into their pixels as the march pass would have: by shade_hit, with
-// mirrors or emission by radiance (its reflected rays marched in this pass
-// alone), with paths by path_radiance from the hit (its marches too).
+// into their pixels as the march pass would have: by radiance (its
+// reflected rays marched in this pass alone), with paths by path_radiance
+// from the hit (its marches too).
 void shade_pass() {
   const int slot = queue_slot();
   if (slot >= queue.shade.w) return;
@@ -125,10 +125,8 @@ void shade_pass() {
   if (PATH_TRACING) {
     const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
     color = path_radiance(h, f, eye, uint(local.y * width + local.x));
-  } else if (HAS_MIRRORS || HAS_EMISSION) {
-    color = radiance(h, f, eye);  // (its reflected rays marched here)
   } else {
-    color = shade_hit(f.object, f.n, f.uv, h.t, h.q, eye);
+    color = radiance(h, f, eye);  // (its reflected rays marched here)
   }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
   report_out_of_steps(pixel, false);  // (its shadow rays' and paths')

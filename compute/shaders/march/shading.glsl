@@ -124,16 +124,10 @@ SolLobes lobes_of(int k, vec3 a) {
 vec3 albedo(int k, vec2 uv) { return scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y); }
 
 // The light object k's surface reflects diffusely at q, with plane
-// coordinates uv, before fog (shade_hit adds the fog over the arc length).
+// coordinates uv, before fog (radiance_of_hit adds the fog over the arc length).
 vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
   const float ambient = params.shading.x;
   return albedo(k, uv) * (ambient + (1.0 - ambient) * light_received(n, q, eye));
-}
-
-vec4 shade_hit(int k, vec3 n, vec2 uv, float t, vec3 q, int eye) {
-  const vec3 surface = diffuse_light(k, n, uv, q, eye);
-  const float transmittance = HAS_FOG ? exp(-params.shading.y * t) : 1.0;
-  return vec4(params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance, 1.0);
 }
 
 // What a camera ray's hit shows: the scene object, the surface normal
@@ -201,8 +195,10 @@ Surface surface_at(MarchHit h) {
 
 // One hit's share (radiance): over the fog of its segment, its emission and
 // its material's diffuse share of its diffuse light, times `weight`;
-// returns its material's specular weight times the fog's transmittance. Written as shade_hit's fog, so that a hit
-// without emission or mirror (weight 1) adds exactly what shade_hit gives.
+// returns its material's specular weight times the fog's transmittance.
+// Written as the CPU's shade_hit (libsol/src/render.cpp) fogs, so that a
+// hit without emission or mirror (weight 1) adds exactly the direct light's
+// colour.
 vec3 radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
