@@ -343,6 +343,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
           density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
         }
       }
+      if (HAS_EMISSION && !density) color += weight * material.rgb * share;  // (else once its density is solved)
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
@@ -379,7 +380,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         const float glow = path_solves(density ? 0 : 2, sampled ? 3 : 2, dq, g);
         if (density) share = reflection / (reflection + glow);
       }
-      if (HAS_EMISSION) color += emission_weight * material.rgb * share;
+      if (HAS_EMISSION && density) color += emission_weight * material.rgb * share;
     }
     if (GLOW_SAMPLING) {
       while (way < g.count && !glow_way_open(g, way)) ++way;
