@@ -906,6 +906,11 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
     if (std::string why = path_unsupported(world); !why.empty()) return why;
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    if (std::holds_alternative<Composite>(world.objects[i].shape)) {
+      std::snprintf(message, sizeof message, "objects[%zu].type: composites (%s) render on the CPU only", i,
+                    std::string(kind_name(world.objects[i].shape)).c_str());
+      return message;
+    }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {
       std::snprintf(message, sizeof message,

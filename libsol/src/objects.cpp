@@ -75,7 +75,15 @@ double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& hea
 // ---- Visiting shapes -------------------------------------------------------
 
 std::string_view kind_name(const Shape& shape) {
-  return std::visit([](const auto& k) { return std::decay_t<decltype(k)>::kName; }, shape);
+  return std::visit(
+      [](const auto& k) -> std::string_view {
+        if constexpr (requires { k.name(); }) {
+          return k.name();  // a composite: its operation
+        } else {
+          return std::decay_t<decltype(k)>::kName;
+        }
+      },
+      shape);
 }
 
 double shape_distance(const Shape& shape, const glm::dvec3& q) {
@@ -83,11 +91,19 @@ double shape_distance(const Shape& shape, const glm::dvec3& q) {
 }
 
 double shape_clearance(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
-  return std::visit([&](const auto& k) { return clearance(k.clearance_terms(q, u)); }, shape);
+  return shape_clearances(shape, q, u).ahead;
 }
 
 Clearances shape_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
-  return std::visit([&](const auto& k) { return clearances(k.clearance_terms(q, u)); }, shape);
+  return std::visit(
+      [&](const auto& k) {
+        if constexpr (requires { k.clearances(q, u); }) {
+          return k.clearances(q, u);  // a composite: its parts'
+        } else {
+          return clearances(k.clearance_terms(q, u));
+        }
+      },
+      shape);
 }
 
 InsideClearances shape_inside_clearances(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
@@ -95,6 +111,8 @@ InsideClearances shape_inside_clearances(const Shape& shape, const glm::dvec3& q
       [&](const auto& k) {
         if constexpr (requires { k.inside_terms(q, u); }) {
           return inside_clearances(k.inside_terms(q, u));
+        } else if constexpr (requires { k.inside_clearances(q, u); }) {
+          return k.inside_clearances(q, u);  // a composite: its parts'
         } else {
           const double d = -k.distance(q);
           return InsideClearances{d, d, 0.0};
@@ -209,7 +227,11 @@ template <std::size_t I = 0>
 std::optional<Shape> shape_named(std::string_view name) {
   if constexpr (I < std::variant_size_v<Shape>) {
     using Kind = std::variant_alternative_t<I, Shape>;
-    if (Kind::kName == name) return Shape(Kind{});
+    if constexpr (std::is_same_v<Kind, Composite>) {
+      if (const std::optional<CompositeOp> op = composite_op_named(name)) return Shape(Composite(*op, *Composite().parts));
+    } else if (Kind::kName == name) {
+      return Shape(Kind{});
+    }
     return shape_named<I + 1>(name);
   } else {
     return std::nullopt;
@@ -219,7 +241,14 @@ std::optional<Shape> shape_named(std::string_view name) {
 template <std::size_t... I>
 std::string kind_names(std::index_sequence<I...>) {
   std::string list;
-  ((list += std::string(I == 0 ? "" : ", ") + std::string(std::variant_alternative_t<I, Shape>::kName)), ...);
+  const auto name = [](auto kind) {
+    if constexpr (requires { kind.name(); }) {
+      return std::string("union, intersection, difference");
+    } else {
+      return std::string(decltype(kind)::kName);
+    }
+  };
+  ((list += std::string(I == 0 ? "" : ", ") + name(std::variant_alternative_t<I, Shape>{})), ...);
   return list;
 }
 
@@ -260,20 +289,49 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
   }
 }
 
-SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
+namespace {
+
+// The shape of the object (or part) at `at`: its "type" and its kind's keys.
+Shape read_shape(const json& o, SceneObject& obj, const SceneFileReader& r, const std::string& at, const Lattice* quotient,
+                 bool part) {
   if (!o.is_object()) r.fail(at, at + " must be an object");
   if (!o.contains("type")) r.fail(at, at + " needs a 'type'");
   const std::string type = SceneFileReader::text(o["type"]);
-  const std::optional<Shape> shape = shape_named(type);
+  std::optional<Shape> shape = shape_named(type);
   if (!shape) {
     r.fail(at + ".type", "'" + at + ".type' must be one of " +
                              kind_names(std::make_index_sequence<std::variant_size_v<Shape>>()) +
-                             " (or array: copies of an object), got " +
+                             (part ? "" : " (or array: copies of an object)") + ", got " +
                              SceneFileReader::json_text(o["type"]));
   }
+  std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at, quotient); }, *shape);
+  return *shape;
+}
+
+}  // namespace
+
+Shape read_part(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
+  if (o.is_object()) {
+    for (const char* key : {"color", "pattern", "material", "emission", "mirror", "glow_reach", "cutout"}) {
+      if (o.contains(key)) {
+        r.fail(at + "." + key, std::string("'") + key + "' in " + at +
+                                   ": a part takes its kind's keys alone; its appearance is the composite's");
+      }
+    }
+  }
+  SceneObject ignored;
+  return read_shape(o, ignored, r, at, quotient, true);
+}
+
+json write_part(const Shape& part, const Lattice* quotient) {
+  json j = std::visit([&](const auto& kind) { return write_kind(kind, SceneObject{}, quotient); }, part);
+  j["type"] = std::string(kind_name(part));
+  return j;
+}
+
+SceneObject read_object(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
   SceneObject obj;
-  obj.shape = *shape;
-  std::visit([&](auto& kind) { read_kind(kind, obj, o, r, at, quotient); }, obj.shape);
+  obj.shape = read_shape(o, obj, r, at, quotient, false);
   if (o.contains("color")) obj.color = r.vec3(o["color"], at + ".color");
   if (o.contains("pattern")) obj.pattern = read_pattern(o["pattern"], r, at + ".pattern");
 #define SOL_MATERIAL_OPTION(Enum, code_name, code, prefix, name) {name, Material::Enum},

@@ -93,7 +93,13 @@ json to_json(const glm::dvec3& v);
                  const Lattice* quotient);                                                                             \
   json write_kind(const Type& kind, const SceneObject& object, const Lattice* quotient);
 SOL_OBJECT_KINDS(SOL_KIND_FILE_FUNCTIONS)
+SOL_KIND_FILE_FUNCTIONS(Composite, , , , , )
 #undef SOL_KIND_FILE_FUNCTIONS
+
+/// A composite's part at `at` ("objects[2].a"): a solid's "type" and its
+/// kind's keys, no appearance (the composite's); and its JSON back.
+Shape read_part(const json& value, const SceneFileReader& reader, const std::string& at, const Lattice* quotient);
+json write_part(const Shape& part, const Lattice* quotient);
 
 /// The checks of scene object `at` ("objects[2]"), and with `quotient` (the
 /// world's lattice) those of its compact quotient; throws FieldError.

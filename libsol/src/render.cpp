@@ -220,9 +220,7 @@ double exact_ball_inside_step(const Ball& ball, const glm::dvec3& q, const glm::
 // chord it would go through the wall. `sign` holds the sign of the rate
 // d' of the distance from the centre at the first step (0 before it): the
 // pass ends where the rate has the other sign.
-bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double& sign) {
-  const std::optional<FromCentre> g = from_centre(ball, q);
-  const double rate = g ? glm::dot(g->normal, u) : 0.0;
+bool turned_back(double rate, double& sign) {
   if (rate == 0.0) return false;
   if (sign == 0.0) {
     sign = rate > 0.0 ? 1.0 : -1.0;
@@ -231,15 +229,23 @@ bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dv
   return rate * sign < 0.0;
 }
 
+bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dvec3& u, double& sign) {
+  const std::optional<FromCentre> g = from_centre(ball, q);
+  return turned_back(g ? glm::dot(g->normal, u) : 0.0, sign);
+}
+
 // Whether a ray passing the surface of `shape` it leaves (at distance d
 // from q, `inside` the solid) stops passing it at q, the surface a hit
 // candidate again: 2 hit_epsilon away, or, seen from inside, where it heads
 // for a face (sol::InsideClearances::nearest_rate; an exact ball: where it
-// turns back towards its sphere, `leave_sign` as exact_ball_turned_back's).
+// turns back towards its sphere, `leave_sign` as exact_ball_turned_back's;
+// a composite, whose hollows a ray may leave from outside at a grazing
+// angle: where its distance's rate, the normal's component along u, turns).
 bool pass_ends(const Shape& shape, double d, bool inside, const glm::dvec3& q, const glm::dvec3& u, double hit_epsilon,
                double& leave_sign) {
   if (d > 2.0 * hit_epsilon) return true;
   if (exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
+  if (const Composite* c = std::get_if<Composite>(&shape)) return turned_back(glm::dot(c->normal(q), u), leave_sign);
   return inside && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
 }
 

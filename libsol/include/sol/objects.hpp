@@ -17,6 +17,7 @@
 #include "sol/object_kinds.h"
 #include "sol/objects/ball.hpp"
 #include "sol/objects/box.hpp"
+#include "sol/objects/composite.hpp"
 #include "sol/objects/kind.hpp"
 #include "sol/objects/planes.hpp"
 #include "sol/objects/tube.hpp"
@@ -43,9 +44,18 @@ struct DistinctKinds<std::variant<Done...>, Next, Rest...> {
 }  // namespace detail
 
 #define SOL_KIND_TYPE(Type, code_name, code, prefix, feature, solid) Type,
-/// Every kind of object: the types of SOL_OBJECT_KINDS.
-using Shape = typename detail::DistinctKinds<std::variant<>, SOL_OBJECT_KINDS(SOL_KIND_TYPE) detail::EndOfKinds>::type;
+/// Every kind of object: the types of SOL_OBJECT_KINDS, and composites of
+/// them (sol/objects/composite.hpp; no kernel kind of their own).
+using Shape =
+    typename detail::DistinctKinds<std::variant<>, SOL_OBJECT_KINDS(SOL_KIND_TYPE) Composite, detail::EndOfKinds>::type;
 #undef SOL_KIND_TYPE
+
+/// A composite's parts: A, and B (united with, intersected with or taken from A).
+struct CompositeParts {
+  Shape a;
+  Shape b;
+  bool operator==(const CompositeParts&) const = default;
+};
 
 #define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) \
   static_assert(Type::kSolid == solid, "sol/object_kinds.h: " #Type "::kSolid disagrees with the list");
