@@ -15,43 +15,14 @@
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 
+#include "support/composites.hpp"
+
 namespace {
 
 using glm::dvec3;
-
-// The signed distance to a part, from its definition: an exact ball's
-// d(q, c) − r; a box's largest slab distance, which is 0 exactly on its
-// faces (each slab's distance is the exact distance to its nearer plane).
-double part_distance(const sol::Shape& part, const dvec3& q) {
-  if (const auto* b = std::get_if<sol::Ball>(&part)) {
-    EXPECT_TRUE(b->exact) << "the checks take exact balls only";
-    return sol::distance(q, b->center) - b->radius;
-  }
-  const auto& box = std::get<sol::Box>(part);
-  const double sx = std::abs(q.x - box.center.x) - box.half_size.x * std::exp(box.center.z);
-  const double sy = std::abs(q.y - box.center.y) - box.half_size.y * std::exp(-box.center.z);
-  const double sz = std::abs(q.z - box.center.z) - box.half_size.z;
-  return std::max({std::asinh(sx * std::exp(-q.z)), std::asinh(sy * std::exp(q.z)), sz});
-}
-
-// How far q is from lying on the boundary of the composite, and on which
-// part's surface it lies (0: A's, 1: B's): on A's surface (|d_A| small)
-// where the set keeps A's surface (outside B for a union or a difference,
-// inside B for an intersection), or on B's where it keeps B's (outside A
-// for a union, inside A otherwise).
-struct OnBoundary {
-  double residual;
-  int part;
-};
-OnBoundary on_boundary(const sol::Composite& c, const dvec3& q) {
-  const double a = part_distance(c.parts->a, q), b = part_distance(c.parts->b, q);
-  // Where a surface is kept: the other part's distance must have this sign (or be within the residual of it).
-  const auto kept = [](double other, bool outside) { return outside ? std::max(0.0, -other) : std::max(0.0, other); };
-  const bool union_ = c.op == sol::CompositeOp::Union;
-  const double on_a = std::max(std::abs(a), kept(b, c.op != sol::CompositeOp::Intersection));
-  const double on_b = std::max(std::abs(b), kept(a, union_));
-  return on_a <= on_b ? OnBoundary{on_a, 0} : OnBoundary{on_b, 1};
-}
+using sol::test::hits_on_boundary;
+using sol::test::part_distance;
+using sol::test::PartHits;
 
 sol::Composite composite(sol::CompositeOp op, const sol::Shape& a, const sol::Shape& b) {
   return sol::Composite(op, sol::CompositeParts{a, b});
@@ -62,34 +33,6 @@ sol::RenderResult render_small(const sol::Scene& scene) {
   settings.width = 48;
   settings.height = 36;
   return sol::render_cpu(scene, settings);
-}
-
-// The hits on each composite of the scene lie on its boundary: within 1e-4
-// (the march stops within hit_epsilon = 5e-5 of the composite, whose
-// distance is the active part's exact one here; the hit point is written
-// in float, about 1e-7 off) and on both parts' surfaces where the camera
-// sees both. `composites` are those of `scene.objects` in world
-// coordinates (the quotient: each image's).
-struct PartHits {
-  int on_a = 0, on_b = 0;
-  double farthest = 0.0;
-};
-PartHits hits_on_boundary(const sol::RenderResult& r, const std::vector<std::pair<int, sol::Composite>>& composites,
-                          int object) {
-  PartHits h;
-  for (std::size_t k = 0; k < r.object.size(); ++k) {
-    if (static_cast<int>(r.object[k]) != object) continue;
-    const dvec3 q(r.px[k], r.py[k], r.pz[k]);
-    OnBoundary best{1e30, 0};
-    for (const auto& [index, c] : composites) {
-      if (index + 1 != object) continue;
-      const OnBoundary o = on_boundary(c, q);
-      if (o.residual < best.residual) best = o;
-    }
-    h.farthest = std::max(h.farthest, best.residual);
-    (best.part == 0 ? h.on_a : h.on_b) += 1;
-  }
-  return h;
 }
 
 // A box with a hollow cut by an exact ball, and a lens of two exact balls,

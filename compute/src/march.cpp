@@ -57,6 +57,59 @@ int pattern_code(Pattern pattern) {
 
 // The world's part of the uniforms (objects, lights, shading, limits),
 // filled once per world; each frame adds its eyes and image size.
+// Where each composite's parts lie in the parts' buffer (binding
+// kBindingParts, sol/vk/march_interface.h): the j-th composite's of `n`
+// shapes in order (shape_of(k)) at 2j and 2j + 1; -1 for the other shapes.
+template <class ShapeOf>
+std::vector<int> composite_slots(std::size_t n, ShapeOf&& shape_of) {
+  std::vector<int> slots(n, -1);
+  int next = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::holds_alternative<Composite>(shape_of(k))) {
+      slots[k] = next;
+      next += 2;
+    }
+  }
+  return slots;
+}
+
+// The composites' slots of a Sol world's objects, or of a quotient's images.
+std::vector<int> composite_slots(const MarchWorld& prepared) {
+  if (prepared.features().quotient) {
+    const std::vector<MarchObject>& images = prepared.objects();
+    return composite_slots(images.size(), [&](std::size_t i) -> const Shape& { return images[i].shape; });
+  }
+  const World& world = prepared.world();
+  return composite_slots(world.objects.size(), [&](std::size_t k) -> const Shape& { return world.objects[k].shape; });
+}
+
+// The kernel's record of a shape; a composite's with its parts' slot.
+KernelShape kernel_record(const Shape& shape, int slot) {
+  KernelShape s = kernel_shape(shape);
+  if (slot >= 0) s.geometry.x = slot;
+  return s;
+}
+
+// The parts' buffer (world coordinates, as a crowd's items); a stub record without composites.
+std::vector<kernel::Part> pack_parts(const MarchWorld& prepared) {
+  std::vector<kernel::Part> out;
+  const auto add = [&](const Shape& shape) {
+    if (const Composite* c = std::get_if<Composite>(&shape)) {
+      for (const Shape* part : {&c->parts->a, &c->parts->b}) {
+        const KernelShape s = kernel_shape(*part);
+        out.push_back({glm::vec4(s.geometry), glm::vec4(s.heading.x, s.heading.y, s.radius, s.code)});
+      }
+    }
+  };
+  if (prepared.features().quotient) {
+    for (const MarchObject& m : prepared.objects()) add(m.shape);
+  } else {
+    for (const SceneObject& o : prepared.world().objects) add(o.shape);
+  }
+  if (out.empty()) out.resize(1);
+  return out;
+}
+
 Params world_params(const MarchWorld& prepared) {
   const World& world = prepared.world();
   Params g{};
@@ -117,8 +170,9 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
     // A listed world's objects camera-relative, as the CPU reference
     // (sol::MarchWorld::seen_from); a crowd's the kernel sees from the eye.
     const std::vector<MarchObject> relative = prepared.seen_from(p);
+    const std::vector<int> slots = composite_slots(prepared);
     for (std::size_t k = 0; k < relative.size(); ++k) {
-      const KernelShape shape = kernel_shape(relative[k].shape);
+      const KernelShape shape = kernel_record(relative[k].shape, slots[relative[k].owner]);
       e.relative[k] = glm::vec4(shape.geometry);
       e.heading[k] = glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0);
     }
@@ -176,9 +230,11 @@ PackedCrowd pack_crowd(const MarchWorld& prepared) {
     out.nodes.push_back(node);
   }
   const World& world = prepared.world();
+  const std::vector<int> slots = composite_slots(prepared);
   for (const std::uint32_t k : tree->items()) {
-    const SceneObject& o = world.objects[prepared.objects()[k].owner];
-    const KernelShape shape = kernel_shape(o.shape);
+    const std::size_t owner = prepared.objects()[k].owner;
+    const SceneObject& o = world.objects[owner];
+    const KernelShape shape = kernel_record(o.shape, slots[owner]);
     const bool cutout = o.cutout && shape.code == kernel::kObjectPlaneZ;
     const bool solid = is_solid(o.shape);
     out.items.push_back({glm::vec4(shape.geometry), glm::vec4(shape.heading.x, shape.heading.y, shape.radius, shape.code),
@@ -200,8 +256,10 @@ std::vector<kernel::Image> pack_images(const MarchWorld& prepared) {
                           std::to_string(kMaxGpuImages) + " " + crowded_quotient_hint(prepared.world()));
   }
   std::vector<kernel::Image> out;
-  for (const MarchObject& m : images) {
-    const KernelShape shape = kernel_shape(m.shape);
+  const std::vector<int> slots = composite_slots(prepared);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const MarchObject& m = images[i];
+    const KernelShape shape = kernel_record(m.shape, slots[i]);
     out.push_back({glm::vec4(shape.geometry), glm::vec4(shape.code, shape.radius, static_cast<double>(m.owner), 0.0),
                    glm::vec4(shape.heading.x, shape.heading.y, 0.0, 0.0), glm::vec4(shape.bound)});
   }
@@ -446,7 +504,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingStats, DescriptorType::StorageBuffer},
                                           {kernel::kBindingObjects, DescriptorType::StorageBuffer},
                                           {kernel::kBindingCrowdNodes, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingCrowdItems, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingCrowdItems, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingParts, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -533,6 +592,7 @@ struct MarchRenderer::Impl {
   std::optional<Buffer> objects;      // the scene objects' records
   std::optional<Buffer> crowd_nodes;  // a crowd: its tree of bounds (else a stub)
   std::optional<Buffer> crowd_items;  // a crowd: its objects in leaf order (else a stub)
+  std::optional<Buffer> parts;        // the composites' parts (else a stub)
   std::optional<Buffer> images;
   std::optional<Buffer> seeds;  // exact point lights: sol::ConnectionTable
   std::optional<Buffer> field;  // the quotient: sol::QuotientField
@@ -611,6 +671,7 @@ struct MarchRenderer::Impl {
     built.bind(set, kernel::kBindingObjects, *objects);
     built.bind(set, kernel::kBindingCrowdNodes, *crowd_nodes);
     built.bind(set, kernel::kBindingCrowdItems, *crowd_items);
+    built.bind(set, kernel::kBindingParts, *parts);
     return built;
   }
 
@@ -715,6 +776,10 @@ void MarchRenderer::set_world(const World& world) {
   m.retire(m.crowd_items);
   m.crowd_items.emplace(m.context, crowd.items.size() * sizeof(kernel::CrowdItem));
   m.crowd_items->write(crowd.items);
+  const std::vector<kernel::Part> parts = pack_parts(prepared);
+  m.retire(m.parts);
+  m.parts.emplace(m.context, parts.size() * sizeof(kernel::Part));
+  m.parts->write(parts);
   m.retire(m.images);
   m.images.emplace(m.context, images.size() * sizeof(kernel::Image));
   m.images->write(images);
@@ -906,10 +971,17 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
     if (std::string why = path_unsupported(world); !why.empty()) return why;
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    if (std::holds_alternative<Composite>(world.objects[i].shape)) {
-      std::snprintf(message, sizeof message, "objects[%zu].type: composites (%s) render on the CPU only", i,
-                    std::string(kind_name(world.objects[i].shape)).c_str());
-      return message;
+    if (const Composite* c = std::get_if<Composite>(&world.objects[i].shape)) {
+      // The kernel's composites are of two parts of the list's kinds, drawn by their bounds.
+      for (const auto& [part, name] : {std::pair{&c->parts->a, "a"}, std::pair{&c->parts->b, "b"}}) {
+        const Ball* ball = std::get_if<Ball>(part);
+        const bool nested = std::holds_alternative<Composite>(*part);
+        if (nested || (ball && ball->exact)) {
+          std::snprintf(message, sizeof message, "objects[%zu].%s: composites of %s render on the CPU only", i, name,
+                        nested ? "composites" : "exact balls");
+          return message;
+        }
+      }
     }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {

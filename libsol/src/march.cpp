@@ -318,13 +318,23 @@ MarchFeatures features_of(const World& world) {
   f.quotient = world.quotient != Quotient::None;
   f.heights_only = !f.quotient;
   f.planes_xy_only = !world.objects.empty();
-  for (const SceneObject& o : world.objects) {
-    // Each kind sets its feature (sol/object_kinds.h); solids set `solids`.
-    const int code = kernel_shape(o.shape).code;
+  // Each kind sets its feature (sol/object_kinds.h); a composite its own and its parts'.
+  const auto add_kind = [&f](const Shape& shape, const auto& self) -> void {
+    const int code = kernel_shape(shape).code;
 #define SOL_KIND_FEATURE(Type, code_name, code_value, prefix, feature, solid) \
   if (code == kernel::code_name) f.feature = true;
     SOL_OBJECT_KINDS(SOL_KIND_FEATURE)
 #undef SOL_KIND_FEATURE
+    if (const Composite* c = std::get_if<Composite>(&shape)) {
+      f.composites = true;
+      self(c->parts->a, self);
+      self(c->parts->b, self);
+    }
+  };
+  for (const SceneObject& o : world.objects) {
+    // Solids set `solids`.
+    const int code = kernel_shape(o.shape).code;
+    add_kind(o.shape, add_kind);
     f.solids = f.solids || is_solid(o.shape);
     const bool plane_z = code == kernel::kObjectPlaneZ;
     f.heights_only = f.heights_only && plane_z;

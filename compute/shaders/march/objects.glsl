@@ -96,16 +96,16 @@ void inside_slab(inout vec4 least, vec2 sigma, float r, float bend) {
 }
 
 // The dispatch by kind, defined below the kinds; declared here for them.
-float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius);
+float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius);
 
 // A solid's normal at q: the gradient of its bound by central differences
 // along E1, E2, E3 (kNormalStep; as the CPU reference).
 vec3 solid_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   float h = kNormalStep, ez = exp(q.z);
   vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-  vec3 g = vec3(object_bound(type, q + e1, rel, heading, radius) - object_bound(type, q - e1, rel, heading, radius),
-                object_bound(type, q + e2, rel, heading, radius) - object_bound(type, q - e2, rel, heading, radius),
-                object_bound(type, q + e3, rel, heading, radius) - object_bound(type, q - e3, rel, heading, radius));
+  vec3 g = vec3(kind_bound(type, q + e1, rel, heading, radius) - kind_bound(type, q - e1, rel, heading, radius),
+                kind_bound(type, q + e2, rel, heading, radius) - kind_bound(type, q - e2, rel, heading, radius),
+                kind_bound(type, q + e3, rel, heading, radius) - kind_bound(type, q - e3, rel, heading, radius));
   return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
 }
 
@@ -124,13 +124,20 @@ vec3 seen_point(vec3 w, vec4 camera, vec4 camera_frac) {
 
 #include "../kinds/kinds.glsl"
 
+// The eye of load_objects (below): camera = (p, e^{p_z}), camera_frac.w =
+// e^{-p_z} (Eye::camera, Eye::camera_frac).
+vec4 g_eye_camera, g_eye_frac;
+
 // ---- The dispatch by kind. Each kind only when the world has it (its
 // feature's specialisation constant): lavapipe evaluates every branch.
 // An object's record: `rel` (planes (c, 0, 0, 0); solids their centre or
 // axis point), `heading`, `radius`, in the coordinates of q (relative to
 // the eye in Sol, world coordinates in the quotient); hz, hc: the half
 // exponentials (half_exp) of q.z and rel.z, which a march step shares
-// among its objects.
+// among its objects. The kind_* functions dispatch over the list's kinds
+// (sol/object_kinds.h), the object_* and image_* functions below over
+// those and composites (march/composites.glsl, which draws its parts by
+// the kind_* functions: GLSL has no recursion).
 
 // Distance (planes: exact; solids: the bound). Exact balls are approached
 // by their bound too (the true sphere lies inside the bound's), and within
@@ -138,19 +145,21 @@ vec3 seen_point(vec3 w, vec4 camera, vec4 camera_frac) {
 // its clearance (exact_ball_clearance).
 #define SOL_KIND_DISTANCE(Type, code_name, code, prefix, feature, solid) \
   if (feature_##feature && type == code_name) return prefix##_distance(q, rel, heading, radius, hz, hc);
-float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   SOL_OBJECT_KINDS(SOL_KIND_DISTANCE)
   return 1e30;  // no kind of this world's
 }
 #undef SOL_KIND_DISTANCE
 
-float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  return object_bound(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
+float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
+  return kind_bound(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
 }
 
 // An object's record (world coordinates) as seen from the eye at p
 // (camera, camera_frac: seen_point's), as the host's Eye::relative and
-// Eye::heading hold a listed world's (there in double).
+// Eye::heading hold a listed world's (there in double). (A composite's
+// record is its parts' index: its parts are seen from the eye as they are
+// read.)
 #define SOL_KIND_SEEN_FROM(Type, code_name, code, prefix, feature, solid) \
   if (feature_##feature && type == code_name) prefix##_seen_from(rel, heading, camera, camera_frac);
 void object_seen_from(int type, inout vec4 rel, inout vec2 heading, vec4 camera, vec4 camera_frac) {
@@ -158,9 +167,9 @@ void object_seen_from(int type, inout vec4 rel, inout vec2 heading, vec4 camera,
 }
 #undef SOL_KIND_SEEN_FROM
 
-// Whether the object is a solid (sol/object_kinds.h).
+// Whether the object is a solid (sol/object_kinds.h; composites are).
 #define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) || (solid && feature_##feature && type == code_name)
-bool object_is_solid(int type) { return false SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
+bool object_is_solid(int type) { return (HAS_COMPOSITES && type == kObjectComposite) SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
 #undef SOL_KIND_SOLID
 
 // Solids seen from inside (HAS_INSIDE, a frame whose eye is inside a
@@ -177,7 +186,7 @@ float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 
 // Inside a solid drawn by its bound (the bound -d < 0 given): its faces'
 // clearances (-d, ahead, back) and the rate of its nearest face
 // (sol::shape_inside_clearances). An object's record, or a quotient image's.
-vec4 object_inside_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc, float d) {
+vec4 kind_inside_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc, float d) {
   vec4 c = vec4(d, d, d, 0.0);
   if (feature_bound_balls && type == kObjectBall) c = ball_inside_clearances(q, u, rel.xyz, radius, hz, hc);
   if (feature_boxes && type == kObjectBox) c = box_inside_clearances(q, u, rel.xyz, vec3(heading, rel.w), hz);
@@ -185,12 +194,78 @@ vec4 object_inside_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, 
   return vec4(d, max(vec2(d), c.yz), c.w);
 }
 
-vec4 image_inside_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz, float d) {
+vec4 kind_image_inside_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz, float d) {
   vec4 c = vec4(d, d, d, 0.0);
   if (feature_bound_balls && type == kObjectBall) c = ball_inside_clearances(q, u, m.bound.xyz, m.bound.w, hz, half_exp(m.bound.z));
   if (feature_boxes && type == kObjectBox) c = box_inside_clearances(q, u, m.bound.xyz, vec3(m.heading.xy, m.bound.w), hz);
   if (feature_tubes && type == kObjectTube) c = tube_record_inside_clearances(q, u, m, hz);
   return vec4(d, max(vec2(d), c.yz), c.w);
+}
+
+// The object's bound and clearances: (bound, clearance along u, clearance
+// back along -u), each clearance the larger of the distance and the
+// second-order step of its bound (exact balls: the bound's ball, which
+// holds the exact one, as object_distance); the clearance back is the
+// quotient march's check of an over-relaxed step.
+#define SOL_KIND_CLEARANCES(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_clearances(q, u, rel, heading, radius, hz, hc);
+vec3 kind_bound_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  SOL_OBJECT_KINDS(SOL_KIND_CLEARANCES)
+  return vec3(1e30);
+}
+#undef SOL_KIND_CLEARANCES
+
+// The same of a quotient image from its record: its bound (Image::bound,
+// sol::KernelShape::bound: four words, as each word a step reads at a
+// per-lane index is a gather on lavapipe; a kind that needs more reads its
+// heading word too, and only its worlds load it).
+#define SOL_KIND_RECORD(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_record_clearances(q, u, m, hz);
+vec3 kind_image_bound_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
+  SOL_OBJECT_KINDS(SOL_KIND_RECORD)
+  return vec3(1e30);
+}
+#undef SOL_KIND_RECORD
+
+// The surface normal at a hit q (frame components); planes face the side
+// of `from`, the start of the ray's segment.
+#define SOL_KIND_NORMAL(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_normal(q, rel, heading, radius, from);
+vec3 kind_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
+  SOL_OBJECT_KINDS(SOL_KIND_NORMAL)
+  return vec3(0.0, 0.0, 1.0);
+}
+#undef SOL_KIND_NORMAL
+
+// The coordinates the object's pattern is drawn in at q: planes their own
+// coordinates of the world point (`phase`, pattern_phase), solids those of
+// q relative to them.
+#define SOL_KIND_PATTERN_UV(Type, code_name, code, prefix, feature, solid) \
+  if (feature_##feature && type == code_name) return prefix##_pattern_uv(q, phase, rel, heading, radius);
+vec2 kind_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
+  SOL_OBJECT_KINDS(SOL_KIND_PATTERN_UV)
+  return vec2(0.0);
+}
+#undef SOL_KIND_PATTERN_UV
+
+#include "composites.glsl"
+
+// ---- Objects and images of every kind, composites too.
+
+bool is_composite(int type) { return HAS_COMPOSITES && type == kObjectComposite; }
+
+float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
+  return is_composite(type) ? composite_bound(q, rel, hz) : kind_bound(type, q, rel, heading, radius, hz, hc);
+}
+
+vec4 object_inside_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc, float d) {
+  return is_composite(type) ? composite_inside_clearances(q, u, rel, hz, d)
+                            : kind_inside_clearances(type, q, u, rel, heading, radius, hz, hc, d);
+}
+
+vec4 image_inside_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz, float d) {
+  return is_composite(type) ? composite_inside_clearances(q, u, m.geometry, hz, d)
+                            : kind_image_inside_clearances(type, q, u, m, hz, d);
 }
 
 // The distance the march steps by: the bound, seen from inside where the ray is.
@@ -202,69 +277,42 @@ float object_distance(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
   return object_distance(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
 }
 
-// The object's distance and clearances: (distance, clearance along u,
-// clearance back along -u), each clearance the larger of the distance and
-// the second-order step of its bound (exact balls: the bound's ball, which
-// holds the exact one, as object_distance); the clearance back is the
-// quotient march's check of an over-relaxed step.
-#define SOL_KIND_CLEARANCES(Type, code_name, code, prefix, feature, solid) \
-  if (feature_##feature && type == code_name) return prefix##_clearances(q, u, rel, heading, radius, hz, hc);
 vec3 object_bound_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
-  SOL_OBJECT_KINDS(SOL_KIND_CLEARANCES)
-  return vec3(1e30);
+  return is_composite(type) ? composite_bound_clearances(q, u, rel, hz)
+                            : kind_bound_clearances(type, q, u, rel, heading, radius, hz, hc);
 }
 
+// The object's distance and clearances, seen from inside where the ray is.
 vec3 object_clearances(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   const vec3 c = object_bound_clearances(type, q, u, rel, heading, radius, hz, hc);
   return inside_by_bound(type) && c.x < 0.0 ? object_inside_clearances(type, q, u, rel, heading, radius, hz, hc, -c.x).xyz : c;
 }
-#undef SOL_KIND_CLEARANCES
 
 vec2 object_clearance(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return object_clearances(type, q, u, rel, heading, radius, hz, hc).xy;
 }
 
-// object_clearances of a quotient image from its record: its bound
-// (Image::bound, sol::KernelShape::bound: four words, as each word a step
-// reads at a per-lane index is a gather on lavapipe; a kind that needs more
-// reads its heading word too, and only its worlds load it).
-#define SOL_KIND_RECORD(Type, code_name, code, prefix, feature, solid) \
-  if (feature_##feature && type == code_name) return prefix##_record_clearances(q, u, m, hz);
 vec3 image_bound_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
-  SOL_OBJECT_KINDS(SOL_KIND_RECORD)
-  return vec3(1e30);
+  return is_composite(type) ? composite_bound_clearances(q, u, m.geometry, hz) : kind_image_bound_clearances(type, q, u, m, hz);
 }
 
+// object_clearances of a quotient image from its record.
 vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
   const vec3 c = image_bound_clearances(type, q, u, m, hz);
   return inside_by_bound(type) && c.x < 0.0 ? image_inside_clearances(type, q, u, m, hz, -c.x).xyz : c;
 }
-#undef SOL_KIND_RECORD
 
 // A quotient image's distance (its bound's, image_clearances' first
 // component, which the direction does not enter).
 float image_distance(int type, vec3 q, Image m) { return image_clearances(type, q, vec3(0.0), m, half_exp(q.z)).x; }
 
-// The surface normal at a hit q (frame components); planes face the side
-// of `from`, the start of the ray's segment.
-#define SOL_KIND_NORMAL(Type, code_name, code, prefix, feature, solid) \
-  if (feature_##feature && type == code_name) return prefix##_normal(q, rel, heading, radius, from);
 vec3 object_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
-  SOL_OBJECT_KINDS(SOL_KIND_NORMAL)
-  return vec3(0.0, 0.0, 1.0);
+  return is_composite(type) ? composite_normal(q, rel, from) : kind_normal(type, q, rel, heading, radius, from);
 }
-#undef SOL_KIND_NORMAL
 
-// The coordinates the object's pattern is drawn in at q: planes their own
-// coordinates of the world point (`phase`, pattern_phase), solids those of
-// q relative to them.
-#define SOL_KIND_PATTERN_UV(Type, code_name, code, prefix, feature, solid) \
-  if (feature_##feature && type == code_name) return prefix##_pattern_uv(q, phase, rel, heading, radius);
 vec2 object_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
-  SOL_OBJECT_KINDS(SOL_KIND_PATTERN_UV)
-  return vec2(0.0);
+  return is_composite(type) ? composite_pattern_uv(q, phase, rel) : kind_pattern_uv(type, q, phase, rel, heading, radius);
 }
-#undef SOL_KIND_PATTERN_UV
 
 // ---- Patterns
 
@@ -310,7 +358,6 @@ vec4 g_relative[kListedObjects];
 vec2 g_headings[kListedObjects];
 int g_cutouts[kListedObjects];      // cutout planes z = c: their pattern code; else kPatternNone
 vec2 g_half_exp_z[kListedObjects];  // balls: the centre's half exponentials (half_exp)
-vec4 g_eye_camera, g_eye_frac;
 vec2 g_eye_half_exp;  // e^{-z/2}, e^{z/2} of the eye's z (a crowd's objects' half exponentials: march/crowd.glsl)
 float g_rk4_step;  // RK4's substep (INTEGRATOR = 1)
 

@@ -84,7 +84,7 @@ float field_reach(int cell) { return uintBitsToFloat(field_words[2 * cell + 1]);
 // of 8 loads). The quotient's marches and shading read the kind only here.
 #define SOL_KIND_COUNT(Type, code_name, code, prefix, feature, solid) +(feature_##feature ? 1 : 0)
 #define SOL_KIND_ONLY(Type, code_name, code, prefix, feature, solid) feature_##feature ? code_name:
-const bool ONE_KIND = (0 SOL_OBJECT_KINDS(SOL_KIND_COUNT)) == 1;
+const bool ONE_KIND = (0 SOL_OBJECT_KINDS(SOL_KIND_COUNT)) == 1 && !HAS_COMPOSITES;
 const int ONLY_KIND = SOL_OBJECT_KINDS(SOL_KIND_ONLY) -1;
 #undef SOL_KIND_COUNT
 #undef SOL_KIND_ONLY

@@ -81,6 +81,14 @@ SOL_OBJECT_KINDS(SOL_KIND_CODE)
 #define SOL_MATERIAL_CODE(Enum, code_name, code, prefix, name) SOL_CONSTANT(int, code_name, code);
 SOL_MATERIALS(SOL_MATERIAL_CODE)
 #undef SOL_MATERIAL_CODE
+/// A composite (sol::Composite, no line of SOL_OBJECT_KINDS: the kernels
+/// draw it by its parts' kinds): its record's geometry is (the index of its
+/// first part in the parts' buffer, its operation kComposite*, 0, 0).
+SOL_CONSTANT(int, kObjectComposite, 7);
+/// A composite's operation (sol::CompositeOp's order).
+SOL_CONSTANT(int, kCompositeUnion, 0);
+SOL_CONSTANT(int, kCompositeIntersection, 1);
+SOL_CONSTANT(int, kCompositeDifference, 2);
 /// The axis code of a vertical tube (any other code: horizontal, along its heading).
 SOL_CONSTANT(int, kTubeVertical, 2);
 

@@ -38,7 +38,8 @@
   X(shadows,        HAS_SHADOWS,          15) /* exact point lights with shadows */ \
   X(mirrors,        HAS_MIRRORS,          43) /* mirrors: rays go on along the reflected geodesic */ \
   X(emission,       HAS_EMISSION,         44) /* glowing objects */                                           \
-  X(crowd,          CROWD,                46) /* a Sol world of more than kListedObjects objects: marched through its tree of bounds */
+  X(crowd,          CROWD,                46) /* a Sol world of more than kListedObjects objects: marched through its tree of bounds */ \
+  X(composites,     HAS_COMPOSITES,       23) /* unions, intersections, differences of solids (their parts' kinds set theirs) */
 // clang-format on
 
 #endif  // SOL_MARCH_FEATURES_H

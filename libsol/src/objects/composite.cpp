@@ -195,7 +195,10 @@ CoordinateBox Composite::coordinate_box() const {
   return box;
 }
 
-KernelShape Composite::kernel_shape() const { return {.code = -1}; }
+// (The host puts its parts in the parts' buffer and their index in x.)
+KernelShape Composite::kernel_shape() const {
+  return {.code = kernel::kObjectComposite, .geometry = {0.0, static_cast<double>(static_cast<int>(op)), 0.0, 0.0}};
+}
 
 // Both parts moved by the isometry that brings A's anchor into D.
 Composite Composite::into_domain(const Lattice& lattice) const {

@@ -48,8 +48,9 @@ SOL_CONSTANT(int, kBindingStats, 11);       ///< storage buffer: Stats, what the
 SOL_CONSTANT(int, kBindingObjects, 12);     ///< storage buffer (read-only): the scene objects' Object records
 SOL_CONSTANT(int, kBindingCrowdNodes, 13);  ///< storage buffer (read-only): a crowd's tree of bounds (CrowdNode)
 SOL_CONSTANT(int, kBindingCrowdItems, 14);  ///< storage buffer (read-only): a crowd's objects in leaf order (CrowdItem)
+SOL_CONSTANT(int, kBindingParts, 15);       ///< storage buffer (read-only): the composites' parts (Part)
 /// The number of bindings (the last one's, plus one).
-SOL_CONSTANT(int, kBindingCount, 15);
+SOL_CONSTANT(int, kBindingCount, 16);
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
@@ -239,6 +240,15 @@ struct CrowdItem {
                   ///< zw: e^{z/2}, e^{-z/2} of geometry.z (solids' centres and axis points; 1 for planes)
 };
 
+// ---- The composites' parts (binding kBindingParts, std430), world
+// coordinates: the j-th composite's (of the scene objects in Sol, of the
+// images in the quotient) at 2j (A) and 2j + 1 (B); its record's geometry
+// is (2j, its operation kComposite*, 0, 0) (march/composites.glsl).
+struct Part {
+  vec4 geometry;  ///< sol::KernelShape::geometry
+  vec4 shape;     ///< xy: sol::KernelShape::heading; z: radius; w: object code (kObject*, a kind of the list)
+};
+
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
 // header, then for a dispatch of n pixels (Params::tile: n = tile.z ·
 // tile.w) n resume records (uvec4: pixel, t, passing mask, march step) and
@@ -289,7 +299,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 2 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&

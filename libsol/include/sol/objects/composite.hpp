@@ -15,9 +15,9 @@ struct CompositeParts;
 
 /// How a composite combines its parts A and B.
 enum class CompositeOp {
-  Union,         ///< A ∪ B: min(d_A, d_B)
-  Intersection,  ///< A ∩ B: max(d_A, d_B)
-  Difference,    ///< A \ B: max(d_A, −d_B)
+  Union = kernel::kCompositeUnion,                ///< A ∪ B: min(d_A, d_B)
+  Intersection = kernel::kCompositeIntersection,  ///< A ∩ B: max(d_A, d_B)
+  Difference = kernel::kCompositeDifference,      ///< A \ B: max(d_A, −d_B)
 };
 /// The scene file's "type" of a composite: "union", "intersection", "difference".
 std::string_view to_string(CompositeOp op);
@@ -67,7 +67,8 @@ struct Composite {
   Composite seen_from(const glm::dvec3& p) const;
   /// A union's hull of its parts' boxes, an intersection's overlap, a difference's A's.
   CoordinateBox coordinate_box() const;
-  /// No kernel record of its own (code -1): the kernels draw no composites.
+  /// kernel::kObjectComposite with geometry (0, the operation's code, 0, 0):
+  /// the kernel's host puts its parts in their buffer and their index in x.
   KernelShape kernel_shape() const;
   Composite into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
