@@ -44,6 +44,7 @@ jpeg --scene $s/golden-two-balls.json "${a[@]}" -o $g/golden-two-balls-z.jpg
 jpeg --scene $s/z-loop.json "${a[@]}" -o $g/z-loop.jpg
 jpeg --scene $s/xy-loops.json "${a[@]}" -o $g/xy-loops.jpg
 jpeg --scene $s/mirror-balls.json "${a[@]}" -o $g/mirror-balls.jpg
+jpeg --scene $s/composites.json "${a[@]}" -o $g/composites.jpg
 # Path traced (docs/lighting.md, "Path tracing"; on the kernel where there is one): 64 paths a pixel.
 p=(--transport path --spp 64 --width 768 --height 576)
 jpeg --scene $s/glowing-sandwich.json "${p[@]}" -o $g/glowing-sandwich.jpg

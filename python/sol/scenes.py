@@ -16,8 +16,8 @@ import re as _re
 
 from . import _sol
 
-__all__ = ["scene", "camera", "ball", "box", "tube", "plane_x", "plane_y", "plane_z", "point_light",
-           "directional_light"]
+__all__ = ["scene", "camera", "ball", "box", "tube", "union", "intersection", "difference", "plane_x", "plane_y",
+           "plane_z", "point_light", "directional_light"]
 
 
 def _plain(value):
@@ -68,7 +68,8 @@ def _parse(fields, source):
 def scene(objects, *, camera=None, lights=None, **world):
     """A scene from the scene file's fields.
 
-    objects: the objects (sol.ball, sol.box, sol.tube, sol.plane_x/y/z, or dicts with the file's keys).
+    objects: the objects (sol.ball, sol.box, sol.tube, sol.union/intersection/difference of them, sol.plane_x/y/z,
+        or dicts with the file's keys).
     camera: a sol.Camera (sol.camera(...)) or a dict of the file's camera keys; the file's default camera if None.
     lights: the lights (sol.point_light, sol.directional_light, or dicts); the file's default if None.
     world: the other top-level keys: quotient ("none", "golden" or {"monodromy": [[a, b], [c, d]], "fibre_area": S}:
@@ -134,6 +135,22 @@ def tube(axis, through, radius, **fields):
     """A tube of `radius` around the line through `through` along `axis` ("x", "y", "z", "gamma1", "gamma2",
     "gamma3", or a vertical or horizontal direction (a, b, c)). Other keys: color, pattern."""
     return _object("tube", {"axis": axis, "through": through, "radius": radius}, fields)
+
+
+def union(a, b, **fields):
+    """A ∪ B of two solids (sol.ball, sol.box, sol.tube or composites, without appearance keys of their own).
+    Other keys: color, pattern, material, emission, mirror (the composite's)."""
+    return _object("union", {"a": a, "b": b}, fields)
+
+
+def intersection(a, b, **fields):
+    """A ∩ B of two solids (as sol.union)."""
+    return _object("intersection", {"a": a, "b": b}, fields)
+
+
+def difference(a, b, **fields):
+    """A with B taken out of it, A \\ B (as sol.union): the hollow shows B's surface."""
+    return _object("difference", {"a": a, "b": b}, fields)
 
 
 def plane_x(c=0.0, **fields):

@@ -422,6 +422,27 @@ def test_scenes_built_from_python_are_the_scene_files():
         assert "line 1" not in str(raised.value) and "column" not in str(raised.value), raised.value
 
 
+def test_composites_are_the_scene_files():
+    # sol.union, sol.intersection and sol.difference write the file's composites; a part's appearance key is
+    # refused naming it, and the composite renders the same on the CPU as its scene file does.
+    hollow = sol.difference(sol.box((0, 0, 0), (0.3, 0.3, 0.3)), sol.ball((0, -0.3, 0.2), 0.25), color=(0.9, 0.5, 0.3))
+    built = sol.scene([sol.plane_z(-0.6), hollow, sol.intersection(sol.ball((1, 0, 0), 0.3), sol.box((1, 0, 0), (0.2, 0.2, 0.2)))],
+                      camera=sol.camera(position=(0, -0.9, 0.9), forward=(0, 0.5, -0.85), up=(0, 0.85, 0.5)))
+    text = ('{"objects": [{"type": "plane_z", "c": -0.6}, {"type": "difference", "color": [0.9, 0.5, 0.3],'
+            ' "a": {"type": "box", "center": [0, 0, 0], "half_size": [0.3, 0.3, 0.3]},'
+            ' "b": {"type": "ball", "center": [0, -0.3, 0.2], "radius": 0.25}},'
+            ' {"type": "intersection", "a": {"type": "ball", "center": [1, 0, 0], "radius": 0.3},'
+            ' "b": {"type": "box", "center": [1, 0, 0], "half_size": [0.2, 0.2, 0.2]}}],'
+            ' "camera": {"position": [0, -0.9, 0.9], "forward": [0, 0.5, -0.85], "up": [0, 0.85, 0.5]}}')
+    assert built.to_json() == sol.parse_scene(text).to_json()
+    assert built.to_dict()["objects"][1]["type"] == "difference"
+    image = sol.render_cpu(built, 24, 16)
+    assert np.array_equal(image["rgba"], sol.render_cpu(sol.parse_scene(text), 24, 16)["rgba"])
+    assert np.any(image["object"] == 2)
+    with pytest.raises(sol.InvalidArgumentError, match=r"'color' in objects\[0\].a: a part takes its kind's keys alone"):
+        sol.scene([sol.union(sol.ball((0, 0, 0), 0.2, color=(1, 0, 0)), sol.box((0, 0, 0), (0.1, 0.1, 0.1)))])
+
+
 def test_replace_changes_only_what_it_names():
     scene = sol.preset_scene("spheres")
     moved = scene.replace(camera={"position": (0.2, 0.1, 0.3)})
