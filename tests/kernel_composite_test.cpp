@@ -95,6 +95,17 @@ TEST(KernelComposite, UnionsIntersectionsAndDifferencesAreTheCpus) {
   sol::Scene corner = outside;
   corner.camera = {{-0.1, -0.9, 0.25}, {0.55, 0.8, -0.25}, {0.0, 0.0, 1.0}, 60.0};
   expect_kernel_as_cpu(renderer, {"two boxes intersected", corner, {composite_of(corner, 2)}});
+  // Chains: the notched block with a second notch and a tube through it
+  // ((block \ notch) \ notch) \ tube, and a union of three.
+  sol::Scene chains = outside;
+  const sol::Shape notched = outside.objects[1].shape;
+  chains.objects[1].shape = composite(sol::CompositeOp::Difference,
+                                      composite(sol::CompositeOp::Difference, notched,
+                                                sol::Box{{-0.35, -0.3, 0.25}, {0.1, 0.2, 0.1}}),
+                                      sol::Tube{{-0.5, 0.0, 0.0}, {1.0, 0.0, 0.0}, 0.1});
+  chains.objects[3].shape = composite(sol::CompositeOp::Union, outside.objects[3].shape, sol::Ball{{0.35, 0.7, 0.2}, 0.12});
+  ASSERT_EQ(sol::composite_chain(std::get<sol::Composite>(chains.objects[1].shape)).size(), 4u);
+  expect_kernel_as_cpu(renderer, {"chains of composites", chains, {}});
   // From inside the notched block, facing its notch: its walls and the notch seen from within.
   sol::Scene inside = outside;
   inside.camera = {{-0.45, 0.15, -0.1}, {-0.2, -1.0, 0.35}, {0.0, 0.0, 1.0}, 90.0};
@@ -145,15 +156,21 @@ TEST(KernelComposite, QuotientsAndCrowdsAreTheCpus) {
   expect_no_validation_errors();
 }
 
-// Composites the kernel does not draw (of exact balls, or of composites)
+// Composites the kernel does not draw (of exact balls, with a composite as
+// their part b, of more than kMaxCompositeParts parts)
 // are refused by name, and render on the CPU under --device auto.
 TEST(KernelComposite, CompositesOfExactBallsOrCompositesAreTheCpus) {
   sol::Scene scene = composites_scene();
   scene.objects[2].shape = composite(sol::CompositeOp::Intersection, sol::Ball{{0.45, 0.0, 0.0}, 0.4, true},
                                      sol::Ball{{0.65, 0.0, 0.0}, 0.4, true});
-  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2].a: composites of exact balls render on the CPU only");
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2].b: composites of exact balls render on the CPU only");
   scene.objects[2].shape = composite(sol::CompositeOp::Union, sol::Ball{}, scene.objects[1].shape);
-  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2].b: composites of composites render on the CPU only");
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene),
+            "objects[2].b: composites with a composite as their part b render on the CPU only (nest it as part a)");
+  sol::Shape chain = sol::Box{};
+  for (int k = 0; k < 8; ++k) chain = composite(sol::CompositeOp::Difference, chain, sol::Ball{{0.1 * k, 0.0, 0.0}, 0.1});
+  scene.objects[2].shape = chain;
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2]: composites of more than 8 parts render on the CPU only");
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(composites_scene()), "");
 }
 

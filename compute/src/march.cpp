@@ -57,17 +57,17 @@ int pattern_code(Pattern pattern) {
 
 // The world's part of the uniforms (objects, lights, shading, limits),
 // filled once per world; each frame adds its eyes and image size.
-// Where each composite's parts lie in the parts' buffer (binding
-// kBindingParts, sol/vk/march_interface.h): the j-th composite's of `n`
-// shapes in order (shape_of(k)) at 2j and 2j + 1; -1 for the other shapes.
+// Where each composite's chain begins in the parts' buffer (binding
+// kBindingParts, sol/vk/march_interface.h): the chains of `n` shapes in
+// order (shape_of(k)) one after the other; -1 for the other shapes.
 template <class ShapeOf>
 std::vector<int> composite_slots(std::size_t n, ShapeOf&& shape_of) {
   std::vector<int> slots(n, -1);
   int next = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    if (std::holds_alternative<Composite>(shape_of(k))) {
+    if (const Composite* c = std::get_if<Composite>(&shape_of(k))) {
       slots[k] = next;
-      next += 2;
+      next += static_cast<int>(composite_chain(*c).size());
     }
   }
   return slots;
@@ -95,9 +95,10 @@ std::vector<kernel::Part> pack_parts(const MarchWorld& prepared) {
   std::vector<kernel::Part> out;
   const auto add = [&](const Shape& shape) {
     if (const Composite* c = std::get_if<Composite>(&shape)) {
-      for (const Shape* part : {&c->parts->a, &c->parts->b}) {
+      for (const auto& [part, op] : composite_chain(*c)) {
         const KernelShape s = kernel_shape(*part);
-        out.push_back({glm::vec4(s.geometry), glm::vec4(s.heading.x, s.heading.y, s.radius, s.code)});
+        out.push_back({glm::vec4(s.geometry), glm::vec4(s.heading.x, s.heading.y, s.radius, s.code),
+                       glm::vec4(static_cast<float>(static_cast<int>(op)), 0.0f, 0.0f, 0.0f)});
       }
     }
   };
@@ -474,6 +475,30 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
 // Why the kernel does not path-trace the world though it renders its
 // direct light ("" when it does): only paths connect to glowing balls,
 // along geodesics up to the seed table's reach.
+// Why the kernel does not draw the composite at `at`, or "": it draws
+// chains ((P0 op1 P1) op2 P2) ... (sol::Composite::chain) of up to
+// kMaxCompositeParts parts of the list's kinds drawn by their bounds.
+std::string composite_unsupported(const Composite& c, const std::string& at) {
+  const auto exact = [](const Shape& s) {
+    const Ball* b = std::get_if<Ball>(&s);
+    return b && b->exact;
+  };
+  if (std::holds_alternative<Composite>(c.parts->b)) {
+    return at + ".b: composites with a composite as their part b render on the CPU only (nest it as part a)";
+  }
+  if (exact(c.parts->b)) return at + ".b: composites of exact balls render on the CPU only";
+  if (const Composite* a = std::get_if<Composite>(&c.parts->a)) {
+    if (std::string why = composite_unsupported(*a, at + ".a"); !why.empty()) return why;
+  } else if (exact(c.parts->a)) {
+    return at + ".a: composites of exact balls render on the CPU only";
+  }
+  if (composite_chain(c).size() > static_cast<std::size_t>(kernel::kMaxCompositeParts)) {
+    return at + ": composites of more than " + std::to_string(kernel::kMaxCompositeParts) +
+           " parts render on the CPU only";
+  }
+  return {};
+}
+
 std::string path_unsupported(const World& world) {
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     if (world.objects[i].glow_reach > ConnectionTable::kReach) {
@@ -972,16 +997,7 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     if (const Composite* c = std::get_if<Composite>(&world.objects[i].shape)) {
-      // The kernel's composites are of two parts of the list's kinds, drawn by their bounds.
-      for (const auto& [part, name] : {std::pair{&c->parts->a, "a"}, std::pair{&c->parts->b, "b"}}) {
-        const Ball* ball = std::get_if<Ball>(part);
-        const bool nested = std::holds_alternative<Composite>(*part);
-        if (nested || (ball && ball->exact)) {
-          std::snprintf(message, sizeof message, "objects[%zu].%s: composites of %s render on the CPU only", i, name,
-                        nested ? "composites" : "exact balls");
-          return message;
-        }
-      }
+      if (std::string why = composite_unsupported(*c, "objects[" + std::to_string(i) + "]"); !why.empty()) return why;
     }
     const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
     if (b && b->exact && b->radius > kMaxExactBallRadius) {

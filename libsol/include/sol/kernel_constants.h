@@ -82,9 +82,12 @@ SOL_OBJECT_KINDS(SOL_KIND_CODE)
 SOL_MATERIALS(SOL_MATERIAL_CODE)
 #undef SOL_MATERIAL_CODE
 /// A composite (sol::Composite, no line of SOL_OBJECT_KINDS: the kernels
-/// draw it by its parts' kinds): its record's geometry is (the index of its
-/// first part in the parts' buffer, its operation kComposite*, 0, 0).
+/// draw it by its parts' kinds) as a chain ((P0 op1 P1) op2 P2) ... of
+/// parts of the list's kinds: its record's geometry is (the index of P0 in
+/// the parts' buffer, the number of parts, 0, 0).
 SOL_CONSTANT(int, kObjectComposite, 7);
+/// The most parts of a chain the kernel draws.
+SOL_CONSTANT(int, kMaxCompositeParts, 8);
 /// A composite's operation (sol::CompositeOp's order).
 SOL_CONSTANT(int, kCompositeUnion, 0);
 SOL_CONSTANT(int, kCompositeIntersection, 1);

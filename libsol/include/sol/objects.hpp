@@ -11,7 +11,9 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "sol/material_kinds.h"
 #include "sol/object_kinds.h"
@@ -56,6 +58,12 @@ struct CompositeParts {
   Shape b;
   bool operator==(const CompositeParts&) const = default;
 };
+
+/// The composite as a chain ((P0 op1 P1) op2 P2) ... of parts that are not
+/// composites, each with the operation joining it to the chain before it
+/// (P0's unused): nested composites as parts a unfold into it (the
+/// kernel's form). Empty where a part b is a composite.
+std::vector<std::pair<const Shape*, CompositeOp>> composite_chain(const Composite& composite);
 
 #define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) \
   static_assert(Type::kSolid == solid, "sol/object_kinds.h: " #Type "::kSolid disagrees with the list");

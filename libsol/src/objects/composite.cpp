@@ -195,9 +195,23 @@ CoordinateBox Composite::coordinate_box() const {
   return box;
 }
 
-// (The host puts its parts in the parts' buffer and their index in x.)
+// (The host puts its chain in the parts' buffer and its first index in x.)
 KernelShape Composite::kernel_shape() const {
-  return {.code = kernel::kObjectComposite, .geometry = {0.0, static_cast<double>(static_cast<int>(op)), 0.0, 0.0}};
+  return {.code = kernel::kObjectComposite,
+          .geometry = {0.0, static_cast<double>(composite_chain(*this).size()), 0.0, 0.0}};
+}
+
+std::vector<std::pair<const Shape*, CompositeOp>> composite_chain(const Composite& c) {
+  if (std::holds_alternative<Composite>(c.parts->b)) return {};
+  std::vector<std::pair<const Shape*, CompositeOp>> out;
+  if (const Composite* a = std::get_if<Composite>(&c.parts->a)) {
+    out = composite_chain(*a);
+    if (out.empty()) return {};
+  } else {
+    out.emplace_back(&c.parts->a, CompositeOp::Union);
+  }
+  out.emplace_back(&c.parts->b, c.op);
+  return out;
 }
 
 // Both parts moved by the isometry that brings A's anchor into D.

@@ -241,12 +241,15 @@ struct CrowdItem {
 };
 
 // ---- The composites' parts (binding kBindingParts, std430), world
-// coordinates: the j-th composite's (of the scene objects in Sol, of the
-// images in the quotient) at 2j (A) and 2j + 1 (B); its record's geometry
-// is (2j, its operation kComposite*, 0, 0) (march/composites.glsl).
+// coordinates: each composite's chain ((P0 op1 P1) op2 P2) ... (its parts
+// b of the list's kinds, nested composites as its parts a) one part after
+// the other, the composites (of the scene objects in Sol, of the images in
+// the quotient) one after the other; its record's geometry is (the index
+// of P0, the number of parts, 0, 0) (march/composites.glsl).
 struct Part {
   vec4 geometry;  ///< sol::KernelShape::geometry
   vec4 shape;     ///< xy: sol::KernelShape::heading; z: radius; w: object code (kObject*, a kind of the list)
+  vec4 info;      ///< x: the operation (kComposite*) that joins it to the chain before it (P0: none)
 };
 
 // ---- The deferred passes' lists (binding kBindingQueue, std430): the
@@ -299,7 +302,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 2 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&

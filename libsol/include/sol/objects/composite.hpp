@@ -67,8 +67,9 @@ struct Composite {
   Composite seen_from(const glm::dvec3& p) const;
   /// A union's hull of its parts' boxes, an intersection's overlap, a difference's A's.
   CoordinateBox coordinate_box() const;
-  /// kernel::kObjectComposite with geometry (0, the operation's code, 0, 0):
-  /// the kernel's host puts its parts in their buffer and their index in x.
+  /// kernel::kObjectComposite with geometry (0, the number of parts of
+  /// its chain, 0, 0): the kernel's host puts the chain in the parts'
+  /// buffer and its first part's index in x.
   KernelShape kernel_shape() const;
   Composite into_domain(const Lattice& lattice) const;
   double least_distance_over_domain(const Lattice& lattice) const;
