@@ -476,20 +476,16 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
 // direct light ("" when it does): only paths connect to glowing balls,
 // along geodesics up to the seed table's reach.
 // Why the kernel does not draw the composite at `at`, or "": it draws
-// chains ((P0 op1 P1) op2 P2) ... (sol::Composite::chain) of up to
+// chains ((P0 op1 P1) op2 P2) ... (sol::composite_chain) of up to
 // kMaxCompositeParts parts of the list's kinds drawn by their bounds.
 std::string composite_unsupported(const Composite& c, const std::string& at) {
-  const auto exact = [](const Shape& s) {
-    const Ball* b = std::get_if<Ball>(&s);
-    return b && b->exact;
-  };
   if (std::holds_alternative<Composite>(c.parts->b)) {
     return at + ".b: composites with a composite as their part b render on the CPU only (nest it as part a)";
   }
-  if (exact(c.parts->b)) return at + ".b: composites of exact balls render on the CPU only";
+  if (is_exact_ball(c.parts->b)) return at + ".b: composites of exact balls render on the CPU only";
   if (const Composite* a = std::get_if<Composite>(&c.parts->a)) {
     if (std::string why = composite_unsupported(*a, at + ".a"); !why.empty()) return why;
-  } else if (exact(c.parts->a)) {
+  } else if (is_exact_ball(c.parts->a)) {
     return at + ".a: composites of exact balls render on the CPU only";
   }
   if (composite_chain(c).size() > static_cast<std::size_t>(kernel::kMaxCompositeParts)) {

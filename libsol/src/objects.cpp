@@ -133,6 +133,11 @@ CoordinateBox shape_coordinate_box(const Shape& shape) {
   return std::visit([](const auto& k) { return k.coordinate_box(); }, shape);
 }
 
+bool is_exact_ball(const Shape& shape) {
+  const Ball* b = std::get_if<Ball>(&shape);
+  return b && b->exact;
+}
+
 bool is_solid(const Shape& shape) {
   return std::visit([](const auto& k) { return std::decay_t<decltype(k)>::kSolid; }, shape);
 }
@@ -228,7 +233,11 @@ std::optional<Shape> shape_named(std::string_view name) {
   if constexpr (I < std::variant_size_v<Shape>) {
     using Kind = std::variant_alternative_t<I, Shape>;
     if constexpr (std::is_same_v<Kind, Composite>) {
-      if (const std::optional<CompositeOp> op = composite_op_named(name)) return Shape(Composite(*op, *Composite().parts));
+      if (const std::optional<CompositeOp> op = composite_op_named(name)) {
+        Composite composite;
+        composite.op = *op;
+        return Shape(composite);
+      }
     } else if (Kind::kName == name) {
       return Shape(Kind{});
     }

@@ -154,11 +154,6 @@ PlaneCrossing first_plane_crossing(const ClosedFormGeodesic<double>& ray, const 
   return r;
 }
 
-bool exact_ball(const Shape& shape) {
-  const Ball* b = std::get_if<Ball>(&shape);
-  return b && b->exact;
-}
-
 // The marches of this thread that stopped at max_steps (MarchHit::out_of_steps):
 // render_eye reads them pixel by pixel, whichever march (camera, mirror,
 // path, shadow) it was.
@@ -244,7 +239,7 @@ bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dv
 bool pass_ends(const Shape& shape, double d, bool inside, const glm::dvec3& q, const glm::dvec3& u, double hit_epsilon,
                double& leave_sign) {
   if (d > 2.0 * hit_epsilon) return true;
-  if (exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
+  if (is_exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
   if (const Composite* c = std::get_if<Composite>(&shape)) return turned_back(glm::dot(c->normal(q), u), leave_sign);
   return inside && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
 }
@@ -292,10 +287,10 @@ struct StepNearest {
     if (outside && is_solid(shape) && !nearest_inside) {  // (the clearance is the outside's)
       return std::min(second, std::max(nearest, object_clearance(o, q, u)));
     }
-    if (nearest_inside && exact_ball(shape) && nearest > eps) {
+    if (nearest_inside && is_exact_ball(shape) && nearest > eps) {
       return std::min(second, exact_ball_inside_step(std::get<Ball>(shape), q, u, nearest, eps));
     }
-    if (nearest_inside && inside && !exact_ball(shape)) {  // inside a solid: its faces' clearance
+    if (nearest_inside && inside && !is_exact_ball(shape)) {  // inside a solid: its faces' clearance
       return std::min(second, std::max(nearest, shape_inside_clearances(shape, q, u).ahead));
     }
     return nearest;
@@ -401,7 +396,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.pattern_uv = uv;
       hit.direction = ray.direction_at(t);
       // (In Sol an exact ball's normal faces the ray wherever it faces away.)
-      hit.normal = facing_normal(hit.normal, hit.direction, s.hit_inside || exact_ball(objects[hit_k].shape));
+      hit.normal = facing_normal(hit.normal, hit.direction, s.hit_inside || is_exact_ball(objects[hit_k].shape));
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -508,7 +503,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.point = q;
       hit.direction = u;
       hit.pattern_uv = uv;
-      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, s.hit_inside || exact_ball(objects[hit_k].shape));
+      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, s.hit_inside || is_exact_ball(objects[hit_k].shape));
       return hit;
     }
     t += passing.empty() ? nearest : std::max(nearest, 2.0 * eps);
@@ -606,7 +601,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
         }
       }
       if (seen.inside) {  // inside: the faces' clearances (an exact ball's ahead by its own, back by d)
-        if (exact_ball(image.shape)) {
+        if (is_exact_ball(image.shape)) {
           clear = std::min(clear, d > world.hit_epsilon
                                       ? exact_ball_inside_step(std::get<Ball>(image.shape), q, u, d, world.hit_epsilon)
                                       : d);

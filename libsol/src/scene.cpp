@@ -92,10 +92,7 @@ bool uses_exact_lights(const World& world) {
 
 bool uses_exact(const World& world) {
   return std::any_of(world.objects.begin(), world.objects.end(),
-                     [](const SceneObject& o) {
-                       const Ball* b = std::get_if<Ball>(&o.shape);
-                       return b && b->exact;
-                     }) ||
+                     [](const SceneObject& o) { return is_exact_ball(o.shape); }) ||
          uses_exact_lights(world);
 }
 

@@ -164,6 +164,8 @@ InsideClearances shape_inside_clearances(const Shape& shape, const glm::dvec3& q
 glm::dvec3 shape_normal(const Shape& shape, const glm::dvec3& q);
 /// Whether the shape is a solid (its kind's kSolid).
 bool is_solid(const Shape& shape);
+/// Whether the shape is a ball drawn as the true geodesic sphere (Ball::exact).
+bool is_exact_ball(const Shape& shape);
 Shape shape_seen_from(const Shape& shape, const glm::dvec3& p);
 /// The kind's coordinate_box(): every point of the shape (distance <= 0) lies in it.
 CoordinateBox shape_coordinate_box(const Shape& shape);

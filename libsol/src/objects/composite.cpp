@@ -75,17 +75,12 @@ PartDistances part_distances(CompositeOp op, const CompositeParts& parts, const 
   return d;
 }
 
-bool exact_ball_part(const Shape& part) {
-  const Ball* b = std::get_if<Ball>(&part);
-  return b && b->exact;
-}
-
 // How far the geodesic from q goes along u (and back) before it can leave
 // the part q is inside of (its distance d < 0): its faces' inside
 // clearances, at least −d. An exact ball's are its bound ball's, which
 // holds it, so not a bound on leaving the exact ball: its depth −d, exact.
 Clearances leaving(const Shape& part, const glm::dvec3& q, const glm::dvec3& u, double d) {
-  if (exact_ball_part(part)) return {-d, -d};
+  if (is_exact_ball(part)) return {-d, -d};
   const InsideClearances c = shape_inside_clearances(part, q, u);
   return {std::max(-d, c.ahead), std::max(-d, c.back)};
 }
@@ -99,6 +94,12 @@ Clearances reaching(const Shape& part, const glm::dvec3& q, const glm::dvec3& u,
 Clearances least(const Clearances& x, const Clearances& y) { return {std::min(x.ahead, y.ahead), std::min(x.back, y.back)}; }
 Clearances largest(const Clearances& x, const Clearances& y) {
   return {std::max(x.ahead, y.ahead), std::max(x.back, y.back)};
+}
+
+// The active part's normal at q (B's turned in a difference): the gradient of the distance.
+glm::dvec3 active_normal(const PartDistances& d, const CompositeParts& parts, const glm::dvec3& q) {
+  const glm::dvec3 n = shape_normal(d.active_b ? parts.b : parts.a, q);
+  return d.turned ? -n : n;
 }
 
 // A part's kind's quotient functions, where it has them (every solid does).
@@ -166,13 +167,11 @@ InsideClearances Composite::inside_clearances(const glm::dvec3& q, const glm::dv
     }
   }
   // The rate of the depth −d along u: the normal is the distance's gradient.
-  return {c.ahead, c.back, -glm::dot(normal(q), u)};
+  return {c.ahead, c.back, -glm::dot(active_normal(d, *parts, q), u)};
 }
 
 glm::dvec3 Composite::normal(const glm::dvec3& q) const {
-  const PartDistances d = part_distances(op, *parts, q);
-  const glm::dvec3 n = shape_normal(d.active_b ? parts->b : parts->a, q);
-  return d.turned ? -n : n;
+  return active_normal(part_distances(op, *parts, q), *parts, q);
 }
 
 glm::dvec2 Composite::pattern_uv(const glm::dvec3& q) const {
