@@ -97,11 +97,14 @@ if [ -x "$ffmpeg" ] && [ -x "$ffprobe" ]; then
     --video "$work/hung.mp4" --video-only 2>/dev/null
   status=$?
   [ $status -eq 130 ] || fail "solrender with a hung ffmpeg: exit $status (137: SIGINT did not stop it)"
-  sleep 1
   hung=$(cat "$work/hung.pid")
-  # (Killed, it may stay a zombie until whoever adopted it reaps it: that is dead.)
-  if kill -0 "$hung" 2>/dev/null && [ "$(ps -o stat= -p "$hung" | cut -c1)" != "Z" ]; then
-    kill -9 "$hung"
+  # Alive: ps still lists it in a state other than zombie (killed, it may stay a
+  # zombie until whoever adopted it reaps it, or vanish between two looks: both
+  # are dead). A signalled process may take a moment to go, so look for 5 s.
+  alive() { local st; st=$(ps -o stat= -p "$hung" 2>/dev/null | cut -c1); [ -n "$st" ] && [ "$st" != "Z" ]; }
+  for _ in 1 2 3 4 5 6 7 8 9 10; do alive || break; sleep 0.5; done
+  if alive; then
+    kill -9 "$hung" 2>/dev/null
     fail "the hung ffmpeg outlived solrender's SIGINT"
   fi
   [ -e "$work/hung.mp4" ] && fail "an interrupted --video-only left the video"
