@@ -1390,6 +1390,45 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
   expect_no_validation_errors();
 }
 
+// A path-traced world with exact balls is one pipeline on the kernel: each
+// pixel's camera ray is its path's first segment, marched by the path's own
+// march (PATH_FROM_EYE). Its AOVs are that segment's hit, as the CPU's are
+// its camera ray's: in Sol and in the golden quotient, the same object in
+// all but a silhouette's pixels (float against double at a grazing edge: at
+// most 1 in 50), and where the objects agree the arc length and the hit
+// point within 1e-3 (the march's float hit tolerance is 1e-4 of the arc
+// length; 1e-3 leaves room for the exact ball's float solve).
+TEST(Kernel, PathsFromTheEyeWriteTheCpusAovs) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const sol::Scene& scene : {sol::test::glow_over_plane(), sol::test::glow_over_plane_golden()}) {
+    const sol::RenderOptions settings{.width = 24, .height = 18, .samples = 2, .transport = sol::Transport::Path, .seed = 3};
+    const sol::RenderResult gpu = sol::render_scene(renderer, scene, settings);
+    const sol::RenderResult cpu = sol::render_cpu(scene, settings);
+    const std::size_t n = cpu.object.size();
+    ASSERT_EQ(gpu.object.size(), n);
+    std::size_t differ = 0, hits = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      ASSERT_TRUE(std::isfinite(gpu.rgba[4 * k]) && std::isfinite(gpu.distance[k])) << k;
+      if (gpu.object[k] != cpu.object[k]) {
+        ++differ;
+        continue;
+      }
+      if (cpu.object[k] == 0.0f) continue;
+      ++hits;
+      EXPECT_NEAR(gpu.distance[k], cpu.distance[k], 1e-3) << "pixel " << k;
+      EXPECT_NEAR(gpu.px[k], cpu.px[k], 1e-3) << "pixel " << k;
+      EXPECT_NEAR(gpu.py[k], cpu.py[k], 1e-3) << "pixel " << k;
+      EXPECT_NEAR(gpu.pz[k], cpu.pz[k], 1e-3) << "pixel " << k;
+      EXPECT_GT(gpu.steps[k], 0.0f) << "pixel " << k;
+    }
+    std::printf("paths from the eye (%s): %zu of %zu pixels hit the same object, %zu differ\n",
+                scene.quotient == sol::Quotient::Golden ? "golden" : "Sol", hits, n, differ);
+    EXPECT_GT(hits, n / 2);
+    EXPECT_LE(differ * 50, n);
+  }
+  expect_no_validation_errors();
+}
+
 // Next-event estimation within a glowing ball's reach on the kernel
 // (glow_reach: sol_connections with the longer connections' table, the
 // reach build): in far_glow most of the light comes along the longer

@@ -55,6 +55,7 @@ vec4 ball_inside_clearances(vec3 q, vec3 u, vec3 c, float radius, vec2 hz, vec2 
 float ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return distance_lower_bound(q, rel.xyz, hz, hc) - radius;
 }
+SOL_SOLID_NORMAL(ball)
 
 vec3 ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return ball_bound_clearances(q, u, rel.xyz, radius, hz, hc);
@@ -67,7 +68,7 @@ vec3 ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
 
 // The bound's gradient by central differences (as the CPU reference).
 vec3 ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
-  return solid_normal(kObjectBall, q, rel, heading, radius);
+  return ball_solid_normal(q, rel, heading, radius);
 }
 
 // With w = centre⁻¹·q, (4/π)(longitude atan2(w_y, w_x), latitude atan2(w_z, |w_xy|)).
@@ -115,6 +116,7 @@ float exact_ball_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz,
   }
   return d;
 }
+SOL_SOLID_NORMAL(exact_ball)
 
 // (Inside for certain: no clearance, the distance alone.)
 vec3 exact_ball_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
@@ -137,7 +139,7 @@ vec3 exact_ball_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
 
 // Where the march's last exact solve did not reach this ball: the bound's.
 vec3 exact_ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
-  return solid_normal(kObjectExactBall, q, rel, heading, radius);
+  return exact_ball_solid_normal(q, rel, heading, radius);
 }
 
 vec2 exact_ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {

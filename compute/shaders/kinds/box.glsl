@@ -42,6 +42,7 @@ vec4 box_inside_clearances(vec3 q, vec3 u, vec3 center, vec3 half_width, vec2 hz
 float box_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return box_bound_clearances(q, vec3(0.0), rel.xyz, vec3(heading, rel.w), hz).x;
 }
+SOL_SOLID_NORMAL(box)
 
 vec3 box_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return box_bound_clearances(q, u, rel.xyz, vec3(heading, rel.w), hz);
@@ -53,7 +54,7 @@ vec3 box_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
 
 // The bound's gradient by central differences (as the CPU reference).
 vec3 box_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
-  return solid_normal(kObjectBox, q, rel, heading, radius);
+  return box_solid_normal(q, rel, heading, radius);
 }
 
 // On the face nearest q (the slab whose term is largest, in the box's own

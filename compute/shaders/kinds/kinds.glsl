@@ -16,8 +16,9 @@
 // radius), q and rel in the same coordinates, hz and hc the half
 // exponentials of q.z and rel.z. march/objects.glsl dispatches to them and
 // provides what they share (half_exp, distance_lower_bound,
-// clearance_roots, solid_normal, solid_relative, seen_point). A new kind's file is
-// included here.
+// clearance_roots, SOL_SOLID_NORMAL (a solid's normal by central
+// differences of its prefix_distance), solid_relative, seen_point). A new
+// kind's file is included here.
 #ifndef SOL_KINDS_GLSL
 #define SOL_KINDS_GLSL
 

@@ -115,6 +115,7 @@ vec4 tube_record_inside_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
 float tube_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return tube_bound(q, rel.xyz, int(rel.w), heading, radius, hz);
 }
+SOL_SOLID_NORMAL(tube)
 
 vec3 tube_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return tube_bound_clearances(q, u, rel.xyz, int(rel.w), heading, radius, hz);
@@ -122,7 +123,7 @@ vec3 tube_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, vec2 
 
 // The bound's gradient by central differences (as the CPU reference).
 vec3 tube_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
-  return solid_normal(kObjectTube, q, rel, heading, radius);
+  return tube_solid_normal(q, rel, heading, radius);
 }
 
 // With w = through⁻¹·q, (4/π)(angle around the axis, coordinate along it / radius).

@@ -95,19 +95,22 @@ void inside_slab(inout vec4 least, vec2 sigma, float r, float bend) {
   inside_least(least, vec2(r + sigma.x, sigma.y), bend, 1e30);
 }
 
-// The dispatch by kind, defined below the kinds; declared here for them.
-float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius);
-
 // A solid's normal at q: the gradient of its bound by central differences
-// along E1, E2, E3 (kNormalStep; as the CPU reference).
-vec3 solid_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  float h = kNormalStep, ez = exp(q.z);
-  vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);
-  vec3 g = vec3(kind_bound(type, q + e1, rel, heading, radius) - kind_bound(type, q - e1, rel, heading, radius),
-                kind_bound(type, q + e2, rel, heading, radius) - kind_bound(type, q - e2, rel, heading, radius),
-                kind_bound(type, q + e3, rel, heading, radius) - kind_bound(type, q - e3, rel, heading, radius));
-  return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);
-}
+// along E1, E2, E3 (kNormalStep; as the CPU reference). A kind's file
+// defines its normal by SOL_SOLID_NORMAL(prefix) below its prefix_distance:
+// the six evaluations call that kind's bound alone, not the dispatch over
+// every kind, which the driver would inline six times per kind before
+// folding the kind away.
+#define SOL_NORMAL_BOUND(prefix, p) prefix##_distance(p, rel, heading, radius, half_exp((p).z), half_exp(rel.z))
+#define SOL_SOLID_NORMAL(prefix)                                                                        \
+  vec3 prefix##_solid_normal(vec3 q, vec4 rel, vec2 heading, float radius) {                            \
+    const float h = kNormalStep, ez = exp(q.z);                                                         \
+    const vec3 e1 = vec3(h * ez, 0.0, 0.0), e2 = vec3(0.0, h / ez, 0.0), e3 = vec3(0.0, 0.0, h);        \
+    const vec3 g = vec3(SOL_NORMAL_BOUND(prefix, q + e1) - SOL_NORMAL_BOUND(prefix, q - e1),            \
+                        SOL_NORMAL_BOUND(prefix, q + e2) - SOL_NORMAL_BOUND(prefix, q - e2),            \
+                        SOL_NORMAL_BOUND(prefix, q + e3) - SOL_NORMAL_BOUND(prefix, q - e3));           \
+    return length(g) > 0.0 ? normalize(g) : vec3(0.0, 0.0, 1.0);                                        \
+  }
 
 // w = rel⁻¹·q: the point q relative to a solid's centre (axis point) `rel`,
 // where its pattern's coordinates are taken.
@@ -151,10 +154,6 @@ float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz
 }
 #undef SOL_KIND_DISTANCE
 
-float kind_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius) {
-  return kind_bound(type, q, rel, heading, radius, half_exp(q.z), half_exp(rel.z));
-}
-
 // An object's record (world coordinates) as seen from the eye at p
 // (camera, camera_frac: seen_point's), as the host's Eye::relative and
 // Eye::heading hold a listed world's (there in double). (A composite's
@@ -172,6 +171,13 @@ void object_seen_from(int type, inout vec4 rel, inout vec2 heading, vec4 camera,
 bool object_is_solid(int type) { return (HAS_COMPOSITES && type == kObjectComposite) SOL_OBJECT_KINDS(SOL_KIND_SOLID); }
 #undef SOL_KIND_SOLID
 
+// The guards that rule out code (composites, solids seen from inside) are
+// macros, not functions: the host's folding of the specialisation
+// constants (sol::vk::specialize_spirv) propagates constants within a
+// function only, so a guard returned by a function would keep the code it
+// rules out (a world without composites would still compile them).
+#define is_composite(type) (HAS_COMPOSITES && (type) == kObjectComposite)
+
 // Solids seen from inside (HAS_INSIDE, a frame whose eye is inside a
 // solid: a ray that starts outside every solid meets a surface before it
 // is inside one). A solid's bound is 1-Lipschitz and the solid is where
@@ -179,7 +185,7 @@ bool object_is_solid(int type) { return (HAS_COMPOSITES && type == kObjectCompos
 // where it is d < 0, the wall is at least -d away: the march's distance
 // and clearances (the outside's clearance does not hold there) are -d.
 // Exact balls have their own inside (exact_ball_inside, the exact solve).
-bool inside_by_bound(int type) { return HAS_INSIDE && type != kObjectExactBall && object_is_solid(type); }
+#define inside_by_bound(type) (HAS_INSIDE && (type) != kObjectExactBall && object_is_solid(type))
 
 float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
 
@@ -251,8 +257,6 @@ vec2 kind_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, float
 #include "composites.glsl"
 
 // ---- Objects and images of every kind, composites too.
-
-bool is_composite(int type) { return HAS_COMPOSITES && type == kObjectComposite; }
 
 float object_bound(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) {
   return is_composite(type) ? composite_bound(q, rel, hz) : kind_bound(type, q, rel, heading, radius, hz, hc);

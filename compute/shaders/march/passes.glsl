@@ -16,6 +16,28 @@ void report_out_of_steps(ivec2 pixel, bool written) {
   if (WRITE_AOVS && !written) imageStore(aov_hit, pixel, imageLoad(aov_hit, pixel) + vec4(0.0, 0.0, 0.0, float(g_out_of_steps)));
 }
 
+// Paths from the eye (PATH_FROM_EYE, march/paths.glsl): the pixel's path,
+// its camera ray its first segment, and its colour and AOVs written.
+void path_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction, bool write_aovs) {
+  MarchHit h = march_hit_none(kMarchFromStart), first;
+  h.q = origin;
+  h.u = direction;
+  Surface f, first_f;
+  f.object = -1;
+  const vec4 color = path_radiance(h, f, eye, index, true, first, first_f);
+  imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+  if (write_aovs) {
+    vec4 hit_aov = vec4(0.0, 0.0, float(first.steps), float(g_out_of_steps)), point_aov = vec4(0.0);
+    if (first.k >= 0) {
+      hit_aov.xy = vec2(float(first_f.object + 1), first.t);
+      point_aov = vec4(first_f.world, 0.0);
+    }
+    imageStore(aov_hit, pixel, hit_aov);
+    imageStore(aov_point, pixel, point_aov);
+  }
+  report_out_of_steps(pixel, write_aovs);
+}
+
 // The march and resume passes: a pixel's camera ray, marched (the resume
 // pass goes on with a ray the march pass listed), and its colour and AOVs
 // written, or its hit listed for the shade pass.
@@ -68,6 +90,10 @@ void march_pass() {
   } else {
     load_objects(eye);
   }
+  if (PATH_FROM_EYE) {
+    path_pass(pixel, eye, uint(local.y * width + local.x), origin, direction, write_aovs);
+    return;
+  }
   const MarchHit h = march(origin, direction, params.limits.x,
                            MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
   if (h.deferred) {  // the rest of this ray in the resume pass
@@ -82,7 +108,9 @@ void march_pass() {
     if (DEFER_SHADING) {
       defer_shading(pixel, h.q, h.t, f.n, f.object, f.uv, h.u);
     } else if (PATH_TRACING) {
-      color = path_radiance(h, f, eye, uint(local.y * width + local.x));
+      MarchHit first;
+      Surface first_f;
+      color = path_radiance(h, f, eye, uint(local.y * width + local.x), false, first, first_f);
     } else {
       color = radiance(h, f, eye);  // (without mirrors and emission: shade_hit's colour, to the bit)
     }
@@ -124,7 +152,9 @@ void shade_pass() {
   vec4 color;
   if (PATH_TRACING) {
     const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
-    color = path_radiance(h, f, eye, uint(local.y * width + local.x));
+    MarchHit first;
+    Surface first_f;
+    color = path_radiance(h, f, eye, uint(local.y * width + local.x), false, first, first_f);
   } else {
     color = radiance(h, f, eye);  // (its reflected rays marched here)
   }

@@ -290,6 +290,14 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   return g.factor * scene_objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
 }
 
+// Paths from the eye: a pixel's camera ray is its path's first segment
+// (march/passes.glsl, path_pass). The host chooses it where
+// the march is dear to compile (exact balls: sol::vk's defer_passes): the
+// pipeline then holds one march, where the march pass and the shade pass
+// would hold one each (the shade pass, over the hits alone, keeps the
+// SIMD lanes of a path-traced world fuller where the march is cheap).
+const bool PATH_FROM_EYE = PATH_FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 0;
+
 // What one path from a camera ray's hit brings back (path_radiance in
 // libsol/src/render.cpp): at each hit, over the fog of its segment, the
 // object's emission; then with probability `mirror` the path goes on along
@@ -304,8 +312,13 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // One call of march, for the path's next segment and for the geodesics to
 // a glowing ball's point alike (those first, from the same hit), and one of
 // sol_connections (path_solves): the driver inlines each call, and each
-// holds a march or a solve (see radiance).
-vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
+// holds a march or a solve (see radiance). From the eye (PATH_FROM_EYE:
+// `from_eye`, h.q the ray's start and h.u its direction) the camera ray is
+// the path's first segment, marched by that same call, so the path's
+// pipeline holds one march; `first` is then what that segment met and
+// `first_f` its surface, where it met one (the AOVs' hit).
+vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_eye, out MarchHit first,
+                   out Surface first_f) {
   uvec2 state = path_random_start(uvec2(params.path.xy), pixel, uint(params.path.z));
   const int light_count = min(int(params.shading.z), kMaxLights);
   const int glow_count = GLOW_SAMPLING && params.path.w != kPathSamplingReflectionOnly ? glowing_count() : 0;
@@ -315,13 +328,15 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
   vec3 from = vec3(0.0), from_direction = vec3(0.0);
   float from_cosine = 0.0;
   const int bounces = int(params.limits.z);  // World::path_bounces: the scatterings a path takes
-  int depth = 0;
-  bool alive = true;  // the path goes on from h (h to shade, or its next segment to march)
-  bool fresh = true;  // h is a hit not yet shaded
-  GlowSample g;       // the hit's next-event estimation to a glowing ball: its geodesics from `way` on left to march
+  int depth = from_eye ? -1 : 0;  // (the camera ray's segment is no scattering)
+  bool alive = true;        // the path goes on from h (h to shade, or its next segment to march)
+  bool fresh = !from_eye;   // h is a hit not yet shaded
+  GlowSample g;             // the hit's next-event estimation to a glowing ball: its geodesics from `way` on left to march
   g.count = 0;
   int way = 0;
-  vec3 next = vec3(0.0);
+  vec3 next = h.u;          // (from the eye: the camera ray's direction)
+  first = h;
+  first_f = f;
   do {
     if (fresh) {
       fresh = false;
@@ -387,8 +402,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
     }
     const bool to_glow = GLOW_SAMPLING && way < g.count;
     if (to_glow || alive) {
+      // (The camera ray's segment marched as a camera ray: the purpose is
+      // no constant here, so this one march holds both purposes' branches.)
       const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, kMarchFromStart,
-                               kMarchShadow);
+                               PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
       if (to_glow) {
         color += glow_connection(g, way, m);
         ++way;
@@ -399,6 +416,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel) {
         if (alive) {
           f = surface_at(h);
           fresh = true;
+        }
+        if (from_eye && depth == 0) {
+          first = m;
+          first_f = f;
         }
       }
     }

@@ -68,7 +68,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(defer_shading, DEFER_SHADING,   19) /* hits shaded by the shade pass (exact lights) */                  \
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
   X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */ \
-  X(path,          PATH_TRACING,    47) /* light transport by paths (march/paths.glsl), else direct light */
+  X(path,          PATH_TRACING,    47) /* light transport by paths (march/paths.glsl), else direct light */ \
+  X(path_from_eye, PATH_FROM_EYE_WORLD, 48) /* paths whose camera ray is their first segment: one pipeline, one march */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
