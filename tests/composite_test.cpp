@@ -146,6 +146,48 @@ TEST(Composite, DistanceNeverExceedsTheDistanceToTheBoundary) {
   EXPECT_GT(checked, 100);
 }
 
+// The panel's controls (visit_fields): a composite lists its parts' fields,
+// prefixed by the part, nested composites by both; an edit through them
+// moves the surface (the distance at a point where the ball is the active
+// part changes by the radius's change, exactly: a ball's bound is the
+// bound of the distance to its centre less the radius) and leaves another composite that shared the parts as
+// it was.
+TEST(Composite, ThePanelEditsItsPartsByName) {
+  const sol::Ball ball{{0.0, 0.0, 0.0}, 0.5}, hole{{0.3, 0.0, 0.0}, 0.2};
+  const sol::Box box{{0.0, 0.0, 1.0}, {0.2, 0.2, 0.2}};
+  sol::Composite inner = composite(sol::CompositeOp::Difference, ball, hole);
+  sol::Composite outer = composite(sol::CompositeOp::Union, inner, box);
+  const sol::Composite shared = outer;
+  std::vector<std::string> names;
+  struct Lister {
+    std::vector<std::string>& names;
+    void operator()(const char* name, dvec3&) { names.emplace_back(name); }
+    void operator()(const char* name, double&, const sol::FieldRange&) { names.emplace_back(name); }
+    void operator()(const char* name, bool&) { names.emplace_back(name); }
+  };
+  outer.visit_fields(Lister{names});
+  const std::vector<std::string> expected = {"a: a: centre", "a: a: radius", "a: a: exact (the true geodesic sphere)",
+                                             "a: b: centre", "a: b: radius", "a: b: exact (the true geodesic sphere)",
+                                             "b: centre",    "b: half size"};
+  EXPECT_EQ(names, expected);
+  EXPECT_EQ(outer.parts, shared.parts) << "listing the fields copied the parts";
+
+  // Grow the outer ball by 0.1 through its control.
+  struct Grow {
+    void operator()(const char*, dvec3&) {}
+    void operator()(const char* name, double& v, const sol::FieldRange&) {
+      if (std::string(name) == "a: a: radius") v += 0.1;
+    }
+    void operator()(const char*, bool&) {}
+  };
+  outer.visit_fields(Grow{});
+  const dvec3 far_side{-0.45, 0.0, 0.0};  // inside the ball, where it is the composite's nearest part
+  const double before = sol::distance_lower_bound(far_side, ball.center) - 0.5;  // the ball's bound
+  EXPECT_NEAR(shared.distance(far_side), before, 1e-12);
+  EXPECT_NEAR(outer.distance(far_side), before - 0.1, 1e-12);
+  EXPECT_NE(outer.parts, shared.parts);
+}
+
 TEST(Composite, SceneKeysRoundTripAndAreChecked) {
   const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "difference", "color": [0.9, 0.5, 0.3],
       "a": {"type": "box", "center": [0, 0, 0], "half_size": [0.3, 0.3, 0.3]},

@@ -59,6 +59,40 @@ struct CompositeParts {
   bool operator==(const CompositeParts&) const = default;
 };
 
+/// Composite::visit_fields: each part's fields through a visitor, their
+/// names prefixed by the part's ("a: ", "b: "; a nested composite's by both,
+/// through the same visitor type, so that the templates do not nest), on a
+/// copy of the parts that replaces the shared ones where a field changed.
+template <class Visitor>
+struct PrefixedFields {
+  Visitor& visit;
+  std::string prefix;
+  template <class... Rest>
+  void operator()(const char* name, Rest&&... rest) {
+    const std::string full = prefix + name;
+    visit(full.c_str(), std::forward<Rest>(rest)...);
+  }
+};
+
+template <class Visitor>
+void visit_composite_parts(Composite& composite, Visitor& visit, const std::string& prefix) {
+  CompositeParts edited = *composite.parts;
+  PrefixedFields<Visitor> a{visit, prefix + "a: "}, b{visit, prefix + "b: "};
+  std::visit([&](auto& kind) { kind.visit_fields(a); }, edited.a);
+  std::visit([&](auto& kind) { kind.visit_fields(b); }, edited.b);
+  if (!(edited == *composite.parts)) composite.parts = std::make_shared<const CompositeParts>(std::move(edited));
+}
+
+template <class Visitor>
+void visit_composite_fields(Composite& composite, Visitor& visit) {
+  visit_composite_parts(composite, visit, "");
+}
+
+template <class Visitor>
+void visit_composite_fields(Composite& composite, PrefixedFields<Visitor>& visit) {
+  visit_composite_parts(composite, visit.visit, visit.prefix);
+}
+
 /// The composite as a chain ((P0 op1 P1) op2 P2) ... of parts that are not
 /// composites, each with the operation joining it to the chain before it
 /// (P0's unused): nested composites as parts a unfold into it (the

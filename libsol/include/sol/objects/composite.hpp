@@ -76,9 +76,14 @@ struct Composite {
   ImageAnchor image_anchor() const;
   Composite half_turned() const;
   bool same_set(const Composite& other) const;
-  /// (Its parts are edited in the scene file; no controls of their own.)
+  /// Its parts' fields, named "a: ..." and "b: ..." (nested composites'
+  /// "a: b: ..."); an edit replaces the shared parts by an edited copy, so
+  /// that another composite holding them is not changed
+  /// (visit_composite_fields, sol/objects.hpp).
   template <class Visitor>
-  void visit_fields(Visitor&&) {}
+  void visit_fields(Visitor&& visit) {
+    visit_composite_fields(*this, visit);
+  }
   bool operator==(const Composite& other) const;
 };
 
