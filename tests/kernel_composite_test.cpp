@@ -106,6 +106,20 @@ TEST(KernelComposite, UnionsIntersectionsAndDifferencesAreTheCpus) {
   chains.objects[3].shape = composite(sol::CompositeOp::Union, outside.objects[3].shape, sol::Ball{{0.35, 0.7, 0.2}, 0.12});
   ASSERT_EQ(sol::composite_chain(std::get<sol::Composite>(chains.objects[1].shape)).size(), 4u);
   expect_kernel_as_cpu(renderer, {"chains of composites", chains, {}});
+  // Unions as parts b: the block less (a notch ∪ the tube), the boxes'
+  // overlap intersected with (a slab ∩ a ball), joined to their chains
+  // part by part.
+  sol::Scene nested = outside;
+  nested.objects[1].shape = composite(sol::CompositeOp::Difference, notched,
+                                      composite(sol::CompositeOp::Union, sol::Box{{-0.35, -0.3, 0.25}, {0.1, 0.2, 0.1}},
+                                                sol::Tube{{-0.5, 0.0, 0.0}, {1.0, 0.0, 0.0}, 0.1}));
+  nested.objects[2].shape = composite(sol::CompositeOp::Intersection, outside.objects[2].shape,
+                                      composite(sol::CompositeOp::Intersection, sol::Box{{0.55, 0.0, 0.0}, {0.5, 0.5, 0.2}},
+                                                sol::Ball{{0.55, 0.0, 0.1}, 0.45}));
+  ASSERT_EQ(sol::composite_chain(std::get<sol::Composite>(nested.objects[1].shape)).size(), 4u);
+  ASSERT_EQ(sol::composite_chain(std::get<sol::Composite>(nested.objects[2].shape)).size(), 4u);
+  ASSERT_EQ(sol::vk::MarchRenderer::unsupported(nested), "");
+  expect_kernel_as_cpu(renderer, {"unions as parts b", nested, {}});
   // From inside the notched block, facing its notch: its walls and the notch seen from within.
   sol::Scene inside = outside;
   inside.camera = {{-0.45, 0.15, -0.1}, {-0.2, -1.0, 0.35}, {0.0, 0.0, 1.0}, 90.0};
@@ -156,8 +170,8 @@ TEST(KernelComposite, QuotientsAndCrowdsAreTheCpus) {
   expect_no_validation_errors();
 }
 
-// Composites the kernel does not draw (of exact balls, with a composite as
-// their part b, of more than kMaxCompositeParts parts)
+// Composites the kernel does not draw (of exact balls, with a composite
+// other than a union as their part b, of more than kMaxCompositeParts parts)
 // are refused by name, and render on the CPU under --device auto.
 TEST(KernelComposite, CompositesOfExactBallsOrCompositesAreTheCpus) {
   sol::Scene scene = composites_scene();
@@ -166,7 +180,11 @@ TEST(KernelComposite, CompositesOfExactBallsOrCompositesAreTheCpus) {
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2].b: composites of exact balls render on the CPU only");
   scene.objects[2].shape = composite(sol::CompositeOp::Union, sol::Ball{}, scene.objects[1].shape);
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene),
-            "objects[2].b: composites with a composite as their part b render on the CPU only (nest it as part a)");
+            "objects[2].b: a composite as a part b renders on the CPU only unless it is a union (an intersection under "
+            "an intersection): nest it as part a");
+  scene.objects[2].shape = composite(sol::CompositeOp::Difference, sol::Ball{},
+                                     composite(sol::CompositeOp::Union, sol::Ball{}, sol::Ball{{0.1, 0.0, 0.0}, 0.4, true}));
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "objects[2].b.b: composites of exact balls render on the CPU only");
   sol::Shape chain = sol::Box{};
   for (int k = 0; k < 8; ++k) chain = composite(sol::CompositeOp::Difference, chain, sol::Ball{{0.1 * k, 0.0, 0.0}, 0.1});
   scene.objects[2].shape = chain;

@@ -489,10 +489,15 @@ std::vector<SpecializationConstant> specialization(const MarchOptions& o, const 
 // chains ((P0 op1 P1) op2 P2) ... (sol::composite_chain) of up to
 // kMaxCompositeParts parts of the list's kinds drawn by their bounds.
 std::string composite_unsupported(const Composite& c, const std::string& at) {
-  if (std::holds_alternative<Composite>(c.parts->b)) {
-    return at + ".b: composites with a composite as their part b render on the CPU only (nest it as part a)";
+  if (const Composite* b = std::get_if<Composite>(&c.parts->b)) {
+    if (std::string why = composite_unsupported(*b, at + ".b"); !why.empty()) return why;
+    if (composite_chain(c).empty()) {
+      return at + ".b: a composite as a part b renders on the CPU only unless it is a union (an intersection under an " +
+             "intersection): nest it as part a";
+    }
+  } else if (is_exact_ball(c.parts->b)) {
+    return at + ".b: composites of exact balls render on the CPU only";
   }
-  if (is_exact_ball(c.parts->b)) return at + ".b: composites of exact balls render on the CPU only";
   if (const Composite* a = std::get_if<Composite>(&c.parts->a)) {
     if (std::string why = composite_unsupported(*a, at + ".a"); !why.empty()) return why;
   } else if (is_exact_ball(c.parts->a)) {

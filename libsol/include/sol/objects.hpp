@@ -96,7 +96,9 @@ void visit_composite_fields(Composite& composite, PrefixedFields<Visitor>& visit
 /// The composite as a chain ((P0 op1 P1) op2 P2) ... of parts that are not
 /// composites, each with the operation joining it to the chain before it
 /// (P0's unused): nested composites as parts a unfold into it (the
-/// kernel's form). Empty where a part b is a composite.
+/// kernel's form), and so does a part b that is a chain of unions under a
+/// union or a difference (of intersections under an intersection), with
+/// the same distance. Empty where a part b is any other composite.
 std::vector<std::pair<const Shape*, CompositeOp>> composite_chain(const Composite& composite);
 
 #define SOL_KIND_SOLID(Type, code_name, code, prefix, feature, solid) \

@@ -201,7 +201,6 @@ KernelShape Composite::kernel_shape() const {
 }
 
 std::vector<std::pair<const Shape*, CompositeOp>> composite_chain(const Composite& c) {
-  if (std::holds_alternative<Composite>(c.parts->b)) return {};
   std::vector<std::pair<const Shape*, CompositeOp>> out;
   if (const Composite* a = std::get_if<Composite>(&c.parts->a)) {
     out = composite_chain(*a);
@@ -209,7 +208,22 @@ std::vector<std::pair<const Shape*, CompositeOp>> composite_chain(const Composit
   } else {
     out.emplace_back(&c.parts->a, CompositeOp::Union);
   }
-  out.emplace_back(&c.parts->b, c.op);
+  const Composite* b = std::get_if<Composite>(&c.parts->b);
+  if (!b) {
+    out.emplace_back(&c.parts->b, c.op);
+    return out;
+  }
+  // A part b that is a chain of unions (of intersections, under an
+  // intersection) joins the chain part by part, with exactly the same
+  // distance: min(a, min(b, c)) = min(min(a, b), c), the same for max, and
+  // max(a, −min(b, c)) = max(max(a, −b), −c) for a difference.
+  const CompositeOp inner = c.op == CompositeOp::Intersection ? CompositeOp::Intersection : CompositeOp::Union;
+  const std::vector<std::pair<const Shape*, CompositeOp>> tail = composite_chain(*b);
+  if (tail.empty()) return {};
+  for (std::size_t i = 1; i < tail.size(); ++i) {
+    if (tail[i].second != inner) return {};
+  }
+  for (const auto& [part, op] : tail) out.emplace_back(part, c.op);
   return out;
 }
 
