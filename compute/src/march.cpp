@@ -1037,25 +1037,6 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
                   world.monodromy.trace(), kMaxMonodromyTrace);
     return message;
   }
-  if (world.quotient != Quotient::None) {
-    // More images near the domain than the kernel's records hold: a crowded
-    // world, or a monodromy's small fibre.
-    std::size_t images = 0;
-    try {
-      images = quotient_images(world).size();
-    } catch (const std::exception&) {
-      return {};  // an invalid world: set_world says why
-    }
-    // (More than the CPU's field takes: neither renders it, and set_world says why.)
-    if (images > static_cast<std::size_t>(kMaxGpuImages) && images <= QuotientField::kMaxImages) {
-      std::snprintf(message, sizeof message,
-                    "objects: %zu images of the objects lie near the quotient's domain, more than the kernel's %d: "
-                    "they render on the CPU only%s",
-                    images, kMaxGpuImages,
-                    world.quotient == Quotient::Monodromy ? "; a larger quotient.fibre_area gives fewer" : "");
-      return message;
-    }
-  }
   return {};
 }
 

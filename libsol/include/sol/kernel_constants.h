@@ -62,6 +62,11 @@ SOL_CONSTANT(SOL_REAL, kFieldNear, 0.25);
 SOL_CONSTANT(int, kFieldCandidates, 4);
 SOL_CONSTANT(int, kFieldEmpty, 255);
 SOL_CONSTANT(uint, kFieldAllImages, 0xFFFFFFFEu);
+/// The most images of the objects around the domain a quotient world
+/// holds, on the CPU and the kernel alike: a cell's candidates are bytes,
+/// two of whose values (kFieldEmpty, and the bytes of kFieldAllImages) are
+/// no image.
+SOL_CONSTANT(int, kMaxQuotientImages, 254);
 /// The over-relaxation of the quotient march (docs/renderer.md "The
 /// quotient"): a step the cell's reach limits is proposed this many times
 /// longer (at most kQuotientMaxStep) and kept only where the clearance

@@ -52,7 +52,7 @@ class QuotientField {
   /// The most images a field takes (a cell's candidates are bytes, two of
   /// whose values mark an empty slot and every image): the CPU renderer's
   /// limit on a quotient world.
-  static constexpr std::size_t kMaxImages = 254;
+  static constexpr std::size_t kMaxImages = kernel::kMaxQuotientImages;
 
   /// The cells of the field for `images` (sol::quotient_images of a
   /// quotient world for the longest step `max_step`, at most kMaxImages of them;

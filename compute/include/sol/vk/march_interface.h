@@ -136,8 +136,10 @@ SOL_CONSTANT(SOL_REAL, kZetaLeastMu, 0.01);
 // kBindingCrowdNodes and kBindingCrowdItems.)
 /// Most images of the objects around the domain in a quotient scene
 /// (sol::quotient_images; lattice-balls has 50, lattice-pillars 27; a
-/// world with more than kQuotientLongStepImages takes the short step).
-SOL_CONSTANT(int, kMaxGpuImages, 64);
+/// world with more than kQuotientLongStepImages takes the short step):
+/// the CPU's limit (sol::QuotientField::kMaxImages), the records a storage
+/// buffer.
+SOL_CONSTANT(int, kMaxGpuImages, kMaxQuotientImages);
 /// Most images of the lights in a quotient scene (sol::quotient_light_images,
 /// all lights together; about 300 for a light with reach 0, 2000 with reach 1).
 SOL_CONSTANT(int, kMaxGpuLightImages, 4096);
