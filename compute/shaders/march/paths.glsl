@@ -402,8 +402,9 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
     }
     const bool to_glow = GLOW_SAMPLING && way < g.count;
     if (to_glow || alive) {
-      // (The camera ray's segment marched as a camera ray: the purpose is
-      // no constant here, so this one march holds both purposes' branches.)
+      // (From the eye the camera ray's segment is marched as a camera ray:
+      // the purpose is then no constant, and this one march holds both
+      // purposes' branches; otherwise it folds to kMarchShadow.)
       const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, kMarchFromStart,
                                PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
       if (to_glow) {
