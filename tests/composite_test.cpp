@@ -97,6 +97,42 @@ TEST(Composite, CpuHitsLieOnTheExactBoundaryInTheQuotient) {
   EXPECT_LT(h.farthest, 1e-4);
 }
 
+// In a quotient a union is listed as its parts' images, each part moved
+// into D by its own anchor (sol::quotient_images): the same images, and the
+// same picture to the bit, as the parts given as two objects of the union's
+// appearance, although part b lies far from part a (a listing that followed
+// part a's images alone would miss b's).
+TEST(Composite, AUnionInAQuotientIsItsParts) {
+  sol::Scene parts = sol::preset_scene("lattice-boxes");
+  const sol::Box box{{0.3, 0.2, 0.3}, {0.2, 0.12, 0.12}};
+  const sol::Ball ball{{-0.4, 0.9, 0.75}, 0.3};
+  parts.objects = {{box, {0.9, 0.5, 0.3}}, {ball, {0.9, 0.5, 0.3}}};
+  sol::Scene united = parts;
+  united.objects = {{composite(sol::CompositeOp::Union, box, ball), {0.9, 0.5, 0.3}}};
+  sol::validate(united);
+  const std::vector<sol::MarchObject> a = sol::quotient_images(parts), b = sol::quotient_images(united);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].shape, b[i].shape) << i;
+    EXPECT_EQ(b[i].owner, 0u) << i;
+  }
+  const sol::RenderResult x = render_small(parts), y = render_small(united);
+  EXPECT_EQ(x.rgba, y.rgba);
+  // Both parts are in view (the two objects' hits), and each is the union's.
+  ASSERT_EQ(x.object.size(), y.object.size());
+  int on_box = 0, on_ball = 0, differ = 0;
+  for (std::size_t k = 0; k < x.object.size(); ++k) {
+    on_box += x.object[k] == 1;
+    on_ball += x.object[k] == 2;
+    differ += (x.object[k] == 0) != (y.object[k] == 0) || (x.object[k] != 0 && y.object[k] != 1);
+  }
+  EXPECT_GT(on_box, 50);
+  EXPECT_GT(on_ball, 50);
+  EXPECT_EQ(differ, 0);
+  // Scene files keep it a union and read it back alike.
+  EXPECT_EQ(sol::parse_scene(sol::to_json(united)).objects[0].shape, united.objects[0].shape);
+}
+
 // The composite's distance is a lower bound of the Sol distance to it from
 // outside and of the depth from inside: checked against the distances to
 // points of its boundary found along geodesics from the point (the
@@ -225,9 +261,10 @@ TEST(Composite, SceneKeysRoundTripAndAreChecked) {
       {R"({"objects": [{"type": "intersection", "a": {"type": "ball", "center": [0, 0, 0], "radius": 0.2},
           "b": {"type": "ball", "center": [0, 0, 0], "radius": 0.1}, "radius": 2}]})",
        "unknown key 'radius'"},
-      {R"({"quotient": "golden", "objects": [{"type": "union", "a": {"type": "ball", "center": [0, 0, 0], "radius": 0.2},
-          "b": {"type": "ball", "center": [0.1, 0, 0], "radius": 0.2}}]})",
-       "objects[0].type: a union in a quotient"},
+      {R"({"quotient": "golden", "objects": [{"type": "difference", "b": {"type": "ball", "center": [0, 0, 0], "radius": 0.2},
+          "a": {"type": "union", "a": {"type": "ball", "center": [0.1, 0, 0], "radius": 0.2},
+                                 "b": {"type": "ball", "center": [0.3, 0, 0], "radius": 0.2}}}]})",
+       "objects[0].a.type: a union as part a of a difference in a quotient"},
       {R"({"quotient": "golden", "objects": [{"type": "difference", "a": {"type": "ball", "center": [0, 0, 0], "radius": 0.5},
           "b": {"type": "ball", "center": [0.1, 0, 0], "radius": 0.2}}]})",
        "objects[0].a.radius must be <= 0.45 in the quotient"},

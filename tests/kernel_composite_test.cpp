@@ -128,7 +128,8 @@ TEST(KernelComposite, UnionsIntersectionsAndDifferencesAreTheCpus) {
 }
 
 // In the golden quotient every image of a notched box (each moved whole by
-// its element of Γ, sol::quotient_images) and as a crowd, twelve notched
+// its element of Γ, sol::quotient_images) and of a union (part by part), and
+// as a crowd, twelve notched
 // boxes in an array (the tree of bounds, march/crowd.glsl).
 TEST(KernelComposite, QuotientsAndCrowdsAreTheCpus) {
   sol::vk::MarchRenderer renderer(vk_context());
@@ -142,6 +143,11 @@ TEST(KernelComposite, QuotientsAndCrowdsAreTheCpus) {
     images.emplace_back(static_cast<int>(m.owner), std::get<sol::Composite>(m.shape));
   }
   expect_kernel_as_cpu(renderer, {"notched boxes in the quotient", lattice, images});
+  // A union there is its parts' images, each part moved by its own anchor.
+  lattice.objects = {{composite(sol::CompositeOp::Union, sol::Box{{0.3, 0.2, 0.3}, {0.2, 0.12, 0.12}},
+                                sol::Ball{{-0.4, 0.9, 0.75}, 0.3}),
+                      {0.9, 0.5, 0.3}}};
+  expect_kernel_as_cpu(renderer, {"a box and a ball united in the quotient", lattice, {}});
 
   sol::Scene crowd = sol::parse_scene(R"({"camera": {"position": [0.5, -1.6, 1.2], "forward": [0, 0.6, -0.8], "up": [0, 0.8, 0.6]},
     "objects": [{"type": "plane_z", "c": -0.5, "pattern": "checker"}, {"type": "array", "count": [3, 2, 2], "step": [0.6, 0.7, 0.5],

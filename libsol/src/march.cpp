@@ -272,8 +272,25 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
   const Lattice& lattice = *world_lattice;
   const double reach = max_step + kMaxQuotientRadius;
   std::vector<MarchObject> images;
+  // A union (a chain of them) is listed part by part, each moved into D by
+  // its own anchor and imaged as an object of its own of the same owner: Γ's
+  // images of the union are those of its parts.
+  const auto leaves = [](const Shape& shape) {
+    std::vector<const Shape*> out, todo{&shape};
+    while (!todo.empty()) {
+      const Shape* s = todo.back();
+      todo.pop_back();
+      if (const Composite* c = std::get_if<Composite>(s); c && c->op == CompositeOp::Union) {
+        todo.push_back(&c->parts->b);
+        todo.push_back(&c->parts->a);
+      } else {
+        out.push_back(s);
+      }
+    }
+    return out;
+  };
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    std::visit(
+    for (const Shape* leaf : leaves(world.objects[i].shape)) std::visit(
         [&](const auto& kind) {
           using Kind = std::decay_t<decltype(kind)>;
           if constexpr (ClosesInQuotient<Kind>) {
@@ -290,7 +307,7 @@ std::vector<MarchObject> quotient_images(const World& world, double max_step) {
             }
           }
         },
-        world.objects[i].shape);
+        *leaf);
   }
   return images;
 }

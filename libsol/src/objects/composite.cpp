@@ -277,9 +277,16 @@ bool Composite::operator==(const Composite& other) const { return op == other.op
 namespace detail {
 
 void check_kind(const Composite& c, const std::string& at, const Lattice* quotient) {
-  if (quotient && c.op == CompositeOp::Union) {
-    field_error(at + ".type", at + ".type: a union in a quotient is drawn as its parts: give them as two objects "
-                              "(intersections and differences follow their first part's images)");
+  // In a quotient an intersection or a difference follows the images of its
+  // part a, which holds it; a union is listed part by part
+  // (sol::quotient_images), so it may stand anywhere but as such a part a.
+  if (const Composite* a = std::get_if<Composite>(&c.parts->a);
+      quotient && c.op != CompositeOp::Union && a && a->op == CompositeOp::Union) {
+    const std::string article = c.op == CompositeOp::Intersection ? "an " : "a ";
+    field_error(at + ".a.type", at + ".a.type: a union as part a of " + article + std::string(c.name()) +
+                                    " in a quotient: the " + std::string(c.name()) +
+                                    " follows the images of its part a, which a union's parts do not share "
+                                    "(write it as a union of " + std::string(c.name()) + "s)");
   }
   const auto check_part = [&](const Shape& part, const std::string& path) {
     if (!is_solid(part)) {
