@@ -134,7 +134,7 @@ TEST(Kernel, ConnectionsMatchTheMinimisers) {
     // cut 2.3e-6 and 1.1e-4 rad: where the two minimisers merge (the end of
     // the cut locus) the direction is ill-conditioned (error ~ √(float
     // rounding)); near and plane ~3e-6. Bounds: about 3x the measurements.
-    // (With forward-difference Jacobians, before 2026-11: box 6.1e-4 and
+    // (With forward-difference Jacobians: box 6.1e-4 and
     // 2.5e-4, cut 7.3e-6 and 4.5e-4.)
     const double length_bound = kind == "box" ? 3e-4 : 1e-5;
     const double direction_bound = kind == "box" ? 2e-4 : (kind == "cut" ? 3.5e-4 : 1e-5);

@@ -106,10 +106,10 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 // separately, and one call site keeps lavapipe's compile time in seconds;
 // and lavapipe runs code its lanes all skip, masked, so a separate first
 // evaluation before the loop would cost every SIMD group that shades no hit
-// a whole evaluation. (Until 2026-11 the Jacobian came by forward
-// differences, three evaluations, or by Broyden's updates for the march's
-// exact balls: 14.8 evaluations per lit hit of `spheres`, now 4.4, each
-// with its Jacobian; 16.5 per hit for its exact balls, now 8.2.)
+// a whole evaluation. (The Jacobian by forward differences, three
+// evaluations, or by Broyden's updates for the march's exact balls took
+// 14.8 evaluations per lit hit of `spheres`, against 4.4 with it, each
+// with its Jacobian; 16.5 per hit for its exact balls, against 8.2.)
 vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J, out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w

@@ -43,18 +43,6 @@ static_assert(kernel::kGroupSize == 8, "march/camera.glsl's group_pixel lays out
 
 glm::vec4 vec4(const glm::dvec3& v, double w) { return glm::vec4(glm::dvec4(v, w)); }
 
-int pattern_code(Pattern pattern) {
-  switch (pattern) {
-    case Pattern::None:
-      return kernel::kPatternNone;
-    case Pattern::Circles:
-      return kernel::kPatternCircles;
-    case Pattern::Checker:
-      return kernel::kPatternChecker;
-  }
-  return kernel::kPatternNone;
-}
-
 // The world's part of the uniforms (objects, lights, shading, limits),
 // filled once per world; each frame adds its eyes and image size.
 // Where each composite's chain begins in the parts' buffer (binding

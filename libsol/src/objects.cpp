@@ -1,5 +1,6 @@
 #include "sol/objects.hpp"
 #include "sol/materials.h"
+#include "sol/patterns.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,31 +18,8 @@ namespace sol {
 
 namespace detail {
 
-DomainExtent domain_extent(const Lattice& lattice, double z) {
-  // Heights beyond the longest step and the largest radius, with room: a
-  // bound there exceeds every step a march takes.
-  constexpr double kBeyond = 4.0;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  if (lattice.loops() == Lattice::Loops::Z) return {-inf, inf, -inf, inf, false, 0.0, lattice.height(), 16, inf};
-  const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
-  DomainExtent e{0.0, 0.0, 0.0, 0.0, true, 0.0, lattice.height(), 16, inf};
-  for (const glm::dvec2& k : {glm::dvec2(g1), glm::dvec2(g2), glm::dvec2(g1 + g2)}) {
-    e.xlo = std::min(e.xlo, k.x);
-    e.xhi = std::max(e.xhi, k.x);
-    e.ylo = std::min(e.ylo, k.y);
-    e.yhi = std::max(e.yhi, k.y);
-  }
-  if (lattice.loops() == Lattice::Loops::XY) {
-    e.zlo = z - kBeyond;
-    e.zhi = z + kBeyond;
-    e.slabs = 32;
-    e.beyond = kBeyond;
-  }
-  return e;
-}
-
 double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& heading, const Lattice& lattice) {
-  const DomainExtent e = domain_extent(lattice, c.z);
+  const DomainExtent e = lattice.domain_extent(c.z);
   if (solid == Solid::VerticalTube && std::isfinite(e.beyond)) return 0.0;  // no |Δz| term: near at some height
   const glm::dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
   const glm::dvec2 corners[4] = {{0.0, 0.0}, {g1.x, g1.y}, {g2.x, g2.y}, {g1.x + g2.x, g1.y + g2.y}};
@@ -197,18 +175,20 @@ std::string_view to_string(Pattern p) {
   return "?";
 }
 
-double pattern_factor(Pattern pattern, double u, double v) {
+int pattern_code(Pattern pattern) {
   switch (pattern) {
     case Pattern::None:
-      return 1.0;
-    case Pattern::Circles: {
-      const double du = u - std::floor(u) - 0.5, dv = v - std::floor(v) - 0.5;
-      return du * du + dv * dv < kernel::kCircleRadius * kernel::kCircleRadius ? 1.0 : kernel::kCircleDark;
-    }
+      return kernel::kPatternNone;
+    case Pattern::Circles:
+      return kernel::kPatternCircles;
     case Pattern::Checker:
-      return std::fmod(std::floor(u) + std::floor(v), 2.0) == 0.0 ? 1.0 : kernel::kCheckerDark;
+      return kernel::kPatternChecker;
   }
-  return 1.0;
+  return kernel::kPatternNone;
+}
+
+double pattern_factor(Pattern pattern, double u, double v) {
+  return kernel::sol_pattern_factor(pattern_code(pattern), u, v);
 }
 
 // ---- Checks and scene-file keys, kind by kind -----------------------------

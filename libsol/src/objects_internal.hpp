@@ -61,20 +61,6 @@ inline double gap(double v, double lo, double hi) { return v < lo ? lo - v : (v 
 enum class Solid { Ball, VerticalTube, HorizontalTube };
 double least_solid_bound(Solid solid, const glm::dvec3& c, const glm::dvec2& heading, const Lattice& lattice);
 
-// D's extent for these bounds: (x, y) in [xlo, xhi] × [ylo, yhi] (the box of
-// P; infinite for a z loop, with xy_bounded false), heights [zlo, zhi] cut
-// into `slabs`, and `beyond`: every point of D outside those heights is
-// more than it from the height `z` (infinite where D's heights are all
-// covered: a compact quotient, a z loop).
-struct DomainExtent {
-  double xlo, xhi, ylo, yhi;
-  bool xy_bounded;
-  double zlo, zhi;
-  int slabs;
-  double beyond;
-};
-DomainExtent domain_extent(const Lattice& lattice, double z);
-
 // ---- Checks and scene-file keys
 
 /// A radius finite and > 0, and in the quotient at most kMaxQuotientRadius

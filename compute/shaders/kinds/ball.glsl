@@ -73,8 +73,7 @@ vec3 ball_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 
 // With w = centre⁻¹·q, (4/π)(longitude atan2(w_y, w_x), latitude atan2(w_z, |w_xy|)).
 vec2 ball_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
-  const vec3 w = solid_relative(q, rel);
-  return kPatternCellsPerRadian * vec2(atan(w.y, w.x), atan(w.z, length(w.xy)));
+  return sol_ball_pattern_uv(solid_relative(q, rel));  // sol/patterns.h
 }
 
 // Seen from the eye at p (sol::Ball::seen_from): its centre p⁻¹·c.

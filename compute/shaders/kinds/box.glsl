@@ -61,15 +61,8 @@ vec3 box_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 // frame w = centre⁻¹·q, where its half widths are a, b, c), the two
 // coordinates of w along it, in cells of half the smallest half size.
 vec2 box_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
-  const vec3 w = solid_relative(q, rel);
   const vec3 half_size = vec3(heading.x * exp(-rel.z), heading.y * exp(rel.z), rel.w);
-  const float tx = asinh((abs(w.x) - half_size.x) * exp(-w.z));
-  const float ty = asinh((abs(w.y) - half_size.y) * exp(w.z));
-  const float tz = abs(w.z) - half_size.z;
-  const float cells = 2.0 / min(min(half_size.x, half_size.y), half_size.z);
-  if (tx >= ty && tx >= tz) return cells * w.yz;
-  if (ty >= tz) return cells * w.xz;
-  return cells * w.xy;
+  return sol_box_pattern_uv(solid_relative(q, rel), half_size);  // sol/patterns.h
 }
 
 // Seen from the eye at p (sol::Box::seen_from): its centre p⁻¹·c; its

@@ -128,12 +128,10 @@ vec3 tube_normal(vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
 
 // With w = through⁻¹·q, (4/π)(angle around the axis, coordinate along it / radius).
 vec2 tube_pattern_uv(vec3 q, vec3 phase, vec4 rel, vec2 heading, float radius) {
-  const float cells = kPatternCellsPerRadian;
   const float ez = exp(rel.z);
-  const vec3 w = solid_relative(q, rel);
-  if (int(rel.w) == kTubeVertical) return cells * vec2(atan(w.y, w.x), w.z / radius);
-  const vec2 h = normalize(vec2(heading.x / ez, heading.y * ez));
-  return cells * vec2(atan(w.z, w.y * h.x - w.x * h.y), dot(w.xy, h) / radius);
+  const bool vertical = int(rel.w) == kTubeVertical;
+  const vec2 h = vertical ? vec2(0.0) : normalize(vec2(heading.x / ez, heading.y * ez));
+  return sol_tube_pattern_uv(solid_relative(q, rel), vertical, h, radius);  // sol/patterns.h
 }
 
 // Seen from the eye at p (sol::Tube::seen_from): its axis point p⁻¹·a, a

@@ -6,9 +6,12 @@
 // (sol/object_kinds.h): a kind listed there without its functions does not
 // compile. Also the patterns, the gaps of cutout planes, and the objects of
 // a world relative to an eye. The GLSL twin of libsol's objects; the
-// kernel's codes and constants come from sol/kernel_constants.h.
+// kernel's codes and constants come from sol/kernel_constants.h, the
+// patterns' formulas from sol/patterns.h (shared with libsol).
 #ifndef SOL_MARCH_OBJECTS_GLSL
 #define SOL_MARCH_OBJECTS_GLSL
+
+#include "sol/patterns.h"  // the patterns and the kinds' pattern coordinates, shared with libsol
 
 // A height's half exponentials (e^{z/2}, e^{-z/2}): the bounds below take
 // e^{±z} as their squares and e^{±Δz/2} as their products, so that they
@@ -320,14 +323,7 @@ vec2 object_pattern_uv(int type, vec3 q, vec3 phase, vec4 rel, vec2 heading, flo
 
 // ---- Patterns
 
-float pattern_factor(int pattern, float u, float v) {
-  if (pattern == kPatternCircles) {
-    float du = fract(u) - 0.5, dv = fract(v) - 0.5;
-    return du * du + dv * dv < kCircleRadius * kCircleRadius ? 1.0 : kCircleDark;
-  }
-  if (pattern == kPatternChecker) return mod(floor(u) + floor(v), 2.0) == 0.0 ? 1.0 : kCheckerDark;
-  return 1.0;
-}
+float pattern_factor(int pattern, float u, float v) { return sol_pattern_factor(pattern, u, v); }
 
 // The world point of a camera-relative point q, modulo 2 (the common period
 // of the circles, 1, and the checkerboard's parity, 2): world = camera * q,
@@ -339,17 +335,7 @@ vec3 pattern_phase(vec3 q, vec4 eye_camera, vec4 eye_frac) {
 // sol::cutout_gap_bound: a lower bound of the distance to the solid part of
 // a cutout plane z = c (discs, light squares) from a point with world
 // coordinates (u, v) (modulo 2) and e^{z} = ez; combined with |z - c| by max.
-float cutout_gap_bound(int pattern, vec2 uv, float ez) {
-  const vec2 f = fract(uv);
-  if (pattern == kPatternChecker) {
-    if (mod(floor(uv.x) + floor(uv.y), 2.0) == 0.0) return 0.0;  // on a light square
-    return asinh(min(min(f.x, 1.0 - f.x) / ez, min(f.y, 1.0 - f.y) * ez));
-  }
-  const vec2 d = abs(f - 0.5);
-  const float boxes = max(max(0.0, d.x - kCircleRadius) / ez, max(0.0, d.y - kCircleRadius) * ez);
-  const float gap = max(0.0, length(d) - kCircleRadius);
-  return asinh(max(boxes, min(ez, 1.0 / ez) * gap * 0.70710678));
-}
+float cutout_gap_bound(int pattern, vec2 uv, float ez) { return sol_cutout_gap_bound(pattern, uv.x, uv.y, ez); }
 
 // ---- The objects of a world in Sol, relative to one eye (its uniforms
 // copied once: lavapipe does not hoist uniform loads out of loops).

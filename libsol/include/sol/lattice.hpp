@@ -16,6 +16,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -62,6 +63,36 @@ struct Monodromy {
   long long trace() const { return a + d; }
   /// "[[a, b], [c, d]]".
   std::string str() const;
+};
+
+/// Where a kind's images in the quotient are searched (sol::quotient_images,
+/// Lattice::words_near_domain): the set every point of the object lies
+/// within kMaxQuotientRadius of.
+struct ImageAnchor {
+  enum class Along {
+    Point,           ///< a point (balls' and boxes' centres)
+    VerticalLine,    ///< the vertical line through `point`
+    HorizontalLine,  ///< the horizontal line through `point` along `heading`
+    Height,          ///< the plane z = point.z (planes z = c)
+  };
+  Along along = Along::Point;
+  glm::dvec3 point{0.0};
+  glm::dvec2 heading{0.0};
+};
+
+/// The fundamental domain D as the kinds' bounds over it see it
+/// (least_distance_over_domain, Lattice::domain_extent): (x, y) in [xlo,
+/// xhi] × [ylo, yhi] (the box of P; infinite for a z loop, with xy_bounded
+/// false), heights [zlo, zhi] cut into `slabs`, and `beyond`: every point
+/// of D outside those heights is more than it from the height asked for
+/// (infinite where D's heights are all covered: a compact quotient, a z
+/// loop).
+struct DomainExtent {
+  double xlo, xhi, ylo, yhi;
+  bool xy_bounded;
+  double zlo, zhi;
+  int slabs;
+  double beyond;
 };
 
 class Lattice {
@@ -164,7 +195,21 @@ class Lattice {
   /// |x|,|y| ≲ 1e3 that is below 1e-9. Throws InvalidArgument on non-finite p.
   Teleport teleport(const glm::dvec3& p) const;
 
+  /// The words g whose image g·anchor may come within `reach` of D (the
+  /// proof in lattice.cpp): the search of sol::quotient_images, which asks
+  /// for the longest step plus kMaxQuotientRadius. Throws InvalidArgument
+  /// where they would be more than a million.
+  std::vector<LatticeWord> words_near_domain(const ImageAnchor& anchor, double reach) const;
+  /// D as the kinds' bounds over it see it, around the height z (the
+  /// heights that matter for xy loops, whose D is unbounded in z).
+  DomainExtent domain_extent(double z) const;
+  /// The primitive (k1, k2) with k1 γ1 + k2 γ2 parallel to the horizontal
+  /// direction `heading`: the translation that keeps a line along it.
+  /// InvalidArgument where none with entries below 2^20 is (to 1e-9).
+  std::array<long long, 2> period(const glm::dvec2& heading) const;
+
  private:
+  std::vector<LatticeWord> loop_words_near_domain(const ImageAnchor& anchor, double reach) const;
   Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, const Monodromy& monodromy, bool turns = false,
           Loops loops = Loops::All);
   Teleport teleport_translations(double n, double x, double y, double z, bool turned) const;

@@ -126,8 +126,11 @@ enum class Pattern {
 };
 std::string_view to_string(Pattern pattern);
 
+/// The pattern's code in the kernels' records and sol/patterns.h (kernel::kPattern*).
+int pattern_code(Pattern pattern);
 /// The brightness factor of a pattern at pattern coordinates (u, v): 1 on
-/// the discs and light squares, kernel::kCircleDark and kernel::kCheckerDark elsewhere.
+/// the discs and light squares, kernel::kCircleDark and kernel::kCheckerDark
+/// elsewhere (kernel::sol_pattern_factor, sol/patterns.h).
 double pattern_factor(Pattern pattern, double u, double v);
 
 struct SceneObject {

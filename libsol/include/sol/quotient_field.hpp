@@ -21,11 +21,12 @@
 // of at most R from any point of the cell reaches none of them, and the
 // march may step min(the candidates' least clearance, R) (sol/clearance.hpp).
 // The nearest image as a candidate far from surfaces lets a ray that passes
-// it step by its clearance up to the next image's bound. (Until 2026-11 the
-// field also sampled min(S, min_i b_i) at the grid's nodes, a point-wise
-// lower bound F the march stepped by where it was longer: at 8 % of the
-// steps, and so little longer that without it a ray takes 0.5 % more
-// steps, while it cost three more reads a step; docs/renderer.md "The quotient".)
+// it step by its clearance up to the next image's bound. (A sampled lower
+// bound of every image's at the grid's nodes was tried and dropped:
+// docs/history.md, "The quotient field's sampled bound, dropped".) The
+// cells scan every image: every listed image lies within the longest step
+// of D, and a cell needs each image's bound up to that step, so a tree of
+// bounds over them leaves out too few to pay (docs/history.md).
 //
 // A non-compact quotient (Lattice::Loops: a z loop, xy loops) has an
 // unbounded D and few images near it: every cell lists every image, with

@@ -1,4 +1,5 @@
 #include "sol/objects/ball.hpp"
+#include "sol/patterns.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,9 +47,7 @@ glm::dvec3 Ball::normal(const glm::dvec3& q) const {
 }
 
 glm::dvec2 Ball::pattern_uv(const glm::dvec3& q) const {
-  constexpr double kCells = kernel::kPatternCellsPerRadian;  // 8 cells per turn
-  const glm::dvec3 w = multiply(inverse(center), q);
-  return {kCells * std::atan2(w.y, w.x), kCells * std::atan2(w.z, std::hypot(w.x, w.y))};
+  return kernel::sol_ball_pattern_uv(multiply(inverse(center), q));  // sol/patterns.h
 }
 
 Ball Ball::seen_from(const glm::dvec3& p) const { return {multiply(inverse(p), center), radius, exact}; }

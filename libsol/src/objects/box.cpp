@@ -1,4 +1,5 @@
 #include "sol/objects/box.hpp"
+#include "sol/patterns.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,14 +68,7 @@ glm::dvec3 Box::normal(const glm::dvec3& q) const { return gradient_normal(*this
 // The face nearest q is the slab whose term is largest (left-invariant: in
 // the coordinates w of the box's own frame the half widths are a, b, c).
 glm::dvec2 Box::pattern_uv(const glm::dvec3& q) const {
-  const glm::dvec3 w = multiply(inverse(center), q);
-  const double tx = std::asinh((std::abs(w.x) - half_size.x) * std::exp(-w.z));
-  const double ty = std::asinh((std::abs(w.y) - half_size.y) * std::exp(w.z));
-  const double tz = std::abs(w.z) - half_size.z;
-  const double cells = 2.0 / std::min({half_size.x, half_size.y, half_size.z});
-  if (tx >= ty && tx >= tz) return cells * glm::dvec2(w.y, w.z);
-  if (ty >= tz) return cells * glm::dvec2(w.x, w.z);
-  return cells * glm::dvec2(w.x, w.y);
+  return kernel::sol_box_pattern_uv(multiply(inverse(center), q), half_size);  // sol/patterns.h
 }
 
 // p⁻¹·(center·B) = (p⁻¹·center)·B.
@@ -107,7 +101,7 @@ Box Box::into_domain(const Lattice& lattice) const { return {lattice.teleport(ce
 // the y-slab's asinh(g_y e^{z0}), the z-slab's the gap between [z0, z1] and
 // the box's z-range.
 double Box::least_distance_over_domain(const Lattice& lattice) const {
-  const DomainExtent e = domain_extent(lattice, center.z);  // the non-compact quotients: objects_internal.hpp
+  const DomainExtent e = lattice.domain_extent(center.z);  // the non-compact quotients: sol/lattice.hpp
   const glm::dvec2 w = coordinate_half_widths();
   const double gx = interval_gap(e.xlo, e.xhi, center.x - w.x, center.x + w.x);
   const double gy = interval_gap(e.ylo, e.yhi, center.y - w.y, center.y + w.y);

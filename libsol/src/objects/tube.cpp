@@ -1,4 +1,5 @@
 #include "sol/objects/tube.hpp"
+#include "sol/patterns.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,14 +82,12 @@ std::array<InsideTerm, 4> Tube::inside_terms(const glm::dvec3& q, const glm::dve
 glm::dvec3 Tube::normal(const glm::dvec3& q) const { return gradient_normal(*this, q); }
 
 glm::dvec2 Tube::pattern_uv(const glm::dvec3& q) const {
-  constexpr double kCells = kernel::kPatternCellsPerRadian;
   const glm::dvec3 w = multiply(inverse(through), q);
-  if (vertical()) return {kCells * std::atan2(w.y, w.x), kCells * w.z / radius};
+  if (vertical()) return kernel::sol_tube_pattern_uv(w, true, {}, radius);  // sol/patterns.h
   // The axis direction relative to the point `through` (see seen_from).
   const glm::dvec2 h =
       glm::normalize(glm::dvec2(std::exp(-through.z) * direction.x, std::exp(through.z) * direction.y));
-  const double along = w.x * h.x + w.y * h.y, across = w.y * h.x - w.x * h.y;
-  return {kCells * std::atan2(w.z, across), kCells * along / radius};
+  return kernel::sol_tube_pattern_uv(w, false, h, radius);
 }
 
 // Left-translation maps lines to lines and scales a horizontal direction

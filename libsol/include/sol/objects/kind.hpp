@@ -46,6 +46,7 @@
 #include "sol/clearance.hpp"
 #include "sol/coordinate_box.hpp"
 #include "sol/kernel_constants.h"
+#include "sol/lattice.hpp"
 
 namespace sol {
 
@@ -62,20 +63,6 @@ struct KernelShape {
   /// The quotient's image record of the object's bound (kernel::Image::bound),
   /// in the four words a quotient march step reads of each candidate.
   glm::dvec4 bound{0.0};
-};
-
-/// Where a kind's images in the quotient are searched (sol::quotient_images):
-/// the set every point of the object lies within kMaxQuotientRadius of.
-struct ImageAnchor {
-  enum class Along {
-    Point,           ///< a point (balls' and boxes' centres)
-    VerticalLine,    ///< the vertical line through `point`
-    HorizontalLine,  ///< the horizontal line through `point` along `heading`
-    Height,          ///< the plane z = point.z (planes z = c)
-  };
-  Along along = Along::Point;
-  glm::dvec3 point{0.0};
-  glm::dvec2 heading{0.0};
 };
 
 /// How a program's control edits a number: its step and range.
