@@ -2268,14 +2268,17 @@ TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   EXPECT_THROW(sol::test::render(renderer, scene, 0, 10), sol::InvalidArgument);
-  // An exact ball among more objects than the kernel lists: not rendered
-  // here (NotImplemented, which --device auto takes as "render on the
-  // CPU"), and said so up front, naming the object; more objects than any
-  // world holds: invalid on every renderer.
+  // Paths to a glowing exact ball among more objects than the kernel lists
+  // (next-event estimation samples a listed world's): not rendered here,
+  // said so up front, naming the object (which --device auto takes as
+  // "render on the CPU"); direct light is; more objects than any world
+  // holds: invalid on every renderer.
   scene.objects.resize(9, scene.objects[0]);
   scene.objects[7].shape = sol::Ball{{0.0, 0.0, 1.0}, 0.3, true};
-  EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::NotImplemented);
-  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene).find("objects[7].exact: exact balls in a world of more than 8"),
+  scene.objects[7].emission = {1.0, 1.0, 1.0};
+  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "");
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path)
+                .find("objects[7].emission: glowing exact balls in a world of more than 8"),
             std::string::npos);
   scene.objects[7] = scene.objects[0];
   scene.objects.resize(sol::kMaxObjects + 1, scene.objects[0]);

@@ -447,7 +447,9 @@ void defer_passes(KernelVariant& v, const MarchOptions& o) {
   v.defer_shading = o.deferred && (v.path ? !v.path_from_eye : f.exact_lights || f.mirrors);
   // (Paths take none: their camera rays are a small part of their cost,
   // and a resume pipeline would be one more march for the driver to compile.)
-  v.resume = o.deferred && !v.path && (f.quotient || (f.exact_balls && o.integrator == Integrator::ClosedForm));
+  // (A crowd's march, march/crowd.glsl, solves its exact balls in the march
+  // pass.)
+  v.resume = o.deferred && !v.path && (f.quotient || (f.exact_balls && !f.crowd && o.integrator == Integrator::ClosedForm));
 }
 
 // The specialisation constants of a variant's pipeline for one pass: the
@@ -1006,14 +1008,15 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
       return message;
     }
   }
-  if (world.quotient == Quotient::None && world.objects.size() > sol::kListedObjects) {
-    // A crowd's march (march/crowd.glsl) draws every kind by its bound.
+  if (transport == Transport::Path && world.quotient == Quotient::None && world.objects.size() > sol::kListedObjects) {
+    // A path's next-event estimation (march/paths.glsl) samples a listed
+    // world's glowing exact balls, not a crowd's.
     for (std::size_t i = 0; i < world.objects.size(); ++i) {
-      const Ball* b = std::get_if<Ball>(&world.objects[i].shape);
-      if (b && b->exact) {
+      if (is_exact_ball(world.objects[i].shape) && world.objects[i].emission != glm::dvec3(0.0)) {
         std::snprintf(message, sizeof message,
-                      "objects[%zu].exact: exact balls in a world of more than %zu objects render on the CPU only", i,
-                      sol::kListedObjects);
+                      "objects[%zu].emission: glowing exact balls in a world of more than %zu objects are path traced "
+                      "on the CPU only",
+                      i, sol::kListedObjects);
         return message;
       }
     }

@@ -69,14 +69,15 @@ float crowd_node_bound(int n, vec3 q, vec2 e) {
 
 // One step's nearest objects (sol's StepNearest in libsol/src/render.cpp):
 // the least distance and its item, the runner-up's distance, and the least
-// among the hit candidates (the items not being passed).
+// two among the hit candidates (the items not being passed: the second for
+// where the least is an exact ball's bound and its exact distance is more).
 struct CrowdStep {
-  float nearest, second, nearest_hit;
-  int nearest_i, hit_i;
+  float nearest, second, nearest_hit, second_hit;
+  int nearest_i, hit_i, second_hit_i;
   bool nearest_inside, hit_inside;
 };
 
-CrowdStep crowd_step_none() { return CrowdStep(1e30, 1e30, 1e30, 0, 0, false, false); }
+CrowdStep crowd_step_none() { return CrowdStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0, false, false); }
 
 void crowd_consider(inout CrowdStep s, int i, float d, bool inside, bool candidate) {
   if (d < s.nearest) {
@@ -88,9 +89,14 @@ void crowd_consider(inout CrowdStep s, int i, float d, bool inside, bool candida
     s.second = min(s.second, d);
   }
   if (candidate && d < s.nearest_hit) {
+    s.second_hit = s.nearest_hit;
+    s.second_hit_i = s.hit_i;
     s.nearest_hit = d;
     s.hit_i = i;
     s.hit_inside = inside;
+  } else if (candidate && d < s.second_hit) {
+    s.second_hit = d;
+    s.second_hit_i = i;
   }
 }
 
@@ -162,6 +168,54 @@ void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool s
   }
 }
 
+// One exact solve a step (as quotient_exact_step; each call is inlined, a
+// Newton loop each): an exact ball a shadow ray leaves (passed slot
+// `leaving`, near its sphere, where its bound is negative on both sides:
+// until 2 hit_epsilon away or turned back towards the sphere), else the
+// nearest hit candidate, or the nearest item, where it is an exact ball
+// whose bound is within kExactShell: its exact distance (inside, where the
+// solve landed, -sdf) as the hit candidate's, and as the nearest's its
+// exact clearance up to the runner-up (march_exact_step's). Returns the
+// step's length (`step`, the bounds', unless the nearest was solved).
+float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float step, inout CrowdStep s,
+                       inout ExactSolve exact, inout ivec4 passing, inout vec4 leave_signs) {
+  int item = -1;
+  if (leaving >= 0) {
+    item = passing[leaving];
+  } else if (s.nearest_hit < kExactShell && crowd_item_seen(s.hit_i).type == kObjectExactBall) {
+    item = s.hit_i;
+  } else if (s.nearest < kExactShell && crowd_item_seen(s.nearest_i).type == kObjectExactBall) {
+    item = s.nearest_i;
+  }
+  if (item < 0) return step;
+  const SeenObject o = crowd_item_seen(item);
+  const float sdf = exact_ball_sdf(q, o.rel.xyz, o.radius, item, exact);
+  const float slope = dot(exact.end.tangent, u);
+  const float away = exact.known ? abs(sdf) : 0.0;
+  const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
+  const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
+  if (leaving >= 0) {
+    float leave_sign = leave_signs[leaving];
+    if (exact_pass_ends(exact.known, away, slope, hit_epsilon, leave_sign)) passing[leaving] = -1;
+    leave_signs[leaving] = leave_sign;
+    return min(step, beyond);
+  }
+  const float d = HAS_INSIDE && exact.known ? away : sdf;
+  if (item == s.hit_i) {
+    const bool nearer = d <= s.second_hit;
+    s.nearest_hit = nearer ? d : s.second_hit;
+    s.hit_i = nearer ? item : s.second_hit_i;
+  }
+  if (item != s.nearest_i) return step;
+  float clear = d;  // (where the solve did not land: its bound)
+  if (exact.known && sdf > hit_epsilon) {
+    clear = exact_ball_clearance(d, length(exact.v), slope, hit_epsilon);
+  } else if (inside) {
+    clear = beyond;
+  }
+  return min(s.second, clear);
+}
+
 // The march of a ray from `origin` (relative to the eye) with unit
 // direction `direction` up to arc length `limit` through the crowd (as
 // march_sol; closed-form positions, every step's full position). The hit's
@@ -176,6 +230,8 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
   SolRay ray = sol_ray(direction);
   sol_ray_integrals(ray);
   ivec4 passing = ivec4(-1);  // the items it passes
+  vec4 leave_signs = vec4(0.0);  // for exact balls among them (exact_pass_ends)
+  ExactSolve exact = exact_solve_none();
   if (!camera) {
     // (A solid's distance may be below its box's bound near its surface,
     // where the bound's gradient is short: the boxes within a generous reach.)
@@ -195,12 +251,17 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     // The passed surfaces first (until each is 2 hit_epsilon away again,
     // or, seen from inside, the ray heads for a face of it), then the tree.
     const ivec4 passed = passing;
+    int leaving = -1;  // the slot of an exact ball it leaves near its sphere: its exact solve decides
     for (int j = 0; j < 4; ++j) {
       if (passed[j] < 0) continue;
       const SeenObject o = crowd_item_seen(passed[j]);
       bool inside;
       const float d = crowd_distance(o, q, hz, inside);
       bool ends = d > 2.0 * hit_epsilon;
+      if (HAS_EXACT_BALLS && !ends && o.type == kObjectExactBall && d < kExactShell) {
+        leaving = j;
+        continue;
+      }
       if (HAS_INSIDE && inside) {
         ends = ends || object_inside_clearances(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc, d).w < 0.0;
       }
@@ -215,6 +276,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     if (object_is_solid(o.type)) {
       nearest = min(s.second, max(s.nearest, object_clearance(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc).y));
     }
+    if (HAS_EXACT_BALLS) nearest = crowd_exact_step(q, u, hit_epsilon, leaving, nearest, s, exact, passing, leave_signs);
     steps = step + 1;
     if (s.nearest_hit < hit_epsilon) {
       const SeenObject m = crowd_item_seen(s.hit_i);
@@ -245,7 +307,11 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
   }
   if (!ended) ++g_out_of_steps;
   const int object = hit_item >= 0 ? int(crowd_items[hit_item].info.x) : -1;
-  MarchHit found = march_found(object, t, q, origin, steps, exact_solve_none());
+  MarchHit found = march_found(object, t, q, origin, steps, exact);
+  // Shading takes the exact sphere's normal where the last solve was the hit's.
+  const bool solved = HAS_EXACT_BALLS && hit_item >= 0 && exact.k == hit_item;
+  found.exact_k = solved ? object : -1;
+  found.exact_inside = HAS_INSIDE && solved && exact.known && length(exact.v) < crowd_item_seen(hit_item).radius;
   found.item = hit_item;
   found.u = u;
   return found;
