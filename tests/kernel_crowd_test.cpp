@@ -165,13 +165,8 @@ TEST(KernelCrowd, ExactBallsInACrowdAreHitOnTheirTrueSpheres) {
     if (auto* e = std::get_if<sol::Ball>(&world.objects.back().shape)) e->exact = true;
   }
   ASSERT_GT(world.objects.size(), 30u);
-  sol::Light lamp;
-  lamp.type = sol::LightType::Point;
-  lamp.position = {0.0, 0.1, 0.0};
-  lamp.intensity = 2.0;
-  lamp.exact = true;
-  lamp.shadows = true;
-  world.lights.push_back(lamp);
+  world.lights.push_back(
+      {.type = sol::LightType::Point, .position = {0.0, 0.1, 0.0}, .intensity = 2.0, .exact = true, .shadows = true});
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(world), "");
   sol::Camera in_ball = sol::test::crowd_camera_inside();
   const sol::Ball& first = std::get<sol::Ball>(world.objects[1].shape);
@@ -226,13 +221,8 @@ TEST(KernelCrowd, PathsThroughExactBallsAreTheCpus) {
   sol::SceneObject glow{sol::Ball{{0.3, 1.2, 0.3}, 0.2, false}, {0.5, 0.5, 0.5}};
   glow.emission = {2.0, 1.5, 1.0};
   scene.objects.push_back(glow);
-  sol::Light light;
-  light.type = sol::LightType::Point;
-  light.position = {0.0, 1.0, 1.5};
-  light.intensity = 2.0;
-  light.exact = true;
-  light.shadows = true;
-  scene.lights = {light};
+  scene.lights = {
+      {.type = sol::LightType::Point, .position = {0.0, 1.0, 1.5}, .intensity = 2.0, .exact = true, .shadows = true}};
   scene.max_distance = 8.0;
   ASSERT_EQ(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path), "");
   const sol::RenderOptions settings{.width = 20, .height = 14, .samples = 6, .transport = sol::Transport::Path, .seed = 11};

@@ -27,6 +27,9 @@ struct SeenObject {
   int object;  // the scene object (0-based)
 };
 
+// Item i's kind (its code), without the rest of its record.
+int crowd_item_type(int i) { return int(crowd_items[i].shape.w); }
+
 // Item i (leaf order) seen from the eye of load_objects.
 SeenObject crowd_item_seen(int i) {
   const CrowdItem c = crowd_items[i];
@@ -182,9 +185,9 @@ float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float ste
   int item = -1;
   if (leaving >= 0) {
     item = passing[leaving];
-  } else if (s.nearest_hit < kExactShell && crowd_item_seen(s.hit_i).type == kObjectExactBall) {
+  } else if (s.nearest_hit < kExactShell && crowd_item_type(s.hit_i) == kObjectExactBall) {
     item = s.hit_i;
-  } else if (s.nearest < kExactShell && crowd_item_seen(s.nearest_i).type == kObjectExactBall) {
+  } else if (s.nearest < kExactShell && crowd_item_type(s.nearest_i) == kObjectExactBall) {
     item = s.nearest_i;
   }
   if (item < 0) return step;
@@ -311,7 +314,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
   // Shading takes the exact sphere's normal where the last solve was the hit's.
   const bool solved = HAS_EXACT_BALLS && hit_item >= 0 && exact.k == hit_item;
   found.exact_k = solved ? object : -1;
-  found.exact_inside = HAS_INSIDE && solved && exact.known && length(exact.v) < crowd_item_seen(hit_item).radius;
+  found.exact_inside = HAS_INSIDE && solved && exact.known && length(exact.v) < crowd_items[hit_item].shape.z;
   found.item = hit_item;
   found.u = u;
   return found;
