@@ -116,9 +116,11 @@ bool crowd_passed(ivec4 passed, int i) { return any(equal(passed, ivec4(i))); }
 // nearest, within kCrowdCover of the runner-up and clear of hit_epsilon is
 // taken whole (its bound as the runner-up). With `starts` instead the
 // items within 2 hit_epsilon of q (the surfaces a shadow ray leaves, up to
-// four), from the nodes within `reach`.
-void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool starts, float reach, inout CrowdStep s,
-                  inout ivec4 started) {
+// four), from the nodes within `reach`. Exact balls count by what their
+// solves have shown at arc length t where that is more than their bound
+// (`seen`, exact_seen_bound).
+void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool starts, float reach, ExactSeen seen,
+                  float t, inout CrowdStep s, inout ivec4 started) {
   const vec2 e = vec2(hz.y * hz.y, hz.x * hz.x);  // e^{-q_z}, e^{q_z}
   int stack_node[kTreeMaxDepth + 2];
   float stack_bound[kTreeMaxDepth + 2];
@@ -148,7 +150,9 @@ void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool s
           if (d < 2.0 * hit_epsilon && held < 4) started[held++] = i;
         } else if (!crowd_passed(passed, i)) {
           bool inside;
-          const float d = crowd_distance(crowd_item_seen(i), q, hz, inside);
+          const SeenObject o = crowd_item_seen(i);
+          float d = crowd_distance(o, q, hz, inside);
+          if (HAS_EXACT_BALLS && o.type == kObjectExactBall) d = exact_seen_bound(seen, i, t, d);
           crowd_consider(s, i, d, inside, true);
           limit = max(s.second, hit_epsilon);
         }
@@ -178,10 +182,12 @@ void crowd_search(vec3 q, vec2 hz, float hit_epsilon, ivec4 passed, const bool s
 // nearest hit candidate, or the nearest item, where it is an exact ball
 // whose bound is within kExactShell: its exact distance (inside, where the
 // solve landed, -sdf) as the hit candidate's, and as the nearest's its
-// exact clearance up to the runner-up (march_exact_step's). Returns the
-// step's length (`step`, the bounds', unless the nearest was solved).
-float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float step, inout CrowdStep s,
-                       inout ExactSolve exact, inout ivec4 passing, inout vec4 leave_signs) {
+// exact clearance up to the runner-up (march_exact_step's), noted in
+// `seen` at arc length t; a runner-up that is an exact ball is no hit by
+// its bound (march_exact_step). Returns the step's length (`step`, the
+// bounds', unless the nearest was solved).
+float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float step, float t, inout CrowdStep s,
+                       inout ExactSolve exact, inout ExactSeen seen, inout ivec4 passing, inout vec4 leave_signs) {
   int item = -1;
   if (leaving >= 0) {
     item = passing[leaving];
@@ -197,15 +203,18 @@ float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float ste
   const float away = exact.known ? abs(sdf) : 0.0;
   const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
   const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
+  if (exact.known) exact_seen_note(seen, item, HAS_INSIDE ? away : sdf, t);
   if (leaving >= 0) {
     float leave_sign = leave_signs[leaving];
     if (exact_pass_ends(exact.known, away, slope, hit_epsilon, leave_sign)) passing[leaving] = -1;
     leave_signs[leaving] = leave_sign;
+    // (A candidate that is an exact ball, not solved at this step, is no hit.)
+    if (crowd_item_type(s.hit_i) == kObjectExactBall) s.nearest_hit = max(s.nearest_hit, hit_epsilon);
     return min(step, beyond);
   }
   const float d = HAS_INSIDE && exact.known ? away : sdf;
   if (item == s.hit_i) {
-    const bool nearer = d <= s.second_hit;
+    const bool nearer = d <= s.second_hit || crowd_item_type(s.second_hit_i) == kObjectExactBall;
     s.nearest_hit = nearer ? d : s.second_hit;
     s.hit_i = nearer ? item : s.second_hit_i;
   }
@@ -235,11 +244,13 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
   ivec4 passing = ivec4(-1);  // the items it passes
   vec4 leave_signs = vec4(0.0);  // for exact balls among them (exact_pass_ends)
   ExactSolve exact = exact_solve_none();
+  ExactSeen seen = exact_seen_none();
   if (!camera) {
     // (A solid's distance may be below its box's bound near its surface,
     // where the bound's gradient is short: the boxes within a generous reach.)
     CrowdStep unused = crowd_step_none();
-    crowd_search(origin, half_exp(origin.z), hit_epsilon, passing, true, max(2.0 * hit_epsilon, 0.01), unused, passing);
+    crowd_search(origin, half_exp(origin.z), hit_epsilon, passing, true, max(2.0 * hit_epsilon, 0.01), seen, 0.0, unused,
+                 passing);
   }
   float t = 0.0;
   vec3 q = origin, u = direction;
@@ -254,15 +265,23 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     // The passed surfaces first (until each is 2 hit_epsilon away again,
     // or, seen from inside, the ray heads for a face of it), then the tree.
     const ivec4 passed = passing;
-    int leaving = -1;  // the slot of an exact ball it leaves near its sphere: its exact solve decides
+    // The slot of an exact ball it leaves near its sphere: its exact solve
+    // decides (the least by exact_seen_bound, so that each is solved in turn).
+    int leaving = -1;
+    float leaving_d = 1e30;
     for (int j = 0; j < 4; ++j) {
       if (passed[j] < 0) continue;
       const SeenObject o = crowd_item_seen(passed[j]);
       bool inside;
-      const float d = crowd_distance(o, q, hz, inside);
+      float d = crowd_distance(o, q, hz, inside);
+      const bool exact_ball = HAS_EXACT_BALLS && o.type == kObjectExactBall;
+      if (exact_ball) d = exact_seen_bound(seen, passed[j], t, d);
       bool ends = d > 2.0 * hit_epsilon;
-      if (HAS_EXACT_BALLS && !ends && o.type == kObjectExactBall && d < kExactShell) {
-        leaving = j;
+      if (exact_ball && !ends && d < kExactShell) {
+        if (d < leaving_d) {
+          leaving = j;
+          leaving_d = d;
+        }
         continue;
       }
       if (HAS_INSIDE && inside) {
@@ -271,7 +290,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
       crowd_consider(s, passed[j], d, inside, ends);
       if (ends) passing[j] = -1;
     }
-    crowd_search(q, hz, hit_epsilon, passed, false, 0.0, s, passing);
+    crowd_search(q, hz, hit_epsilon, passed, false, 0.0, seen, t, s, passing);
     // The nearest solid's clearance along the ray, up to the runner-up
     // (seen from inside: its faces'; object_clearances), as march_sol.
     float nearest = s.nearest;
@@ -279,7 +298,9 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     if (object_is_solid(o.type)) {
       nearest = min(s.second, max(s.nearest, object_clearance(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc).y));
     }
-    if (HAS_EXACT_BALLS) nearest = crowd_exact_step(q, u, hit_epsilon, leaving, nearest, s, exact, passing, leave_signs);
+    if (HAS_EXACT_BALLS) {
+      nearest = crowd_exact_step(q, u, hit_epsilon, leaving, nearest, t, s, exact, seen, passing, leave_signs);
+    }
     steps = step + 1;
     if (s.nearest_hit < hit_epsilon) {
       const SeenObject m = crowd_item_seen(s.hit_i);

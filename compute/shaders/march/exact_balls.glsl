@@ -19,6 +19,44 @@ struct ExactSolve {
 
 ExactSolve exact_solve_none() { return ExactSolve(-1, vec3(0.0), SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0)), false, mat3(1.0)); }
 
+// What a march's exact solves have shown, for the last two exact balls
+// solved (objects, images or items `k`; -1: none): the distance to the
+// sphere `value` found at arc length `at` (|sdf| where the eye may be
+// inside a solid, else sdf). A distance is 1-Lipschitz along a unit-speed
+// geodesic, so value - |t - at| stays a lower bound of it at arc length t,
+// and the march takes it where it is more than the ball's bound
+// (exact_seen_bound). Where exact balls overlap, the march then solves
+// each in turn (its nearest by that measure), not the one whose bound is
+// least forever with the other taken by its bound; and an exact ball's
+// bound never makes a hit (march_exact_step): a hit is on a true sphere,
+// the nearer one.
+struct ExactSeen {
+  ivec2 k;
+  vec2 value, at;
+};
+
+ExactSeen exact_seen_none() { return ExactSeen(ivec2(-1), vec2(0.0), vec2(0.0)); }
+
+// Ball k's distance at arc length t: the march's `d` (its bound), or more
+// where a solve has shown more.
+float exact_seen_bound(ExactSeen s, int k, float t, float d) {
+  const vec2 lower = mix(vec2(-1e30), s.value - abs(vec2(t) - s.at), equal(s.k, ivec2(k)));
+  return max(d, max(lower.x, lower.y));
+}
+
+// Notes ball k's distance `value` at arc length t (a solve that landed),
+// in the first slot, the other ball's in the second.
+void exact_seen_note(inout ExactSeen s, int k, float value, float t) {
+  if (s.k.x != k) {
+    s.k.y = s.k.x;
+    s.value.y = s.value.x;
+    s.at.y = s.at.x;
+  }
+  s.k.x = k;
+  s.value.x = value;
+  s.at.x = t;
+}
+
 // Exact balls near their sphere: the exact distance from the centre c to q
 // less the radius, from the shortest geodesic from c to q (sol_shortest,
 // started from the last solve of the same ball when there is one, and left

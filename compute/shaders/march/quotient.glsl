@@ -113,22 +113,26 @@ vec3 candidate_clearances(uint word, bool all, int s, int listed, vec3 q, vec3 u
 // negative on both sides there: its exact distance decides
 // (quotient_exact_step, as march_exact_step's `leaving` in Sol).
 struct QuotientCandidates {
-  float nearest, second, clear_nearest, clear_rest, back;
+  float nearest, second, clear_nearest, clear_rest, back, leaving_d;
   int nearest_i, second_i, leaving_exact;
 };
 
 // The cell's `listed` candidates (`word`, or every image where `all`) at e
 // along `direction`, updating the images a shadow ray leaves (`passing`).
+// Exact balls' images count by what their solves have shown at arc length
+// t where that is more than their bound (`seen`, exact_seen_bound).
 QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, vec3 direction, vec2 hz, bool camera,
-                                       float hit_epsilon, inout ivec4 passing) {
-  QuotientCandidates c = QuotientCandidates(1e30, 1e30, 1e30, 1e30, 1e30, -1, -1, -1);
+                                       float hit_epsilon, ExactSeen seen, float t, inout ivec4 passing) {
+  QuotientCandidates c = QuotientCandidates(1e30, 1e30, 1e30, 1e30, 1e30, 1e30, -1, -1, -1);
   // (A do-while, tested at its end: see march.comp and candidate_clearances.)
   int s = 0;
   do {
     int i;
     Image m;
     const vec3 dc = candidate_clearances(word, all, s, listed, e, direction, hz, i, m);
-    const float d = dc.x;
+    const bool exact_ball = HAS_EXACT_BALLS && image_type(m) == kObjectExactBall;
+    const float d = exact_ball ? exact_seen_bound(seen, i, t, dc.x) : dc.x;
+    const float ahead = exact_ball ? max(dc.y, d) : dc.y;  // (d may be more than the bound's clearance)
     bool leaving = false;  // an image a shadow ray leaves, until it is 2 hit_epsilon away
     if (!camera) {
       for (int p = 0; p < 4; ++p) {
@@ -144,8 +148,12 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
         }
       }
     }
-    const bool held = HAS_EXACT_BALLS && leaving && image_type(m) == kObjectExactBall && d < kExactShell;
-    if (held) c.leaving_exact = i;
+    // (Of several, the least by exact_seen_bound, so that each is solved in turn.)
+    const bool held = exact_ball && leaving && d < kExactShell;
+    if (held && (c.leaving_exact < 0 || d < c.leaving_d)) {
+      c.leaving_exact = i;
+      c.leaving_d = d;
+    }
     c.back = min(c.back, held ? 1e30 : dc.z);
     if (!leaving && d < c.nearest) {
       c.second = c.nearest;
@@ -153,9 +161,9 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
       c.nearest = d;
       c.nearest_i = i;
       c.clear_rest = min(c.clear_rest, c.clear_nearest);
-      c.clear_nearest = dc.y;
+      c.clear_nearest = ahead;
     } else {
-      c.clear_rest = min(c.clear_rest, held ? 1e30 : dc.y);
+      c.clear_rest = min(c.clear_rest, held ? 1e30 : ahead);
       if (!leaving && d < c.second) {
         c.second = d;
         c.second_i = i;
@@ -170,9 +178,10 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
 // towards the sphere: the passing's least step meanwhile), else the
 // nearest where it is an exact ball within kExactShell (its exact
 // distance, as in Sol; inside, where the solve landed, -sdf and the inside
-// clearance).
-void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, inout QuotientCandidates c, inout ExactSolve exact,
-                         inout ivec4 passing, inout vec4 leave_signs) {
+// clearance), noted in `seen` at arc length t; a runner-up that is an
+// exact ball is no hit by its bound (march_exact_step).
+void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, float t, inout QuotientCandidates c,
+                         inout ExactSolve exact, inout ExactSeen seen, inout ivec4 passing, inout vec4 leave_signs) {
   const bool solve_leaving = HAS_EXACT_BALLS && c.leaving_exact >= 0;
   const bool solve_nearest = HAS_EXACT_BALLS && !solve_leaving && c.nearest_i >= 0 &&
                              image_type(images[c.nearest_i]) == kObjectExactBall && c.nearest < kExactShell;
@@ -183,6 +192,7 @@ void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, inout Quotie
   const float away = exact.known ? abs(sdf) : 0.0;
   const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
   const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
+  if (exact.known) exact_seen_note(seen, ei, HAS_INSIDE ? away : sdf, t);
   if (solve_leaving) {
     for (int p = 0; p < 4; ++p) {
       if (passing[p] != ei) continue;
@@ -192,10 +202,13 @@ void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, inout Quotie
     }
     c.clear_rest = min(c.clear_rest, beyond);
     c.back = min(c.back, away);
+    // (A candidate that is an exact ball, not solved at this step, is no hit.)
+    if (c.nearest_i >= 0 && image_type(images[c.nearest_i]) == kObjectExactBall) c.nearest = max(c.nearest, hit_epsilon);
   } else {
     const float d = HAS_INSIDE && exact.known ? away : sdf;
-    c.nearest_i = d <= c.second ? c.nearest_i : c.second_i;
-    c.nearest = min(d, c.second);
+    const bool stays = d <= c.second || (c.second_i >= 0 && image_type(images[c.second_i]) == kObjectExactBall);
+    c.nearest_i = stays ? c.nearest_i : c.second_i;
+    c.nearest = stays ? d : c.second;
     c.clear_nearest = max(c.clear_nearest, inside ? beyond : d);
   }
 }

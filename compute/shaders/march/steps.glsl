@@ -1,0 +1,165 @@
+// A march step in Sol over a listed world's objects (g_*, load_objects):
+// the objects' distances from the ray's point (march_objects), the step's
+// end (a hit, a pass between a cutout plane's discs, or the advance), and
+// the step finished by an exact ball's exact distance (march_exact_step).
+// march_sol (march.glsl) takes the positions and calls these.
+#ifndef SOL_MARCH_STEPS_GLSL
+#define SOL_MARCH_STEPS_GLSL
+
+// The end of a march step whose nearest object (for a hit) is nearest_k at
+// nearest_hit and whose step is `nearest`: a hit (`hit` set), a pass
+// between a cutout plane's discs, or the advance (at least 2 hit_epsilon
+// while `passes` and the ray passes an object). Returns whether the march
+// goes on.
+bool march_step_end(float nearest, float nearest_hit, int nearest_k, vec3 q, float hit_epsilon, float limit,
+                    const bool passes, inout uint passing, inout float t, inout int hit) {
+  if (nearest_hit < hit_epsilon) {
+    if (HAS_CUTOUT && scene_objects[nearest_k].plane.w != 0.0) {
+      // (Full positions whenever the scene has cutouts.)
+      const vec2 uv = object_pattern_uv(g_types[nearest_k], q, pattern_phase(q, g_eye_camera, g_eye_frac),
+                                        g_relative[nearest_k], g_headings[nearest_k], g_radii[nearest_k]);
+      if (pattern_factor(int(scene_objects[nearest_k].plane.z), uv.x, uv.y) != 1.0) {
+        passing |= 1u << uint(nearest_k);  // between the discs: go through
+        t += max(nearest, 2.0 * hit_epsilon);
+        return !(t > limit);
+      }
+    }
+    hit = nearest_k + 1;
+    return false;
+  }
+  t += (passes && passing != 0u) ? max(nearest, 2.0 * hit_epsilon) : nearest;
+  return !(t > limit);
+}
+
+// One step's findings over the objects (march_objects): the least distance
+// (`nearest`, of object `nearest_any`) and the least to the others
+// (`others`); the nearest candidate hit (`nearest_hit`, `nearest_k`: not an
+// object being passed) and, with exact balls, the runner-up (`second_hit`,
+// `second_k`), for when the nearest is an exact ball. Exact balls count
+// by what their solves have shown where that is more than their bound
+// (`seen`, exact_seen_bound).
+struct MarchStep {
+  float nearest, nearest_hit, others, second_hit;
+  int nearest_k, nearest_any, second_k;
+};
+
+MarchStep march_step_none() { return MarchStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0); }
+
+// The objects' distances from q at arc length t (hz: q.z's half
+// exponentials), updating the mask of objects being passed. Planes x = c,
+// y = c whose crossing is solved (`xy`) answer the arc length left to it.
+MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
+                        PlaneRoot xy, ExactSeen seen, inout uint passing) {
+  MarchStep s = march_step_none();
+  int k = 0;
+  if (g_count > 0) do {  // (tested at its end: see march.comp)
+    float d = heights_only ? abs(q.z - g_constants[k])
+                           : object_distance(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
+    if (HAS_EXACT_BALLS && g_types[k] == kObjectExactBall) d = exact_seen_bound(seen, k, t, d);
+    if (HAS_PLANES_XY && xy.solved && (g_types[k] == kObjectPlaneX || g_types[k] == kObjectPlaneY)) {
+      d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
+    }
+    if (HAS_CUTOUT && g_cutouts[k] != 0) {
+      d = max(d, cutout_gap_bound(g_cutouts[k], pattern_phase(q, g_eye_camera, g_eye_frac).xy, g_eye_camera.w * exp(q.z)));
+    }
+    // Objects being passed (cutout planes between their discs, the surface
+    // a shadow ray leaves) are not hits until the ray is 2 hit_epsilon away
+    // again (as the CPU reference).
+    const uint bit = 1u << uint(k);
+    // The surface it leaves: passed until 2 hit_epsilon away, or (seen from
+    // inside) until the ray heads for a face of it (sol::InsideClearances;
+    // exact balls: march_exact_step).
+    if (passes && (passing & bit) != 0u) {
+      bool heads = false;
+      if (HAS_INSIDE && inside_by_bound(g_types[k])) {
+        const float raw = object_bound(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
+        heads = raw < 0.0 && object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
+                                                      g_half_exp_z[k], -raw).w < 0.0;
+      }
+      if (d > 2.0 * hit_epsilon || heads) passing &= ~bit;
+    }
+    if (d < s.nearest) {
+      s.others = s.nearest;
+      s.nearest_any = k;
+    } else {
+      s.others = min(s.others, d);
+    }
+    s.nearest = min(s.nearest, d);
+    if ((!passes || (passing & bit) == 0u) && d < s.nearest_hit) {
+      if (HAS_EXACT_BALLS) {
+        s.second_hit = s.nearest_hit;
+        s.second_k = s.nearest_k;
+      }
+      s.nearest_hit = d;
+      s.nearest_k = k;
+    } else if (HAS_EXACT_BALLS && (!passes || (passing & bit) == 0u) && d < s.second_hit) {
+      s.second_hit = d;
+      s.second_k = k;
+    }
+  } while (++k < g_count);
+  return s;
+}
+
+// The step where the nearest object (s.nearest_any) is a ball or a tube:
+// its clearance along the ray (object_clearance) up to the others' least
+// distance (as the CPU's march_cover: one clearance a step). An exact
+// ball's distance may be more than its bound's clearance: what a solve has
+// shown (exact_seen_bound).
+float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
+  const int k = s.nearest_any;
+  const float clear = object_clearance(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]).y;
+  return min(s.others, HAS_EXACT_BALLS ? max(s.nearest, clear) : clear);
+}
+
+// A step of the Sol march that came within kExactShell of an exact ball
+// (s.nearest_k), finished by its exact distance (steps, and hits on the
+// true sphere) against the least distance to every other object: the step
+// beyond it by the ball's clearance along the ray (its rate from the
+// sphere's normal), outside or, seen from inside, inside. Or (`leaving`) a
+// step of a ray that leaves an exact ball's sphere (s.nearest_any, passed),
+// either way, near the sphere, where its bound is negative on both sides
+// (the bound's ball holds the exact one) and would hold the pass for every
+// step: solved exactly, the pass ends once |sdf| is 2 hit_epsilon (as
+// march_objects' for the others), the ball a hit candidate again; the
+// others' candidate stands, and is taken first (else a ball near both
+// would hold the pass, the ray crawling by 2 hit_epsilon a step). One
+// exact solve for both (each call is inlined, a Newton loop each), noted
+// in `seen`. An exact ball not solved at the step is no hit by its bound
+// (the runner-up, or the candidate while the ray leaves another): the
+// step (at most its bound) brings its own solve. Returns whether the
+// march goes on (march_step_end).
+bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool leaving, inout MarchStep s,
+                      inout ExactSolve x, inout ExactSeen seen, inout uint passing, inout float leave_sign, inout float t,
+                      inout int hit) {
+  const int e = leaving ? s.nearest_any : s.nearest_k;
+  const float sdf = exact_ball_sdf(q, g_relative[e].xyz, g_radii[e], e, x);
+  const float slope = dot(x.end.tangent, u);  // the exact distance's rate along the ray (where x.known)
+  if (x.known) exact_seen_note(seen, e, HAS_INSIDE ? abs(sdf) : sdf, t);
+  if (leaving) {
+    const float away = x.known ? abs(sdf) : 0.0;  // (where the solve did not land: the passing's least step)
+    if (exact_pass_ends(x.known, away, slope, hit_epsilon, leave_sign)) passing &= ~(1u << uint(e));
+    const float beyond = HAS_INSIDE && x.known && sdf < 0.0 ? exact_ball_inside_clearance(away, length(x.v), slope, hit_epsilon)
+                                                             : away;
+    s.nearest = min(s.others, beyond);
+    // (A candidate that is an exact ball, not solved at this step, is no hit.)
+    const float candidate = g_types[s.nearest_k] == kObjectExactBall ? max(s.nearest_hit, hit_epsilon) : s.nearest_hit;
+    return march_step_end(s.nearest, candidate, s.nearest_k, q, hit_epsilon, limit, true, passing, t, hit);
+  }
+  const float exact = HAS_INSIDE && x.known ? abs(sdf) : sdf;
+  float exact_step = exact;
+  if (x.known && sdf > hit_epsilon) {
+    exact_step = exact_ball_clearance(exact, length(x.v), slope, hit_epsilon);
+  } else if (HAS_INSIDE && x.known && sdf < -hit_epsilon) {
+    exact_step = exact_ball_inside_clearance(exact, length(x.v), slope, hit_epsilon);
+  }
+  s.nearest = min(s.nearest_any == s.nearest_k ? s.others : s.nearest, exact_step);
+  if (exact <= s.second_hit || g_types[s.second_k] == kObjectExactBall) {
+    s.nearest_hit = exact;
+  } else {
+    s.nearest_hit = s.second_hit;
+    s.nearest_k = s.second_k;
+  }
+  return march_step_end(s.nearest, s.nearest_hit, s.nearest_k, q, hit_epsilon, limit, passes, passing, t, hit);
+}
+
+#endif  // SOL_MARCH_STEPS_GLSL
