@@ -302,15 +302,16 @@ const bool PATH_FROM_EYE = PATH_FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 
 // libsol/src/render.cpp): at each hit, over the fog of its segment, the
 // object's emission; then with probability `mirror` the path goes on along
 // the reflected geodesic, else it is diffuse: the lights' light by
-// next-event estimation (light_received: every geodesic to an exact light
-// with its 1/J, and shadows) times the albedo, and the path goes on along a
+// next-event estimation (light_gather_next: every geodesic to an exact
+// light with its 1/J, and shadows) times the albedo, and the path goes on along a
 // cosine-distributed direction, its weight times the albedo; at most
 // World::path_bounces scatterings (params.limits.z), Russian roulette from
 // the fourth hit with q = min(1, the weight's largest). No ambient light. Glowing exact balls by
 // next-event estimation too (glow_sample, glow_connection), the emission a
 // path meets after a diffuse bounce weighed by the balance heuristic.
-// One call of march, for the path's next segment and for the geodesics to
-// a glowing ball's point alike (those first, from the same hit), and one of
+// One call of march, for the path's next segment, the shadow rays of the
+// lights and the geodesics to a glowing ball's point alike (those first,
+// from the same hit), and one of
 // sol_connections (path_solves): the driver inlines each call, and each
 // holds a march or a solve (see radiance). From the eye (PATH_FROM_EYE:
 // `from_eye`, h.q the ray's start and h.u its direction) the camera ray is
@@ -335,6 +336,9 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   g.count = 0;
   int way = 0;
   vec3 next = h.u;          // (from the eye: the camera ray's direction)
+  LightGather lights;       // the hit's next-event estimation to the lights, its shadow rays still to march
+  bool gathering = false;
+  vec3 lights_gain = vec3(0.0);
   first = h;
   first_f = f;
   do {
@@ -373,7 +377,18 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         after_diffuse = false;
       } else {
         const vec3 a = surface_albedo * (lobes.diffuse / (1.0 - lobes.specular_probability));
-        if (light_count > 0) color += weight * a * light_received(n, h.q, eye);
+        if (light_count > 0) {
+          lights = light_gather_begin(n, h.q);
+          lights_gain = weight * a;
+          if (HAS_SHADOWS) {
+            gathering = true;  // its shadow rays marched below, first
+          } else {  // no shadow ray: its light at once (as the shadows' sum, to the bit)
+            vec3 unused_direction;
+            float unused_len;
+            light_gather_next(lights, eye, unused_direction, unused_len);
+            color += lights_gain * lights.light;
+          }
+        }
         if (GLOW_SAMPLING && glow_count > 0 && goes_on) {
           g = glow_sample(h, n, weight * a, state);
           sampled = true;
@@ -397,17 +412,29 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
       }
       if (HAS_EMISSION && density) color += emission_weight * material.rgb * share;
     }
-    if (GLOW_SAMPLING) {
+    // The next ray: a shadow ray of the hit's lights, else a geodesic to a
+    // glowing ball's point, else the path's next segment.
+    vec3 direction;
+    float len;
+    const bool shadow = HAS_SHADOWS && gathering && light_gather_next(lights, eye, direction, len);
+    if (HAS_SHADOWS && gathering && !shadow) {
+      color += lights_gain * lights.light;
+      gathering = false;
+    }
+    if (GLOW_SAMPLING && !shadow) {
       while (way < g.count && !glow_way_open(g, way)) ++way;
     }
-    const bool to_glow = GLOW_SAMPLING && way < g.count;
-    if (to_glow || alive) {
+    const bool to_glow = GLOW_SAMPLING && !shadow && way < g.count;
+    if (shadow || to_glow || alive) {
       // (From the eye the camera ray's segment is marched as a camera ray:
       // the purpose is then no constant, and this one march holds both
       // purposes' branches; otherwise it folds to kMarchShadow.)
-      const MarchHit m = march(h.q, to_glow ? g.ways[way].xyz : next, params.limits.x, kMarchFromStart,
+      const MarchHit m = march(h.q, shadow ? direction : (to_glow ? g.ways[way].xyz : next),
+                               shadow ? min(len, params.limits.x) : params.limits.x, kMarchFromStart,
                                PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
-      if (to_glow) {
+      if (shadow) {
+        light_gather_blocked(lights, m.k >= 0);
+      } else if (to_glow) {
         color += glow_connection(g, way, m);
         ++way;
       } else {
@@ -424,7 +451,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         }
       }
     }
-  } while ((GLOW_SAMPLING && way < g.count) || alive);
+  } while (gathering || (GLOW_SAMPLING && way < g.count) || alive);
   return vec4(color, 1.0);
 }
 

@@ -54,64 +54,103 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL
   return m;
 }
 
-// Whether the geodesic from q (a hit point, in the march's coordinates)
-// along `direction` meets an object within `len` (sol::Light::shadows; the
-// CPU's `blocked` in libsol/src/render.cpp): the shadow ray's march,
-// passing the objects within 2 hit_epsilon of q (the surface it leaves)
-// until it is 2 hit_epsilon away from them.
-bool shadow_blocked(vec3 q, vec3 direction, float len) {
-  return march(q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow).k >= 0;
-}
-
 // The light the lights bring to a point q with unit normal n (frame
 // components), before the surface's colour and the ambient (light_received
-// in libsol/src/render.cpp); q and the eye's light positions are in the
-// same coordinates (camera-relative in Sol, world in the quotient). Lights
-// as sol::lights_at: point lights by the coordinate difference in frame
-// components at the hit and 1/(1 + r²) on the distance bound; exact point
-// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
-// each geodesic from q to the light up to the shortest + reach, each with
-// 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
-// light where none is found; with shadows, each geodesic marched to the
-// light first (shadow_blocked).
-vec3 light_received(vec3 n, vec3 q, int eye) {
+// in libsol/src/render.cpp), gathered a shadow ray at a time, so that the
+// caller's one march serves the shadow rays and its own rays (each call of
+// march is inlined, a march each: radiance, path_radiance). q and the
+// eye's light positions are in the same coordinates (camera-relative in
+// Sol, world in the quotient). Lights as sol::lights_at: point lights by
+// the coordinate difference in frame components at the hit and 1/(1 + r²)
+// on the distance bound; exact point lights (HAS_EXACT_LIGHTS,
+// light_color.w = 2, reach in lights[i].w) along each geodesic from q to
+// the light up to the shortest + reach, each with 1/J
+// (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point light
+// where none is found; with shadows, each geodesic's share (`pending`)
+// counts where its shadow ray, marched by the caller from q as a ray that
+// leaves the surface (kMarchShadow; the CPU's `blocked`), is clear. The sum
+// is taken in the order of the lights and their geodesics, as the CPU's.
+struct LightGather {
+  vec3 n, q;
+  vec3 light;    // the light gathered so far
+  vec3 pending;  // the share of the geodesic whose shadow ray is out
+  int i;         // the light
+  int j, paths;  // an exact light's geodesic j of `paths` (-1: not solved yet)
+  vec4 found[SOL_FOUND_SLOTS];
+};
+
+LightGather light_gather_begin(vec3 n, vec3 q) {
+  LightGather g;
+  g.n = n;
+  g.q = q;
+  g.light = vec3(0.0);
+  g.pending = vec3(0.0);
+  g.i = 0;
+  g.j = 0;
+  g.paths = -1;
+  return g;
+}
+
+// Gathers g's lights up to the next geodesic whose shadow ray is to be
+// marched (from g.q along `direction` up to `len`): true with that ray,
+// false once every light is in g.light.
+bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out float len) {
   const int light_count = min(int(params.shading.z), kMaxLights);
-  vec3 light = vec3(0.0);
-  int i = 0;
-  if (light_count > 0) do {  // (tested at its end, as the paths': see the top of this file)
+  direction = vec3(0.0, 0.0, 1.0);
+  len = 0.0;
+  while (g.i < light_count) {
+    const int i = g.i;
     const vec4 lc = params.light_color[i];
     const vec4 lp = params.eyes[eye].lights[i];
     vec3 l = lp.xyz;
     float attenuation = 1.0;
     if (HAS_POINT_LIGHTS) {
-      const vec3 diff = lp.xyz - q;
+      const vec3 diff = lp.xyz - g.q;
       // q⁻¹·light: the light seen from q, in frame components at q.
-      const vec3 towards = vec3(exp(-q.z) * diff.x, exp(q.z) * diff.y, diff.z);
+      const vec3 towards = vec3(exp(-g.q.z) * diff.x, exp(g.q.z) * diff.y, diff.z);
       if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
-        vec4 found[SOL_FOUND_SLOTS];
-        const int paths = QUOTIENT ? quotient_light_connections(i, q, lp.w, found) : sol_connections(towards, lp.w, found);
-        int j = 0;
-        if (paths > 0) do {
+        if (g.paths < 0) {
+          g.paths = QUOTIENT ? quotient_light_connections(i, g.q, lp.w, g.found) : sol_connections(towards, lp.w, g.found);
+          g.j = 0;
+        }
+        while (g.j < g.paths) {
           // found[j]: the geodesic's direction at q and its length; its J seen
           // from q is its J seen from the light (reciprocity).
-          const float cosine = max(0.0, dot(n, found[j].xyz));
+          const vec4 w = g.found[g.j++];
+          const float cosine = max(0.0, dot(g.n, w.xyz));
           if (cosine == 0.0) continue;
-          if (HAS_SHADOWS && params.light_shadows[i] != 0 && shadow_blocked(q, found[j].xyz, found[j].w)) continue;
-          const float spread = lc.w == float(kLightExactGeodesic)
-                                   ? max(sol_sphere_area_density(found[j].xyz, found[j].w), kMinSpreading)
-                                   : 1.0 + found[j].w * found[j].w;
-          light += lc.rgb * (cosine / spread);
-        } while (++j < paths);
-        if (paths > 0) continue;
+          const float spread = lc.w == float(kLightExactGeodesic) ? max(sol_sphere_area_density(w.xyz, w.w), kMinSpreading)
+                                                                   : 1.0 + w.w * w.w;
+          const vec3 share = lc.rgb * (cosine / spread);
+          if (HAS_SHADOWS && params.light_shadows[i] != 0) {
+            g.pending = share;
+            direction = w.xyz;
+            len = w.w;
+            return true;
+          }
+          g.light += share;
+        }
+        if (g.paths > 0) {
+          ++g.i;
+          g.paths = -1;
+          continue;
+        }
       }
-      const float r = distance_lower_bound(q, lp.xyz);
+      const float r = distance_lower_bound(g.q, lp.xyz);
       const bool directional = lc.w == float(kLightDirectional);
       l = directional ? lp.xyz : (length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0));
       attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
     }
-    light += lc.rgb * (attenuation * max(0.0, dot(n, l)));
-  } while (++i < light_count);
-  return light;
+    g.light += lc.rgb * (attenuation * max(0.0, dot(g.n, l)));
+    ++g.i;
+    g.paths = -1;
+  }
+  return false;
+}
+
+// The shadow ray of light_gather_next's geodesic came back: its share counts where it was clear.
+void light_gather_blocked(inout LightGather g, bool blocked) {
+  if (!blocked) g.light += g.pending;
 }
 
 // The material's lobes at a point of the surface of object k of albedo a
@@ -123,11 +162,12 @@ SolLobes lobes_of(int k, vec3 a) {
 // The surface's albedo: its colour times its pattern.
 vec3 albedo(int k, vec2 uv) { return scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y); }
 
-// The light object k's surface reflects diffusely at q, with plane
-// coordinates uv, before fog (radiance_of_hit adds the fog over the arc length).
-vec3 diffuse_light(int k, vec3 n, vec2 uv, vec3 q, int eye) {
+// The light object k's surface reflects diffusely where it receives
+// `light` (light_gather_next), with plane coordinates uv, before fog
+// (radiance_of_hit adds the fog over the arc length).
+vec3 diffuse_light(int k, vec2 uv, vec3 light) {
   const float ambient = params.shading.x;
-  return albedo(k, uv) * (ambient + (1.0 - ambient) * light_received(n, q, eye));
+  return albedo(k, uv) * (ambient + (1.0 - ambient) * light);
 }
 
 // What a camera ray's hit shows: the scene object, the surface normal
@@ -199,15 +239,16 @@ Surface surface_at(MarchHit h) {
 // Written as the CPU's shade_hit (libsol/src/render.cpp) fogs, so that a
 // hit without emission or mirror (weight 1) adds exactly the direct light's
 // colour.
-vec3 radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 color) {
+vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 color) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   const SolLobes lobes = lobes_of(f.object, albedo(f.object, f.uv));
-  // (diffuse_light is called whatever the share, as before materials: a
-  // call under `lobes.diffuse > 0.0` made the quotient's reflected rays
-  // hit their own surface on lavapipe, which the CPU never does; the cause,
-  // the driver or a value the quotient march leaves unset, is not found.)
-  const vec3 surface = material.rgb + lobes.diffuse * diffuse_light(f.object, f.n, f.uv, h.q, eye);
+  // (Every hit's light is gathered whatever the diffuse share, as before
+  // materials: a light received under `lobes.diffuse > 0.0` made the
+  // quotient's reflected rays hit their own surface on lavapipe, which the
+  // CPU never does; the cause, the driver or a value the quotient march
+  // leaves unset, is not found.)
+  const vec3 surface = material.rgb + lobes.diffuse * diffuse_light(f.object, f.uv, light);
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
   return lobes.specular * transmittance;
 }
@@ -217,26 +258,42 @@ vec3 radiance_of_hit(MarchHit h, Surface f, int eye, vec3 weight, inout vec3 col
 // its segment, the object's emission, (1 - mirror) times its diffuse light
 // and mirror times what the reflected ray brings back (the tangent u
 // reflected in the normal, frame components, marched from the hit as a
-// ray that leaves its surface), up to max bounces (params.limits.z).
+// ray that leaves its surface), up to max bounces (params.limits.z). One
+// call of march for the shadow rays of each hit's lights (light_gather_next)
+// and the reflected rays, and one of radiance_of_hit: the driver inlines
+// each call, and each holds a march. (Tested at its end: see march.comp.)
 vec4 radiance(MarchHit h, Surface f, int eye) {
   const int bounces = int(params.limits.z);
   vec3 color = vec3(0.0), weight = vec3(1.0);
   int bounce = 0;
   bool alive = true;
-  // (One call of radiance_of_hit and of march: the driver inlines each
-  // call, and each holds a march. Tested at its end: see march.comp.)
+  LightGather lights = light_gather_begin(f.n, h.q);
   do {
-    const vec3 specular = radiance_of_hit(h, f, eye, weight, color);
-    weight *= specular;
-    alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
-    if (alive) {
+    vec3 direction;
+    float len;
+    const bool shadow = light_gather_next(lights, eye, direction, len);
+    if (!shadow) {  // the hit's light is in: its share, then its reflected ray
+      const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color);
+      weight *= specular;
+      alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
+      if (!alive) break;
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
-      const vec3 reflected = normalize(h.u - 2.0 * dot(h.u, n) * n);
-      h = march(h.q, reflected, params.limits.x, kMarchFromStart, kMarchShadow);
-      alive = h.k >= 0;
-      if (alive) f = surface_at(h);
+      direction = normalize(h.u - 2.0 * dot(h.u, n) * n);
+      len = params.limits.x;
     }
-  } while (alive && ++bounce <= bounces);
+    const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow);
+    if (shadow) {
+      light_gather_blocked(lights, m.k >= 0);
+    } else {
+      h = m;
+      alive = h.k >= 0;
+      if (alive) {
+        f = surface_at(h);
+        lights = light_gather_begin(f.n, h.q);
+      }
+      ++bounce;
+    }
+  } while (alive);
   return vec4(color, 1.0);
 }
 
