@@ -98,7 +98,8 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
   const int light_count = min(int(params.shading.z), kMaxLights);
   direction = vec3(0.0, 0.0, 1.0);
   len = 0.0;
-  while (g.i < light_count) {
+  // (Loops tested at their end, as everywhere: see march.comp.)
+  if (g.i < light_count) do {
     const int i = g.i;
     const vec4 lc = params.light_color[i];
     const vec4 lp = params.eyes[eye].lights[i];
@@ -113,7 +114,7 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
           g.paths = QUOTIENT ? quotient_light_connections(i, g.q, lp.w, g.found) : sol_connections(towards, lp.w, g.found);
           g.j = 0;
         }
-        while (g.j < g.paths) {
+        if (g.j < g.paths) do {
           // found[j]: the geodesic's direction at q and its length; its J seen
           // from q is its J seen from the light (reciprocity).
           const vec4 w = g.found[g.j++];
@@ -129,7 +130,7 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
             return true;
           }
           g.light += share;
-        }
+        } while (g.j < g.paths);
         if (g.paths > 0) {
           ++g.i;
           g.paths = -1;
@@ -144,7 +145,7 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
     g.light += lc.rgb * (attenuation * max(0.0, dot(g.n, l)));
     ++g.i;
     g.paths = -1;
-  }
+  } while (g.i < light_count);
   return false;
 }
 
@@ -281,17 +282,22 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
       direction = normalize(h.u - 2.0 * dot(h.u, n) * n);
       len = params.limits.x;
     }
-    const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow);
-    if (shadow) {
-      light_gather_blocked(lights, m.k >= 0);
-    } else {
-      h = m;
-      alive = h.k >= 0;
-      if (alive) {
-        f = surface_at(h);
-        lights = light_gather_begin(f.n, h.q);
+    // (A world without shadows and mirrors marches no ray here: a constant
+    // condition, so that the specialisation drops the march; lavapipe would
+    // run a march left in, masked, for every pixel.)
+    if (HAS_SHADOWS || HAS_MIRRORS) {
+      const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow);
+      if (shadow) {
+        light_gather_blocked(lights, m.k >= 0);
+      } else {
+        h = m;
+        alive = h.k >= 0;
+        if (alive) {
+          f = surface_at(h);
+          lights = light_gather_begin(f.n, h.q);
+        }
+        ++bounce;
       }
-      ++bounce;
     }
   } while (alive);
   return vec4(color, 1.0);
