@@ -382,7 +382,9 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
           lights_gain = weight * a;
           if (HAS_SHADOWS) {
             gathering = true;  // its shadow rays marched below, first
-          } else {  // no shadow ray: its light at once (as the shadows' sum, to the bit)
+          } else {  // no shadow ray: its light at once (added below instead, the hall
+                    // of mirrors' paths in the quotient came out brighter than the
+                    // CPU's on lavapipe, the sum the same: docs/history.md)
             vec3 unused_direction;
             float unused_len;
             light_gather_next(lights, eye, unused_direction, unused_len);
