@@ -413,6 +413,20 @@ TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
   // Not SPIR-V: the same error as the pipeline's.
   const std::vector<std::uint32_t> garbage(16, 0x12345678u);
   EXPECT_THROW(sol::vk::specialize_spirv(garbage, {}, "garbage"), VulkanError);
+  // Words known valid (`validated`, the project's kernels) fold to the same
+  // module unchecked; the folded module is still checked: without its entry
+  // point (OpEntryPoint, opcode 15, taken out) the module is rejected
+  // whether or not its words were said to be valid.
+  const std::vector<sol::vk::SpecializationConstant> square = {{0, 1u}};
+  EXPECT_EQ(sol::vk::specialize_spirv(words, square, "validated", true),
+            sol::vk::specialize_spirv(words, square, "validated"));
+  std::vector<std::uint32_t> no_entry(words.begin(), words.begin() + 5);
+  for (std::size_t at = 5; at < words.size(); at += words[at] >> 16) {
+    if ((words[at] & 0xffffu) != 15u) no_entry.insert(no_entry.end(), words.begin() + at, words.begin() + at + (words[at] >> 16));
+  }
+  ASSERT_LT(no_entry.size(), words.size());
+  EXPECT_THROW(sol::vk::specialize_spirv(no_entry, square, "no entry point"), VulkanError);
+  EXPECT_THROW(sol::vk::specialize_spirv(no_entry, square, "no entry point, said valid", true), VulkanError);
   const std::vector<std::string> errors = context.validation_errors();
   EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
 }

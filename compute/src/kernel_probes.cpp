@@ -32,6 +32,7 @@ std::vector<glm::vec4> run_flow(Context& context, const std::vector<glm::vec4>& 
   in.write(queries);
   ComputePipeline pipeline(context, {.name = "flow",
                                      .spirv = std::span<const std::uint32_t>(flow_comp_spv),
+                                     .validated = true,
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
                                      .push_constant_size = sizeof(std::uint32_t),
                                      .specialization = {{0, static_cast<std::uint32_t>(segments)},
@@ -99,6 +100,7 @@ std::vector<float> run_spread(Context& context, const std::vector<glm::vec4>& qu
   in.write(queries);
   ComputePipeline pipeline(context, {.name = "spread",
                                      .spirv = std::span<const std::uint32_t>(spread_comp_spv),
+                                     .validated = true,
                                      .bindings = {{0, DescriptorType::StorageBuffer}, {1, DescriptorType::StorageBuffer}},
                                      .push_constant_size = sizeof(std::uint32_t),
                                      .specialization = {{0, static_cast<std::uint32_t>(value)}}});
@@ -156,6 +158,7 @@ std::vector<KernelConnections> evaluate_kernel_connections(Context& context, con
   ComputePipeline pipeline(context, {.name = "connect",
                                      .spirv = longer ? std::span<const std::uint32_t>(connect_comp_spv)
                                                      : std::span<const std::uint32_t>(connect_minimisers_comp_spv),
+                                     .validated = true,
                                      .bindings = {{0, DescriptorType::StorageBuffer},
                                                   {1, DescriptorType::StorageBuffer},
                                                   {2, DescriptorType::StorageBuffer}},

@@ -517,6 +517,7 @@ std::string path_unsupported(const World& world) {
 ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVariant& v, int pass) {
   return ComputePipeline(c, {.name = "march (variant " + std::to_string(v.key()) + ", pass " + std::to_string(pass) + ")",
                              .spirv = march_spirv(v),
+                             .validated = true,  // (glslangValidator --spirv-val)
                              .bindings = {{kernel::kBindingParams, DescriptorType::StorageBuffer},
                                           {kernel::kBindingColor, DescriptorType::StorageImage},
                                           {kernel::kBindingHit, DescriptorType::StorageImage},

@@ -95,8 +95,8 @@ void validate_spirv(std::span<const std::uint32_t> words, const std::string& pip
 
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
                                             std::span<const SpecializationConstant> constants,
-                                            const std::string& pipeline) {
-  validate_spirv(words, pipeline);
+                                            const std::string& pipeline, bool validated) {
+  if (!validated) validate_spirv(words, pipeline);
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> values;
   for (const SpecializationConstant& c : constants) values[c.id] = {c.value};
   std::string diagnostics;
@@ -203,8 +203,9 @@ void write_cache_file(const std::filesystem::path& file, std::uint64_t key, std:
 std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t> words,
                                                    std::span<const SpecializationConstant> constants,
                                                    const std::string& pipeline,
-                                                   const std::optional<std::filesystem::path>& directory) {
-  if (!directory) return specialize_spirv(words, constants, pipeline);
+                                                   const std::optional<std::filesystem::path>& directory,
+                                                   bool validated) {
+  if (!directory) return specialize_spirv(words, constants, pipeline, validated);
   const std::uint64_t key = spirv_cache_key(words, constants);
   char name[64];
   std::snprintf(name, sizeof name, "%zu-%016llx.spv", words.size(), static_cast<unsigned long long>(key));
@@ -219,7 +220,7 @@ std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t
       // not a module: folded again below, and the file replaced
     }
   }
-  std::vector<std::uint32_t> folded = specialize_spirv(words, constants, pipeline);
+  std::vector<std::uint32_t> folded = specialize_spirv(words, constants, pipeline, validated);
   write_cache_file(file, key, folded);
   return folded;
 }
@@ -256,9 +257,9 @@ ComputePipeline::ComputePipeline(Context& context, const ComputePipelineDesc& de
                      (desc.specialization_folding == SpecializationFolding::Auto &&
                       d.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU));
   if (fold) {
-    folded = specialize_spirv_cached(desc.spirv, desc.specialization, m_name, spirv_cache_directory());
+    folded = specialize_spirv_cached(desc.spirv, desc.specialization, m_name, spirv_cache_directory(), desc.validated);
     code = folded;
-  } else {
+  } else if (!desc.validated) {
     validate_spirv(desc.spirv, m_name);
   }
 

@@ -75,6 +75,12 @@ struct ComputePipelineDesc {
   std::string name{};
   /// The SPIR-V words; validated with SPIRV-Tools before the driver sees them.
   std::span<const std::uint32_t> spirv{};
+  /// Whether the words passed validation already (the project's kernels:
+  /// glslangValidator --spirv-val at build time): they are not validated
+  /// again, a second or more per kernel on lavapipe's first frame; folded
+  /// words still are. Words not known valid must leave it false (the
+  /// folding passes may fail on invalid ones in ways no check catches).
+  bool validated = false;
   std::vector<Binding> bindings{};
   /// Bytes of the push-constant block (a multiple of 4, at most the device's
   /// maxPushConstantsSize; 0 for none).
@@ -98,10 +104,11 @@ struct ComputePipelineDesc {
 /// rewriting: inlined modules with merged returns were smaller, but
 /// lavapipe built them no faster). Constants the module does not declare are ignored, as
 /// Vulkan ignores them. Throws VulkanError where the words are not valid
-/// SPIR-V or the result does not validate.
+/// SPIR-V (unless `validated`: known valid, ComputePipelineDesc::validated)
+/// or the result does not validate.
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words,
                                             std::span<const SpecializationConstant> constants,
-                                            const std::string& pipeline = "unnamed");
+                                            const std::string& pipeline = "unnamed", bool validated = false);
 
 /// Where pipelines keep their folded modules between runs: $SOL_SPIRV_CACHE
 /// (a directory; "off" or empty: none), else $XDG_CACHE_HOME/sol/spirv,
@@ -149,7 +156,8 @@ std::uint64_t spirv_cache_key(std::span<const std::uint32_t> words, std::span<co
 std::vector<std::uint32_t> specialize_spirv_cached(std::span<const std::uint32_t> words,
                                                    std::span<const SpecializationConstant> constants,
                                                    const std::string& pipeline,
-                                                   const std::optional<std::filesystem::path>& directory);
+                                                   const std::optional<std::filesystem::path>& directory,
+                                                   bool validated = false);
 
 /// Workgroups needed to cover `extent` invocations with groups of `local_size`.
 constexpr std::uint32_t group_count(std::uint32_t extent, std::uint32_t local_size) {
