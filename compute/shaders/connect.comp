@@ -3,6 +3,7 @@
 // targets: the test that holds it to libsol's sol::geodesics_between
 // (tests/kernel_test.cpp).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "sol_geodesic.glsl"
 

@@ -34,6 +34,7 @@
 // end, behind an if where they may run no time: they run as often as their
 // slowest lane needs (docs/renderer.md, "What lavapipe runs").
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "sol/vk/march_interface.h"
 #include "sol_geodesic.glsl"

@@ -43,6 +43,28 @@
 #define SOL_FOUND_SLOTS kSeedSlots
 #endif
 
+// A list of connections read and written at a varying index j: by a loop
+// over the slots that compares each with j, unrolled, so that every access
+// has a constant index. lavapipe turns an access at a varying index into a
+// branch per slot, and with the lists carried through the kernel's loops
+// the reach build (16 slots) compiled several times slower.
+vec4 sol_slot_get(vec4 list[SOL_FOUND_SLOTS], int j) {
+  vec4 v = vec4(0.0);
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) v = i == j ? list[i] : v;
+  return v;
+}
+void sol_slot_set(inout vec4 list[SOL_FOUND_SLOTS], int j, vec4 v) {
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) list[i] = i == j ? v : list[i];
+}
+float sol_slot_get(float list[SOL_FOUND_SLOTS], int j) {
+  float v = 0.0;
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) v = i == j ? list[i] : v;
+  return v;
+}
+void sol_slot_set(inout float list[SOL_FOUND_SLOTS], int j, float v) {
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) list[i] = i == j ? v : list[i];
+}
+
 // Newton's iterations (accepted steps) at most: near the cut locus, where
 // the Jacobian is nearly singular, 8 left some connections short of the
 // float floor.
@@ -184,19 +206,19 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_FOUND_SLOTS
   vec4 c = vec4(v / t, t);
   float c_residual = residual;
   int same = -1;
-  for (int j = 0; j < count; ++j) {
-    if (dot(found[j].xyz, c.xyz) > 1.0 - 5e-7 && abs(found[j].w - t) < 2e-4 * max(1.0, t)) same = j;
+  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
+    if (j < count && dot(found[j].xyz, c.xyz) > 1.0 - 5e-7 && abs(found[j].w - t) < 2e-4 * max(1.0, t)) same = j;
   }
   if (same >= 0) {
-    if (c_residual < residuals[same]) {
-      found[same] = c;
-      residuals[same] = c_residual;
+    if (c_residual < sol_slot_get(residuals, same)) {
+      sol_slot_set(found, same, c);
+      sol_slot_set(residuals, same, c_residual);
     }
     return;
   }
   // Insert in order of length; when all slots are taken, the longest of
   // them and c (left in c) drops out.
-  for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
+  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
     if (j < count && found[j].w > c.w) {
       const vec4 held = found[j];
       const float held_residual = residuals[j];
@@ -207,8 +229,8 @@ void sol_add_connection(vec3 v, float residual, inout vec4 found[SOL_FOUND_SLOTS
     }
   }
   if (count < SOL_FOUND_SLOTS) {
-    found[count] = c;
-    residuals[count] = c_residual;
+    sol_slot_set(found, count, c);
+    sol_slot_set(residuals, count, c_residual);
     ++count;
   }
 }
@@ -265,7 +287,7 @@ vec3 sol_fold_partner(vec3 v, vec3 w) {
 // then keeps the coordinate approximation, as sol::lights_at does when the
 // solver gives up.
 int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
-  for (int i = 0; i < SOL_FOUND_SLOTS; ++i) found[i] = vec4(0.0);
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) found[i] = vec4(0.0);
   const vec3 target = vec3(abs(w.x), abs(w.y), w.z);
   const vec3 sign_xy = vec3(w.x < 0.0 ? -1.0 : 1.0, w.y < 0.0 ? -1.0 : 1.0, 1.0);
   if (target.x == 0.0 && target.y == 0.0) {  // the vertical line, the only connection
@@ -294,7 +316,9 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
       start = seed.xyz * seed.w;
       // A seed next to a connection already found would only find it again.
       bool known = false;
-      for (int j = 0; j < count; ++j) known = known || length(found[j].xyz * found[j].w - start) < SOL_SEED_SKIP * max(1.0, seed.w);
+      [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
+        known = known || (j < count && length(found[j].xyz * found[j].w - start) < SOL_SEED_SKIP * max(1.0, seed.w));
+      }
       if (known) continue;
     } else {
       if (!SOL_FOLD_PARTNERS || !(reach > 0.0)) break;
@@ -304,8 +328,9 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
       }
       const int j = s - kSeedSlots;
       if (j >= first) break;
-      if (originals[j].w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
-      start = sol_fold_partner(originals[j].xyz * originals[j].w, target);
+      const vec4 original = sol_slot_get(originals, j);
+      if (original.w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
+      start = sol_fold_partner(original.xyz * original.w, target);
       if (start == vec3(0.0)) continue;
     }
     float residual;
@@ -322,7 +347,8 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
     }
   }
   int kept = 0;
-  for (int i = 0; i < count; ++i) {
+  [[unroll]] for (int i = 0; i < SOL_FOUND_SLOTS; ++i) {
+    if (i >= count) continue;
     // Longer connections within the float tolerance of the limit count in.
     if (found[i].w <= found[0].w + reach + 1e-4 * max(1.0, found[i].w)) {
       found[i].xyz *= sign_xy;

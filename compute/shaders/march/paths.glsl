@@ -265,14 +265,18 @@ float path_solves(int first, int last, GlowDensity q, inout GlowSample g) {
 
 // Whether geodesic j of g is one light can come along: of positive length,
 // leaving the surface's front (else it is not marched).
-bool glow_way_open(GlowSample g, int j) { return g.ways[j].w > 0.0 && dot(g.n, g.ways[j].xyz) > 0.0; }
+bool glow_way_open(GlowSample g, int j) {
+  const vec4 way = sol_slot_get(g.ways, j);
+  return way.w > 0.0 && dot(g.n, way.xyz) > 0.0;
+}
 
 // The light along geodesic j of g, `to` the march along it: counted where
 // that march first meets the ball at the geodesic's length, weighted for the
 // sampling (params.path.w: kPathSampling*), times g.factor.
 vec3 glow_connection(GlowSample g, int j, MarchHit to) {
-  const vec3 d = g.ways[j].xyz;
-  const float L = g.ways[j].w, cos_x = dot(g.n, d);
+  const vec4 way = sol_slot_get(g.ways, j);
+  const vec3 d = way.xyz;
+  const float L = way.w, cos_x = dot(g.n, d);
   const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
   if (met != g.k || abs(to.t - L) > 1e-3 * max(1.0, L)) return vec3(0.0);  // something, or the ball's nearer side, is in the way
   // The tangent at y: in Sol the march's own at its hit (met at L, within
@@ -431,7 +435,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
       // (From the eye the camera ray's segment is marched as a camera ray:
       // the purpose is then no constant, and this one march holds both
       // purposes' branches; otherwise it folds to kMarchShadow.)
-      const MarchHit m = march(h.q, shadow ? direction : (to_glow ? g.ways[way].xyz : next),
+      const MarchHit m = march(h.q, shadow ? direction : (to_glow ? sol_slot_get(g.ways, way).xyz : next),
                                shadow ? min(len, params.limits.x) : params.limits.x, kMarchFromStart,
                                PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
       if (shadow) {

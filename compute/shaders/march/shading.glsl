@@ -36,20 +36,27 @@ int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL
     const vec3 d = light_images[first + lo_k].xyz - q;
     vec4 found[SOL_FOUND_SLOTS];
     const int paths = sol_connections(vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z), reach, found);
-    for (int j = 0; j < paths; ++j) {
+    [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {  // (constant indices: sol_slot_get)
+      if (j >= paths) continue;
       best = min(best, found[j].w);
       if (n < SOL_FOUND_SLOTS) {
-        kept[n++] = found[j];
+        sol_slot_set(kept, n++, found[j]);
       } else {  // full: replace the longest if this one is shorter
         int longest = 0;
-        for (int m = 1; m < SOL_FOUND_SLOTS; ++m) longest = kept[m].w > kept[longest].w ? m : longest;
-        if (found[j].w < kept[longest].w) kept[longest] = found[j];
+        float longest_length = kept[0].w;
+        [[unroll]] for (int m = 1; m < SOL_FOUND_SLOTS; ++m) {
+          if (kept[m].w > longest_length) {
+            longest = m;
+            longest_length = kept[m].w;
+          }
+        }
+        if (found[j].w < longest_length) sol_slot_set(kept, longest, found[j]);
       }
     }
   }
   int m = 0;
-  for (int j = 0; j < n; ++j) {
-    if (kept[j].w <= best + reach + 2e-3 * max(1.0, best)) kept[m++] = kept[j];
+  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
+    if (j < n && kept[j].w <= best + reach + 2e-3 * max(1.0, best)) sol_slot_set(kept, m++, kept[j]);
   }
   return m;
 }
@@ -117,7 +124,7 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
         if (g.j < g.paths) do {
           // found[j]: the geodesic's direction at q and its length; its J seen
           // from q is its J seen from the light (reciprocity).
-          const vec4 w = g.found[g.j++];
+          const vec4 w = sol_slot_get(g.found, g.j++);
           const float cosine = max(0.0, dot(g.n, w.xyz));
           if (cosine == 0.0) continue;
           const float spread = lc.w == float(kLightExactGeodesic) ? max(sol_sphere_area_density(w.xyz, w.w), kMinSpreading)
