@@ -203,7 +203,7 @@ float crowd_exact_step(vec3 q, vec3 u, float hit_epsilon, int leaving, float ste
   const float away = exact.known ? abs(sdf) : 0.0;
   const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
   const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
-  exact_seen_solved(seen, exact, item, sdf, t);
+  exact_seen_solved(seen, exact.known, item, sdf, t);
   if (leaving >= 0) {
     float leave_sign = leave_signs[leaving];
     if (exact_pass_ends(exact.known, away, slope, hit_epsilon, leave_sign)) passing[leaving] = -1;

@@ -57,10 +57,10 @@ void exact_seen_note(inout ExactSeen s, int k, float value, float t) {
   s.at.x = t;
 }
 
-// Notes ball k's solve x at arc length t where it landed: its distance to
-// the sphere sdf, taken as |sdf| where the eye may be inside a solid.
-void exact_seen_solved(inout ExactSeen s, ExactSolve x, int k, float sdf, float t) {
-  if (x.known) exact_seen_note(s, k, HAS_INSIDE ? abs(sdf) : sdf, t);
+// Notes ball k's solve at arc length t where it landed (`known`): its
+// distance to the sphere sdf, taken as |sdf| where the eye may be inside a solid.
+void exact_seen_solved(inout ExactSeen s, bool known, int k, float sdf, float t) {
+  if (known) exact_seen_note(s, k, HAS_INSIDE ? abs(sdf) : sdf, t);
 }
 
 // Exact balls near their sphere: the exact distance from the centre c to q

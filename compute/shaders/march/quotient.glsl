@@ -192,7 +192,7 @@ void quotient_exact_step(vec3 e, vec3 direction, float hit_epsilon, float t, ino
   const float away = exact.known ? abs(sdf) : 0.0;
   const bool inside = HAS_INSIDE && exact.known && sdf < -hit_epsilon;
   const float beyond = inside ? exact_ball_inside_clearance(away, length(exact.v), slope, hit_epsilon) : away;
-  exact_seen_solved(seen, exact, ei, sdf, t);
+  exact_seen_solved(seen, exact.known, ei, sdf, t);
   if (solve_leaving) {
     for (int p = 0; p < 4; ++p) {
       if (passing[p] != ei) continue;

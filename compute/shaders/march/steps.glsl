@@ -134,7 +134,7 @@ bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool
   const int e = leaving ? s.nearest_any : s.nearest_k;
   const float sdf = exact_ball_sdf(q, g_relative[e].xyz, g_radii[e], e, x);
   const float slope = dot(x.end.tangent, u);  // the exact distance's rate along the ray (where x.known)
-  exact_seen_solved(seen, x, e, sdf, t);
+  exact_seen_solved(seen, x.known, e, sdf, t);
   if (leaving) {
     const float away = x.known ? abs(sdf) : 0.0;  // (where the solve did not land: the passing's least step)
     if (exact_pass_ends(x.known, away, slope, hit_epsilon, leave_sign)) passing &= ~(1u << uint(e));
