@@ -1365,6 +1365,47 @@ TEST(Kernel, PathsRecordedOneByOneAreTheRenderedImage) {
 // image (their mean difference within 3 standard errors, as the CPU's
 // Path.ReflectionSamplingGlowSamplingAndBothAgree). The quotient's targets
 // (a glowing ball's images) are the furnace's above, alone and combined.
+// An eye inside a closed exact ball that neither glows nor mirrors sees no
+// light at all on a path, whatever shines outside: an exact point light
+// with shadows (with a reach in Sol) and a glowing exact ball, with a mirror
+// ball, a box and a tube beside them, in Sol and in the golden quotient.
+// Every path stays inside (its segments, shadow rays and connections end
+// on the inner wall), so every pixel is exactly 0 on both devices. (The
+// kernel once added an exact light's point-light fallback inside, where its
+// connection solve came back empty: blue pixels up to 1.6.)
+TEST(Kernel, PathsInsideAClosedBallSeeNoLight) {
+  const std::string objects = R"("objects": [
+      {"type": "plane_z", "c": 0, "color": [0.8, 0.8, 0.8], "pattern": "checker"},
+      {"type": "ball", "center": [0, 0, 0.6], "radius": 0.4, "material": "mirror"},
+      {"type": "ball", "center": [1, 0.5, 0.6], "radius": 0.3, "exact": true, "emission": [4, 3, 2]},
+      {"type": "ball", "center": [-1, 0.5, 0.6], "radius": 0.3, "exact": true, "color": [0.3, 0.6, 0.9]},
+      {"type": "box", "center": [-1, 1.5, 0.5], "half_size": [0.15, 0.15, 0.15]},
+      {"type": "tube", "axis": "z", "through": [0, 0, 0], "radius": 0.1}],)";
+  const std::string eye = R"({"camera": {"position": [-1, 0.5, 0.6]},)";
+  const std::vector<sol::Scene> scenes = {
+      sol::parse_scene(eye + objects + R"("lights": [{"type": "point", "position": [0.5, -1, 2], "intensity": 10,
+                                          "exact": true, "reach": 2, "shadows": true}]})"),
+      sol::parse_scene(eye + objects + R"("lights": [{"type": "point", "position": [0.2, -0.3, 0.4], "intensity": 10,
+                                          "exact": true, "shadows": true}], "quotient": "golden"})")};
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const sol::Scene& scene : scenes) {
+    const char* where = scene.quotient == sol::Quotient::Golden ? "golden" : "Sol";
+    const sol::RenderResult gpu = sol::render_scene(
+        renderer, scene, {.width = 16, .height = 12, .samples = 4, .transport = sol::Transport::Path, .seed = 1});
+    // (The CPU's paths inside an exact ball are dear: fewer of them.)
+    const sol::RenderResult cpu =
+        sol::render_cpu(scene, {.width = 6, .height = 4, .samples = 2, .transport = sol::Transport::Path, .seed = 1});
+    for (const sol::RenderResult* image : {&gpu, &cpu}) {
+      float most = 0.0f;
+      for (std::size_t k = 0; k < image->rgba.size(); k += 4) {
+        most = std::max({most, image->rgba[k], image->rgba[k + 1], image->rgba[k + 2]});
+      }
+      EXPECT_EQ(most, 0.0f) << where << (image == &gpu ? " kernel" : " CPU");
+    }
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
   const sol::Scene scene = sol::test::glow_over_plane();
   sol::vk::MarchRenderer renderer(vk_context());

@@ -130,7 +130,7 @@ float glow_pick_total(vec3 x) {
 // a quotient x exp(L d) in the cover; cos_y: the cosine there with its
 // normal): 0 where none holds y, or where that geodesic is longer than the
 // distance plus the ball's reach. Its two connection solves (x to y, and
-// the target's centre c to y) are path_radiance's (path_solves), between
+// the target's centre c to y) are path_radiance's (kSolveDensity*), between
 // glow_density_target, which finds y, c and r (false: no target holds y),
 // and glow_density_of, which takes the second solve's minimiser.
 struct GlowDensity {
@@ -203,7 +203,7 @@ struct GlowSample {
 
 // Draws a target and a point y of its sphere at the diffuse hit h (normal
 // n); the geodesics from h to y within its reach are path_radiance's solve
-// (path_solves).
+// (kSolveGlowSample).
 GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   GlowSample g;
   g.n = n;
@@ -237,31 +237,13 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   return g;
 }
 
-// A path vertex's connection solves, in one call of sol_connections (the
-// driver inlines each call, and a solve is the dearest code of the path
-// kernel): solves `first` to `last` - 1 of 0, the density's from x to y
+// A path's connection solves, numbered: 0, the density's from x to y
 // (glow_density_reached), 1, the density's from c to y (skipped when 0
-// failed), 2, the sample's from x to its point (kept in g.ways). Returns the
-// density (0 without solve 1).
-float path_solves(int first, int last, GlowDensity q, inout GlowSample g) {
-  float density = 0.0;
-  int i = first;
-  if (first < last) do {
-    const vec3 target = i == 0 ? seen_from(q.x, q.y) : (i == 1 ? seen_from(q.c, q.y) : g.towards);
-    const float reach = i == 2 ? scene_objects[g.k].glow.x : 0.0;
-    vec4 found[SOL_FOUND_SLOTS];
-    const int count = sol_connections(target, reach, found);
-    if (i == 0) {
-      if (!glow_density_reached(q, count, found[0])) i = 1;  // (no second solve)
-    } else if (i == 1) {
-      density = glow_density_of(q, count, found[0]);
-    } else {
-      g.count = count;
-      g.ways = found;
-    }
-  } while (++i < last);
-  return density;
-}
+// failed), 2, the sample's from x to its point (kept in g.ways), and 3, the
+// lights' (light_gather_step's kGatherSolve). path_radiance makes them at
+// one call of sol_connections, a solve a turn: the driver inlines each call,
+// and a solve is the dearest code of the path kernel.
+const int kSolveDensityFromX = 0, kSolveDensityFromCentre = 1, kSolveGlowSample = 2, kSolveLight = 3;
 
 // Whether geodesic j of g is one light can come along: of positive length,
 // leaving the surface's front (else it is not marched).
@@ -302,6 +284,10 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // SIMD lanes of a path-traced world fuller where the march is cheap).
 const bool PATH_FROM_EYE = PATH_FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 0;
 
+// Whether the hit's lights are gathered a step at a time in path_radiance's
+// loop (light_gather_step: shadow rays to march or solves to make), else at once.
+const bool HAS_LIGHT_STEPS = HAS_SHADOWS || HAS_EXACT_LIGHTS;
+
 // What one path from a camera ray's hit brings back (path_radiance in
 // libsol/src/render.cpp): at each hit, over the fog of its segment, the
 // object's emission; then with probability `mirror` the path goes on along
@@ -315,9 +301,10 @@ const bool PATH_FROM_EYE = PATH_FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 
 // path meets after a diffuse bounce weighed by the balance heuristic.
 // One call of march, for the path's next segment, the shadow rays of the
 // lights and the geodesics to a glowing ball's point alike (those first,
-// from the same hit), and one of
-// sol_connections (path_solves): the driver inlines each call, and each
-// holds a march or a solve (see radiance). From the eye (PATH_FROM_EYE:
+// from the same hit), and one of sol_connections, for the glowing ball's
+// solves and the exact lights' alike (kSolve*; a turn of the loop makes a
+// solve or marches a ray): the driver inlines each call, and each holds a
+// march or a solve (see radiance). From the eye (PATH_FROM_EYE:
 // `from_eye`, h.q the ray's start and h.u its direction) the camera ray is
 // the path's first segment, marched by that same call, so the path's
 // pipeline holds one march; `first` is then what that segment met and
@@ -340,8 +327,16 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   g.count = 0;
   int way = 0;
   vec3 next = h.u;          // (from the eye: the camera ray's direction)
-  LightGather lights;       // the hit's next-event estimation to the lights, its shadow rays still to march
+  LightGather lights;       // the hit's next-event estimation to the lights, its shadow rays and solves still to make
   bool gathering = false;
+  // The hit's solves (kSolve*) from `solve` to `solves_end` - 1, for the
+  // glowing ball's density at it (dq: its emission's share, `emission` times
+  // reflection / (reflection + glow_density)) and its sample's geodesics (g).
+  int solve = 0, solves_end = 0;
+  GlowDensity dq;
+  bool density = false;
+  float reflection = 0.0, glow_density = 0.0;
+  vec3 emission = vec3(0.0);
   vec3 lights_gain = vec3(0.0);
   first = h;
   first_f = f;
@@ -354,11 +349,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
       weight *= transmittance;
       const vec3 emission_weight = weight;
       // The emission's share, where next-event estimation could have found
-      // this hit: its density solved below (path_solves).
+      // this hit: its density solved below (kSolveDensity*).
       float share = 1.0;
-      bool density = false;
-      GlowDensity dq;
-      const float reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
+      density = false;
+      reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
       if (HAS_EMISSION && GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
         if (params.path.w == kPathSamplingGlowOnly) {
           share = 0.0;  // next-event estimation counted it
@@ -367,6 +361,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         }
       }
       if (HAS_EMISSION && !density) color += weight * material.rgb * share;  // (else once its density is solved)
+      emission = emission_weight * material.rgb;
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
@@ -384,8 +379,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         if (light_count > 0) {
           lights = light_gather_begin(n, h.q);
           lights_gain = weight * a;
-          if (HAS_SHADOWS) {
-            gathering = true;  // its shadow rays marched below, first
+          if (HAS_LIGHT_STEPS) {
+            gathering = true;  // its shadow rays and solves made below, first
           } else {  // no shadow ray: its light at once (added below instead, the hall
                     // of mirrors' paths in the quotient came out brighter than the
                     // CPU's on lavapipe, the sum the same: docs/history.md)
@@ -412,18 +407,51 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         alive = q > 0.0 && path_uniform(state) < q;
         weight /= max(q, 1e-30);
       }
-      if (GLOW_SAMPLING && (density || sampled)) {
-        const float glow = path_solves(density ? 0 : 2, sampled ? 3 : 2, dq, g);
-        if (density) share = reflection / (reflection + glow);
+      if (GLOW_SAMPLING && (density || sampled)) {  // the vertex's solves, in the next turns
+        solve = density ? kSolveDensityFromX : kSolveGlowSample;
+        solves_end = sampled ? kSolveLight : kSolveGlowSample;
+        glow_density = 0.0;
       }
-      if (HAS_EMISSION && density) color += emission_weight * material.rgb * share;
     }
-    // The next ray: a shadow ray of the hit's lights, else a geodesic to a
+    // The turn's ray: a connection solve of the vertex, else the next step
+    // of the hit's lights (a solve or a shadow ray), else a geodesic to a
     // glowing ball's point, else the path's next segment.
     vec3 direction;
     float len;
-    const bool shadow = HAS_SHADOWS && gathering && light_gather_next(lights, eye, direction, len);
-    if (HAS_SHADOWS && gathering && !shadow) {
+    const bool vertex_solve = GLOW_SAMPLING && solve < solves_end;
+    const int step = HAS_LIGHT_STEPS && gathering && !vertex_solve ? light_gather_step(lights, eye, direction, len)
+                                                                    : kGatherDone;
+    // (A constant condition first: a world without glowing exact balls or
+    // exact lights holds no solve.)
+    if ((GLOW_SAMPLING || HAS_EXACT_LIGHTS) && (vertex_solve || step == kGatherSolve)) {
+      const int i = vertex_solve ? solve : kSolveLight;
+      const vec3 target = i == kSolveDensityFromX ? seen_from(dq.x, dq.y)
+                        : (i == kSolveDensityFromCentre ? seen_from(dq.c, dq.y)
+                                                        : (i == kSolveGlowSample ? g.towards : lights.target));
+      const float reach = i == kSolveGlowSample ? scene_objects[g.k].glow.x : (i == kSolveLight ? lights.reach : 0.0);
+      vec4 found[SOL_FOUND_SLOTS];
+      const int count = sol_connections(target, reach, found);
+      if (i == kSolveLight) {
+        light_gather_solved(lights, count, found);
+      } else {
+        if (i == kSolveDensityFromX) {  // no second solve where the first failed
+          solve = glow_density_reached(dq, count, found[0]) ? kSolveDensityFromCentre : kSolveGlowSample;
+        } else if (i == kSolveDensityFromCentre) {
+          glow_density = glow_density_of(dq, count, found[0]);
+          solve = kSolveGlowSample;
+        } else {
+          g.count = count;
+          g.ways = found;
+          solve = kSolveLight;
+        }
+        if (HAS_EMISSION && density && solve >= solves_end) {
+          color += emission * (reflection / (reflection + glow_density));
+        }
+      }
+      continue;
+    }
+    const bool shadow = step == kGatherShadow;
+    if (HAS_LIGHT_STEPS && gathering && !vertex_solve && step == kGatherDone) {
       color += lights_gain * lights.light;
       gathering = false;
     }
@@ -457,7 +485,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         }
       }
     }
-  } while (gathering || (GLOW_SAMPLING && way < g.count) || alive);
+  } while (gathering || (GLOW_SAMPLING && (way < g.count || solve < solves_end)) || alive);
   return vec4(color, 1.0);
 }
 

@@ -5,78 +5,33 @@
 #ifndef SOL_MARCH_SHADING_GLSL
 #define SOL_MARCH_SHADING_GLSL
 
-// The quotient (sol::lights_at with the light's images): the connections
-// from q (world, in D) to light i's images of length up to d + reach, d the
-// least distance to any image. Images are taken in order of their distance
-// lower bound from q while that is within the least length found + reach
-// (at most kMaxLightImageSolves of them), their connections solved and
-// kept (the shortest SOL_FOUND_SLOTS), then those longer than the least + reach
-// dropped (with 2e-3 of it for the float lengths).
-int quotient_light_connections(int light, vec3 q, float reach, out vec4 kept[SOL_FOUND_SLOTS]) {
-  const int first = params.light_image_first[light], count = params.light_image_count[light];
-  float best = 1e30, last = -1.0;
-  int last_k = -1, n = 0;
-  const vec2 hq = half_exp(q.z);  // shared by the images' bounds
-  for (int round = 0; round < kMaxLightImageSolves; ++round) {
-    // The next image by (lower bound, index) after the last one solved.
-    float lo = 1e30;
-    int lo_k = -1;
-    for (int k = 0; k < count; ++k) {
-      const vec3 image = light_images[first + k].xyz;
-      const float b = distance_lower_bound(q, image, hq, half_exp(image.z));
-      const bool after = b > last || (b == last && k > last_k);
-      if (after && b < lo) {
-        lo = b;
-        lo_k = k;
-      }
-    }
-    if (lo_k < 0 || lo > best + reach) break;
-    last = lo;
-    last_k = lo_k;
-    const vec3 d = light_images[first + lo_k].xyz - q;
-    vec4 found[SOL_FOUND_SLOTS];
-    const int paths = sol_connections(vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z), reach, found);
-    [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {  // (constant indices: sol_slot_get)
-      if (j >= paths) continue;
-      best = min(best, found[j].w);
-      if (n < SOL_FOUND_SLOTS) {
-        sol_slot_set(kept, n++, found[j]);
-      } else {  // full: replace the longest if this one is shorter
-        int longest = 0;
-        float longest_length = kept[0].w;
-        [[unroll]] for (int m = 1; m < SOL_FOUND_SLOTS; ++m) {
-          if (kept[m].w > longest_length) {
-            longest = m;
-            longest_length = kept[m].w;
-          }
-        }
-        if (found[j].w < longest_length) sol_slot_set(kept, longest, found[j]);
-      }
-    }
-  }
-  int m = 0;
-  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
-    if (j < n && kept[j].w <= best + reach + 2e-3 * max(1.0, best)) sol_slot_set(kept, m++, kept[j]);
-  }
-  return m;
-}
-
 // The light the lights bring to a point q with unit normal n (frame
 // components), before the surface's colour and the ambient (light_received
-// in libsol/src/render.cpp), gathered a shadow ray at a time, so that the
-// caller's one march serves the shadow rays and its own rays (each call of
-// march is inlined, a march each: radiance, path_radiance). q and the
-// eye's light positions are in the same coordinates (camera-relative in
-// Sol, world in the quotient). Lights as sol::lights_at: point lights by
-// the coordinate difference in frame components at the hit and 1/(1 + r²)
-// on the distance bound; exact point lights (HAS_EXACT_LIGHTS,
-// light_color.w = 2, reach in lights[i].w) along each geodesic from q to
-// the light up to the shortest + reach, each with 1/J
-// (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point light
-// where none is found; with shadows, each geodesic's share (`pending`)
-// counts where its shadow ray, marched by the caller from q as a ray that
-// leaves the surface (kMarchShadow; the CPU's `blocked`), is clear. The sum
-// is taken in the order of the lights and their geodesics, as the CPU's.
+// in libsol/src/render.cpp), gathered a shadow ray and a connection solve
+// at a time, so that the caller's one march serves the shadow rays and its
+// own rays, and its one call of sol_connections every solve (the driver
+// inlines each call, a march or a solve each: radiance, path_radiance). q
+// and the eye's light positions are in the same coordinates
+// (camera-relative in Sol, world in the quotient). Lights as
+// sol::lights_at: point lights by the coordinate difference in frame
+// components at the hit and 1/(1 + r²) on the distance bound; exact point
+// lights (HAS_EXACT_LIGHTS, light_color.w = 2, reach in lights[i].w) along
+// each geodesic from q to the light up to the shortest + reach, each with
+// 1/J (kLightExactGeodesic) or 1/(1 + L²) on its length L, or as a point
+// light where none is found; with shadows, each geodesic's share
+// (`pending`) counts where its shadow ray, marched by the caller from q as
+// a ray that leaves the surface (kMarchShadow; the CPU's `blocked`), is
+// clear. The sum is taken in the order of the lights and their geodesics,
+// as the CPU's.
+//
+// In the quotient (sol::lights_at with the light's images) an exact
+// light's connections are those from q (world, in D) to its images of
+// length up to d + reach, d the least distance to any image: images are
+// taken in order of their distance lower bound from q while that is within
+// the least length found + reach (at most kMaxLightImageSolves of them, a
+// solve each), their connections kept (the shortest SOL_FOUND_SLOTS), then
+// those longer than the least + reach dropped (with 2e-3 of it for the
+// float lengths).
 struct LightGather {
   vec3 n, q;
   vec3 light;    // the light gathered so far
@@ -84,7 +39,18 @@ struct LightGather {
   int i;         // the light
   int j, paths;  // an exact light's geodesic j of `paths` (-1: not solved yet)
   vec4 found[SOL_FOUND_SLOTS];
+  vec3 target;   // the solve asked for (kGatherSolve): the light seen from q
+  float reach;   //   and the reach
+  // The quotient's images of light i: solves done, the image last solved
+  // (its lower bound and index), the least length found, connections kept.
+  int round, last_k, kept;
+  float last, best;
 };
+
+// What light_gather_step asks of its caller.
+const int kGatherDone = 0;    // every light is in g.light
+const int kGatherShadow = 1;  // march the shadow ray, then light_gather_blocked
+const int kGatherSolve = 2;   // solve g.target's connections up to g.reach, then light_gather_solved
 
 LightGather light_gather_begin(vec3 n, vec3 q) {
   LightGather g;
@@ -95,13 +61,95 @@ LightGather light_gather_begin(vec3 n, vec3 q) {
   g.i = 0;
   g.j = 0;
   g.paths = -1;
+  g.round = 0;
+  g.kept = 0;
+  g.target = vec3(0.0);
+  g.reach = 0.0;
+  g.last_k = -1;
+  g.last = -1.0;
+  g.best = 1e30;
   return g;
 }
 
-// Gathers g's lights up to the next geodesic whose shadow ray is to be
-// marched (from g.q along `direction` up to `len`): true with that ray,
-// false once every light is in g.light.
-bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out float len) {
+// The quotient: asks for the solve of light i's next image (true), or
+// keeps the connections found within the least + reach (false, g.paths set).
+bool quotient_light_round(inout LightGather g, int light, float reach) {
+  if (g.round < kMaxLightImageSolves) {
+    const int first = params.light_image_first[light], count = params.light_image_count[light];
+    const vec2 hq = half_exp(g.q.z);  // shared by the images' bounds
+    // The next image by (lower bound, index) after the last one solved.
+    float lo = 1e30;
+    int lo_k = -1;
+    for (int k = 0; k < count; ++k) {
+      const vec3 image = light_images[first + k].xyz;
+      const float b = distance_lower_bound(g.q, image, hq, half_exp(image.z));
+      const bool after = b > g.last || (b == g.last && k > g.last_k);
+      if (after && b < lo) {
+        lo = b;
+        lo_k = k;
+      }
+    }
+    if (lo_k >= 0 && lo <= g.best + reach) {
+      g.last = lo;
+      g.last_k = lo_k;
+      ++g.round;
+      const vec3 d = light_images[first + lo_k].xyz - g.q;
+      g.target = vec3(exp(-g.q.z) * d.x, exp(g.q.z) * d.y, d.z);
+      g.reach = reach;
+      return true;
+    }
+  }
+  int m = 0;
+  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {  // (constant indices: sol_slot_get)
+    if (j < g.kept && g.found[j].w <= g.best + reach + 2e-3 * max(1.0, g.best)) sol_slot_set(g.found, m++, g.found[j]);
+  }
+  g.paths = m;
+  g.j = 0;
+  return false;
+}
+
+// The solve light_gather_step asked for came back: `count` connections in found.
+void light_gather_solved(inout LightGather g, int count, vec4 found[SOL_FOUND_SLOTS]) {
+  if (!QUOTIENT) {
+    g.paths = count;
+    g.found = found;
+    g.j = 0;
+    return;
+  }
+  [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) {
+    if (j >= count) continue;
+    g.best = min(g.best, found[j].w);
+    if (g.kept < SOL_FOUND_SLOTS) {
+      sol_slot_set(g.found, g.kept++, found[j]);
+    } else {  // full: replace the longest if this one is shorter
+      int longest = 0;
+      float longest_length = g.found[0].w;
+      [[unroll]] for (int m = 1; m < SOL_FOUND_SLOTS; ++m) {
+        if (g.found[m].w > longest_length) {
+          longest = m;
+          longest_length = g.found[m].w;
+        }
+      }
+      if (found[j].w < longest_length) sol_slot_set(g.found, longest, found[j]);
+    }
+  }
+}
+
+// On to the next light, its connections not solved yet.
+void light_gather_next_light(inout LightGather g) {
+  ++g.i;
+  g.paths = -1;
+  g.round = 0;
+  g.kept = 0;
+  g.last_k = -1;
+  g.last = -1.0;
+  g.best = 1e30;
+}
+
+// Gathers g's lights up to the next shadow ray to march (from g.q along
+// `direction` up to `len`: kGatherShadow) or connection solve to make
+// (kGatherSolve), or to the end (kGatherDone).
+int light_gather_step(inout LightGather g, int eye, out vec3 direction, out float len) {
   const int light_count = min(int(params.shading.z), kMaxLights);
   direction = vec3(0.0, 0.0, 1.0);
   len = 0.0;
@@ -118,8 +166,13 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
       const vec3 towards = vec3(exp(-g.q.z) * diff.x, exp(g.q.z) * diff.y, diff.z);
       if (HAS_EXACT_LIGHTS && (lc.w == float(kLightExactPoint) || lc.w == float(kLightExactGeodesic))) {
         if (g.paths < 0) {
-          g.paths = QUOTIENT ? quotient_light_connections(i, g.q, lp.w, g.found) : sol_connections(towards, lp.w, g.found);
-          g.j = 0;
+          if (QUOTIENT) {
+            if (quotient_light_round(g, i, lp.w)) return kGatherSolve;
+          } else {
+            g.target = towards;
+            g.reach = lp.w;
+            return kGatherSolve;
+          }
         }
         if (g.j < g.paths) do {
           // found[j]: the geodesic's direction at q and its length; its J seen
@@ -134,13 +187,12 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
             g.pending = share;
             direction = w.xyz;
             len = w.w;
-            return true;
+            return kGatherShadow;
           }
           g.light += share;
         } while (g.j < g.paths);
         if (g.paths > 0) {
-          ++g.i;
-          g.paths = -1;
+          light_gather_next_light(g);
           continue;
         }
       }
@@ -150,10 +202,25 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
       attenuation = directional ? 1.0 : 1.0 / (1.0 + r * r);
     }
     g.light += lc.rgb * (attenuation * max(0.0, dot(g.n, l)));
-    ++g.i;
-    g.paths = -1;
+    light_gather_next_light(g);
   } while (g.i < light_count);
-  return false;
+  return kGatherDone;
+}
+
+// light_gather_step with its solves made here (one call of sol_connections):
+// true with the next shadow ray, false once every light is in g.light.
+bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out float len) {
+  int step;
+  do {
+    step = light_gather_step(g, eye, direction, len);
+    // (A constant condition first: without exact lights the specialisation drops the solve.)
+    if (HAS_EXACT_LIGHTS && step == kGatherSolve) {
+      vec4 found[SOL_FOUND_SLOTS];
+      const int count = sol_connections(g.target, g.reach, found);
+      light_gather_solved(g, count, found);
+    }
+  } while (HAS_EXACT_LIGHTS && step == kGatherSolve);
+  return step == kGatherShadow;
 }
 
 // The shadow ray of light_gather_next's geodesic came back: its share counts where it was clear.
