@@ -16,15 +16,21 @@ void report_out_of_steps(ivec2 pixel, bool written) {
   if (WRITE_AOVS && !written) imageStore(aov_hit, pixel, imageLoad(aov_hit, pixel) + vec4(0.0, 0.0, 0.0, float(g_out_of_steps)));
 }
 
-// Paths from the eye (PATH_FROM_EYE, march/paths.glsl): the pixel's path,
-// its camera ray its first segment, and its colour and AOVs written.
-void path_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction, bool write_aovs) {
+// From the eye (PATH_FROM_EYE, march/paths.glsl; DIRECT_FROM_EYE,
+// march/shading.glsl): the pixel's path or radiance, its camera ray its
+// first segment, and its colour and AOVs written.
+void from_eye_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction, bool write_aovs) {
   MarchHit h = march_hit_none(kMarchFromStart), first;
   h.q = origin;
   h.u = direction;
   Surface f, first_f;
   f.object = -1;
-  const vec4 color = path_radiance(h, f, eye, index, true, first, first_f);
+  vec4 color;
+  if (PATH_FROM_EYE) {
+    color = path_radiance(h, f, eye, index, true, first, first_f);
+  } else {
+    color = radiance(h, f, eye, first, first_f);
+  }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
   if (write_aovs) {
     vec4 hit_aov = vec4(0.0, 0.0, float(first.steps), float(g_out_of_steps)), point_aov = vec4(0.0);
@@ -90,8 +96,8 @@ void march_pass() {
   } else {
     load_objects(eye);
   }
-  if (PATH_FROM_EYE) {
-    path_pass(pixel, eye, uint(local.y * width + local.x), origin, direction, write_aovs);
+  if (PATH_FROM_EYE || DIRECT_FROM_EYE) {
+    from_eye_pass(pixel, eye, uint(local.y * width + local.x), origin, direction, write_aovs);
     return;
   }
   const MarchHit h = march(origin, direction, params.limits.x,
@@ -112,7 +118,9 @@ void march_pass() {
       Surface first_f;
       color = path_radiance(h, f, eye, uint(local.y * width + local.x), false, first, first_f);
     } else {
-      color = radiance(h, f, eye);  // (without mirrors and emission: shade_hit's colour, to the bit)
+      MarchHit first;
+      Surface first_f;
+      color = radiance(h, f, eye, first, first_f);  // (without mirrors and emission: shade_hit's colour, to the bit)
     }
     hit_aov.x = float(f.object + 1);
     hit_aov.y = h.t;
@@ -156,7 +164,9 @@ void shade_pass() {
     Surface first_f;
     color = path_radiance(h, f, eye, uint(local.y * width + local.x), false, first, first_f);
   } else {
-    color = radiance(h, f, eye);  // (its reflected rays marched here)
+    MarchHit first;
+    Surface first_f;
+    color = radiance(h, f, eye, first, first_f);  // (its reflected rays marched here)
   }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
   report_out_of_steps(pixel, false);  // (its shadow rays' and paths')

@@ -282,7 +282,7 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // pipeline then holds one march, where the march pass and the shade pass
 // would hold one each (the shade pass, over the hits alone, keeps the
 // SIMD lanes of a path-traced world fuller where the march is cheap).
-const bool PATH_FROM_EYE = PATH_FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 0;
+const bool PATH_FROM_EYE = FROM_EYE_WORLD && PATH_TRACING && INTEGRATOR == 0;
 
 // Whether the hit's lights are gathered a step at a time in path_radiance's
 // loop (light_gather_step: shadow rays to march or solves to make), else at once.

@@ -328,39 +328,60 @@ vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 
   return lobes.specular * transmittance;
 }
 
+// Direct light from the eye: the camera ray is the first ray radiance's one
+// march marches (the host's choice where the march is dear to compile and
+// shading marches too: exact balls with shadows or mirrors, sol::vk's
+// defer_passes), so that the world's one pipeline holds one march.
+const bool DIRECT_FROM_EYE = FROM_EYE_WORLD && !PATH_TRACING && INTEGRATOR == 0;
+
 // What a camera ray brings back where the world has mirrors or glowing
 // objects (radiance in libsol/src/render.cpp): at each hit, over the fog of
 // its segment, the object's emission, (1 - mirror) times its diffuse light
 // and mirror times what the reflected ray brings back (the tangent u
 // reflected in the normal, frame components, marched from the hit as a
 // ray that leaves its surface), up to max bounces (params.limits.z). One
-// call of march for the shadow rays of each hit's lights (light_gather_next)
+// call of march for the shadow rays of each hit's lights (light_gather_step)
 // and the reflected rays, and one of radiance_of_hit: the driver inlines
 // each call, and each holds a march. (Tested at its end: see march.comp.)
-vec4 radiance(MarchHit h, Surface f, int eye) {
+// From the eye (DIRECT_FROM_EYE: h.q the ray's start and h.u its
+// direction) that march marches the camera ray first; `first` is then what
+// it met and `first_f` its surface, where it met one (the AOVs' hit). (The
+// specialisation constant alone says which: a pipeline from the eye calls
+// radiance from the eye only, and every condition on it folds, so that a
+// world without shadows and mirrors keeps no march here.)
+vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface first_f) {
   const int bounces = int(params.limits.z);
+  const bool eye_first = DIRECT_FROM_EYE;
   vec3 color = vec3(0.0), weight = vec3(1.0);
-  int bounce = 0;
+  int bounce = eye_first ? -1 : 0;  // (the camera ray's segment is no bounce)
   bool alive = true;
   LightGather lights = light_gather_begin(f.n, h.q);
+  first = h;
+  first_f = f;
   do {
-    vec3 direction;
-    float len;
-    const bool shadow = light_gather_next(lights, eye, direction, len);
-    if (!shadow) {  // the hit's light is in: its share, then its reflected ray
-      const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color);
-      weight *= specular;
-      alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
-      if (!alive) break;
-      const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
-      direction = normalize(h.u - 2.0 * dot(h.u, n) * n);
-      len = params.limits.x;
+    vec3 direction = h.u;  // (from the eye: the camera ray)
+    float len = params.limits.x;
+    bool shadow = false;
+    if (!eye_first || bounce >= 0) {
+      shadow = light_gather_next(lights, eye, direction, len);
+      if (!shadow) {  // the hit's light is in: its share, then its reflected ray
+        const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color);
+        weight *= specular;
+        alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
+        if (!alive) break;
+        const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
+        direction = normalize(h.u - 2.0 * dot(h.u, n) * n);
+        len = params.limits.x;
+      }
     }
     // (A world without shadows and mirrors marches no ray here: a constant
     // condition, so that the specialisation drops the march; lavapipe would
-    // run a march left in, masked, for every pixel.)
-    if (HAS_SHADOWS || HAS_MIRRORS) {
-      const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart, kMarchShadow);
+    // run a march left in, masked, for every pixel. From the eye the camera
+    // ray is marched as one: the purpose is then no constant, and the march
+    // holds both purposes' branches.)
+    if (HAS_SHADOWS || HAS_MIRRORS || DIRECT_FROM_EYE) {
+      const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart,
+                               eye_first && bounce < 0 ? kMarchCamera : kMarchShadow);
       if (shadow) {
         light_gather_blocked(lights, m.k >= 0);
       } else {
@@ -369,6 +390,10 @@ vec4 radiance(MarchHit h, Surface f, int eye) {
         if (alive) {
           f = surface_at(h);
           lights = light_gather_begin(f.n, h.q);
+        }
+        if (eye_first && bounce < 0) {
+          first = m;
+          first_f = f;
         }
         ++bounce;
       }

@@ -69,7 +69,7 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
   X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */ \
   X(path,          PATH_TRACING,    47) /* light transport by paths (march/paths.glsl), else direct light */ \
-  X(path_from_eye, PATH_FROM_EYE_WORLD, 48) /* paths whose camera ray is their first segment: one pipeline, one march */
+  X(from_eye, FROM_EYE_WORLD, 48) /* the camera ray the first segment of a path or of radiance's rays: one pipeline, one march */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
