@@ -245,6 +245,32 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
 // and a solve is the dearest code of the path kernel.
 const int kSolveDensityFromX = 0, kSolveDensityFromCentre = 1, kSolveGlowSample = 2, kSolveLight = 3;
 
+// Solve i (kSolve*) of a path's turn, at the path kernel's one call of
+// sol_connections: a light's (light_gather_solved), or the vertex's, `solve`
+// then the vertex's next (the density's from c to y skipped where the one
+// from x to y failed), `glow_density` the density once its solves are in.
+void path_solve(int i, GlowDensity dq, inout GlowSample g, inout LightGather lights, inout int solve,
+                inout float glow_density) {
+  const vec3 target = i == kSolveDensityFromX ? seen_from(dq.x, dq.y)
+                    : (i == kSolveDensityFromCentre ? seen_from(dq.c, dq.y)
+                                                    : (i == kSolveGlowSample ? g.towards : lights.target));
+  const float reach = i == kSolveGlowSample ? scene_objects[g.k].glow.x : (i == kSolveLight ? lights.reach : 0.0);
+  vec4 found[SOL_FOUND_SLOTS];
+  const int count = sol_connections(target, reach, found);
+  if (i == kSolveLight) {
+    light_gather_solved(lights, count, found);
+  } else if (i == kSolveDensityFromX) {
+    solve = glow_density_reached(dq, count, found[0]) ? kSolveDensityFromCentre : kSolveGlowSample;
+  } else if (i == kSolveDensityFromCentre) {
+    glow_density = glow_density_of(dq, count, found[0]);
+    solve = kSolveGlowSample;
+  } else {
+    g.count = count;
+    g.ways = found;
+    solve = kSolveLight;
+  }
+}
+
 // Whether geodesic j of g is one light can come along: of positive length,
 // leaving the surface's front (else it is not marched).
 bool glow_way_open(GlowSample g, int j) {
@@ -274,6 +300,32 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
     weight = glow / (glow + reflection);
   }
   return g.factor * scene_objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
+}
+
+// A hit's fog and emission on a path (path_radiance): the fog of its
+// segment into `color` and its transmittance into `weight`; the emission
+// (`emission`, weighted) added at once, or, where next-event estimation
+// could have found this hit (`reachable`: after a diffuse vertex, with
+// glowing balls to sample; true returned), once its density is solved (dq,
+// kSolveDensity*).
+bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_direction, inout vec3 color,
+                   inout vec3 weight, out vec3 emission, out GlowDensity dq) {
+  const vec4 material = scene_objects[f.object].material;
+  const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+  color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
+  weight *= transmittance;
+  emission = weight * material.rgb;
+  float share = 1.0;
+  bool density = false;
+  if (HAS_EMISSION && GLOW_SAMPLING && reachable && glowing(f.object)) {
+    if (params.path.w == kPathSamplingGlowOnly) {
+      share = 0.0;  // next-event estimation counted it
+    } else {
+      density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
+    }
+  }
+  if (HAS_EMISSION && !density) color += emission * share;  // (else once its density is solved)
+  return density;
 }
 
 // Paths from the eye: a pixel's camera ray is its path's first segment
@@ -343,25 +395,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   do {
     if (fresh) {
       fresh = false;
-      const vec4 material = scene_objects[f.object].material;
-      const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
-      color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
-      weight *= transmittance;
-      const vec3 emission_weight = weight;
-      // The emission's share, where next-event estimation could have found
-      // this hit: its density solved below (kSolveDensity*).
-      float share = 1.0;
-      density = false;
       reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
-      if (HAS_EMISSION && GLOW_SAMPLING && glow_count > 0 && after_diffuse && glowing(f.object)) {
-        if (params.path.w == kPathSamplingGlowOnly) {
-          share = 0.0;  // next-event estimation counted it
-        } else {
-          density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
-        }
-      }
-      if (HAS_EMISSION && !density) color += weight * material.rgb * share;  // (else once its density is solved)
-      emission = emission_weight * material.rgb;
+      density = path_emission(h, f, glow_count > 0 && after_diffuse, from, from_direction, color, weight, emission, dq);
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
@@ -424,29 +459,9 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
     // (A constant condition first: a world without glowing exact balls or
     // exact lights holds no solve.)
     if ((GLOW_SAMPLING || HAS_EXACT_LIGHTS) && (vertex_solve || step == kGatherSolve)) {
-      const int i = vertex_solve ? solve : kSolveLight;
-      const vec3 target = i == kSolveDensityFromX ? seen_from(dq.x, dq.y)
-                        : (i == kSolveDensityFromCentre ? seen_from(dq.c, dq.y)
-                                                        : (i == kSolveGlowSample ? g.towards : lights.target));
-      const float reach = i == kSolveGlowSample ? scene_objects[g.k].glow.x : (i == kSolveLight ? lights.reach : 0.0);
-      vec4 found[SOL_FOUND_SLOTS];
-      const int count = sol_connections(target, reach, found);
-      if (i == kSolveLight) {
-        light_gather_solved(lights, count, found);
-      } else {
-        if (i == kSolveDensityFromX) {  // no second solve where the first failed
-          solve = glow_density_reached(dq, count, found[0]) ? kSolveDensityFromCentre : kSolveGlowSample;
-        } else if (i == kSolveDensityFromCentre) {
-          glow_density = glow_density_of(dq, count, found[0]);
-          solve = kSolveGlowSample;
-        } else {
-          g.count = count;
-          g.ways = found;
-          solve = kSolveLight;
-        }
-        if (HAS_EMISSION && density && solve >= solves_end) {
-          color += emission * (reflection / (reflection + glow_density));
-        }
+      path_solve(vertex_solve ? solve : kSolveLight, dq, g, lights, solve, glow_density);
+      if (HAS_EMISSION && vertex_solve && density && solve >= solves_end) {
+        color += emission * (reflection / (reflection + glow_density));
       }
       continue;
     }
