@@ -458,7 +458,7 @@ void defer_passes(KernelVariant& v, const MarchOptions& o) {
   // (A crowd's march, march/crowd.glsl, solves its exact balls in the march
   // pass.)
   v.resume = o.deferred && !v.path && !v.from_eye &&
-             (f.quotient || (f.exact_balls && !f.crowd && o.integrator == Integrator::ClosedForm));
+             (f.quotient || (f.exact_balls && !f.crowd && closed_form));
 }
 
 // The specialisation constants of a variant's pipeline for one pass: the

@@ -329,7 +329,7 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
 }
 
 // Paths from the eye: a pixel's camera ray is its path's first segment
-// (march/passes.glsl, path_pass). The host chooses it where
+// (march/passes.glsl, from_eye_pass). The host chooses it where
 // the march is dear to compile (exact balls: sol::vk's defer_passes): the
 // pipeline then holds one march, where the march pass and the shade pass
 // would hold one each (the shade pass, over the hits alone, keeps the

@@ -52,22 +52,28 @@ const int kGatherDone = 0;    // every light is in g.light
 const int kGatherShadow = 1;  // march the shadow ray, then light_gather_blocked
 const int kGatherSolve = 2;   // solve g.target's connections up to g.reach, then light_gather_solved
 
+// On to the next light, its connections not solved yet.
+void light_gather_next_light(inout LightGather g) {
+  ++g.i;
+  g.paths = -1;
+  g.round = 0;
+  g.kept = 0;
+  g.last_k = -1;
+  g.last = -1.0;
+  g.best = 1e30;
+}
+
 LightGather light_gather_begin(vec3 n, vec3 q) {
   LightGather g;
   g.n = n;
   g.q = q;
   g.light = vec3(0.0);
   g.pending = vec3(0.0);
-  g.i = 0;
   g.j = 0;
-  g.paths = -1;
-  g.round = 0;
-  g.kept = 0;
   g.target = vec3(0.0);
   g.reach = 0.0;
-  g.last_k = -1;
-  g.last = -1.0;
-  g.best = 1e30;
+  g.i = -1;
+  light_gather_next_light(g);  // (light 0, its connections not solved yet)
   return g;
 }
 
@@ -133,17 +139,6 @@ void light_gather_solved(inout LightGather g, int count, vec4 found[SOL_FOUND_SL
       if (found[j].w < longest_length) sol_slot_set(g.found, longest, found[j]);
     }
   }
-}
-
-// On to the next light, its connections not solved yet.
-void light_gather_next_light(inout LightGather g) {
-  ++g.i;
-  g.paths = -1;
-  g.round = 0;
-  g.kept = 0;
-  g.last_k = -1;
-  g.last = -1.0;
-  g.best = 1e30;
 }
 
 // Gathers g's lights up to the next shadow ray to march (from g.q along
@@ -223,7 +218,7 @@ bool light_gather_next(inout LightGather g, int eye, out vec3 direction, out flo
   return step == kGatherShadow;
 }
 
-// The shadow ray of light_gather_next's geodesic came back: its share counts where it was clear.
+// The shadow ray of light_gather_step's geodesic came back: its share counts where it was clear.
 void light_gather_blocked(inout LightGather g, bool blocked) {
   if (!blocked) g.light += g.pending;
 }
@@ -351,9 +346,8 @@ const bool DIRECT_FROM_EYE = FROM_EYE_WORLD && !PATH_TRACING && INTEGRATOR == 0;
 // world without shadows and mirrors keeps no march here.)
 vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface first_f) {
   const int bounces = int(params.limits.z);
-  const bool eye_first = DIRECT_FROM_EYE;
   vec3 color = vec3(0.0), weight = vec3(1.0);
-  int bounce = eye_first ? -1 : 0;  // (the camera ray's segment is no bounce)
+  int bounce = DIRECT_FROM_EYE ? -1 : 0;  // (the camera ray's segment is no bounce)
   bool alive = true;
   LightGather lights = light_gather_begin(f.n, h.q);
   first = h;
@@ -362,7 +356,7 @@ vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface fi
     vec3 direction = h.u;  // (from the eye: the camera ray)
     float len = params.limits.x;
     bool shadow = false;
-    if (!eye_first || bounce >= 0) {
+    if (!DIRECT_FROM_EYE || bounce >= 0) {
       shadow = light_gather_next(lights, eye, direction, len);
       if (!shadow) {  // the hit's light is in: its share, then its reflected ray
         const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color);
@@ -381,7 +375,7 @@ vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface fi
     // holds both purposes' branches.)
     if (HAS_SHADOWS || HAS_MIRRORS || DIRECT_FROM_EYE) {
       const MarchHit m = march(h.q, direction, min(len, params.limits.x), kMarchFromStart,
-                               eye_first && bounce < 0 ? kMarchCamera : kMarchShadow);
+                               DIRECT_FROM_EYE && bounce < 0 ? kMarchCamera : kMarchShadow);
       if (shadow) {
         light_gather_blocked(lights, m.k >= 0);
       } else {
@@ -391,7 +385,7 @@ vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface fi
           f = surface_at(h);
           lights = light_gather_begin(f.n, h.q);
         }
-        if (eye_first && bounce < 0) {
+        if (DIRECT_FROM_EYE && bounce < 0) {
           first = m;
           first_f = f;
         }
