@@ -6,7 +6,9 @@
 // (sol_exp_jacobian, in frame components at its end point), held to
 // differences of the double flow; or (VALUE 2) the logarithm's series at
 // w = the query's xyz (sol_log_series, sol/log_series.h: the exact balls'
-// Newton starts), held to the double exponential map.
+// Newton starts), held to the double exponential map; or (VALUE 3) the
+// geodesic's end point and unit tangent there (sol_spread: a glowing
+// ball's sampled point), held to the double closed form.
 #extension GL_GOOGLE_include_directive : require
 
 #include "sol/log_series.h"
@@ -15,7 +17,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // 0: J, one float per query; 1: the exponential map's Jacobian, nine
 // floats per query (column-major); 2: the logarithm's series, three floats
-// per query.
+// per query; 3: the end point and tangent, six floats per query.
 layout(constant_id = 0) const int VALUE = 0;
 
 layout(std430, set = 0, binding = 0) readonly buffer Queries {
@@ -42,6 +44,14 @@ void main() {
   if (VALUE == 2) {
     const vec3 v = sol_log_series(queries[i].xyz);
     for (int c = 0; c < 3; ++c) results[3 * i + uint(c)] = v[c];
+    return;
+  }
+  if (VALUE == 3) {
+    const SolSpread s = sol_spread(queries[i].xyz, queries[i].w);
+    for (int c = 0; c < 3; ++c) {
+      results[6 * i + uint(c)] = s.position[c];
+      results[6 * i + uint(3 + c)] = s.direction[c];
+    }
     return;
   }
   results[i] = sol_sphere_area_density(queries[i].xyz, queries[i].w);

@@ -92,10 +92,11 @@ namespace {
 
 // spread.comp over the queries: J (value 0, one float each), the
 // exponential map's Jacobian (value 1, nine floats each) or the
-// logarithm's series (value 2, three floats each).
+// logarithm's series (value 2, three floats each) or the geodesic's end
+// point and tangent (value 3, six floats each).
 std::vector<float> run_spread(Context& context, const std::vector<glm::vec4>& queries, int value) {
   if (queries.empty()) return {};
-  const std::size_t per_query = value == 1 ? 9 : (value == 2 ? 3 : 1);
+  const std::size_t per_query = value == 1 ? 9 : (value == 2 ? 3 : (value == 3 ? 6 : 1));
   Buffer in(context, queries.size() * sizeof(glm::vec4)), out(context, queries.size() * per_query * sizeof(float));
   in.write(queries);
   ComputePipeline pipeline(context, {.name = "spread",
@@ -131,6 +132,22 @@ std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) out[i][c][r] = raw[9 * i + static_cast<std::size_t>(3 * c + r)];
     }
+  }
+  return out;
+}
+
+std::vector<std::pair<glm::vec3, glm::vec3>> evaluate_kernel_spread_ends(Context& context,
+                                                                         const std::vector<glm::vec4>& queries) {
+  for (const glm::vec4& q : queries) {
+    if (!(glm::length(glm::vec3(q)) > 0.0f) || !(q.w >= 0.0f)) {
+      throw InvalidArgument("sol::vk::evaluate_kernel_spread_ends: directions must be nonzero, lengths >= 0");
+    }
+  }
+  const std::vector<float> raw = run_spread(context, queries, 3);
+  std::vector<std::pair<glm::vec3, glm::vec3>> out(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    out[i].first = glm::vec3(raw[6 * i], raw[6 * i + 1], raw[6 * i + 2]);
+    out[i].second = glm::vec3(raw[6 * i + 3], raw[6 * i + 4], raw[6 * i + 5]);
   }
   return out;
 }

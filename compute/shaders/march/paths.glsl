@@ -145,7 +145,7 @@ bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, 
   q.d = d;
   q.L = L;
   q.cos_y = cos_y;
-  q.y = QUOTIENT ? sol_translate(x, sol_exp(d, L).position) : hit;
+  q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
   q.c = vec3(0.0);
   q.r = 0.0;
   vec3 centre;
@@ -228,10 +228,10 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
   const float s = sqrt(max(0.0, 1.0 - u * u));
   const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
-  const SolForward on_sphere = sol_exp(w, r);
+  const SolSpread on_sphere = sol_spread(w, r);  // the point, its normal and its J in one integration
   const vec3 y = sol_translate(c, on_sphere.position);
-  g.normal_y = normalize(on_sphere.direction);
-  g.area = weight_k / total / (4.0 * SOL_PI * max(sol_sphere_area_density(w, r), 1e-30));
+  g.normal_y = on_sphere.direction;
+  g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
   g.towards = seen_from(h.q, y);
   g.count = 0;
   return g;
@@ -290,9 +290,10 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   // The tangent at y: in Sol the march's own at its hit (met at L, within
   // the check above), which saves the path kernel a closed form; in a
   // quotient the march's frame may be turned by Γ, so the geodesic's own.
-  const vec3 arriving = QUOTIENT ? sol_exp(d, L).direction : to.u;
+  const SolSpread along = sol_spread(d, L);
+  const vec3 arriving = QUOTIENT ? along.direction : to.u;
   const float cos_y = abs(dot(arriving, g.normal_y));
-  const float spreading = sol_sphere_area_density(d, L);
+  const float spreading = along.density;
   if (!(spreading > 0.0)) return vec3(0.0);
   float weight = 1.0;
   if (params.path.w == kPathSamplingCombined) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -57,6 +58,14 @@ std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector
 /// compute/shaders/sol_spreading.glsl: the connection solver's Newton
 /// steps). For tests.
 std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries);
+
+/// The end point exp(t·d) and the unit tangent there (frame components) of
+/// the geodesic from the origin, for queries (direction d xyz, nonzero;
+/// length t >= 0 in w), by the kernel's RK4 along with J (sol_spread in
+/// compute/shaders/sol_spreading.glsl: a glowing ball's sampled point).
+/// For tests.
+std::vector<std::pair<glm::vec3, glm::vec3>> evaluate_kernel_spread_ends(Context& context,
+                                                                         const std::vector<glm::vec4>& queries);
 
 /// The kernel's series of Sol's logarithm at the origin at each target w
 /// (sol_log_series, sol/log_series.h, in float: where the exact balls'
