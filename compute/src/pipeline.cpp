@@ -109,6 +109,9 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
   optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(values))
       .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
       .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+      // A local written once (`const bool heights_only = camera && HEIGHTS_ONLY`) read as its value, so that
+      // the guards it makes fold too.
+      .RegisterPass(spvtools::CreateLocalSingleStoreElimPass())
       .RegisterPass(spvtools::CreateCCPPass())  // `HAS_X && runtime` guards: OpLogicalAnd with a constant
       .RegisterPass(spvtools::CreateDeadBranchElimPass())
       .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
