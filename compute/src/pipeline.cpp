@@ -109,9 +109,6 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> words
   optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(values))
       .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
       .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
-      // A local written once (`const bool heights_only = camera && HEIGHTS_ONLY`) read as its value, so that
-      // the guards it makes fold too.
-      .RegisterPass(spvtools::CreateLocalSingleStoreElimPass())
       .RegisterPass(spvtools::CreateCCPPass())  // `HAS_X && runtime` guards: OpLogicalAnd with a constant
       .RegisterPass(spvtools::CreateDeadBranchElimPass())
       .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
@@ -144,7 +141,10 @@ using detail::fnv1a;
 
 // A cache file's header, before its body (words, little-endian as written).
 constexpr std::uint32_t kCacheMagic = 0x434c4f53u;  // "SOLC"
-constexpr std::uint32_t kCacheFormat = 1;
+// Raised whenever specialize_spirv's passes change: a module folded by
+// other passes is then folded again (the key holds only the module and the
+// constants).
+constexpr std::uint32_t kCacheFormat = 2;
 constexpr std::size_t kCacheHeaderWords = 7;  // magic, format, key (2), body words, checksum (2)
 
 std::uint64_t checksum(std::span<const std::uint32_t> words) {
