@@ -100,6 +100,14 @@ SolEnd sol_exp_end(vec3 v) {
   return e;
 }
 
+vec3 sol_exp(vec3 v) { return sol_exp_end(v).point; }
+
+// exp(v) - w in frame components at w (e^{z} = ez there).
+vec3 sol_connection_residual(vec3 v, vec3 w, float ez) {
+  const vec3 d = sol_exp(v) - w;
+  return vec3(d.x / ez, d.y * ez, d.z);
+}
+
 // The float rounding floor of a residual at w: the closed form's error is
 // relative to the coordinates (tests Kernel.FlowMatchesTheDoubleClosedForm),
 // and frame components at w scale x by e^{-z}, y by e^{z}.
@@ -115,82 +123,37 @@ float sol_connection_scale(vec3 w, float ez, float t) {
 // the trial v + dv. When `known`, `end` = exp(v) (a solve at a nearby w,
 // the march's last), so the first residual costs no evaluation; else the
 // first iteration evaluates v itself. v, end and known leave holding the
-// last solution (known: end = exp(v)). With `partner`, v is a connection
-// and Newton starts from its fold partner (below), whose six evaluations
-// come first; where it has none, the residual is 1e30 and v is 0. Written
-// as one loop with a single call of the closed form: Mesa compiles every
-// inlined call of it separately, and one call site keeps lavapipe's
-// compile time in seconds; and lavapipe runs code its lanes all skip,
-// masked, so a separate first evaluation before the loop would cost every
-// SIMD group that shades no hit a whole evaluation. (The Jacobian by
-// forward differences, three evaluations, or by Broyden's updates for the
-// march's exact balls took 14.8 evaluations per lit hit of `spheres`,
-// against 4.4 with it, each with its Jacobian; 16.5 per hit for its exact
-// balls, against 8.2.)
-//
-// The fold partner of a connection v: with J the Jacobian of the residual
-// F at v, n its right singular vector of the smallest singular value σ
-// (inverse iteration on JᵀJ) and u = J n / σ, F(v + x n)·u ≈ σ x + κ x²/2
-// along n (κ by central differences), whose other root x = -2σ/κ is where
-// the partner lies. Evaluations 0-5: F at v, at v + h e_i (J by forward
-// differences), and at v ± step n. Far from a fold the partner is either
-// no connection or a seed of its own: none.
-vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J, out float residual,
-                const bool partner) {
+// last solution (known: end = exp(v)). Written as one loop with a single
+// call of the closed form: Mesa compiles every inlined call of it
+// separately, and one call site keeps lavapipe's compile time in seconds;
+// and lavapipe runs code its lanes all skip, masked, so a separate first
+// evaluation before the loop would cost every SIMD group that shades no hit
+// a whole evaluation. (The Jacobian by forward differences, three
+// evaluations, or by Broyden's updates for the march's exact balls took
+// 14.8 evaluations per lit hit of `spheres`, against 4.4 with it, each
+// with its Jacobian; 16.5 per hit for its exact balls, against 8.2.)
+vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J, out float residual) {
   const float ez = exp(w.z);
   const vec3 to_frame = vec3(1.0 / ez, ez, 1.0);  // frame components at w
   vec3 r = (end.point - w) * to_frame, dv = vec3(0.0);
   int iterations = 0, halvings = 0;
-  bool done = !partner && known && length(r) < 2e-6 * sol_connection_scale(w, ez, length(v));
+  bool done = known && length(r) < 2e-6 * sol_connection_scale(w, ez, length(v));
   // Given a solution (`known`), J is the last solve's Jacobian, taken near
   // v: the first step is taken with it (a chord step), and only where that
   // does not lower the residual with a fresh one.
-  bool chord = known && !partner;
-  // The fold partner's evaluations made (6: none to make), and its state.
-  int fold = partner ? 0 : 6;
-  const float fold_scale = max(1.0, length(v)), fold_h = 1e-3 * fold_scale, fold_step = 0.05 * fold_scale;
-  vec3 fold_r = vec3(0.0), fold_n = vec3(0.0), fold_jn = vec3(0.0), fold_curvature = vec3(0.0);
-  mat3 fold_j = mat3(1.0);
+  bool chord = known;
   int e = 0;  // (tested at its end: see the top of march.comp)
   if (!done) do {
-    vec3 at = v;
-    if (fold < 6) {
-      if (fold >= 1 && fold <= 3) at[fold - 1] += fold_h;
-      if (fold >= 4) at += (fold == 4 ? fold_step : -fold_step) * fold_n;
-    } else {
-      if (known && halvings == 0) {  // a step from r and the Jacobian at v
-        if (!chord) J = sol_exp_jacobian(v, end.point.z, w.z);
-        if (!(abs(determinant(J)) > 1e-12)) break;  // singular: a conjugate point (or NaN)
-        dv = -(inverse(J) * r);
-        const float cap = 0.5 * max(1.0, length(v));
-        if (length(dv) > cap) dv *= cap / length(dv);
-      }
-      if (known) at = v + dv;
+    if (known && halvings == 0) {  // a step from r and the Jacobian at v
+      if (!chord) J = sol_exp_jacobian(v, end.point.z, w.z);
+      if (!(abs(determinant(J)) > 1e-12)) break;  // singular: a conjugate point (or NaN)
+      dv = -(inverse(J) * r);
+      const float cap = 0.5 * max(1.0, length(v));
+      if (length(dv) > cap) dv *= cap / length(dv);
     }
+    const vec3 at = known ? v + dv : v;
     const SolEnd at_end = sol_exp_end(at);
     const vec3 f = (at_end.point - w) * to_frame;
-    if (fold < 6) {
-      if (fold == 0) fold_r = f;
-      if (fold >= 1 && fold <= 3) fold_j[fold - 1] = (f - fold_r) / fold_h;
-      if (fold == 3) {
-        const mat3 JtJ = transpose(fold_j) * fold_j;
-        if (!(abs(determinant(JtJ)) > 1e-20)) break;  // no partner
-        const mat3 M = inverse(JtJ);
-        fold_n = vec3(0.6, 0.5, 0.62);
-        for (int i = 0; i < 4; ++i) fold_n = normalize(M * fold_n);
-        fold_jn = fold_j * fold_n;
-      }
-      if (fold >= 4) fold_curvature += f - fold_r;
-      if (++fold == 6) {
-        const float sigma = length(fold_jn);
-        const float kappa = dot(fold_jn / sigma, fold_curvature) / (fold_step * fold_step);
-        const float x = -2.0 * sigma / kappa;
-        if (!(abs(x) < 0.5 * fold_scale) || !(abs(x) > 1e-3 * fold_scale)) break;  // no partner
-        v += x * fold_n;  // Newton from here, as from a seed
-        known = false;
-      }
-      continue;
-    }
     if (known && !(length(f) < length(r))) {
       if (chord) {  // the old Jacobian did not help: a fresh one
         chord = false;
@@ -209,20 +172,19 @@ vec3 sol_newton(vec3 v, vec3 w, inout SolEnd end, inout bool known, inout mat3 J
     end = at_end;
     // At the float floor, or out of iterations: done; else a step.
     done = length(r) < 2e-6 * sol_connection_scale(w, ez, length(v)) || iterations == SOL_NEWTON_ITERATIONS;
-  } while (++e < 3 * SOL_NEWTON_ITERATIONS + 1 + (partner ? 6 : 0) && !done);
-  // (A partner's search that broke off leaves `known` false: none found.)
+  } while (++e < 3 * SOL_NEWTON_ITERATIONS + 1 && !done);
   residual = known ? length(r) / sol_connection_scale(w, ez, length(v)) : 1e30;
-  return known ? v : vec3(0.0);
+  return v;
 }
 
-// sol_newton from v alone (or from v's fold partner: see there).
-vec3 sol_polish(vec3 v, vec3 w, const bool partner, out float residual) {
+// sol_newton from v alone.
+vec3 sol_polish(vec3 v, vec3 w, out float residual) {
   SolEnd end;
   end.point = vec3(0.0);
   end.tangent = vec3(0.0, 0.0, 1.0);
   bool known = false;
   mat3 J = mat3(1.0);  // (unused: no solution given)
-  return sol_newton(v, w, end, known, J, residual, partner);
+  return sol_newton(v, w, end, known, J, residual);
 }
 
 // The index of the first seed of the table's cell holding `target` (w with
@@ -281,6 +243,43 @@ const float kMinimiserMargin = 1e-3;
 // the floor rather than out of iterations.
 const float kMinimiserPolish = 1e-5;
 
+// A seed for the fold partner of the connection v (0 when v is not near a
+// fold): with J the Jacobian of the residual F at v, n its right singular
+// vector of the smallest singular value σ (inverse iteration on JᵀJ) and
+// u = J n / σ, F(v + x n)·u ≈ σ x + κ x²/2 along n (κ by central
+// differences), whose other root x = -2σ/κ is where the partner lies. One
+// call of the closed form, as in sol_polish.
+vec3 sol_fold_partner(vec3 v, vec3 w) {
+  const float ez = exp(w.z);
+  const float scale = max(1.0, length(v));
+  const float h = 1e-3 * scale, step = 0.05 * scale;
+  vec3 r = vec3(0.0), n = vec3(0.0), Jn = vec3(0.0), curvature = vec3(0.0);
+  mat3 J;
+  for (int e = 0; e < 6; ++e) {
+    vec3 at = v;
+    if (e >= 1 && e <= 3) at[e - 1] += h;
+    if (e >= 4) at += (e == 4 ? step : -step) * n;
+    const vec3 f = sol_connection_residual(at, w, ez);
+    if (e == 0) r = f;
+    if (e >= 1 && e <= 3) J[e - 1] = (f - r) / h;
+    if (e == 3) {
+      const mat3 JtJ = transpose(J) * J;
+      if (!(abs(determinant(JtJ)) > 1e-20)) return vec3(0.0);
+      const mat3 M = inverse(JtJ);
+      n = vec3(0.6, 0.5, 0.62);
+      for (int i = 0; i < 4; ++i) n = normalize(M * n);
+      Jn = J * n;
+    }
+    if (e >= 4) curvature += f - r;
+  }
+  const float sigma = length(Jn);
+  const float kappa = dot(Jn / sigma, curvature) / (step * step);
+  const float x = -2.0 * sigma / kappa;
+  // Far from a fold the partner is either no connection or a seed of its own.
+  if (!(abs(x) < 0.5 * scale) || !(abs(x) > 1e-3 * scale)) return vec3(0.0);
+  return v + x * n;
+}
+
 // The connections from the origin to w (at most SOL_FOUND_SLOTS), shortest
 // first, as (unit direction, length), up to the shortest one found + reach;
 // returns how many. None when w = 0, or when no seed converges (far outside
@@ -302,9 +301,8 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
   // Candidates: the cell's seeds, then (with a reach: the longer
   // connections) a fold partner of each connection the seeds found. Near a
   // fold (a caustic) connections come in pairs that merge there, and a pair
-  // born inside a table cell has seeds at none of its corners (the partner
-  // found by sol_newton, its search and polish at one evaluation). One call
-  // of sol_polish (see there).
+  // born inside a table cell has seeds at none of its corners. One call of
+  // sol_polish (see there).
   vec4 originals[SOL_FOUND_SLOTS];
   int first = -1;
   for (int s = 0; s < 2 * kSeedSlots; ++s) {
@@ -332,10 +330,11 @@ int sol_connections(vec3 w, float reach, out vec4 found[SOL_FOUND_SLOTS]) {
       if (j >= first) break;
       const vec4 original = sol_slot_get(originals, j);
       if (original.w > originals[0].w + reach) continue;  // beyond the reach, and its partner too
-      start = original.xyz * original.w;  // polished from its fold partner
+      start = sol_fold_partner(original.xyz * original.w, target);
+      if (start == vec3(0.0)) continue;
     }
     float residual;
-    const vec3 v = sol_polish(start, target, SOL_FOLD_PARTNERS && s >= kSeedSlots, residual);
+    const vec3 v = sol_polish(start, target, residual);
     sol_add_connection(v, residual, found, residuals, count);
     // Without a reach only the minimisers count: once the shortest found is
     // certified the unique one (shorter than its period) and polished to
@@ -403,7 +402,7 @@ float sol_shortest(vec3 w, inout vec3 v, inout SolEnd end, inout bool known, ino
       start = seed.w > 0.0 ? seed.xyz * seed.w * sign_xy : vec3(w.x * exp(-0.5 * w.z), w.y * exp(0.5 * w.z), w.z);
     }
     float residual;
-    const vec3 found = sol_newton(start, w, at_end, carried, at_J, residual, false);
+    const vec3 found = sol_newton(start, w, at_end, carried, at_J, residual);
     if (residual < 2e-4 ? (best_residual >= 2e-4 || length(found) < best) : residual < best_residual && best_residual >= 2e-4) {
       best = length(found);
       best_residual = residual;
