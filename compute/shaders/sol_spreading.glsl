@@ -98,6 +98,7 @@ SolSpread sol_spread(vec3 direction, float t) {
 }
 
 float sol_sphere_area_density(vec3 direction, float t) { return sol_spread(direction, t).density; }
+
 // The Jacobian of the exponential map at the origin, d exp(v)/dv, for the
 // connection solver's Newton steps (sol_newton in sol_connection.glsl), in
 // frame components at the height w_z (the target's) where exp(v) lies at

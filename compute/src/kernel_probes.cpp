@@ -114,6 +114,16 @@ std::vector<float> run_spread(Context& context, const std::vector<glm::vec4>& qu
   return results;
 }
 
+// Queries (direction xyz, length w) of a geodesic from the origin: a
+// nonzero direction and a length >= 0, else InvalidArgument naming `who`.
+void check_geodesic_queries(const std::vector<glm::vec4>& queries, const char* who) {
+  for (const glm::vec4& q : queries) {
+    if (!(glm::length(glm::vec3(q)) > 0.0f) || !(q.w >= 0.0f)) {
+      throw InvalidArgument(std::string(who) + ": directions must be nonzero, lengths >= 0");
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector<glm::vec4>& queries) {
@@ -121,11 +131,7 @@ std::vector<float> evaluate_kernel_spreading(Context& context, const std::vector
 }
 
 std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std::vector<glm::vec4>& queries) {
-  for (const glm::vec4& q : queries) {
-    if (!(glm::length(glm::vec3(q)) > 0.0f) || !(q.w >= 0.0f)) {
-      throw InvalidArgument("sol::vk::evaluate_kernel_exp_jacobians: directions must be nonzero, lengths >= 0");
-    }
-  }
+  check_geodesic_queries(queries, "sol::vk::evaluate_kernel_exp_jacobians");
   const std::vector<float> raw = run_spread(context, queries, 1);
   std::vector<glm::mat3> out(queries.size());
   for (std::size_t i = 0; i < queries.size(); ++i) {
@@ -138,11 +144,7 @@ std::vector<glm::mat3> evaluate_kernel_exp_jacobians(Context& context, const std
 
 std::vector<std::pair<glm::vec3, glm::vec3>> evaluate_kernel_spread_ends(Context& context,
                                                                          const std::vector<glm::vec4>& queries) {
-  for (const glm::vec4& q : queries) {
-    if (!(glm::length(glm::vec3(q)) > 0.0f) || !(q.w >= 0.0f)) {
-      throw InvalidArgument("sol::vk::evaluate_kernel_spread_ends: directions must be nonzero, lengths >= 0");
-    }
-  }
+  check_geodesic_queries(queries, "sol::vk::evaluate_kernel_spread_ends");
   const std::vector<float> raw = run_spread(context, queries, 3);
   std::vector<std::pair<glm::vec3, glm::vec3>> out(queries.size());
   for (std::size_t i = 0; i < queries.size(); ++i) {
