@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include <CLI/CLI.hpp>
+#include <sol/aim.hpp>
+#include <sol/error.hpp>
 #include <sol/scene_file.hpp>
 
 namespace sol::cli {
@@ -222,6 +224,9 @@ void SceneOverrides::add_to(CommandLine& cl, const std::string& what, bool with_
   cl.add_vec3("--position", position, "X,Y,Z", what + " position (Sol coordinates)");
   cl.add_vec3("--forward", forward, "A,B,C", what + " view direction, frame components");
   cl.add_vec3("--up", up, "A,B,C", what + " up direction, frame components (not parallel to forward)");
+  cl.add_vec3("--look-at", look_at, "X,Y,Z",
+              "aim the " + what + " at this point (in place of --forward): along the minimising geodesic's start, so "
+              "the point is at the image's centre (in a quotient its nearest image)");
   cl.add_number("--max-distance", max_distance, "D", "arc length after which a ray misses");
   cl.add_integer("--max-steps", max_steps, 1, 100000, "N", "march steps after which a ray misses");
 }
@@ -231,6 +236,16 @@ void SceneOverrides::apply(Scene& scene) const {
   if (position) scene.camera.position = *position;
   if (forward) scene.camera.forward = *forward;
   if (up) scene.camera.up = *up;
+  if (look_at) {
+    if (forward) throw InvalidArgument("--look-at: give either --forward or --look-at, not both");
+    try {
+      scene.camera = looking_at(scene.camera, *look_at, scene.lattice());
+    } catch (const std::exception& e) {  // the library's message names its function: the option's instead
+      const std::string what = e.what();
+      const std::size_t cut = what.rfind("sol::", 0) == 0 ? what.find(": ") : std::string::npos;
+      throw InvalidArgument("--look-at: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
+    }
+  }
   if (max_distance) scene.max_distance = *max_distance;
   if (max_steps) scene.max_steps = *max_steps;
 }

@@ -130,17 +130,19 @@ struct IntegratorOptions {
 };
 
 /// The options that override a scene's camera and limits: --position,
-/// --forward, --up (frame components), --max-distance, --max-steps, and
-/// with `with_fov` --fov (solxr takes its field of view from the runtime).
+/// --forward, --up (frame components) or --look-at (a point the camera
+/// aims at: sol::looking_at), --max-distance, --max-steps, and with
+/// `with_fov` --fov (solxr takes its field of view from the runtime).
 struct SceneOverrides {
   std::optional<double> fov, max_distance;
-  std::optional<glm::dvec3> position, forward, up;
+  std::optional<glm::dvec3> position, forward, up, look_at;
   std::optional<int> max_steps;
 
   /// Adds the options to `command_line`, `what` naming the camera in their help
   /// ("camera", "base observer").
   void add_to(CommandLine& command_line, const std::string& what, bool with_fov = true);
-  /// Sets what was given on `scene` (not validated).
+  /// Sets what was given on `scene` (not validated; --look-at throws
+  /// InvalidArgument naming it where the point cannot be aimed at).
   void apply(Scene& scene) const;
 };
 

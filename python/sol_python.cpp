@@ -404,6 +404,23 @@ void bind_distances_and_shapes(py::module_& m) {
         },
         py::arg("p"), py::arg("q"), py::arg("max_length"),
         "Every geodesic from p to q of length up to max_length, shortest first, as (unit direction at p, length).");
+  m.def(
+      "aim",
+      [](const std::array<double, 3>& eye, const std::array<double, 3>& target, const std::optional<sol::Lattice>& lattice) {
+        const sol::Aim a = sol::aim(vec3(eye), vec3(target), lattice);
+        py::dict d;
+        d["direction"] = array(a.direction);
+        d["distance"] = a.distance;
+        d["end"] = array(a.end);
+        d["cut_locus"] = a.cut_locus;
+        return d;
+      },
+      py::arg("eye"), py::arg("target"), py::arg("lattice") = py::none(),
+      "The minimising geodesic from eye to target (in the quotient of `lattice`: to the target's nearest image), "
+      "as a dict: direction (unit, frame components at the eye: a camera's forward that puts the target at the "
+      "image's centre), distance, end (the target or the image reached, in the eye's coordinates) and cut_locus "
+      "(another minimiser of the same length exists; the upward one is taken). A scene's camera takes it as "
+      "camera={\"look_at\": target}.");
   m.def("sphere_area_density",
         [](const std::array<double, 3>& direction, double t) { return sol::sphere_area_density(vec3(direction), t); },
         py::arg("direction"), py::arg("t"),

@@ -645,6 +645,22 @@ TEST(Kernel, BoxesLieOnTheirFacesAndMatchTheCpuRenderer) {
   expect_no_validation_errors();
 }
 
+// camera.look_at on the kernel: a small ball at the point, seen from where
+// geodesics bend (sol_tests' Aim.TheLookAtPointIsAtTheCentrePixel on the
+// CPU): the centre pixel of a 9 x 9 image hits it in Sol and in the golden
+// quotient (there through the point's nearest image).
+TEST(Kernel, TheLookAtPointIsAtTheCentrePixel) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const char* quotient : {"none", "golden"}) {
+    const sol::Scene scene = sol::parse_scene(std::string(R"({"quotient": ")") + quotient + R"(",
+        "camera": {"position": [0.4, 0.3, 0.2], "look_at": [2.6, -1.9, 1.1], "up": [0, 0, 1], "fov": 12},
+        "objects": [{"type": "ball", "center": [2.6, -1.9, 1.1], "radius": 0.05}]})");
+    const sol::RenderResult gpu = sol::test::render(renderer, scene, 9, 9);
+    EXPECT_EQ(gpu.object[4 * 9 + 4], 1.0f) << quotient;
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   // The kernel specialised to a scene's features and the one with every
   // feature compiled in compute the same march (the general one evaluates

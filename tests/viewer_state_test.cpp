@@ -2,7 +2,7 @@
 // last good world, a script's settings and their refusals, the keys that act
 // on press, the cameras of a frame, the key that restarts refinement, the
 // camera as solrender options and as scene JSON (read back by the scene
-// parser), saving, and hot reload of a scene file.
+// parser), saving, aiming at a point, and hot reload of a scene file.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -57,6 +57,19 @@ TEST(ViewerState, SetSceneStartsAtItsCamera) {
   EXPECT_EQ(s.world_version, 2);
   EXPECT_THROW(s.set_scene("no-such-preset"), sol::InvalidArgument);
   EXPECT_EQ(s.scene_name, "lattice-balls");  // unchanged
+}
+
+TEST(ViewerState, LookAtTurnsTheObserverTowardsThePoint) {
+  ViewerState s = make_state();
+  s.set_scene("lattice-balls");  // in the golden quotient: the nearest image
+  const glm::dvec3 target(2.6, -1.9, 1.1);
+  s.act({.look_at = target}, 64, 48);
+  EXPECT_TRUE(s.message.empty()) << s.message;
+  const sol::Aim a = sol::aim(s.observer.position(), target, s.scene.lattice());
+  EXPECT_LT(glm::length(s.observer.forward() - a.direction), 1e-12);
+  s.act({.look_at = s.observer.position()}, 64, 48);  // no direction: refused, the camera kept
+  EXPECT_NE(s.message.find("look at: "), std::string::npos);
+  EXPECT_LT(glm::length(s.observer.forward() - a.direction), 1e-12);
 }
 
 TEST(ViewerState, BadEditsFallBackToTheLastGoodWorld) {

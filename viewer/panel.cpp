@@ -274,6 +274,10 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
   // ---- Camera and rendering
   if (ImGui::CollapsingHeader("camera and rendering", ImGuiTreeNodeFlags_DefaultOpen)) {
     drag_double("fov (degrees)", m.scene.camera.fov, 0.2, 1.0, 179.0, "%.1f");
+    // The camera aimed at a point: along the minimising geodesic's start, not the coordinate difference.
+    ImGui::InputScalarN("##look_at", ImGuiDataType_Double, text.look_at.data(), 3, nullptr, nullptr, "%.3f");
+    ImGui::SameLine();
+    if (ImGui::Button("look at")) out.look_at = glm::dvec3(text.look_at[0], text.look_at[1], text.look_at[2]);
     out.world_changed |= drag_double("max distance", m.scene.max_distance, 0.1, 0.1, 1e3, "%.2f");
     int steps = m.scene.max_steps;
     if (ImGui::DragInt("max steps", &steps, 1.0f, 1, 10000, "%d", ImGuiSliderFlags_AlwaysClamp)) {

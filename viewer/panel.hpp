@@ -51,6 +51,8 @@ struct PanelActions {
   bool copy_options = false;  ///< the current camera as solrender options, to the clipboard and stdout
   bool copy_json = false;     ///< the scene with the current camera as JSON, to the clipboard and stdout
   bool reset = false;         ///< back to the scene's camera
+  /// Turn the camera to look at this point (sol::aim, in the world's space).
+  std::optional<glm::dvec3> look_at;
 };
 
 /// Text typed into the panel's fields, kept between frames.
@@ -60,6 +62,7 @@ struct PanelText {
   std::array<float, 4> rect{};  ///< where the panel was last drawn: x, y, width, height in window pixels
   std::array<int, 4> monodromy{2, 1, 1, 1};  ///< the monodromy being typed, a, b, c, d (applied on Enter)
   std::string refusal;                       ///< why the last monodromy typed was not applied (empty: it was)
+  std::array<double, 3> look_at{0.0, 0.0, 0.0};  ///< the point the "look at" button aims the camera at
 };
 
 /// Builds the panel in the current ImGui frame.

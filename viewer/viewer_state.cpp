@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include <sol/aim.hpp>
 #include <sol/scene_file.hpp>
 
 #include "command_line.hpp"
@@ -159,6 +160,14 @@ void ViewerState::act(const PanelActions& a, int render_width, int render_height
     }
   }
   if (a.reset) observer = observer_at(scene);
+  if (a.look_at) {
+    try {
+      observer.face(aim(observer.position(), *a.look_at, scene.lattice()).direction);
+      message.clear();
+    } catch (const std::exception& e) {  // the point at the eye, or no minimiser found
+      message = std::string("look at: ") + e.what();
+    }
+  }
   if (a.screenshot) want_screenshot = true;
   if (a.toggle_recording) {
     if (!recording) {

@@ -8,6 +8,7 @@
 
 #include "field_error.hpp"
 #include "scene_reader.hpp"
+#include "sol/aim.hpp"
 #include "sol/error.hpp"
 #include "sol/lattice.hpp"
 #include "sol/observer.hpp"
@@ -34,7 +35,7 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
     return d;
   };
   if (j.contains("walk")) {
-    r.require_known_keys(j, {"walk", "distance", "duration"}, at + " (a walk)", at);
+    r.require_known_keys(j, {"walk", "distance", "duration", "look_at"}, at + " (a walk)", at);
     const glm::dvec3 direction = r.choice<glm::dvec3>(j["walk"], at + ".walk",
                                                       {{"forward", {0, 0, 1}}, {"back", {0, 0, -1}},
                                                        {"left", {-1, 0, 0}},   {"right", {1, 0, 0}},
@@ -46,6 +47,14 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
     s.distance = r.number(j["distance"], at + ".distance");
     if (!(std::abs(s.distance) <= kMaxDistance)) r.fail(at + ".distance", at + ".distance must be within ±1e4");
     s.duration = duration("duration");
+    if (j.contains("look_at")) {
+      s.look_at = r.vec3(j["look_at"], at + ".look_at");
+      try {
+        detail::check_position(*s.look_at, at + ".look_at");
+      } catch (const detail::FieldError& e) {
+        r.fail(e.path(), e.what());
+      }
+    }
   } else if (j.contains("turn")) {
     r.require_known_keys(j, {"turn", "degrees", "duration"}, at + " (a turn)", at);
     s.axis = r.choice<PathSegment::Axis>(j["turn"], at + ".turn",
@@ -76,14 +85,21 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
 // past about 35 units is no longer exact in double (Lattice::word_of).
 constexpr double kQuotientWalkStep = 1.0;
 
-void apply(const PathSegment& s, double f, Observer& o, bool quotient) {
+void apply(const PathSegment& s, double f, Observer& o, const std::optional<Lattice>& lattice) {
   if (f <= 0.0) return;
   switch (s.kind) {
     case PathSegment::Kind::Walk:
       if (s.distance != 0.0) {
         const double length = s.distance * f;
-        const int steps = quotient ? std::max(1, static_cast<int>(std::ceil(std::abs(length) / kQuotientWalkStep))) : 1;
+        const int steps = lattice ? std::max(1, static_cast<int>(std::ceil(std::abs(length) / kQuotientWalkStep))) : 1;
         for (int k = 0; k < steps; ++k) o.move(s.direction, length / steps);
+      }
+      if (s.look_at) {
+        try {
+          o.face(aim(o.position(), *s.look_at, lattice).direction);
+        } catch (const InvalidArgument&) {
+          // At the point itself (or one of its images): no direction; the frame stays.
+        }
       }
       break;
     case PathSegment::Kind::Turn:
@@ -116,6 +132,7 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   if (forward) c.forward = *forward;
   if (up) c.up = *up;
   if (fov) c.fov = *fov;
+  if (look_at) c = looking_at(c, *look_at, lattice);
   validate(c);
   Observer o(c.position, c.forward, c.up);
   if (lattice) o.bind(*lattice);
@@ -123,7 +140,7 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   for (const PathSegment& s : segments) {
     if (t <= begin) break;
     const double end = begin + s.duration;
-    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o, lattice.has_value());
+    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o, lattice);
     begin = end;
   }
   c.position = o.position();
@@ -147,7 +164,9 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
   if (root.contains("start")) {
     const json& s = root["start"];
     if (!s.is_object()) r.fail("start", "'start' must be an object");
-    r.require_known_keys(s, {"position", "forward", "up", "fov"}, "start", "start");
+    r.require_known_keys(s, {"position", "forward", "look_at", "up", "fov"}, "start", "start");
+    if (s.contains("forward") && s.contains("look_at")) r.fail("start.look_at", "start: give either 'forward' or 'look_at', not both");
+    if (s.contains("look_at")) path.look_at = r.vec3(s["look_at"], "start.look_at");
     if (s.contains("position")) path.position = r.vec3(s["position"], "start.position");
     if (s.contains("forward")) path.forward = r.vec3(s["forward"], "start.forward");
     if (s.contains("up")) path.up = r.vec3(s["up"], "start.up");
@@ -166,6 +185,7 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
   try {
     if (path.position) detail::check_position(*path.position, "start.position");
     if (path.forward) detail::check_direction(*path.forward, "start.forward");
+    if (path.look_at) detail::check_position(*path.look_at, "start.look_at");
     if (path.up) detail::check_direction(*path.up, "start.up");
     if (path.forward && path.up && glm::length(glm::cross(glm::normalize(*path.forward), glm::normalize(*path.up))) < 1e-9) {
       detail::field_error("start.forward", "start.forward and start.up must not be parallel");

@@ -100,6 +100,29 @@ void Observer::roll(double angle) {
   orthonormalise();
 }
 
+void Observer::face(const glm::dvec3& forward) {
+  detail::require_finite(forward, "sol::Observer::face", "forward");
+  if (glm::length(forward) == 0.0) throw InvalidArgument("sol::Observer::face: zero forward");
+  const glm::dvec3 f = glm::normalize(forward);
+  if (glm::length(glm::cross(f, m_frame[1])) > 1e-9) {
+    m_frame[2] = f;
+    orthonormalise();
+    return;
+  }
+  // Along the old up: the least rotation from the old forward to f, about
+  // their common normal (the old forward is orthogonal to the old up, so
+  // the two are never parallel here).
+  const glm::dvec3 old = m_frame[2];
+  const glm::dvec3 axis = glm::normalize(glm::cross(old, f));
+  const double angle = std::atan2(glm::length(glm::cross(old, f)), glm::dot(old, f));
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 v = m_frame[i];
+    m_frame[i] = v * std::cos(angle) + glm::cross(axis, v) * std::sin(angle) + axis * glm::dot(axis, v) * (1.0 - std::cos(angle));
+  }
+  m_frame[2] = f;
+  orthonormalise();
+}
+
 void Observer::bind(std::optional<Lattice> lattice) {
   m_lattice = std::move(lattice);
   m_copy = {};

@@ -13,6 +13,7 @@
 #include "field_error.hpp"
 #include "objects_internal.hpp"
 #include "scene_reader.hpp"
+#include "sol/aim.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
 
@@ -28,9 +29,15 @@ namespace {
 using detail::SceneFileReader;
 using nlohmann::json;
 
-void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
+// The camera's keys; a "look_at" point is returned, for the caller to aim
+// the camera once the world's space is known.
+std::optional<glm::dvec3> read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (!c.is_object()) r.fail("camera", "'camera' must be an object");
-  r.require_known_keys(c, {"position", "forward", "up", "fov", "frustum", "projection", "fisheye_fov"}, "camera", "camera");
+  r.require_known_keys(c, {"position", "forward", "look_at", "up", "fov", "frustum", "projection", "fisheye_fov"}, "camera",
+                       "camera");
+  if (c.contains("look_at") && c.contains("forward")) {
+    r.fail("camera.look_at", "camera: give either 'forward' or 'look_at', not both");
+  }
   if (c.contains("projection")) {
     camera.projection = r.choice<Projection>(c["projection"], "camera.projection",
                                              {{"perspective", Projection::Perspective},
@@ -49,6 +56,31 @@ void read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
     }
     camera.frustum = Frustum{r.number(f[0], "camera.frustum[0]"), r.number(f[1], "camera.frustum[1]"),
                              r.number(f[2], "camera.frustum[2]"), r.number(f[3], "camera.frustum[3]")};
+  }
+  if (!c.contains("look_at")) return std::nullopt;
+  return r.vec3(c["look_at"], "camera.look_at");
+}
+
+// The camera turned towards `target` in the world's space (sol::looking_at).
+void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<Lattice>& lattice,
+                const SceneFileReader& r) {
+  try {
+    detail::check_position(target, "camera.look_at");
+    detail::check_position(camera.position, "camera.position");
+  } catch (const detail::FieldError& e) {
+    r.fail(e.path(), e.what());
+  }
+  // The library's messages name their function ("sol::aim: ..."): the file's field instead.
+  auto fail = [&](const std::string& what) {
+    const std::size_t cut = what.rfind("sol::", 0) == 0 ? what.find(": ") : std::string::npos;
+    r.fail("camera.look_at", "camera.look_at: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
+  };
+  try {
+    camera = looking_at(camera, target, lattice);
+  } catch (const InvalidArgument& e) {
+    fail(e.what());
+  } catch (const OutOfRange& e) {
+    fail(e.what());
   }
 }
 
@@ -234,7 +266,8 @@ Scene parse_scene(std::string_view text, std::string_view source) {
                         "max_steps", "hit_epsilon", "quotient", "samples", "max_bounces"},
                        "the scene", "");
   Scene s;
-  if (root.contains("camera")) read_camera(root["camera"], r, s.camera);
+  std::optional<glm::dvec3> look_at;
+  if (root.contains("camera")) look_at = read_camera(root["camera"], r, s.camera);
   if (!root.contains("objects") || !root["objects"].is_array()) r.fail("objects", "'objects' must be an array");
   // The quotient first: objects name their axes by its lattice's generators.
   if (root.contains("quotient")) read_quotient(root["quotient"], r, s);
@@ -244,6 +277,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   } catch (const detail::FieldError& e) {
     r.fail(e.path(), e.what());
   }
+  if (look_at) aim_camera(s.camera, *look_at, lattice, r);
   const json& objects = root["objects"];
   std::vector<std::string> paths;       // the file's object entries
   std::vector<std::uint32_t> origins;  // each object's entry among them

@@ -88,7 +88,8 @@ def scene(objects, *, camera=None, lights=None, **world):
 
 def camera(**fields):
     """A sol.Camera from the scene file's camera keys: position (Sol coordinates), forward and up (frame
-    components), fov (vertical, degrees), projection ("perspective", "equirectangular", "fisheye"), fisheye_fov
+    components) or look_at (a point: forward aims at it in Sol; in a quotient give the scene's camera
+    look_at, or use sol.aim with the lattice), fov (vertical, degrees), projection ("perspective", "equirectangular", "fisheye"), fisheye_fov
     (degrees), frustum ([left, right, down, up] tangents). Keys left out take the file's defaults."""
     # (Through a scene file with an object, which a scene needs.)
     return _parse({"camera": fields, "objects": [{"type": "plane_z"}]}, "sol.camera").camera
@@ -101,7 +102,10 @@ def _replace(self, **changes):
     for key, value in changes.items():
         value = _plain(value)
         if key in ("camera", "fog") and isinstance(value, dict) and isinstance(fields.get(key), dict):
-            fields[key] = dict(fields[key], **value)
+            kept = dict(fields[key])
+            if key == "camera" and "look_at" in value:
+                kept.pop("forward", None)  # look_at takes forward's place
+            fields[key] = dict(kept, **value)
         else:
             fields[key] = value
     return _parse(fields, "Scene.replace")

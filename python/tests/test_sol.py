@@ -74,6 +74,24 @@ def test_connections_reach_their_targets():
         assert np.allclose(sol.flow(p, d, t)[0], q, atol=1e-8)
 
 
+def test_aim_reaches_the_target_and_cameras_look_at_it():
+    eye, target = (0.4, 0.3, 0.2), (2.6, -1.9, 1.1)
+    a = sol.aim(eye, target)
+    assert a["distance"] == pytest.approx(sol.distance(eye, target), rel=1e-12)
+    assert np.allclose(sol.flow(eye, a["direction"], a["distance"])[0], target, atol=1e-9)
+    golden = sol.Lattice.golden()
+    g = sol.aim(eye, target, golden)
+    assert g["distance"] < a["distance"] - 0.1  # a nearer image of the target
+    assert np.allclose(sol.flow(eye, g["direction"], g["distance"])[0], g["end"], atol=1e-8)
+    assert np.allclose(golden.teleport(g["end"])[0], golden.teleport(target)[0], atol=1e-8)
+    # The scene key and replace: look_at takes forward's place.
+    scene = sol.scene([sol.ball(target, 0.05)], camera={"position": eye, "look_at": target}, quotient="golden")
+    assert np.allclose(scene.camera.forward, g["direction"], atol=1e-15)
+    turned = sol.preset_scene("spheres").replace(camera={"position": eye, "look_at": target})
+    assert np.allclose(turned.camera.forward, a["direction"], atol=1e-15)
+    assert np.allclose(sol.camera(position=eye, look_at=target).forward, a["direction"], atol=1e-15)
+
+
 def test_transport_is_orthogonal_and_carries_the_tangent():
     q = sol.transport((0, 0, 0), (0.4, 0.5, 0.6), 2.0)
     assert np.allclose(q @ q.T, np.eye(3), atol=1e-10)

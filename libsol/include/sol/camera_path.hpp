@@ -11,7 +11,10 @@
 // Walks go "forward", "back", "left", "right", "up" or "down" in the
 // observer's frame; turns are "yaw" (forward towards right), "pitch"
 // (forward towards up) or "roll" (up towards right), in degrees; a hold
-// keeps the camera for its seconds.
+// keeps the camera for its seconds. "look_at": [x, y, z] in the start
+// aims the camera at a point (in place of "forward": sol::looking_at); in
+// a walk it keeps the camera aimed at the point while it walks (the walk
+// goes along the geodesic its direction starts at the walk's start).
 #pragma once
 
 #include <optional>
@@ -35,12 +38,18 @@ struct PathSegment {
   Axis axis = Axis::Yaw;                ///< turn
   double angle = 0.0;                   ///< turn: radians
   double duration = 1.0;                ///< seconds, > 0
+  /// walk: the point the camera keeps looking at (sol::Observer::face
+  /// towards sol::aim's direction at each moment); none: the frame is
+  /// parallel-transported.
+  std::optional<glm::dvec3> look_at;
 };
 
 struct CameraPath {
   /// Overrides of the scene camera's position, forward, up, fov.
   std::optional<glm::dvec3> position, forward, up;
   std::optional<double> fov;
+  /// The point the start looks at, in place of `forward` (sol::looking_at).
+  std::optional<glm::dvec3> look_at;
   std::vector<PathSegment> segments;
 
   /// Seconds from the start to the end of the last segment.

@@ -48,6 +48,12 @@ class Observer {
   void pitch(double angle);
   /// Rolls clockwise (as seen from behind) by `angle` radians about forward (up → right).
   void roll(double angle);
+  /// Turns to look along `forward` (frame components at the position, need
+  /// not be unit): up becomes the nearest to the old up that is orthogonal to
+  /// it; where `forward` runs along the old up (within 1e-9), the whole
+  /// frame turns by the least rotation that takes the old forward to it
+  /// instead. Throws InvalidArgument on a zero or non-finite `forward`.
+  void face(const glm::dvec3& forward);
 
   /// Binds the observer to a lattice: from now on its position is always
   /// teleported into the fundamental domain D (the frame is left-invariant,

@@ -1,6 +1,7 @@
 // libsol: the whole public API.
 #pragma once
 
+#include "sol/aim.hpp"
 #include "sol/bounds_tree.hpp"
 #include "sol/camera.hpp"
 #include "sol/camera_path.hpp"
