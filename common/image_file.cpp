@@ -88,6 +88,9 @@ struct ImageWriter::Impl {
   std::string path;  // the target's name, for messages
   int width = 0, height = 0, given = 0, channels = 0;
   bool drop_alpha = false, as_float = false, srgb = false;
+  int tone = kernel::kToneClamp;  // the display's curve (sol/tone.h) ...
+  double scale = 1.0;             // ... and 2^exposure
+  std::size_t clipped = 0;        // pixels whose colour the display cut
   // The encoded bytes and their proxy before the writer: it may write
   // into them as it goes (an unfinished file closes when destroyed).
   std::vector<unsigned char> encoded;
@@ -156,7 +159,7 @@ void ImageWriter::Impl::join() {
 }
 
 ImageWriter::ImageWriter(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
-                         bool srgb_for_8bit, bool worker)
+                         bool srgb_for_8bit, bool worker, const Display& display)
     : m_impl(std::make_unique<Impl>(file)) {
   Impl& m = *m_impl;
   m.path = file.target();
@@ -164,6 +167,8 @@ ImageWriter::ImageWriter(const OutputFile& file, int width, int height, const st
   m.height = height;
   m.given = static_cast<int>(channel_names.size());
   m.srgb = srgb_for_8bit;
+  m.tone = static_cast<int>(display.tone);
+  m.scale = display.scale();
   // The writer is chosen from the target's name; it writes the temporary.
   m.out = OIIO::ImageOutput::create(m.path);
   if (!m.out) throw std::runtime_error(m.path + ": no image format for this file name (" + OIIO::geterror() + ")");
@@ -219,7 +224,8 @@ void ImageWriter::Impl::encode(int first_row, int rows, std::span<const float> i
   Impl& m = *this;
   const auto row_in = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.given);
   // In bands of kBandRows rows: alpha dropped where the format has none,
-  // non-finite values written as 0 (and counted), 8-bit formats sRGB-encoded.
+  // non-finite values written as 0 (and counted), 8-bit formats through the
+  // display's exposure and curve (the pixels it cuts counted), sRGB-encoded.
   constexpr int kBandRows = 64;
   const auto row_out = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.channels);
   for (int y = 0; y < rows; y += kBandRows) {
@@ -227,6 +233,8 @@ void ImageWriter::Impl::encode(int first_row, int rows, std::span<const float> i
     const float* in = interleaved.data() + static_cast<std::size_t>(y) * row_in;
     const std::size_t values = row_out * static_cast<std::size_t>(n);
     m.band.resize(values);
+    const auto stride = static_cast<std::size_t>(m.channels);
+    bool cut = false;  // the current pixel's
     for (std::size_t i = 0, j = 0; i < values; ++j) {
       if (m.drop_alpha && j % 4 == 3) continue;
       float v = in[j];
@@ -234,8 +242,12 @@ void ImageWriter::Impl::encode(int first_row, int rows, std::span<const float> i
         v = 0.0f;
         ++m.non_finite;
       }
-      if (!m.as_float && m.srgb && static_cast<int>(i % static_cast<std::size_t>(m.channels)) < 3) {
-        v = programs::srgb_encode(v);
+      const std::size_t channel = i % stride;
+      if (!m.as_float && m.srgb && channel < 3) {
+        const double scaled = static_cast<double>(v) * m.scale;
+        cut = (channel > 0 && cut) || kernel::sol_tone_curve(m.tone, scaled) > 1.0;
+        v = programs::srgb_encode(static_cast<float>(kernel::sol_tone(m.tone, scaled)));
+        if (channel == std::min<std::size_t>(stride, 3) - 1 && cut) ++m.clipped;
       }
       m.band[i++] = v;
     }
@@ -261,20 +273,22 @@ std::size_t ImageWriter::finish() {
   return m.non_finite;
 }
 
+std::size_t ImageWriter::clipped() const { return m_impl->clipped; }
+
 std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
-                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
+                 const std::vector<float>& interleaved, bool srgb_for_8bit, const Display& display) {
   if (interleaved.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channel_names.size()) {
     throw std::runtime_error(file.target() + ": internal error: pixel data size does not match the image");
   }
-  ImageWriter writer(file, width, height, channel_names, srgb_for_8bit);
+  ImageWriter writer(file, width, height, channel_names, srgb_for_8bit, false, display);
   writer.write_rows(0, height, interleaved);
   return writer.finish();
 }
 
 std::size_t write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
-                 const std::vector<float>& interleaved, bool srgb_for_8bit) {
+                 const std::vector<float>& interleaved, bool srgb_for_8bit, const Display& display) {
   OutputFile file(path);
-  const std::size_t non_finite = write_image(file, width, height, channel_names, interleaved, srgb_for_8bit);
+  const std::size_t non_finite = write_image(file, width, height, channel_names, interleaved, srgb_for_8bit, display);
   file.commit();
   return non_finite;
 }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <sol/display.hpp>
+
 #include "output_file.hpp"
 
 namespace sol::programs {
@@ -24,8 +26,11 @@ class ImageWriter {
   /// write_rows copies them and returns (waiting only while kQueuedBands
   /// bands are already queued), so that a renderer goes on with the next
   /// band meanwhile.
+  /// `display`: the exposure and tone curve of 8-bit formats with
+  /// `srgb_for_8bit` (their colour channels shown as Display::shown, then
+  /// sRGB-encoded); float formats take the values as they are.
   ImageWriter(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
-              bool srgb_for_8bit, bool worker = false);
+              bool srgb_for_8bit, bool worker = false, const Display& display = {});
   ~ImageWriter();
   ImageWriter(const ImageWriter&) = delete;
   ImageWriter& operator=(const ImageWriter&) = delete;
@@ -36,6 +41,9 @@ class ImageWriter {
   /// After the last row: finishes the file (the worker's rows first);
   /// returns how many non-finite values were written as 0.
   std::size_t finish();
+  /// After finish(): how many pixels of an 8-bit file the display cut at
+  /// white (a colour channel where the tone curve exceeds 1: Display::clips).
+  std::size_t clipped() const;
 
   /// The most bands queued for the worker at once.
   static constexpr int kQueuedBands = 2;
@@ -49,18 +57,18 @@ class ImageWriter {
 /// row 0 at the top) in the format the extension names (any OpenImageIO
 /// writes). Formats with float pixels (EXR, HDR, TIFF, PFM) get the linear
 /// values; 8-bit formats (PNG, JPEG, ...) get them sRGB-encoded when
-/// `srgb_for_8bit` is set. No NaN or infinity reaches a file: such values
+/// `srgb_for_8bit` is set, after `display`'s exposure and tone curve. No NaN or infinity reaches a file: such values
 /// (a defect: validation keeps the renderers' arithmetic finite) are written
 /// as 0, and their count is returned for the caller to report. Throws
 /// std::runtime_error naming the file and the reason on failure.
 std::size_t write_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
-                 const std::vector<float>& interleaved, bool srgb_for_8bit);
+                 const std::vector<float>& interleaved, bool srgb_for_8bit, const Display& display = {});
 
 /// The same into `file`'s temporary (in the format its target's name
 /// names), left for the caller to commit: several files of one run are
 /// written first and committed together, so a failure leaves none.
 std::size_t write_image(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
-                 const std::vector<float>& interleaved, bool srgb_for_8bit);
+                 const std::vector<float>& interleaved, bool srgb_for_8bit, const Display& display = {});
 
 /// Whether OpenImageIO can write files with this name's extension.
 bool can_write(const std::string& path);

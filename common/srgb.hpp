@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include <sol/display.hpp>
 #include <sol/kernel_constants.h>
 
 namespace sol::programs {
@@ -27,6 +28,13 @@ T srgb_encode(T linear) {
 /// The same as a byte, 0..255 (rounded to nearest).
 inline std::uint8_t srgb_byte(float linear) {
   return static_cast<std::uint8_t>(std::lround(srgb_encode(linear) * 255.0f));
+}
+
+/// The byte an 8-bit picture holds for a linear colour channel under a
+/// display: the exposure's `scale` (Display::scale), the curve `tone` (a
+/// sol/tone.h code), the sRGB encoding; as the image writer computes it.
+inline std::uint8_t display_byte(float linear, int tone, double scale) {
+  return srgb_byte(static_cast<float>(kernel::sol_tone(tone, static_cast<double>(linear) * scale)));
 }
 
 }  // namespace sol::programs

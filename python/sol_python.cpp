@@ -313,6 +313,21 @@ void set_error(PyObject* type, const char* what) {
 }
 
 // The group law and the geodesics.
+#ifdef SOL_PYTHON_IMAGES
+// The display of Python's exposure and tone keywords; InvalidArgument naming them.
+sol::Display display_of(double exposure, const std::string& tone, const std::string& function) {
+  sol::Display d;
+  d.exposure = exposure;
+  const std::optional<sol::Tone> curve = sol::tone_from_name(tone);
+  if (!curve) throw sol::InvalidArgument(function + ": tone must be one of " + sol::tone_names() + ", got '" + tone + "'");
+  d.tone = *curve;
+  if (!(std::abs(exposure) <= sol::Display::kMaxExposure)) {
+    throw sol::InvalidArgument(function + ": exposure must be finite and within ±20 stops");
+  }
+  return d;
+}
+#endif
+
 void bind_group_and_geodesics(py::module_& m) {
   // ---- The group
   m.def("multiply", [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return array(sol::multiply(vec3(p), vec3(q))); },
@@ -734,7 +749,9 @@ void bind_scenes(py::module_& m) {
 #ifdef SOL_PYTHON_IMAGES
   m.def(
       "save",
-      [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& image) {
+      [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
+         double exposure, const std::string& tone) {
+        const sol::Display display = display_of(exposure, tone, "sol.save");
         const py::buffer_info b = image.request();
         if (b.ndim != 3 || (b.shape[2] != 3 && b.shape[2] != 4)) {
           throw sol::InvalidArgument("sol.save: image must have shape (H, W, 3) or (H, W, 4), RGB(A) linear");
@@ -749,20 +766,25 @@ void bind_scenes(py::module_& m) {
         {
           py::gil_scoped_release release;
           try {
-            non_finite = sol::programs::write_image(path, width, height, names, pixels, true);
+            non_finite = sol::programs::write_image(path, width, height, names, pixels, true, display);
           } catch (const std::runtime_error& e) {
             throw sol::InvalidArgument(std::string("sol.save: ") + e.what());
           }
         }
         return non_finite;
       },
-      py::arg("path"), py::arg("image"),
+      py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("tone") = "clamp",
       "Writes a linear RGB(A) image ((H, W, 3|4), a render's 'rgba') to `path` with solrender's writer: the format "
-      "from the extension (png, jpg, exr, tif, hdr, ...), 8-bit formats sRGB-encoded, float ones linear; complete or "
-      "not at all. Returns how many values were not finite (written as 0).");
+      "from the extension (png, jpg, exr, tif, hdr, ...), 8-bit formats through the exposure (stops) and the tone "
+      "curve (\"clamp\" or \"aces\", solrender's --exposure and --tone) and sRGB-encoded, float ones linear "
+      "whatever those say; complete or not at all. Returns how many values were not finite (written as 0).");
   m.def(
       "srgb8",
-      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& image) {
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& image, double exposure,
+         const std::string& tone) {
+        const sol::Display display = display_of(exposure, tone, "sol.srgb8");
+        const int curve = static_cast<int>(display.tone);
+        const double scale = display.scale();
         const py::buffer_info b = image.request();
         std::vector<py::ssize_t> shape(b.shape.begin(), b.shape.end());
         py::array_t<std::uint8_t> out(shape);
@@ -771,13 +793,14 @@ void bind_scenes(py::module_& m) {
         const bool rgba = b.ndim == 3 && b.shape[2] == 4;
         for (py::ssize_t i = 0; i < b.size; ++i) {
           o[i] = rgba && i % 4 == 3 ? static_cast<std::uint8_t>(std::lround(std::clamp(in[i], 0.0f, 1.0f) * 255.0f))
-                                    : sol::programs::srgb_byte(in[i]);
+                                    : sol::programs::display_byte(std::isfinite(in[i]) ? in[i] : 0.0f, curve, scale);
         }
         return out;
       },
-      py::arg("image"),
-      "A linear image as the 8-bit sRGB bytes solrender writes (alpha of an (H, W, 4) image scaled, not encoded): a "
-      "uint8 array of the same shape.");
+      py::arg("image"), py::arg("exposure") = 0.0, py::arg("tone") = "clamp",
+      "A linear image as the 8-bit bytes solrender writes with the same --exposure (stops) and --tone (\"clamp\" or "
+      "\"aces\"): scaled by 2^exposure, through the tone curve, sRGB-encoded (alpha of an (H, W, 4) image scaled, "
+      "not encoded); a uint8 array of the same shape.");
 #endif
 }
 

@@ -2053,34 +2053,43 @@ TEST(Kernel, UnormTargetHoldsTheSrgbEncodedColour) {
     ++formats_tested;
     const bool bgr = format == VK_FORMAT_B8G8R8A8_UNORM;
     for (const char* name : {"plane", "sandwich", "lattice-balls", "spheres"}) {
-      const sol::Scene scene = sol::preset_scene(name);
-      const int w = 12, h = 8;
-      const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
-      for (int n : {1, 2}) {
-        const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
-                                                     : std::vector<sol::Camera>{eyes.left, eyes.right};
-        const sol::RenderResult ref = n == 1 ? sol::test::render(renderer, scene, w, h) : sol::test::render_stereo(renderer, scene, w, h, 0.2);
-        const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
-        sol::vk::StorageImage target(vk_context(), tw, th, format);
-        const sol::vk::UnormTarget unorm{target.view(), format, tw, th};
-        vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, cams, w, h, unorm); });
-        const std::vector<std::uint8_t> got = target.download_bytes();
-        int worst = 0;
-        for (int j = 0; j < h; ++j) {
-          for (int i = 0; i < n * w; ++i) {
-            const std::size_t at_target = static_cast<std::size_t>(j) * tw + static_cast<std::size_t>(i);
-            const std::size_t at_ref = static_cast<std::size_t>(j * n * w + i);
-            for (int c = 0; c < 4; ++c) {
-              const std::size_t from = static_cast<std::size_t>(bgr && c < 3 ? 2 - c : c);
-              const int byte = got[at_target * 4 + from];
-              const double linear = ref.rgba[at_ref * 4 + static_cast<std::size_t>(c)];
-              const double encoded = c < 3 ? sol::programs::srgb_encode(linear) : std::clamp(linear, 0.0, 1.0);  // alpha: linear
-              const auto want = static_cast<int>(std::lround(255.0 * encoded));
-              worst = std::max(worst, std::abs(byte - want));
+      // Each display: the default (the colour clamped), brighter through the
+      // filmic curve, darker and clamped; the curves from their definitions
+      // here (clamp: min(x, 1); aces: Narkowicz's rational fit).
+      for (const sol::Display display : {sol::Display{}, sol::Display{1.5, sol::Tone::Aces}, sol::Display{-1.0, sol::Tone::Clamp}}) {
+        const sol::Scene scene = sol::preset_scene(name);
+        const int w = 12, h = 8;
+        const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.2);
+        for (int n : {1, 2}) {
+          const std::vector<sol::Camera> cams = n == 1 ? std::vector<sol::Camera>{scene.camera}
+                                                       : std::vector<sol::Camera>{eyes.left, eyes.right};
+          const sol::RenderResult ref = n == 1 ? sol::test::render(renderer, scene, w, h) : sol::test::render_stereo(renderer, scene, w, h, 0.2);
+          const auto tw = static_cast<std::uint32_t>(n * w + 3), th = static_cast<std::uint32_t>(h + 2);
+          sol::vk::StorageImage target(vk_context(), tw, th, format);
+          const sol::vk::UnormTarget unorm{target.view(), format, tw, th, display};
+          vk_context().submit_and_wait([&](VkCommandBuffer cb) { renderer.record(cb, cams, w, h, unorm); });
+          const std::vector<std::uint8_t> got = target.download_bytes();
+          int worst = 0;
+          for (int j = 0; j < h; ++j) {
+            for (int i = 0; i < n * w; ++i) {
+              const std::size_t at_target = static_cast<std::size_t>(j) * tw + static_cast<std::size_t>(i);
+              const std::size_t at_ref = static_cast<std::size_t>(j * n * w + i);
+              for (int c = 0; c < 4; ++c) {
+                const std::size_t from = static_cast<std::size_t>(bgr && c < 3 ? 2 - c : c);
+                const int byte = got[at_target * 4 + from];
+                const double linear = ref.rgba[at_ref * 4 + static_cast<std::size_t>(c)];
+                const double x = std::max(linear, 0.0) * std::exp2(display.exposure);
+                const double shown = display.tone == sol::Tone::Aces
+                                         ? std::min(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 1.0)
+                                         : std::min(x, 1.0);
+                const double encoded = c < 3 ? sol::programs::srgb_encode(shown) : std::clamp(linear, 0.0, 1.0);  // alpha: linear
+                const auto want = static_cast<int>(std::lround(255.0 * encoded));
+                worst = std::max(worst, std::abs(byte - want));
+              }
             }
           }
+          EXPECT_LE(worst, 1) << name << " eyes " << n << " format " << format << " exposure " << display.exposure;
         }
-        EXPECT_LE(worst, 1) << name << " eyes " << n << " format " << format;
       }
     }
   }

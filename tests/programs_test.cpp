@@ -29,6 +29,7 @@
 #include "output_file.hpp"
 #include "progress.hpp"
 
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -299,6 +300,60 @@ TEST(ImageFile, RgbaIntoFormatsWithoutAlphaKeepsTheColour) {
           const float encoded = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
           EXPECT_NEAR(got, encoded, 0.5f / 255.0f + 1e-6f) << name << " " << p << " " << c;
         }
+      }
+    }
+  }
+  fs::remove_all(d);
+}
+
+// The display (exposure and tone curve) of 8-bit files, against the
+// curves computed here from their definitions: clamp is the value cut at 1
+// (the sRGB encoding of min(v 2^e, 1)); aces is Narkowicz's rational fit,
+// (x (2.51 x + 0.03)) / (x (2.43 x + 0.59) + 0.14) at x = v 2^e; half a
+// step of 1/255 after the encoding. The EXR of the same call is the linear
+// input whatever the display; the clipped pixels are those with a channel
+// where the curve passes 1 (clamp: v 2^e > 1; aces: x > 7.2417, the
+// positive root of 0.08 x^2 - 0.56 x - 0.14).
+TEST(ImageFile, EightBitFilesTakeTheDisplayAndFloatFilesStayLinear) {
+  const fs::path d = fresh_directory("display");
+  const std::vector<float> pixels = {0.05f, 0.18f, 0.5f, 1.0f, 0.9f, 2.0f, 4.0f, 1.0f, 9.0f, 0.3f, 0.01f, 1.0f};  // 3x1
+  const double aces_white = (0.56 + std::sqrt(0.56 * 0.56 + 4 * 0.08 * 0.14)) / 0.16;
+  struct Case {
+    sol::Display display;
+    int clipped;
+  };
+  const Case cases[] = {{{0.0, sol::Tone::Clamp}, 2}, {{-1.0, sol::Tone::Clamp}, 2}, {{-2.0, sol::Tone::Clamp}, 1},
+                        {{0.0, sol::Tone::Aces}, 1}, {{1.5, sol::Tone::Aces}, 2}, {{-1.0, sol::Tone::Aces}, 0}};
+  for (const Case& c : cases) {
+    const std::string label = std::to_string(c.display.exposure) + " " + sol::tone_name(c.display.tone);
+    for (const char* name : {"a.png", "a.exr"}) {
+      const std::string path = (d / name).string();
+      sol::programs::OutputFile file(path);
+      sol::programs::ImageWriter writer(file, 3, 1, {"R", "G", "B", "A"}, true, false, c.display);
+      writer.write_rows(0, 1, pixels);
+      writer.finish();
+      file.commit();
+      auto in = OIIO::ImageInput::open(path);
+      ASSERT_TRUE(in);
+      std::vector<float> back(12);
+      ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, back.data()));
+      if (std::string(name) == "a.exr") {
+        EXPECT_EQ(back, pixels) << label;
+        EXPECT_EQ(writer.clipped(), 0u) << label;
+        continue;
+      }
+      EXPECT_EQ(writer.clipped(), static_cast<std::size_t>(c.clipped)) << label;
+      for (std::size_t k = 0; k < 12; ++k) {
+        if (k % 4 == 3) continue;
+        const double x = pixels[k] * std::exp2(c.display.exposure);
+        const double shown = c.display.tone == sol::Tone::Clamp
+                                 ? std::min(x, 1.0)
+                                 : std::min((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 1.0);
+        if (c.display.tone == sol::Tone::Aces) {
+          EXPECT_EQ(shown >= 1.0, x >= aces_white) << label;
+        }
+        const double encoded = shown <= 0.0031308 ? 12.92 * shown : 1.055 * std::pow(shown, 1.0 / 2.4) - 0.055;
+        EXPECT_NEAR(back[k], encoded, 0.5 / 255.0 + 1e-6) << label << " " << k;
       }
     }
   }

@@ -141,6 +141,35 @@ TEST(Scene, SamplesRoundTripAndAreChecked) {
   EXPECT_THROW(sol::validate(v), sol::InvalidArgument);
 }
 
+TEST(Scene, ExposureAndToneRoundTripAndAreChecked) {
+  const sol::Scene s = sol::parse_scene(R"({"objects": [{"type": "plane_z"}], "exposure": -1.5, "tone": "aces"})");
+  EXPECT_EQ(s.display.exposure, -1.5);
+  EXPECT_EQ(s.display.tone, sol::Tone::Aces);
+  EXPECT_EQ(sol::parse_scene(sol::to_json(s)).display, s.display);
+  const sol::Scene plain = sol::parse_scene(R"({"objects": [{"type": "plane_z"}]})");
+  EXPECT_EQ(plain.display, sol::Display{});
+  EXPECT_EQ(sol::to_json(plain).find("exposure"), std::string::npos);  // the defaults are not written
+  const struct {
+    const char* text;
+    const char* says;
+  } bad[] = {{R"({"objects": [{"type": "plane_z"}], "exposure": 21})", "exposure must be finite and within ±20 stops"},
+             {R"({"objects": [{"type": "plane_z"}], "exposure": "1"})", "exposure"},
+             {R"({"objects": [{"type": "plane_z"}], "tone": "filmic"})", "'tone' must be clamp or aces"}};
+  for (const auto& [text, says] : bad) {
+    try {
+      sol::parse_scene(text);
+      ADD_FAILURE() << text;
+    } catch (const sol::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  }
+  sol::Scene v = s;
+  v.display.exposure = std::nan("");
+  EXPECT_THROW(sol::validate(v), sol::InvalidArgument);
+  EXPECT_THROW(sol::validate(v.display), sol::InvalidArgument);
+  EXPECT_EQ(sol::tone_names(), "clamp, aces");
+}
+
 TEST(Scene, ProjectionsRoundTripAndAreChecked) {
   const sol::Scene s = sol::parse_scene(
       R"({"camera": {"projection": "fisheye", "fisheye_fov": 220}, "objects": [{"type": "plane_z"}]})");

@@ -147,6 +147,16 @@ TEST(ViewerState, SettingsApplyOrAreRefusedByName) {
   EXPECT_EQ(s.ipd, 0.064);
   s.set(Setting::Ipd, 0.2);
   EXPECT_EQ(s.ipd, 0.2);
+  // The exposure is the display's: the world is not prepared again; it
+  // reaches the copied options (solrender's 8-bit file shows the same).
+  s.set(Setting::Exposure, 25.0);
+  EXPECT_NE(s.message.find("set exposure: must be in [-20, 20]"), std::string::npos) << s.message;
+  s.set(Setting::Exposure, -1.5);
+  EXPECT_EQ(s.scene.display.exposure, -1.5);
+  EXPECT_EQ(s.world_version, 2);
+  s.act({.copy_options = true}, 64, 48);
+  ASSERT_TRUE(s.clipboard.has_value());
+  EXPECT_NE(s.clipboard->find(" --exposure -1.5 --tone clamp -o"), std::string::npos) << *s.clipboard;
 }
 
 TEST(ViewerState, KeysActOnceOnPress) {

@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include <sol/connection.hpp>
+#include <sol/error.hpp>
 #include <sol/vk/vk.hpp>
 
 #include "shaders/specialised_comp_spv.hpp"
@@ -366,6 +367,55 @@ TEST(VkFrameTimer, TimesTheCommandsBetweenItsTimestamps) {
 // integers and halves, exact in float, so both ways are held to the host's
 // values exactly. A constant the module does not declare (id 7) is ignored
 // either way, as Vulkan ignores it.
+// The display pass (sol::vk::DisplayPass) of a float image: fill's (x, y,
+// 0.3, 1) over 13 x 7 pixels (values 0 to 12: most above white) shown
+// through each curve, against the curves from their definitions (clamp:
+// min(x 2^e, 1); aces: Narkowicz's rational fit of x 2^e), to float
+// rounding; pixels outside the size asked for are left as they were.
+TEST(VkPipeline, TheDisplayPassShowsTheImageThroughTheCurve) {
+  Context context(validated());
+  constexpr std::uint32_t width = 13, height = 7;
+  StorageImage linear(context, width, height);
+  ComputePipeline fill(context, fill_desc());
+  fill.bind(0, linear);
+  fill.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8), 0.3f);
+  sol::vk::DisplayPass pass(context, 2);
+  for (const sol::Display display : {sol::Display{0.0, sol::Tone::Clamp}, sol::Display{-3.0, sol::Tone::Clamp},
+                                     sol::Display{0.0, sol::Tone::Aces}, sol::Display{-2.5, sol::Tone::Aces}}) {
+    StorageImage shown(context, width, height);
+    fill.bind(0, shown, 0);
+    fill.run(sol::vk::group_count(width, 8), sol::vk::group_count(height, 8), -1.0f);  // outside: (x, y, -1, 1)
+    context.submit_and_wait([&](VkCommandBuffer cb) { pass.record(cb, linear, shown, 12, 6, display, 1); });
+    const std::vector<float> in = linear.download(), out = shown.download();
+    double worst = 0.0;
+    for (std::uint32_t y = 0; y < height; ++y) {
+      for (std::uint32_t x = 0; x < width; ++x) {
+        const std::size_t k = (std::size_t{y} * width + x) * 4;
+        if (x >= 12 || y >= 6) {
+          EXPECT_EQ(out[k + 2], -1.0f) << x << "," << y;
+          continue;
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double v = in[k + c] * std::exp2(display.exposure);
+          const double want = display.tone == sol::Tone::Aces
+                                  ? std::min(v * (2.51 * v + 0.03) / (v * (2.43 * v + 0.59) + 0.14), 1.0)
+                                  : std::min(v, 1.0);
+          worst = std::max(worst, std::abs(out[k + c] - want));
+        }
+        EXPECT_EQ(out[k + 3], 1.0f);
+      }
+    }
+    EXPECT_LT(worst, 1e-6) << display.exposure << " " << sol::tone_name(display.tone);
+    fill.bind(0, linear, 0);
+  }
+  EXPECT_THROW(context.submit_and_wait([&](VkCommandBuffer cb) { pass.record(cb, linear, linear, 12, 6, {}, 2); }),
+               sol::InvalidArgument);
+  EXPECT_THROW(context.submit_and_wait([&](VkCommandBuffer cb) { pass.record(cb, linear, linear, 14, 6, {}, 0); }),
+               sol::InvalidArgument);
+  const std::vector<std::string> errors = context.validation_errors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: " << errors.front();
+}
+
 TEST(VkPipeline, FoldedSpecialisationIsTheDriversAndDropsDeadCode) {
   Context context(validated());
   const std::span<const std::uint32_t> words(specialised_comp_spv);

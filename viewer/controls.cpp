@@ -27,6 +27,7 @@ const std::pair<const char*, Key> kNames[] = {
 const std::pair<const char*, Setting> kSettings[] = {
     {"fov", Setting::Fov},     {"max-distance", Setting::MaxDistance}, {"max-steps", Setting::MaxSteps},
     {"hit-epsilon", Setting::HitEpsilon}, {"scale", Setting::Scale},   {"ipd", Setting::Ipd},
+    {"exposure", Setting::Exposure},
 };
 
 const std::pair<const char*, Button> kButtons[] = {

@@ -37,7 +37,7 @@ std::string key_names();
 
 /// The settings a script may set (`TIME set NAME VALUE`): what the overlay
 /// panel's controls of the same name change.
-enum class Setting { Fov, MaxDistance, MaxSteps, HitEpsilon, Scale, Ipd };
+enum class Setting { Fov, MaxDistance, MaxSteps, HitEpsilon, Scale, Ipd, Exposure };
 /// "fov", "max-distance", "max-steps", "hit-epsilon", "scale", "ipd"; std::nullopt for others.
 std::optional<Setting> setting_from_name(const std::string& name);
 std::string setting_names();

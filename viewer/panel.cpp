@@ -278,6 +278,15 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::InputScalarN("##look_at", ImGuiDataType_Double, text.look_at.data(), 3, nullptr, nullptr, "%.3f");
     ImGui::SameLine();
     if (ImGui::Button("look at")) out.look_at = glm::dvec3(text.look_at[0], text.look_at[1], text.look_at[2]);
+    // The display: how the linear frame is shown (not a change of the world: nothing is rendered again).
+    drag_double("exposure (stops)", m.scene.display.exposure, 0.05, -Display::kMaxExposure, Display::kMaxExposure, "%+.2f");
+    int tone = static_cast<int>(m.scene.display.tone);
+    const char* const tones[] = {
+#define SOL_TONE_LABEL(Enum, code_name, code, name) name,
+        SOL_TONE_CURVES(SOL_TONE_LABEL)
+#undef SOL_TONE_LABEL
+    };
+    if (ImGui::Combo("tone curve", &tone, tones, IM_ARRAYSIZE(tones))) m.scene.display.tone = static_cast<Tone>(tone);
     out.world_changed |= drag_double("max distance", m.scene.max_distance, 0.1, 0.1, 1e3, "%.2f");
     int steps = m.scene.max_steps;
     if (ImGui::DragInt("max steps", &steps, 1.0f, 1, 10000, "%d", ImGuiSliderFlags_AlwaysClamp)) {

@@ -248,7 +248,9 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
   if (!direct && (!m_target || m_rendered_w != render_w || m_rendered_h != render_h)) {
     // The frames before this one may still read the old image: kept until they are done.
     if (m_target) m_retired_targets.emplace_back(m_frames - 1, std::move(*m_target));
+    if (m_shown) m_retired_targets.emplace_back(m_frames - 1, std::move(*m_shown));
     m_target.reset();
+    m_shown.reset();
     m_target.emplace(m_context, static_cast<std::uint32_t>(render_w), static_cast<std::uint32_t>(render_h));
     m_rendered_w = render_w;
     m_rendered_h = render_h;
@@ -287,40 +289,13 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     renderer.record(cb, eyes, eye_width, eye_height,
-                    vk::UnormTarget{m_views[index], m_format, m_extent.width, m_extent.height});
+                    vk::UnormTarget{m_views[index], m_format, m_extent.width, m_extent.height, options.display});
     shown_layout = VK_IMAGE_LAYOUT_GENERAL;
     shown_stage = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     shown_access = VK_ACCESS_SHADER_WRITE_BIT;
   } else {
-    VkImage target_image = m_target->handle();
     if (!reuse) renderer.record(cb, eyes, eye_width, eye_height, *m_target, options.sample.value_or(vk::PixelSample{}));
-    // Read after write: the blit reads what the kernel wrote; to the layout
-    // blits read best (the previous frame's last barrier already ordered this
-    // frame's kernel after that frame's blit).
-    vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    // The swapchain image: its old contents are not needed (UNDEFINED); the
-    // transition waits at the transfer stage, the stage the submit's wait on
-    // `acquired` blocks, so it happens only after the presentation engine
-    // has released the image.
-    vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    VkImageBlit blit{};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {render_w, render_h, 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {static_cast<std::int32_t>(m_extent.width), static_cast<std::int32_t>(m_extent.height), 1};
-    vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   1, &blit, fits_window() || !m_linear_blit ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
-    // Back to GENERAL, where Sol::vk expects its storage images between
-    // commands (the next kernel, download()); write after read: the next
-    // frame's kernel (which reads the image too when it accumulates) and any
-    // download's copy wait for the blit to finish reading.
-    vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    record_blit(cb, swap_image, render_w, render_h, options.display, fits_window() || !m_linear_blit);
   }
   // The overlay, drawn into the image as a colour attachment; before the
   // capture when screenshots take it, else after.
@@ -406,6 +381,7 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     vk::check(presented, "vkQueuePresentKHR");
   }
   m_target_has_frame = !direct;
+  m_display = options.display;
   if (capturing) {
     m_captured_w = m_extent.width;
     m_captured_h = m_extent.height;
@@ -413,6 +389,54 @@ std::optional<Presenter::Shown> Presenter::present(vk::MarchRenderer& renderer, 
     m_captured_direct = direct;
   }
   return Shown{direct, record_ms, !reuse};
+}
+
+// The blit path's commands after the kernel: the display pass where the
+// display is not the default, the blit into the swapchain image (nearest
+// or linear filtering), and the barriers around them.
+void Presenter::record_blit(VkCommandBuffer cb, VkImage swap_image, int render_w, int render_h, const Display& display,
+                            bool nearest) {
+  // A display other than the default: shown into m_shown by the display
+  // pass (after the kernel's writes; the next frame's kernel writes the
+  // target only after the pass has read it), and blitted from there.
+  if (display != Display{}) {
+    if (!m_display_pass) m_display_pass.emplace(m_context, static_cast<std::uint32_t>(kFramesInFlight));
+    if (!m_shown) m_shown.emplace(m_context, m_target->width(), m_target->height());
+    vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    m_display_pass->record(cb, *m_target, *m_shown, render_w, render_h, display,
+                           static_cast<std::uint32_t>(m_frames % kFramesInFlight));
+    vk::record_memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+  }
+  const VkImage target_image = display != Display{} ? m_shown->handle() : m_target->handle();
+  // Read after write: the blit reads what the kernel (or the display pass)
+  // wrote; to the layout blits read best (the previous frame's last
+  // barrier already ordered this frame's writes after that frame's blit).
+  vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  // The swapchain image: its old contents are not needed (UNDEFINED); the
+  // transition waits at the transfer stage, the stage the submit's wait on
+  // `acquired` blocks, so it happens only after the presentation engine
+  // has released the image.
+  vk::image_barrier(cb, swap_image, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {render_w, render_h, 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {static_cast<std::int32_t>(m_extent.width), static_cast<std::int32_t>(m_extent.height), 1};
+  vkCmdBlitImage(cb, target_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swap_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 1, &blit, nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+  // Back to GENERAL, where Sol::vk expects its storage images between
+  // commands (the next kernel, download()); write after read: the next
+  // frame's kernel (which reads the image too when it accumulates) and any
+  // download's copy wait for the blit to finish reading.
+  vk::image_barrier(cb, target_image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 void Presenter::save(const std::string& path) {
@@ -447,7 +471,7 @@ void Presenter::write_capture(const std::string& path) const {
   programs::write_image(path, static_cast<int>(w), static_cast<int>(h), {"R", "G", "B", "A"}, rgba, !srgb);
 }
 
-// The rendered image (before scaling) as 8-bit sRGB.
+// The rendered image (before scaling) as 8-bit sRGB, through the frame's display.
 void Presenter::write_rendered(const std::string& path) const {
   const std::vector<float> all = m_target->download();
   const int width = m_rendered_w, height = m_rendered_h;
@@ -456,7 +480,7 @@ void Presenter::write_rendered(const std::string& path) const {
     std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(j) * m_target->width() * 4, width * 4,
                 rgba.begin() + static_cast<std::ptrdiff_t>(j) * width * 4);
   }
-  programs::write_image(path, width, height, {"R", "G", "B", "A"}, rgba, true);
+  programs::write_image(path, width, height, {"R", "G", "B", "A"}, rgba, true, m_display);
 }
 
 }  // namespace sol::viewer

@@ -4,9 +4,12 @@
 //
 // Two paths (docs/solview.md "How solview presents a frame"):
 //  - direct: at render scale 1 the kernel writes straight into the swapchain
-//    image (a storage-capable UNORM image, sRGB-encoded by the kernel);
-//  - blit: a scaled frame goes to an RGBA32F image, then a blit scales it
-//    into an sRGB swapchain image, which encodes it.
+//    image (a storage-capable UNORM image, through the display and
+//    sRGB-encoded by the kernel);
+//  - blit: a scaled frame goes to an RGBA32F image (shown through the
+//    display into a second one by vk::DisplayPass where the display is not
+//    the default), then a blit scales it into an sRGB swapchain image, which
+//    encodes it.
 // Each path has its own swapchain; a change of path re-creates it. Two frames
 // are in flight: present() records frame n while the device may still run
 // frame n - 1; it waits only for frame n - 2's fence (its slot's), the
@@ -26,6 +29,7 @@
 #include <sol/camera.hpp>
 #include <sol/vk/buffer.hpp>
 #include <sol/vk/context.hpp>
+#include <sol/vk/display.hpp>
 #include <sol/vk/frame_timer.hpp>
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
@@ -97,6 +101,10 @@ class Presenter {
     /// The display period the frame must fit (stats(): a frame whose device
     /// work and recording exceed it is missed), milliseconds.
     double period_ms = 1000.0 / 60.0;
+    /// How the linear frame is shown: exposure and tone curve, as
+    /// solrender's 8-bit files (the kernel applies it on the direct path, a
+    /// display pass before the blit otherwise).
+    Display display{};
   };
   /// Renders `eyes` side by side, each eye_width × eye_height, with
   /// `renderer` (its world set) and presents the frame, scaled to the
@@ -139,6 +147,7 @@ class Presenter {
   void release() noexcept;
   void create_swapchain(bool vsync);
   void destroy_swapchain();
+  void record_blit(VkCommandBuffer cb, VkImage swap_image, int render_w, int render_h, const Display& display, bool nearest);
   void write_capture(const std::string& path) const;
   void write_rendered(const std::string& path) const;
 
@@ -174,6 +183,11 @@ class Presenter {
   // reads the last one's); a replaced one is kept until the frames that
   // may read it are done: (the last frame that may, image).
   std::optional<vk::StorageImage> m_target;
+  // The blit path's image as shown (a display that is not the default:
+  // DisplayPass), the size of m_target, and the pass.
+  std::optional<vk::StorageImage> m_shown;
+  std::optional<vk::DisplayPass> m_display_pass;
+  Display m_display{};  // the last frame's (write_rendered)
   std::vector<std::pair<long, vk::StorageImage>> m_retired_targets;
   int m_rendered_w = 0, m_rendered_h = 0;  // of the image in m_target (both eyes)
   bool m_target_has_frame = false;         // m_target holds the last frame presented

@@ -226,8 +226,9 @@ void encode_video(const std::string& ffmpeg, const std::string& pattern, long fi
 // stopped and the temporary removed.
 class VideoPipe {
  public:
-  VideoPipe(const std::string& ffmpeg, const std::string& video, int width, int height, double fps)
-      : m_out(video), m_video(video) {
+  VideoPipe(const std::string& ffmpeg, const std::string& video, int width, int height, double fps,
+            const sol::Display& display)
+      : m_out(video), m_video(video), m_tone(static_cast<int>(display.tone)), m_scale(display.scale()) {
     std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is a failed write (EPIPE), not the end of solrender
     int fds[2] = {-1, -1};
     if (pipe(fds) != 0) throw std::runtime_error("--video: cannot make a pipe to ffmpeg");
@@ -264,12 +265,12 @@ class VideoPipe {
   VideoPipe(const VideoPipe&) = delete;
   VideoPipe& operator=(const VideoPipe&) = delete;
 
-  // The frame's next rows, converted to sRGB bytes and written.
+  // The frame's next rows, converted to bytes as the image files are (the display's exposure and curve, sRGB) and written.
   void write_rows(std::span<const float> rgba) {
     m_bytes.resize(rgba.size());
     for (std::size_t k = 0; k < rgba.size(); ++k) {
       const float v = std::isfinite(rgba[k]) ? rgba[k] : 0.0f;
-      m_bytes[k] = k % 4 == 3 ? static_cast<std::uint8_t>(255) : sol::programs::srgb_byte(v);
+      m_bytes[k] = k % 4 == 3 ? static_cast<std::uint8_t>(255) : sol::programs::display_byte(v, m_tone, m_scale);
     }
     const auto* at = m_bytes.data();
     std::size_t left = m_bytes.size();
@@ -296,6 +297,8 @@ class VideoPipe {
  private:
   sol::programs::OutputFile m_out;
   std::string m_video;
+  int m_tone;      // the display's curve (sol/tone.h) ...
+  double m_scale;  // ... and exposure scale
   pid_t m_pid = 0;
   std::optional<sol::programs::ChildProcess> m_listed;
   int m_fd = -1;
@@ -328,6 +331,8 @@ struct Options {
   std::string stereo_mode;  // empty: mono
   double fps = 24.0, ipd = 0.064;
   std::optional<double> fisheye_fov;
+  std::optional<double> exposure;  // stops; none: the scene's
+  std::string tone;                // empty: the scene's
   sol::cli::IntegratorOptions flow;
   sol::cli::SceneOverrides overrides;
   bool print_scene = false, progress = false, overwrite = false, video_only = false;
@@ -359,6 +364,17 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
                  "samples per pixel, 1..4096 (default: the scene's \"samples\", 1 unless it says): anti-aliasing, "
                  "the colour the mean of N rays through the pixel (sol::pixel_sample 0..N-1, an evenly spread "
                  "sequence; sample 0 is the centre); the AOVs stay the centre's");
+  cl.add_number("--exposure", o.exposure, "STOPS",
+                "scale the colour of 8-bit images and videos by 2^STOPS before the tone curve, [-20, 20] (default: "
+                "the scene's \"exposure\", 0); float images (EXR) stay linear",
+                sol::cli::in_range(-sol::Display::kMaxExposure, sol::Display::kMaxExposure));
+  std::vector<std::string> tones;
+#define SOL_TONE_OPTION(Enum, code_name, code, name) tones.emplace_back(name);
+  SOL_TONE_CURVES(SOL_TONE_OPTION)
+#undef SOL_TONE_OPTION
+  cl.add_choice("--tone", o.tone, tones,
+                "the tone curve of 8-bit images and videos: clamp (the colour cut at white) or aces (a filmic "
+                "curve that rolls highlights off; docs/programs.md) (default: the scene's \"tone\", clamp)");
   cl.add_choice("--device", o.device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
@@ -410,6 +426,8 @@ sol::Scene scene_of(Options& o, const sol::cli::CommandLine& cl) {
     if (o.projection == "fisheye") scene.camera.projection = sol::Projection::Fisheye;
     if (o.fisheye_fov) scene.camera.fisheye_fov = *o.fisheye_fov;
     if (scene.camera.projection != sol::Projection::Perspective) scene.camera.frustum.reset();
+    if (o.exposure) scene.display.exposure = *o.exposure;
+    if (!o.tone.empty()) scene.display.tone = *sol::tone_from_name(o.tone);
     sol::validate(scene);
   } catch (const std::exception& e) {
     cl.fail(e.what());
@@ -755,6 +773,18 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
   return renderer;
 }
 
+// Says how much of an 8-bit picture the display cut at white, and what
+// keeps it (the EXR is linear and keeps everything): nothing is clipped
+// without a word.
+void report_clipped(std::size_t clipped, double pixels, const sol::Display& display, const std::string& where) {
+  if (clipped == 0 || pixels <= 0.0) return;
+  std::fprintf(stderr,
+               "solrender: note: %zu pixels (%.2g %%) are brighter than white under exposure %+g and tone %s and clip "
+               "in %s; %s keeps their highlights\n",
+               clipped, 100.0 * static_cast<double>(clipped) / pixels, display.exposure, sol::tone_name(display.tone),
+               where.c_str(), display.tone == sol::Tone::Clamp ? "a lower --exposure or --tone aces" : "a lower --exposure");
+}
+
 // A film: frames first..end-1, each its own complete file; frames already
 // there (complete: files appear only whole) are skipped, so a stopped run
 // goes on where it was.
@@ -769,7 +799,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   }
   // --video-only: every frame into ffmpeg as it renders, no frame files.
   std::optional<VideoPipe> video;
-  if (o.video_only) video.emplace(film.ffmpeg, o.video, image_width(o), o.height, o.fps);
+  if (o.video_only) video.emplace(film.ffmpeg, o.video, image_width(o), o.height, o.fps, scene.display);
   const RowSink to_video = [&video](int, int, std::span<const float> rgba) { video->write_rows(rgba); };
   // A frame whose file the worker still encodes (ImageWriter), finished
   // and committed after the next frame's render: frames are committed in turn.
@@ -780,9 +810,11 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
     std::string name;
   };
   std::optional<PendingFrame> pending;
-  const auto complete = [](PendingFrame& p) {
+  std::size_t clipped = 0;  // the frames' pixels cut at white
+  const auto complete = [&clipped](PendingFrame& p) {
     hand_over(into(*p.writer), p.result);
     const std::size_t non_finite = p.writer->finish();
+    clipped += p.writer->clipped();
     p.file->commit();
     if (non_finite > 0) std::fprintf(stderr, "solrender: warning: %zu non-finite values in %s written as 0\n", non_finite, p.name.c_str());
   };
@@ -809,8 +841,8 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
       continue;
     }
     auto file = std::make_unique<sol::programs::OutputFile>(name);
-    auto writer = std::make_unique<sol::programs::ImageWriter>(*file, image_width(o), o.height,
-                                                                std::vector<std::string>{"R", "G", "B", "A"}, true, true);
+    auto writer = std::make_unique<sol::programs::ImageWriter>(
+        *file, image_width(o), o.height, std::vector<std::string>{"R", "G", "B", "A"}, true, true, scene.display);
     const RowSink sink = into(*writer);
     sol::RenderResult r = render(camera, &sink);
     if (tty) std::fprintf(stderr, "\r");
@@ -822,6 +854,8 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
   }
   if (pending) complete(*pending);
   if (video) video->finish();
+  report_clipped(clipped, static_cast<double>(image_width(o)) * o.height * static_cast<double>(rendered), scene.display,
+                 o.output + " (its frames)");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - film_started).count();
   std::fprintf(stderr, "solrender: path %s: frames %ld..%ld at %g fps on %s: %ld rendered in %.2f s, %ld already there, %s -> %s\n",
                o.path_file.c_str(), film.first, film.end - 1, o.fps, where.c_str(), rendered, seconds, skipped,
@@ -835,7 +869,8 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
                   std::string where) {
   const auto begin = std::chrono::steady_clock::now();
   sol::programs::OutputFile image(o.output);
-  sol::programs::ImageWriter writer(image, image_width(o), o.height, {"R", "G", "B", "A"}, true, /*worker=*/true);
+  sol::programs::ImageWriter writer(image, image_width(o), o.height, {"R", "G", "B", "A"}, true, /*worker=*/true,
+                                    scene.display);
   const RowSink sink = into(writer);
   const sol::RenderResult r = render(scene.camera, &sink);
   hand_over(sink, r);
@@ -859,6 +894,7 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
     std::fprintf(stderr, "solrender: warning: %zu values were not finite and were written as 0 (a defect: please report "
                  "the scene and options)\n", non_finite);
   }
+  report_clipped(writer.clipped(), static_cast<double>(r.width) * r.height, scene.display, o.output);
   const std::string samples = o.spp > 1 ? ", " + std::to_string(o.spp) + " samples per pixel" : "";
   std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s, %s -> %s\n", r.width, r.height,
                o.anaglyph() ? " (anaglyph)" : (o.stereo() ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,

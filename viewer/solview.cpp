@@ -786,6 +786,7 @@ int run(App& app) {
     frame_options.vsync = app.vsync;
     frame_options.overlay = overlay_draw ? &*overlay_draw : nullptr;
     frame_options.period_ms = display_period_ms(app);
+    frame_options.display = app.scene.display;
     refinement.set(frame_options);
     const std::optional<sol::viewer::Presenter::Shown> shown =
         presenter.present(renderer, cameras, eye_w, eye_h, frame_options);

@@ -212,6 +212,10 @@ void ViewerState::set(Setting setting, double value) {
       if (!(value >= 0.0 && value <= 10.0)) return refuse("set ipd: must be in [0, 10]", value);
       ipd = value;
       return;
+    case Setting::Exposure:  // the display alone: the frame is not rendered again
+      if (!(std::abs(value) <= Display::kMaxExposure)) return refuse("set exposure: must be in [-20, 20]", value);
+      scene.display.exposure = value;
+      return;
     case Setting::MaxDistance: scene.max_distance = value; break;
     case Setting::MaxSteps:
       if (value != std::floor(value) || value < 1 || value > 1e6) {
@@ -245,13 +249,18 @@ Camera ViewerState::camera() const {
 
 std::string ViewerState::solrender_command(int width, int height) const {
   const Camera c = camera();
+  char shown[96] = "";  // the display, where it is not the default
+  if (scene.display != Display{}) {
+    std::snprintf(shown, sizeof shown, " --exposure %.17g --tone %s", scene.display.exposure, tone_name(scene.display.tone));
+  }
   char text[1024];
   std::snprintf(text, sizeof text,
                 "solrender --scene %s --width %d --height %d --fov %.17g --position %.17g,%.17g,%.17g "
-                "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s -o solview.png",
+                "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s%s -o solview.png",
                 scene_name.c_str(), width, height, c.fov, c.position.x, c.position.y, c.position.z, c.forward.x,
                 c.forward.y, c.forward.z, c.up.x, c.up.y, c.up.z, scene.max_distance, scene.max_steps,
-                stereo ? (" --stereo --ipd " + std::to_string(ipd)).c_str() : "");
+                stereo ? (" --stereo --ipd " + std::to_string(ipd)).c_str() : "",
+                shown);
   return text;
 }
 

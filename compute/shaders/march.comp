@@ -37,6 +37,7 @@
 #extension GL_EXT_control_flow_attributes : require
 
 #include "sol/vk/march_interface.h"
+#include "sol/tone.h"
 #include "sol_geodesic.glsl"
 #include "march/resources.glsl"
 #include "sol_connection.glsl"

@@ -907,6 +907,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   }
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
+  g.display = glm::vec4(1.0f, static_cast<float>(kernel::kToneClamp), 0.0f, 0.0f);  // (an 8-bit target's record sets its own)
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
   KernelVariant variant{kernel_features(prepared.features(), m.options.all_features)};
   if (prepared.lattice()) variant.lattice = lattice_constants(*prepared.lattice());
@@ -1058,7 +1059,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
     throw InvalidArgument("sol::vk::MarchRenderer::record: the 8-bit target needs an image view of an R8G8B8A8_UNORM or "
                           "B8G8R8A8_UNORM storage image, on a device with shaderStorageImageWriteWithoutFormat");
   }
-  const Frame f = prepare_frame(eyes, width, height, false, true);
+  validate(target.display);
+  Frame f = prepare_frame(eyes, width, height, false, true);
+  f.params.display = glm::vec4(static_cast<float>(target.display.scale()), static_cast<float>(target.display.tone), 0.0f, 0.0f);
   if (target.width < f.width || target.height < f.height) {
     throw InvalidArgument("sol::vk::MarchRenderer::record: the target must be at least " + std::to_string(f.width) +
                           " x " + std::to_string(f.height));

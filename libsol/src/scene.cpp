@@ -16,6 +16,7 @@ namespace detail {
 
 void check_camera(const Camera& camera);                    // camera.cpp
 void check_light(const Light& light, const std::string& at);  // light.cpp
+void check_display(const Display& display);                 // display.cpp
 
 // The world's lattice (World::lattice), a bad monodromy or fibre area a
 // FieldError at quotient.monodromy or quotient.fibre_area.
@@ -82,6 +83,7 @@ void validate(const Scene& scene) {
     detail::check_camera(scene.camera);
     detail::check_world(scene);
     if (!(scene.samples >= 1 && scene.samples <= 4096)) detail::field_error("samples", "samples must be in [1, 4096]");
+    detail::check_display(scene.display);
   });
 }
 

@@ -21,6 +21,7 @@ namespace sol {
 namespace detail {
 void check_camera(const Camera& camera);  // camera.cpp
 void check_world(const World& world);     // scene.cpp
+void check_display(const Display& display);  // display.cpp
 std::optional<Lattice> checked_lattice(const World& world);  // scene.cpp
 }  // namespace detail
 
@@ -263,7 +264,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (!root.is_object()) r.fail("", "the scene must be a JSON object");
   r.require_known_keys(root,
                        {"camera", "objects", "lights", "ambient", "fog", "light", "fog_distance", "max_distance",
-                        "max_steps", "hit_epsilon", "quotient", "samples", "max_bounces"},
+                        "max_steps", "hit_epsilon", "quotient", "samples", "max_bounces", "exposure", "tone"},
                        "the scene", "");
   Scene s;
   std::optional<glm::dvec3> look_at;
@@ -338,8 +339,15 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (v < 1 || v > 4096) r.fail("samples", "samples must be in [1, 4096]");
     s.samples = static_cast<int>(v);
   }
+  if (root.contains("exposure")) s.display.exposure = r.number(root["exposure"], "exposure");
+  if (root.contains("tone")) {
+#define SOL_TONE_CHOICE(Enum, code_name, code, name) {name, Tone::Enum},
+    s.display.tone = r.choice<Tone>(root["tone"], "tone", {SOL_TONE_CURVES(SOL_TONE_CHOICE)});
+#undef SOL_TONE_CHOICE
+  }
   try {
     detail::check_camera(s.camera);
+    detail::check_display(s.display);
     detail::check_world(s);
   } catch (const detail::FieldError& e) {
     // An object's field: named by its entry in the file (an array's copy by
@@ -423,6 +431,8 @@ std::string to_json(const Scene& s) {
   if (s.max_bounces) root["max_bounces"] = *s.max_bounces;
   root["hit_epsilon"] = s.hit_epsilon;
   root["samples"] = s.samples;
+  if (s.display.exposure != 0.0) root["exposure"] = s.display.exposure;
+  if (s.display.tone != Tone::Clamp) root["tone"] = tone_name(s.display.tone);
   return root.dump(2);
 }
 

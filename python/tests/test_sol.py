@@ -509,3 +509,30 @@ def test_a_scene_built_in_python_saves_the_png_solrender_writes():
         assert np.abs(bytes8[:, :, :3] / 255.0 - srgb(np.clip(image["rgba"][:, :, :3], 0, 1))).max() < 0.6 / 255
     with pytest.raises(ValueError, match="shape"):
         sol.save(os.path.join(tmp, "bad.png"), np.zeros((4, 4)))
+
+
+@pytest.mark.skipif("SOLRENDER" not in os.environ, reason="solrender not built")
+def test_exposure_and_tone_are_solrenders():
+    import matplotlib.image
+    scene = sol.preset_scene("plane").replace(exposure=2.5, tone="aces")
+    with tempfile.TemporaryDirectory() as tmp:
+        ours, theirs, scene_file = (os.path.join(tmp, n) for n in ("python.png", "solrender.png", "scene.json"))
+        image = sol.render_cpu(scene, 24, 16)
+        assert sol.save(ours, image["rgba"], exposure=2.5, tone="aces") == 0
+        with open(scene_file, "w") as f:
+            f.write(scene.to_json())
+        subprocess.run([os.environ["SOLRENDER"], "--device", "cpu", "--scene", scene_file, "--width", "24", "--height",
+                        "16", "-o", theirs], check=True, capture_output=True)
+        a, b = matplotlib.image.imread(ours), matplotlib.image.imread(theirs)
+        assert np.array_equal(a, b)  # the scene's keys reach solrender's PNG as Python's keywords reach sol.save
+        bytes8 = sol.srgb8(image["rgba"], exposure=2.5, tone="aces")
+        assert np.array_equal(bytes8, np.round(a * 255).astype(np.uint8))
+        # Narkowicz's ACES fit, from its definition, after the exposure's 2^2.5.
+        x = np.maximum(image["rgba"][:, :, :3].astype(np.float64), 0) * 2 ** 2.5
+        shown = np.minimum(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 1.0)
+        assert np.abs(bytes8[:, :, :3] / 255.0 - srgb(shown)).max() < 0.6 / 255
+        assert not np.array_equal(bytes8, sol.srgb8(image["rgba"]))
+    with pytest.raises(ValueError, match="tone must be one of clamp, aces"):
+        sol.srgb8(image["rgba"], tone="filmic")
+    with pytest.raises(ValueError, match="exposure"):
+        sol.srgb8(image["rgba"], exposure=float("nan"))

@@ -19,12 +19,15 @@ ivec2 group_pixel(int index) {
 }
 
 // What binding 1 receives: the linear colour, or for SOL_OUTPUT_SRGB_UNORM
-// the standard sRGB OETF (IEC 61966-2-1) of it clamped to [0, 1], what an
-// sRGB swapchain's blit and solrender's 8-bit files apply (C++ twin:
-// srgb_encode in tests/kernel_test.cpp, which holds the two together).
+// the standard sRGB OETF (IEC 61966-2-1) of its display (the exposure's
+// scale and the tone curve of params.display, sol/tone.h), what solrender's
+// 8-bit files hold (C++ twin: display_byte in common/srgb.hpp;
+// Kernel.UnormTargetHoldsTheSrgbEncodedColour holds the two together).
 vec4 output_color(vec4 linear) {
 #ifdef SOL_OUTPUT_SRGB_UNORM
-  vec3 c = clamp(linear.rgb, 0.0, 1.0);
+  const float scale = params.display.x;
+  const int tone = int(params.display.y);
+  vec3 c = vec3(sol_tone(tone, linear.r * scale), sol_tone(tone, linear.g * scale), sol_tone(tone, linear.b * scale));
   vec3 encoded = mix(kSrgbScale * pow(c, vec3(1.0 / kSrgbGamma)) - kSrgbOffset, kSrgbLinearSlope * c,
                      lessThanEqual(c, vec3(kSrgbLinearLimit)));
   return vec4(encoded, clamp(linear.a, 0.0, 1.0));

@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "sol/camera.hpp"
+#include "sol/display.hpp"
 #include "sol/lattice.hpp"
 #include "sol/light.hpp"
 #include "sol/objects.hpp"
@@ -99,6 +100,9 @@ struct Scene : World {
   /// Anti-aliasing samples per pixel a render of the scene takes (in [1,
   /// 4096]; RenderOptions::samples, solrender --spp overrides it).
   int samples = 1;
+  /// How its 8-bit pictures show the linear image: exposure and tone curve
+  /// (sol/display.hpp; solrender --exposure and --tone override them).
+  Display display;
 };
 
 /// Whether two worlds live in the same space (the same quotient, monodromy

@@ -9,6 +9,7 @@
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
 #include "sol/coordinate_box.hpp"
+#include "sol/display.hpp"
 #include "sol/distance.hpp"
 #include "sol/elliptic.hpp"
 #include "sol/error.hpp"

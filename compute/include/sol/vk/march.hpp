@@ -80,13 +80,15 @@ inline constexpr int kMaxFramesInFlight = 8;
 using kernel::kMaxGpuImages;
 
 /// A presenter's 8-bit image that MarchRenderer::record writes the colour
-/// into, sRGB-encoded (standard sRGB OETF, clamped to [0, 1]): for example a
-/// swapchain image created with STORAGE usage in a UNORM format, so that the
-/// kernel writes the frame straight into it. Not owned.
+/// into, through `display` (exposure and tone curve, sol/display.hpp) and
+/// sRGB-encoded (standard sRGB OETF), as solrender's 8-bit files: for
+/// example a swapchain image created with STORAGE usage in a UNORM format,
+/// so that the kernel writes the frame straight into it. Not owned.
 struct UnormTarget {
   VkImageView view = VK_NULL_HANDLE;      ///< of an image with STORAGE usage, in GENERAL layout when the dispatch runs
   VkFormat format = VK_FORMAT_UNDEFINED;  ///< R8G8B8A8_UNORM or B8G8R8A8_UNORM (the view's format)
   std::uint32_t width = 0, height = 0;    ///< the image's extent
+  Display display{};                      ///< the default: the colour clamped to [0, 1]
 };
 
 /// One sample of every pixel in an anti-aliased image: where in the pixel

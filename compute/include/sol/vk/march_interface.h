@@ -206,6 +206,9 @@ struct Params {
   /// dispatch's sample (the index of the pixel's path), w the sampling of
   /// glowing balls (kPathSampling*).
   ivec4 path;
+  /// The 8-bit output's display (SOL_OUTPUT_SRGB_UNORM, sol::Display): x
+  /// the exposure's scale 2^stops, y the tone curve's code (sol/tone.h).
+  vec4 display;
 };
 
 // ---- The quotient's images of the objects around D (binding 4, std430), world coordinates
@@ -320,7 +323,8 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, light_image_count) == 2 * sizeof(Eye) + 8 * 16 &&
                   offsetof(Params, light_color) == 2 * sizeof(Eye) + 9 * 16 &&
                   offsetof(Params, path) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 + 16,
+                  offsetof(Params, display) == 2 * sizeof(Eye) + (10 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (10 + kMaxLights) * 16 + 16,
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif

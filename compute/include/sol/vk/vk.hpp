@@ -6,6 +6,7 @@
 
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
+#include "sol/vk/display.hpp"
 #include "sol/vk/error.hpp"
 #include "sol/vk/frame_timer.hpp"
 #include "sol/vk/image.hpp"
