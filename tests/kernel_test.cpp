@@ -1384,6 +1384,32 @@ TEST(Kernel, TheMirrorMaterialIsTheCpusTintedMirror) {
 // path of every pixel recorded into the running mean, one frame after the
 // other (PixelSample::path), is render()'s image of as many paths, to the
 // bit (the same dispatches with the same uniforms).
+// Consecutive ranges of samples (RenderOptions::first_sample) weighted by
+// their counts are the render of all of them on the kernel too: the same
+// sample points and paths (to float rounding of the running means).
+TEST(Kernel, BatchesOfSamplesMakeTheWholeRender) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  for (const auto& [scene, transport] : {std::pair{sol::preset_scene("plane"), sol::Transport::Direct},
+                                         std::pair{floor_glow_and_mirror(), sol::Transport::Path}}) {
+    renderer.set_world(scene);
+    sol::RenderOptions all{.width = 16, .height = 12, .samples = 5, .transport = transport, .seed = 3};
+    const sol::RenderResult whole = renderer.render(scene.camera, all);
+    sol::RenderOptions first = all, rest = all;
+    first.samples = 2;
+    rest.first_sample = 2;
+    rest.samples = 3;
+    rest.aovs = false;
+    const sol::RenderResult a = renderer.render(scene.camera, first), b = renderer.render(scene.camera, rest);
+    double worst = 0.0;
+    for (std::size_t k = 0; k < whole.rgba.size(); ++k) {
+      worst = std::max(worst, static_cast<double>(std::abs((2.0f * a.rgba[k] + 3.0f * b.rgba[k]) / 5.0f - whole.rgba[k])));
+    }
+    EXPECT_LT(worst, 1e-5) << static_cast<int>(transport);  // float running means of up to 5 values near 1
+    EXPECT_NE(a.rgba, whole.rgba);
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, PathsRecordedOneByOneAreTheRenderedImage) {
   const sol::Scene scene = floor_glow_and_mirror();
   const int w = 16, h = 12, samples = 4;

@@ -11,7 +11,10 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <random>
 #include <span>
+#include <thread>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -28,7 +31,10 @@
 #include "image_file.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
+#include "sampling.hpp"
 
+#include <sol/render.hpp>
+#include <sol/scene.hpp>
 
 namespace fs = std::filesystem;
 
@@ -420,6 +426,142 @@ TEST(ImageFile, RowsWrittenBandByBandAreTheWholeImage) {
 // (a kernel compiled on a cold cache: 11.5 s before the first band of 4 %,
 // then 1 s for the rest, as on lavapipe) and one that runs evenly: after
 // 10 % done, within a factor 2 of the time truly left.
+// The noise estimate against noise of a known size: half-images a and b,
+// each the mean of n samples of value mu plus Gaussian noise of deviation
+// sigma, so the mean of both has the relative error sigma / (mu sqrt(2 n)).
+// The per-pixel estimate (a 3 x 3 neighbourhood: a chi distribution of 9
+// degrees of freedom scaled by that error) has its median at 0.963 of it;
+// the image's, the 99th percentile, at 1.55 of it (sqrt(21.67 / 9)) inside
+// and up to 1.82 at the corners (4 degrees: sqrt(13.28 / 4)), so between.
+TEST(Sampling, TheNoiseEstimateMeasuresTheErrorOfTheMean) {
+  const int w = 64, h = 48, n = 8;
+  const double mu = 0.4, sigma = 0.3;
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> noise(0.0, sigma / std::sqrt(n));
+  std::vector<double> a(4 * w * h), b(4 * w * h);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    a[k] = k % 4 == 3 ? 1.0 : mu + noise(random);
+    b[k] = k % 4 == 3 ? 1.0 : mu + noise(random);
+  }
+  // The luminance of a grey pixel is its value; its error is sigma / sqrt(2 n) too (the
+  // channels' noise is independent: the luminance weights' squares sum to 0.5645).
+  const double weights = std::sqrt(0.2126 * 0.2126 + 0.7152 * 0.7152 + 0.0722 * 0.0722);
+  const double truth = weights * sigma / std::sqrt(2.0 * n) / mu;
+  std::vector<double> e = sol::programs::pixel_noise(a, b, w, h);
+  std::nth_element(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2), e.end());
+  const double median = e[e.size() / 2], image = sol::programs::noise_estimate(a, b, w, h);
+  std::printf("relative error %.4f; pixel estimates' median %.4f, the image's %.4f\n", truth, median, image);
+  EXPECT_NEAR(median / truth, 0.963, 0.08);
+  EXPECT_GT(image / truth, 1.45);
+  EXPECT_LT(image / truth, 1.9);
+}
+
+// Batches until a noise target: synthetic renders whose samples carry known
+// noise stop once the estimate is at the target, with the samples that
+// needs (the error falls as 1 / sqrt(samples)), as whole pairs; the mean of
+// the batches is the mean of the samples; the limits hold.
+TEST(Sampling, BatchesStopAtTheTargetOrTheLimit) {
+  const int w = 32, h = 24;
+  std::mt19937_64 random(11);
+  std::vector<std::pair<int, int>> ranges;
+  const auto batch = [&](int first, int count, bool aovs) {
+    ranges.emplace_back(first, count);
+    sol::RenderResult r;
+    r.width = w;
+    r.height = h;
+    std::normal_distribution<double> noise(0.0, 0.5 / std::sqrt(count));  // per sample: 0.5 about 0.5
+    r.rgba.resize(4 * w * h);
+    for (std::size_t k = 0; k < r.rgba.size(); ++k) r.rgba[k] = k % 4 == 3 ? 1.0f : static_cast<float>(0.5 + noise(random));
+    if (aovs) r.object.assign(static_cast<std::size_t>(w * h), 1.0f);
+    return r;
+  };
+  sol::programs::SamplingGoal goal;
+  goal.noise = 0.05;
+  sol::programs::SamplingReport report;
+  const sol::RenderResult r = sol::programs::render_batches(batch, true, goal, report);
+  // 1.55 x the error 0.75 x 0.5 / sqrt(N) / 0.5 at most 0.05: N >= 540; pairs 1, 2, 4, ... make 2 (2^p - 1).
+  std::printf("samples %d, estimate %.4f\n", report.samples, report.noise);
+  EXPECT_TRUE(report.noise_reached);
+  EXPECT_LE(report.noise, 0.05);
+  EXPECT_GE(report.samples, 254);
+  EXPECT_LE(report.samples, 2046);
+  int next = 0;
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    EXPECT_EQ(ranges[i].first, next);  // consecutive, in equal pairs
+    if (i % 2 == 1) {
+      EXPECT_EQ(ranges[i].second, ranges[i - 1].second);
+    }
+    next += ranges[i].second;
+  }
+  EXPECT_EQ(next, report.samples);
+  EXPECT_EQ(r.object.size(), static_cast<std::size_t>(w * h));  // the first batch's AOVs
+  double mean = 0.0;
+  for (std::size_t k = 0; k < r.rgba.size(); k += 4) mean += r.rgba[k];
+  EXPECT_NEAR(mean / (w * h), 0.5, 0.01);
+  // At most max_samples; at least min_samples.
+  ranges.clear();
+  goal.noise = 1e-4;
+  goal.max_samples = 40;
+  sol::programs::render_batches(batch, false, goal, report);
+  EXPECT_LE(report.samples, 40);
+  EXPECT_FALSE(report.noise_reached);
+  goal = {};
+  goal.min_samples = 9;
+  sol::programs::render_batches(batch, false, goal, report);
+  EXPECT_EQ(report.samples, 10);
+  // A time limit: batches of 5 ms a sample stop before 0.3 s (the next pair
+  // predicted from those before; 20 % for a loaded machine's sleeps).
+  ranges.clear();
+  const auto slow = [&](int first, int count, bool aovs) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5 * count));
+    return batch(first, count, aovs);
+  };
+  goal = {};
+  goal.seconds = 0.3;
+  sol::programs::render_batches(slow, false, goal, report);
+  EXPECT_LT(report.seconds, 0.36);
+  EXPECT_GE(report.samples, 30);  // 5 ms a sample: 60 fit; pairs 1, 2, 4, 8 make 30 in 0.15 s
+}
+
+// A path-traced render stopped at a noise target, against a reference of
+// 2048 paths a pixel (its own error about a tenth of the target's): the
+// actual relative error of the lit pixels (luminance above 1e-3), in RMS,
+// is within the target, which bounds the 99th percentile of the estimate.
+TEST(Sampling, ARenderStoppedAtTheTargetIsWithinItOfTheReference) {
+  const sol::Scene scene = sol::preset_scene("plane");
+  sol::CpuRenderer renderer(scene);
+  const sol::RenderOptions base{.width = 16, .height = 12, .transport = sol::Transport::Path, .seed = 5, .aovs = false};
+  const auto batch = [&](int first, int count, bool) {
+    sol::RenderOptions o = base;
+    o.first_sample = first;
+    o.samples = count;
+    return renderer.render(scene.camera, o);
+  };
+  sol::programs::SamplingGoal goal;
+  goal.noise = 0.2;
+  sol::programs::SamplingReport report;
+  const sol::RenderResult r = sol::programs::render_batches(batch, false, goal, report);
+  sol::RenderOptions many = base;
+  many.samples = 2048;
+  many.seed = 99;
+  const sol::RenderResult reference = renderer.render(scene.camera, many);
+  double sum = 0.0;
+  int lit = 0;
+  for (std::size_t k = 0; k < r.rgba.size(); k += 4) {
+    const auto y = [&](const std::vector<float>& v) { return 0.2126 * v[k] + 0.7152 * v[k + 1] + 0.0722 * v[k + 2]; };
+    if (y(reference.rgba) < 1e-3) continue;
+    const double e = (y(r.rgba) - y(reference.rgba)) / y(reference.rgba);
+    sum += e * e;
+    ++lit;
+  }
+  const double rms = std::sqrt(sum / lit);
+  std::printf("%d samples, estimate %.3f; actual RMS relative error %.3f over %d lit pixels\n", report.samples,
+              report.noise, rms, lit);
+  EXPECT_TRUE(report.noise_reached);
+  EXPECT_GT(lit, 50);
+  EXPECT_LT(rms, 0.2);
+}
+
 TEST(ProgressEstimate, IsWithinAFactorTwoAfterTenPercent) {
   struct Render {
     double start_seconds;  // before the first report with work done

@@ -138,6 +138,47 @@ TEST(Render, SupersamplingSmoothsEdgesAndConverges) {
   EXPECT_THROW(renderer.render(scene.camera, bad), sol::InvalidArgument);
 }
 
+// Renders of consecutive ranges of samples (RenderOptions::first_sample),
+// weighted by their counts, are the render of all of them: anti-aliasing
+// (the plane's disc edges) and paths (a glowing ball over a floor), to
+// float rounding; the ranges after the first render no AOVs.
+TEST(Render, BatchesOfSamplesMakeTheWholeRender) {
+  sol::Scene glow;
+  glow.camera = {{0.0, 0.0, 0.0}, {0.0, 1.0, -0.25}, {0.0, 0.0, 1.0}, 80.0};
+  sol::SceneObject floor{sol::PlaneZ{-0.6}, {0.7, 0.6, 0.5}};
+  sol::SceneObject ball{sol::Ball{{0.6, 1.8, 0.0}, 0.35, false}, {0.5, 0.5, 0.5}};
+  ball.emission = {2.0, 1.5, 1.0};
+  glow.objects = {floor, ball};
+  glow.lights = {};
+  for (const auto& [scene, transport] : {std::pair{sol::preset_scene("plane"), sol::Transport::Direct},
+                                         std::pair{glow, sol::Transport::Path}}) {
+    sol::CpuRenderer renderer(scene);
+    sol::RenderOptions all{.width = 24, .height = 16, .samples = 7, .transport = transport, .seed = 3};
+    const sol::RenderResult whole = renderer.render(scene.camera, all);
+    sol::RenderOptions first = all, rest = all;
+    first.samples = 3;
+    rest.first_sample = 3;
+    rest.samples = 4;
+    rest.aovs = false;
+    const sol::RenderResult a = renderer.render(scene.camera, first), b = renderer.render(scene.camera, rest);
+    double worst = 0.0, lit = 0.0;
+    for (std::size_t k = 0; k < whole.rgba.size(); ++k) {
+      worst = std::max(worst, std::abs((3.0 * a.rgba[k] + 4.0 * b.rgba[k]) / 7.0 - whole.rgba[k]));
+      lit += whole.rgba[k];
+    }
+    EXPECT_LT(worst, 1e-6) << static_cast<int>(transport);
+    EXPECT_GT(lit, 1.0);
+    EXPECT_EQ(a.object, whole.object);
+    EXPECT_TRUE(b.object.empty());
+    EXPECT_NE(a.rgba, whole.rgba);  // the batches differ from the whole: the test compares something
+    rest.aovs = true;
+    EXPECT_THROW(renderer.render(scene.camera, rest), sol::InvalidArgument);
+    rest.first_sample = -1;
+    rest.aovs = false;
+    EXPECT_THROW(renderer.render(scene.camera, rest), sol::InvalidArgument);
+  }
+}
+
 // Projections (sol::camera_ray): equirectangular longitude/latitude with the
 // seam between the first and last columns; the fisheye's equidistant angle,
 // its centre forward (as the perspective centre) and its rim; no ray and a

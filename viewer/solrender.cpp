@@ -38,6 +38,7 @@
 #include "output_file.hpp"
 #include "progress.hpp"
 #include "renderers.hpp"
+#include "sampling.hpp"
 #include "srgb.hpp"
 
 namespace {
@@ -331,6 +332,7 @@ struct Options {
   std::string stereo_mode;  // empty: mono
   double fps = 24.0, ipd = 0.064;
   std::optional<double> fisheye_fov;
+  std::optional<double> time_limit, noise_target;  // render in batches until either (sampling.hpp)
   std::optional<double> exposure;  // stops; none: the scene's
   std::string tone;                // empty: the scene's
   sol::cli::IntegratorOptions flow;
@@ -375,6 +377,15 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_choice("--tone", o.tone, tones,
                 "the tone curve of 8-bit images and videos: clamp (the colour cut at white) or aces (a filmic "
                 "curve that rolls highlights off; docs/programs.md) (default: the scene's \"tone\", clamp)");
+  cl.add_number("--time-limit", o.time_limit, "S",
+                "render samples in batches (pairs of equal size, each twice the last) until the next would pass S "
+                "seconds, at least --spp (or the scene's samples) and at most 4096 per pixel",
+                sol::cli::in_range(1e-3, 1e6));
+  cl.add_number("--noise-target", o.noise_target, "E",
+                "render samples in batches until the estimated relative error per pixel (from the difference of two "
+                "independent halves of the samples, over each pixel's 3x3 neighbourhood) is at most E in 99 % of "
+                "the pixels, e.g. 0.05; with --time-limit whichever comes first",
+                sol::cli::in_range(1e-4, 10.0));
   cl.add_choice("--device", o.device, {"auto", "vulkan", "cpu"},
                 "where to render: auto takes Vulkan (a GPU, else lavapipe) when available and the CPU renderer "
                 "otherwise (default auto)");
@@ -773,6 +784,41 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
   return renderer;
 }
 
+// --time-limit, --noise-target: the image in batches of samples
+// (sampling.hpp), each a render of consecutive samples; the colour the
+// mean of all of them, the AOVs the first batch's. What was reached is said.
+sol::RenderResult render_until(const Options& o, const sol::Camera& camera, const sol::RenderOptions& options,
+                               const std::function<sol::RenderResult(const sol::Camera&, const sol::RenderOptions&)>& render,
+                               ProgressLine& progress, bool tty, int& samples_done) {
+  sol::programs::SamplingGoal goal;
+  goal.seconds = o.time_limit;
+  goal.noise = o.noise_target;
+  goal.min_samples = o.spp;
+  sol::programs::SamplingReport report;
+  const auto batch = [&](int first, int count, bool aovs) {
+    sol::RenderOptions these = options;
+    these.first_sample = first;
+    these.samples = count;
+    these.aovs = aovs;
+    these.rows = nullptr;    // the colour is the batches' mean, handed over whole
+    these.progress = nullptr;  // (progress: per pair, below)
+    return render(camera, these);
+  };
+  const auto heard = [&](const sol::programs::SamplingReport& r) {
+    if (!tty && !o.progress) return;
+    if (o.time_limit) progress.report(std::min(1.0, r.seconds / *o.time_limit));
+    std::fprintf(stderr, "%ssolrender: %d samples per pixel in %.1f s, estimated noise %.3g%s", tty ? "\r" : "", r.samples,
+                 r.seconds, r.noise, tty ? "   " : "\n");
+  };
+  sol::RenderResult r = sol::programs::render_batches(batch, options.aovs, goal, report, heard);
+  samples_done = report.samples;
+  if (tty) std::fprintf(stderr, "\n");
+  std::fprintf(stderr, "solrender: %d samples per pixel in %.2f s; estimated relative noise %.3g in 99 %% of the pixels%s\n",
+               report.samples, report.seconds, report.noise,
+               o.noise_target ? (report.noise_reached ? " (the target reached)" : " (the target not reached)") : "");
+  return r;
+}
+
 // Says how much of an 8-bit picture the display cut at white, and what
 // keeps it (the EXR is linear and keeps everything): nothing is clipped
 // without a word.
@@ -866,7 +912,7 @@ void render_film(const Options& o, const sol::Scene& scene, const Film& film, co
 // One image and its AOVs: both files complete before either replaces what
 // was there, so a failure leaves the previous files as they were.
 void render_still(const Options& o, const sol::Scene& scene, const Render& render, bool tty, bool on_device,
-                  std::string where) {
+                  std::string where, const int& samples_done) {
   const auto begin = std::chrono::steady_clock::now();
   sol::programs::OutputFile image(o.output);
   sol::programs::ImageWriter writer(image, image_width(o), o.height, {"R", "G", "B", "A"}, true, /*worker=*/true,
@@ -895,10 +941,12 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
                  "the scene and options)\n", non_finite);
   }
   report_clipped(writer.clipped(), static_cast<double>(r.width) * r.height, scene.display, o.output);
-  const std::string samples = o.spp > 1 ? ", " + std::to_string(o.spp) + " samples per pixel" : "";
+  // (With --time-limit or --noise-target the batches' count.)
+  const int spp = samples_done > 0 ? samples_done : o.spp;
+  const std::string samples = spp > 1 ? ", " + std::to_string(spp) + " samples per pixel" : "";
   std::fprintf(stderr, "solrender: %dx%d%s%s on %s: %.3f s, %.2f M rays/s, %s -> %s\n", r.width, r.height,
                o.anaglyph() ? " (anaglyph)" : (o.stereo() ? " (stereo)" : ""), samples.c_str(), where.c_str(), seconds,
-               r.width * static_cast<double>(r.height) * (o.anaglyph() ? 2 : 1) * o.spp / seconds * 1e-6,
+               r.width * static_cast<double>(r.height) * (o.anaglyph() ? 2 : 1) * spp / seconds * 1e-6,
                peak_memory().c_str(), o.output.c_str());
 }
 
@@ -938,19 +986,24 @@ int main(int argc, char** argv) {
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
     std::uint64_t out_of_steps = 0;  // every image's rays that ran out of march steps
-    const Render render = [&](const sol::Camera& camera, const RowSink* sink) {
-      sol::RenderOptions these = options;
-      if (sink != nullptr && !o.anaglyph()) these.rows = *sink;
+    int samples_done = 0;            // per pixel, where batches decide (the last image's)
+    const auto render_with = [&](const sol::Camera& camera, const sol::RenderOptions& these) {
       const sol::RenderResult both =
           o.stereo() ? renderer->render_stereo(camera, o.ipd, these) : renderer->render(camera, these);
       out_of_steps += both.rays_out_of_steps;
       return o.anaglyph() ? to_anaglyph(both) : both;
     };
+    const Render render = [&](const sol::Camera& camera, const RowSink* sink) {
+      sol::RenderOptions these = options;
+      if (sink != nullptr && !o.anaglyph()) these.rows = *sink;
+      if (!o.time_limit && !o.noise_target) return render_with(camera, these);
+      return render_until(o, camera, these, render_with, progress, tty, samples_done);
+    };
     progress.start();
     if (film) {
       render_film(o, scene, *film, render, progress, tty, where);
     } else {
-      render_still(o, scene, render, tty, !is_cpu(*renderer), where);
+      render_still(o, scene, render, tty, !is_cpu(*renderer), where, samples_done);
     }
     if (out_of_steps > 0) {
       std::fprintf(stderr,

@@ -1121,10 +1121,11 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     for (int x = 0; x < w; x += tile_w) {
       const int cols = std::min(tile_w, w - x);
       g.tile = glm::ivec4(x, y, cols, rows);
-      for (int k = 0; k < samples; ++k) {
-        // Sample 0, the centre, overwrites and writes the AOVs; each later one joins the mean.
-        const PixelSample sample = k == 0 ? PixelSample{} : PixelSample{pixel_sample(k), 1.0 / (k + 1)};
-        g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, k == 0 ? 1.0 : 0.0));
+      for (int n = 0; n < samples; ++n) {
+        // Sample k of the range: the range's first overwrites (sample 0, the
+        // centre, writes the AOVs too); each later one joins the mean.
+        const int k = options.first_sample + n;
+        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), k == 0 ? 1.0 : 0.0));
         g.path.z = k;
         ms += m.run_passes(pipeline, f.set, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
                            group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize), f.data());

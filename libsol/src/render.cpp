@@ -1248,11 +1248,13 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       t_out_of_steps = 0;  // this pixel's marches from here
       // Outside a fisheye's image circle there is no ray: black, no hit.
-      const bool sees = camera_sees(camera, i, j, w, h);
+      // Sample 0 (the centre: the AOVs' hit) where the range starts there.
+      const int first = settings.first_sample;
+      const bool sees = first == 0 && camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
       const auto colour = [&](const MarchHit& at, int s) { return transport->radiance(at, k, s); };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
-      for (int s = 1; s < settings.samples; ++s) {  // the other samples: colour only
+      for (int s = std::max(first, 1); s < first + settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
         const MarchHit other = march_at(i, j, offset);

@@ -53,6 +53,13 @@ void validate_render(std::span<const Camera> eyes, const RenderOptions& options,
   if (options.samples < 1 || options.samples > 4096) {
     throw InvalidArgument(at + "samples must be in [1, 4096], got " + std::to_string(options.samples));
   }
+  if (options.first_sample < 0 || options.first_sample > RenderOptions::kMaxFirstSample) {
+    throw InvalidArgument(at + "first_sample must be in [0, 2^24], got " + std::to_string(options.first_sample));
+  }
+  if (options.first_sample > 0 && options.aovs) {
+    throw InvalidArgument(at + "a batch of samples after the first (first_sample " + std::to_string(options.first_sample) +
+                          ") renders no AOVs (they are sample 0's): set aovs to false");
+  }
   if (!(options.max_dispatch_ms > 0.0)) throw InvalidArgument(at + "max_dispatch_ms must be > 0");
   if (eyes.empty()) throw InvalidArgument(at + "no eyes (one camera at least)");
   if (bytes_per_pixel > 0.0) {

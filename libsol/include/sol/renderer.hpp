@@ -52,6 +52,14 @@ struct RenderOptions {
   /// (anti-aliasing, at sol::pixel_sample 0, 1, ...; a box filter over the
   /// pixel); the AOVs are the pixel centre's (sample 0).
   int samples = 1;
+  /// The index of the first of them: the samples are first_sample ..
+  /// first_sample + samples - 1 (their points sol::pixel_sample, their
+  /// paths' indices), so that renders of consecutive ranges, weighted by
+  /// their counts, make the render of all of them (solrender --time-limit
+  /// renders in such batches). In [0, kMaxFirstSample]; above 0 the AOVs,
+  /// which are sample 0's, are not rendered: `aovs` must be false.
+  int first_sample = 0;
+  static constexpr int kMaxFirstSample = 1 << 24;
   /// The CPU renderer's threads (0: all hardware threads).
   unsigned threads = 0;
   /// Transport::Path: each sample one path from the camera (its random
