@@ -230,7 +230,8 @@ struct PyRenderer {
   }
 
   py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
-                  long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress) {
+                  long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress,
+                  int first_sample) {
     if (seed < 0 || seed > 2147483647LL) {
       throw sol::InvalidArgument("sol.Renderer.render: seed must be in [0, 2^31-1] (solrender's --seed), not " + std::to_string(seed));
     }
@@ -247,6 +248,7 @@ struct PyRenderer {
                                .transport = transport_named(transport, "sol.Renderer.render"),
                                .seed = static_cast<std::uint64_t>(seed)};
     options.aovs = aovs;
+    options.first_sample = first_sample;
     options.max_dispatch_ms = 100.0;  // as solrender: tiles of about 50 ms, so progress and Ctrl-C are heard
     const sol::Camera from = eye.value_or(camera);
     std::atomic<bool> cancel{false};
@@ -715,7 +717,8 @@ void bind_scenes(py::module_& m) {
            py::arg("scene"), py::arg("device"), py::arg("transport"), py::arg("rk4"), py::arg("rk4_step"))
       .def("set_scene", &PyRenderer::set_scene, py::arg("scene"))
       .def("render", &PyRenderer::render, py::arg("width"), py::arg("height"), py::arg("samples"), py::arg("camera"),
-           py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"))
+           py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"),
+           py::arg("first_sample"))
       .def_property_readonly("description", [](const PyRenderer& r) { return r.description; })
       .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu ? "cpu" : "vulkan"; })
       .def_property_readonly("notes", [](const PyRenderer& r) { return r.notes; });
