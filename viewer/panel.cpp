@@ -150,6 +150,11 @@ void draw_readouts(const PanelModel& m) {
     std::snprintf(line, sizeof line, "mean march steps %.1f", m.mean_steps);
     ImGui::TextUnformatted(line);
   }
+  if (m.clipped > 0) {  // (exposure and tone: the camera section)
+    std::snprintf(line, sizeof line, "clipped at white: %.1f %% of pixels", 100.0 * m.clipped);
+    ImGui::TextUnformatted(line);
+  }
+
   ImGui::TextUnformatted(format_vec("position", m.observer.position()).c_str());
   ImGui::TextUnformatted(format_vec("forward ", m.observer.forward()).c_str());
   ImGui::TextUnformatted(format_vec("up      ", m.observer.up()).c_str());

@@ -39,6 +39,7 @@ struct PanelModel {
   int refine_target = 0;  ///< --refine
   const std::string& message;  ///< the last error or notice (empty: none)
   bool refine_paths = false;   ///< the refinement's samples are paths (max bounces: a path's scatterings)
+  double clipped = -1;         ///< the share of the probe's pixels the display cuts at white (< 0: not measured)
 };
 
 /// What the user asked for in this frame besides the edits made in place.

@@ -562,15 +562,27 @@ class StepsProbe {
   StepsProbe& operator=(const StepsProbe&) = delete;
 
   double mean() const { return mean_; }
-  void update(sol::vk::MarchRenderer& renderer, const sol::Camera& camera, int eye_w, int eye_h) {
+  /// The share of the probe's pixels whose colour the display cut at white (-1: not measured yet).
+  double clipped() const { return clipped_; }
+  /// The display the last measured probe was shown through.
+  const sol::Display& display() const { return display_; }
+  void update(sol::vk::MarchRenderer& renderer, const sol::Camera& camera, int eye_w, int eye_h,
+              const sol::Display& display) {
     if (pending_) {
       if (vkGetFenceStatus(context_.device(), done_) != VK_SUCCESS) return;  // not yet: a later frame looks
       pending_ = false;
       const auto* hits = reinterpret_cast<const float*>(readback_->bytes().data());
       const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+      const float* colour = hits + 4 * n;
       double sum = 0;
-      for (std::size_t k = 0; k < n; ++k) sum += hits[4 * k + 2];  // object, distance, steps, 0
+      std::size_t cut = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        sum += hits[4 * k + 2];  // object, distance, steps, 0
+        cut += submitted_.clips(colour[4 * k]) || submitted_.clips(colour[4 * k + 1]) || submitted_.clips(colour[4 * k + 2]);
+      }
       mean_ = n == 0 ? -1.0 : sum / static_cast<double>(n);
+      clipped_ = n == 0 ? -1.0 : static_cast<double>(cut) / static_cast<double>(n);
+      display_ = submitted_;
     }
     if (std::chrono::steady_clock::now() - last_ <= std::chrono::seconds(1)) return;
     last_ = std::chrono::steady_clock::now();
@@ -581,8 +593,9 @@ class StepsProbe {
       color_.emplace(context_, w, h);
       hit_.emplace(context_, w, h);
       point_.emplace(context_, w, h);
-      readback_.emplace(context_, VkDeviceSize{w} * h * 16);
+      readback_.emplace(context_, VkDeviceSize{w} * h * 32);  // the hit image, then the colour
     }
+    submitted_ = display;
     sol::vk::check(vkResetFences(context_.device(), 1, &done_), "vkResetFences");
     sol::vk::check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
@@ -594,13 +607,20 @@ class StepsProbe {
     sol::vk::image_barrier(commands_, hit_->handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    sol::vk::image_barrier(commands_, color_->handle(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {w, h, 1};
     vkCmdCopyImageToBuffer(commands_, hit_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_->handle(), 1, &copy);
-    sol::vk::image_barrier(commands_, hit_->handle(), VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    copy.bufferOffset = VkDeviceSize{w} * h * 16;
+    vkCmdCopyImageToBuffer(commands_, color_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_->handle(), 1, &copy);
+    for (VkImage image : {hit_->handle(), color_->handle()}) {
+      sol::vk::image_barrier(commands_, image, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    }
     sol::vk::record_memory_barrier(commands_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     sol::vk::check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
@@ -621,14 +641,27 @@ class StepsProbe {
   std::optional<sol::vk::Buffer> readback_;
   int width_ = 0, height_ = 0;
   bool pending_ = false;
-  double mean_ = -1.0;
+  double mean_ = -1.0, clipped_ = -1.0;
+  sol::Display submitted_{}, display_{};  // the pending probe's display; the measured one's
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now() - std::chrono::seconds(10);
 };
+
+// A frame the display cuts at white is said once per display on stderr (the
+// panel shows the share as it changes): no highlight clips unsaid.
+void note_clipping(const StepsProbe& probe, std::optional<sol::Display>& noted) {
+  if (probe.clipped() <= 0.01 || noted == probe.display()) return;
+  noted = probe.display();
+  std::fprintf(stderr,
+               "solview: note: %.0f %% of the frame is brighter than white under exposure %+g and tone %s and clips; "
+               "%s keeps its highlights\n",
+               100.0 * probe.clipped(), noted->exposure, sol::tone_name(noted->tone),
+               noted->tone == sol::Tone::Clamp ? "a lower exposure or the aces curve" : "a lower exposure");
+}
 
 // The overlay panel: built now, drawn over the frame by present(); its
 // actions carried out.
 std::optional<sol::viewer::OverlayDraw> build_panel(App& app, const sol::viewer::Presenter& presenter, int refined,
-                                                    double mean_steps) {
+                                                    double mean_steps, double clipped) {
   if (!app.overlay || !app.overlay_visible) return std::nullopt;
   const int eyes = app.stereo ? 2 : 1;
   const VkExtent2D window_extent = presenter.extent();
@@ -640,6 +673,7 @@ std::optional<sol::viewer::OverlayDraw> build_panel(App& app, const sol::viewer:
                                 app.adaptive, app.target_fps, app.options.min_scale, app.recording, app.observer,
                                 app.frame_ms, app.fps, app.fps * rw * rh, mean_steps, rw, rh, refined,
                                 app.options.refine, app.message, app.options.refine_paths};
+  model.clipped = clipped;
   const sol::viewer::PanelActions actions = sol::viewer::draw_panel(model, app.panel_text);
   app.overlay->end_frame();
   app.act(actions, rw, rh);
@@ -706,6 +740,7 @@ int run(App& app) {
   RunFigures figures(opt.frames);
   Title title;
   StepsProbe steps(context);
+  std::optional<sol::Display> noted_clipping;  // the display whose clipping was last said
   long frame = 0;
   auto last = std::chrono::steady_clock::now();
   std::optional<sol::World> prepared_world;  // the world the renderer holds
@@ -749,7 +784,8 @@ int run(App& app) {
       app.frame_ms.push_back(static_cast<float>(frame_seconds * 1e3));
       if (app.frame_ms.size() > 120) app.frame_ms.erase(app.frame_ms.begin());
     }
-    const std::optional<sol::viewer::OverlayDraw> overlay_draw = build_panel(app, presenter, refinement.refined(), steps.mean());
+    const std::optional<sol::viewer::OverlayDraw> overlay_draw =
+        build_panel(app, presenter, refinement.refined(), steps.mean(), steps.clipped());
     if (app.quit) break;
 
     const int eyes = app.stereo ? 2 : 1;
@@ -778,7 +814,10 @@ int run(App& app) {
       }
     }
     const std::vector<sol::Camera> cameras = app.cameras();
-    if (app.overlay_visible) steps.update(renderer, cameras[0], eye_w, eye_h);
+    if (app.overlay_visible) {
+      steps.update(renderer, cameras[0], eye_w, eye_h, app.scene.display);
+      note_clipping(steps, noted_clipping);
+    }
     const double prepare_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - host_begin).count();
     sol::viewer::Presenter::FrameOptions frame_options;
