@@ -376,7 +376,7 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
 #undef SOL_TONE_OPTION
   cl.add_choice("--tone", o.tone, tones,
                 "the tone curve of 8-bit images and videos: clamp (the colour cut at white) or aces (a filmic "
-                "curve that rolls highlights off; docs/programs.md) (default: the scene's \"tone\", clamp)");
+                "curve that rolls highlights off; docs/scene-format.md) (default: the scene's \"tone\", clamp)");
   cl.add_number("--time-limit", o.time_limit, "S",
                 "render samples in batches (pairs of equal size, each twice the last) until the next would pass S "
                 "seconds, at least --spp (or the scene's samples) and at most 4096 per pixel",
