@@ -29,6 +29,7 @@
 #ifdef SOL_PYTHON_IMAGES
 #include "image_file.hpp"  // Sol::programs: solrender's image writer and sRGB bytes
 #include "renderers.hpp"   // and its choice of renderer (make_renderer)
+#include "sampling.hpp"    // and its batches (--time-limit, --noise-target)
 #include "srgb.hpp"
 #endif
 
@@ -231,7 +232,7 @@ struct PyRenderer {
 
   py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
                   long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress,
-                  int first_sample) {
+                  int first_sample, std::optional<double> time_limit, std::optional<double> noise_target) {
     if (seed < 0 || seed > 2147483647LL) {
       throw sol::InvalidArgument("sol.Renderer.render: seed must be in [0, 2^31-1] (solrender's --seed), not " + std::to_string(seed));
     }
@@ -268,11 +269,42 @@ struct PyRenderer {
         cancel.store(true);
       }
     };
+    if (first_sample != 0 && (time_limit || noise_target)) {
+      throw sol::InvalidArgument("sol.Renderer.render: first_sample or time_limit/noise_target, not both");
+    }
+    if (time_limit && !(*time_limit > 0.0 && *time_limit <= 1e6)) {
+      throw sol::InvalidArgument("sol.Renderer.render: time_limit must be in (0, 1e6] seconds (solrender's --time-limit)");
+    }
+    if (noise_target && !(*noise_target > 0.0 && *noise_target <= 10.0)) {
+      throw sol::InvalidArgument("sol.Renderer.render: noise_target must be in (0, 10] (solrender's --noise-target)");
+    }
     sol::RenderResult result;
+    std::optional<sol::programs::SamplingReport> batched;
     try {
       py::gil_scoped_release release;
       const std::lock_guard lock(busy);
-      result = stereo_ipd ? renderer->render_stereo(from, *stereo_ipd, options) : renderer->render(from, options);
+      const auto once = [&](const sol::RenderOptions& o) {
+        return stereo_ipd ? renderer->render_stereo(from, *stereo_ipd, o) : renderer->render(from, o);
+      };
+      if (!time_limit && !noise_target) {
+        result = once(options);
+      } else {  // solrender's --time-limit, --noise-target (the progress: each batch's)
+        sol::programs::SamplingGoal goal;
+        goal.seconds = time_limit;
+        goal.noise = noise_target;
+        goal.min_samples = options.samples;
+        sol::programs::SamplingReport report;
+        result = sol::programs::render_batches(
+            [&](int first, int count, bool with_aovs) {
+              sol::RenderOptions o = options;
+              o.first_sample = first;
+              o.samples = count;
+              o.aovs = with_aovs;
+              return once(o);
+            },
+            options.aovs, goal, report);
+        batched = report;
+      }
     } catch (const sol::Cancelled&) {
       if (raised) throw *raised;
       throw;
@@ -281,6 +313,11 @@ struct PyRenderer {
     py::dict out = render_dict(result);
     out["rays_out_of_steps"] = result.rays_out_of_steps;
     out["device_ms"] = result.device_ms;
+    if (batched) {
+      out["samples"] = batched->samples;
+      out["noise"] = batched->noise;
+      out["seconds"] = batched->seconds;
+    }
     return out;
   }
 };
@@ -718,7 +755,7 @@ void bind_scenes(py::module_& m) {
       .def("set_scene", &PyRenderer::set_scene, py::arg("scene"))
       .def("render", &PyRenderer::render, py::arg("width"), py::arg("height"), py::arg("samples"), py::arg("camera"),
            py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"),
-           py::arg("first_sample"))
+           py::arg("first_sample"), py::arg("time_limit"), py::arg("noise_target"))
       .def_property_readonly("description", [](const PyRenderer& r) { return r.description; })
       .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu ? "cpu" : "vulkan"; })
       .def_property_readonly("notes", [](const PyRenderer& r) { return r.notes; });

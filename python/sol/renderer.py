@@ -84,14 +84,16 @@ class Renderer:
         self._r.set_scene(scene)
 
     def render(self, width=512, height=512, *, samples=0, camera=None, transport=None, seed=0, stereo=False,
-               ipd=0.064, aovs=True, threads=0, progress=None, first_sample=0):
+               ipd=0.064, aovs=True, threads=0, progress=None, first_sample=0, time_limit=None, noise_target=None):
         """Renders the prepared world, width x height pixels per eye (1..16384), from `camera` (the scene's when
         None), `samples` per pixel (1..4096; 0 the scene's "samples"), by `transport` (the renderer's when None),
         the path tracer's random numbers from `seed` (0..2^31-1); `stereo` both eyes of `ipd` side by side
         (width 2 W), on `threads` CPU threads (0: all; the CPU only). `first_sample` (0..2^24) starts the samples
         there: renders of consecutive ranges weighted by their counts are the render of all of them (render more
         samples into an image later: (n1 * a + n2 * b) / (n1 + n2)); above 0 `aovs` must be False (the AOVs are
-        sample 0's).
+        sample 0's). `time_limit` (seconds) and `noise_target` (a relative error) render in batches until either
+        is reached, as solrender's --time-limit and --noise-target (from `samples` to 4096 per pixel); the dict then
+        also holds "samples", "noise" (the estimate reached) and "seconds".
 
         Returns a dict of NumPy float32 arrays as sol.render_cpu's (rgba, and with `aovs` object, distance, point,
         steps, out_of_steps) plus rays_out_of_steps and device_ms. `progress`: a callable given the finished
@@ -110,7 +112,8 @@ class Renderer:
             callback = progress
         try:
             return self._r.render(width, height, samples, camera, transport or self._transport, seed,
-                                  ipd if stereo else None, aovs, threads, callback, first_sample)
+                                  ipd if stereo else None, aovs, threads, callback, first_sample, time_limit,
+                                  noise_target)
         finally:
             if bar is not None:
                 bar.close()

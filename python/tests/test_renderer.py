@@ -102,6 +102,18 @@ def test_ranges_of_samples_make_the_whole_render(device):
         r.render(16, 12, samples=3, first_sample=2, progress=False)
 
 
+def test_a_noise_target_or_a_time_limit_stops_the_render():
+    # solrender's --noise-target and --time-limit: batches until the estimate is reached (path-traced plane, 16 x 12:
+    # about 500 paths for 0.2 on the CPU), or before the time is up.
+    r = sol.Renderer(sol.preset_scene("plane"), device="cpu", transport="path")
+    out = r.render(16, 12, seed=5, noise_target=0.2, aovs=False, progress=False)
+    assert out["noise"] <= 0.2 and 2 <= out["samples"] <= 4096 and out["rgba"].shape == (12, 16, 4)
+    timed = r.render(16, 12, seed=5, time_limit=0.3, aovs=False, progress=False)
+    assert timed["seconds"] < 0.3 * 1.2 and timed["samples"] >= 2
+    with pytest.raises(ValueError, match="time_limit must be in"):
+        r.render(16, 12, time_limit=-1, progress=False)
+
+
 def test_the_device_is_chosen_and_errors_name_the_keyword():
     with pytest.raises(sol.InvalidArgumentError, match='device must be "auto", "vulkan" or "cpu", not "gpu"'):
         sol.Renderer(sol.preset_scene("plane"), device="gpu")
