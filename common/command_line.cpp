@@ -241,9 +241,7 @@ void SceneOverrides::apply(Scene& scene) const {
     try {
       scene.camera = looking_at(scene.camera, *look_at, scene.lattice());
     } catch (const std::exception& e) {  // the library's message names its function: the option's instead
-      const std::string what = e.what();
-      const std::size_t cut = what.rfind("sol::", 0) == 0 ? what.find(": ") : std::string::npos;
-      throw InvalidArgument("--look-at: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
+      throw InvalidArgument("--look-at: " + without_function(e.what()));
     }
   }
   if (max_distance) scene.max_distance = *max_distance;

@@ -27,8 +27,9 @@ class ImageWriter {
   /// bands are already queued), so that a renderer goes on with the next
   /// band meanwhile.
   /// `display`: the exposure and tone curve of 8-bit formats with
-  /// `srgb_for_8bit` (their colour channels shown as Display::shown, then
-  /// sRGB-encoded); float formats take the values as they are.
+  /// `srgb_for_8bit` (their colour channels scaled by Display::scale and
+  /// shown through the curve, then sRGB-encoded); float formats take the
+  /// values as they are.
   ImageWriter(const OutputFile& file, int width, int height, const std::vector<std::string>& channel_names,
               bool srgb_for_8bit, bool worker = false, const Display& display = {});
   ~ImageWriter();

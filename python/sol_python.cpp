@@ -294,12 +294,22 @@ struct PyRenderer {
         goal.noise = noise_target;
         goal.min_samples = options.samples;
         sol::programs::SamplingReport report;
+        const auto started = std::chrono::steady_clock::now();
+        double shown = 0.0;  // the progress reported, never going back
         result = sol::programs::render_batches(
             [&](int first, int count, bool with_aovs) {
               sol::RenderOptions o = options;
               o.first_sample = first;
               o.samples = count;
               o.aovs = with_aovs;
+              // The whole render's progress, not each batch's: the time spent of the limit, else the samples
+              // of the most there may be.
+              o.progress = [&, first, count](double fraction) {
+                const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                shown = std::max(shown, time_limit ? std::min(1.0, spent / *time_limit)
+                                                   : (first + fraction * count) / goal.max_samples);
+                options.progress(shown);
+              };
               return once(o);
             },
             options.aovs, goal, report);
@@ -360,8 +370,10 @@ sol::Display display_of(double exposure, const std::string& tone, const std::str
   const std::optional<sol::Tone> curve = sol::tone_from_name(tone);
   if (!curve) throw sol::InvalidArgument(function + ": tone must be one of " + sol::tone_names() + ", got '" + tone + "'");
   d.tone = *curve;
-  if (!(std::abs(exposure) <= sol::Display::kMaxExposure)) {
-    throw sol::InvalidArgument(function + ": exposure must be finite and within ±20 stops");
+  try {
+    sol::validate(d);
+  } catch (const sol::InvalidArgument& e) {
+    throw sol::InvalidArgument(function + ": " + sol::without_function(e.what()));
   }
   return d;
 }

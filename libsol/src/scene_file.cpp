@@ -72,10 +72,7 @@ void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<La
     r.fail(e.path(), e.what());
   }
   // The library's messages name their function ("sol::aim: ..."): the file's field instead.
-  auto fail = [&](const std::string& what) {
-    const std::size_t cut = what.rfind("sol::", 0) == 0 ? what.find(": ") : std::string::npos;
-    r.fail("camera.look_at", "camera.look_at: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
-  };
+  auto fail = [&](const std::string& what) { r.fail("camera.look_at", "camera.look_at: " + without_function(what)); };
   try {
     camera = looking_at(camera, target, lattice);
   } catch (const InvalidArgument& e) {

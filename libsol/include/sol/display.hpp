@@ -36,8 +36,6 @@ struct Display {
   bool operator==(const Display&) const = default;
   /// 2^exposure.
   double scale() const { return std::exp2(exposure); }
-  /// The displayed value in [0, 1] of a linear channel value (not sRGB-encoded).
-  double shown(double linear) const { return kernel::sol_tone(static_cast<int>(tone), linear * scale()); }
   /// Whether the display cuts the value: the curve exceeds 1 there.
   bool clips(double linear) const { return kernel::sol_tone_curve(static_cast<int>(tone), linear * scale()) > 1.0; }
 };

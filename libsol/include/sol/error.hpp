@@ -11,6 +11,14 @@
 
 namespace sol {
 
+/// A libsol message without the function it names ("sol::aim: the target
+/// ..." -> "the target ..."): for a caller that names its own field or
+/// option instead (a scene file's key, a program's option).
+inline std::string without_function(const std::string& what) {
+  const std::size_t cut = what.rfind("sol::", 0) == 0 ? what.find(": ") : std::string::npos;
+  return cut == std::string::npos ? what : what.substr(cut + 2);
+}
+
 /// Thrown when an argument is NaN, infinite or otherwise invalid.
 class InvalidArgument : public std::invalid_argument {
  public:
