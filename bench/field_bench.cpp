@@ -14,7 +14,7 @@ sol::Scene world(int which) {
   if (which < 2) return sol::preset_scene(which == 0 ? "lattice-balls" : "lattice-pillars");
   // The torus bundle of [[3, 1], [2, 1]] with a small fibre: 148 images.
   sol::Scene crowded = sol::preset_scene("trace4-balls");
-  sol::set_quotient(crowded, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.12);
+  sol::set_space(crowded, sol::MonodromySpace{{3, 1, 2, 1}, 0.12});
   return crowded;
 }
 

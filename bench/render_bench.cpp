@@ -247,7 +247,7 @@ void section_lattices(Bench& b) {
                                             std::tuple{"xy", glm::dvec3(1, 1, 0), glm::dvec3(0, 0, 1)}}) {
       Run r;
       r.label = std::string(c.name) + "," + view;
-      sol::set_quotient(r.scene, sol::Quotient::Monodromy, c.monodromy);
+      sol::set_space(r.scene, sol::MonodromySpace{c.monodromy});
       const sol::Lattice lattice = *r.scene.lattice();
       r.scene.camera = {0.5 * (lattice.generators()[0] + lattice.generators()[1]) +
                             glm::dvec3(0.0, 0.0, 0.5 * lattice.height()),

@@ -290,8 +290,7 @@ TEST(CrowdMarch, TenThousandBallsAreHitWhereAPlainSphereTracerHitsThem) {
 TEST(CrowdMarch, AQuotientHoldsAListOfObjects) {
   sol::World w;
   w.objects = sol::test::scattered_balls(sol::kQuotientObjects);  // one more: the floor
-  w.quotient = sol::Quotient::ZLoop;
-  w.z_loop = 4.0;
+  w.space = sol::ZLoopSpace{4.0};
   EXPECT_THROW(sol::validate(w), sol::InvalidArgument);
   try {
     sol::validate(w);

@@ -408,7 +408,7 @@ TEST(Kernel, ShadowsMatchTheCpuRenderer) {
   std::get<sol::Ball>(exact.objects[1].shape).exact = true;
   // The quotient: a floor z = 0.05 and a ball inside D under the light, seen from above.
   sol::Scene lattice = floor;
-  lattice.quotient = sol::Quotient::Golden;
+  lattice.space = sol::GoldenSpace{};
   lattice.camera = {{0.9, 0.3, 0.45}, {0.3, 0.2, -1.0}, {0.0, 1.0, 0.0}, 90.0};
   lattice.objects = {{sol::PlaneZ{0.05}, {0.8, 0.8, 0.8}, sol::Pattern::Checker},
                      {sol::Ball{{1.3, 0.6, 0.3}, 0.15}, {0.9, 0.5, 0.3}}};

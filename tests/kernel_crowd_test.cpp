@@ -232,7 +232,7 @@ TEST(KernelCrowd, OverlappingExactBallsAreHitOnTheNearerSphere) {
     crowd.objects.push_back({sol::Ball{{2.5 + 0.4 * (k % 4), -0.6 + 0.4 * (k / 4), 0.0}, 0.15, true}, {0.8, 0.6, 0.3}});
   }
   ASSERT_GT(crowd.objects.size(), sol::kListedObjects);
-  sol::set_quotient(quotient, sol::Quotient::Golden);
+  sol::set_space(quotient, sol::GoldenSpace{});
   sol::vk::MarchRenderer renderer(vk_context());
   const std::pair<const char*, const sol::Scene*> worlds[] = {{"listed", &listed}, {"crowd", &crowd}, {"golden", &quotient}};
   for (const auto& [name, scene] : worlds) {
@@ -255,7 +255,7 @@ TEST(KernelCrowd, OverlappingExactBallsAreHitOnTheNearerSphere) {
       return worst;
     };
     int gpu_hits = 0, cpu_hits = 0;
-    const bool in_sol = scene->quotient == sol::Quotient::None;
+    const bool in_sol = scene->quotient() == sol::Quotient::None;
     const double gpu_off = in_sol ? off_boundary(gpu, gpu_hits) : 0.0, cpu_off = in_sol ? off_boundary(cpu, cpu_hits) : 0.0;
     std::printf("overlapping exact balls, %s: %d of %d pixels hit another object, %d differ in colour (worst %.2g); "
                 "%d hits on the balls, farthest off the union's boundary %.2g (CPU %.2g)\n",
@@ -348,7 +348,7 @@ TEST(KernelCrowd, ArraysOfObjectsMatchTheCpuRenderer) {
     EXPECT_LE(c.mask_differs, c.pixels / 100);
     EXPECT_LE(c.color_differs, c.pixels / 100);
     EXPECT_LT(c.distance, 2e-3);
-    EXPECT_GE(seen.size(), scene.quotient == sol::Quotient::None ? 20u : 3u);  // the copies, not the floor alone
+    EXPECT_GE(seen.size(), scene.quotient() == sol::Quotient::None ? 20u : 3u);  // the copies, not the floor alone
   }
   sol::test::expect_no_validation_errors();
 }

@@ -483,7 +483,7 @@ TEST(Kernel, PresetsMatchTheCpuRenderer) {
       EXPECT_LT(std::abs(gpu.distance[i] - cpu.distance[i]), 0.05) << name << " pixel " << k;
     }
     EXPECT_LE(grazing, c.pixels / 100) << name;
-    if (scene.quotient != sol::Quotient::None) {
+    if (scene.quotient() != sol::Quotient::None) {
       // The kernel marches as the CPU does, by the same field and the same
       // clearances (sol/clearance.hpp): its mean steps per ray within 2 %
       // of the CPU's (float rounding moves a few steps; measured: equal to
@@ -848,7 +848,7 @@ TEST(Kernel, ExactBallsLieOnTheGeodesicSphere) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const Case& c : cases) {
     const sol::Ball ball = std::get<sol::Ball>(c.scene.objects[0].shape);
-    const bool quotient = c.scene.quotient != sol::Quotient::None;
+    const bool quotient = c.scene.quotient() != sol::Quotient::None;
     const sol::RenderResult gpu = sol::test::render(renderer, c.scene, 24, 18);
     sol::RenderOptions settings;
     settings.width = 24;
@@ -963,7 +963,7 @@ TEST(Kernel, QuotientObserverAtPAndGpAndThinPlanesNearFaces) {
     const dvec3 g1 = lattice.generators()[0], g2 = lattice.generators()[1];
     for (const double c : {1e-4, lattice.height() - 1e-4}) {
       sol::Scene thin;
-      sol::set_quotient(thin, sol::Quotient::Monodromy, monodromy, area);
+      sol::set_space(thin, sol::MonodromySpace{monodromy, area});
       thin.camera = {0.43 * g1 + 0.21 * g2 + dvec3(0.0, 0.0, 0.5 * lattice.height()), {0.3, 0.5, -0.2}, {0, 0, 1}, 100.0};
       thin.max_distance = 8.0;
       thin.max_steps = 400;
@@ -1470,7 +1470,7 @@ TEST(Kernel, PathsInsideAClosedBallSeeNoLight) {
                                           "exact": true, "shadows": true}], "quotient": "golden"})")};
   sol::vk::MarchRenderer renderer(vk_context());
   for (const sol::Scene& scene : scenes) {
-    const char* where = scene.quotient == sol::Quotient::Golden ? "golden" : "Sol";
+    const char* where = scene.quotient() == sol::Quotient::Golden ? "golden" : "Sol";
     const sol::RenderResult gpu = sol::render_scene(
         renderer, scene, {.width = 16, .height = 12, .samples = 4, .transport = sol::Transport::Path, .seed = 1});
     // (The CPU's paths inside an exact ball are dear: fewer of them.)
@@ -1544,7 +1544,7 @@ TEST(Kernel, PathsFromTheEyeWriteTheCpusAovs) {
       EXPECT_GT(gpu.steps[k], 0.0f) << "pixel " << k;
     }
     std::printf("paths from the eye (%s): %zu of %zu pixels hit the same object, %zu differ\n",
-                scene.quotient == sol::Quotient::Golden ? "golden" : "Sol", hits, n, differ);
+                scene.quotient() == sol::Quotient::Golden ? "golden" : "Sol", hits, n, differ);
     EXPECT_GT(hits, n / 2);
     EXPECT_LE(differ * 50, n);
   }
@@ -1611,7 +1611,7 @@ TEST(Kernel, LargeMonodromyTracesRenderOnTheCpu) {
     s.objects.resize(1);
     s.objects[0].shape = sol::Ball{{0.0, 0.0, 0.0}, 0.2, false};
     s.camera = {{0.3, 0.2, 0.4}, {-1.0, -0.5, -0.8}, {0.0, 0.0, 1.0}, 90.0};
-    sol::set_quotient(s, sol::Quotient::Monodromy, {t - 1, 1, t - 2, 1}, std::nullopt);
+    sol::set_space(s, sol::MonodromySpace{{t - 1, 1, t - 2, 1}, std::nullopt});
     return s;
   };
   sol::vk::MarchRenderer renderer(vk_context());
@@ -1643,7 +1643,7 @@ TEST(Kernel, CrowdedQuotientsRenderOnTheKernelAsOnTheCpu) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const double area : {0.3, 0.12}) {
     sol::Scene crowded = sol::preset_scene("trace4-balls");
-    sol::set_quotient(crowded, sol::Quotient::Monodromy, {3, 1, 2, 1}, area);
+    sol::set_space(crowded, sol::MonodromySpace{{3, 1, 2, 1}, area});
     const std::size_t images = sol::quotient_images(crowded).size();
     std::printf("area %g: %zu images\n", area, images);
     ASSERT_GT(images, 64u);
@@ -1788,7 +1788,7 @@ TEST(Kernel, QuotientTubesOfEveryRecordMatchTheCpuRenderer) {
   sol::vk::MarchRenderer renderer(vk_context());
   const sol::Lattice lattice = sol::Lattice::golden();
   sol::Scene tubes;
-  tubes.quotient = sol::Quotient::Golden;
+  tubes.space = sol::GoldenSpace{};
   tubes.camera = {{1.1, 0.4, 0.5 * lattice.height()}, {1.0, 0.6, -0.15}, {0.0, 0.0, 1.0}, 100.0};
   tubes.max_distance = 6.0;
   tubes.max_steps = 400;
@@ -2248,7 +2248,7 @@ TEST(Kernel, ProjectionsMatchTheCpuRenderer) {
       // with up to about 10 restarts each: float t then drifts by about 1e-4
       // of t (1.2e-3 with the restarts of sol_ray_advanced or
       // sol_ray_restarted alike); in Sol 1e-3 as for the presets.
-      EXPECT_LT(c.distance, scene.quotient == sol::Quotient::None ? 1e-3 : 2e-3) << name;
+      EXPECT_LT(c.distance, scene.quotient() == sol::Quotient::None ? 1e-3 : 2e-3) << name;
       if (projection == sol::Projection::Fisheye) {
         EXPECT_EQ(gpu.object[0], 0.0f);
         EXPECT_EQ(gpu.rgba[0], 0.0f);
@@ -2282,7 +2282,7 @@ TEST(Kernel, OmnidirectionalStereoMatchesTheCpuRenderer) {
                 c.mask_differs, c.pixels, c.color_differs, c.distance);
     EXPECT_LE(c.mask_differs, c.pixels / 100) << name;
     EXPECT_LE(c.color_differs, c.pixels / 100) << name;
-    EXPECT_LT(c.distance, scene.quotient == sol::Quotient::None ? 1e-3 : 2e-3) << name;
+    EXPECT_LT(c.distance, scene.quotient() == sol::Quotient::None ? 1e-3 : 2e-3) << name;
     int differ = 0;
     for (int j = 0; j < h; ++j) {
       for (int i = 0; i < w; ++i) {

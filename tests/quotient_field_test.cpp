@@ -60,7 +60,7 @@ sol::World mixed_world(std::mt19937_64& rng) {
   const sol::Lattice lattice = sol::Lattice::golden();
   std::uniform_real_distribution<double> coord(-1.0, 2.0);
   sol::World w;
-  w.quotient = sol::Quotient::Golden;
+  w.space = sol::GoldenSpace{};
   for (int i = 0; i < 2; ++i) {
     const dvec3 c(coord(rng), coord(rng), coord(rng));
     w.objects.push_back({sol::Ball{c, 0.45, i == 1}});

@@ -1042,7 +1042,7 @@ const LatticeCase kLatticeCases[] = {{{2, 1, 1, 1}, {}}, {{3, 1, 2, 1}, {}}, {{5
 // initializer list, may be uninitialised, which it is not.)
 [[gnu::noinline]] sol::Scene quotient_scene(const LatticeCase& l) {
   sol::Scene s;
-  sol::set_quotient(s, sol::Quotient::Monodromy, l.monodromy, l.fibre_area);
+  sol::set_space(s, sol::MonodromySpace{l.monodromy, l.fibre_area});
   return s;
 }
 
@@ -1066,7 +1066,7 @@ TEST(Quotient, ThinPlanesNearTheFacesAreNeverMissed) {
     plane.shape = sol::PlaneZ{c};
     quotient.objects = {plane};
     sol::Scene cover = quotient;
-    cover.quotient = sol::Quotient::None;
+    cover.space = sol::SolSpace{};
     cover.objects.clear();
     for (int k = -30; k <= 30; ++k) {
       plane.shape = sol::PlaneZ{c + k * h};
@@ -1372,7 +1372,7 @@ TEST(Quotient, ImagesAreCompleteAndReachable) {
   const std::vector<dvec3> samples = domain_samples(lattice, rng, 3000);
   std::vector<sol::Scene> scenes = {sol::preset_scene("lattice-balls"), sol::preset_scene("lattice-pillars")};
   sol::Scene mixed;
-  mixed.quotient = sol::Quotient::Golden;
+  mixed.space = sol::GoldenSpace{};
   std::uniform_real_distribution<double> coord(-3.0, 3.0);
   for (int i = 0; i < 3; ++i) {
     const dvec3 centre_of_ball(coord(rng), coord(rng), coord(rng));
@@ -1521,7 +1521,7 @@ TEST(Quotient, NonCompactQuotientsSeeWhatTheirCoverSees) {
     quotient.max_distance = 5.0;
     const sol::Lattice lattice = *quotient.lattice();
     sol::Scene cover = quotient;
-    cover.quotient = sol::Quotient::None;
+    cover.space = sol::SolSpace{};
     cover.objects.clear();
     std::vector<int> owners;
     for (std::size_t i = 0; i < quotient.objects.size(); ++i) {
@@ -1946,7 +1946,7 @@ TEST(Path, EverySolidSeenFromInsideIsAFurnace) {
 // quotient's hit points are in D, the solid's image's coordinates.
 TEST(Render, SolidsSeenFromInsideStopAtTheirInnerWall) {
   for (const auto& [name, furnace] : inside_views()) {
-    if (furnace.quotient != sol::Quotient::None) continue;
+    if (furnace.quotient() != sol::Quotient::None) continue;
     sol::Scene scene = furnace;
     scene.objects[0].emission = glm::dvec3(0.0);
     scene.objects.push_back({sol::make_tube(sol::TubeAxis::Y, {0.0, 0.0, 0.0}, 0.3, sol::Lattice::golden())});  // the camera inside a second solid
@@ -2109,7 +2109,7 @@ TEST(Path, TheSameSeedGivesTheSameImageOnAnyThreads) {
 // than the field holds: refused with what would help, naming the field.
 TEST(Quotient, ASmallFibreSaysWhatHelps) {
   sol::Scene scene = sol::preset_scene("trace4-balls");
-  sol::set_quotient(scene, sol::Quotient::Monodromy, {3, 1, 2, 1}, 0.05);
+  sol::set_space(scene, sol::MonodromySpace{{3, 1, 2, 1}, 0.05});
   try {
     const sol::MarchWorld prepared(scene);
     ADD_FAILURE() << prepared.objects().size() << " images accepted";

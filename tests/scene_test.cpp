@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -257,9 +259,8 @@ TEST(Scene, QuotientOfAMonodromy) {
     {"type": "tube", "axis": "gamma2", "through": [0, 0, 0.3], "radius": 0.1},
     {"type": "ball", "center": [0.2, 0.1, 0.4], "radius": 0.3}]})";
   const sol::Scene s = sol::parse_scene(text);
-  EXPECT_EQ(s.quotient, sol::Quotient::Monodromy);
-  EXPECT_EQ(s.monodromy, (sol::Monodromy{3, 1, 2, 1}));
-  EXPECT_FALSE(s.fibre_area.has_value());
+  EXPECT_EQ(s.quotient(), sol::Quotient::Monodromy);
+  EXPECT_EQ(s.space, sol::Space(sol::MonodromySpace{{3, 1, 2, 1}, std::nullopt}));
   const double r3 = std::sqrt(3.0);
   const glm::dvec3 g1 = std::get<sol::Tube>(s.objects[0].shape).direction;
   const glm::dvec3 g2 = std::get<sol::Tube>(s.objects[1].shape).direction;
@@ -271,15 +272,15 @@ TEST(Scene, QuotientOfAMonodromy) {
   EXPECT_NE(json.find("\"gamma1\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"monodromy\""), std::string::npos) << json;
   const sol::Scene back = sol::parse_scene(json);
-  EXPECT_EQ(back.quotient, s.quotient);
-  EXPECT_EQ(back.monodromy, s.monodromy);
+  EXPECT_EQ(back.quotient(), s.quotient());
+  EXPECT_EQ(back.space, s.space);
   for (std::size_t k = 0; k < s.objects.size(); ++k) EXPECT_EQ(back.objects[k].shape, s.objects[k].shape);
   // A fibre area scales the fibre (and round-trips).
   const sol::Scene big = sol::parse_scene(R"({"quotient": {"monodromy": [[3, 1], [2, 1]], "fibre_area": 10},
     "objects": [{"type": "plane_z", "c": 0.2}]})");
-  ASSERT_TRUE(big.fibre_area.has_value());
+  EXPECT_EQ(std::get<sol::MonodromySpace>(big.space).fibre_area, 10.0);
   EXPECT_NEAR(big.lattice()->fibre_area(), 10.0, 1e-12);
-  EXPECT_EQ(sol::parse_scene(sol::to_json(big)).fibre_area, big.fibre_area);
+  EXPECT_EQ(sol::parse_scene(sol::to_json(big)).space, big.space);
   // [[2, 1], [1, 1]] without an area is the golden lattice itself.
   const sol::Scene golden = sol::parse_scene(R"({"quotient": {"monodromy": [[2, 1], [1, 1]]}, "objects": [
     {"type": "tube", "axis": "gamma1", "through": [0, 0, 0], "radius": 0.1}]})");
@@ -303,21 +304,62 @@ TEST(Scene, QuotientOfAMonodromy) {
   expect_rejected(with(R"({"monodromy": [[3, 1.5], [2, 1]]})"), "'quotient.monodromy[0][1]' must be an integer");
   expect_rejected(with(R"({"monodromy": [[3, 1], [2, 1e12]]})"), "'quotient.monodromy[1][1]' must be an integer within");
   expect_rejected(with(R"({"monodromy": [[3, 1], [2, "1"]]})"), "quotient.monodromy[1][1]");
-  expect_rejected(with(R"({"matrix": [[3, 1], [2, 1]]})"), "unknown key 'matrix'");
-  expect_rejected(with(R"({"fibre_area": 2})"), "needs a 'monodromy'");
+  expect_rejected(with(R"({"matrix": [[3, 1], [2, 1]]})"), "'quotient' needs one of the keys 'monodromy', 'z_loop', 'xy_loops', got {\"matrix\"");
+  expect_rejected(with(R"({"fibre_area": 2})"), "'quotient' needs one of the keys 'monodromy', 'z_loop', 'xy_loops'");
   // The golden lattice's γ1 is no closed curve of another lattice.
   expect_rejected(R"({"quotient": {"monodromy": [[3, 1], [2, 1]]}, "objects": [
     {"type": "tube", "axis": [1.618033988749895, -1, 0], "through": [0, 0, 0], "radius": 0.1}]})",
                   "only along its lattice's gamma1 or gamma2");
   // validate() names the field too.
   sol::World world = s;
-  world.monodromy = {4, 1, 1, 1};
+  world.space = sol::MonodromySpace{{4, 1, 1, 1}};
   try {
     sol::validate(world);
     ADD_FAILURE() << "accepted a matrix of determinant 3";
   } catch (const sol::InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("quotient.monodromy: "), std::string::npos) << e.what();
   }
+}
+
+// Every space of SOL_QUOTIENT_SPACES (and Sol): a world moved into it with
+// its defaults validates, is written under its key and read back as the
+// same space, with a lattice exactly where it is a quotient. A space added
+// to the list is checked here without a line of its own.
+TEST(Scene, EverySpaceOfTheListIsReadBack) {
+  struct Listed {
+    sol::Quotient value;
+    std::string key;
+  };
+  std::vector<Listed> listed{{sol::Quotient::None, "none"}};
+#define SOL_LISTED(type, value, key, form) listed.push_back({sol::Quotient::value, key});
+  SOL_QUOTIENT_SPACES(SOL_LISTED)
+#undef SOL_LISTED
+  ASSERT_EQ(listed.size(), std::variant_size_v<sol::Space>);
+  sol::Scene scene;
+  sol::SceneObject plane;
+  plane.shape = sol::PlaneZ{0.3};
+  scene.objects = {plane};
+  for (const Listed& l : listed) {
+    SCOPED_TRACE(l.key);
+    const sol::Space space = sol::default_space(l.value);
+    EXPECT_EQ(sol::quotient_of(space), l.value);
+    sol::set_space(scene, space);
+    EXPECT_NO_THROW(sol::validate(scene));
+    EXPECT_EQ(scene.lattice().has_value(), l.value != sol::Quotient::None);
+    const std::string text = sol::to_json(scene);
+    EXPECT_NE(text.find("\"" + l.key + "\""), std::string::npos) << text;
+    const sol::Scene back = sol::parse_scene(text);
+    EXPECT_EQ(back.space, space);
+    EXPECT_TRUE(sol::same_space(back, scene));
+    if (scene.lattice()) {
+      EXPECT_EQ(back.lattice()->generators(), scene.lattice()->generators());
+    }
+  }
+  // The defaults: the golden lattice twice (its own name, and its
+  // monodromy without a fibre area), the unit loops.
+  EXPECT_EQ(sol::lattice_of(sol::default_space(sol::Quotient::Monodromy))->generators(),
+            sol::Lattice::golden().generators());
+  EXPECT_EQ(sol::lattice_of(sol::default_space(sol::Quotient::ZLoop))->height(), 1.0);
 }
 
 // The non-compact quotients in scene files: {"z_loop": h} and {"xy_loops":
@@ -331,8 +373,8 @@ TEST(Scene, NonCompactQuotients) {
     {"type": "plane_z", "c": -0.4},
     {"type": "tube", "axis": "z", "through": [0, 0, 5], "radius": 0.1},
     {"type": "tube", "axis": [0.6, 0.8, 0], "through": [1, 2, 0.3], "radius": 0.1}]})");
-  EXPECT_EQ(z.quotient, sol::Quotient::ZLoop);
-  EXPECT_EQ(z.z_loop, 1.5);
+  EXPECT_EQ(z.quotient(), sol::Quotient::ZLoop);
+  EXPECT_EQ(std::get<sol::ZLoopSpace>(z.space).height, 1.5);
   EXPECT_EQ(z.lattice()->generators()[2], glm::dvec3(0.0, 0.0, 1.5));
   const sol::Scene z_back = sol::parse_scene(sol::to_json(z));
   EXPECT_TRUE(sol::same_space(z_back, z));
@@ -342,8 +384,8 @@ TEST(Scene, NonCompactQuotients) {
     {"type": "tube", "axis": "gamma1", "through": [0, 0, 0.2], "radius": 0.1},
     {"type": "tube", "axis": "x", "through": [0, 1, -0.2], "radius": 0.1},
     {"type": "tube", "axis": "gamma2", "through": [0, 0, 0.4], "radius": 0.1}]})");
-  EXPECT_EQ(xy.quotient, sol::Quotient::XYLoops);
-  EXPECT_EQ(xy.xy_loops[1], glm::dvec2(0.5, 1.5));
+  EXPECT_EQ(xy.quotient(), sol::Quotient::XYLoops);
+  EXPECT_EQ(std::get<sol::XYLoopsSpace>(xy.space).loops[1], glm::dvec2(0.5, 1.5));
   EXPECT_NEAR(glm::length(glm::cross(std::get<sol::Tube>(xy.objects[3].shape).direction,
                                      glm::normalize(glm::dvec3(0.5, 1.5, 0.0)))), 0.0, 1e-15);
   const sol::Scene xy_back = sol::parse_scene(sol::to_json(xy));
@@ -362,7 +404,7 @@ TEST(Scene, NonCompactQuotients) {
   expect_rejected(with(R"({"xy_loops": [1, 0, 0, 1]})", plane), "'quotient.xy_loops' must be two vectors");
   expect_rejected(with(R"({"xy_loops": [[1, 0], [0, "1"]]})", plane), "quotient.xy_loops[1][1]");
   expect_rejected(with(R"({"z_loop": 2, "xy_loops": [[1, 0], [0, 1]]})", plane), "not several");
-  expect_rejected(with(R"({"z_loop": 2, "fibre_area": 3})", plane), "quotient.fibre_area");
+  expect_rejected(with(R"({"z_loop": 2, "fibre_area": 3})", plane), "unknown key 'fibre_area' in quotient (a z loop's)");
   // What each allows.
   expect_rejected(with(R"({"z_loop": 2})", R"("objects": [{"type": "tube", "axis": "z", "through": [1, 0, 0], "radius": 0.1}])"),
                   "objects[0].through: a tube along z in a z loop must be the axis x = y = 0");
@@ -381,12 +423,12 @@ TEST(Scene, NonCompactQuotients) {
                   "lights[0].exact: exact point lights are only in Sol and its compact quotients");
 }
 
-// set_quotient moves a world to another space: tubes along the lattice's γ1
+// set_space moves a world to another space: tubes along the lattice's γ1
 // and γ2 follow the lattice, and back; a bad monodromy leaves it as it was.
-TEST(Scene, SetQuotientCarriesTheClosedCurves) {
+TEST(Scene, SetSpaceCarriesTheClosedCurves) {
   const sol::Scene pillars = sol::preset_scene("lattice-pillars");
   sol::World world = pillars;
-  sol::set_quotient(world, sol::Quotient::Monodromy, {5, 2, 2, 1}, 6.0);
+  sol::set_space(world, sol::MonodromySpace{{5, 2, 2, 1}, 6.0});
   const sol::Lattice lattice = *world.lattice();
   EXPECT_NEAR(lattice.fibre_area(), 6.0, 1e-12);
   EXPECT_EQ(std::get<sol::Tube>(world.objects[0].shape).direction, glm::normalize(lattice.generators()[0]));
@@ -394,10 +436,10 @@ TEST(Scene, SetQuotientCarriesTheClosedCurves) {
   EXPECT_EQ(std::get<sol::Tube>(world.objects[2].shape).direction, glm::dvec3(0, 0, 1));
   EXPECT_NO_THROW(sol::validate(world));
   const sol::World before = world;
-  EXPECT_THROW(sol::set_quotient(world, sol::Quotient::Monodromy, {1, 1, 0, 1}), sol::InvalidArgument);
+  EXPECT_THROW(sol::set_space(world, sol::MonodromySpace{{1, 1, 0, 1}}), sol::InvalidArgument);
   EXPECT_EQ(to_json(sol::Scene{world}), to_json(sol::Scene{before}));
-  sol::set_quotient(world, sol::Quotient::Golden);
-  EXPECT_FALSE(world.fibre_area.has_value());
+  sol::set_space(world, sol::GoldenSpace{});
+  EXPECT_EQ(world.space, sol::Space(sol::GoldenSpace{}));
   for (std::size_t k = 0; k < world.objects.size(); ++k) EXPECT_EQ(world.objects[k].shape, pillars.objects[k].shape);
 }
 

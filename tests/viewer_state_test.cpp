@@ -101,7 +101,7 @@ TEST(ViewerState, AnotherMonodromyRebindsTheObserver) {
   ViewerState s = make_state();
   s.set_scene("plane");  // in Sol, the observer at (0, 0, 1.5): above the new lattice's domain (h = ln(2 + √3) = 1.32)
   const glm::dvec3 far_forward = s.observer.forward(), far_up = s.observer.up();
-  sol::set_quotient(s.scene, sol::Quotient::Monodromy, {-3, -1, -2, -1});
+  sol::set_space(s.scene, sol::MonodromySpace{{-3, -1, -2, -1}});
   s.world_edited();
   EXPECT_TRUE(s.message.empty()) << s.message;
   ASSERT_TRUE(s.observer.lattice().has_value());
@@ -119,9 +119,9 @@ TEST(ViewerState, AnotherMonodromyRebindsTheObserver) {
   EXPECT_LT(glm::length(sol::half_turn(s.observer.forward()) - far_forward), 1e-12);
   EXPECT_LT(glm::length(sol::half_turn(s.observer.up()) - far_up), 1e-12);
   EXPECT_LT(s.observer.up().y, -0.99);  // (0, 1, 0) turned
-  // A matrix that is not hyperbolic is refused by set_quotient itself (the panel shows why).
-  EXPECT_THROW(sol::set_quotient(s.scene, sol::Quotient::Monodromy, {1, 1, 0, 1}), sol::InvalidArgument);
-  sol::set_quotient(s.scene, sol::Quotient::None);
+  // A matrix that is not hyperbolic is refused by set_space itself (the panel shows why).
+  EXPECT_THROW(sol::set_space(s.scene, sol::MonodromySpace{{1, 1, 0, 1}}), sol::InvalidArgument);
+  sol::set_space(s.scene, sol::SolSpace{});
   s.world_edited();
   EXPECT_FALSE(s.observer.lattice().has_value());
 }

@@ -389,7 +389,7 @@ TEST(XrSolxr, QuotientScenesMatchTheCpuRenderToo) {
                                "--scene lattice-balls");
   expect_clean(r);
   sol::Scene scene = sol::preset_scene("lattice-balls");
-  ASSERT_NE(scene.quotient, sol::Quotient::None);
+  ASSERT_NE(scene.quotient(), sol::Quotient::None);
   scene.camera.fov = 70;
   const sol::StereoEyes eyes = sol::stereo_eyes(scene.camera, 0.064);
   const Image l = load_eye(r.dir, 0, 0), rr = load_eye(r.dir, 0, 1);

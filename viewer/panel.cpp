@@ -112,7 +112,7 @@ std::array<int, 4> from_monodromy(const Monodromy& a) {
 
 std::string quotient_refusal(const World& world) {
   World q = world;
-  q.quotient = Quotient::Golden;
+  q.space = GoldenSpace{};
   try {
     validate(q);
   } catch (const std::exception& e) {
@@ -186,13 +186,14 @@ void draw_readouts(const PanelModel& m) {
   // and the reason is shown.
 void space_controls(PanelModel& m, PanelText& text, PanelActions& out) {
   char line[256];
-  int quotient = static_cast<int>(m.scene.quotient);
+  int quotient = static_cast<int>(m.scene.quotient());
   const char* const quotients[] = {"none (Sol)", "golden (Gamma\\Sol)", "monodromy A", "z loop (Sol/<(0, 0, h)>)",
                                    "xy loops (torus x line)"};
-  auto apply_space = [&](Quotient q, const Scene& from) {
+  static_assert(std::size(quotients) == std::variant_size_v<Space>, "a label for each space of sol/spaces.hpp");
+  auto apply_space = [&](const Space& space) {
     try {
-      Scene next = from;
-      set_quotient(next, q, to_monodromy(text.monodromy), from.fibre_area);
+      Scene next = m.scene;
+      set_space(next, space);
       validate(next);
       m.scene = std::move(next);
       text.refusal.clear();
@@ -201,51 +202,49 @@ void space_controls(PanelModel& m, PanelText& text, PanelActions& out) {
       text.refusal = e.what();
     }
   };
-  if (ImGui::Combo("quotient", &quotient, quotients, 5)) apply_space(static_cast<Quotient>(quotient), m.scene);
-  if (m.scene.quotient == Quotient::ZLoop) {
-    Scene next = m.scene;
-    if (drag_double("loop height h", next.z_loop, 0.01, 1.0, 20.0, "%.3f")) apply_space(Quotient::ZLoop, next);
+  if (ImGui::Combo("quotient", &quotient, quotients, static_cast<int>(std::size(quotients)))) {
+    Space space = default_space(static_cast<Quotient>(quotient));
+    if (auto* bundle = std::get_if<MonodromySpace>(&space)) bundle->monodromy = to_monodromy(text.monodromy);
+    apply_space(space);
   }
-  if (m.scene.quotient == Quotient::XYLoops) {
-    Scene next = m.scene;
-    double loops[4] = {next.xy_loops[0].x, next.xy_loops[0].y, next.xy_loops[1].x, next.xy_loops[1].y};
+  if (const auto* z = std::get_if<ZLoopSpace>(&m.scene.space)) {
+    ZLoopSpace next = *z;
+    if (drag_double("loop height h", next.height, 0.01, 1.0, 20.0, "%.3f")) apply_space(next);
+  }
+  if (const auto* xy = std::get_if<XYLoopsSpace>(&m.scene.space)) {
+    XYLoopsSpace next = *xy;
+    double loops[4] = {next.loops[0].x, next.loops[0].y, next.loops[1].x, next.loops[1].y};
     if (ImGui::InputScalarN("gamma1, gamma2 (x, y)", ImGuiDataType_Double, loops, 4, nullptr, nullptr, "%.3f",
                             ImGuiInputTextFlags_EnterReturnsTrue)) {
-      next.xy_loops = {glm::dvec2(loops[0], loops[1]), glm::dvec2(loops[2], loops[3])};
-      apply_space(Quotient::XYLoops, next);
+      next.loops = {glm::dvec2(loops[0], loops[1]), glm::dvec2(loops[2], loops[3])};
+      apply_space(next);
     }
   }
-  if (m.scene.quotient != Quotient::Monodromy && !text.refusal.empty()) {
+  if (m.scene.quotient() != Quotient::Monodromy && !text.refusal.empty()) {
     ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
   }
-  if (m.scene.quotient == Quotient::Monodromy) {
+  if (const auto* shown = std::get_if<MonodromySpace>(&m.scene.space)) {
     bool apply = ImGui::InputInt4("A = [[a, b], [c, d]]", text.monodromy.data(), ImGuiInputTextFlags_EnterReturnsTrue);
-    bool custom_area = m.scene.fibre_area.has_value();
-    double area = m.scene.fibre_area.value_or(m.scene.lattice() ? m.scene.lattice()->fibre_area() : 1.0);
+    bool custom_area = shown->fibre_area.has_value();
+    double area = shown->fibre_area.value_or(m.scene.lattice() ? m.scene.lattice()->fibre_area() : 1.0);
     if (ImGui::Checkbox("fibre area", &custom_area)) apply = true;
     if (custom_area) {
       ImGui::SameLine();
       apply |= drag_double("##area", area, 0.01, 0.5, 100.0, "%.3f");
     }
     if (apply) {
-      try {
-        set_quotient(m.scene, Quotient::Monodromy, to_monodromy(text.monodromy),
-                     custom_area ? std::optional<double>(area) : std::nullopt);
-        text.refusal.clear();
-        out.world_changed = true;
-      } catch (const std::exception& e) {
-        text.refusal = e.what();
-      }
+      apply_space(MonodromySpace{.monodromy = to_monodromy(text.monodromy),
+                                 .fibre_area = custom_area ? std::optional<double>(area) : std::nullopt});
     }
-    const Monodromy& a = m.scene.monodromy;
+    const Monodromy& a = std::get<MonodromySpace>(m.scene.space).monodromy;  // as applied
     std::snprintf(line, sizeof line, "shown: [[%lld, %lld], [%lld, %lld]], trace %lld, h = ln lambda = %.4f", a.a, a.b, a.c,
                   a.d, a.trace(), m.scene.lattice() ? m.scene.lattice()->height() : 0.0);
     ImGui::TextUnformatted(line);
     if (!text.refusal.empty()) ImGui::TextWrapped("not applied: %s", text.refusal.c_str());
   } else {
-    text.monodromy = from_monodromy(m.scene.monodromy);
+    text.monodromy = from_monodromy(Monodromy{});
   }
-  if (m.scene.quotient == Quotient::None) {
+  if (m.scene.quotient() == Quotient::None) {
     const std::string why = quotient_refusal(m.scene);
     if (!why.empty()) ImGui::TextWrapped("golden quotient not possible: %s", why.c_str());
   }

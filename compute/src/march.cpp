@@ -992,7 +992,7 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
   // In the quotient a light's images within reach of D grow fast with the
   // reach (about 300 at 0, 2000 at 1): beyond reach 1 they outgrow
   // kMaxGpuLightImages.
-  const double most = world.quotient == Quotient::None ? ConnectionTable::kReach : 1.0;
+  const double most = world.quotient() == Quotient::None ? ConnectionTable::kReach : 1.0;
   char message[256];
   for (std::size_t i = 0; i < world.lights.size(); ++i) {
     const Light& l = world.lights[i];
@@ -1019,7 +1019,7 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
       return message;
     }
   }
-  if (transport == Transport::Path && world.quotient == Quotient::None && world.objects.size() > sol::kListedObjects) {
+  if (transport == Transport::Path && world.quotient() == Quotient::None && world.objects.size() > sol::kListedObjects) {
     // A path's next-event estimation (march/paths.glsl) samples a listed
     // world's glowing exact balls, not a crowd's.
     for (std::size_t i = 0; i < world.objects.size(); ++i) {
@@ -1032,11 +1032,12 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
       }
     }
   }
-  if (world.quotient == Quotient::Monodromy && std::abs(world.monodromy.trace()) > kMaxMonodromyTrace) {
+  const auto* bundle = std::get_if<MonodromySpace>(&world.space);
+  if (bundle && std::abs(bundle->monodromy.trace()) > kMaxMonodromyTrace) {
     std::snprintf(message, sizeof message,
                   "quotient.monodromy: trace %lld, above %lld, where the kernel's float no longer resolves the "
                   "lattice (γ3 scales x by about the trace): it renders on the CPU only",
-                  world.monodromy.trace(), kMaxMonodromyTrace);
+                  bundle->monodromy.trace(), kMaxMonodromyTrace);
     return message;
   }
   return {};

@@ -138,7 +138,7 @@ std::vector<MarchObject> quotient_images(const World& world) { return listed_ima
 
 MarchFeatures features_of(const World& world) {
   MarchFeatures f;
-  f.quotient = world.quotient != Quotient::None;
+  f.quotient = world.quotient() != Quotient::None;
   f.heights_only = !f.quotient;
   f.planes_xy_only = !world.objects.empty();
   // Each kind sets its feature (sol/object_kinds.h); a composite its own and its parts'.
@@ -179,8 +179,8 @@ MarchFeatures features_of(const World& world) {
 }
 
 std::string crowded_quotient_hint(const World& world) {
-  const char* more = world.quotient == Quotient::Monodromy ? ", or a larger quotient.fibre_area)"
-                     : world.quotient == Quotient::XYLoops  ? ", or objects nearer z = 0, where neither loop is short)"
+  const char* more = world.quotient() == Quotient::Monodromy ? ", or a larger quotient.fibre_area)"
+                     : world.quotient() == Quotient::XYLoops  ? ", or objects nearer z = 0, where neither loop is short)"
                                                             : ")";
   return std::string("(fewer or smaller objects") + more;
 }

@@ -9,6 +9,7 @@
 
 #include "field_error.hpp"
 #include "objects_internal.hpp"
+#include "spaces/space_io.hpp"
 #include "sol/error.hpp"
 
 namespace sol {
@@ -18,33 +19,19 @@ void check_camera(const Camera& camera);                    // camera.cpp
 void check_light(const Light& light, const std::string& at);  // light.cpp
 void check_display(const Display& display);                 // display.cpp
 
-// The world's lattice (World::lattice), a bad monodromy or fibre area a
-// FieldError at quotient.monodromy or quotient.fibre_area.
-std::optional<Lattice> checked_lattice(const World& s) {
-  try {
-    return s.lattice();
-  } catch (const InvalidArgument& e) {
-    const bool area = s.fibre_area && !(*s.fibre_area >= 0.01 && *s.fibre_area <= 10000.0);
-    const std::string at = s.quotient == Quotient::ZLoop     ? "quotient.z_loop"
-                           : s.quotient == Quotient::XYLoops ? "quotient.xy_loops"
-                           : area                            ? "quotient.fibre_area"
-                                                             : "quotient.monodromy";
-    field_error(at, at + ": " + e.what());
-  }
-}
-
 // The checks behind validate(World), also run on the world of a scene file.
 void check_world(const World& s) {
   if (s.objects.empty()) field_error("objects", "the scene has no objects");
   if (s.objects.size() > kMaxObjects) {
     field_error("objects", "at most " + std::to_string(kMaxObjects) + " objects, got " + std::to_string(s.objects.size()));
   }
-  if (s.quotient != Quotient::None && s.objects.size() > kQuotientObjects) {
+  if (s.quotient() != Quotient::None && s.objects.size() > kQuotientObjects) {
     field_error("objects", "a quotient world holds at most " + std::to_string(kQuotientObjects) + " objects, got " +
                                std::to_string(s.objects.size()) + " (Sol itself holds up to " + std::to_string(kMaxObjects) +
                                ")");
   }
-  const std::optional<Lattice> lattice = checked_lattice(s);
+  check_space(s.space);
+  const std::optional<Lattice> lattice = s.lattice();
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     check_object(s.objects[i], "objects[" + std::to_string(i) + "]", lattice ? &*lattice : nullptr);
   }
@@ -98,27 +85,9 @@ bool uses_exact(const World& world) {
          uses_exact_lights(world);
 }
 
-std::optional<Lattice> World::lattice() const {
-  switch (quotient) {
-    case Quotient::None:
-      return std::nullopt;
-    case Quotient::Golden:
-      return Lattice::golden();
-    case Quotient::Monodromy:
-      return Lattice::from_monodromy(monodromy, fibre_area);
-    case Quotient::ZLoop:
-      return Lattice::z_loop(z_loop);
-    case Quotient::XYLoops:
-      return Lattice::xy_loops(xy_loops[0], xy_loops[1]);
-  }
-  return std::nullopt;
-}
-
-void set_quotient(World& world, Quotient quotient, const Monodromy& monodromy, std::optional<double> fibre_area) {
+void set_space(World& world, const Space& space) {
   World next = world;
-  next.quotient = quotient;
-  next.monodromy = quotient == Quotient::Monodromy ? monodromy : Monodromy{};
-  next.fibre_area = quotient == Quotient::Monodromy ? fibre_area : std::nullopt;
+  next.space = space;
   const Lattice before = world.lattice().value_or(Lattice::default_axes());
   const Lattice after = next.lattice().value_or(Lattice::default_axes());  // throws for a bad monodromy
   for (SceneObject& o : next.objects) {
@@ -154,7 +123,7 @@ Scene preset_scene(std::string_view name) {
   } else if (name == "lattice-balls") {
     // One ball at the base point of M = Γ\Sol: in the cover, a ball at every
     // point of Γ·o. Looking along z from inside the domain.
-    s.quotient = Quotient::Golden;
+    s.space = GoldenSpace{};
     s.camera = {{0.9, 0.3, 0.45}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 90.0};
     s.objects = {{Ball{{0.0, 0.0, 0.0}, 0.25}, {0.9, 0.55, 0.3}}};
     s.fog_density = 1.0 / 12.0;
@@ -164,7 +133,7 @@ Scene preset_scene(std::string_view name) {
     // Tubes along the closed curves of γ1, γ2 and γ3 through the base point
     // of M: in the cover they run along the edges of the fundamental domains
     // and stake them out. Looking along x = y from the middle of the domain.
-    s.quotient = Quotient::Golden;
+    s.space = GoldenSpace{};
     s.camera = {{1.3, 0.3, 0.48}, {1.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 90.0};
     for (const auto& [axis, color] : {std::pair{TubeAxis::Gamma1, glm::dvec3(0.9, 0.35, 0.3)},
                                       std::pair{TubeAxis::Gamma2, glm::dvec3(0.35, 0.8, 0.4)},
@@ -178,7 +147,7 @@ Scene preset_scene(std::string_view name) {
     // A cube at the base point of M: in the cover, a cube at every point of
     // Γ·o, the cube lattices other Sol renderers show, here one box.
     // Looking along x + y, a little down, from inside the domain.
-    s.quotient = Quotient::Golden;
+    s.space = GoldenSpace{};
     s.camera = {{0.9, 0.3, 0.45}, {1.0, 0.8, -0.3}, {0.0, 0.0, 1.0}, 90.0};
     s.objects = {{Box{{0.0, 0.0, 0.0}, {0.15, 0.15, 0.15}}, {0.35, 0.65, 0.9}, Pattern::Checker}};
     s.fog_density = 1.0 / 10.0;
@@ -189,9 +158,8 @@ Scene preset_scene(std::string_view name) {
     // λ = 2 + √3: γ3 stretches x by 3.73, where the golden lattice's
     // stretches by 2.62). Its balls at Γ·o, or its tubes along γ1, γ2, γ3,
     // seen from the middle of its fundamental domain as the golden presets.
-    s.quotient = Quotient::Monodromy;
-    s.monodromy = {3, 1, 2, 1};
-    const Lattice lattice = Lattice::from_monodromy(s.monodromy);
+    s.space = MonodromySpace{.monodromy = {3, 1, 2, 1}};
+    const Lattice lattice = *s.lattice();
     const glm::dvec3 middle =
         0.5 * (lattice.generators()[0] + lattice.generators()[1]) + glm::dvec3(0.0, 0.0, 0.5 * lattice.height());
     if (name == "trace4-balls") {
@@ -217,8 +185,7 @@ Scene preset_scene(std::string_view name) {
     // the golden lattice's) and one off it (blue): in the layers an odd
     // power of γ3 away its copies sit turned about the vertical axes of the
     // lattice points. Seen as lattice-balls.
-    s.quotient = Quotient::Monodromy;
-    s.monodromy = {-2, -1, -1, -1};
+    s.space = MonodromySpace{.monodromy = {-2, -1, -1, -1}};
     s.camera = {{0.9, 0.3, 0.45}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 90.0};
     s.objects = {{Ball{{0.0, 0.0, 0.0}, 0.25}, {0.9, 0.55, 0.3}}, {Ball{{0.75, 0.05, 0.3}, 0.15}, {0.35, 0.6, 0.95}}};
     s.fog_density = 1.0 / 12.0;

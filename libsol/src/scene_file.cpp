@@ -13,6 +13,7 @@
 #include "field_error.hpp"
 #include "objects_internal.hpp"
 #include "scene_reader.hpp"
+#include "spaces/space_io.hpp"
 #include "sol/aim.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
@@ -22,7 +23,6 @@ namespace detail {
 void check_camera(const Camera& camera);  // camera.cpp
 void check_world(const World& world);     // scene.cpp
 void check_display(const Display& display);  // display.cpp
-std::optional<Lattice> checked_lattice(const World& world);  // scene.cpp
 }  // namespace detail
 
 namespace {
@@ -121,68 +121,6 @@ Light read_light(const json& l, const SceneFileReader& r, const std::string& at)
   return light;
 }
 
-// "quotient": "none", "golden", {"monodromy": [[a, b], [c, d]],
-// "fibre_area": A} (the area optional), {"z_loop": h} or {"xy_loops":
-// [[x1, y1], [x2, y2]]}.
-void read_quotient(const json& q, const SceneFileReader& r, Scene& s) {
-  const std::string forms =
-      "'quotient' must be none, golden, {\"monodromy\": [[a, b], [c, d]]}, {\"z_loop\": h} or {\"xy_loops\": [[x1, y1], "
-      "[x2, y2]]}, got ";
-  if (!q.is_object()) {
-    if (q.is_string() && q.get_ref<const std::string&>() == "none") return;
-    if (q.is_string() && q.get_ref<const std::string&>() == "golden") {
-      s.quotient = Quotient::Golden;
-      return;
-    }
-    r.fail("quotient", forms + SceneFileReader::json_text(q));
-  }
-  r.require_known_keys(q, {"monodromy", "fibre_area", "z_loop", "xy_loops"}, "quotient", "quotient");
-  const int kinds = static_cast<int>(q.contains("monodromy")) + static_cast<int>(q.contains("z_loop")) +
-                    static_cast<int>(q.contains("xy_loops"));
-  if (kinds > 1) r.fail("quotient", forms + SceneFileReader::json_text(q) + " (one of the three keys, not several)");
-  if (kinds == 1 && !q.contains("monodromy") && q.contains("fibre_area")) {
-    r.fail("quotient.fibre_area", "'quotient.fibre_area' belongs to a monodromy's quotient only");
-  }
-  if (q.contains("z_loop")) {
-    s.quotient = Quotient::ZLoop;
-    s.z_loop = r.number(q["z_loop"], "quotient.z_loop");
-    return;
-  }
-  if (q.contains("xy_loops")) {
-    const json& g = q["xy_loops"];
-    if (!g.is_array() || g.size() != 2 || !g[0].is_array() || g[0].size() != 2 || !g[1].is_array() || g[1].size() != 2) {
-      r.fail("quotient.xy_loops", "'quotient.xy_loops' must be two vectors [[x1, y1], [x2, y2]], got " +
-                                      SceneFileReader::json_text(g));
-    }
-    s.quotient = Quotient::XYLoops;
-    for (int i = 0; i < 2; ++i) {
-      const std::string at = "quotient.xy_loops[" + std::to_string(i) + "]";
-      s.xy_loops[static_cast<std::size_t>(i)] = {r.number(g[i][0], at + "[0]"), r.number(g[i][1], at + "[1]")};
-    }
-    return;
-  }
-  r.require_key(q, "monodromy", "quotient", "a 'monodromy' [[a, b], [c, d]], a 'z_loop' h or 'xy_loops'", "quotient");
-  const json& m = q["monodromy"];
-  const std::string shape = "'quotient.monodromy' must be a 2 x 2 integer matrix [[a, b], [c, d]], got ";
-  if (!m.is_array() || m.size() != 2 || !m[0].is_array() || m[0].size() != 2 || !m[1].is_array() || m[1].size() != 2) {
-    r.fail("quotient.monodromy", shape + SceneFileReader::json_text(m));
-  }
-  long long entries[2][2] = {};
-  for (int i = 0; i < 2; ++i) {
-    for (int j = 0; j < 2; ++j) {
-      const std::string at = "quotient.monodromy[" + std::to_string(i) + "][" + std::to_string(j) + "]";
-      const double v = r.number(m[i][j], at);
-      if (!(std::abs(v) <= 2147483648.0) || v != std::floor(v)) {
-        r.fail(at, "'" + at + "' must be an integer within ±2^31, got " + SceneFileReader::json_text(m[i][j]));
-      }
-      entries[i][j] = static_cast<long long>(v);
-    }
-  }
-  s.quotient = Quotient::Monodromy;
-  s.monodromy = {entries[0][0], entries[0][1], entries[1][0], entries[1][1]};
-  if (q.contains("fibre_area")) s.fibre_area = r.number(q["fibre_area"], "quotient.fibre_area");
-}
-
 // An entry of "objects" (`at` its path) into `out`: an object, or an array
 // of one, {"type": "array", "of": {...}, "count": [nx, ny, nz], "step":
 // [sx, sy, sz]}: the nx·ny·nz left translates g·o of its object o (itself
@@ -268,10 +206,11 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   if (root.contains("camera")) look_at = read_camera(root["camera"], r, s.camera);
   if (!root.contains("objects") || !root["objects"].is_array()) r.fail("objects", "'objects' must be an array");
   // The quotient first: objects name their axes by its lattice's generators.
-  if (root.contains("quotient")) read_quotient(root["quotient"], r, s);
+  if (root.contains("quotient")) s.space = read_space(root["quotient"], r);
   std::optional<Lattice> lattice;
   try {
-    lattice = detail::checked_lattice(s);
+    detail::check_space(s.space);
+    lattice = s.lattice();
   } catch (const detail::FieldError& e) {
     r.fail(e.path(), e.what());
   }
@@ -402,27 +341,7 @@ std::string to_json(const Scene& s) {
   }
   root["ambient"] = s.ambient;
   root["fog"] = {{"color", arr(s.fog_color)}, {"density", s.fog_density}};
-  switch (s.quotient) {
-    case Quotient::None:
-      root["quotient"] = "none";
-      break;
-    case Quotient::Golden:
-      root["quotient"] = "golden";
-      break;
-    case Quotient::Monodromy: {
-      const Monodromy& m = s.monodromy;
-      root["quotient"] = {{"monodromy", json::array({json::array({m.a, m.b}), json::array({m.c, m.d})})}};
-      if (s.fibre_area) root["quotient"]["fibre_area"] = *s.fibre_area;
-      break;
-    }
-    case Quotient::ZLoop:
-      root["quotient"] = {{"z_loop", s.z_loop}};
-      break;
-    case Quotient::XYLoops:
-      root["quotient"] = {{"xy_loops", json::array({json::array({s.xy_loops[0].x, s.xy_loops[0].y}),
-                                                    json::array({s.xy_loops[1].x, s.xy_loops[1].y})})}};
-      break;
-  }
+  root["quotient"] = detail::write_space(s.space);
   root["max_distance"] = s.max_distance;
   root["max_steps"] = s.max_steps;
   if (s.max_bounces) root["max_bounces"] = *s.max_bounces;

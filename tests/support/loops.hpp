@@ -13,8 +13,7 @@ namespace sol::test {
 // horizontal tube along x + y, seen from inside [0, h) looking along x + y.
 [[gnu::noinline]] inline sol::Scene z_loop_scene() {
   sol::Scene s;
-  s.quotient = sol::Quotient::ZLoop;
-  s.z_loop = 1.3;
+  s.space = sol::ZLoopSpace{1.3};
   s.camera = {{0.2, -0.1, 0.6}, {1.0, 0.9, 0.15}, {0.0, 0.0, 1.0}, 100.0};
   s.objects = {{sol::Ball{{1.1, 0.9, 0.4}, 0.35}, {0.9, 0.55, 0.3}},
                {sol::Box{{-0.5, 1.4, 1.0}, {0.2, 0.15, 0.1}}, {0.35, 0.65, 0.9}, sol::Pattern::Checker},
@@ -30,8 +29,7 @@ namespace sol::test {
 // seen from inside P at z = 0.1.
 [[gnu::noinline]] inline sol::Scene xy_loops_scene() {
   sol::Scene s;
-  s.quotient = sol::Quotient::XYLoops;
-  s.xy_loops = {glm::dvec2(1.6, 0.3), glm::dvec2(-0.4, 1.4)};
+  s.space = sol::XYLoopsSpace{{glm::dvec2(1.6, 0.3), glm::dvec2(-0.4, 1.4)}};
   const sol::Lattice lattice = *s.lattice();
   s.camera = {{0.5, 0.6, 0.1}, {1.0, 0.4, 0.1}, {0.0, 0.0, 1.0}, 100.0};
   s.objects = {{sol::Ball{{1.0, 1.2, 0.3}, 0.3}, {0.9, 0.55, 0.3}},

@@ -97,7 +97,7 @@ inline sol::Scene glow_over_plane() {
 /// diffuse torus fibre z = 0.1, each seen again in its images around D.
 inline sol::Scene glow_over_plane_golden() {
   sol::Scene s;
-  s.quotient = sol::Quotient::Golden;
+  s.space = sol::GoldenSpace{};
   s.camera = {{0.6, 0.5, 0.85}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}, 80.0};
   sol::SceneObject glow{sol::Ball{{0.5, 0.4, 0.45}, 0.12, true}, {0.5, 0.5, 0.5}};
   glow.emission = {4.0, 3.0, 2.0};
@@ -145,7 +145,7 @@ inline sol::SceneObject furnace_wall(const sol::Shape& solid, double mirror = 0.
 
 inline sol::Scene furnace_in(const sol::Shape& solid, sol::Quotient quotient = sol::Quotient::None, double mirror = 0.0) {
   sol::Scene s;
-  s.quotient = quotient;
+  s.space = sol::default_space(quotient);
   s.camera = {{0.0, 0.0, 0.0}, {1.0, 0.2, 0.1}, {0.0, 0.0, 1.0}, 90.0};
   s.objects = {furnace_wall(solid, mirror)};
   s.lights.clear();

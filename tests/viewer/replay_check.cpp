@@ -29,7 +29,7 @@ constexpr double kSpeed = 1.0, kShift = 5.0, kTurn = 1.2, kMouse = 0.0025, kStep
 
 sol::Observer expected(const sol::Scene& scene, const std::vector<Event>& events, long frames) {
   sol::Observer o(scene.camera.position, scene.camera.forward, scene.camera.up);
-  if (scene.quotient != sol::Quotient::None) o.bind(sol::Lattice::golden());
+  if (scene.quotient() != sol::Quotient::None) o.bind(sol::Lattice::golden());
   std::map<std::string, bool> held;
   std::size_t next = 0;
   for (long frame = 0; frame < frames; ++frame) {
@@ -110,7 +110,7 @@ bool check(const std::string& solview, const std::string& dir, const std::string
     ok = false;
   }
   // In the quotient the observer stays in the fundamental domain D.
-  if (scene.quotient != sol::Quotient::None && !sol::Lattice::golden().contains(got["position"])) {
+  if (scene.quotient() != sol::Quotient::None && !sol::Lattice::golden().contains(got["position"])) {
     std::printf("%s: solview's observer left D\n", scene_name.c_str());
     ok = false;
   }

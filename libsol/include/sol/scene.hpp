@@ -22,18 +22,10 @@
 #include "sol/lattice.hpp"
 #include "sol/light.hpp"
 #include "sol/objects.hpp"
+#include "sol/spaces.hpp"
 
 namespace sol {
 
-/// The space the rays live in: Sol itself, or a quotient Γ\Sol
-/// (sol/lattice.hpp), where rays stay in the fundamental domain D and
-/// teleport back by an element of Γ: compact, the golden lattice's or that
-/// of World::monodromy and World::fibre_area (Lattice::from_monodromy); or
-/// non-compact, Sol/<(0, 0, h)> (ZLoop: World::z_loop, Lattice::z_loop) or
-/// Sol/<(x1, y1, 0), (x2, y2, 0)> (XYLoops: World::xy_loops,
-/// Lattice::xy_loops), which allow balls, boxes, planes z = c and some tubes
-/// (docs/scene-format.md).
-enum class Quotient { None, Golden, Monodromy, ZLoop, XYLoops };
 
 /// The most objects a world holds (World::objects): about 200 MB of scene
 /// objects, a limit against runaway files rather than of the march, which
@@ -50,18 +42,12 @@ inline constexpr std::size_t kQuotientObjects = 64;
 
 /// Everything that is seen, and how the march looks for it.
 struct World {
-  Quotient quotient = Quotient::None;
-  /// Quotient::Monodromy: the torus bundle's monodromy A, hyperbolic
-  /// (|trace| > 2; A = [[2, 1], [1, 1]] without a fibre area is the golden
-  /// lattice, a negative trace turns the fibre: Lattice::turns) ...
-  Monodromy monodromy{};
-  /// ... and the area of its fibre torus (none: the normalisation of
-  /// Lattice::from_monodromy).
-  std::optional<double> fibre_area;
-  /// Quotient::ZLoop: the height h of its loop γ3 = (0, 0, h), in [1, 20].
-  double z_loop = 1.0;
-  /// Quotient::XYLoops: its loops γ1 = (x1, y1, 0) and γ2 = (x2, y2, 0).
-  std::array<glm::dvec2, 2> xy_loops{glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
+  /// The space the rays live in (sol/spaces.hpp): Sol itself or a quotient
+  /// Γ\Sol, where rays stay in the fundamental domain D and teleport back by
+  /// an element of Γ: compact (the golden lattice's, a monodromy's torus
+  /// bundle) or not (a z loop, xy loops: these allow balls, boxes, planes
+  /// z = c and some tubes, docs/scene-format.md).
+  Space space;
   std::vector<SceneObject> objects;      ///< at most kMaxObjects
   std::vector<Light> lights{Light{}};    ///< at most kMaxLights; default: one white directional light
   double ambient = 0.15;                 ///< light reaching surfaces facing away, in [0, 1]
@@ -87,10 +73,12 @@ struct World {
   static constexpr int kDefaultMirrorBounces = 4;
   static constexpr int kDefaultPathBounces = 64;
 
+  /// Which space: Sol (Quotient::None) or which quotient.
+  Quotient quotient() const { return quotient_of(space); }
   /// The lattice Γ of the quotient the rays live in (sol/lattice.hpp), or
   /// none in Sol itself: everything that teleports, lists images or binds an
   /// observer to the domain takes the world's lattice from here.
-  std::optional<Lattice> lattice() const;
+  std::optional<Lattice> lattice() const { return lattice_of(space); }
 };
 
 /// A world and the camera it is first seen from: what a scene file or a
@@ -105,21 +93,14 @@ struct Scene : World {
   Display display;
 };
 
-/// Whether two worlds live in the same space (the same quotient, monodromy
-/// and fibre area).
-inline bool same_space(const World& a, const World& b) {
-  return a.quotient == b.quotient && a.monodromy == b.monodromy && a.fibre_area == b.fibre_area &&
-         (a.quotient != Quotient::ZLoop || a.z_loop == b.z_loop) && (a.quotient != Quotient::XYLoops || a.xy_loops == b.xy_loops);
-}
+/// Whether two worlds live in the same space (the same quotient and parameters).
+inline bool same_space(const World& a, const World& b) { return a.space == b.space; }
 
-/// Moves the world into another space: `quotient` (with `monodromy` and
-/// `fibre_area` for Quotient::Monodromy; ignored otherwise; a z loop or xy
-/// loops take the world's World::z_loop or World::xy_loops). Tubes along the
-/// old lattice's γ1 or γ2 (the golden one's in Sol) turn to the new
-/// lattice's, so that the closed curves stay closed curves. Throws what
-/// Lattice::from_monodromy throws for a bad monodromy, the world unchanged.
-void set_quotient(World& world, Quotient quotient, const Monodromy& monodromy = {},
-                  std::optional<double> fibre_area = std::nullopt);
+/// Moves the world into another space. Tubes along the old lattice's γ1 or
+/// γ2 (the golden one's in Sol) turn to the new lattice's, so that the
+/// closed curves stay closed curves. Throws what the space's lattice() throws
+/// for a bad parameter (a monodromy that is not hyperbolic), the world unchanged.
+void set_space(World& world, const Space& space);
 
 /// Checks every field of the world (finite numbers, positive limits,
 /// colours in [0, 1], at least one object, at most 64 objects and

@@ -27,5 +27,6 @@
 #include "sol/scene.hpp"
 #include "sol/scene_file.hpp"
 #include "sol/shapes.hpp"
+#include "sol/spaces.hpp"
 #include "sol/spreading.hpp"
 #include "sol/version.hpp"
