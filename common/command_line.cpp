@@ -220,7 +220,14 @@ void IntegratorOptions::add_to(CommandLine& cl) {
 }
 
 void SceneOverrides::add_to(CommandLine& cl, const std::string& what, bool with_fov) {
-  if (with_fov) cl.add_number("--fov", fov, "DEG", "vertical field of view in degrees, (0, 180)");
+  if (with_fov) {
+    cl.add_number("--fov", fov, "DEG", "vertical field of view in degrees, (0, 180)");
+    cl.add_number("--aperture", aperture, "A",
+                  "depth of field: the radius of a thin lens at the eye, an arc length in [0, 1] (default 0: a pinhole)");
+    cl.add_number("--focus-distance", focus_distance, "F",
+                  "the arc length along each pixel's geodesic that is in focus, (0, 100] (default: the --look-at "
+                  "point's distance, else the scene's)");
+  }
   cl.add_vec3("--position", position, "X,Y,Z", what + " position (Sol coordinates)");
   cl.add_vec3("--forward", forward, "A,B,C", what + " view direction, frame components");
   cl.add_vec3("--up", up, "A,B,C", what + " up direction, frame components (not parallel to forward)");
@@ -240,10 +247,14 @@ void SceneOverrides::apply(Scene& scene) const {
     if (forward) throw InvalidArgument("--look-at: give either --forward or --look-at, not both");
     try {
       scene.camera = looking_at(scene.camera, *look_at, scene.lattice());
+      const double distance = aim(scene.camera.position, *look_at, scene.lattice()).distance;
+      if (distance > 0.0 && distance <= 100.0) scene.camera.focus_distance = distance;
     } catch (const std::exception& e) {  // the library's message names its function: the option's instead
       throw InvalidArgument("--look-at: " + without_function(e.what()));
     }
   }
+  if (aperture) scene.camera.aperture = *aperture;
+  if (focus_distance) scene.camera.focus_distance = *focus_distance;
   if (max_distance) scene.max_distance = *max_distance;
   if (max_steps) scene.max_steps = *max_steps;
 }

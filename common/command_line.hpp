@@ -131,10 +131,12 @@ struct IntegratorOptions {
 
 /// The options that override a scene's camera and limits: --position,
 /// --forward, --up (frame components) or --look-at (a point the camera
-/// aims at: sol::looking_at), --max-distance, --max-steps, and with
-/// `with_fov` --fov (solxr takes its field of view from the runtime).
+/// aims at: sol::looking_at, and where the lens has no --focus-distance it
+/// focuses there), --max-distance, --max-steps, and with `with_fov` --fov,
+/// --aperture and --focus-distance (solxr takes its field of view from the
+/// runtime and has no lens).
 struct SceneOverrides {
-  std::optional<double> fov, max_distance;
+  std::optional<double> fov, max_distance, aperture, focus_distance;
   std::optional<glm::dvec3> position, forward, up, look_at;
   std::optional<int> max_steps;
 

@@ -487,6 +487,30 @@ void bind_distances_and_shapes(py::module_& m) {
       "image's centre), distance, end (the target or the image reached, in the eye's coordinates) and cut_locus "
       "(another minimiser of the same length exists; the upward one is taken). A scene's camera takes it as "
       "camera={\"look_at\": target}.");
+  m.def(
+      "lens_ray",
+      [](const sol::Camera& camera, const std::array<double, 3>& direction, const std::array<double, 2>& disk) {
+        const sol::LensRay r = sol::lens_ray(camera, glm::normalize(vec3(direction)), {disk[0], disk[1]});
+        py::dict d;
+        d["start"] = array(r.start);
+        d["direction"] = array(r.direction);
+        d["focus_length"] = r.focus_length;
+        d["focused"] = r.focused;
+        return d;
+      },
+      py::arg("camera"), py::arg("direction"), py::arg("disk"),
+      "Depth of field: the ray of the camera's lens through the point `disk` of the unit disk for the pixel ray "
+      "`direction` (frame components), as a dict: start (the lens point, in the eye's coordinates), direction (unit, "
+      "frame components there), focus_length (the arc length to the focus point) and focused (false where no "
+      "such ray was found near the pixel ray's). Renders take lens point sol.lens_sample(k) for sample k.");
+  m.def(
+      "lens_sample",
+      [](int k) {
+        const glm::dvec2 p = sol::lens_sample(k);
+        return std::array<double, 2>{p.x, p.y};
+      },
+      py::arg("k"),
+        "The k-th lens sample, a point (x, y) of the unit disk; sample 0 is its centre.");
   m.def("sphere_area_density",
         [](const std::array<double, 3>& direction, double t) { return sol::sphere_area_density(vec3(direction), t); },
         py::arg("direction"), py::arg("t"),
@@ -676,6 +700,10 @@ void bind_scenes(py::module_& m) {
       .def_property_readonly("up", [](const sol::Camera& c) { return array(c.up); }, "Up, frame components.")
       .def_property_readonly("fov", [](const sol::Camera& c) { return c.fov; },
                              "The vertical field of view, degrees (perspective).")
+      .def_property_readonly("aperture", [](const sol::Camera& c) { return c.aperture; },
+                             "Depth of field: the thin lens's radius, an arc length (0: a pinhole; sol.lens_ray).")
+      .def_property_readonly("focus_distance", [](const sol::Camera& c) { return c.focus_distance; },
+                             "The arc length along each pixel's geodesic that is in focus.")
       .def("__repr__", [](const sol::Camera& c) {
         char text[200];
         std::snprintf(text, sizeof text, "sol.Camera(position=(%g, %g, %g), forward=(%g, %g, %g), fov=%g)", c.position.x,

@@ -121,6 +121,27 @@ TEST(CameraPath, ALongWalkInTheQuotientIsTheObserversWalk) {
   }
 }
 
+// The lens along a path: the start's aperture and focus distance override
+// the scene camera's; where the path gives no focus distance the lens
+// focuses on the start's look_at point and then on a tracking walk's
+// point, frame by frame (its distance, sol::distance in Sol); a focus
+// distance of the path's own stays.
+TEST(CameraPath, TheLensFocusesOnThePointsLookedAt) {
+  const sol::CameraPath tracking = sol::parse_camera_path(R"({"start": {"position": [0, 0, 0.5], "look_at": [2, 1, 0.5],
+      "aperture": 0.05}, "segments": [{"walk": "right", "distance": 1.5, "duration": 2, "look_at": [3, -1, 0.2]}]})");
+  const sol::Camera scene_camera;
+  const sol::Camera start = tracking.at(0.0, scene_camera, std::nullopt);
+  EXPECT_EQ(start.aperture, 0.05);
+  EXPECT_NEAR(start.focus_distance, sol::distance(glm::dvec3(0, 0, 0.5), glm::dvec3(2, 1, 0.5)), 1e-9);
+  for (const double t : {0.5, 1.0, 2.0}) {
+    const sol::Camera c = tracking.at(t, scene_camera, std::nullopt);
+    EXPECT_NEAR(c.focus_distance, sol::distance(c.position, glm::dvec3(3, -1, 0.2)), 1e-9) << t;
+  }
+  const sol::CameraPath fixed = sol::parse_camera_path(R"({"start": {"look_at": [2, 1, 0.5], "aperture": 0.05,
+      "focus_distance": 0.8}, "segments": [{"walk": "right", "distance": 1, "duration": 1, "look_at": [3, -1, 0.2]}]})");
+  EXPECT_EQ(fixed.at(0.5, scene_camera, std::nullopt).focus_distance, 0.8);
+}
+
 TEST(CameraPath, ErrorsNameTheField) {
   const std::pair<const char*, const char*> bad[] = {
       {R"({"segments": []})", "'segments' must be a non-empty array"},
@@ -132,6 +153,8 @@ TEST(CameraPath, ErrorsNameTheField) {
       {R"({"segments": [{"hold": 1, "walk": "up"}]})", "segments[0]"},
       {R"({"segments": [{"jump": 1}]})", "must be a walk, a turn or a hold"},
       {R"({"start": {"fov": 200}, "segments": [{"hold": 1}]})", "start.fov"},
+      {R"({"start": {"aperture": 3}, "segments": [{"hold": 1}]})", "start.aperture must be in [0, 1]"},
+      {R"({"start": {"focus_distance": -1}, "segments": [{"hold": 1}]})", "start.focus_distance must be in (0, 100]"},
       {R"({"start": {"position": [0, 0, "x"]}, "segments": [{"hold": 1}]})", "start.position"},
       {R"({"segments": [{"hold": 1}], "speed": 2})", "unknown key 'speed'"},
       {R"({"segments": [{"walk": "forward", "distance": 1e300, "duration": 1}]})", "segments[0].distance must be within"},

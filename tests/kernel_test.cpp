@@ -661,6 +661,63 @@ TEST(Kernel, TheLookAtPointIsAtTheCentrePixel) {
   expect_no_validation_errors();
 }
 
+// Depth of field (sol/lens.hpp): the kernel's lens rays (float, two chord
+// steps of Newton's method) render the CPU's image (double, Newton to
+// 1e-12), both taking sol::lens_sample(k) for sample k: a sharp ball at the
+// focus, a blurred one before it, a checkered floor behind, 16 samples, at
+// the scene defaults, in Sol and the golden quotient (the lens point
+// teleported into D). Sample 0 (the AOVs) is the pinhole's ray on both.
+// Float against double: a ray that grazes a silhouette may go either way,
+// and in the quotient the far images of the floor are reached along
+// geodesics whose neighbours part exponentially (the flow is Anosov), so
+// the pinhole's kernel image already differs from the CPU's there (6 % of
+// the pixels by over 0.02). The lens may add its float rounding to that,
+// not more: its pixels differing by over 0.02 at most 1.5 times the
+// pinhole's plus 2 % of the image, its mean difference at most 1.5 times
+// the pinhole's plus 2e-3; and without the lens (the pinhole's image) a
+// fifth of the pixels differ, so the lens is seen.
+TEST(Kernel, ALensRendersAsTheCpu) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  auto differing = [](const sol::RenderResult& a, const sol::RenderResult& b, double& mean) {
+    int n = 0;
+    mean = 0.0;
+    for (int k = 0; k < a.width * a.height; ++k) {
+      float e = 0.0f;
+      for (int ch = 0; ch < 3; ++ch) e = std::max(e, std::abs(a.rgba[4 * k + ch] - b.rgba[4 * k + ch]));
+      n += e > 0.02f;
+      mean += static_cast<double>(e) / (a.width * a.height);
+    }
+    return n;
+  };
+  for (const char* quotient : {"none", "golden"}) {
+    const sol::Scene scene = sol::parse_scene(std::string(R"({"quotient": ")") + quotient + R"(",
+        "camera": {"position": [0.05, 0.1, 0.3], "look_at": [1.6, 0.2, 0.35], "up": [0, 0, 1], "fov": 50,
+                   "aperture": 0.12},
+        "objects": [{"type": "plane_z", "c": 0, "color": [0.8, 0.8, 0.8], "pattern": "checker"},
+                    {"type": "ball", "center": [1.6, 0.2, 0.35], "radius": 0.2, "color": [0.2, 0.8, 0.3]},
+                    {"type": "ball", "center": [0.7, -0.25, 0.3], "radius": 0.1, "color": [0.9, 0.3, 0.2]}]})");
+    sol::Scene pinhole = scene;
+    pinhole.camera.aperture = 0.0;
+    const sol::RenderOptions settings{.width = 32, .height = 24, .samples = 16};
+    const int pixels = settings.width * settings.height;
+    renderer.set_world(scene);
+    const sol::RenderResult gpu = renderer.render(scene.camera, settings);
+    const sol::RenderResult sharp_gpu = renderer.render(pinhole.camera, settings);
+    const sol::RenderResult cpu = sol::render_cpu(scene, settings), sharp = sol::render_cpu(pinhole, settings);
+    double mean = 0.0, mean_pinhole = 0.0, blur = 0.0;
+    const int differ = differing(gpu, cpu, mean), differ_pinhole = differing(sharp_gpu, sharp, mean_pinhole);
+    const int blurred = differing(sharp, cpu, blur);
+    std::printf("lens, %s: %d of %d pixels differ by over 0.02 from the CPU (mean %.2e; the pinhole's %d, %.2e); "
+                "from the pinhole's image %d (mean %.2e)\n",
+                quotient, differ, pixels, mean, differ_pinhole, mean_pinhole, blurred, blur);
+    EXPECT_LE(differ, 1.5 * differ_pinhole + pixels / 50) << quotient;
+    EXPECT_LT(mean, 1.5 * mean_pinhole + 2e-3) << quotient;
+    EXPECT_GE(blurred, pixels / 5) << quotient;
+    EXPECT_EQ(gpu.object, cpu.object) << quotient;  // sample 0: the pinhole's hits
+  }
+  expect_no_validation_errors();
+}
+
 TEST(Kernel, SpecialisedKernelRendersTheImageOfTheGeneralOne) {
   // The kernel specialised to a scene's features and the one with every
   // feature compiled in compute the same march (the general one evaluates

@@ -282,6 +282,9 @@ PanelActions draw_panel(PanelModel& m, PanelText& text) {
     ImGui::InputScalarN("##look_at", ImGuiDataType_Double, text.look_at.data(), 3, nullptr, nullptr, "%.3f");
     ImGui::SameLine();
     if (ImGui::Button("look at")) out.look_at = glm::dvec3(text.look_at[0], text.look_at[1], text.look_at[2]);
+    // Depth of field (sol/lens.hpp): seen as the refinement's samples gather (a moving view is the pinhole's).
+    drag_double("aperture", m.scene.camera.aperture, 0.001, 0.0, 1.0, "%.3f");
+    drag_double("focus distance", m.scene.camera.focus_distance, 0.01, 0.01, 100.0, "%.3f");
     // The display: how the linear frame is shown (not a change of the world: nothing is rendered again).
     drag_double("exposure (stops)", m.scene.display.exposure, 0.05, -Display::kMaxExposure, Display::kMaxExposure, "%+.2f");
     int tone = static_cast<int>(m.scene.display.tone);

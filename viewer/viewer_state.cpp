@@ -162,7 +162,10 @@ void ViewerState::act(const PanelActions& a, int render_width, int render_height
   if (a.reset) observer = observer_at(scene);
   if (a.look_at) {
     try {
-      observer.face(aim(observer.position(), *a.look_at, scene.lattice()).direction);
+      const Aim to = aim(observer.position(), *a.look_at, scene.lattice());
+      observer.face(to.direction);
+      // The lens focuses on the point (as a scene file's look_at without a focus distance).
+      if (to.distance > 0.0 && to.distance <= 100.0) scene.camera.focus_distance = to.distance;
       message.clear();
     } catch (const std::exception& e) {  // the point at the eye, or no minimiser found
       message = std::string("look at: ") + e.what();
@@ -236,7 +239,8 @@ void ViewerState::refuse(const std::string& what, double value) {
 std::array<double, 16> ViewerState::view_key(int width, int height) const {
   const glm::dvec3 p = observer.position(), f = observer.forward(), u = observer.up();
   return {p.x, p.y, p.z, f.x, f.y, f.z, u.x, u.y, u.z, scene.camera.fov, stereo ? ipd : -1.0,
-          static_cast<double>(world_version), static_cast<double>(width), static_cast<double>(height), 0.0, 0.0};
+          static_cast<double>(world_version), static_cast<double>(width), static_cast<double>(height),
+          scene.camera.aperture, scene.camera.focus_distance};
 }
 
 Camera ViewerState::camera() const {
@@ -253,14 +257,16 @@ std::string ViewerState::solrender_command(int width, int height) const {
   if (scene.display != Display{}) {
     std::snprintf(shown, sizeof shown, " --exposure %.17g --tone %s", scene.display.exposure, tone_name(scene.display.tone));
   }
+  char lens[96] = "";  // the lens, where there is one
+  if (c.aperture > 0.0) std::snprintf(lens, sizeof lens, " --aperture %.17g --focus-distance %.17g", c.aperture, c.focus_distance);
   char text[1024];
   std::snprintf(text, sizeof text,
                 "solrender --scene %s --width %d --height %d --fov %.17g --position %.17g,%.17g,%.17g "
-                "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s%s -o solview.png",
+                "--forward %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --max-distance %.17g --max-steps %d%s%s%s -o solview.png",
                 scene_name.c_str(), width, height, c.fov, c.position.x, c.position.y, c.position.z, c.forward.x,
                 c.forward.y, c.forward.z, c.up.x, c.up.y, c.up.z, scene.max_distance, scene.max_steps,
                 stereo ? (" --stereo --ipd " + std::to_string(ipd)).c_str() : "",
-                shown);
+                lens, shown);
   return text;
 }
 

@@ -19,6 +19,7 @@
 #include <sol/error.hpp>
 #include <sol/group.hpp>
 #include <sol/lattice.hpp>
+#include <sol/lens.hpp>
 #include <sol/quotient_field.hpp>
 
 #include "sol/vk/buffer.hpp"
@@ -906,6 +907,8 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
     }
   }
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
+  // Depth of field: the eyes share their camera's lens (sol::stereo_eyes copies it).
+  g.lens = glm::vec4(glm::dvec4(sample.lens, eyes[0].aperture, eyes[0].focus_distance));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   g.display = glm::vec4(1.0f, static_cast<float>(kernel::kToneClamp), 0.0f, 0.0f);  // (an 8-bit target's record sets its own)
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
@@ -915,6 +918,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.srgb_unorm = srgb_unorm;
   variant.projections = projections;
   variant.ods = ods;
+  variant.lens = eyes[0].aperture > 0.0;
   variant.path = path || sample.path >= 0;
   if (variant.path && !m.path_refused.empty()) throw NotImplemented("sol::vk::MarchRenderer: " + m.path_refused);
   variant.inside = eye_inside_solid(prepared, eyes);
@@ -1127,6 +1131,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
         g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), k == 0 ? 1.0 : 0.0));
+        const glm::dvec2 disk = lens_sample(k);
+        g.lens.x = static_cast<float>(disk.x);
+        g.lens.y = static_cast<float>(disk.y);
         g.path.z = k;
         ms += m.run_passes(pipeline, f.set, group_count(static_cast<std::uint32_t>(cols), kernel::kGroupSize),
                            group_count(static_cast<std::uint32_t>(rows), kernel::kGroupSize), f.data());

@@ -32,6 +32,13 @@ void check_camera(const Camera& c) {
   if (c.eye_offset != 0.0 && c.projection != Projection::Equirectangular) {
     field_error("camera.eye_offset", "camera.eye_offset (omnidirectional stereo) is for the equirectangular projection only");
   }
+  if (!(c.aperture >= 0.0 && c.aperture <= 1.0)) field_error("camera.aperture", "camera.aperture must be in [0, 1]");
+  if (!(c.focus_distance > 0.0 && c.focus_distance <= 100.0)) {
+    field_error("camera.focus_distance", "camera.focus_distance must be in (0, 100]");
+  }
+  if (c.aperture > 0.0 && c.projection == Projection::Equirectangular) {
+    field_error("camera.aperture", "camera.aperture (depth of field) is for the perspective and fisheye projections only");
+  }
   if (c.frustum && c.projection != Projection::Perspective) {
     field_error("camera.frustum", "camera.frustum is for the perspective projection only");
   }

@@ -85,7 +85,8 @@ PathSegment read_segment(const json& j, const SceneFileReader& r, const std::str
 // past about 35 units is no longer exact in double (Lattice::word_of).
 constexpr double kQuotientWalkStep = 1.0;
 
-void apply(const PathSegment& s, double f, Observer& o, const std::optional<Lattice>& lattice) {
+// `focus`: set to the distance of a walk's look_at point as it faces it.
+void apply(const PathSegment& s, double f, Observer& o, const std::optional<Lattice>& lattice, double& focus) {
   if (f <= 0.0) return;
   switch (s.kind) {
     case PathSegment::Kind::Walk:
@@ -96,7 +97,9 @@ void apply(const PathSegment& s, double f, Observer& o, const std::optional<Latt
       }
       if (s.look_at) {
         try {
-          o.face(aim(o.position(), *s.look_at, lattice).direction);
+          const Aim to = aim(o.position(), *s.look_at, lattice);
+          o.face(to.direction);
+          if (to.distance > 0.0 && to.distance <= 100.0) focus = to.distance;
         } catch (const InvalidArgument&) {
           // At the point itself (or one of its images): no direction; the frame stays.
         }
@@ -132,7 +135,15 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   if (forward) c.forward = *forward;
   if (up) c.up = *up;
   if (fov) c.fov = *fov;
-  if (look_at) c = looking_at(c, *look_at, lattice);
+  if (aperture) c.aperture = *aperture;
+  if (focus_distance) c.focus_distance = *focus_distance;
+  double focus = c.focus_distance;  // the lens's focus, tracking the points looked at where the path gives none
+  if (look_at) {
+    c = looking_at(c, *look_at, lattice);
+    const double distance = aim(c.position, *look_at, lattice).distance;
+    if (distance > 0.0 && distance <= 100.0) focus = distance;
+  }
+  if (!focus_distance) c.focus_distance = focus;
   validate(c);
   Observer o(c.position, c.forward, c.up);
   if (lattice) o.bind(*lattice);
@@ -140,12 +151,13 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   for (const PathSegment& s : segments) {
     if (t <= begin) break;
     const double end = begin + s.duration;
-    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o, lattice);
+    apply(s, t >= end ? 1.0 : (t - begin) / s.duration, o, lattice, focus);
     begin = end;
   }
   c.position = o.position();
   c.forward = o.forward();
   c.up = o.up();
+  if (!focus_distance) c.focus_distance = focus;
   return c;
 }
 
@@ -164,13 +176,16 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
   if (root.contains("start")) {
     const json& s = root["start"];
     if (!s.is_object()) r.fail("start", "'start' must be an object");
-    r.require_known_keys(s, {"position", "forward", "look_at", "up", "fov"}, "start", "start");
+    r.require_known_keys(s, {"position", "forward", "look_at", "up", "fov", "aperture", "focus_distance"}, "start",
+                         "start");
     if (s.contains("forward") && s.contains("look_at")) r.fail("start.look_at", "start: give either 'forward' or 'look_at', not both");
     if (s.contains("look_at")) path.look_at = r.vec3(s["look_at"], "start.look_at");
     if (s.contains("position")) path.position = r.vec3(s["position"], "start.position");
     if (s.contains("forward")) path.forward = r.vec3(s["forward"], "start.forward");
     if (s.contains("up")) path.up = r.vec3(s["up"], "start.up");
     if (s.contains("fov")) path.fov = r.number(s["fov"], "start.fov");
+    if (s.contains("aperture")) path.aperture = r.number(s["aperture"], "start.aperture");
+    if (s.contains("focus_distance")) path.focus_distance = r.number(s["focus_distance"], "start.focus_distance");
   }
   if (!root.contains("segments") || !root["segments"].is_array() || root["segments"].empty()) {
     r.fail("segments", "'segments' must be a non-empty array of walks, turns and holds");
@@ -191,6 +206,12 @@ CameraPath parse_camera_path(std::string_view text, std::string_view source) {
       detail::field_error("start.forward", "start.forward and start.up must not be parallel");
     }
     if (path.fov && !(*path.fov > 0.0 && *path.fov < 180.0)) detail::field_error("start.fov", "start.fov must be in (0, 180) degrees");
+    if (path.aperture && !(*path.aperture >= 0.0 && *path.aperture <= 1.0)) {
+      detail::field_error("start.aperture", "start.aperture must be in [0, 1]");
+    }
+    if (path.focus_distance && !(*path.focus_distance > 0.0 && *path.focus_distance <= 100.0)) {
+      detail::field_error("start.focus_distance", "start.focus_distance must be in (0, 100]");
+    }
   } catch (const detail::FieldError& e) {
     r.fail(e.path(), e.what());
   }

@@ -24,6 +24,7 @@
 #include "sol/error.hpp"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
+#include "sol/lens.hpp"
 #include "sol/light.hpp"
 #include "sol/quotient_field.hpp"
 #include "row_pool.hpp"
@@ -1230,8 +1231,17 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
     views.push_back(view_from(prepared, at));
     transports.push_back(column.transport);
   }
-  // The ray of a point of pixel (i, j): from its column's eye.
-  auto march_at = [&](int i, int j, const glm::dvec2& offset) {
+  // The ray of a point of pixel (i, j) in sample s: from its column's eye;
+  // with a lens from sample s's lens point (sol::lens_ray).
+  const bool lens = camera.aperture > 0.0;
+  auto march_at = [&](int i, int j, const glm::dvec2& offset, int s) {
+    if (lens) {
+      const LensRay ray = lens_ray(camera, camera_ray(camera, i, j, w, h, offset), lens_sample(s));
+      if (ray.start == glm::dvec3(0.0)) return march_view(prepared, views[0], ray.direction);
+      Camera at = camera;
+      at.position = multiply(camera.position, ray.start);
+      return march_view(prepared, view_from(prepared, at), ray.direction);
+    }
     if (!ods) return march_view(prepared, views[0], camera_ray(camera, i, j, w, h, offset));
     const std::size_t c = static_cast<std::size_t>(i);
     return march_view(prepared, views[c], glm::normalize(transports[c] * camera_ray(mono, i, j, w, h, offset)));
@@ -1251,13 +1261,13 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       // Sample 0 (the centre: the AOVs' hit) where the range starts there.
       const int first = settings.first_sample;
       const bool sees = first == 0 && camera_sees(camera, i, j, w, h);
-      const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}) : MarchHit{};
+      const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}, 0) : MarchHit{};
       const auto colour = [&](const MarchHit& at, int s) { return transport->radiance(at, k, s); };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = std::max(first, 1); s < first + settings.samples; ++s) {  // the other samples: colour only
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
-        const MarchHit other = march_at(i, j, offset);
+        const MarchHit other = march_at(i, j, offset, s);
         c += colour(other, s);
       }
       c /= static_cast<double>(settings.samples);

@@ -34,8 +34,10 @@ using nlohmann::json;
 // the camera once the world's space is known.
 std::optional<glm::dvec3> read_camera(const json& c, const SceneFileReader& r, Camera& camera) {
   if (!c.is_object()) r.fail("camera", "'camera' must be an object");
-  r.require_known_keys(c, {"position", "forward", "look_at", "up", "fov", "frustum", "projection", "fisheye_fov"}, "camera",
-                       "camera");
+  r.require_known_keys(c,
+                       {"position", "forward", "look_at", "up", "fov", "frustum", "projection", "fisheye_fov", "aperture",
+                        "focus_distance"},
+                       "camera", "camera");
   if (c.contains("look_at") && c.contains("forward")) {
     r.fail("camera.look_at", "camera: give either 'forward' or 'look_at', not both");
   }
@@ -50,6 +52,8 @@ std::optional<glm::dvec3> read_camera(const json& c, const SceneFileReader& r, C
   if (c.contains("forward")) camera.forward = r.vec3(c["forward"], "camera.forward");
   if (c.contains("up")) camera.up = r.vec3(c["up"], "camera.up");
   if (c.contains("fov")) camera.fov = r.number(c["fov"], "camera.fov");
+  if (c.contains("aperture")) camera.aperture = r.number(c["aperture"], "camera.aperture");
+  if (c.contains("focus_distance")) camera.focus_distance = r.number(c["focus_distance"], "camera.focus_distance");
   if (c.contains("frustum")) {
     const json& f = c["frustum"];
     if (!f.is_array() || f.size() != 4) {
@@ -62,8 +66,9 @@ std::optional<glm::dvec3> read_camera(const json& c, const SceneFileReader& r, C
   return r.vec3(c["look_at"], "camera.look_at");
 }
 
-// The camera turned towards `target` in the world's space (sol::looking_at).
-void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<Lattice>& lattice,
+// The camera turned towards `target` in the world's space (sol::looking_at);
+// without a focus distance of its own (`focus`) the lens focuses there.
+void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<Lattice>& lattice, bool focus,
                 const SceneFileReader& r) {
   try {
     detail::check_position(target, "camera.look_at");
@@ -75,6 +80,8 @@ void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<La
   auto fail = [&](const std::string& what) { r.fail("camera.look_at", "camera.look_at: " + without_function(what)); };
   try {
     camera = looking_at(camera, target, lattice);
+    const double distance = aim(camera.position, target, lattice).distance;
+    if (focus && distance > 0.0 && distance <= 100.0) camera.focus_distance = distance;
   } catch (const InvalidArgument& e) {
     fail(e.what());
   } catch (const OutOfRange& e) {
@@ -214,7 +221,10 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   } catch (const detail::FieldError& e) {
     r.fail(e.path(), e.what());
   }
-  if (look_at) aim_camera(s.camera, *look_at, lattice, r);
+  if (look_at) {
+    const bool focus = !root["camera"].contains("focus_distance");
+    aim_camera(s.camera, *look_at, lattice, focus, r);
+  }
   const json& objects = root["objects"];
   std::vector<std::string> paths;       // the file's object entries
   std::vector<std::uint32_t> origins;  // each object's entry among them
@@ -315,6 +325,10 @@ std::string to_json(const Scene& s) {
   if (s.camera.projection != Projection::Perspective) {
     root["camera"]["projection"] = s.camera.projection == Projection::Equirectangular ? "equirectangular" : "fisheye";
     root["camera"]["fisheye_fov"] = s.camera.fisheye_fov;
+  }
+  if (s.camera.aperture != 0.0) {
+    root["camera"]["aperture"] = s.camera.aperture;
+    root["camera"]["focus_distance"] = s.camera.focus_distance;
   }
   if (s.camera.frustum) {
     const Frustum& f = *s.camera.frustum;

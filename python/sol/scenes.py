@@ -90,7 +90,9 @@ def camera(**fields):
     """A sol.Camera from the scene file's camera keys: position (Sol coordinates), forward and up (frame
     components) or look_at (a point: forward aims at it in Sol; in a quotient give the scene's camera
     look_at, or use sol.aim with the lattice), fov (vertical, degrees), projection ("perspective", "equirectangular", "fisheye"), fisheye_fov
-    (degrees), frustum ([left, right, down, up] tangents). Keys left out take the file's defaults."""
+    (degrees), frustum ([left, right, down, up] tangents), aperture and focus_distance (depth of field: a thin lens's
+    radius and the arc length in focus; with look_at and no focus_distance it focuses on the point). Keys left out
+    take the file's defaults."""
     # (Through a scene file with an object, which a scene needs.)
     return _parse({"camera": fields, "objects": [{"type": "plane_z"}]}, "sol.camera").camera
 

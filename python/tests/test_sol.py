@@ -536,3 +536,26 @@ def test_exposure_and_tone_are_solrenders():
         sol.srgb8(image["rgba"], tone="filmic")
     with pytest.raises(ValueError, match="exposure"):
         sol.srgb8(image["rgba"], exposure=float("nan"))
+
+
+def test_a_lens_focuses_every_ray_on_its_pixel_rays_focus_point():
+    # Depth of field from Python: the camera's keys, the lens ray through
+    # each lens sample reaching the pixel ray's focus point F = exp(f u)
+    # (sol.flow from the lens point), and look_at focusing on the point.
+    cam = sol.camera(position=[0, 0, 0], forward=[1, 0.2, 0.1], aperture=0.1, focus_distance=2.0)
+    assert cam.aperture == 0.1 and cam.focus_distance == 2.0
+    u = np.array([1.0, 0.2, 0.1]) / np.linalg.norm([1.0, 0.2, 0.1])
+    assert tuple(sol.lens_sample(0)) == (0.0, 0.0)
+    focus = np.asarray(sol.flow([0, 0, 0], u, 2.0)[0])
+    for k in range(1, 6):
+        disk = sol.lens_sample(k)
+        assert np.hypot(*disk) <= 1.0
+        ray = sol.lens_ray(cam, u, disk)
+        assert ray["focused"]
+        assert np.linalg.norm(ray["start"]) > 1e-3
+        end = np.asarray(sol.flow(ray["start"], ray["direction"], ray["focus_length"])[0])
+        assert np.linalg.norm(end - focus) < 1e-9
+    aimed = sol.camera(position=[0.1, 0.2, 0.3], look_at=[1.7, -0.4, 0.9], aperture=0.1)
+    assert abs(aimed.focus_distance - sol.aim([0.1, 0.2, 0.3], [1.7, -0.4, 0.9])["distance"]) < 1e-9
+    with pytest.raises(sol.InvalidArgumentError, match="camera.aperture"):
+        sol.camera(aperture=2.0)

@@ -57,6 +57,51 @@ struct CameraRay {
   bool sees;
 };
 
+// The end of the geodesic from the origin with initial velocity v.
+vec3 lens_exp(vec3 v) {
+  const float n = length(v);
+  return n > 0.0 ? sol_exp(v / n, n).position : vec3(0.0);
+}
+
+// Depth of field (HAS_LENS; sol::lens_ray, the double reference, and the
+// mathematics in sol/lens.hpp): the ray from this dispatch's lens point
+// δ = exp(aperture (ξ right + η up)) that meets the pixel ray's focus point
+// F = exp(f u), the solution v of exp(v) = δ⁻¹ F near f u by two chord
+// steps of Newton's method (the Jacobian at f u by forward differences of
+// step 1e-2 f). One loop of six evaluations of exp (δ, F, three
+// differences, the second step's residual): one copy of its code. Where the
+// steps fail (a conjugate point near F) the ray leaves δ along u, as on the CPU.
+void lens_ray(inout CameraRay r, vec3 right, vec3 up) {
+  const vec4 lens = params.lens;
+  const vec3 offset = lens.z * (lens.x * right + lens.y * up);
+  if (lens.z == 0.0 || dot(offset, offset) == 0.0) return;  // the lens's centre: the pixel ray
+  const vec3 u = r.direction;
+  const float f = lens.w, h = 1e-2 * f;
+  vec3 start = vec3(0.0), focus = vec3(0.0), target = vec3(0.0), v = f * u;
+  mat3 jacobian = mat3(1.0);
+  for (int i = 0; i < 6; ++i) {
+    vec3 at = v;
+    if (i == 0) at = offset;
+    if (i >= 2 && i <= 4) at = f * u + h * vec3(i == 2 ? 1.0 : 0.0, i == 3 ? 1.0 : 0.0, i == 4 ? 1.0 : 0.0);
+    const vec3 p = lens_exp(at);
+    if (i == 0) start = p;
+    if (i == 1) {
+      focus = p;
+      target = sol_translate(vec3(-exp(-start.z) * start.x, -exp(start.z) * start.y, -start.z), focus);
+    }
+    if (i == 2) jacobian[0] = (p - focus) / h;
+    if (i == 3) jacobian[1] = (p - focus) / h;
+    if (i == 4) {
+      jacobian[2] = (p - focus) / h;
+      v = f * u + inverse(jacobian) * (target - focus);
+    }
+    if (i == 5) v += inverse(jacobian) * (target - p);
+  }
+  r.start = start;
+  const bool focused = !any(isnan(v)) && !any(isinf(v)) && length(v - f * u) <= 0.5 * f + 2.0 * lens.z;
+  r.direction = focused ? normalize(v) : u;
+}
+
 // Pixel `local` of eye `eye` (each width x height) at `sample_at.xy` in the
 // pixel (sol::camera_ray).
 CameraRay camera_ray(int eye, ivec2 local, int width, int height, vec4 sample_at) {
@@ -90,6 +135,7 @@ CameraRay camera_ray(int eye, ivec2 local, int width, int height, vec4 sample_at
                                   cos(theta) * eye_forward.xyz)
                       : eye_forward.xyz;
   }
+  if (HAS_LENS) lens_ray(r, eye_right.xyz, eye_up.xyz);
   // An omnidirectional stereo eye's column has its own eye: the start
   // `offset`, the direction transported there.
   if (HAS_ODS) {

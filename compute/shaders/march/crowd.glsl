@@ -236,7 +236,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
   const bool camera = purpose == kMarchCamera;
   const float hit_epsilon = params.limits.y;
   const int max_steps = int(params.limits.w);
-  const bool translated = !camera || HAS_ODS;
+  const bool translated = !camera || HAS_ODS || HAS_LENS;
   MarchHit h = march_hit_none(kMarchFromStart);
   h.from = origin;
   SolRay ray = sol_ray(direction);

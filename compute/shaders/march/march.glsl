@@ -138,7 +138,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   const bool heights_only = camera && HEIGHTS_ONLY;
   const bool planes_xy_only = camera && PLANES_XY_ONLY;
   const bool zeta = camera && SOL_ZETA, zeta_only = camera && SOL_ZETA_ONLY;
-  const bool translated = !camera || HAS_ODS;  // positions from a start other than the eye
+  const bool translated = !camera || HAS_ODS || HAS_LENS;  // positions from a start other than the eye
   // Whether objects can be passed: cutout planes, and the surface a shadow ray leaves.
   const bool passes = !camera || HAS_CUTOUT;
   MarchHit h = march_hit_none(resume);
@@ -264,7 +264,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   if (hit != 0 && INTEGRATOR == 0 && heights_only && !HAS_CUTOUT) {
     sol_ray_integrals(ray);
     q = sol_position_forward(ray, t);
-    if (HAS_ODS) q = sol_translate(origin, q);
+    if (HAS_ODS || HAS_LENS) q = sol_translate(origin, q);
   }
   MarchHit found = march_found(hit - 1, t, q, origin, steps, exact);
   // A mirror reflects the ray's tangent at the hit (the positions above may

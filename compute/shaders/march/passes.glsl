@@ -80,14 +80,14 @@ void march_pass() {
     }
     return;
   }
-  // Where the march starts: in Sol relative to the eye (its camera, or an
-  // ODS column's eye); in the quotient the eye's point of D (from double),
-  // or the column's eye teleported into D.
+  // Where the march starts: in Sol relative to the eye (its camera, an ODS
+  // column's eye or the lens point); in the quotient the eye's point of D
+  // (from double), or the column's eye or lens point teleported into D.
   vec3 origin = ray.start;
   vec3 direction = ray.direction;
   if (QUOTIENT) {
     origin = params.eyes[eye].camera.xyz;
-    if (HAS_ODS) {
+    if (HAS_ODS || HAS_LENS) {
       origin = sol_translate(origin, ray.start);
       float turn = 1.0;
       if (!in_domain(origin)) origin = teleport(origin, false, turn);

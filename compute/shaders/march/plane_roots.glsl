@@ -49,7 +49,7 @@ PlaneRoot plane_xy_roots(SolRay ray, vec3 start, int count, int types[kListedObj
   for (int it = 0; it < iterations; ++it) {
     if (it > 0) {
       q = sol_position_forward(ray, t);
-      if (HAS_ODS) q = sol_translate(start, q);
+      if (HAS_ODS || HAS_LENS) q = sol_translate(start, q);
       ++steps;
     }
     const float ez = exp(q.z), ez2 = ez * ez;

@@ -53,6 +53,13 @@ struct Camera {
   /// directions parallel-transported along that flow (sol::column_eye).
   /// 0: a mono panorama, every ray from `position`.
   double eye_offset = 0.0;
+  /// Depth of field (sol/lens.hpp): the radius of a thin lens in the plane
+  /// of right and up, an arc length in [0, 1]; 0, the default, is the
+  /// pinhole camera. Perspective and fisheye cameras only.
+  double aperture = 0.0;
+  /// The arc length along each pixel's geodesic from the eye at which the
+  /// lens focuses, in (0, 100].
+  double focus_distance = 2.0;
 };
 
 /// Checks the camera (finite position within 1e15 of the origin, non-zero

@@ -45,10 +45,14 @@ struct PathSegment {
 };
 
 struct CameraPath {
-  /// Overrides of the scene camera's position, forward, up, fov.
+  /// Overrides of the scene camera's position, forward, up, fov and lens
+  /// (aperture, focus distance: sol/lens.hpp).
   std::optional<glm::dvec3> position, forward, up;
-  std::optional<double> fov;
+  std::optional<double> fov, aperture, focus_distance;
   /// The point the start looks at, in place of `forward` (sol::looking_at).
+  /// Where the path gives no focus distance, the lens focuses on the point
+  /// the camera last looked at (the start's, then each walk's with a
+  /// look_at as it tracks it).
   std::optional<glm::dvec3> look_at;
   std::vector<PathSegment> segments;
 

@@ -17,6 +17,7 @@
 #include "sol/group.hpp"
 #include "sol/geodesic.hpp"
 #include "sol/lattice.hpp"
+#include "sol/lens.hpp"
 #include "sol/light.hpp"
 #include "sol/march.hpp"
 #include "sol/objects.hpp"

@@ -69,7 +69,8 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
   X(resume,        RESUME_WORLD,    20) /* the march pass leaves rays to the resume pass (exact balls in Sol, small μ in the quotient) */ \
   X(inside,        HAS_INSIDE,      45) /* an eye inside a solid: solids seen from inside */ \
   X(path,          PATH_TRACING,    47) /* light transport by paths (march/paths.glsl), else direct light */ \
-  X(from_eye, FROM_EYE_WORLD, 48) /* the camera ray the first segment of a path or of radiance's rays: one pipeline, one march */
+  X(from_eye, FROM_EYE_WORLD, 48) /* the camera ray the first segment of a path or of radiance's rays: one pipeline, one march */ \
+  X(lens,          HAS_LENS,        49) /* a thin lens (depth of field): camera rays from the lens point (Params::lens) */
 // clang-format on
 
 /// The quotient's lattice (sol::Lattice), each X(the kernel's float
@@ -209,6 +210,9 @@ struct Params {
   /// The 8-bit output's display (SOL_OUTPUT_SRGB_UNORM, sol::Display): x
   /// the exposure's scale 2^stops, y the tone curve's code (sol/tone.h).
   vec4 display;
+  /// Depth of field (HAS_LENS, sol/lens.hpp): xy this dispatch's point of
+  /// the unit disk (sol::lens_sample), z the aperture, w the focus distance.
+  vec4 lens;
 };
 
 // ---- The quotient's images of the objects around D (binding 4, std430), world coordinates
@@ -324,7 +328,8 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, light_color) == 2 * sizeof(Eye) + 9 * 16 &&
                   offsetof(Params, path) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
                   offsetof(Params, display) == 2 * sizeof(Eye) + (10 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (10 + kMaxLights) * 16 + 16,
+                  offsetof(Params, lens) == 2 * sizeof(Eye) + (11 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (11 + kMaxLights) * 16 + 16,
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
