@@ -49,7 +49,7 @@ bool object_controls(SceneObject& o) {
   };
   std::visit([&](auto& kind) { kind.visit_fields(FieldControls{changed}); }, o.shape);
   if (!is_solid(o.shape)) changed |= ImGui::Checkbox("cutout (only the bright cells)", &o.cutout);
-  // The material (one of SOL_MATERIALS), the diffuse one's mirror share,
+  // The material (one of SOL_MATERIALS), the diffuse one's mirror share, the glossy one's roughness, the glass one's index
   // and the emitted radiance (every material's; linear, may exceed 1).
   const std::span<const Material> all = materials();
   if (ImGui::BeginCombo("material", std::string(to_string(o.material)).c_str())) {
@@ -57,12 +57,16 @@ bool object_controls(SceneObject& o) {
       if (ImGui::Selectable(std::string(to_string(m)).c_str(), m == o.material) && m != o.material) {
         o.material = m;
         if (m != Material::Diffuse) o.mirror = 0.0;  // (the diffuse material's share alone)
+        o.roughness = m == Material::Glossy ? SceneObject::kDefaultRoughness : 0.0;  // (the glossy one's alone)
+        o.ior = m == Material::Glass ? SceneObject::kDefaultIor : 0.0;                // (the glass one's alone)
         changed = true;
       }
     }
     ImGui::EndCombo();
   }
   if (o.material == Material::Diffuse) changed |= drag_double("mirror", o.mirror, 0.01, 0.0, 1.0, "%.2f");
+  if (o.material == Material::Glossy) changed |= drag_double("roughness", o.roughness, 0.005, 0.0, 1.0, "%.3f");
+  if (o.material == Material::Glass) changed |= drag_double("index of refraction", o.ior, 0.005, 1.0, 3.0, "%.3f");
   float e[3] = {static_cast<float>(o.emission.x), static_cast<float>(o.emission.y), static_cast<float>(o.emission.z)};
   if (ImGui::DragFloat3("emission", e, 0.01f, 0.0f, 100.0f, "%.2f")) {
     o.emission = glm::dvec3(std::max(e[0], 0.0f), std::max(e[1], 0.0f), std::max(e[2], 0.0f));

@@ -427,7 +427,7 @@ class Refinement : public sol::programs::Refinement {
   void set(sol::viewer::Presenter::FrameOptions& options) const {
     if (const auto s = sample()) {
       // By paths: the k-th path of every pixel (seed 0), as solrender --transport path --spp N.
-      options.sample = sol::vk::PixelSample{s->offset, s->weight, m_paths ? s->index : -1, 0, sol::lens_sample(s->index)};
+      options.sample = sol::vk::PixelSample{s->offset, s->weight, m_paths ? s->index : -1, 0, s->index};
     } else if (reuse()) {
       options.reuse = true;
     }

@@ -50,6 +50,7 @@
 #include "march/plane_roots.glsl"
 #include "march/march.glsl"
 #include "sol/materials.h"  // the materials' lobes, shared with libsol
+#include "march/random.glsl"
 #include "march/shading.glsl"
 #include "march/paths.glsl"
 #include "march/passes.glsl"

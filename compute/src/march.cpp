@@ -186,7 +186,7 @@ std::vector<kernel::Object> pack_objects(const World& world) {
     out[k].plane = glm::vec4(shape.code, shape.radius, pattern_code(o.pattern), o.cutout ? 1.0 : 0.0);
     out[k].color = vec4(o.color, 0.0);
     out[k].material = vec4(o.emission, static_cast<int>(o.material));
-    out[k].params = glm::vec4(static_cast<float>(o.mirror), 0.0f, 0.0f, 0.0f);
+    out[k].params = glm::vec4(material_params(o));
     out[k].glow = glm::vec4(static_cast<float>(o.glow_reach), 0.0f, 0.0f, 0.0f);
   }
   return out;
@@ -908,7 +908,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   }
   g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
   // Depth of field: the eyes share their camera's lens (sol::stereo_eyes copies it).
-  g.lens = glm::vec4(glm::dvec4(sample.lens, eyes[0].aperture, eyes[0].focus_distance));
+  g.lens = glm::vec4(glm::dvec4(lens_sample(sample.index), eyes[0].aperture, eyes[0].focus_distance));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
   g.display = glm::vec4(1.0f, static_cast<float>(kernel::kToneClamp), 0.0f, 0.0f);  // (an 8-bit target's record sets its own)
   const bool projections = std::any_of(eyes.begin(), eyes.end(), [](const Camera& c) { return c.projection != Projection::Perspective; });
@@ -921,9 +921,14 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
   variant.lens = eyes[0].aperture > 0.0;
   variant.path = path || sample.path >= 0;
   if (variant.path && !m.path_refused.empty()) throw NotImplemented("sol::vk::MarchRenderer: " + m.path_refused);
-  variant.inside = eye_inside_solid(prepared, eyes);
+  // Solids seen from inside: an eye within one, or rays refracted into glass.
+  const std::vector<SceneObject>& objects = prepared.world().objects;
+  variant.inside = eye_inside_solid(prepared, eyes) ||
+                   std::any_of(objects.begin(), objects.end(), [](const SceneObject& o) { return o.material == Material::Glass; });
   if (sample.path >= 0) {  // a presenter's path (render() sets its own per sample)
     g.path = path_uniform(sample.seed, sample.path, PathSampling::Combined);
+  } else {  // direct light: the sample's glossy reflections' numbers
+    g.path = path_uniform(sample.seed, sample.index, PathSampling::Combined);
   }
   if (variant.path) g.limits.z = static_cast<float>(prepared.world().path_bounces());
   defer_passes(variant, m.options);

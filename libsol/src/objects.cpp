@@ -154,8 +154,15 @@ std::span<const Material> materials() {
   return all;
 }
 
+glm::dvec4 material_params(const SceneObject& object) {
+  const double x = object.material == Material::Glossy ? object.roughness
+                   : object.material == Material::Glass ? object.ior
+                                                        : object.mirror;
+  return {x, 0.0, 0.0, 0.0};
+}
+
 kernel::SolLobes material_lobes(const SceneObject& object, const glm::dvec3& albedo) {
-  return kernel::sol_material_lobes(static_cast<int>(object.material), albedo, glm::dvec4(object.mirror, 0.0, 0.0, 0.0));
+  return kernel::sol_material_lobes(static_cast<int>(object.material), albedo, material_params(object));
 }
 
 bool material_reflects(const SceneObject& object) {
@@ -266,6 +273,22 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
     field_error(at + ".mirror", at + ".mirror is the diffuse material's share of mirror reflection; material \"" +
                                     std::string(to_string(o.material)) + "\" takes none");
   }
+  if (!(o.roughness >= 0.0 && o.roughness <= 1.0)) field_error(at + ".roughness", at + ".roughness must be in [0, 1]");
+  if (o.roughness != 0.0 && o.material != Material::Glossy) {
+    field_error(at + ".roughness", at + ".roughness is the glossy material's; material \"" +
+                                       std::string(to_string(o.material)) + "\" takes none");
+  }
+  if (o.material == Material::Glass && !(o.ior >= 1.0 && o.ior <= 3.0)) {
+    field_error(at + ".ior", at + ".ior must be in [1, 3]");
+  }
+  if (o.ior != 0.0 && o.material != Material::Glass) {
+    field_error(at + ".ior", at + ".ior is the glass material's index of refraction; material \"" +
+                                 std::string(to_string(o.material)) + "\" takes none");
+  }
+  if (o.material == Material::Glass && !is_solid(o.shape)) {
+    field_error(at + ".material", at + ".material: glass is for solids (balls, boxes, tubes and their composites), light "
+                                       "goes through it to its far wall");
+  }
   if (!(o.glow_reach >= 0.0 && o.glow_reach <= 10.0)) field_error(at + ".glow_reach", at + ".glow_reach must be in [0, 10]");
   if (o.glow_reach > 0.0) {
     const Ball* b = std::get_if<Ball>(&o.shape);
@@ -328,6 +351,10 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
 #undef SOL_MATERIAL_OPTION
   if (o.contains("emission")) obj.emission = r.vec3(o["emission"], at + ".emission");
   if (o.contains("mirror")) obj.mirror = r.number(o["mirror"], at + ".mirror");
+  if (obj.material == Material::Glossy) obj.roughness = SceneObject::kDefaultRoughness;
+  if (o.contains("roughness")) obj.roughness = r.number(o["roughness"], at + ".roughness");
+  if (obj.material == Material::Glass) obj.ior = SceneObject::kDefaultIor;
+  if (o.contains("ior")) obj.ior = r.number(o["ior"], at + ".ior");
   if (o.contains("glow_reach")) obj.glow_reach = r.number(o["glow_reach"], at + ".glow_reach");
   return obj;
 }
@@ -340,6 +367,8 @@ json write_object(const SceneObject& o, const Lattice* quotient) {
   if (o.material != Material::Diffuse) j["material"] = std::string(to_string(o.material));
   if (o.emission != glm::dvec3(0.0)) j["emission"] = to_json(o.emission);
   if (o.mirror != 0.0) j["mirror"] = o.mirror;
+  if (o.material == Material::Glossy) j["roughness"] = o.roughness;
+  if (o.material == Material::Glass) j["ior"] = o.ior;
   if (o.glow_reach != 0.0) j["glow_reach"] = o.glow_reach;
   return j;
 }

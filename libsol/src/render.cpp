@@ -237,12 +237,24 @@ bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dv
 // turns back towards its sphere, `leave_sign` as exact_ball_turned_back's;
 // a composite, whose hollows a ray may leave from outside at a grazing
 // angle: where its distance's rate, the normal's component along u, turns).
+// Another solid's rule holds only for a ray that started into it: one that
+// leaves it through the face it starts on (leave_sign 1, leaving_sign)
+// heads for that face from the start, and passes it until 2 hit_epsilon away.
 bool pass_ends(const Shape& shape, double d, bool inside, const glm::dvec3& q, const glm::dvec3& u, double hit_epsilon,
                double& leave_sign) {
   if (d > 2.0 * hit_epsilon) return true;
   if (is_exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
   if (const Composite* c = std::get_if<Composite>(&shape)) return turned_back(glm::dot(c->normal(q), u), leave_sign);
-  return inside && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
+  return inside && leave_sign <= 0.0 && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
+}
+
+// pass_ends' leave_sign of a solid (neither an exact ball nor a composite)
+// whose surface a ray from q along u starts on: 1 where q lies inside it
+// and the ray heads for its nearest face (it leaves through it), else 0.
+double leaving_sign(const Shape& shape, const glm::dvec3& q, const glm::dvec3& u) {
+  if (!is_solid(shape) || is_exact_ball(shape) || std::holds_alternative<Composite>(shape)) return 0.0;
+  if (!(shape_distance(shape, q) < 0.0)) return 0.0;
+  return shape_inside_clearances(shape, q, u).nearest_rate < 0.0 ? 1.0 : 0.0;
 }
 
 // The normal at a hit, turned to face the ray where it faces away and
@@ -332,6 +344,10 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       if (object_distance(objects[k], glm::dvec3(0.0)) < 2.0 * world.hit_epsilon) passing |= std::uint64_t{1} << k;
     }
   }
+  std::array<double, MarchWorld::kMostListed> leave_sign{};  // (pass_ends)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (passing & (std::uint64_t{1} << k)) leave_sign[k] = leaving_sign(objects[k].shape, glm::dvec3(0.0), direction);
+  }
   const bool full = !heights_only || prepared.features().cutout_gaps;
   // Planes x = c, y = c: their first crossing solved; the march takes the
   // other objects up to it (their distance: the arc length left to it).
@@ -350,7 +366,6 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   for (std::size_t k = 0; k < n; ++k) {
     if (is_solid(objects[k].shape)) solid |= std::uint64_t{1} << k;
   }
-  std::array<double, MarchWorld::kMostListed> leave_sign{};  // exact balls it leaves (exact_ball_turned_back)
   for (int step = 0; step < world.max_steps; ++step) {
     if (!others) t = crossing.t;  // nothing else to march: straight to the crossing, whose position is known
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
@@ -397,7 +412,9 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.pattern_uv = uv;
       hit.direction = ray.direction_at(t);
       // (In Sol an exact ball's normal faces the ray wherever it faces away.)
-      hit.normal = facing_normal(hit.normal, hit.direction, s.hit_inside || is_exact_ball(objects[hit_k].shape));
+      const bool turn = s.hit_inside || is_exact_ball(objects[hit_k].shape);
+      hit.inside = turn && glm::dot(hit.normal, hit.direction) > 0.0;
+      hit.normal = facing_normal(hit.normal, hit.direction, turn);
       return hit;
     }
     t += passing ? std::max(nearest, 2.0 * world.hit_epsilon) : nearest;
@@ -445,7 +462,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
     // the bound's gradient is short: the boxes within a generous reach.)
     const double reach = std::max(2.0 * eps, 0.01);
     tree.search(origin, reach, [&](std::uint32_t k) {
-      if (object_distance(objects[k], origin) < 2.0 * eps) passing.push_back({k, 0.0});
+      if (object_distance(objects[k], origin) < 2.0 * eps) passing.push_back({k, leaving_sign(objects[k].shape, origin, direction)});
       return reach;
     });
   }
@@ -504,7 +521,10 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
       hit.point = q;
       hit.direction = u;
       hit.pattern_uv = uv;
-      hit.normal = facing_normal(shape_normal(objects[hit_k].shape, q), u, s.hit_inside || is_exact_ball(objects[hit_k].shape));
+      const bool turn = s.hit_inside || is_exact_ball(objects[hit_k].shape);
+      hit.normal = shape_normal(objects[hit_k].shape, q);
+      hit.inside = turn && glm::dot(hit.normal, u) > 0.0;
+      hit.normal = facing_normal(hit.normal, u, turn);
       return hit;
     }
     t += passing.empty() ? nearest : std::max(nearest, 2.0 * eps);
@@ -562,7 +582,10 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       if (object_distance(images[static_cast<std::size_t>(k)], origin) < 2.0 * world.hit_epsilon) passing.push_back(k);
     }
   }
-  std::vector<double> leave_sign(passing.size(), 0.0);  // (exact_ball_turned_back), one for each passed image
+  std::vector<double> leave_sign(passing.size(), 0.0);  // (pass_ends), one for each passed image
+  for (std::size_t i = 0; i < passing.size(); ++i) {
+    leave_sign[i] = leaving_sign(images[static_cast<std::size_t>(passing[i])].shape, origin, ray->direction());
+  }
   const bool over_relax = !limits.leave_start;
   // The step from the last point the march moved to (0 before the first),
   // and the part of it that point's own bound covers (the step taken where
@@ -646,6 +669,7 @@ MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, co
       hit.normal = shape_normal(shape_seen_from(image.shape, origin), multiply(inverse(origin), q));
       hit.pattern_uv = shape_pattern_uv(image.shape, q, q);  // world coordinates, the image's own
       hit.direction = u;
+      hit.inside = hit_inside && glm::dot(hit.normal, hit.direction) > 0.0;
       hit.normal = facing_normal(hit.normal, hit.direction, hit_inside);
       return hit;
     }
@@ -721,6 +745,52 @@ glm::dvec3 albedo_at(const SceneObject& o, const MarchHit& hit) {
   return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
 }
 
+// A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the
+// seed, the pixel and the sample, so that an image does not depend on the
+// threads that rendered it.
+class PathRandom {
+ public:
+  PathRandom(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
+      : m_state(seed ^ (0x9E3779B97F4A7C15ULL * (pixel + 1)) ^ (0xD1B54A32D192ED03ULL * (sample + 1))) {}
+  /// Uniform in [0, 1).
+  double uniform() {
+    std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  std::uint64_t m_state;
+};
+
+// The specular lobe's direction at a hit (n: its normal facing the ray):
+// a glass's refraction or reflection (one number: Fresnel's choice), a
+// glossy lobe's (two), else the mirror's reflection (none); the kernel
+// draws the same numbers (march/shading.glsl, march/paths.glsl).
+glm::dvec3 specular_direction(const kernel::SolLobes& lobes, const MarchHit& hit, const glm::dvec3& n, PathRandom& random) {
+  if (lobes.ior > 0.0) return kernel::sol_dielectric_direction(hit.direction, n, lobes.ior, hit.inside, random.uniform());
+  const double xi1 = lobes.roughness > 0.0 ? random.uniform() : 0.0;
+  const double xi2 = lobes.roughness > 0.0 ? random.uniform() : 0.0;
+  return kernel::sol_specular_direction(hit.direction, n, lobes.roughness, xi1, xi2);
+}
+
+// The march of the ray a specular lobe sends from a hit (n: its normal
+// facing the ray). A ray refracted out of a solid (glass, from inside)
+// starts past the surface it crosses, 3 hit_epsilon from it along the
+// normal (3 hit_epsilon / |cos θ| along its geodesic, at most 150
+// hit_epsilon): a march that leaves a surface passes it, but seen from
+// inside only until the ray heads for a face, which a ray leaving through
+// that face always does. The kernel does the same (march/shading.glsl).
+MarchHit march_specular(const MarchWorld& prepared, const MarchHit& hit, const kernel::SolLobes& lobes,
+                        const glm::dvec3& n, const glm::dvec3& direction) {
+  if (!(lobes.ior > 0.0 && hit.inside && glm::dot(direction, n) < 0.0)) return march_from(prepared, hit.point, direction);
+  const double skip = 3.0 * prepared.world().hit_epsilon / std::max(std::abs(glm::dot(direction, n)), 0.02);
+  const ClosedFormGeodesic<double>::State s = ClosedFormGeodesic<double>(direction).at(skip);
+  return march_from(prepared, multiply(hit.point, s.position), s.direction);
+}
+
 // What a ray brings back where the world has mirrors or glowing objects:
 // at each hit, over the fog of its segment (each segment its own
 // max_distance), the object's emission, (1 - mirror) times its diffuse
@@ -728,8 +798,10 @@ glm::dvec3 albedo_at(const SceneObject& o, const MarchHit& hit) {
 // tangent reflected in the surface's normal, frame components: the
 // reflection is that of the tangent space at the hit, an isometry of it),
 // up to max_bounces reflections (past them the mirror's share is black).
-// A world without either shades as shade_hit, to the bit.
-glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
+// A glossy lobe reflects in a direction drawn with `random` (the pixel's
+// sample's numbers: the kernel draws the same). A world without either
+// shades as shade_hit, to the bit.
+glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first, PathRandom& random) {
   if (!prepared.features().mirrors && !prepared.features().emission) return shade_hit(prepared, first);
   const World& world = prepared.world();
   glm::dvec3 color(0.0), weight(1.0);
@@ -746,8 +818,7 @@ glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first) {
     if (lobes.specular == glm::dvec3(0.0) || bounce == world.mirror_bounces()) break;
     weight *= transmittance * lobes.specular;
     const glm::dvec3 n = glm::dot(hit.normal, hit.direction) > 0.0 ? -hit.normal : hit.normal;
-    const glm::dvec3 reflected = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
-    hit = march_from(prepared, hit.point, reflected);
+    hit = march_specular(prepared, hit, lobes, n, specular_direction(lobes, hit, n, random));
   }
   return color;
 }
@@ -782,26 +853,6 @@ glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
 }
 
 // ---- Path tracing (RenderOptions::transport = Transport::Path)
-
-// A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the
-// seed, the pixel and the sample, so that an image does not depend on the
-// threads that rendered it.
-class PathRandom {
- public:
-  PathRandom(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
-      : m_state(seed ^ (0x9E3779B97F4A7C15ULL * (pixel + 1)) ^ (0xD1B54A32D192ED03ULL * (sample + 1))) {}
-  /// Uniform in [0, 1).
-  double uniform() {
-    std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-
- private:
-  std::uint64_t m_state;
-};
 
 // A direction about the unit normal n with density cos θ / π (the frame's
 // components are orthonormal coordinates of the tangent space, so the
@@ -1026,8 +1077,10 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
     // over that; else the diffuse one, its share over its probability.
     const glm::dvec3 surface_albedo = albedo_at(o, hit);
     const kernel::SolLobes lobes = material_lobes(o, surface_albedo);
+    bool after_specular = false;
     if (lobes.specular_probability > 0.0 && random.uniform() < lobes.specular_probability) {
-      next = glm::normalize(hit.direction - 2.0 * glm::dot(hit.direction, n) * n);
+      next = specular_direction(lobes, hit, n, random);
+      after_specular = true;
       weight *= lobes.specular / lobes.specular_probability;
       after_diffuse = false;
     } else {
@@ -1047,7 +1100,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
       if (!(q > 0.0) || random.uniform() >= q) break;
       weight /= q;
     }
-    hit = march_from(prepared, hit.point, next);
+    hit = after_specular ? march_specular(prepared, hit, lobes, n, next) : march_from(prepared, hit.point, next);
   }
   return color;
 }
@@ -1092,13 +1145,19 @@ class LightTransport {
   virtual glm::dvec3 radiance(const MarchHit& hit, std::uint64_t pixel, int sample) const = 0;
 };
 
+// Direct light; a glossy lobe's numbers from the seed, the pixel and the
+// sample, as a path's.
 class DirectLight final : public LightTransport {
  public:
-  explicit DirectLight(const MarchWorld& prepared) : m_prepared(prepared) {}
-  glm::dvec3 radiance(const MarchHit& hit, std::uint64_t, int) const override { return sol::radiance(m_prepared, hit); }
+  DirectLight(const MarchWorld& prepared, std::uint64_t seed) : m_prepared(prepared), m_seed(seed) {}
+  glm::dvec3 radiance(const MarchHit& hit, std::uint64_t pixel, int sample) const override {
+    PathRandom random(m_seed, pixel, static_cast<std::uint64_t>(sample));
+    return sol::radiance(m_prepared, hit, random);
+  }
 
  private:
   const MarchWorld& m_prepared;
+  std::uint64_t m_seed;
 };
 
 // One path a sample, its random numbers from the seed, the pixel and the
@@ -1126,7 +1185,7 @@ class PathTracer final : public LightTransport {
 
 std::unique_ptr<LightTransport> make_transport(const MarchWorld& prepared, const RenderOptions& settings) {
   if (settings.transport == Transport::Path) return std::make_unique<PathTracer>(prepared, settings);
-  return std::make_unique<DirectLight>(prepared);
+  return std::make_unique<DirectLight>(prepared, settings.seed);
 }
 
 }  // namespace
@@ -1174,7 +1233,10 @@ MarchHit CpuRenderer::march(const Camera& camera, const glm::dvec3& direction) c
   return march_view(*prepared, view_from(*prepared, camera), direction);
 }
 
-glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const { return radiance(*current_world(), hit); }
+glm::dvec3 CpuRenderer::shade(const MarchHit& hit) const {
+  PathRandom random(0, 0, 0);  // (a glossy reflection: sample 0 of pixel 0, seed 0)
+  return radiance(*current_world(), hit, random);
+}
 
 RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptions& options) {
   // The world as it is now (logic_error without one), whatever set_world does meanwhile.
@@ -1296,7 +1358,10 @@ MarchHit march(const Scene& scene, const glm::dvec3& direction) {
   return CpuRenderer(scene).march(scene.camera, direction);
 }
 
-glm::dvec3 shade(const Scene& scene, const MarchHit& hit) { return radiance(MarchWorld(scene), hit); }
+glm::dvec3 shade(const Scene& scene, const MarchHit& hit) {
+  PathRandom random(0, 0, 0);
+  return radiance(MarchWorld(scene), hit, random);
+}
 
 RenderResult render_cpu(const Scene& scene, const RenderOptions& options) {
   CpuRenderer renderer;

@@ -559,3 +559,34 @@ def test_a_lens_focuses_every_ray_on_its_pixel_rays_focus_point():
     assert abs(aimed.focus_distance - sol.aim([0.1, 0.2, 0.3], [1.7, -0.4, 0.9])["distance"]) < 1e-9
     with pytest.raises(sol.InvalidArgumentError, match="camera.aperture"):
         sol.camera(aperture=2.0)
+
+
+def test_glossy_objects_from_python():
+    # The glossy material's keyword and its check; a white glossy furnace
+    # (a box about the camera, emitting 0.5, albedo 0.6) holds 0.5 / 0.4.
+    wall = sol.box([0.1, -0.1, 0.05], [0.6, 0.5, 0.4], color=[0.6, 0.6, 0.6], emission=[0.5, 0.5, 0.5],
+                   material="glossy", roughness=0.5)
+    scene = sol.scene([wall], camera={"position": [0, 0, 0], "forward": [1, 0.2, 0.1]}, lights=[])
+    image = sol.Renderer(scene, device="cpu", transport="path").render(6, 6, samples=16, seed=3)["rgba"]
+    assert abs(float(np.mean(image[..., 0])) - 1.25) < 0.1
+    with pytest.raises(sol.InvalidArgumentError, match="roughness"):
+        sol.scene([sol.ball([1, 0, 0], 0.3, material="mirror", roughness=0.5)])
+
+
+def test_glass_of_index_one_is_unseen_from_python():
+    # The glass material's keywords: a clear ball of index 1 in front of a
+    # coloured one leaves the image as it was; index 1.5 bends it; a glass
+    # plane is refused by name.
+    behind = sol.ball([2.5, 0.2, 0.3], 0.3, color=[0.9, 0.3, 0.2], pattern="circles")
+    floor = sol.plane_z(0.0, color=[0.8, 0.8, 0.8], pattern="checker")
+    camera = {"position": [0, 0, 0.4], "look_at": [2, 0, 0.3], "up": [0, 0, 1]}
+    plain = sol.scene([floor, behind], camera=camera, lights=[], ambient=1.0)
+    def image(ior):
+        glass = sol.ball([1.5, 0, 0.35], 0.3, color=[1, 1, 1], material="glass", ior=ior)
+        return sol.Renderer(sol.scene([floor, behind, glass], camera=camera, lights=[], ambient=1.0),
+                            device="cpu").render(24, 18)["rgba"]
+    reference = sol.Renderer(plain, device="cpu").render(24, 18)["rgba"]
+    assert np.max(np.abs(image(1.0) - reference)) < 1e-5
+    assert np.max(np.abs(image(1.5) - reference)) > 0.05
+    with pytest.raises(sol.InvalidArgumentError, match="glass is for solids"):
+        sol.scene([sol.plane_z(0.0, material="glass")])

@@ -251,6 +251,14 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     CrowdStep unused = crowd_step_none();
     crowd_search(origin, half_exp(origin.z), hit_epsilon, passing, true, max(2.0 * hit_epsilon, 0.01), seen, 0.0, unused,
                  passing);
+    // A solid it leaves through the face it starts on: leave sign 1, its
+    // pass ends 2 hit_epsilon away (the CPU's leaving_sign; exact balls'
+    // signs are their solves').
+    for (int j = 0; j < 4; ++j) {
+      if (!HAS_INSIDE || passing[j] < 0) continue;
+      const SeenObject o = crowd_item_seen(passing[j]);
+      if (leaves_through_start(o.type, origin, direction, o.rel, o.heading, o.radius)) leave_signs[j] = 1.0;
+    }
   }
   float t = 0.0;
   vec3 q = origin, u = direction;
@@ -284,7 +292,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
         }
         continue;
       }
-      if (HAS_INSIDE && inside) {
+      if (HAS_INSIDE && inside && leave_signs[j] <= 0.0) {
         ends = ends || object_inside_clearances(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc, d).w < 0.0;
       }
       crowd_consider(s, passed[j], d, inside, ends);

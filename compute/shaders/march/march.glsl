@@ -161,9 +161,14 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
 
   int hit = 0, steps = 0;
   uint passing = resume.passing;
+  uint leaving = 0u;  // the solids it leaves through the face it starts on (as the CPU's leaving_sign)
   if (!camera) {  // the surfaces it starts on
     for (int k = 0; k < g_count; ++k) {
-      if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) passing |= 1u << uint(k);
+      if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) {
+        passing |= 1u << uint(k);
+        const bool leaves = HAS_INSIDE && leaves_through_start(g_types[k], origin, direction, g_relative[k], g_headings[k], g_radii[k]);
+        leaving |= leaves ? 1u << uint(k) : 0u;
+      }
     }
   }
   ExactSolve exact = exact_solve_none();
@@ -224,7 +229,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
       }
       if (translated) q = sol_translate(origin, q);
       const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
-      s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing);
+      s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing, leaving);
       // A camera ray steps by the nearest solid's clearance; shadow rays by
       // the bound (inside the light's loop over its geodesics one clearance
       // a step made shadowed scenes 10-25 % slower on lavapipe though the
@@ -357,7 +362,11 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
       const int i = all ? s : int((word >> uint(8 * s)) & 255u);
       if (i == kFieldEmpty || held == 4) continue;
       const Image m = images[i];
-      if (image_distance(image_type(m), q, m) < 2.0 * hit_epsilon) passing[held++] = i;
+      if (image_distance(image_type(m), q, m) < 2.0 * hit_epsilon) {
+        // (A solid it leaves through the face it starts on: leave sign 1, as the CPU's leaving_sign.)
+        if (HAS_INSIDE && image_leaves_through_start(image_type(m), q, direction, m)) leave_signs[held] = 1.0;
+        passing[held++] = i;
+      }
     }
   }
   // Over-relaxation: `proposal` is the step from q, the last point the
@@ -380,7 +389,8 @@ MarchHit march_quotient(vec3 origin, vec3 direction, float limit, const int purp
     const bool all = word == kFieldAllImages;
     const vec2 hz = half_exp(e.z);  // shared by the candidates' clearances
     QuotientCandidates c = quotient_candidates(word, all, all ? image_count : field_candidate_count(word), e,
-                                               forward.direction, hz, camera, hit_epsilon, seen, t + proposal, passing);
+                                               forward.direction, hz, camera, hit_epsilon, seen, t + proposal, passing,
+                                               leave_signs);
     quotient_exact_step(e, forward.direction, hit_epsilon, t + proposal, c, exact, seen, passing, leave_signs);
     const float reach = field_reach(cell);
     if (camera && proposal > covered && covered + min(c.back, reach) < proposal) {

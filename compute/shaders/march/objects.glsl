@@ -322,6 +322,24 @@ vec3 image_clearances(int type, vec3 q, vec3 u, Image m, vec2 hz) {
 // component, which the direction does not enter).
 float image_distance(int type, vec3 q, Image m) { return image_clearances(type, q, vec3(0.0), m, half_exp(q.z)).x; }
 
+// Whether a ray from q along u, q within 2 hit_epsilon of a solid's
+// surface, leaves the solid through that face: q inside it (by its bound)
+// and the ray heading for its nearest face (the CPU's leaving_sign). Exact
+// balls and composites have rules of their own (their leave signs).
+bool leaves_through_start(int type, vec3 q, vec3 u, vec4 rel, vec2 heading, float radius) {
+  if (!inside_by_bound(type) || is_composite(type)) return false;
+  const vec2 hz = half_exp(q.z), hc = half_exp(rel.z);
+  const float raw = object_bound(type, q, rel, heading, radius, hz, hc);
+  return raw < 0.0 && object_inside_clearances(type, q, u, rel, heading, radius, hz, hc, -raw).w < 0.0;
+}
+
+bool image_leaves_through_start(int type, vec3 q, vec3 u, Image m) {
+  if (!inside_by_bound(type) || is_composite(type)) return false;
+  const vec2 hz = half_exp(q.z);
+  const float raw = image_bound_clearances(type, q, u, m, hz).x;
+  return raw < 0.0 && image_inside_clearances(type, q, u, m, hz, -raw).w < 0.0;
+}
+
 vec3 object_normal(int type, vec3 q, vec4 rel, vec2 heading, float radius, vec3 from) {
   return is_composite(type) ? composite_normal(q, rel, from) : kind_normal(type, q, rel, heading, radius, from);
 }

@@ -29,7 +29,7 @@ void from_eye_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction
   if (PATH_FROM_EYE) {
     color = path_radiance(h, f, eye, index, true, first, first_f);
   } else {
-    color = radiance(h, f, eye, first, first_f);
+    color = radiance(h, f, eye, index, first, first_f);
   }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
   if (write_aovs) {
@@ -120,7 +120,7 @@ void march_pass() {
     } else {
       MarchHit first;
       Surface first_f;
-      color = radiance(h, f, eye, first, first_f);  // (without mirrors and emission: shade_hit's colour, to the bit)
+      color = radiance(h, f, eye, uint(local.y * width + local.x), first, first_f);  // (without mirrors and emission: shade_hit's colour, to the bit)
     }
     hit_aov.x = float(f.object + 1);
     hit_aov.y = h.t;
@@ -158,15 +158,15 @@ void shade_pass() {
   f.uv = uintBitsToFloat(c.xy);
   if (!QUOTIENT && (HAS_SHADOWS || HAS_MIRRORS || PATH_TRACING)) load_objects(eye);  // (this pass's marches)
   vec4 color;
+  const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
   if (PATH_TRACING) {
-    const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
     MarchHit first;
     Surface first_f;
     color = path_radiance(h, f, eye, uint(local.y * width + local.x), false, first, first_f);
   } else {
     MarchHit first;
     Surface first_f;
-    color = radiance(h, f, eye, first, first_f);  // (its reflected rays marched here)
+    color = radiance(h, f, eye, uint(local.y * width + local.x), first, first_f);  // (its reflected rays marched here)
   }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
   report_out_of_steps(pixel, false);  // (its shadow rays' and paths')

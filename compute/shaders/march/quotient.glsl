@@ -122,7 +122,7 @@ struct QuotientCandidates {
 // Exact balls' images count by what their solves have shown at arc length
 // t where that is more than their bound (`seen`, exact_seen_bound).
 QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, vec3 direction, vec2 hz, bool camera,
-                                       float hit_epsilon, ExactSeen seen, float t, inout ivec4 passing) {
+                                       float hit_epsilon, ExactSeen seen, float t, inout ivec4 passing, vec4 leave_signs) {
   QuotientCandidates c = QuotientCandidates(1e30, 1e30, 1e30, 1e30, 1e30, 1e30, -1, -1, -1);
   // (A do-while, tested at its end: see march.comp and candidate_clearances.)
   int s = 0;
@@ -141,7 +141,8 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
           // face of it (sol::InsideClearances::nearest_rate; exact balls:
           // quotient_exact_step).
           const int type = image_type(m);
-          const bool heads = HAS_INSIDE && inside_by_bound(type) && image_bound_clearances(type, e, direction, m, hz).x < 0.0 &&
+          const bool heads = HAS_INSIDE && inside_by_bound(type) && leave_signs[p] <= 0.0 &&
+                             image_bound_clearances(type, e, direction, m, hz).x < 0.0 &&
                              image_inside_clearances(type, e, direction, m, hz, d).w < 0.0;
           if (d > 2.0 * hit_epsilon || heads) passing[p] = -1;
           else leaving = true;

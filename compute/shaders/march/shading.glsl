@@ -305,11 +305,12 @@ Surface surface_at(MarchHit h) {
 
 // One hit's share (radiance): over the fog of its segment, its emission and
 // its material's diffuse share of its diffuse light, times `weight`;
-// returns its material's specular weight times the fog's transmittance.
+// returns its material's specular weight times the fog's transmittance,
+// and its specular lobe's roughness and index of refraction (`lobe`).
 // Written as the CPU's shade_hit (libsol/src/render.cpp) fogs, so that a
 // hit without emission or mirror (weight 1) adds exactly the direct light's
 // colour.
-vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 color) {
+vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 color, out vec2 lobe) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   const SolLobes lobes = lobes_of(f.object, albedo(f.object, f.uv));
@@ -320,7 +321,38 @@ vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 
   // leaves unset, is not found.)
   const vec3 surface = material.rgb + lobes.diffuse * diffuse_light(f.object, f.uv, light);
   color += weight * (params.fog_color.rgb + (surface - params.fog_color.rgb) * transmittance);
+  lobe = vec2(lobes.roughness, lobes.ior);
   return lobes.specular * transmittance;
+}
+
+// Where a ray refracted out of a solid (glass, from inside; n its normal
+// there, facing the ray before) starts: past the surface it crosses, 3
+// hit_epsilon from it along the normal (as the CPU's march_specular: seen
+// from inside, a march's pass of the surface it leaves ends where the ray
+// heads for a face, which a leaving ray does).
+void skip_surface(inout vec3 q, inout vec3 direction, vec3 n) {
+  const SolForward s = sol_exp(direction, 3.0 * params.limits.y / max(abs(dot(direction, n)), 0.02));
+  q = sol_translate(q, s.position);
+  direction = s.direction;
+  if (QUOTIENT) {
+    float turn = 1.0;
+    if (!in_domain(q)) q = teleport(q, false, turn);
+    direction.xy *= turn;
+  }
+}
+
+// The specular lobe's direction at a hit (n: its normal facing the ray; as
+// the CPU's specular_direction, drawing the same numbers): a glass's
+// refraction or reflection (one number, Fresnel's choice), a glossy lobe's
+// (two), else the mirror's reflection (none).
+vec3 specular_direction(vec3 u, vec3 n, float roughness, float ior, bool inside, inout uvec2 random) {
+  if (ior > 0.0) return sol_dielectric_direction(u, n, ior, inside, path_uniform(random));
+  float xi1 = 0.0, xi2 = 0.0;
+  if (roughness > 0.0) {
+    xi1 = path_uniform(random);
+    xi2 = path_uniform(random);
+  }
+  return sol_specular_direction(u, n, roughness, xi1, xi2);
 }
 
 // Direct light from the eye: the camera ray is the first ray radiance's one
@@ -344,12 +376,14 @@ const bool DIRECT_FROM_EYE = FROM_EYE_WORLD && !PATH_TRACING && INTEGRATOR == 0;
 // specialisation constant alone says which: a pipeline from the eye calls
 // radiance from the eye only, and every condition on it folds, so that a
 // world without shadows and mirrors keeps no march here.)
-vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface first_f) {
+vec4 radiance(MarchHit h, Surface f, int eye, uint pixel, out MarchHit first, out Surface first_f) {
   const int bounces = int(params.limits.z);
   vec3 color = vec3(0.0), weight = vec3(1.0);
   int bounce = DIRECT_FROM_EYE ? -1 : 0;  // (the camera ray's segment is no bounce)
   bool alive = true;
   LightGather lights = light_gather_begin(f.n, h.q);
+  uvec2 random = uvec2(0u);  // the glossy reflections' numbers, started at the first
+  bool random_started = false;
   first = h;
   first_f = f;
   do {
@@ -359,12 +393,19 @@ vec4 radiance(MarchHit h, Surface f, int eye, out MarchHit first, out Surface fi
     if (!DIRECT_FROM_EYE || bounce >= 0) {
       shadow = light_gather_next(lights, eye, direction, len);
       if (!shadow) {  // the hit's light is in: its share, then its reflected ray
-        const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color);
+        vec2 lobe;
+        const vec3 specular = radiance_of_hit(h, f, lights.light, weight, color, lobe);
         weight *= specular;
         alive = HAS_MIRRORS && any(greaterThan(specular, vec3(0.0))) && bounce < bounces;
         if (!alive) break;
         const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
-        direction = normalize(h.u - 2.0 * dot(h.u, n) * n);
+        // A glossy or glass lobe's numbers: the pixel's sample's (as the CPU's radiance).
+        if (!random_started && (lobe.x > 0.0 || lobe.y > 0.0)) {
+          random = path_random_start(uvec2(params.path.xy), pixel, uint(params.path.z));
+          random_started = true;
+        }
+        direction = specular_direction(h.u, n, lobe.x, lobe.y, f.inside, random);
+        if (HAS_INSIDE && lobe.y > 0.0 && f.inside && dot(direction, n) < 0.0) skip_surface(h.q, direction, n);
         len = params.limits.x;
       }
     }

@@ -49,7 +49,7 @@ MarchStep march_step_none() { return MarchStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0);
 // exponentials), updating the mask of objects being passed. Planes x = c,
 // y = c whose crossing is solved (`xy`) answer the arc length left to it.
 MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
-                        PlaneRoot xy, ExactSeen seen, inout uint passing) {
+                        PlaneRoot xy, ExactSeen seen, inout uint passing, uint leaving) {
   MarchStep s = march_step_none();
   int k = 0;
   if (g_count > 0) do {  // (tested at its end: see march.comp)
@@ -68,10 +68,11 @@ MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, con
     const uint bit = 1u << uint(k);
     // The surface it leaves: passed until 2 hit_epsilon away, or (seen from
     // inside) until the ray heads for a face of it (sol::InsideClearances;
-    // exact balls: march_exact_step).
+    // exact balls: march_exact_step), unless it leaves through the face it
+    // started on (`leaving`: it heads for that face from the start).
     if (passes && (passing & bit) != 0u) {
       bool heads = false;
-      if (HAS_INSIDE && inside_by_bound(g_types[k])) {
+      if (HAS_INSIDE && inside_by_bound(g_types[k]) && (leaving & bit) == 0u) {
         const float raw = object_bound(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
         heads = raw < 0.0 && object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
                                                       g_half_exp_z[k], -raw).w < 0.0;

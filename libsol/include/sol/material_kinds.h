@@ -24,7 +24,9 @@
 // clang-format off
 #define SOL_MATERIALS(X)                                         \
   X(Diffuse, kMaterialDiffuse, 0, diffuse, "diffuse")            \
-  X(Mirror,  kMaterialMirror,  1, mirror,  "mirror")
+  X(Mirror,  kMaterialMirror,  1, mirror,  "mirror")            \
+  X(Glossy,  kMaterialGlossy,  2, glossy,  "glossy")            \
+  X(Glass,   kMaterialGlass,   3, glass,   "glass")
 // clang-format on
 
 #endif  // SOL_MATERIAL_KINDS_H

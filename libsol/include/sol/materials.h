@@ -6,6 +6,8 @@
 
 #include "sol/material_kinds.h"
 #include "sol/materials/diffuse.h"
+#include "sol/materials/glass.h"
+#include "sol/materials/glossy.h"
 #include "sol/materials/mirror.h"
 
 #ifdef __cplusplus
@@ -13,7 +15,8 @@ namespace sol::kernel {
 #endif
 
 // The lobes of material `material` (a kMaterial* code) of albedo `albedo`
-// and parameters `params` (x: the diffuse material's mirror share; yzw for
+// and parameters `params` (x: the diffuse material's mirror share, the
+// glossy one's roughness, the glass one's index of refraction; yzw for
 // materials to come); an unknown code is the diffuse material's.
 #define SOL_MATERIAL_LOBES(Enum, code_name, code, prefix, name) \
   if (material == code_name) return sol_##prefix##_lobes(albedo, params);

@@ -140,7 +140,9 @@ struct SceneObject {
   /// Planes: only the pattern's bright cells (discs, light squares) are solid.
   bool cutout = false;
   /// How the surface scatters light (sol/materials/<name>.h): diffuse
-  /// (Lambertian, with `mirror` on top) or a mirror coloured by `color`.
+  /// (Lambertian, with `mirror` on top), a mirror coloured by `color`,
+  /// glossy (a rough mirror of `roughness`) or glass (a dielectric of
+  /// index `ior`; solids only).
   Material material = Material::Diffuse;
   /// Emitted radiance, linear RGB (>= 0): a glowing object shows it on top
   /// of the light it reflects (every material).
@@ -150,6 +152,16 @@ struct SceneObject {
   /// rest is diffuse, with albedo `color`); up to World::max_bounces
   /// reflections.
   double mirror = 0.0;
+  /// The glossy material's roughness in [0, 1] (sol/materials/glossy.h):
+  /// 0 reflects as a mirror, 1 in a broad sheen. A scene file's glossy
+  /// object without "roughness" takes kDefaultRoughness.
+  double roughness = 0.0;
+  static constexpr double kDefaultRoughness = 0.3;
+  /// The glass material's index of refraction in [1, 3] (sol/materials/glass.h;
+  /// 1: as air, the object unseen). A scene file's glass object without
+  /// "ior" takes kDefaultIor (crown glass).
+  double ior = 0.0;
+  static constexpr double kDefaultIor = 1.5;
   /// A glowing exact ball's reach for the path tracer's next-event
   /// estimation, in [0, 10]: a diffuse point is connected to a sampled
   /// point of its sphere along every geodesic up to their distance plus
@@ -162,6 +174,10 @@ struct SceneObject {
 /// (its colour times its pattern there): sol_material_lobes, the kernels'
 /// own function, in double.
 kernel::SolLobes material_lobes(const SceneObject& object, const glm::dvec3& albedo);
+/// The parameters sol_material_lobes takes for the object's material (x:
+/// the diffuse material's mirror share, the glossy one's roughness): the
+/// kernel's record holds them (sol::vk::kernel::Object::params).
+glm::dvec4 material_params(const SceneObject& object);
 /// Whether the object's material may reflect specularly (its lobes under a
 /// white albedo have a specular weight): a world with one marches
 /// reflected rays (MarchFeatures::mirrors).

@@ -50,6 +50,7 @@ struct MarchHit {
   double distance = 0.0;       ///< arc length to the hit (to where the march stopped on a miss)
   glm::dvec3 point{0.0};       ///< hit point, world coordinates
   glm::dvec3 normal{0.0};      ///< unit surface normal at the hit, frame components, facing the ray
+  bool inside = false;         ///< the ray met a solid's surface from within it (its outward normal along the ray)
   glm::dvec2 pattern_uv{0.0};  ///< the object's pattern coordinates at the hit (sol::shape_pattern_uv)
   glm::dvec3 direction{0.0};   ///< the ray's unit tangent at the hit, frame components (a mirror reflects it)
   int steps = 0;               ///< march steps used (0: culled by its height range)

@@ -103,9 +103,10 @@ struct PixelSample {
   double weight = 1.0;
   int path = -1;           ///< the path's index (>= 0), or -1 for direct light
   std::uint64_t seed = 0;  ///< the paths' seed
-  /// The lens point of a camera with an aperture (sol::lens_sample of the
-  /// sample's index; the centre: the pinhole's ray).
-  glm::dvec2 lens{0.0, 0.0};
+  /// The sample's index k, as render()'s k-th sample: a camera with an
+  /// aperture takes lens point sol::lens_sample(k), glossy reflections in
+  /// direct light their random numbers of sample k (a path's: `path`).
+  int index = 0;
 };
 
 /// The ray-marcher on a Vulkan device, a sol::Renderer (sol/renderer.hpp).

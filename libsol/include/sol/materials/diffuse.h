@@ -16,6 +16,8 @@ SOL_MATERIAL_FUNCTION SolLobes sol_diffuse_lobes(SOL_VEC3 albedo, SOL_VEC4 param
   SolLobes lobes;
   lobes.diffuse = 1.0 - params.x;
   lobes.specular = SOL_VEC3(params.x);
+  lobes.roughness = 0.0;
+  lobes.ior = 0.0;
   lobes.specular_probability = params.x;
   return lobes;
 }

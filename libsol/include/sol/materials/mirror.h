@@ -16,6 +16,8 @@ SOL_MATERIAL_FUNCTION SolLobes sol_mirror_lobes(SOL_VEC3 albedo, SOL_VEC4 params
   SolLobes lobes;
   lobes.diffuse = 0.0;
   lobes.specular = albedo;
+  lobes.roughness = 0.0;
+  lobes.ior = 0.0;
   lobes.specular_probability = 1.0;
   return lobes;
 }
