@@ -1496,8 +1496,9 @@ TEST(Kernel, TheGlossyMaterialIsTheCpus) {
 // golden quotient, where far images are reached along geodesics that part
 // exponentially (the flow is Anosov) and float's rounding already moves
 // some pixels of the scene without glass (`own`): twice those may differ
-// more; and paths through it agree with the CPU's as
-// PathsAreTheCpuPathsForTheSameSeed.
+// more; paths through it agree with the CPU's as
+// PathsAreTheCpuPathsForTheSameSeed; and glass in a furnace keeps its
+// E / (1 - ρ) = 1.25 within 4 standard errors.
 TEST(Kernel, TheGlassMaterialIsTheCpus) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const char* quotient : {"none", "golden"}) {
@@ -1531,6 +1532,18 @@ TEST(Kernel, TheGlassMaterialIsTheCpus) {
   paths.objects[2].color = {0.95, 0.95, 1.0};
   const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
   expect_paths_agree(sol::render_scene(renderer, paths, settings), sol::render_cpu(paths, settings), "paths through a glass ball");
+  // Lossless glass keeps a furnace (as Path.GlassInAFurnaceKeepsItsRadiance).
+  sol::Scene furnace = sol::test::furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.9, 0.9, 0.9}});
+  furnace.camera = {{-0.3, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
+  sol::SceneObject glass{sol::Ball{{0.45, 0.0, 0.0}, 0.3, false}, {1.0, 1.0, 1.0}};
+  glass.material = sol::Material::Glass;
+  glass.ior = 1.5;
+  furnace.objects.push_back(glass);
+  const sol::RenderResult r =
+      sol::render_scene(renderer, furnace, {.width = 8, .height = 8, .samples = 32, .transport = sol::Transport::Path, .seed = 5});
+  const sol::test::MeanAndError m = sol::test::red_mean(r);
+  std::printf("glass in a furnace on the kernel: %.4f (expected 1.25, standard error %.4f)\n", m.mean, m.error);
+  EXPECT_LT(std::abs(m.mean - 1.25), 4.0 * m.error);
   expect_no_validation_errors();
 }
 

@@ -1948,6 +1948,34 @@ TEST(Materials, AGlassBallOfIndexOneIsInvisible) {
   EXPECT_GT(differ, through / 2);
 }
 
+// Lossless glass keeps a furnace: a clear glass ball (index 1.5, white)
+// inside a box that emits 0.5 with albedo 0.6 changes no radiance (it
+// emits nothing and passes or reflects all the light of a uniform field),
+// so the pixels that see it still hold E / (1 - ρ) = 1.25, within 4
+// standard errors of their mean.
+TEST(Path, GlassInAFurnaceKeepsItsRadiance) {
+  sol::Scene scene = sol::test::furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.9, 0.9, 0.9}});
+  scene.camera = {{-0.3, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
+  sol::SceneObject glass{sol::Ball{{0.45, 0.0, 0.0}, 0.3, false}, {1.0, 1.0, 1.0}};
+  glass.material = sol::Material::Glass;
+  glass.ior = 1.5;
+  scene.objects.push_back(glass);
+  const sol::RenderOptions settings{.width = 8, .height = 8, .samples = sol::test::kSanitizedBuild ? 4 : 32,
+                                    .transport = sol::Transport::Path, .seed = 5};
+  const sol::RenderResult r = sol::render_cpu(scene, settings);
+  std::vector<double> means;
+  for (std::size_t k = 0; k < r.object.size(); ++k) {
+    if (r.object[k] == 2.0f) means.push_back(r.rgba[4 * k]);
+  }
+  ASSERT_GT(means.size(), 10u);
+  double mean = 0.0, square = 0.0;
+  for (const double m : means) mean += m / static_cast<double>(means.size());
+  for (const double m : means) square += (m - mean) * (m - mean) / static_cast<double>(means.size() - 1);
+  const double error = std::sqrt(square / static_cast<double>(means.size()));
+  std::printf("glass in a furnace: %.4f over %zu pixels (expected 1.25, standard error %.4f)\n", mean, means.size(), error);
+  EXPECT_LT(std::abs(mean - 1.25), 4.0 * error);
+}
+
 // A glossy furnace: a camera inside a box that emits 0.5 and reflects all
 // its light with albedo 0.6 in glossy lobes of roughness 0.4 and 1 holds
 // E / (1 - ρ) = 1.25, as the diffuse one (the lobe keeps its light: its
