@@ -246,9 +246,7 @@ void SceneOverrides::apply(Scene& scene) const {
   if (look_at) {
     if (forward) throw InvalidArgument("--look-at: give either --forward or --look-at, not both");
     try {
-      scene.camera = looking_at(scene.camera, *look_at, scene.lattice());
-      const double distance = aim(scene.camera.position, *look_at, scene.lattice()).distance;
-      if (distance > 0.0 && distance <= 100.0) scene.camera.focus_distance = distance;
+      scene.camera = looking_at(scene.camera, *look_at, scene.lattice());  // (focused there too)
     } catch (const std::exception& e) {  // the library's message names its function: the option's instead
       throw InvalidArgument("--look-at: " + without_function(e.what()));
     }

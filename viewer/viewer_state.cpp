@@ -165,7 +165,7 @@ void ViewerState::act(const PanelActions& a, int render_width, int render_height
       const Aim to = aim(observer.position(), *a.look_at, scene.lattice());
       observer.face(to.direction);
       // The lens focuses on the point (as a scene file's look_at without a focus distance).
-      if (to.distance > 0.0 && to.distance <= 100.0) scene.camera.focus_distance = to.distance;
+      scene.camera.focus_distance = focus_on(to, scene.camera.focus_distance);
       message.clear();
     } catch (const std::exception& e) {  // the point at the eye, or no minimiser found
       message = std::string("look at: ") + e.what();

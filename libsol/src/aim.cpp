@@ -79,13 +79,19 @@ Aim aim(const glm::dvec3& eye, const glm::dvec3& target, const std::optional<Lat
   return a;
 }
 
+double focus_on(const Aim& aim, double otherwise) {
+  return aim.distance > 0.0 && aim.distance <= 100.0 ? aim.distance : otherwise;
+}
+
 Camera looking_at(Camera camera, const glm::dvec3& target, const std::optional<Lattice>& lattice) {
-  const glm::dvec3 forward = aim(camera.position, target, lattice).direction;
+  const Aim to = aim(camera.position, target, lattice);
+  const glm::dvec3 forward = to.direction;
   if (!(glm::length(camera.up) > 0.0) || glm::length(glm::cross(forward, glm::normalize(camera.up))) < 1e-9) {
     throw InvalidArgument("sol::looking_at: the target is seen straight along the camera's up, which leaves the image's "
                           "orientation undefined; give an up not parallel to the direction towards it");
   }
   camera.forward = forward;
+  camera.focus_distance = focus_on(to, camera.focus_distance);
   return camera;
 }
 

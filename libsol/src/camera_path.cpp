@@ -99,7 +99,7 @@ void apply(const PathSegment& s, double f, Observer& o, const std::optional<Latt
         try {
           const Aim to = aim(o.position(), *s.look_at, lattice);
           o.face(to.direction);
-          if (to.distance > 0.0 && to.distance <= 100.0) focus = to.distance;
+          focus = focus_on(to, focus);
         } catch (const InvalidArgument&) {
           // At the point itself (or one of its images): no direction; the frame stays.
         }
@@ -136,14 +136,9 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   if (up) c.up = *up;
   if (fov) c.fov = *fov;
   if (aperture) c.aperture = *aperture;
-  if (focus_distance) c.focus_distance = *focus_distance;
+  if (look_at) c = looking_at(c, *look_at, lattice);  // (focused there too)
   double focus = c.focus_distance;  // the lens's focus, tracking the points looked at where the path gives none
-  if (look_at) {
-    c = looking_at(c, *look_at, lattice);
-    const double distance = aim(c.position, *look_at, lattice).distance;
-    if (distance > 0.0 && distance <= 100.0) focus = distance;
-  }
-  if (!focus_distance) c.focus_distance = focus;
+  c.focus_distance = focus_distance.value_or(focus);
   validate(c);
   Observer o(c.position, c.forward, c.up);
   if (lattice) o.bind(*lattice);
@@ -157,7 +152,7 @@ Camera CameraPath::at(double t, const Camera& scene_camera, const std::optional<
   c.position = o.position();
   c.forward = o.forward();
   c.up = o.up();
-  if (!focus_distance) c.focus_distance = focus;
+  c.focus_distance = focus_distance.value_or(focus);
   return c;
 }
 

@@ -79,9 +79,9 @@ void aim_camera(Camera& camera, const glm::dvec3& target, const std::optional<La
   // The library's messages name their function ("sol::aim: ..."): the file's field instead.
   auto fail = [&](const std::string& what) { r.fail("camera.look_at", "camera.look_at: " + without_function(what)); };
   try {
+    const double given = camera.focus_distance;
     camera = looking_at(camera, target, lattice);
-    const double distance = aim(camera.position, target, lattice).distance;
-    if (focus && distance > 0.0 && distance <= 100.0) camera.focus_distance = distance;
+    if (!focus) camera.focus_distance = given;
   } catch (const InvalidArgument& e) {
     fail(e.what());
   } catch (const OutOfRange& e) {

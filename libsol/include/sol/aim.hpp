@@ -44,12 +44,18 @@ struct Aim {
 /// targets: sol/connection.hpp).
 Aim aim(const glm::dvec3& eye, const glm::dvec3& target, const std::optional<Lattice>& lattice = std::nullopt);
 
+/// The focus distance at which a lens sees an aimed point sharp: the aim's
+/// distance where it is a valid Camera::focus_distance ((0, 100]), else
+/// `otherwise`.
+double focus_on(const Aim& aim, double otherwise);
+
 /// The camera turned to look at `target` (the scene key camera.look_at):
 /// its forward aim(camera.position, target, lattice).direction, its up
 /// kept (the image's up is the part of it orthogonal to forward, as for any
-/// camera). Throws InvalidArgument as aim does, and where the target is
-/// seen straight along the camera's up (within 1e-9), which leaves the
-/// image's orientation undefined.
+/// camera), and its lens focused on the point (focus_on). Throws
+/// InvalidArgument as aim does, and where the target is seen straight
+/// along the camera's up (within 1e-9), which leaves the image's
+/// orientation undefined.
 Camera looking_at(Camera camera, const glm::dvec3& target, const std::optional<Lattice>& lattice = std::nullopt);
 
 }  // namespace sol
