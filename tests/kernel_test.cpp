@@ -1502,17 +1502,8 @@ TEST(Kernel, TheGlossyMaterialIsTheCpus) {
 TEST(Kernel, TheGlassMaterialIsTheCpus) {
   sol::vk::MarchRenderer renderer(vk_context());
   for (const char* quotient : {"none", "golden"}) {
-    const std::string world = std::string(R"("quotient": ")") + quotient + R"(",
-      "camera": {"position": [0, 0, 0.4], "look_at": [2, 0, 0.3], "up": [0, 0, 1], "fov": 50},
-      "lights": [], "ambient": 1.0, "max_distance": 8,
-      "objects": [{"type": "plane_z", "c": 0, "color": [0.8, 0.8, 0.8], "pattern": "checker"},
-                  {"type": "ball", "center": [2.5, 0.2, 0.3], "radius": 0.3, "color": [0.9, 0.3, 0.2], "pattern": "circles"},
-                  {"type": "ball", "center": [2.5, -0.6, 0.5], "radius": 0.2, "color": [1, 1, 1], "emission": [2, 2, 1]})";
-    const sol::Scene without = sol::parse_scene("{" + world + "]}");
-    const sol::Scene clear = sol::parse_scene("{" + world + R"(, {"type": "ball", "center": [1.5, 0, 0.35], "radius": 0.3,
-        "material": "glass", "ior": 1, "color": [1, 1, 1]}]})");
-    sol::Scene bent = clear;
-    bent.objects.back().ior = 1.5;
+    const sol::Scene without = sol::test::behind_glass(std::nullopt, quotient),
+                     clear = sol::test::behind_glass(1.0, quotient), bent = sol::test::behind_glass(1.5, quotient);
     const sol::RenderOptions settings{.width = 32, .height = 24, .samples = 4, .seed = 9};
     const int unseen = sol::test::colour_differences(sol::render_scene(renderer, clear, settings),
                                                      sol::render_scene(renderer, without, settings), 2e-3);
@@ -1533,14 +1524,8 @@ TEST(Kernel, TheGlassMaterialIsTheCpus) {
   const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
   expect_paths_agree(sol::render_scene(renderer, paths, settings), sol::render_cpu(paths, settings), "paths through a glass ball");
   // Lossless glass keeps a furnace (as Path.GlassInAFurnaceKeepsItsRadiance).
-  sol::Scene furnace = sol::test::furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.9, 0.9, 0.9}});
-  furnace.camera = {{-0.3, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
-  sol::SceneObject glass{sol::Ball{{0.45, 0.0, 0.0}, 0.3, false}, {1.0, 1.0, 1.0}};
-  glass.material = sol::Material::Glass;
-  glass.ior = 1.5;
-  furnace.objects.push_back(glass);
   const sol::RenderResult r =
-      sol::render_scene(renderer, furnace, {.width = 8, .height = 8, .samples = 32, .transport = sol::Transport::Path, .seed = 5});
+      sol::render_scene(renderer, sol::test::glass_furnace(), {.width = 8, .height = 8, .samples = 32, .transport = sol::Transport::Path, .seed = 5});
   const sol::test::MeanAndError m = sol::test::red_mean(r);
   std::printf("glass in a furnace on the kernel: %.4f (expected 1.25, standard error %.4f)\n", m.mean, m.error);
   EXPECT_LT(std::abs(m.mean - 1.25), 4.0 * m.error);

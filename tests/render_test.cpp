@@ -1923,16 +1923,8 @@ TEST(Materials, GlassRefractsByTheLawsOfSnellAndFresnel) {
 // hits behind it the same objects. Index 1.5 bends the rays: the image
 // differs there.
 TEST(Materials, AGlassBallOfIndexOneIsInvisible) {
-  const std::string world = R"("camera": {"position": [0, 0, 0.4], "look_at": [2, 0, 0.3], "up": [0, 0, 1], "fov": 50},
-    "lights": [], "ambient": 1.0,
-    "objects": [{"type": "plane_z", "c": 0, "color": [0.8, 0.8, 0.8], "pattern": "checker"},
-                {"type": "ball", "center": [2.5, 0.2, 0.3], "radius": 0.3, "color": [0.9, 0.3, 0.2], "pattern": "circles"},
-                {"type": "ball", "center": [2.5, -0.6, 0.5], "radius": 0.2, "color": [1, 1, 1], "emission": [2, 2, 1]})";
-  const sol::Scene without = sol::parse_scene("{" + world + "]}");
-  const sol::Scene clear = sol::parse_scene("{" + world + R"(, {"type": "ball", "center": [1.5, 0, 0.35], "radius": 0.3,
-      "material": "glass", "ior": 1, "color": [1, 1, 1]}]})");
-  sol::Scene bent = clear;
-  bent.objects.back().ior = 1.5;
+  const sol::Scene without = sol::test::behind_glass(std::nullopt), clear = sol::test::behind_glass(1.0),
+                   bent = sol::test::behind_glass(1.5);
   const sol::RenderOptions settings{.width = 32, .height = 24, .samples = 2};
   const sol::RenderResult a = sol::render_cpu(without, settings), b = sol::render_cpu(clear, settings),
                           c = sol::render_cpu(bent, settings);
@@ -1954,12 +1946,7 @@ TEST(Materials, AGlassBallOfIndexOneIsInvisible) {
 // so the pixels that see it still hold E / (1 - ρ) = 1.25, within 4
 // standard errors of their mean.
 TEST(Path, GlassInAFurnaceKeepsItsRadiance) {
-  sol::Scene scene = sol::test::furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.9, 0.9, 0.9}});
-  scene.camera = {{-0.3, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
-  sol::SceneObject glass{sol::Ball{{0.45, 0.0, 0.0}, 0.3, false}, {1.0, 1.0, 1.0}};
-  glass.material = sol::Material::Glass;
-  glass.ior = 1.5;
-  scene.objects.push_back(glass);
+  const sol::Scene scene = sol::test::glass_furnace();
   const sol::RenderOptions settings{.width = 8, .height = 8, .samples = sol::test::kSanitizedBuild ? 4 : 32,
                                     .transport = sol::Transport::Path, .seed = 5};
   const sol::RenderResult r = sol::render_cpu(scene, settings);

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <sol/sol.hpp>
@@ -155,6 +157,37 @@ inline sol::Scene furnace_in(const sol::Shape& solid, sol::Quotient quotient = s
 /// The furnace in an exact ball of radius 1 about the camera.
 inline sol::Scene furnace(double mirror) {
   return furnace_in(sol::Ball{{0.0, 0.0, 0.0}, 1.0, true}, sol::Quotient::None, mirror);
+}
+
+/// Lossless glass in a furnace: a clear glass ball (index 1.5, white, drawn
+/// by its bound) inside a box that emits 0.5 with albedo 0.6, seen from
+/// inside the box: every pixel still holds E / (1 - ρ) = 1.25.
+inline sol::Scene glass_furnace() {
+  sol::Scene s = furnace_in(sol::Box{{0.0, 0.0, 0.0}, {0.9, 0.9, 0.9}});
+  s.camera = {{-0.3, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 60.0};
+  sol::SceneObject glass{sol::Ball{{0.45, 0.0, 0.0}, 0.3, false}, {1.0, 1.0, 1.0}};
+  glass.material = sol::Material::Glass;
+  glass.ior = 1.5;
+  s.objects.push_back(glass);
+  return s;
+}
+
+/// A checkered floor, a patterned ball and a glowing one, lit by ambient
+/// light alone (no shadow ray to stop at glass), in `quotient` ("none",
+/// "golden"); with `ior`, seen through a white glass ball of that index in
+/// front of them (the last object).
+inline sol::Scene behind_glass(std::optional<double> ior, const std::string& quotient = "none") {
+  std::string text = R"({"quotient": ")" + quotient + R"(",
+    "camera": {"position": [0, 0, 0.4], "look_at": [2, 0, 0.3], "up": [0, 0, 1], "fov": 50},
+    "lights": [], "ambient": 1.0, "max_distance": 8,
+    "objects": [{"type": "plane_z", "c": 0, "color": [0.8, 0.8, 0.8], "pattern": "checker"},
+                {"type": "ball", "center": [2.5, 0.2, 0.3], "radius": 0.3, "color": [0.9, 0.3, 0.2], "pattern": "circles"},
+                {"type": "ball", "center": [2.5, -0.6, 0.5], "radius": 0.2, "color": [1, 1, 1], "emission": [2, 2, 1]})";
+  if (ior) {
+    text += R"(, {"type": "ball", "center": [1.5, 0, 0.35], "radius": 0.3, "material": "glass", "ior": )" +
+            std::to_string(*ior) + R"(, "color": [1, 1, 1]})";
+  }
+  return sol::parse_scene(text + "]}");
 }
 
 }  // namespace sol::test

@@ -7,6 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+
+#include "../field_error.hpp"
 #include "../scene_reader.hpp"
 #include "sol/spaces.hpp"
 
@@ -24,6 +27,17 @@ using nlohmann::json;
   void check_quotient_space(const type& space);
 SOL_QUOTIENT_SPACES(SOL_QUOTIENT_IO)
 #undef SOL_QUOTIENT_IO
+
+/// The space's lattice made once to check its parameters: a bad one a
+/// FieldError at `at` ("quotient.z_loop") with the lattice's reason.
+template <class S>
+void check_lattice(const S& space, const std::string& at) {
+  try {
+    (void)space.lattice();
+  } catch (const InvalidArgument& e) {
+    field_error(at, at + ": " + e.what());
+  }
+}
 
 /// "quotient"'s value into a space: "none", a space's key as a string, or an
 /// object with exactly one space's key.

@@ -31,13 +31,7 @@ json write_quotient_space(const XYLoopsSpace& space) {
   return {{"xy_loops", json::array({json::array({g[0].x, g[0].y}), json::array({g[1].x, g[1].y})})}};
 }
 
-void check_quotient_space(const XYLoopsSpace& space) {
-  try {
-    (void)space.lattice();
-  } catch (const InvalidArgument& e) {
-    field_error("quotient.xy_loops", std::string("quotient.xy_loops: ") + e.what());
-  }
-}
+void check_quotient_space(const XYLoopsSpace& space) { check_lattice(space, "quotient.xy_loops"); }
 
 }  // namespace detail
 }  // namespace sol

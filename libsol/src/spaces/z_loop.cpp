@@ -20,13 +20,7 @@ void read_quotient_space(const json& q, const SceneFileReader& r, ZLoopSpace& sp
 
 json write_quotient_space(const ZLoopSpace& space) { return {{"z_loop", space.height}}; }
 
-void check_quotient_space(const ZLoopSpace& space) {
-  try {
-    (void)space.lattice();
-  } catch (const InvalidArgument& e) {
-    field_error("quotient.z_loop", std::string("quotient.z_loop: ") + e.what());
-  }
-}
+void check_quotient_space(const ZLoopSpace& space) { check_lattice(space, "quotient.z_loop"); }
 
 }  // namespace detail
 }  // namespace sol
