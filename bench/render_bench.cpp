@@ -49,10 +49,12 @@
 //
 //  7. Light transport (--only path): the path tracer's error against
 //     samples per pixel and against seconds, on the CPU renderer and on the
-//     kernel: lattice-balls with its ball glowing, at 64×48, 1 to 256
-//     samples per pixel against the CPU's 2048-sample reference (other
-//     seeds): the relative RMS error (over the pixels, of the three
-//     channels, over the reference's RMS) and the wall time.
+//     kernel: lattice-balls with its ball glowing and the sandwich with
+//     its upper plane glowing, at 64×48, 1 to 256 samples per pixel
+//     against the CPU's 2048-sample reference (other seeds): the relative
+//     RMS error (over the pixels, of the three channels, over the
+//     reference's RMS) and the wall time, raw and denoised (on the same
+//     device: Renderer::denoise) with the filter's time.
 //     Written to path_convergence.csv (bench/plot_path_convergence.py
 //     draws it). Not in the default run.
 //
@@ -282,51 +284,71 @@ void section_lattices(Bench& b) {
   files.emplace_back("render_lattices.csv", csv);
 }
 
-// 7. Light transport: the path tracer's error against samples and seconds (asked for by name only).
+// 7. Light transport: the path tracer's error against samples and seconds,
+// raw and denoised (asked for by name only).
 void section_path(Bench& b) {
   sol::vk::Context& context = b.context;
   const std::string& quoted_device = b.quoted_device;
   std::vector<std::pair<std::string, std::string>>& files = b.files;
-  sol::Scene scene = sol::preset_scene("lattice-balls");
-  scene.objects[0].emission = {0.6, 0.35, 0.2};
+  sol::Scene lattice = sol::preset_scene("lattice-balls");
+  lattice.objects[0].emission = {0.6, 0.35, 0.2};
+  sol::Scene sandwich = sol::preset_scene("sandwich");  // the gallery's glowing sandwich
+  sandwich.fog_density = 0.0;
+  sandwich.lights.clear();
+  sandwich.ambient = 0.0;
+  sandwich.objects[0].emission = {0.6, 0.5, 0.35};
+  sandwich.max_distance = 12.0;
+  sandwich.max_steps = 400;
   sol::vk::MarchRenderer kernel(context);
   sol::CpuRenderer cpu;
-  auto render = [&](sol::Renderer& renderer, int samples, std::uint64_t seed, double& seconds) {
-    sol::RenderOptions settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.samples = samples;
-    settings.transport = sol::Transport::Path;
-    settings.seed = seed;
-    const auto start = std::chrono::steady_clock::now();
-    sol::RenderResult r = sol::render_scene(renderer, scene, settings);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return r;
-  };
-  // One reference for both: the CPU's, in double.
-  double reference_seconds = 0.0;
-  const sol::RenderResult reference = render(cpu, 2048, 1000, reference_seconds);
-  double reference_squares = 0.0;
-  for (std::size_t k = 0; k < reference.rgba.size(); ++k) {
-    if (k % 4 != 3) reference_squares += static_cast<double>(reference.rgba[k]) * reference.rgba[k];
-  }
-  double warm = 0.0;
-  render(kernel, 1, 0, warm);  // the kernel's pipelines built first
-  std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp\n";
-  for (sol::Renderer* renderer : {static_cast<sol::Renderer*>(&cpu), static_cast<sol::Renderer*>(&kernel)}) {
-    const std::string where = renderer == &cpu ? "cpu" : quoted_device;
-    for (int spp = 1; spp <= 256; spp *= 2) {
-      double seconds = 0.0;
-      const sol::RenderResult r = render(*renderer, spp, static_cast<std::uint64_t>(spp), seconds);
+  std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp,denoised_relative_rms_error,"
+                    "denoise_seconds\n";
+  for (const auto& [name, scene] : {std::pair<std::string, const sol::Scene&>{"lattice-balls-glowing", lattice},
+                                    std::pair<std::string, const sol::Scene&>{"sandwich-glowing", sandwich}}) {
+    auto render = [&](sol::Renderer& renderer, int samples, std::uint64_t seed, double& seconds) {
+      sol::RenderOptions settings;
+      settings.width = 64;
+      settings.height = 48;
+      settings.samples = samples;
+      settings.transport = sol::Transport::Path;
+      settings.seed = seed;
+      const auto start = std::chrono::steady_clock::now();
+      sol::RenderResult r = sol::render_scene(renderer, scene, settings);
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return r;
+    };
+    // One reference for both: the CPU's, in double.
+    double reference_seconds = 0.0;
+    const sol::RenderResult reference = render(cpu, 2048, 1000, reference_seconds);
+    double reference_squares = 0.0;
+    for (std::size_t k = 0; k < reference.rgba.size(); ++k) {
+      if (k % 4 != 3) reference_squares += static_cast<double>(reference.rgba[k]) * reference.rgba[k];
+    }
+    const auto error = [&](const sol::RenderResult& r) {
       double squares = 0.0;
       for (std::size_t k = 0; k < r.rgba.size(); ++k) {
         if (k % 4 != 3) squares += std::pow(static_cast<double>(r.rgba[k]) - reference.rgba[k], 2.0);
       }
-      char line[512];
-      std::snprintf(line, sizeof line, "lattice-balls-glowing,%s,64,48,%d,%.3f,%.5f,2048\n", where.c_str(), spp,
-                    seconds, std::sqrt(squares / reference_squares));
-      csv += line;
-      std::fprintf(stderr, "%s", line);
+      return std::sqrt(squares / reference_squares);
+    };
+    double warm = 0.0;
+    sol::RenderResult warm_image = render(kernel, 1, 0, warm);  // the kernel's pipelines built first
+    kernel.denoise(warm_image);                                  // (and its filter's)
+    for (sol::Renderer* renderer : {static_cast<sol::Renderer*>(&cpu), static_cast<sol::Renderer*>(&kernel)}) {
+      const std::string where = renderer == &cpu ? "cpu" : quoted_device;
+      for (int spp = 1; spp <= 256; spp *= 2) {
+        double seconds = 0.0;
+        sol::RenderResult r = render(*renderer, spp, static_cast<std::uint64_t>(spp), seconds);
+        const double raw = error(r);
+        const auto start = std::chrono::steady_clock::now();
+        renderer->denoise(r);
+        const double denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%s,64,48,%d,%.3f,%.5f,2048,%.5f,%.4f\n", name.c_str(), where.c_str(), spp,
+                      seconds, raw, error(r), denoise_seconds);
+        csv += line;
+        std::fprintf(stderr, "%s", line);
+      }
     }
   }
   files.emplace_back("path_convergence.csv", csv);

@@ -119,6 +119,8 @@ py::dict render_dict(const sol::RenderResult& r) {
   out["distance"] = image(r.distance, r.height, r.width, 1);
   out["point"] = image(point, r.height, r.width, 3);
   out["steps"] = image(r.steps, r.height, r.width, 1);
+  if (!r.albedo.empty()) out["albedo"] = image(r.albedo, r.height, r.width, 3);
+  if (!r.normal.empty()) out["normal"] = image(r.normal, r.height, r.width, 3);
   if (!r.out_of_steps.empty()) out["out_of_steps"] = image(r.out_of_steps, r.height, r.width, 1);
   return out;
 }
@@ -232,7 +234,7 @@ struct PyRenderer {
 
   py::dict render(int width, int height, int samples_given, const std::optional<sol::Camera>& eye, const std::string& transport,
                   long long seed, std::optional<double> stereo_ipd, bool aovs, unsigned threads, const py::object& progress,
-                  int first_sample, std::optional<double> time_limit, std::optional<double> noise_target) {
+                  int first_sample, std::optional<double> time_limit, std::optional<double> noise_target, bool denoise) {
     if (seed < 0 || seed > 2147483647LL) {
       throw sol::InvalidArgument("sol.Renderer.render: seed must be in [0, 2^31-1] (solrender's --seed), not " + std::to_string(seed));
     }
@@ -248,8 +250,12 @@ struct PyRenderer {
                                .threads = threads,
                                .transport = transport_named(transport, "sol.Renderer.render"),
                                .seed = static_cast<std::uint64_t>(seed)};
-    options.aovs = aovs;
+    options.aovs = aovs || denoise;  // (the denoiser's guides)
     options.first_sample = first_sample;
+    if (denoise && first_sample != 0) {
+      throw sol::InvalidArgument("sol.Renderer.render: denoise takes a render from sample 0 (its AOVs), not first_sample " +
+                                 std::to_string(first_sample));
+    }
     options.max_dispatch_ms = 100.0;  // as solrender: tiles of about 50 ms, so progress and Ctrl-C are heard
     const sol::Camera from = eye.value_or(camera);
     std::atomic<bool> cancel{false};
@@ -320,6 +326,17 @@ struct PyRenderer {
       throw;
     }
     if (raised) throw *raised;  // raised by the last report, after the work was done
+    if (denoise) {
+      py::gil_scoped_release release;
+      const std::lock_guard lock(busy);
+      renderer->denoise(result, stereo_ipd ? 2 : 1);
+    }
+    if (!aovs) {  // (rendered for the denoiser alone)
+      for (auto* plane : {&result.object, &result.distance, &result.px, &result.py, &result.pz, &result.steps,
+                          &result.albedo, &result.normal, &result.out_of_steps}) {
+        plane->clear();
+      }
+    }
     py::dict out = render_dict(result);
     out["rays_out_of_steps"] = result.rays_out_of_steps;
     out["device_ms"] = result.device_ms;
@@ -795,7 +812,7 @@ void bind_scenes(py::module_& m) {
       .def("set_scene", &PyRenderer::set_scene, py::arg("scene"))
       .def("render", &PyRenderer::render, py::arg("width"), py::arg("height"), py::arg("samples"), py::arg("camera"),
            py::arg("transport"), py::arg("seed"), py::arg("ipd"), py::arg("aovs"), py::arg("threads"), py::arg("progress"),
-           py::arg("first_sample"), py::arg("time_limit"), py::arg("noise_target"))
+           py::arg("first_sample"), py::arg("time_limit"), py::arg("noise_target"), py::arg("denoise"))
       .def_property_readonly("description", [](const PyRenderer& r) { return r.description; })
       .def_property_readonly("device", [](const PyRenderer& r) { return r.on_cpu ? "cpu" : "vulkan"; })
       .def_property_readonly("notes", [](const PyRenderer& r) { return r.notes; });
@@ -825,7 +842,8 @@ void bind_scenes(py::module_& m) {
       "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many), with "
       "CpuRenderer.render's arguments and defaults; returns a dict of float32 arrays: rgba (H, W, 4; linear RGB, "
       "alpha 1: sol.save writes it as solrender does), object (H, W; 0 = no hit, k = k-th object), distance (H, W; "
-      "arc length to the hit), point (H, W, 3; Sol coordinates of the hit) and steps (H, W; march steps).");
+      "arc length to the hit), point (H, W, 3; Sol coordinates of the hit), steps (H, W; march steps), albedo (H, W, 3) "
+      "and normal (H, W, 3; frame components, facing the ray).");
 #ifdef SOL_PYTHON_IMAGES
   m.def(
       "save",

@@ -44,9 +44,10 @@
 namespace {
 
 // The AOV file's channels, in interleave_aovs' order.
-const std::vector<std::string> kAovChannels = {"object", "distance", "Px", "Py", "Pz", "steps", "out_of_steps"};
+const std::vector<std::string> kAovChannels = {"object",   "distance", "Px",       "Py",  "Pz",  "steps", "out_of_steps",
+                                                "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
 
-// Interleaves the AOV planes into object, distance, Px, Py, Pz, steps, out_of_steps.
+// Interleaves the AOV planes into kAovChannels' order.
 std::vector<float> interleave_aovs(const sol::RenderResult& r) {
   const std::size_t n = r.object.size(), c = kAovChannels.size();
   std::vector<float> out(c * n);
@@ -58,6 +59,10 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
     out[c * k + 4] = r.pz[k];
     out[c * k + 5] = r.steps[k];
     out[c * k + 6] = r.out_of_steps[k];
+    for (std::size_t i = 0; i < 3; ++i) {
+      out[c * k + 7 + i] = r.albedo[3 * k + i];
+      out[c * k + 10 + i] = r.normal[3 * k + i];
+    }
   }
   return out;
 }
@@ -74,6 +79,7 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   const bool aovs = !both.object.empty();  // (rendered with RenderOptions::aovs)
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->resize(n);
+    for (auto* plane : {&r.albedo, &r.normal}) plane->resize(3 * n);
   }
   r.rays_out_of_steps = both.rays_out_of_steps;
   for (int j = 0; j < h; ++j) {
@@ -92,6 +98,10 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
       r.pz[k] = both.pz[left];
       r.steps[k] = both.steps[left];
       r.out_of_steps[k] = both.out_of_steps[left] + both.out_of_steps[right];  // (both eyes' rays make the pixel)
+      for (std::size_t c = 0; c < 3; ++c) {
+        r.albedo[3 * k + c] = both.albedo[3 * left + c];
+        r.normal[3 * k + c] = both.normal[3 * left + c];
+      }
     }
   }
   return r;
@@ -337,7 +347,7 @@ struct Options {
   std::string tone;                // empty: the scene's
   sol::cli::IntegratorOptions flow;
   sol::cli::SceneOverrides overrides;
-  bool print_scene = false, progress = false, overwrite = false, video_only = false;
+  bool print_scene = false, progress = false, overwrite = false, video_only = false, denoise = false;
   int width = 512, height = 512, spp = 0;  // spp 0: the scene's "samples"
   int seed = 0;                            // the path tracer's
   unsigned threads = 0;
@@ -353,7 +363,7 @@ int image_width(const Options& o) { return o.width * (o.stereo() && !o.anaglyph(
 void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_text("--scene", o.scene, "NAME|FILE", "a preset (" + sol::cli::preset_list() + ") or a JSON scene file (default plane)");
   cl.add_text("-o,--output", o.output, "OUT", "image file; the format follows the extension (png, exr, jpg, tif, ...)");
-  cl.add_text("--aov", o.aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps");
+  cl.add_text("--aov", o.aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps, out_of_steps, albedo.RGB, N.XYZ");
   cl.add_integer("--width", o.width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
   cl.add_integer("--height", o.height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
   o.overrides.add_to(cl, "camera");
@@ -405,6 +415,9 @@ void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_number("--ipd", o.ipd, "D", "eye separation in Sol units for --stereo, [0, 10] (default 0.064)",
                 sol::cli::in_range(0.0, 10.0));
   cl.add_integer("--threads", o.threads, 1, 1024, "N", "CPU threads for --device cpu (default: all)");
+  cl.add_flag("--denoise", o.denoise,
+              "denoise the image (an edge-avoiding filter guided by the albedo, normal and distance, on the renderer's "
+              "device; docs/lighting.md, \"Denoising\"): for path-traced stills and films of few samples");
   cl.add_flag("--print-scene", o.print_scene, "print the effective scene as JSON and exit");
   cl.add_text("--path", o.path_file, "FILE",
               "render a film along a camera path (JSON: a start and walk/turn/hold segments, docs/films.md): one "
@@ -982,7 +995,8 @@ int main(int argc, char** argv) {
     options.threads = o.threads;
     options.transport = o.transport == "path" ? sol::Transport::Path : sol::Transport::Direct;
     options.seed = static_cast<std::uint64_t>(o.seed);
-    options.aovs = !o.aov.empty();  // the colour alone unless --aov asks for more (less to read back and hold)
+    // The colour alone unless --aov or --denoise asks for more (less to read back and hold).
+    options.aovs = !o.aov.empty() || o.denoise;
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
     std::uint64_t out_of_steps = 0;  // every image's rays that ran out of march steps
@@ -991,13 +1005,17 @@ int main(int argc, char** argv) {
       const sol::RenderResult both =
           o.stereo() ? renderer->render_stereo(camera, o.ipd, these) : renderer->render(camera, these);
       out_of_steps += both.rays_out_of_steps;
-      return o.anaglyph() ? to_anaglyph(both) : both;
+      return both;
     };
+    // The image of all the samples, denoised (the eyes apart) and made an anaglyph where asked.
     const Render render = [&](const sol::Camera& camera, const RowSink* sink) {
       sol::RenderOptions these = options;
-      if (sink != nullptr && !o.anaglyph()) these.rows = *sink;
-      if (!o.time_limit && !o.noise_target) return render_with(camera, these);
-      return render_until(o, camera, these, render_with, progress, tty, samples_done);
+      if (sink != nullptr && !o.anaglyph() && !o.denoise) these.rows = *sink;
+      sol::RenderResult r = !o.time_limit && !o.noise_target
+                                ? render_with(camera, these)
+                                : render_until(o, camera, these, render_with, progress, tty, samples_done);
+      if (o.denoise) renderer->denoise(r, o.stereo() ? 2 : 1);
+      return o.anaglyph() ? to_anaglyph(r) : r;
     };
     progress.start();
     if (film) {

@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 #include <sol/connection.hpp>
+#include <sol/denoise.hpp>
 #include <sol/error.hpp>
 #include <sol/group.hpp>
 #include <sol/lattice.hpp>
@@ -31,6 +32,7 @@
 #include "shaders/march_reach_comp_spv.hpp"
 #include "shaders/march_reach_srgb_unorm_comp_spv.hpp"
 #include "shaders/march_srgb_unorm_comp_spv.hpp"
+#include "denoise_filter.hpp"
 #include "seed_tables.hpp"
 
 namespace sol::vk {
@@ -542,7 +544,9 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingObjects, DescriptorType::StorageBuffer},
                                           {kernel::kBindingCrowdNodes, DescriptorType::StorageBuffer},
                                           {kernel::kBindingCrowdItems, DescriptorType::StorageBuffer},
-                                          {kernel::kBindingParts, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingParts, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingAlbedo, DescriptorType::StorageImage},
+                                          {kernel::kBindingNormal, DescriptorType::StorageImage}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -644,6 +648,7 @@ struct MarchRenderer::Impl {
   // For the AOV bindings (rgba32f, never written without AOVs) when the
   // colour binding holds a caller's 8-bit image.
   std::optional<StorageImage> placeholder;
+  std::optional<detail::DenoiseFilter> denoiser;  // built at the first denoise()
   // Frames: record() and render() calls so far. Call c uses descriptor set
   // c mod frames_in_flight; before it the caller has waited for call
   // c - frames_in_flight, so a buffer replaced before call f (used by calls
@@ -966,6 +971,13 @@ void MarchRenderer::reserve(int width, int height, int eyes) {
   }
 }
 
+void MarchRenderer::denoise(RenderResult& image, int eyes) {
+  Impl& m = *m_impl;
+  validate_denoise(image, eyes, "sol::vk::MarchRenderer::denoise");
+  if (!m.denoiser) m.denoiser.emplace(m.context);
+  m.denoiser->run(image, eyes);
+}
+
 std::string MarchRenderer::description() const { return "vulkan '" + m_impl->context.device_name() + "'"; }
 
 void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camera> eyes, int width, int height,
@@ -976,7 +988,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                           std::to_string(f.width) + " x " + std::to_string(f.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(f.set, b, target);
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal}) {
+    f.pipeline->bind(f.set, b, target);
+  }
   m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
                         group_count(f.height, kernel::kGroupSize), f.data());
 }
@@ -993,6 +1007,8 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
   f.pipeline->bind(f.set, kernel::kBindingColor, color);
   f.pipeline->bind(f.set, kernel::kBindingHit, hit);
   f.pipeline->bind(f.set, kernel::kBindingPoint, point);
+  // (A probe's samples write no albedo or normal: their bindings hold the colour's image, never written through them.)
+  for (int b : {kernel::kBindingAlbedo, kernel::kBindingNormal}) f.pipeline->bind(f.set, b, color);
   m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
                         group_count(f.height, kernel::kGroupSize), f.data());
 }
@@ -1078,7 +1094,9 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
   f.pipeline->bind(f.set, kernel::kBindingColor, target.view);
-  for (int b : {kernel::kBindingHit, kernel::kBindingPoint}) f.pipeline->bind(f.set, b, *m.placeholder);
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal}) {
+    f.pipeline->bind(f.set, b, *m.placeholder);
+  }
   m.record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
                   group_count(f.height, kernel::kGroupSize), f.data());
 }
@@ -1088,8 +1106,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   (void)world();  // a world first (logic_error)
   // Peak host memory per pixel, measured on lavapipe (whose device memory
   // is the host's): with the AOVs 120 bytes (the images, their staging
-  // copies and the result), rounded up.
-  validate_render(eyes, options, "sol::vk::MarchRenderer::render", 128.0);
+  // copies and the result) before the albedo and normal, which add two
+  // images, their copies and 24 bytes of result: rounded up.
+  validate_render(eyes, options, "sol::vk::MarchRenderer::render", 216.0);
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
@@ -1101,10 +1120,12 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // The AOV images only when asked for (the kernel variant without AOVs
   // never writes them: a 1 x 1 placeholder holds their bindings).
   StorageImage color(m.context, f.width, f.height);
-  std::optional<StorageImage> hit, point;
+  std::optional<StorageImage> hit, point, albedo, normal;
   if (options.aovs) {
     hit.emplace(m.context, f.width, f.height);
     point.emplace(m.context, f.width, f.height);
+    albedo.emplace(m.context, f.width, f.height);
+    normal.emplace(m.context, f.width, f.height);
   } else if (!m.placeholder) {
     m.placeholder.emplace(m.context, 1, 1);
   }
@@ -1112,6 +1133,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   pipeline.bind(f.set, kernel::kBindingColor, color);
   pipeline.bind(f.set, kernel::kBindingHit, hit ? *hit : *m.placeholder);
   pipeline.bind(f.set, kernel::kBindingPoint, point ? *point : *m.placeholder);
+  pipeline.bind(f.set, kernel::kBindingAlbedo, albedo ? *albedo : *m.placeholder);
+  pipeline.bind(f.set, kernel::kBindingNormal, normal ? *normal : *m.placeholder);
   Params& g = f.params;
   // Paths: the seed's halves and the sampling (each dispatch its sample's index, below).
   g.path = path_uniform(options.seed, 0, options.path_sampling);
@@ -1135,7 +1158,8 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample k of the range: the range's first overwrites (sample 0, the
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
-        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), k == 0 ? 1.0 : 0.0));
+        // (w: sample 0 writes every AOV, the albedo and normal too.)
+        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), k == 0 ? 2.0 : 0.0));
         const glm::dvec2 disk = lens_sample(k);
         g.lens.x = static_cast<float>(disk.x);
         g.lens.y = static_cast<float>(disk.y);
@@ -1182,7 +1206,10 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
   if (!options.aovs) return r;  // the colour alone: nothing more read back or held
   const std::vector<float> hits = hit->download(), points = point->download();
+  const std::vector<float> albedos = albedo->download(), normals = normal->download();
   const std::size_t n = static_cast<std::size_t>(w) * h;
+  r.albedo.resize(3 * n);
+  r.normal.resize(3 * n);
   r.object.resize(n);
   r.distance.resize(n);
   r.steps.resize(n);
@@ -1198,6 +1225,10 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     r.px[k] = points[4 * k + 0];
     r.py[k] = points[4 * k + 1];
     r.pz[k] = points[4 * k + 2];
+    for (std::size_t c = 0; c < 3; ++c) {
+      r.albedo[3 * k + c] = albedos[4 * k + c];
+      r.normal[3 * k + c] = normals[4 * k + c];
+    }
   }
   return r;
 }

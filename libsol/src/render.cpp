@@ -1129,6 +1129,8 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   r.py = join(left.py, right.py, 1);
   r.pz = join(left.pz, right.pz, 1);
   r.steps = join(left.steps, right.steps, 1);
+  r.albedo = join(left.albedo, right.albedo, 3);
+  r.normal = join(left.normal, right.normal, 3);
   r.out_of_steps = join(left.out_of_steps, right.out_of_steps, 1);
   r.rays_out_of_steps = left.rays_out_of_steps + right.rays_out_of_steps;
   return r;
@@ -1242,8 +1244,9 @@ RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptio
   // The world as it is now (logic_error without one), whatever set_world does meanwhile.
   const std::shared_ptr<const MarchWorld> prepared = current_world();
   // Peak memory per pixel, measured: 55 bytes (the result's colour and
-  // AOVs, 40, and the tiles' working copies), rounded up.
-  validate_render(eyes, options, "sol::CpuRenderer::render", 64.0);
+  // AOVs, 40, and the tiles' working copies) before the albedo and normal
+  // (24 more), rounded up.
+  validate_render(eyes, options, "sol::CpuRenderer::render", 88.0);
   // Each eye on its own; the progress of all of them together.
   RenderOptions eye_options = options;
   RenderResult r;
@@ -1276,6 +1279,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
   const bool aovs = settings.aovs;
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->assign(pixels, 0.0f);
+    for (auto* plane : {&r.albedo, &r.normal}) plane->assign(3 * pixels, 0.0f);
   }
   std::atomic<std::uint64_t> out_of_steps{0};
 
@@ -1347,6 +1351,11 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
         r.px[k] = static_cast<float>(hit.point.x);
         r.py[k] = static_cast<float>(hit.point.y);
         r.pz[k] = static_cast<float>(hit.point.z);
+        const glm::dvec3 a = albedo_at(prepared.world().objects[static_cast<std::size_t>(hit.object - 1)], hit);
+        for (int channel = 0; channel < 3; ++channel) {
+          r.albedo[3 * k + channel] = static_cast<float>(a[channel]);
+          r.normal[3 * k + channel] = static_cast<float>(hit.normal[channel]);
+        }
       }
     }
   });

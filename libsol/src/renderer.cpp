@@ -5,9 +5,12 @@
 #include <fstream>
 #include <string>
 
+#include "sol/denoise.hpp"
 #include "sol/error.hpp"
 
 namespace sol {
+
+void Renderer::denoise(RenderResult& image, int eyes) { sol::denoise(image, eyes); }
 
 RenderResult Renderer::render(const Camera& camera, const RenderOptions& options) {
   return render(std::span<const Camera>(&camera, 1), options);

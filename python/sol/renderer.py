@@ -84,7 +84,8 @@ class Renderer:
         self._r.set_scene(scene)
 
     def render(self, width=512, height=512, *, samples=0, camera=None, transport=None, seed=0, stereo=False,
-               ipd=0.064, aovs=True, threads=0, progress=None, first_sample=0, time_limit=None, noise_target=None):
+               ipd=0.064, aovs=True, threads=0, progress=None, first_sample=0, time_limit=None, noise_target=None,
+               denoise=False):
         """Renders the prepared world, width x height pixels per eye (1..16384), from `camera` (the scene's when
         None), `samples` per pixel (1..4096; 0 the scene's "samples"), by `transport` (the renderer's when None),
         the path tracer's random numbers from `seed` (0..2^31-1); `stereo` both eyes of `ipd` side by side
@@ -93,7 +94,9 @@ class Renderer:
         samples into an image later: (n1 * a + n2 * b) / (n1 + n2)); above 0 `aovs` must be False (the AOVs are
         sample 0's). `time_limit` (seconds) and `noise_target` (a relative error) render in batches until either
         is reached, as solrender's --time-limit and --noise-target (from `samples` to 4096 per pixel); the dict then
-        also holds "samples", "noise" (the estimate reached) and "seconds".
+        also holds "samples", "noise" (the estimate reached) and "seconds". `denoise` filters the colour with
+        the denoiser guided by the AOVs (solrender's --denoise; on the renderer's device; "rgba" is then the
+        denoised colour, the AOVs are rendered whatever `aovs` says and handed out only where it is True).
 
         Returns a dict of NumPy float32 arrays as sol.render_cpu's (rgba, and with `aovs` object, distance, point,
         steps, out_of_steps) plus rays_out_of_steps and device_ms. `progress`: a callable given the finished
@@ -113,7 +116,7 @@ class Renderer:
         try:
             return self._r.render(width, height, samples, camera, transport or self._transport, seed,
                                   ipd if stereo else None, aovs, threads, callback, first_sample, time_limit,
-                                  noise_target)
+                                  noise_target, denoise)
         finally:
             if bar is not None:
                 bar.close()

@@ -58,6 +58,24 @@ def test_the_kernel_from_python_is_solrenders(preset, options):
 
 
 @needs_vulkan
+@needs_solrender
+def test_denoised_from_python_is_solrenders():
+    # denoise=True is solrender's --denoise: the same filter on the same device over the same render, float for
+    # float; without aovs the dict holds the colour alone, with them the guides too.
+    scene = sol.preset_scene("sandwich")
+    r = sol.Renderer(scene, device="vulkan", transport="path")
+    raw = r.render(24, 16, samples=2, seed=3, progress=False)
+    got = r.render(24, 16, samples=2, seed=3, progress=False, denoise=True, aovs=False)
+    assert set(got) >= {"rgba"} and "albedo" not in got and "object" not in got
+    assert np.abs(got["rgba"] - raw["rgba"]).max() > 0.01  # the filter changed the colour
+    assert raw["albedo"].shape == (16, 24, 3) and raw["normal"].shape == (16, 24, 3)
+    assert same_as_solrender(scene, got["rgba"], "--device", "vulkan", "--width", 24, "--height", 16, "--spp", 2,
+                             "--transport", "path", "--seed", 3, "--denoise")
+    with pytest.raises(ValueError, match="first_sample"):
+        r.render(24, 16, samples=2, first_sample=2, aovs=False, denoise=True, progress=False)
+
+
+@needs_vulkan
 def test_kernel_and_cpu_agree_on_hits():
     # The kernel (float) and the CPU reference (double) through one interface: the same objects hit at the same
     # points, to the kernel's float tolerance, in a world of the quotient.

@@ -16,6 +16,18 @@ void report_out_of_steps(ivec2 pixel, bool written) {
   if (WRITE_AOVS && !written) imageStore(aov_hit, pixel, imageLoad(aov_hit, pixel) + vec4(0.0, 0.0, 0.0, float(g_out_of_steps)));
 }
 
+// The AOVs of a camera ray's hit (`hit`, its surface `f`; `f.object` < 0
+// a miss, all 0), the albedo and normal too where the sample's w says so
+// (render()'s; a presenter's probe binds no images for them).
+void write_aovs_of(ivec2 pixel, vec4 hit_aov, vec4 point_aov, Surface f) {
+  imageStore(aov_hit, pixel, hit_aov);
+  imageStore(aov_point, pixel, point_aov);
+  if (params.pixel_sample.w < 1.5) return;
+  const bool hit = f.object >= 0;
+  imageStore(aov_albedo, pixel, hit ? vec4(albedo(f.object, f.uv), 0.0) : vec4(0.0));
+  imageStore(aov_normal, pixel, hit ? vec4(f.n, 0.0) : vec4(0.0));
+}
+
 // From the eye (PATH_FROM_EYE, march/paths.glsl; DIRECT_FROM_EYE,
 // march/shading.glsl): the pixel's path or radiance, its camera ray its
 // first segment, and its colour and AOVs written.
@@ -37,9 +49,10 @@ void from_eye_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction
     if (first.k >= 0) {
       hit_aov.xy = vec2(float(first_f.object + 1), first.t);
       point_aov = vec4(first_f.world, 0.0);
+    } else {
+      first_f.object = -1;
     }
-    imageStore(aov_hit, pixel, hit_aov);
-    imageStore(aov_point, pixel, point_aov);
+    write_aovs_of(pixel, hit_aov, point_aov, first_f);
   }
   report_out_of_steps(pixel, write_aovs);
 }
@@ -75,8 +88,9 @@ void march_pass() {
   if (!ray.sees) {
     imageStore(color_image, pixel, output_color(accumulate(pixel, vec4(0.0, 0.0, 0.0, 1.0), sample_at.z)));
     if (write_aovs) {
-      imageStore(aov_hit, pixel, vec4(0.0));
-      imageStore(aov_point, pixel, vec4(0.0));
+      Surface none;
+      none.object = -1;
+      write_aovs_of(pixel, vec4(0.0), vec4(0.0), none);
     }
     return;
   }
@@ -109,8 +123,11 @@ void march_pass() {
   vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
   vec4 hit_aov = vec4(0.0, 0.0, float(h.steps), 0.0);
   vec4 point_aov = vec4(0.0);
+  Surface hit_f;
+  hit_f.object = -1;
   if (h.k >= 0) {
     const Surface f = surface_at(h);
+    hit_f = f;
     if (DEFER_SHADING) {
       defer_shading(pixel, h.q, h.t, f.n, f.object, f.uv, h.u);
     } else if (PATH_TRACING) {
@@ -130,8 +147,7 @@ void march_pass() {
   if (!DEFER_SHADING || h.k < 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
   if (write_aovs) {
     hit_aov.w = float(g_out_of_steps);
-    imageStore(aov_hit, pixel, hit_aov);
-    imageStore(aov_point, pixel, point_aov);
+    write_aovs_of(pixel, hit_aov, point_aov, hit_f);
   }
   report_out_of_steps(pixel, write_aovs);
 }

@@ -100,6 +100,13 @@ struct RenderResult {
   std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
   std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
   std::vector<float> steps;     ///< march steps used
+  /// 3 per pixel: the hit's albedo (its colour times its pattern, whatever
+  /// its material), 0 on a miss: the denoiser's guide (sol/denoise.hpp).
+  std::vector<float> albedo;
+  /// 3 per pixel: the hit's unit surface normal in the frame components at
+  /// the hit, facing the ray (a solid seen from inside: its inward normal);
+  /// 0 on a miss.
+  std::vector<float> normal;
   /// Per pixel: how many of its marches (over all its samples: the camera
   /// rays, mirrors' reflected rays, paths' segments, shadow rays) stopped at
   /// the world's max_steps before they met an object or reached
@@ -130,6 +137,13 @@ class Renderer {
 
   /// Where it renders, for people: "cpu (2 threads)", "vulkan 'llvmpipe ...'".
   virtual std::string description() const = 0;
+
+  /// Replaces the colour of `image` (a render of this renderer's with its
+  /// AOVs, `eyes` side by side) by the denoiser's (sol/denoise.hpp) where
+  /// the renderer computes: on the host in double (the default, the CPU
+  /// renderer's), on the device in float (the kernel's). InvalidArgument
+  /// for an image without AOVs.
+  virtual void denoise(RenderResult& image, int eyes = 1);
 
   /// One eye.
   RenderResult render(const Camera& camera, const RenderOptions& options);

@@ -159,6 +159,9 @@ class MarchRenderer final : public Renderer {
   using Renderer::render;
   /// "vulkan 'DEVICE NAME'".
   std::string description() const override;
+  /// The denoiser (sol/denoise.hpp) on the device, in float: its filter
+  /// pipeline built at the first call. Same checks as sol::denoise.
+  void denoise(RenderResult& image, int eyes = 1) override;
 
   /// For presenters: records the kernel for one or two eyes (side by side,
   /// each width × height, left eye on the left) into the caller's command

@@ -49,8 +49,10 @@ SOL_CONSTANT(int, kBindingObjects, 12);     ///< storage buffer (read-only): the
 SOL_CONSTANT(int, kBindingCrowdNodes, 13);  ///< storage buffer (read-only): a crowd's tree of bounds (CrowdNode)
 SOL_CONSTANT(int, kBindingCrowdItems, 14);  ///< storage buffer (read-only): a crowd's objects in leaf order (CrowdItem)
 SOL_CONSTANT(int, kBindingParts, 15);       ///< storage buffer (read-only): the composites' parts (Part)
+SOL_CONSTANT(int, kBindingAlbedo, 16);      ///< storage image: the hit's albedo R, G, B, 0 (AOVs, the denoiser's guide)
+SOL_CONSTANT(int, kBindingNormal, 17);      ///< storage image: the hit's normal, frame components, 0 (AOVs, the denoiser's guide)
 /// The number of bindings (the last one's, plus one).
-SOL_CONSTANT(int, kBindingCount, 16);
+SOL_CONSTANT(int, kBindingCount, 18);
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
@@ -192,7 +194,9 @@ struct Params {
   /// This dispatch's sample of every pixel: xy its point in the pixel (from
   /// the top-left corner; 0.5, 0.5 the centre), z its weight in the colour
   /// already in the image (1: overwrite; 1/(k + 1) for a running mean of
-  /// k + 1 samples), w 1 when the AOVs are written (the centre's sample).
+  /// k + 1 samples), w 1 when the AOVs are written (the centre's sample),
+  /// 2 when the albedo and normal are written too (render()'s, not a
+  /// presenter's probe).
   vec4 pixel_sample;
   /// This dispatch's tile of the (side-by-side) image: xy its first pixel,
   /// zw its size; the dispatch covers it, pixels outside it are left alone.

@@ -1,0 +1,183 @@
+// The denoiser on the host (sol::denoise, sol/denoise.h) on images whose
+// truth is known: synthetic images built here (a flat surface of known
+// light and albedo, with noise of known spread), whose denoised colour is
+// compared with the truth, and the filter's invariants (a constant image
+// stays as it is, no pixel takes from another object or the other eye).
+// Also the CPU renderer's albedo and normal AOVs against the scene's
+// definitions. The kernel's filter and AOVs are compared with these in
+// kernel_denoise_test.cpp.
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sol/denoise.hpp>
+#include <sol/sol.hpp>
+
+namespace {
+
+// A w × h image of a plane seen face on: object 1, normal (0, 0, 1),
+// distance 2 everywhere, albedo `albedo(i, j)`, colour albedo × light +
+// Gaussian noise of standard deviation `sigma` (seeded).
+template <class Albedo>
+sol::RenderResult flat_image(int w, int h, double light, double sigma, Albedo albedo, unsigned seed = 1) {
+  sol::RenderResult r;
+  r.width = w;
+  r.height = h;
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  r.rgba.resize(4 * n);
+  r.object.assign(n, 1.0f);
+  r.distance.assign(n, 2.0f);
+  r.albedo.resize(3 * n);
+  r.normal.resize(3 * n);
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      const double a = albedo(i, j);
+      for (int c = 0; c < 3; ++c) {
+        r.albedo[3 * k + c] = static_cast<float>(a);
+        r.rgba[4 * k + c] = static_cast<float>(a * light + noise(random));
+        r.normal[3 * k + c] = c == 2 ? 1.0f : 0.0f;
+      }
+      r.rgba[4 * k + 3] = 1.0f;
+    }
+  }
+  return r;
+}
+
+// The RMS difference of the red channel from a * light over the pixels.
+template <class Albedo>
+double rms_error(const sol::RenderResult& r, double light, Albedo albedo) {
+  double squares = 0.0;
+  for (int j = 0; j < r.height; ++j) {
+    for (int i = 0; i < r.width; ++i) {
+      const double d = r.rgba[4 * (static_cast<std::size_t>(j) * r.width + i)] - albedo(i, j) * light;
+      squares += d * d;
+    }
+  }
+  return std::sqrt(squares / (r.width * r.height));
+}
+
+TEST(Denoise, AConstantImageStaysAsItIs) {
+  // Every weight is normalised: a constant colour is its own weighted mean.
+  const auto grey = [](int, int) { return 0.5; };
+  sol::RenderResult r = flat_image(40, 30, 0.8, 0.0, grey);
+  sol::denoise(r);
+  for (std::size_t k = 0; k < r.rgba.size(); ++k) EXPECT_NEAR(r.rgba[k], k % 4 == 3 ? 1.0 : 0.4, 1e-6) << k;
+}
+
+TEST(Denoise, NoiseOnAFlatSurfaceFallsBelowAQuarter) {
+  // White noise of σ = 0.1 on a constant 0.5: the passes' kernel (33
+  // pixels wide, its luminance weight letting most of them in) must take
+  // the noise down at least fourfold, what 16 times the samples would.
+  const auto grey = [](int, int) { return 0.5; };
+  sol::RenderResult r = flat_image(64, 48, 1.0, 0.1, grey);
+  const double before = rms_error(r, 1.0, grey);
+  sol::denoise(r);
+  const double after = rms_error(r, 1.0, grey);
+  EXPECT_NEAR(before, 0.1, 0.005);
+  EXPECT_LT(after, before / 4.0) << before << " -> " << after;
+}
+
+TEST(Denoise, AnAlbedoCheckerKeepsItsEdges) {
+  // A checker of albedo 0.2 and 0.8 (squares of 8 pixels) under a light of
+  // 1 with noise: the colour is divided by the albedo before filtering
+  // (and the albedo weight keeps the squares apart), so every pixel,
+  // the squares' edges included, comes back near its own albedo, and the
+  // noise falls as on a flat surface.
+  const auto checker = [](int i, int j) { return ((i / 8) + (j / 8)) % 2 == 0 ? 0.2 : 0.8; };
+  sol::RenderResult r = flat_image(64, 48, 1.0, 0.05, checker, 7);
+  const double before = rms_error(r, 1.0, checker);
+  sol::denoise(r);
+  EXPECT_LT(rms_error(r, 1.0, checker), before / 3.0);
+  double worst = 0.0;
+  for (int j = 0; j < r.height; ++j) {
+    for (int i = 0; i < r.width; ++i) {
+      worst = std::max(worst, std::abs(r.rgba[4 * (static_cast<std::size_t>(j) * r.width + i)] - checker(i, j)));
+    }
+  }
+  // Blurred edges would put pixels near 0.5, 0.3 from either albedo; the
+  // raw noise reaches about 4 σ = 0.2 at the worst of 3072 pixels.
+  EXPECT_LT(worst, 0.12);
+}
+
+TEST(Denoise, NoPixelTakesFromAnotherObjectOrTheOtherEye) {
+  // Left half object 1 at colour 0.2, right half object 2 at 0.9, both
+  // noisy; then the same as two eyes of one object. Every output pixel is
+  // a weighted mean of its own half's inputs: within their range.
+  for (const bool eyes : {false, true}) {
+    const auto half = [](int i, int) { return i < 32 ? 0.2 : 0.9; };
+    sol::RenderResult r = flat_image(64, 32, 1.0, 0.05, half, 3);
+    if (!eyes) {
+      for (int j = 0; j < r.height; ++j) {
+        for (int i = 32; i < 64; ++i) r.object[static_cast<std::size_t>(j) * 64 + i] = 2.0f;
+      }
+    }
+    double low[2] = {1e9, 1e9}, high[2] = {-1e9, -1e9};
+    for (int j = 0; j < r.height; ++j) {
+      for (int i = 0; i < 64; ++i) {
+        const double v = r.rgba[4 * (static_cast<std::size_t>(j) * 64 + i)] / half(i, j);  // (the light: divided by the albedo)
+        low[i / 32] = std::min(low[i / 32], v);
+        high[i / 32] = std::max(high[i / 32], v);
+      }
+    }
+    // With one object and two eyes the albedo weight alone would let a
+    // little through (exp(-49)); the eyes' rule lets nothing.
+    sol::denoise(r, eyes ? 2 : 1);
+    for (int j = 0; j < r.height; ++j) {
+      for (int i = 0; i < 64; ++i) {
+        const double v = r.rgba[4 * (static_cast<std::size_t>(j) * 64 + i)] / half(i, j);
+        EXPECT_GE(v, low[i / 32] - 1e-6) << i << ", " << j << (eyes ? " eyes" : " objects");
+        EXPECT_LE(v, high[i / 32] + 1e-6) << i << ", " << j << (eyes ? " eyes" : " objects");
+      }
+    }
+  }
+}
+
+TEST(Denoise, AnImageWithoutItsAovsIsRefusedByName) {
+  const auto grey = [](int, int) { return 0.5; };
+  sol::RenderResult r = flat_image(8, 8, 1.0, 0.0, grey);
+  r.albedo.clear();
+  try {
+    sol::denoise(r);
+    FAIL() << "no albedo accepted";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("albedo"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("RenderOptions::aovs"), std::string::npos) << e.what();
+  }
+  sol::RenderResult odd = flat_image(9, 8, 1.0, 0.0, grey);
+  EXPECT_THROW(sol::denoise(odd, 2), sol::InvalidArgument);  // two eyes of an odd width
+  EXPECT_THROW(sol::denoise(odd, 3), sol::InvalidArgument);
+}
+
+TEST(Denoise, TheCpuRenderersAlbedoAndNormalAreTheHitsOwn) {
+  // The sandwich's two planes z = ±1 (the lower one's "circles" pattern):
+  // each pixel's albedo is its object's colour times the pattern's factor
+  // at the hit point's pattern coordinates (the world x, y for a plane),
+  // its normal (0, 0, ∓1) facing the ray (the upper plane's is -z).
+  sol::Scene scene = sol::preset_scene("sandwich");
+  sol::RenderOptions options;
+  options.width = 32;
+  options.height = 24;
+  const sol::RenderResult r = sol::render_cpu(scene, options);
+  int hits = 0;
+  for (std::size_t k = 0; k < r.object.size(); ++k) {
+    const int object = static_cast<int>(r.object[k]);
+    if (object == 0) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(r.albedo[3 * k + c], 0.0f);
+      continue;
+    }
+    ++hits;
+    const sol::SceneObject& o = scene.objects[static_cast<std::size_t>(object - 1)];
+    const double factor = sol::pattern_factor(o.pattern, r.px[k], r.py[k]);
+    const double z = r.pz[k];
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.albedo[3 * k + c], o.color[c] * factor, 1e-6) << k;
+    EXPECT_NEAR(r.normal[3 * k + 2], z > 0.0 ? -1.0 : 1.0, 1e-9) << k;
+  }
+  EXPECT_GT(hits, 500);
+}
+
+}  // namespace
