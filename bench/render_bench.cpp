@@ -106,6 +106,7 @@
 #include <sol/vk/march.hpp>
 #include <sol/vk/pipeline.hpp>
 
+#include "image_file.hpp"
 #include "command_line.hpp"
 #include "output_file.hpp"
 #include "support/crowd.hpp"
@@ -625,6 +626,7 @@ void section_objects(Bench& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sol::programs::install_texture_reader();  // scene files' "texture" keys
   int size = 512, error_size = 128, gpu_size = 2048, gpu_height = 0, repeats = 5, rate_spp = 16;
   std::string out_dir = ".", only, scene_name;
   bool kernel_only = false;

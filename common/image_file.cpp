@@ -14,6 +14,8 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <sol/error.hpp>
+
 #include "srgb.hpp"
 
 namespace sol::programs {
@@ -81,6 +83,55 @@ bool image_decodes(const std::string& path, int width, int height, std::string* 
   }
   return true;
 }
+
+sol::Texture read_texture_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw sol::InvalidArgument(path + ": cannot open the texture (no such file, or not a regular file)");
+  }
+  // (Made and opened in two steps, as image_decodes.) The colour as the
+  // file holds it, not multiplied by its alpha (which a texture ignores).
+  auto in = OIIO::ImageInput::create(path);
+  OIIO::ImageSpec opened, config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  if (!in || !in->open(path, opened, config)) {
+    const std::string error = in ? in->geterror() : OIIO::geterror();
+    throw sol::InvalidArgument(path + ": not an image this program reads" + (error.empty() ? "" : " (" + error + ")"));
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.width > sol::Texture::kMaxTextureSize ||
+      spec.height > sol::Texture::kMaxTextureSize || spec.nchannels < 1) {
+    throw sol::InvalidArgument(path + ": a texture of " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                               " texels (from 1 to " + std::to_string(sol::Texture::kMaxTextureSize) + " each way)");
+  }
+  const std::size_t texels = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+  std::vector<float> pixels(texels * static_cast<std::size_t>(spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    throw sol::InvalidArgument(path + ": the texture does not decode (" + in->geterror() + ")");
+  }
+  // 8- and 16-bit files hold sRGB-encoded values (PNG, JPEG, unless they say
+  // otherwise); float files linear ones (EXR, HDR).
+  const std::string space = spec.get_string_attribute("oiio:ColorSpace");
+  const bool encoded = space.empty() ? !spec.format.is_floating_point()
+                                     : (space == "sRGB" || space.find("srgb") != std::string::npos);
+  // An albedo: linear, in [0, 1] (a float file's brighter texels cut at 1).
+  auto linear = [&](float v) {
+    if (!std::isfinite(v) || v <= 0.0f) return 0.0f;
+    if (v >= 1.0f) return 1.0f;
+    return !encoded ? v : v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+  };
+  sol::Texture t;
+  t.width = spec.width;
+  t.height = spec.height;
+  t.rgb.resize(3 * texels);
+  const auto n = static_cast<std::size_t>(spec.nchannels);
+  for (std::size_t k = 0; k < texels; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) t.rgb[3 * k + c] = linear(pixels[n * k + std::min(c, n < 3 ? 0 : c)]);
+  }
+  return t;
+}
+
+void install_texture_reader() { sol::set_texture_reader(read_texture_file); }
 
 struct ImageWriter::Impl {
   explicit Impl(const OutputFile& f) : file(f) {}

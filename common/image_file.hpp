@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <sol/display.hpp>
+#include <sol/texture.hpp>
 
 #include "output_file.hpp"
 
@@ -78,5 +79,16 @@ bool can_write(const std::string& path);
 /// (opened and every pixel decoded); where not, `why` says what it is (an
 /// empty file, a directory, a truncated image, another size).
 bool image_decodes(const std::string& path, int width, int height, std::string* why = nullptr);
+
+/// An image file as an object's texture (sol/texture.hpp): decoded by
+/// OpenImageIO, 8- and 16-bit files' sRGB values made linear (float files'
+/// taken as linear), grey spread to RGB, alpha dropped, each value cut to
+/// [0, 1]. Throws sol::InvalidArgument naming the file and why.
+sol::Texture read_texture_file(const std::string& path);
+
+/// Makes read_texture_file the process's texture reader
+/// (sol::set_texture_reader), so that scene files' "texture" keys load:
+/// every program calls it first.
+void install_texture_reader();
 
 }  // namespace sol::programs

@@ -905,6 +905,9 @@ void bind_scenes(py::module_& m) {
 }  // namespace
 
 PYBIND11_MODULE(_sol, m) {
+#ifdef SOL_PYTHON_IMAGES
+  sol::programs::install_texture_reader();  // scene files' and sol.scene's "texture" keys
+#endif
   m.doc() = "libsol: Thurston's Sol geometry (group law, geodesics, distances, the lattice, scenes, the CPU renderer)";
   // Errors: all sol.SolError, and the builtin a caller may already catch
   // (names that shadow no builtin under `from sol import *`).

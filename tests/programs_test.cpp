@@ -34,6 +34,7 @@
 #include "sampling.hpp"
 
 #include <sol/render.hpp>
+#include <sol/error.hpp>
 #include <sol/scene.hpp>
 
 namespace fs = std::filesystem;
@@ -655,4 +656,66 @@ TEST(AdaptiveScale, SettlesWhereTheFrameFitsTheTarget) {
   s = 0.5;
   for (long frame = 0; frame < 100; ++frame) s = ceiling.next(s, frame, 1.0);
   EXPECT_EQ(s, 1.0);
+}
+
+namespace {
+
+// The sRGB encoding's inverse (IEC 61966-2-1), written out.
+double srgb_to_linear(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+
+}  // namespace
+
+TEST(TextureFile, AnEightBitFileIsDecodedToLinearAlbedos) {
+  // A 3 × 2 PNG of 8-bit values written by OpenImageIO directly (grey in one
+  // texel, colours in the others, an alpha channel that the texture drops):
+  // read back as sRGB decoded to linear, each value the inverse curve of
+  // its byte over 255.
+  const fs::path dir = fresh_directory("texture");
+  const std::string path = (dir / "t.png").string();
+  const std::vector<std::uint8_t> bytes = {0, 0, 0, 255,      255, 255, 255, 255, 128, 64, 32, 10,
+                                           10, 200, 90, 255,  1, 2, 3, 0,         250, 128, 0, 255};
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(3, 2, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // the bytes as given, not divided by their alpha
+    ASSERT_TRUE(out->open(path, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
+    out->close();
+  }
+  const sol::Texture t = sol::programs::read_texture_file(path);
+  ASSERT_EQ(t.width, 3);
+  ASSERT_EQ(t.height, 2);
+  ASSERT_EQ(t.rgb.size(), 18u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(t.rgb[3 * k + c], srgb_to_linear(bytes[4 * k + c] / 255.0), 1e-6) << k;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(TextureFile, AFloatFileIsLinearAndCutToAnAlbedo) {
+  // An EXR's values are linear already: taken as they are, those outside
+  // [0, 1] cut to it; a grey (one-channel) image spreads to R, G, B.
+  const fs::path dir = fresh_directory("texture-float");
+  const std::string path = (dir / "t.exr").string();
+  const std::vector<float> values = {0.25f, 2.0f, -1.0f, 0.5f};
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+    out->close();
+  }
+  const sol::Texture t = sol::programs::read_texture_file(path);
+  const float want[] = {0.25f, 1.0f, 0.0f, 0.5f};
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(t.rgb[3 * k + c], want[k]) << k;
+  }
+  try {
+    sol::programs::read_texture_file((dir / "missing.png").string());
+    ADD_FAILURE() << "a missing file read";
+  } catch (const sol::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }

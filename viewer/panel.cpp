@@ -1,6 +1,9 @@
 #include "panel.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <cstdio>
 #include <exception>
 #include <span>
@@ -11,6 +14,7 @@
 
 #include <sol/lattice.hpp>
 #include <sol/objects.hpp>
+#include <sol/texture.hpp>
 
 namespace sol::viewer {
 namespace {
@@ -32,6 +36,45 @@ bool color_edit(const char* label, glm::dvec3& c) {
 }
 
 const char* const kPatterns[] = {"none", "circles", "checker"};
+
+// An object's image texture (sol/texture.hpp): its file, loaded through
+// the program's reader when Enter is pressed (the error shown below it), or
+// taken off; the pattern cells one copy spans along u and v, powers of two.
+bool texture_controls(SceneObject& o) {
+  bool changed = false;
+  struct Entry {
+    std::array<char, 512> text{};
+    std::string error;
+  };
+  static std::map<ImGuiID, Entry> entries;  // each object's field, by its widget's ID
+  Entry& e = entries[ImGui::GetID("texture file")];
+  if (e.text[0] == '\0' && o.texture) std::snprintf(e.text.data(), e.text.size(), "%s", o.texture->file.c_str());
+  if (ImGui::InputText("texture file", e.text.data(), e.text.size(), ImGuiInputTextFlags_EnterReturnsTrue)) {
+    try {
+      o.texture = e.text[0] == '\0' ? nullptr : read_texture(e.text.data(), e.text.data());
+      e.error.clear();
+      changed = true;
+    } catch (const std::exception& error) {
+      e.error = error.what();
+    }
+  }
+  if (!e.error.empty()) ImGui::TextWrapped("%s", e.error.c_str());
+  if (!o.texture) return changed;
+  ImGui::Text("%d x %d texels", o.texture->width, o.texture->height);
+  // Cells as exponents of two, -4 .. 6 (1/16 .. 64: sol::validate_texture_cells).
+  int exponents[2] = {static_cast<int>(std::lround(std::log2(o.texture_cells.x))),
+                      static_cast<int>(std::lround(std::log2(o.texture_cells.y)))};
+  if (ImGui::SliderInt2("texture cells (2^n)", exponents, -4, 6)) {
+    o.texture_cells = {std::ldexp(1.0, exponents[0]), std::ldexp(1.0, exponents[1])};
+    changed = true;
+  }
+  if (ImGui::Button("no texture")) {
+    o.texture = nullptr;
+    e.text[0] = '\0';
+    changed = true;
+  }
+  return changed;
+}
 
 bool object_controls(SceneObject& o) {
   bool changed = color_edit("colour", o.color);
@@ -72,6 +115,7 @@ bool object_controls(SceneObject& o) {
     o.emission = glm::dvec3(std::max(e[0], 0.0f), std::max(e[1], 0.0f), std::max(e[2], 0.0f));
     changed = true;
   }
+  changed |= texture_controls(o);
   return changed;
 }
 

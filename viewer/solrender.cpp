@@ -966,6 +966,7 @@ void render_still(const Options& o, const sol::Scene& scene, const Render& rende
 }  // namespace
 
 int main(int argc, char** argv) {
+  sol::programs::install_texture_reader();  // scene files' "texture" keys
   Options o;
   sol::cli::CommandLine cl("solrender", "[options] -o OUT",
                            "Renders what an observer inside Thurston's Sol geometry sees: every pixel follows a Sol "

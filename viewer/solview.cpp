@@ -863,6 +863,7 @@ int run(App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sol::programs::install_texture_reader();  // scene files' "texture" keys
   App app;
   add_options(app.command_line, app.options);
   app.command_line.parse(argc, argv);

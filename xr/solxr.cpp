@@ -37,6 +37,7 @@
 #include <sol/vk/image.hpp>
 #include <sol/vk/march.hpp>
 
+#include "image_file.hpp"
 #include "command_line.hpp"
 #include "device_frames.hpp"
 #include "eye_pose.hpp"
@@ -878,6 +879,7 @@ int run(const Options& o, const sol::Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sol::programs::install_texture_reader();  // scene files' "texture" keys
   sol::cli::CommandLine cl("solxr", "[options]",
                            "Shows a Sol scene in an OpenXR headset (XR_KHR_vulkan_enable2): every pixel of each eye "
                            "follows a Sol geodesic.");

@@ -22,6 +22,7 @@
 #include <sol/lattice.hpp>
 #include <sol/lens.hpp>
 #include <sol/quotient_field.hpp>
+#include <sol/texture.hpp>
 
 #include "sol/vk/buffer.hpp"
 #include "sol/vk/context.hpp"
@@ -155,9 +156,10 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
                            0.0f, 0.0f);
   e.forward = vec4(turned(basis.forward), rk4_step);
   e.camera = vec4(p, std::exp(p.z));
-  // Pattern phase: the camera position modulo 2, the common period of the
-  // circles (1) and the checkerboard's parity (2), exact in double.
-  e.camera_frac = vec4(p - 2.0 * glm::floor(p / 2.0), std::exp(-p.z));
+  // Pattern phase: the camera position modulo kTexturePhase (64), a common
+  // period of the circles (1), the checkerboard's parity (2) and every
+  // texture's copies (powers of two of at most 64 cells), exact in double.
+  e.camera_frac = vec4(p - kTexturePhase * glm::floor(p / kTexturePhase), std::exp(-p.z));
   if (!quotient && !prepared.tree()) {
     // A listed world's objects camera-relative, as the CPU reference
     // (sol::MarchWorld::seen_from); a crowd's the kernel sees from the eye.
@@ -178,9 +180,29 @@ Eye make_eye(const MarchWorld& prepared, const Camera& cam, int width, int heigh
   return e;
 }
 
+// The objects' image textures' texels, one texture after another (binding
+// kBindingTextures): each object's first texel in `first` (a texture two
+// objects share is held once); a single texel where there is none.
+std::vector<glm::vec4> pack_textures(const World& world, std::vector<int>& first) {
+  std::vector<glm::vec4> texels;
+  first.assign(world.objects.size(), 0);
+  std::map<const Texture*, int> held;
+  for (std::size_t k = 0; k < world.objects.size(); ++k) {
+    const Texture* t = world.objects[k].texture.get();
+    if (t == nullptr) continue;
+    const auto [it, added] = held.emplace(t, static_cast<int>(texels.size()));
+    first[k] = it->second;
+    if (!added) continue;
+    for (std::size_t i = 0; i + 2 < t->rgb.size(); i += 3) texels.emplace_back(t->rgb[i], t->rgb[i + 1], t->rgb[i + 2], 1.0f);
+  }
+  if (texels.empty()) texels.emplace_back(1.0f);
+  return texels;
+}
+
 // The scene objects' records (binding kBindingObjects), at least
-// kListedObjects of them (a listed world's kernel reads that many).
-std::vector<kernel::Object> pack_objects(const World& world) {
+// kListedObjects of them (a listed world's kernel reads that many);
+// `textures` each one's first texel (pack_textures).
+std::vector<kernel::Object> pack_objects(const World& world, const std::vector<int>& textures) {
   std::vector<kernel::Object> out(std::max(world.objects.size(), static_cast<std::size_t>(kListedObjects)));
   for (std::size_t k = 0; k < world.objects.size(); ++k) {
     const SceneObject& o = world.objects[k];
@@ -190,6 +212,10 @@ std::vector<kernel::Object> pack_objects(const World& world) {
     out[k].material = vec4(o.emission, static_cast<int>(o.material));
     out[k].params = glm::vec4(material_params(o));
     out[k].glow = glm::vec4(static_cast<float>(o.glow_reach), 0.0f, 0.0f, 0.0f);
+    if (o.texture) {
+      out[k].texture = glm::ivec4(textures[k], o.texture->width, o.texture->height, 0);
+      out[k].texture_cells = glm::vec4(glm::dvec4(o.texture_cells, 0.0, 0.0));
+    }
   }
   return out;
 }
@@ -546,7 +572,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingCrowdItems, DescriptorType::StorageBuffer},
                                           {kernel::kBindingParts, DescriptorType::StorageBuffer},
                                           {kernel::kBindingAlbedo, DescriptorType::StorageImage},
-                                          {kernel::kBindingNormal, DescriptorType::StorageImage}},
+                                          {kernel::kBindingNormal, DescriptorType::StorageImage},
+                                          {kernel::kBindingTextures, DescriptorType::StorageBuffer}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -631,6 +658,7 @@ struct MarchRenderer::Impl {
   // Device copies of the world's buffers; a recorded dispatch still reads
   // them after record() returns: a replaced one is retired (below).
   std::optional<Buffer> objects;      // the scene objects' records
+  std::optional<Buffer> textures;     // their image textures' texels (else one)
   std::optional<Buffer> crowd_nodes;  // a crowd: its tree of bounds (else a stub)
   std::optional<Buffer> crowd_items;  // a crowd: its objects in leaf order (else a stub)
   std::optional<Buffer> parts;        // the composites' parts (else a stub)
@@ -714,6 +742,7 @@ struct MarchRenderer::Impl {
     built.bind(set, kernel::kBindingCrowdNodes, *crowd_nodes);
     built.bind(set, kernel::kBindingCrowdItems, *crowd_items);
     built.bind(set, kernel::kBindingParts, *parts);
+    built.bind(set, kernel::kBindingTextures, *textures);
     return built;
   }
 
@@ -807,7 +836,12 @@ void MarchRenderer::set_world(const World& world) {
   const std::vector<float> stub(4, 0.0f);
   const SeedTable seeds = seed_table_of(f);
   // Frames still in flight read the old buffers: they are retired, not destroyed.
-  const std::vector<kernel::Object> objects = pack_objects(world);
+  std::vector<int> first_texels;
+  const std::vector<glm::vec4> texels = pack_textures(world, first_texels);
+  m.retire(m.textures);
+  m.textures.emplace(m.context, texels.size() * sizeof(glm::vec4));
+  m.textures->write(texels);
+  const std::vector<kernel::Object> objects = pack_objects(world, first_texels);
   const PackedCrowd crowd = pack_crowd(prepared);
   m.retire(m.objects);
   m.objects.emplace(m.context, objects.size() * sizeof(kernel::Object));

@@ -165,6 +165,7 @@ MarchFeatures features_of(const World& world) {
     f.cutout = f.cutout || o.cutout;
     f.mirrors = f.mirrors || material_reflects(o);
     f.emission = f.emission || o.emission != glm::dvec3(0.0);
+    f.textures = f.textures || o.texture != nullptr;
     f.cutout_gaps = f.cutout_gaps || (o.cutout && plane_z);
   }
   f.point_lights = std::any_of(world.lights.begin(), world.lights.end(),

@@ -2,6 +2,7 @@
 #include "sol/materials.h"
 #include "sol/patterns.h"
 
+#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -290,6 +291,16 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
                                        "goes through it to its far wall");
   }
   if (!(o.glow_reach >= 0.0 && o.glow_reach <= 10.0)) field_error(at + ".glow_reach", at + ".glow_reach must be in [0, 10]");
+  try {
+    validate_texture_cells(o.texture_cells, at + ".texture_cells");
+  } catch (const InvalidArgument& e) {
+    field_error(at + ".texture_cells", e.what());
+  }
+  try {
+    if (o.texture) validate_texture(*o.texture, at + ".texture");
+  } catch (const InvalidArgument& e) {
+    field_error(at + ".texture", e.what());
+  }
   if (o.glow_reach > 0.0) {
     const Ball* b = std::get_if<Ball>(&o.shape);
     if (!b || !b->exact || o.emission == glm::dvec3(0.0)) {
@@ -302,6 +313,27 @@ void check_object(const SceneObject& o, const std::string& at, const Lattice* qu
 }
 
 namespace {
+
+// A "texture" key: an image file's name, relative to the scene file's
+// folder (or the working directory for a scene not read from a file),
+// read through the program's reader (sol::set_texture_reader).
+std::shared_ptr<const Texture> read_texture_key(const json& value, const SceneFileReader& r, const std::string& at) {
+  if (!value.is_string() || value.get<std::string>().empty()) {
+    r.fail(at, "'" + at + "' must be an image file's name, got " + SceneFileReader::json_text(value));
+  }
+  const std::string named = value.get<std::string>();
+  std::filesystem::path path(named);
+  std::error_code ec;
+  const std::filesystem::path source(r.source());
+  if (path.is_relative() && !r.source().empty() && std::filesystem::is_regular_file(source, ec)) {
+    path = source.parent_path() / path;
+  }
+  try {
+    return read_texture(path.string(), named);
+  } catch (const InvalidArgument& e) {
+    r.fail(at, "'" + at + "': " + e.what());
+  }
+}
 
 // The shape of the object (or part) at `at`: its "type" and its kind's keys.
 Shape read_shape(const json& o, SceneObject& obj, const SceneFileReader& r, const std::string& at, const Lattice* quotient,
@@ -324,7 +356,7 @@ Shape read_shape(const json& o, SceneObject& obj, const SceneFileReader& r, cons
 
 Shape read_part(const json& o, const SceneFileReader& r, const std::string& at, const Lattice* quotient) {
   if (o.is_object()) {
-    for (const char* key : {"color", "pattern", "material", "emission", "mirror", "glow_reach", "cutout"}) {
+    for (const char* key : {"color", "pattern", "material", "emission", "mirror", "glow_reach", "cutout", "texture", "texture_cells"}) {
       if (o.contains(key)) {
         r.fail(at + "." + key, std::string("'") + key + "' in " + at +
                                    ": a part takes its kind's keys alone; its appearance is the composite's");
@@ -356,6 +388,15 @@ SceneObject read_object(const json& o, const SceneFileReader& r, const std::stri
   if (obj.material == Material::Glass) obj.ior = SceneObject::kDefaultIor;
   if (o.contains("ior")) obj.ior = r.number(o["ior"], at + ".ior");
   if (o.contains("glow_reach")) obj.glow_reach = r.number(o["glow_reach"], at + ".glow_reach");
+  if (o.contains("texture")) obj.texture = read_texture_key(o["texture"], r, at + ".texture");
+  if (o.contains("texture_cells")) {
+    const json& cells = o["texture_cells"];
+    if (!cells.is_array() || cells.size() != 2) {
+      r.fail(at + ".texture_cells", "'" + at + ".texture_cells' must be an array of 2 numbers (pattern cells along u and v), got " +
+                                        SceneFileReader::json_text(cells));
+    }
+    obj.texture_cells = {r.number(cells[0], at + ".texture_cells[0]"), r.number(cells[1], at + ".texture_cells[1]")};
+  }
   return obj;
 }
 
@@ -370,6 +411,8 @@ json write_object(const SceneObject& o, const Lattice* quotient) {
   if (o.material == Material::Glossy) j["roughness"] = o.roughness;
   if (o.material == Material::Glass) j["ior"] = o.ior;
   if (o.glow_reach != 0.0) j["glow_reach"] = o.glow_reach;
+  if (o.texture) j["texture"] = o.texture->file;
+  if (o.texture_cells != glm::dvec2(1.0)) j["texture_cells"] = json::array({o.texture_cells.x, o.texture_cells.y});
   return j;
 }
 

@@ -740,9 +740,10 @@ glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   return world.fog_color + (surface - world.fog_color) * transmittance;
 }
 
-// The albedo of object `o` at a hit: its colour times its pattern there.
+// The albedo of object `o` at a hit: its colour times its pattern and its texture there.
 glm::dvec3 albedo_at(const SceneObject& o, const MarchHit& hit) {
-  return o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
+  const glm::dvec3 a = o.color * pattern_factor(o.pattern, hit.pattern_uv.x, hit.pattern_uv.y);
+  return o.texture ? a * texture_color(*o.texture, o.texture_cells, hit.pattern_uv) : a;
 }
 
 // A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the

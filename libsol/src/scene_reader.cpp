@@ -226,7 +226,8 @@ void SceneFileReader::require_known_object_keys(const json& object, std::initial
                                                 const std::string& what, const std::string& path) const {
   // What every object takes, whatever its kind: its colour and pattern,
   // and its material's keys (sol/material_kinds.h; read_object).
-  static constexpr std::string_view kObjectKeys[] = {"color", "pattern", "material", "emission", "mirror", "roughness", "ior"};
+  static constexpr std::string_view kObjectKeys[] = {"color",     "pattern", "material", "emission",     "mirror",
+                                                     "roughness", "ior",     "texture",  "texture_cells"};
   std::vector<std::string_view> all(keys);
   all.insert(all.end(), std::begin(kObjectKeys), std::end(kObjectKeys));
   for (const auto& item : object.items()) {

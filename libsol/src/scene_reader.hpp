@@ -42,6 +42,8 @@ class SceneFileReader {
   /// Indexes `text` (which must already have parsed as JSON); `source` (a
   /// file name) prefixes every message.
   SceneFileReader(std::string_view text, std::string_view source);
+  /// The source the messages name (a scene file's name, or a label).
+  std::string_view source() const { return m_source; }
 
   /// Throws InvalidArgument "<source>: <what> (line L, column C)", the place
   /// of `path`'s value (or of the nearest enclosing value the file has).

@@ -590,3 +590,21 @@ def test_glass_of_index_one_is_unseen_from_python():
     assert np.max(np.abs(image(1.5) - reference)) > 0.05
     with pytest.raises(sol.InvalidArgumentError, match="glass is for solids"):
         sol.scene([sol.plane_z(0.0, material="glass")])
+
+
+@pytest.mark.skipif(not hasattr(sol, "save"), reason="this sol writes no images")
+def test_a_texture_from_python_colours_the_albedo(tmp_path):
+    # A one-texel texture of linear (0.5, 0.25, 1.0), saved as an 8-bit sRGB PNG and read back through the scene's
+    # "texture" key (relative to the working directory for sol.scene): every hit's albedo is the object's colour times
+    # it (within the 8-bit file's rounding, 0.5/255 encoded: under 0.004 linear).
+    texel = np.array([[[0.5, 0.25, 1.0]]], dtype=np.float32)
+    path = tmp_path / "one.png"
+    assert sol.save(str(path), texel) == 0
+    scene = sol.scene([sol.plane_z(-1.0, color=[0.8, 0.6, 1.0], texture=str(path), texture_cells=[2, 2])])
+    image = sol.render_cpu(scene, width=16, height=12)
+    hit = image["object"] == 1
+    assert hit.sum() > 20
+    assert np.allclose(image["albedo"][hit], np.array([0.4, 0.15, 1.0]), atol=0.004)
+    assert "texture_cells" in scene.to_json() and "one.png" in scene.to_json()
+    with pytest.raises(ValueError, match="texture_cells"):
+        sol.scene([sol.plane_z(-1.0, texture=str(path), texture_cells=[3, 1])])

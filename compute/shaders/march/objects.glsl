@@ -12,6 +12,7 @@
 #define SOL_MARCH_OBJECTS_GLSL
 
 #include "sol/patterns.h"  // the patterns and the kinds' pattern coordinates, shared with libsol
+#include "sol/texture.h"   // image textures' mapping, shared with libsol
 
 // A height's half exponentials (e^{z/2}, e^{-z/2}): the bounds below take
 // e^{±z} as their squares and e^{±Δz/2} as their products, so that they

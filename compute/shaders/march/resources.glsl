@@ -92,6 +92,11 @@ layout(set = 0, binding = kBindingNormal, rgba32f) uniform writeonly image2D aov
 layout(std430, set = 0, binding = kBindingObjects) readonly buffer SceneObjects {
   Object scene_objects[];
 };
+// The objects' image textures, one after another (Object::texture; a
+// single texel where no object has one).
+layout(std430, set = 0, binding = kBindingTextures) readonly buffer Textures {
+  vec4 texels[];
+};
 
 // A crowd (CROWD): its tree of bounds and its objects in leaf order, in
 // world coordinates (march/crowd.glsl).

@@ -229,8 +229,23 @@ SolLobes lobes_of(int k, vec3 a) {
   return sol_material_lobes(int(scene_objects[k].material.w), a, scene_objects[k].params);
 }
 
-// The surface's albedo: its colour times its pattern.
-vec3 albedo(int k, vec2 uv) { return scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y); }
+// Object k's image texture at pattern coordinates uv (sol/texture.h's
+// texels, bilinear), as sol::texture_color.
+vec3 texture_color(int k, vec2 uv) {
+  const ivec4 t = scene_objects[k].texture;
+  ivec4 at;
+  vec2 along;
+  sol_texture_taps(uv, scene_objects[k].texture_cells.xy, t.y, t.z, at, along);
+  const vec3 top = mix(texels[t.x + at.y * t.y + at.x].rgb, texels[t.x + at.y * t.y + at.z].rgb, along.x);
+  const vec3 bottom = mix(texels[t.x + at.w * t.y + at.x].rgb, texels[t.x + at.w * t.y + at.z].rgb, along.x);
+  return mix(top, bottom, along.y);
+}
+
+// The surface's albedo: its colour times its pattern and its texture.
+vec3 albedo(int k, vec2 uv) {
+  const vec3 a = scene_objects[k].color.rgb * pattern_factor(int(scene_objects[k].plane.z), uv.x, uv.y);
+  return HAS_TEXTURES && scene_objects[k].texture.y > 0 ? a * texture_color(k, uv) : a;
+}
 
 // The light object k's surface reflects diffusely where it receives
 // `light` (light_gather_next), with plane coordinates uv, before fog

@@ -39,7 +39,8 @@
   X(mirrors,        HAS_MIRRORS,          43) /* mirrors: rays go on along the reflected geodesic */ \
   X(emission,       HAS_EMISSION,         44) /* glowing objects */                                           \
   X(crowd,          CROWD,                46) /* a Sol world of more than kListedObjects objects: marched through its tree of bounds */ \
-  X(composites,     HAS_COMPOSITES,       23) /* unions, intersections, differences of solids (their parts' kinds set theirs) */
+  X(composites,     HAS_COMPOSITES,       23) /* unions, intersections, differences of solids (their parts' kinds set theirs) */ \
+  X(textures,       HAS_TEXTURES,         50) /* image textures on objects (sol/texture.h) */
 // clang-format on
 
 #endif  // SOL_MARCH_FEATURES_H

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <concepts>
+#include <memory>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "sol/material_kinds.h"
+#include "sol/texture.hpp"
 #include "sol/object_kinds.h"
 #include "sol/objects/ball.hpp"
 #include "sol/objects/box.hpp"
@@ -168,6 +170,12 @@ struct SceneObject {
   /// this (0: the minimising ones alone). Sol only (in a quotient paths
   /// reach glowing balls by reflection sampling).
   double glow_reach = 0.0;
+  /// An image over the surface (sol/texture.hpp): the albedo is the colour
+  /// times the pattern times the image's colour at the pattern
+  /// coordinates, one copy of the image over `texture_cells` pattern cells
+  /// (sol/texture.h). Null: none.
+  std::shared_ptr<const Texture> texture;
+  glm::dvec2 texture_cells{1.0, 1.0};
 };
 
 /// How the object's material scatters light at a point of albedo `albedo`

@@ -51,8 +51,9 @@ SOL_CONSTANT(int, kBindingCrowdItems, 14);  ///< storage buffer (read-only): a c
 SOL_CONSTANT(int, kBindingParts, 15);       ///< storage buffer (read-only): the composites' parts (Part)
 SOL_CONSTANT(int, kBindingAlbedo, 16);      ///< storage image: the hit's albedo R, G, B, 0 (AOVs, the denoiser's guide)
 SOL_CONSTANT(int, kBindingNormal, 17);      ///< storage image: the hit's normal, frame components, 0 (AOVs, the denoiser's guide)
+SOL_CONSTANT(int, kBindingTextures, 18);    ///< storage buffer (read-only): the objects' image textures' texels (vec4, rgb linear)
 /// The number of bindings (the last one's, plus one).
-SOL_CONSTANT(int, kBindingCount, 18);
+SOL_CONSTANT(int, kBindingCount, 19);
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
@@ -164,6 +165,10 @@ struct Object {
   vec4 material;  ///< rgb: emitted radiance (linear); w: the material's code (kMaterial*, sol/material_kinds.h)
   vec4 params;    ///< the material's parameters (sol_material_lobes): x the diffuse material's mirror share
   vec4 glow;      ///< x: a glowing exact ball's glow_reach (next-event estimation); yzw: 0
+  /// Its image texture (sol/texture.h): x its first texel in binding
+  /// kBindingTextures, y its width, z its height (0: no texture), w 0 ...
+  ivec4 texture;
+  vec4 texture_cells;  ///< ... and xy the pattern cells one copy spans; zw: 0
 };
 
 /// One eye: a mono image has one, a side-by-side stereo image two, rendered
@@ -173,7 +178,7 @@ struct Eye {
   vec4 up;           ///< xyz: camera up
   vec4 forward;      ///< xyz: camera forward; w: the RK4 step
   vec4 camera;       ///< xyz: camera position (world; in the quotient, teleported into D); w: e^{z}
-  vec4 camera_frac;  ///< xyz: camera position modulo 2 (the patterns' phase, from double); w: e^{-z}
+  vec4 camera_frac;  ///< xyz: camera position modulo sol::kTexturePhase (the patterns and textures' phase, from double); w: e^{-z}
   vec4 window;       ///< sol::image_window: s_x at the left and right edges, s_y at the top and bottom
   vec4 projection;   ///< x: kProjection* code, y: a fisheye's half angle across its image circle (radians)
   /// A listed world's objects (at most kListedObjects; a crowd's are in
@@ -316,7 +321,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
-static_assert(sizeof(Object) == 5 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
+static_assert(sizeof(Object) == 7 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
 static_assert(offsetof(Eye, projection) == 6 * 16 && offsetof(Eye, relative) == 7 * 16 &&
