@@ -110,6 +110,7 @@
 #include "command_line.hpp"
 #include "output_file.hpp"
 #include "support/crowd.hpp"
+#include "support/textures.hpp"
 
 namespace {
 
@@ -293,13 +294,7 @@ void section_path(Bench& b) {
   std::vector<std::pair<std::string, std::string>>& files = b.files;
   sol::Scene lattice = sol::preset_scene("lattice-balls");
   lattice.objects[0].emission = {0.6, 0.35, 0.2};
-  sol::Scene sandwich = sol::preset_scene("sandwich");  // the gallery's glowing sandwich
-  sandwich.fog_density = 0.0;
-  sandwich.lights.clear();
-  sandwich.ambient = 0.0;
-  sandwich.objects[0].emission = {0.6, 0.5, 0.35};
-  sandwich.max_distance = 12.0;
-  sandwich.max_steps = 400;
+  const sol::Scene sandwich = sol::test::glowing_sandwich();  // the gallery's glowing sandwich
   sol::vk::MarchRenderer kernel(context);
   sol::CpuRenderer cpu;
   std::string csv = "scene,device,width,height,spp,seconds,relative_rms_error,reference_spp,denoised_relative_rms_error,"

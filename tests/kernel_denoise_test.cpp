@@ -14,24 +14,13 @@
 #include <sol/vk/march.hpp>
 
 #include "support/kernel.hpp"
+#include "support/textures.hpp"
 
 namespace {
 
 using sol::test::expect_no_validation_errors;
+using sol::test::glowing_sandwich;
 using sol::test::vk_context;
-
-// The gallery's glowing sandwich: its upper plane (circles) glows and
-// lights the lower one; no lights, no ambient light: path tracing alone.
-sol::Scene glowing_sandwich() {
-  sol::Scene s = sol::preset_scene("sandwich");
-  s.fog_density = 0.0;
-  s.lights.clear();
-  s.ambient = 0.0;
-  s.objects[0].emission = {0.6, 0.5, 0.35};
-  s.max_distance = 12.0;
-  s.max_steps = 400;
-  return s;
-}
 
 sol::RenderResult render_paths(sol::Renderer& renderer, const sol::Scene& scene, int samples, std::uint64_t seed) {
   sol::RenderOptions o;
@@ -118,8 +107,8 @@ TEST(KernelDenoise, TwoPathsDenoisedBeatEightRaw) {
   // The glowing sandwich at 64 × 48 on the kernel, against a reference of
   // 256 paths a pixel (another seed): the image of 2 paths denoised is
   // nearer it than the raw image of 8. (Measured against 2048 paths on
-  // the CPU: 0.081 denoised against 0.107 raw; the reference's own noise,
-  // about 0.035, adds to both alike.)
+  // the CPU by render_bench --only path: 0.079 denoised against 0.102
+  // raw; the reference's own noise, about 0.035, adds to both alike.)
   const sol::Scene scene = glowing_sandwich();
   sol::vk::MarchRenderer kernel(vk_context());
   const sol::RenderResult reference = render_paths(kernel, scene, 256, 1000);

@@ -14,26 +14,13 @@
 #include <sol/vk/march.hpp>
 
 #include "support/kernel.hpp"
+#include "support/textures.hpp"
 
 namespace {
 
 using sol::test::expect_no_validation_errors;
+using sol::test::gradient_texture;
 using sol::test::vk_context;
-
-// A W × H texture of distinct colours: (i / W, j / H, a checker of 0.25 and 0.75).
-std::shared_ptr<const sol::Texture> gradient_texture(int w, int h) {
-  auto t = std::make_shared<sol::Texture>();
-  t->file = "gradient";
-  t->width = w;
-  t->height = h;
-  for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) {
-      t->rgb.insert(t->rgb.end(), {static_cast<float>(static_cast<double>(i) / w), static_cast<float>(static_cast<double>(j) / h),
-                                   (i + j) % 2 == 0 ? 0.25f : 0.75f});
-    }
-  }
-  return t;
-}
 
 // A floor z = -1 and a ball, both textured (the ball wrapped once: 8 × 4
 // cells), seen from `eye`.

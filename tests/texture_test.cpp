@@ -15,22 +15,11 @@
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
 
+#include "support/textures.hpp"
+
 namespace {
 
-// A W × H texture whose texel (i, j) is (i / W, j / H, 0.25 + 0.5 ((i + j) % 2)).
-std::shared_ptr<const sol::Texture> gradient_texture(int w, int h) {
-  auto t = std::make_shared<sol::Texture>();
-  t->file = "gradient";
-  t->width = w;
-  t->height = h;
-  for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) {
-      t->rgb.insert(t->rgb.end(), {static_cast<float>(static_cast<double>(i) / w), static_cast<float>(static_cast<double>(j) / h),
-                                   (i + j) % 2 == 0 ? 0.25f : 0.75f});
-    }
-  }
-  return t;
-}
+using sol::test::gradient_texture;
 
 // The texture's colour at pattern coordinates (u, v), from the definition:
 // the point of the unit square (s, t) = frac((u, v) / cells + 1/2), in texel
