@@ -161,11 +161,12 @@ struct PyCpuRenderer {
                                      .samples = samples_given == 0 ? samples : samples_given,
                                      .threads = threads,
                                      .transport = transport_named(transport, "sol.CpuRenderer.render"),
-                                     .seed = static_cast<std::uint64_t>(seed)};
-    // The CPU renderer's 64 bytes a pixel and the arrays it becomes here,
-    // 40 more (the result lives until they are made): refused up front
+                                     .seed = static_cast<std::uint64_t>(seed),
+                                     .guides = true};  // (the dict's albedo and normal)
+    // The CPU renderer's 88 bytes a pixel and the arrays it becomes here,
+    // 64 more (the result lives until they are made): refused up front
     // where that cannot fit.
-    sol::validate_render(std::span(&from, 1), options, "sol.CpuRenderer.render", 104.0);
+    sol::validate_render(std::span(&from, 1), options, "sol.CpuRenderer.render", 152.0);
     Interrupts interrupts;
     sol::RenderOptions interruptible = options;
     interruptible.progress = [&interrupts](double) { interrupts.check(); };
@@ -251,6 +252,7 @@ struct PyRenderer {
                                .transport = transport_named(transport, "sol.Renderer.render"),
                                .seed = static_cast<std::uint64_t>(seed)};
     options.aovs = aovs || denoise;  // (the denoiser's guides)
+    options.guides = options.aovs;   // (the dict's albedo and normal)
     options.first_sample = first_sample;
     if (denoise && first_sample != 0) {
       throw sol::InvalidArgument("sol.Renderer.render: denoise takes a render from sample 0 (its AOVs), not first_sample " +
@@ -308,6 +310,7 @@ struct PyRenderer {
               o.first_sample = first;
               o.samples = count;
               o.aovs = with_aovs;
+              o.guides = with_aovs && options.guides;
               // The whole render's progress, not each batch's: the time spent of the limit, else the samples
               // of the most there may be.
               o.progress = [&, first, count](double fraction) {

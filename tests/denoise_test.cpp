@@ -162,6 +162,7 @@ TEST(Denoise, TheCpuRenderersAlbedoAndNormalAreTheHitsOwn) {
   sol::RenderOptions options;
   options.width = 32;
   options.height = 24;
+  options.guides = true;
   const sol::RenderResult r = sol::render_cpu(scene, options);
   int hits = 0;
   for (std::size_t k = 0; k < r.object.size(); ++k) {

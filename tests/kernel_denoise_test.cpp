@@ -29,6 +29,7 @@ sol::RenderResult render_paths(sol::Renderer& renderer, const sol::Scene& scene,
   o.samples = samples;
   o.seed = seed;
   o.transport = sol::Transport::Path;
+  o.guides = true;  // (the denoiser's)
   return sol::render_scene(renderer, scene, o);
 }
 
@@ -53,8 +54,8 @@ TEST(KernelDenoise, TheAlbedoAndNormalAreTheCpus) {
   for (const char* name : {"sandwich", "lattice-balls"}) {
     const sol::Scene scene = sol::preset_scene(name);
     sol::vk::MarchRenderer kernel(vk_context());
-    const sol::RenderResult gpu = sol::test::render(kernel, scene, 48, 36);
-    const sol::RenderResult cpu = sol::render_cpu(scene, {.width = 48, .height = 36});
+    const sol::RenderResult gpu = sol::test::render(kernel, scene, 48, 36, true);
+    const sol::RenderResult cpu = sol::render_cpu(scene, {.width = 48, .height = 36, .guides = true});
     int same = 0, albedo_off = 0;
     for (std::size_t k = 0; k < cpu.object.size(); ++k) {
       if (gpu.object[k] != cpu.object[k]) continue;
@@ -86,7 +87,7 @@ TEST(KernelDenoise, TheKernelsFilterIsTheHosts) {
   sol::CpuRenderer cpu(scene);
   sol::vk::MarchRenderer kernel(vk_context());
   kernel.set_world(scene);
-  sol::RenderOptions o{.width = 40, .height = 30, .samples = 4, .transport = sol::Transport::Path, .seed = 5};
+  sol::RenderOptions o{.width = 40, .height = 30, .samples = 4, .transport = sol::Transport::Path, .seed = 5, .guides = true};
   for (const bool stereo : {false, true}) {
     const sol::RenderResult image = stereo ? cpu.render_stereo(scene.camera, 0.2, o) : cpu.render(scene.camera, o);
     sol::RenderResult on_host = image, on_device = image;

@@ -39,8 +39,8 @@ sol::Scene textured_world(const glm::dvec3& eye) {
 
 void expect_same_albedo(const sol::Scene& scene, const char* name) {
   sol::vk::MarchRenderer kernel(vk_context());
-  const sol::RenderResult gpu = sol::test::render(kernel, scene, 48, 36);
-  const sol::RenderResult cpu = sol::render_cpu(scene, {.width = 48, .height = 36});
+  const sol::RenderResult gpu = sol::test::render(kernel, scene, 48, 36, true);
+  const sol::RenderResult cpu = sol::render_cpu(scene, {.width = 48, .height = 36, .guides = true});
   int same = 0, off = 0, hits = 0;
   for (std::size_t k = 0; k < cpu.object.size(); ++k) {
     if (gpu.object[k] != cpu.object[k]) continue;

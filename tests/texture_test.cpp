@@ -70,6 +70,7 @@ int expect_textured_albedo(const sol::Scene& scene, int textured, Uv uv_of) {
   sol::RenderOptions options;
   options.width = 40;
   options.height = 30;
+  options.guides = true;
   const sol::RenderResult r = sol::render_cpu(scene, options);
   const sol::SceneObject& o = scene.objects[static_cast<std::size_t>(textured)];
   int checked = 0;

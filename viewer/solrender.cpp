@@ -813,6 +813,7 @@ sol::RenderResult render_until(const Options& o, const sol::Camera& camera, cons
     these.first_sample = first;
     these.samples = count;
     these.aovs = aovs;
+    these.guides = aovs && options.guides;
     these.rows = nullptr;    // the colour is the batches' mean, handed over whole
     these.progress = nullptr;  // (progress: per pair, below)
     return render(camera, these);
@@ -998,6 +999,7 @@ int main(int argc, char** argv) {
     options.seed = static_cast<std::uint64_t>(o.seed);
     // The colour alone unless --aov or --denoise asks for more (less to read back and hold).
     options.aovs = !o.aov.empty() || o.denoise;
+    options.guides = options.aovs;  // (the AOV file's albedo and normal; the denoiser's guides)
     options.max_dispatch_ms = 100.0;  // a device's dispatches in tiles of about 50 ms (a display's watchdog; progress)
     if (tty || o.progress) options.progress = [&](double fraction) { progress.report(fraction); };
     std::uint64_t out_of_steps = 0;  // every image's rays that ran out of march steps

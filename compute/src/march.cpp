@@ -1158,11 +1158,12 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (options.aovs) {
     hit.emplace(m.context, f.width, f.height);
     point.emplace(m.context, f.width, f.height);
+  }
+  if (options.guides) {
     albedo.emplace(m.context, f.width, f.height);
     normal.emplace(m.context, f.width, f.height);
-  } else if (!m.placeholder) {
-    m.placeholder.emplace(m.context, 1, 1);
   }
+  if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
   Impl::Built& pipeline = *f.pipeline;
   pipeline.bind(f.set, kernel::kBindingColor, color);
   pipeline.bind(f.set, kernel::kBindingHit, hit ? *hit : *m.placeholder);
@@ -1192,8 +1193,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample k of the range: the range's first overwrites (sample 0, the
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
-        // (w: sample 0 writes every AOV, the albedo and normal too.)
-        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), k == 0 ? 2.0 : 0.0));
+        // (w: sample 0 writes the AOVs, 2: the albedo and normal too.)
+        const double aovs_written = k != 0 ? 0.0 : options.guides ? 2.0 : 1.0;
+        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), aovs_written));
         const glm::dvec2 disk = lens_sample(k);
         g.lens.x = static_cast<float>(disk.x);
         g.lens.y = static_cast<float>(disk.y);
@@ -1240,10 +1242,11 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
   if (!options.aovs) return r;  // the colour alone: nothing more read back or held
   const std::vector<float> hits = hit->download(), points = point->download();
-  const std::vector<float> albedos = albedo->download(), normals = normal->download();
+  const std::vector<float> albedos = albedo ? albedo->download() : std::vector<float>{};
+  const std::vector<float> normals = normal ? normal->download() : std::vector<float>{};
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  r.albedo.resize(3 * n);
-  r.normal.resize(3 * n);
+  r.albedo.resize(albedo ? 3 * n : 0);
+  r.normal.resize(normal ? 3 * n : 0);
   r.object.resize(n);
   r.distance.resize(n);
   r.steps.resize(n);
@@ -1259,7 +1262,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     r.px[k] = points[4 * k + 0];
     r.py[k] = points[4 * k + 1];
     r.pz[k] = points[4 * k + 2];
-    for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t c = 0; c < 3 && albedo; ++c) {
       r.albedo[3 * k + c] = albedos[4 * k + c];
       r.normal[3 * k + c] = normals[4 * k + c];
     }

@@ -31,7 +31,7 @@ void validate_denoise(const RenderResult& image, int eyes, const char* who) {
   for (const auto& p : planes) {
     if (p.size != p.expected) {
       throw InvalidArgument(where + "the image's " + p.name + " holds " + std::to_string(p.size) + " values, not " +
-                            std::to_string(p.expected) + (p.size == 0 ? " (render with RenderOptions::aovs)" : ""));
+                            std::to_string(p.expected) + (p.size == 0 ? " (render with RenderOptions::aovs and guides)" : ""));
     }
   }
 }

@@ -1280,7 +1280,9 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
   const bool aovs = settings.aovs;
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->assign(pixels, 0.0f);
-    for (auto* plane : {&r.albedo, &r.normal}) plane->assign(3 * pixels, 0.0f);
+    if (settings.guides) {
+      for (auto* plane : {&r.albedo, &r.normal}) plane->assign(3 * pixels, 0.0f);
+    }
   }
   std::atomic<std::uint64_t> out_of_steps{0};
 
@@ -1352,6 +1354,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
         r.px[k] = static_cast<float>(hit.point.x);
         r.py[k] = static_cast<float>(hit.point.y);
         r.pz[k] = static_cast<float>(hit.point.z);
+        if (!settings.guides) continue;
         const glm::dvec3 a = albedo_at(prepared.world().objects[static_cast<std::size_t>(hit.object - 1)], hit);
         for (int channel = 0; channel < 3; ++channel) {
           r.albedo[3 * k + channel] = static_cast<float>(a[channel]);

@@ -26,9 +26,10 @@ inline void expect_no_validation_errors() {
   for (const std::string& e : vk_context().validation_errors()) ADD_FAILURE() << "validation: " << e;
 }
 
-/// A renderer's image of a scene, width x height (sol::render_scene).
-inline sol::RenderResult render(sol::Renderer& renderer, const sol::Scene& scene, int width, int height) {
-  return sol::render_scene(renderer, scene, {.width = width, .height = height});
+/// A renderer's image of a scene, width x height (sol::render_scene), with
+/// the albedo and normal AOVs too where `guides`.
+inline sol::RenderResult render(sol::Renderer& renderer, const sol::Scene& scene, int width, int height, bool guides = false) {
+  return sol::render_scene(renderer, scene, {.width = width, .height = height, .guides = guides});
 }
 
 /// Both eyes of sol::stereo_eyes(scene.camera, ipd), each width x height, side by side.

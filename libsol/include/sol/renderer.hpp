@@ -79,6 +79,11 @@ struct RenderOptions {
   /// neither reads them back from a device nor holds them (solrender
   /// without --aov).
   bool aovs = true;
+  /// With `aovs`: the denoiser's guides too (RenderResult::albedo and
+  /// ::normal). Asked for apart: the kernel's two more images cost about a
+  /// tenth of an AOV render's device time on lavapipe (plane at 512²: 27
+  /// -> 31 ms).
+  bool guides = false;
   /// Called now and then with the finished fraction in [0, 1] (0 first, 1 last).
   std::function<void(double)> progress;
   /// When set and true, the render stops early and throws sol::Cancelled.
@@ -100,12 +105,13 @@ struct RenderResult {
   std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
   std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
   std::vector<float> steps;     ///< march steps used
-  /// 3 per pixel: the hit's albedo (its colour times its pattern, whatever
-  /// its material), 0 on a miss: the denoiser's guide (sol/denoise.hpp).
+  /// 3 per pixel: the hit's albedo (its colour times its pattern and
+  /// texture, whatever its material), 0 on a miss: the denoiser's guide
+  /// (sol/denoise.hpp); with RenderOptions::guides, else empty.
   std::vector<float> albedo;
   /// 3 per pixel: the hit's unit surface normal in the frame components at
   /// the hit, facing the ray (a solid seen from inside: its inward normal);
-  /// 0 on a miss.
+  /// 0 on a miss; with RenderOptions::guides, else empty.
   std::vector<float> normal;
   /// Per pixel: how many of its marches (over all its samples: the camera
   /// rays, mirrors' reflected rays, paths' segments, shadow rays) stopped at
