@@ -48,6 +48,8 @@ jpeg --scene $s/composites.json "${a[@]}" -o $g/composites.jpg
 # Glass, glossy and a lens (scene-format.md): 32 samples, for the glossy lobe and the lens's blur.
 jpeg --scene $s/lens-glass.json --width 768 --height 576 --spp 32 -o $g/lens-glass.jpg
 jpeg --scene $s/globe-cut-locus.json --width 768 --height 576 --spp 4 -o $g/globe-cut-locus.jpg
+jpeg --scene $s/golden-glass.json --width 768 --height 576 --spp 16 -o $g/golden-glass.jpg
+jpeg --scene $s/lit-room.json --width 768 --height 576 --transport path --spp 4 --denoise -o $g/lit-room.jpg
 # Path traced (docs/lighting.md, "Path tracing"; on the kernel where there is one): 64 paths a pixel.
 p=(--transport path --spp 64 --width 768 --height 576)
 jpeg --scene $s/glowing-sandwich.json "${p[@]}" -o $g/glowing-sandwich.jpg
