@@ -137,9 +137,10 @@ TEST(Texture, SceneFilesNameTheImageRelativeToThemselves) {
   EXPECT_EQ(scene.objects[0].texture->width, 4);
   EXPECT_EQ(scene.objects[0].texture->height, 2);
   EXPECT_EQ(scene.objects[0].texture_cells, glm::dvec2(2.0, 0.25));
-  // Written back as named, read back the same.
-  const sol::Scene again = sol::parse_scene(sol::to_json(scene), (dir / "scene.json").string());
-  EXPECT_EQ(again.objects[0].texture->file, "4x2.png");
+  // Written back by its absolute path, read back the same from anywhere.
+  EXPECT_EQ(std::filesystem::path(scene.objects[0].texture->file), dir / "4x2.png");
+  const sol::Scene again = sol::parse_scene(sol::to_json(scene), "elsewhere");
+  EXPECT_EQ(std::filesystem::path(again.objects[0].texture->file), dir / "4x2.png");
   EXPECT_EQ(again.objects[0].texture_cells, glm::dvec2(2.0, 0.25));
   std::filesystem::remove_all(dir);
 }

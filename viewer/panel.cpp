@@ -6,6 +6,7 @@
 #include <map>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <variant>
@@ -51,7 +52,9 @@ bool texture_controls(SceneObject& o) {
   if (e.text[0] == '\0' && o.texture) std::snprintf(e.text.data(), e.text.size(), "%s", o.texture->file.c_str());
   if (ImGui::InputText("texture file", e.text.data(), e.text.size(), ImGuiInputTextFlags_EnterReturnsTrue)) {
     try {
-      o.texture = e.text[0] == '\0' ? nullptr : read_texture(e.text.data(), e.text.data());
+      const std::string file = e.text.data();
+      std::error_code ec;
+      o.texture = file.empty() ? nullptr : read_texture(file, std::filesystem::absolute(file, ec).lexically_normal().string());
       e.error.clear();
       changed = true;
     } catch (const std::exception& error) {

@@ -329,7 +329,9 @@ std::shared_ptr<const Texture> read_texture_key(const json& value, const SceneFi
     path = source.parent_path() / path;
   }
   try {
-    return read_texture(path.string(), named);
+    // Named by its absolute path from here on (sol::to_json writes it so):
+    // a scene written elsewhere, or rebuilt from its JSON, finds it again.
+    return read_texture(path.string(), std::filesystem::absolute(path, ec).lexically_normal().string());
   } catch (const InvalidArgument& e) {
     r.fail(at, "'" + at + "': " + e.what());
   }

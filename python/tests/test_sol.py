@@ -606,5 +606,13 @@ def test_a_texture_from_python_colours_the_albedo(tmp_path):
     assert hit.sum() > 20
     assert np.allclose(image["albedo"][hit], np.array([0.4, 0.15, 1.0]), atol=0.004)
     assert "texture_cells" in scene.to_json() and "one.png" in scene.to_json()
+    # Named by its absolute path once read, so the scene rebuilt from its JSON finds it from anywhere.
+    here = os.getcwd()
+    try:
+        os.chdir("/")
+        again = scene.replace(max_steps=300)
+    finally:
+        os.chdir(here)
+    assert np.allclose(sol.render_cpu(again, width=16, height=12)["albedo"][hit], np.array([0.4, 0.15, 1.0]), atol=0.004)
     with pytest.raises(ValueError, match="texture_cells"):
         sol.scene([sol.plane_z(-1.0, texture=str(path), texture_cells=[3, 1])])

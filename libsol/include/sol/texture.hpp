@@ -23,7 +23,7 @@ namespace sol {
 /// An image in linear RGB, row 0 at the top: what the object's colour is
 /// multiplied by (a file's sRGB values are decoded, its alpha ignored).
 struct Texture {
-  std::string file;          ///< as the scene file names it (written back by sol::to_json)
+  std::string file;          ///< the image file's absolute path (written back by sol::to_json), or a name
   int width = 0, height = 0;  ///< in [1, kMaxTextureSize]
   std::vector<float> rgb;    ///< 3 per texel: an albedo, in [0, 1]
   static constexpr int kMaxTextureSize = 16384;
@@ -46,8 +46,8 @@ void set_texture_reader(TextureReader reader);
 /// Whether one is installed.
 bool has_texture_reader();
 /// The image at `path` through the installed reader, checked
-/// (validate_texture), its `file` = `named` (what a scene file wrote);
-/// InvalidArgument without a reader.
+/// (validate_texture), its `file` = `named` (the scene file's reader gives
+/// the absolute path); InvalidArgument without a reader.
 std::shared_ptr<const Texture> read_texture(const std::string& path, const std::string& named);
 
 /// The checks of a texture: its size, its values; InvalidArgument naming `field`.
