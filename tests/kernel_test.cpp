@@ -1291,13 +1291,11 @@ TEST(Kernel, PathsInEveryEnclosureMakeAFurnaceWithTheCpuPaths) {
               one.rgba.insert(one.rgba.end(), gpu.rgba.begin() + 4 * k, gpu.rgba.begin() + 4 * k + 4);
             }
           }
-          const double expected = world.enclosures[eye].expected;
-          const sol::test::MeanAndError m = sol::test::red_mean(one);
-          std::printf("kernel furnace in %s, eye %zu, sampling %d: %.4f (expected %.2f, standard error %.4f)\n",
-                      world.quotient == sol::Quotient::None ? "Sol" : "the golden quotient", eye, static_cast<int>(sampling),
-                      m.mean, expected, m.error);
-          EXPECT_GT(m.error, 0.0);
-          EXPECT_LT(std::abs(m.mean - expected), 4.0 * m.error);
+          sol::test::expect_furnace_mean(one, world.enclosures[eye].expected,
+                                         std::string("kernel furnace in ") +
+                                             (world.quotient == sol::Quotient::None ? "Sol" : "the golden quotient") +
+                                             ", eye " + std::to_string(eye) + ", sampling " +
+                                             std::to_string(static_cast<int>(sampling)));
         }
         const std::size_t agree = sol::test::pixels_agreeing(gpu, cpu, 1e-3f);
         std::printf("furnaces, kernel against CPU: %zu of %zu pixels agree to 1e-3\n", agree, gpu.object.size());
@@ -1479,9 +1477,7 @@ TEST(Kernel, TheGlossyMaterialIsTheCpus) {
   furnace.objects[0].roughness = 0.6;
   const sol::RenderResult r =
       sol::render_scene(renderer, furnace, {.width = 6, .height = 6, .samples = 32, .transport = sol::Transport::Path, .seed = 2});
-  const sol::test::MeanAndError m = sol::test::red_mean(r);
-  std::printf("glossy furnace on the kernel: %.4f (expected 1.25, standard error %.4f)\n", m.mean, m.error);
-  EXPECT_LT(std::abs(m.mean - 1.25), 4.0 * m.error);
+  sol::test::expect_furnace_mean(r, 1.25, "glossy furnace on the kernel");
   expect_no_validation_errors();
 }
 
@@ -1526,9 +1522,7 @@ TEST(Kernel, TheGlassMaterialIsTheCpus) {
   // Lossless glass keeps a furnace (as Path.GlassInAFurnaceKeepsItsRadiance).
   const sol::RenderResult r =
       sol::render_scene(renderer, sol::test::glass_furnace(), {.width = 8, .height = 8, .samples = 32, .transport = sol::Transport::Path, .seed = 5});
-  const sol::test::MeanAndError m = sol::test::red_mean(r);
-  std::printf("glass in a furnace on the kernel: %.4f (expected 1.25, standard error %.4f)\n", m.mean, m.error);
-  EXPECT_LT(std::abs(m.mean - 1.25), 4.0 * m.error);
+  sol::test::expect_furnace_mean(r, 1.25, "glass in a furnace on the kernel");
   expect_no_validation_errors();
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <sol/sol.hpp>
 
 namespace sol::test {
@@ -32,6 +33,16 @@ inline MeanAndError red_mean(const sol::RenderResult& r) {
   }
   const double mean = sum / static_cast<double>(n);
   return {mean, std::sqrt(std::max(0.0, squares / static_cast<double>(n) - mean * mean) / static_cast<double>(n - 1))};
+}
+
+/// A furnace's image against its radiance E / (1 − ρ): the red channel's
+/// mean within 4 standard errors of `expected` (the error not 0: a noisy
+/// estimate), printed as `what` says.
+inline void expect_furnace_mean(const sol::RenderResult& r, double expected, const std::string& what) {
+  const MeanAndError m = red_mean(r);
+  std::printf("%s: %.4f (expected %.4f, standard error %.4f)\n", what.c_str(), m.mean, expected, m.error);
+  EXPECT_GT(m.error, 0.0) << what;
+  EXPECT_LT(std::abs(m.mean - expected), 4.0 * m.error) << what;
 }
 
 /// The pixel-by-pixel difference of the red channels of two images of the
