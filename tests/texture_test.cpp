@@ -168,6 +168,16 @@ TEST(Texture, ABadTextureIsRefusedByItsField) {
   t->rgb[4] = 1.5f;
   scene.objects[0].texture = t;
   EXPECT_THROW(sol::CpuRenderer{scene}, sol::InvalidArgument);
+  // At most 8192 texels a side.
+  auto wide = std::make_shared<sol::Texture>();
+  wide->width = sol::Texture::kMaxTextureSize + 1;
+  wide->height = 1;
+  wide->rgb.assign(3 * static_cast<std::size_t>(wide->width), 0.5f);
+  scene.objects[0].texture = wide;
+  EXPECT_THROW(sol::CpuRenderer{scene}, sol::InvalidArgument);
+  wide->width = sol::Texture::kMaxTextureSize;
+  wide->rgb.resize(3 * static_cast<std::size_t>(wide->width));
+  EXPECT_NO_THROW(sol::CpuRenderer{scene});
 }
 
 }  // namespace

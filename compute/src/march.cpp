@@ -838,6 +838,13 @@ void MarchRenderer::set_world(const World& world) {
   // Frames still in flight read the old buffers: they are retired, not destroyed.
   std::vector<int> first_texels;
   const std::vector<glm::vec4> texels = pack_textures(world, first_texels);
+  // (Checked before any buffer of the renderer's world is replaced.)
+  if (texels.size() * sizeof(glm::vec4) > m.context.limits().maxStorageBufferRange) {
+    throw NotImplemented("sol::vk::MarchRenderer: objects[].texture: the textures hold " + std::to_string(texels.size()) +
+                         " texels, more than this device's storage buffers take (" +
+                         std::to_string(m.context.limits().maxStorageBufferRange / sizeof(glm::vec4)) +
+                         "); the CPU renderer draws them");
+  }
   m.retire(m.textures);
   m.textures.emplace(m.context, texels.size() * sizeof(glm::vec4));
   m.textures->write(texels);

@@ -26,7 +26,9 @@ struct Texture {
   std::string file;          ///< the image file's absolute path (written back by sol::to_json), or a name
   int width = 0, height = 0;  ///< in [1, kMaxTextureSize]
   std::vector<float> rgb;    ///< 3 per texel: an albedo, in [0, 1]
-  static constexpr int kMaxTextureSize = 16384;
+  /// The largest side: an image of 8192² texels holds 0.8 GB of floats
+  /// here and 1 GB on the kernel (a vec4 a texel), the most a still needs.
+  static constexpr int kMaxTextureSize = 8192;
 };
 
 /// The fewest and most pattern cells one copy of an image may span along
