@@ -6,7 +6,6 @@
 
 #include <glm/vec4.hpp>
 #include <sol/denoise.h>
-#include <sol/denoise.hpp>
 
 #include "sol/vk/buffer.hpp"
 
@@ -32,7 +31,6 @@ ComputePipelineDesc describe() {
 DenoiseFilter::DenoiseFilter(Context& context) : m_context(context), m_pipeline(context, describe()) {}
 
 double DenoiseFilter::run(RenderResult& image, int eyes) {
-  validate_denoise(image, eyes, "sol::vk::MarchRenderer::denoise");
   const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   std::vector<glm::vec4> normals(n), albedos(n);
   for (std::size_t k = 0; k < n; ++k) {

@@ -11,8 +11,9 @@ namespace sol::vk::detail {
 class DenoiseFilter {
  public:
   explicit DenoiseFilter(Context& context);
-  /// Replaces the colour of `image` (validated by sol::validate_denoise) by
-  /// the filter's, computed on the device; returns the device's time in ms.
+  /// Replaces the colour of `image`, which the caller has checked
+  /// (sol::validate_denoise), by the filter's, computed on the device;
+  /// returns the device's time in ms.
   double run(RenderResult& image, int eyes);
 
  private:
