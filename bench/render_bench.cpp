@@ -74,6 +74,17 @@
 //     and the time against the 10 objects'. Written to render_objects.csv
 //     (bench/plot_objects.py draws it). Not in the default run.
 //
+// 10. Enclosures (--only enclosure): the cost of one path inside an
+//     enclosure against one path of lattice-balls, on the kernel (device
+//     time, 32×24, 1 and 9 paths a pixel) and on the CPU renderer (wall
+//     time, all threads, 16×12, 1 and more paths a pixel, as many as keep
+//     the difference well above the noise): each scene's time at the two
+//     counts, best of max(--repeats, 3), the difference over the paths it
+//     adds is one path's cost. The enclosures are the furnaces of the
+//     tests (the eye inside a glowing solid of albedo 0.6, emission 0.5):
+//     an exact ball of radius 1 and a box. Written to enclosure_cost.csv.
+//     Not in the default run.
+//
 //  5. Pipeline builds: every preset's first frame (16²) from a new
 //     MarchRenderer, its pipelines built, with the specialisation constants
 //     folded into the SPIR-V (the default on a CPU device) and handed to
@@ -83,7 +94,7 @@
 // CSV fields holding a device name are quoted (names contain commas).
 //
 //   render_bench [--size N] [--error-size N] [--gpu-size N] [--repeats N] [--out-dir DIR]
-//                [--only throughput|error|exact|gpu|pipelines|lattices|path|path-rate|objects]
+//                [--only throughput|error|exact|gpu|pipelines|lattices|path|path-rate|objects|enclosure]
 //                [--scene PRESET] [--kernel-only]
 //
 // For quick before/after figures of one change: --only throughput --scene
@@ -110,6 +121,7 @@
 #include "command_line.hpp"
 #include "output_file.hpp"
 #include "support/crowd.hpp"
+#include "support/paths.hpp"
 #include "support/textures.hpp"
 
 namespace {
@@ -618,6 +630,58 @@ void section_objects(Bench& b) {
   b.files.emplace_back("render_objects.csv", csv);
 }
 
+// 10. The cost of a path in an enclosure (asked for by name only).
+void section_enclosure(Bench& b) {
+  struct Case {
+    const char* name;
+    sol::Scene scene;
+    int cpu_samples;  // the CPU's higher count (its cheap paths need many to be measured)
+  };
+  const std::vector<Case> cases = {
+      {"lattice-balls", sol::preset_scene("lattice-balls"), 65},
+      {"furnace-exact-ball", sol::test::furnace(0.0), 5},
+      {"furnace-box", sol::test::furnace_in(sol::Box{{0.1, -0.1, 0.05}, {0.6, 0.5, 0.4}}), 17},
+  };
+  std::string csv = "scene,device,width,height,spp_low,spp_high,seconds_low,seconds_high,us_per_path,vs_lattice_balls\n";
+  for (const char* device : {"kernel", "cpu"}) {
+    const bool on_cpu = std::strcmp(device, "cpu") == 0;
+    std::unique_ptr<sol::Renderer> renderer;
+    if (on_cpu) {
+      renderer = std::make_unique<sol::CpuRenderer>();
+    } else {
+      renderer = std::make_unique<sol::vk::MarchRenderer>(b.context);
+    }
+    const int width = on_cpu ? 16 : 32, height = on_cpu ? 12 : 24;
+    double lattice_cost = 0.0;
+    for (const Case& c : cases) {
+      const int counts[2] = {1, on_cpu ? c.cpu_samples : 9};
+      double seconds[2] = {1e300, 1e300};
+      for (int round = 0; round < std::max(b.repeats, 3) + 1; ++round) {
+        for (int i = 0; i < 2; ++i) {
+          sol::RenderOptions options{.width = width, .height = height};
+          options.transport = sol::Transport::Path;
+          options.samples = counts[i];
+          options.seed = static_cast<std::uint64_t>(round);
+          const auto begin = std::chrono::steady_clock::now();
+          const sol::RenderResult r = sol::render_scene(*renderer, c.scene, options);
+          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+          if (round > 0) seconds[i] = std::min(seconds[i], on_cpu ? wall : r.device_ms * 1e-3);  // round 0: warm-up
+        }
+      }
+      const double paths = static_cast<double>(width) * height * (counts[1] - counts[0]);
+      const double cost = std::max(seconds[1] - seconds[0], 0.0) / paths * 1e6;
+      if (std::strcmp(c.name, "lattice-balls") == 0) lattice_cost = cost;
+      char line[512];
+      std::snprintf(line, sizeof line, "%s,\"%s\",%d,%d,%d,%d,%.4f,%.4f,%.2f,%.1f\n", c.name,
+                    renderer->description().c_str(), width, height, counts[0], counts[1], seconds[0], seconds[1], cost,
+                    lattice_cost > 0.0 ? cost / lattice_cost : 0.0);
+      csv += line;
+      std::fprintf(stderr, "%s", line);
+    }
+  }
+  b.files.emplace_back("enclosure_cost.csv", csv);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -635,7 +699,8 @@ int main(int argc, char** argv) {
   cl.add_integer("--repeats", repeats, 1, 1000, "N", "dispatches per figure, the best counts (default 5)");
   cl.add_integer("--spp", rate_spp, 1, 65536, "N", "paths a pixel for the path-rate section (default 16)");
   cl.add_text("--out-dir", out_dir, "DIR", "where the CSVs go (default .)");
-  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path", "path-rate", "objects"},
+  cl.add_choice("--only", only, {"throughput", "error", "exact", "gpu", "pipelines", "lattices", "path", "path-rate", "objects",
+                               "enclosure"},
                 "run one section and write its files (lattices, path, path-rate: only so)");
   cl.add_choice("--scene", scene_name, sol::preset_names(),
                 "throughput, headset, pipeline and path-rate sections: this preset only");
@@ -644,7 +709,7 @@ int main(int argc, char** argv) {
   cl.set_footer("Writes render_throughput.csv, render_features.csv, render_error_vs_time.csv,\n"
                 "render_exact.csv, render_gpu.csv (on a CPU device only with --only gpu),\n"
                 "render_pipelines.csv, (--only lattices) render_lattices.csv, (--only objects)\n"
-                "render_objects.csv, (--only path)\n"
+                "render_objects.csv, (--only enclosure) enclosure_cost.csv, (--only path)\n"
                 "path_convergence.csv and (--only path-rate) path_rate.csv to DIR.");
   cl.parse(argc, argv);
   // Refused now, not after minutes of measuring.
@@ -670,6 +735,7 @@ int main(int argc, char** argv) {
     if (only == "path") section_path(b);
     if (only == "path-rate") section_path_rate(b);
     if (only == "objects") section_objects(b);
+    if (only == "enclosure") section_enclosure(b);
     if (runs("error")) section_error(b);
     if (runs("exact")) section_exact(b);
     // Headset sizes: on a CPU device only when asked for (many minutes there).

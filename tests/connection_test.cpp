@@ -20,6 +20,7 @@
 #include "support/directions.hpp"
 #include "support/reference_geodesic.hpp"
 #include "support/sweep.hpp"
+#include "warm_solves.hpp"  // libsol/src: a march's warm starts
 
 namespace {
 
@@ -221,6 +222,35 @@ TEST(Connection, CutLocusHasTwoMinimisers) {
     const glm::dvec3 q_up(q.x, q.y, 1e-6);
     EXPECT_NEAR(sol::distance({0, 0, 0}, q_up), period, 1e-5);
   }
+}
+
+// Within a detail::WarmSolves scope (a march's: each ray's exact solves
+// start from the last one, a repeated target takes the last answer) the
+// answers are the cold ones: points 0.05 apart along 50-digit reference
+// geodesics from the origin, each shorter than its period, have their
+// length as distance (Coiculescu–Schwartz) to kTol, a repeated target the
+// same distance bit for bit, and the cut-locus pair after a point near it
+// still has two minimisers.
+TEST(Connection, WarmSolvesAlongARayKeepTheDistances) {
+  const sol::detail::WarmSolves warm;
+  int checked = 0;
+  for (const glm::dvec3& d : sol::test::random_directions(6, 7)) {
+    const double period = sol::ClosedFormGeodesic<double>(d).period();
+    sol::test::ReferenceGeodesic<> reference(d, false, kReferenceTolerance);
+    for (double t = 0.05; t < std::min(6.0, 0.95 * period); t += 0.05) {
+      const glm::dvec3 q = reference.at(t).position;
+      const double dist = sol::distance({0, 0, 0}, q);
+      EXPECT_NEAR(dist, t, kTol * std::max(1.0, t)) << "t " << t;
+      EXPECT_EQ(sol::distance({0, 0, 0}, q), dist);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 200);
+  const glm::dvec3 d(0.6, 0.5, 0.62449979983983983);
+  const double period = sol::ClosedFormGeodesic<double>(d).period();
+  sol::test::ReferenceGeodesic<> reference(d, false, kReferenceTolerance);
+  EXPECT_NEAR(sol::distance({0, 0, 0}, reference.at(0.97 * period).position), 0.97 * period, kTol * period);
+  EXPECT_EQ(sol::minimising_geodesics({0, 0, 0}, reference.at(period).position).size(), 2u);
 }
 
 TEST(Connection, SymmetryInvarianceTriangleAndLowerBound) {

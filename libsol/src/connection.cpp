@@ -16,6 +16,7 @@
 #include "sol/distance.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
+#include "warm_solves.hpp"
 
 // Method and the facts it rests on: see connection.hpp.
 
@@ -420,6 +421,25 @@ std::vector<Solution> scan(const glm::dvec3& q, double t_max, double tolerance, 
   return found;
 }
 
+// The warm starts of a detail::WarmSolves scope (warm_solves.hpp), per
+// thread: the last reduced target answered and its answer, and the last
+// general solution.
+struct WarmState {
+  bool open = false;
+  bool answered = false;
+  glm::dvec3 answered_q{0.0};
+  double answered_tolerance = 0.0;
+  std::vector<Solution> answer;
+  bool solved = false;
+  glm::dvec3 solved_q{0.0};
+  Solution solution;
+};
+thread_local WarmState t_warm;
+
+// How far (coordinates) a target may move from the last solution's for
+// Newton to start from that solution: a march's steps are shorter.
+constexpr double kWarmReach = 1.0;
+
 // The minimisers from the origin to q (X, Y > 0): see connection.hpp.
 std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOptions& options) {
   const double tolerance = std::max(options.tolerance, rounding_floor(q));
@@ -428,9 +448,23 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
   const bool y_first = q.y * std::exp(q.z) <= q.x * std::exp(-q.z);
   Solution best;
   bool have = false;
+  // In a WarmSolves scope: from the last solution, in frame components.
+  if (t_warm.open && t_warm.solved && glm::length(q - t_warm.solved_q) < kWarmReach) {
+    Solution s = t_warm.solution;
+    try {
+      if (newton(s.v, s.t, q, tolerance, 8) && s.v.x > 0.0 && s.v.y > 0.0) {
+        s.period = period_of(s.v);
+        if (minimising(s, tolerance)) {
+          best = s;
+          have = true;
+        }
+      }
+    } catch (const OutOfRange&) {
+    }
+  }
   // Points up to |q| = 6: the Euclidean guess (direction q, length |q|) is often in
   // the basin of Newton; the certificate t <= T decides whether it is kept.
-  if (glm::length(q) < 6.0) {
+  if (!have && glm::length(q) < 6.0) {
     Solution s;
     s.v = glm::normalize(q);
     s.t = glm::length(q);
@@ -507,6 +541,11 @@ std::vector<Solution> general_minimisers(const glm::dvec3& q, const ConnectionOp
                      std::to_string(q.y) + ", " + std::to_string(q.z) + ") from the origin");
   }
   out.push_back(best);
+  if (t_warm.open) {
+    t_warm.solved = true;
+    t_warm.solved_q = q;
+    t_warm.solution = best;
+  }
   // On the cut locus (t = T) the mirror (a, b, -c) arrives too, at the same length.
   if (std::abs(best.t - best.period) <= 1e-7 * best.period && std::abs(best.v.z) > 1e-9) {
     Solution mirror = best;
@@ -530,8 +569,26 @@ void validate(const glm::dvec3& p, const glm::dvec3& q, const ConnectionOptions&
   }
 }
 
-// Minimisers of the reduced problem, in the reduced frame; degenerate cases exact.
+std::vector<Solution> reduced_minimisers_of(const glm::dvec3& q, const ConnectionOptions& options);
+
+// Minimisers of the reduced problem, in the reduced frame; degenerate
+// cases exact. In a WarmSolves scope a repeated target takes the last answer.
 std::vector<Solution> reduced_minimisers(const glm::dvec3& q, const ConnectionOptions& options) {
+  if (!t_warm.open) return reduced_minimisers_of(q, options);
+  if (t_warm.answered && q == t_warm.answered_q && options.tolerance == t_warm.answered_tolerance &&
+      options.scan_polar == ConnectionOptions{}.scan_polar && options.scan_azimuth == ConnectionOptions{}.scan_azimuth) {
+    return t_warm.answer;
+  }
+  std::vector<Solution> answer = reduced_minimisers_of(q, options);
+  const bool plain = options.scan_polar == ConnectionOptions{}.scan_polar && options.scan_azimuth == ConnectionOptions{}.scan_azimuth;
+  t_warm.answered = plain;
+  t_warm.answered_q = q;
+  t_warm.answered_tolerance = options.tolerance;
+  t_warm.answer = answer;
+  return answer;
+}
+
+std::vector<Solution> reduced_minimisers_of(const glm::dvec3& q, const ConnectionOptions& options) {
   if (q.x == 0.0 && q.y == 0.0) {
     Solution s;
     s.v = {0.0, 0.0, q.z < 0.0 ? -1.0 : 1.0};
@@ -593,6 +650,18 @@ glm::dvec3 log_series(const glm::dvec3& w) {
 }
 
 double distance(const glm::dvec3& p, const glm::dvec3& q) { return distance(p, q, ConnectionOptions{}); }
+
+namespace detail {
+
+WarmSolves::WarmSolves() : m_outer(t_warm.open) {
+  if (!m_outer) t_warm = WarmState{.open = true};
+}
+
+WarmSolves::~WarmSolves() {
+  if (!m_outer) t_warm = WarmState{};
+}
+
+}  // namespace detail
 
 std::vector<Connection> minimising_geodesics(const glm::dvec3& p, const glm::dvec3& q,
                                              const ConnectionOptions& options) {
@@ -708,7 +777,9 @@ double sdf_ball_exact(const glm::dvec3& q, const glm::dvec3& center, double radi
   const double bound = distance_lower_bound(q, center) - radius;
   if (bound > band) return bound;
   try {
-    return distance(q, center) - radius;
+    // (From the centre, as sdf_ball_exact_gradient and the renderer's
+    // clearances: one problem, which a WarmSolves scope answers once.)
+    return distance(center, q) - radius;
   } catch (const OutOfRange&) {
     return bound;
   }

@@ -27,7 +27,9 @@
 #include "sol/lens.hpp"
 #include "sol/light.hpp"
 #include "sol/quotient_field.hpp"
+#include "sol/shapes.hpp"
 #include "row_pool.hpp"
+#include "warm_solves.hpp"
 
 namespace sol {
 namespace {
@@ -40,6 +42,10 @@ namespace {
 struct MarchLimits {
   double length = std::numeric_limits<double>::infinity();  ///< with the world's max_distance, the shorter
   bool leave_start = false;
+  /// A scene object the march leaves out (-1: none): a path's geodesic to a
+  /// point of the glowing exact ball that encloses its start (glow_enclosed),
+  /// in Sol.
+  int skip = -1;
 };
 
 // Planes x = c and y = c met as roots, not marched. Along a geodesic from
@@ -315,6 +321,7 @@ struct StepNearest {
 // from outside.
 MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const std::vector<MarchObject>& objects,
                      const glm::dvec3& direction, const MarchLimits& limits = {}) {
+  const detail::WarmSolves warm;  // this ray's exact solves start from each other
   const World& world = prepared.world();
   const std::size_t n = objects.size();
   const bool heights_only = prepared.features().heights_only;
@@ -341,6 +348,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
   std::uint64_t passing = 0;
   if (limits.leave_start) {
     for (std::size_t k = 0; k < n; ++k) {
+      if (static_cast<int>(k) == limits.skip) continue;
       if (object_distance(objects[k], glm::dvec3(0.0)) < 2.0 * world.hit_epsilon) passing |= std::uint64_t{1} << k;
     }
   }
@@ -371,6 +379,7 @@ MarchHit march_cover(const MarchWorld& prepared, const glm::dvec3& origin, const
     const glm::dvec3 q = !others ? crossing.q : full ? ray.at(t).position : glm::dvec3(0.0, 0.0, ray.height_at(t));
     StepNearest s;
     for (std::size_t k = 0; k < n; ++k) {
+      if (static_cast<int>(k) == limits.skip) continue;
       const std::uint64_t bit = std::uint64_t{1} << k;
       const SeenDistance seen = seen_distance(objects[k], (solid & bit) != 0, q);
       double d = seen.d;
@@ -444,6 +453,7 @@ constexpr double kCrowdCover = 0.8;
 
 MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const glm::dvec3& direction,
                      const MarchLimits& limits = {}) {
+  const detail::WarmSolves warm;  // this ray's exact solves start from each other
   const World& world = prepared.world();
   const std::vector<MarchObject>& objects = prepared.objects();
   const BoundsTree& tree = *prepared.tree();
@@ -462,6 +472,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
     // the bound's gradient is short: the boxes within a generous reach.)
     const double reach = std::max(2.0 * eps, 0.01);
     tree.search(origin, reach, [&](std::uint32_t k) {
+      if (static_cast<int>(objects[k].owner) == limits.skip) return reach;
       if (object_distance(objects[k], origin) < 2.0 * eps) passing.push_back({k, leaving_sign(objects[k].shape, origin, direction)});
       return reach;
     });
@@ -489,7 +500,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
     tree.search(
         q, std::max(s.second, eps),
         [&](std::uint32_t k) {
-          if (std::find(passed.begin(), passed.end(), k) == passed.end()) {
+          if (std::find(passed.begin(), passed.end(), k) == passed.end() && static_cast<int>(objects[k].owner) != limits.skip) {
             bool inside = false;
             const double d = distance(k, inside);
             s.consider(k, d, inside, true);
@@ -563,6 +574,7 @@ MarchHit march_crowd(const MarchWorld& prepared, const glm::dvec3& origin, const
 // way in float.
 MarchHit march_quotient(const MarchWorld& prepared, const glm::dvec3& camera, const glm::dvec3& direction,
                         const MarchLimits& limits = {}) {
+  const detail::WarmSolves warm;  // this ray's exact solves start from each other
   const World& world = prepared.world();
   const QuotientField& field = *prepared.field();
   const Lattice& lattice = *prepared.lattice();
@@ -715,8 +727,8 @@ MarchHit march_view(const MarchWorld& world, const CameraView& view, const glm::
 // (with the world's max_distance, the shorter), passing the surface it
 // starts on until it is 2 hit_epsilon away.
 MarchHit march_from(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec3& direction,
-                    double length = std::numeric_limits<double>::infinity()) {
-  const MarchLimits limits{length, true};
+                    double length = std::numeric_limits<double>::infinity(), int skip = -1) {
+  const MarchLimits limits{length, true, skip};
   if (prepared.features().quotient) return march_quotient(prepared, from, direction, limits);
   return prepared.tree() ? march_crowd(prepared, from, direction, limits)
                          : march_cover(prepared, from, prepared.seen_from(from), direction, limits);
@@ -930,10 +942,24 @@ std::vector<Connection> glow_connections(const GlowingBall& g, const glm::dvec3&
   return g.reach > 0.0 ? geodesics_between(x, y, distance(x, y) + g.reach) : minimising_geodesics(x, y);
 }
 
-// |cos| between the geodesic from x along d at length L and ball's normal there (y on its sphere).
-double cos_at_sphere(const Ball& ball, const glm::dvec3& d, double L, const glm::dvec3& y) {
-  const glm::dvec3 arriving = ClosedFormGeodesic<double>(d).direction_at(L);
-  return std::abs(glm::dot(arriving, sdf_ball_exact_gradient(y, ball.center)));
+constexpr double kPathSpreadingTolerance = 1e-8;
+
+// The spreading J of the geodesics a path connects by (sol::sphere_area_density
+// at the path tracer's tolerance: far below its noise, a sixth of the default's cost).
+double path_spreading(const glm::dvec3& direction, double t) {
+  return sphere_area_density(direction, t, kPathSpreadingTolerance);
+}
+
+// Whether the diffuse hit lies on the inner wall of glowing ball g, a ball
+// small enough to be strongly convex (kernel::kConvexBallRadius): the
+// minimisers from it to a point y of the sphere stay inside the ball and
+// meet its sphere first at y, so the march along them leaves the ball out
+// and stops short of y by the connection's tolerance (only the other
+// objects can be in the way). In Sol, with no reach (the longer geodesics
+// may leave the ball).
+bool glow_enclosed(const MarchWorld& prepared, const GlowingBall& g, const MarchHit& hit) {
+  return !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
+         g.ball.radius < kernel::kConvexBallRadius && !(g.reach > 0.0);
 }
 
 // The density, in solid angle at x, with which next-event estimation picks
@@ -942,7 +968,7 @@ double cos_at_sphere(const Ball& ball, const glm::dvec3& d, double L, const glm:
 // (0 where none lists y, or where that geodesic is longer than the
 // distance plus the ball's reach: next-event estimation never takes it).
 double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object, const glm::dvec3& x,
-                    const glm::dvec3& d, double L) {
+                    const glm::dvec3& d, double L, const MarchHit& hit) {
   try {
     const glm::dvec3 y = multiply(x, ClosedFormGeodesic<double>(d).at(L).position);
     // The target whose sphere holds y: the object's own in Sol, its nearest image in a quotient.
@@ -956,14 +982,23 @@ double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object,
         g = &b;
       }
     }
-    if (!g || L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
-    const std::vector<Connection> from_centre = minimising_geodesics(g->ball.center, y);
-    if (std::abs(from_centre.front().length - g->ball.radius) > 1e-3 * std::max(1.0, g->ball.radius)) return 0.0;
-    const double j_centre = sphere_area_density(glm::normalize(from_centre.front().direction), g->ball.radius);
-    const double cos_y = cos_at_sphere(g->ball, d, L, y);
+    if (!g) return 0.0;
+    // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
+    if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
+    // The minimiser from the centre to y, from the march's hit: the
+    // sphere's outward normal there is its tangent, so the geodesic from y
+    // back along it ends at the centre after r (checked: else y lies on
+    // another image's sphere) with the initial direction's opposite.
+    const double r = g->ball.radius;
+    const glm::dvec3 outward = hit.inside ? -hit.normal : hit.normal;
+    const ClosedFormGeodesic<double> back(-outward);
+    const ClosedFormGeodesic<double>::State centre = back.at(r);
+    if (glm::length(multiply(inverse(g->ball.center), multiply(y, centre.position))) > 1e-3 * std::max(1.0, r)) return 0.0;
+    const double j_centre = path_spreading(-centre.direction, r);
+    const double cos_y = std::abs(glm::dot(hit.direction, hit.normal));
     if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
     const double pick = glow_pick_weight(*g, x) / glow_pick_total(glowing, x);
-    return pick * sphere_area_density(d, L) / (4.0 * std::numbers::pi * j_centre * cos_y);
+    return pick * path_spreading(d, L) / (4.0 * std::numbers::pi * j_centre * cos_y);
   } catch (const OutOfRange&) {
     return 0.0;
   }
@@ -987,9 +1022,13 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
   const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
   const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
-  const glm::dvec3 y = multiply(g.ball.center, ClosedFormGeodesic<double>(w).at(g.ball.radius).position);
+  const ClosedFormGeodesic<double>::State on_sphere = ClosedFormGeodesic<double>(w).at(g.ball.radius);
+  const glm::dvec3 y = multiply(g.ball.center, on_sphere.position);
+  const glm::dvec3 normal_y = on_sphere.direction;  // the sphere's outward normal at y
   const double area = glow_pick_weight(g, hit.point) / total /
-                      (4.0 * std::numbers::pi * std::max(sphere_area_density(w, g.ball.radius), 1e-300));
+                      (4.0 * std::numbers::pi * std::max(path_spreading(w, g.ball.radius), 1e-300));
+  // x on the inner wall of a convex ball: its geodesics to y march without it (glow_enclosed).
+  const bool enclosed = glow_enclosed(prepared, g, hit);
   glm::dvec3 light(0.0);
   std::vector<Connection> ways;
   try {
@@ -1002,12 +1041,18 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
     const glm::dvec3 d = glm::normalize(c.direction);
     const double cos_x = glm::dot(n, d);
     if (cos_x <= 0.0) continue;
-    const MarchHit seen = march_from(prepared, hit.point, d);
-    if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > 1e-3 * std::max(1.0, c.length)) {
-      continue;  // something, or the ball's nearer side, is in the way
+    const double tolerance = 1e-3 * std::max(1.0, c.length);
+    if (enclosed) {
+      const MarchHit seen = march_from(prepared, hit.point, d, c.length - tolerance, static_cast<int>(g.object));
+      if (seen.object != 0 || seen.out_of_steps) continue;  // another object is in the way
+    } else {
+      const MarchHit seen = march_from(prepared, hit.point, d);
+      if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > tolerance) {
+        continue;  // something, or the ball's nearer side, is in the way
+      }
     }
-    const double cos_y = cos_at_sphere(g.ball, d, c.length, y);
-    const double spreading = sphere_area_density(d, c.length);
+    const double cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(c.length), normal_y));
+    const double spreading = path_spreading(d, c.length);
     if (!(spreading > 0.0)) continue;
     double weight = 1.0;
     if (sampling == PathSampling::Combined) {
@@ -1064,7 +1109,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
         if (sampling == PathSampling::GlowOnly) {
           share = 0.0;  // next-event estimation counted it
         } else {
-          const double glow = glow_density(glowing, object, from, from_direction, hit.distance);
+          const double glow = glow_density(glowing, object, from, from_direction, hit.distance, hit);
           const double reflection = from_cosine / std::numbers::pi;
           share = reflection / (reflection + glow);
         }

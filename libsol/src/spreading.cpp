@@ -53,7 +53,7 @@ void variation_rhs(const Vec3<T>& u, const S& y, S& r, std::size_t o) {
 }
 
 // jacobi_determinant, its errors naming `function`.
-double jacobi_determinant_of(const glm::dvec3& direction, double t, const char* function) {
+double jacobi_determinant_of(const glm::dvec3& direction, double t, const char* function, double tolerance = 1e-12) {
   const glm::dvec3 v = checked_direction(direction, t, function);
   if (t == 0.0) return 0.0;
   glm::dvec3 w1, w2;
@@ -72,7 +72,7 @@ double jacobi_determinant_of(const glm::dvec3& direction, double t, const char* 
   const double small = std::min(1.0, t);
   const State<13> weights{small, small, small, 1, 1, 1, small, small, small, 1, 1, 1, 1};
   const State<13> start{0, 0, 0, w1.x, w1.y, w1.z, 0, 0, 0, w2.x, w2.y, w2.z, 0};
-  const State<13> y = detail::integrate_dormand_prince(rhs, start, t, 1e-12, weights, function);
+  const State<13> y = detail::integrate_dormand_prince(rhs, start, t, tolerance, weights, function);
   const glm::dvec3 y1(y[0], y[1], y[2]), y2(y[6], y[7], y[8]);
   const double d = glm::dot(glm::cross(y1, y2), geodesic.direction_at(t));
   if (!std::isfinite(d)) throw OutOfRange(std::string(function) + ": the Jacobi fields overflow; shorten t");
@@ -87,6 +87,13 @@ double jacobi_determinant(const glm::dvec3& direction, double t) {
 
 double sphere_area_density(const glm::dvec3& direction, double t) {
   return std::abs(jacobi_determinant_of(direction, t, "sol::sphere_area_density"));
+}
+
+double sphere_area_density(const glm::dvec3& direction, double t, double tolerance) {
+  if (!(tolerance >= 1e-14 && tolerance <= 1e-4)) {
+    throw InvalidArgument("sol::sphere_area_density: tolerance " + std::to_string(tolerance) + " is outside [1e-14, 1e-4]");
+  }
+  return std::abs(jacobi_determinant_of(direction, t, "sol::sphere_area_density", tolerance));
 }
 
 float sphere_area_density(const glm::vec3& direction, float t) {

@@ -18,14 +18,28 @@ const int kMarchShadow = 1;  // from a hit point: towards a light, or a mirror's
 // Where a march picks a ray up: at arc length t, march step `step`,
 // passing the objects of the mask `passing` (cutout planes between their
 // discs, the surface a shadow ray leaves). A new ray starts at zero; the
-// resume pass goes on from the march pass's record (defer_exact).
+// resume pass goes on from the march pass's record (defer_exact). Paths
+// inside a convex exact ball (MARCH_SKIPS, exit_newton): a geodesic to a
+// point of the glowing ball that encloses its start marches without that
+// ball, `skip` (a mask of objects), up to its length, as it meets the
+// sphere there first (glow_sample); a segment that leaves the inner wall
+// of such a ball k (`exit_k`, else -1) has its exit solved first, from
+// `exit_guess`, and marches the others up to it.
 struct MarchResume {
   float t;
   uint passing;
   int step;
+  uint skip;
+  int exit_k;
+  float exit_guess;
 };
 
-const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0);
+const MarchResume kMarchFromStart = MarchResume(0.0, 0u, 0, 0u, -1, 0.0);
+
+// Whether a march may leave objects out or solve an exit
+// (MarchResume::skip, exit_k): paths inside exact balls, in Sol among
+// listed objects.
+const bool MARCH_SKIPS = PATH_TRACING && HAS_EXACT_BALLS && HAS_INSIDE && !QUOTIENT && !CROWD;
 
 // What a march found.
 struct MarchHit {
@@ -36,9 +50,12 @@ struct MarchHit {
   vec3 from;   // the start of the ray's last segment (planes face its side)
   vec3 u;      // with mirrors, paths or an eye inside a solid: the ray's unit tangent at q, frame components
   int steps;   // positions evaluated
-  // The exact ball whose geodesic from its centre `exact_end` ends at q (-1: none).
+  // The exact ball whose geodesic from its centre `exact_end` ends at q (-1:
+  // none), with that geodesic's initial vector `exact_v` (|exact_v| its
+  // length; 0 where the solve did not land).
   int exact_k;
   SolEnd exact_end;
+  vec3 exact_v;
   bool exact_inside;  // that geodesic is shorter than the ball's radius: the sphere seen from inside
   // The march pass left the ray to the resume pass, from `resume`.
   bool deferred;
@@ -56,6 +73,7 @@ MarchHit march_hit_none(MarchResume resume) {
   h.steps = 0;
   h.exact_k = -1;
   h.exact_end = SolEnd(vec3(0.0), vec3(0.0, 0.0, 1.0));
+  h.exact_v = vec3(0.0);
   h.exact_inside = false;
   h.deferred = false;
   h.resume = resume;
@@ -74,6 +92,7 @@ MarchHit march_found(int k, float t, vec3 q, vec3 from, int steps, ExactSolve ex
   h.steps = steps;
   h.exact_k = exact.k;
   h.exact_end = exact.end;
+  h.exact_v = exact.known ? exact.v : vec3(0.0);
   return h;
 }
 
@@ -104,6 +123,19 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 // ---- The march in Sol
 
 #include "steps.glsl"
+
+// The surfaces a ray from a surface starts on (within 2 hit_epsilon of
+// `origin`): passed (`passing`), and the solids among them it leaves
+// through the face it starts on (`leaving`).
+void march_starts_on(vec3 origin, vec3 direction, float hit_epsilon, inout uint passing, inout uint leaving) {
+  for (int k = 0; k < g_count; ++k) {
+    if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) {
+      passing |= 1u << uint(k);
+      const bool leaves = HAS_INSIDE && leaves_through_start(g_types[k], origin, direction, g_relative[k], g_headings[k], g_radii[k]);
+      leaving |= leaves ? 1u << uint(k) : 0u;
+    }
+  }
+}
 
 // Exact culling for planes z = c (as the CPU reference): whether the
 // z-range of the whole ray, from a start at height z0, comes within
@@ -162,19 +194,15 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   int hit = 0, steps = 0;
   uint passing = resume.passing;
   uint leaving = 0u;  // the solids it leaves through the face it starts on (as the CPU's leaving_sign)
-  if (!camera) {  // the surfaces it starts on
-    for (int k = 0; k < g_count; ++k) {
-      if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) {
-        passing |= 1u << uint(k);
-        const bool leaves = HAS_INSIDE && leaves_through_start(g_types[k], origin, direction, g_relative[k], g_headings[k], g_radii[k]);
-        leaving |= leaves ? 1u << uint(k) : 0u;
-      }
-    }
-  }
+  if (!camera) march_starts_on(origin, direction, hit_epsilon, passing, leaving);
   ExactSolve exact = exact_solve_none();
   ExactSeen seen = exact_seen_none();
   float t = resume.t;
   vec3 q = vec3(0.0);
+  // The exit search (exit_newton): while `exit.searching`, t is Newton's trial.
+  ExitSearch exit = exit_search_start(MARCH_SKIPS ? resume.exit_k : -1, resume.exit_guess, limit);
+  uint skip = MARCH_SKIPS ? resume.skip : 0u;
+  if (MARCH_SKIPS && exit.searching) t = exit.t;
   const bool reachable = !(heights_only && INTEGRATOR == 0) || planes_z_reachable(ray, origin.z, hit_epsilon);
   // Planes x = c, y = c: a camera ray's first crossing solved
   // (plane_xy_roots); the march then takes the other objects up to it, or
@@ -228,8 +256,9 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
         u = rk_u;
       }
       if (translated) q = sol_translate(origin, q);
+      if (MARCH_SKIPS && exit.searching) break;  // the exit search's trial point: solved below
       const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
-      s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing, leaving);
+      s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing, leaving, skip);
       // A camera ray steps by the nearest solid's clearance; shadow rays by
       // the bound (inside the light's loop over its geodesics one clearance
       // a step made shadowed scenes 10-25 % slower on lavapipe though the
@@ -247,22 +276,24 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
     if (defer_shell) {
       if (shell && alive) {  // the rest of this ray in the resume pass
         h.deferred = true;
-        h.resume = MarchResume(t, passing, step);
+        h.resume = MarchResume(t, passing, step, 0u, -1, 0.0);
         return h;
       }
     } else if (zeta && zeta_round && shell && alive) {
       zeta_round = false;  // this step again, by Carlson's integrals (as the resume pass)
       shell = false;
-    } else if (HAS_EXACT_BALLS && (shell || leaving_shell) && alive) {
+    } else if (HAS_EXACT_BALLS && (shell || leaving_shell || (MARCH_SKIPS && exit.searching)) && alive) {
       steps = root_steps + step + 1;
       alive = march_exact_step(q, u, hit_epsilon, limit, passes, leaving_shell, s, exact, seen, passing,
-                               leave_sign, t, hit);
+                               leave_sign, t, hit, exit);
+      if (MARCH_SKIPS && exit.ended) exit_search_ended(exit, resume.t, t, limit, skip);
       shell = leaving_shell = false;
       ++step;
     }
     alive = alive && step < max_steps;
   } while (rounds && ++round < max_steps && alive);
 
+  if (MARCH_SKIPS && exit.found) exit_met(exit, limit, hit, t, q, exact);
   // Neither an object nor the limit: the steps ran out first.
   if (!planes_xy_only && reachable && hit == 0 && !(t > limit)) ++g_out_of_steps;
   // A camera ray that marched by heights alone takes its full position at the hit.

@@ -115,7 +115,7 @@ void march_pass() {
     return;
   }
   const MarchHit h = march(origin, direction, params.limits.x,
-                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w)), kMarchCamera);
+                           MarchResume(uintBitsToFloat(resumed.y), resumed.z, int(resumed.w), 0u, -1, 0.0), kMarchCamera);
   if (h.deferred) {  // the rest of this ray in the resume pass
     defer_exact(pixel, h.resume.t, h.resume.passing, h.resume.step);
     return;

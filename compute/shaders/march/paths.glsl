@@ -94,12 +94,33 @@ float glow_pick_total(vec3 x) {
 // distance plus the ball's reach. Its two connection solves (x to y, and
 // the target's centre c to y) are path_radiance's (kSolveDensity*), between
 // glow_density_target, which finds y, c and r (false: no target holds y),
-// and glow_density_of, which takes the second solve's minimiser.
+// and glow_density_of, which takes the second solve's minimiser. Both are
+// often known without a solve (glow_density_known): the geodesic from x
+// is the minimiser where it is shorter than its period (`minimiser`), and
+// the march that met the sphere solved the geodesic from its centre to
+// the hit (`from_centre`: its unit direction and length; w = 0: unknown).
 struct GlowDensity {
   int k;
   vec3 x, d, y, c;
   float L, r, cos_y;
+  bool minimiser;
+  vec4 from_centre;
 };
+
+// What the march that met the ball at h already shows (GlowDensity's
+// `minimiser` and `from_centre`): a geodesic of length L shorter than its
+// period by the float margin is the unique minimiser (Coiculescu–Schwartz;
+// sol_connections' certificate), whatever the reach; and the march's last
+// exact solve, where it is the hit's and lands on the sphere (its length
+// the radius within the density's tolerance below), is the minimiser from
+// the centre: in a quotient from the image the march met, whose frame may
+// be turned by Γ (a half turn, under which J is unchanged).
+void glow_density_known(MarchHit h, inout GlowDensity q) {
+  q.minimiser = q.L < (1.0 - kMinimiserMargin) * sol_cut_time(q.d);
+  const float len = length(h.exact_v);
+  const bool solved = h.exact_k >= 0 && h.exact_k == h.k && abs(len - q.r) <= 1e-3 * max(1.0, q.r);
+  q.from_centre = solved ? vec4(h.exact_v / len, len) : vec4(0.0);
+}
 
 bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
   q.k = k;
@@ -107,6 +128,8 @@ bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, 
   q.d = d;
   q.L = L;
   q.cos_y = cos_y;
+  q.minimiser = false;
+  q.from_centre = vec4(0.0);
   q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
   q.c = vec3(0.0);
   q.r = 0.0;
@@ -161,7 +184,32 @@ struct GlowSample {
   vec3 towards;   // y seen from x (frame components at x): the target of its connections' solve
   int count;      // geodesics in `ways`
   vec4 ways[SOL_FOUND_SLOTS];
+  bool enclosed;  // x lies on the ball's sphere seen from inside, the ball convex (glow_enclosed)
 };
+
+// Whether the hit h lies on the inner wall of an exact ball of radius
+// below kConvexBallRadius (in Sol among listed objects: MARCH_SKIPS).
+bool on_convex_ball_inside(MarchHit h) {
+  return MARCH_SKIPS && h.k >= 0 && h.exact_k == h.k && h.exact_inside && g_types[h.k] == kObjectExactBall &&
+         g_radii[h.k] < kConvexBallRadius;
+}
+
+// A ball of radius below kConvexBallRadius (< π/2) is strongly convex
+// (sectional curvatures at most 1, the injectivity radius at least √2π:
+// docs/lighting.md, "Enclosures"): the minimising geodesic between two
+// of its points stays inside it. A path's vertex x on the inner wall of a
+// glowing exact ball that small reaches a sampled point y of its sphere
+// along its minimisers (reach 0) without meeting that sphere before y, so
+// the march along them leaves the ball out (MarchResume::skip) and stops
+// short of y by the connection's tolerance: only the other objects can be
+// in the way.
+bool glow_enclosed(MarchHit h, int k, float radius) {
+  return on_convex_ball_inside(h) && h.k == k && !(scene_objects[k].glow.x > 0.0);
+}
+
+// How far the march along a connection of length L goes where the ball is
+// left out: to the tolerance within which a hit counts as the sphere's.
+float glow_enclosed_limit(float L) { return L - 1e-3 * max(1.0, L); }
 
 // Draws a target and a point y of its sphere at the diffuse hit h (normal
 // n); the geodesics from h to y within its reach are path_radiance's solve
@@ -196,6 +244,7 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
   g.towards = seen_from(h.q, y);
   g.count = 0;
+  g.enclosed = glow_enclosed(h, g.k, r);
   return g;
 }
 
@@ -218,7 +267,13 @@ void path_solve(int i, GlowDensity dq, inout GlowSample g, inout LightGather lig
                                                     : (i == kSolveGlowSample ? g.towards : lights.target));
   const float reach = i == kSolveGlowSample ? scene_objects[g.k].glow.x : (i == kSolveLight ? lights.reach : 0.0);
   vec4 found[SOL_FOUND_SLOTS];
-  const int count = sol_connections(target, reach, found);
+  int count = 1;
+  if (i == kSolveDensityFromCentre && dq.from_centre.w > 0.0) {  // the march's (glow_density_known)
+    [[unroll]] for (int j = 0; j < SOL_FOUND_SLOTS; ++j) found[j] = vec4(0.0);
+    found[0] = dq.from_centre;
+  } else {
+    count = sol_connections(target, reach, found);
+  }
   if (i == kSolveLight) {
     light_gather_solved(lights, count, found);
   } else if (i == kSolveDensityFromX) {
@@ -248,12 +303,16 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   const vec3 d = way.xyz;
   const float L = way.w, cos_x = dot(g.n, d);
   const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
-  if (met != g.k || abs(to.t - L) > 1e-3 * max(1.0, L)) return vec3(0.0);  // something, or the ball's nearer side, is in the way
+  // (Enclosed: the march without the ball went to its limit unhindered.)
+  const bool reached = g.enclosed ? to.k < 0 && !(to.t < glow_enclosed_limit(L))
+                                  : met == g.k && !(abs(to.t - L) > 1e-3 * max(1.0, L));
+  if (!reached) return vec3(0.0);  // something, or the ball's nearer side, is in the way
   // The tangent at y: in Sol the march's own at its hit (met at L, within
   // the check above), which saves the path kernel a closed form; in a
-  // quotient the march's frame may be turned by Γ, so the geodesic's own.
+  // quotient the march's frame may be turned by Γ, and an enclosed march
+  // stops short of y, so the geodesic's own.
   const SolSpread along = sol_spread(d, L);
-  const vec3 arriving = QUOTIENT ? along.direction : to.u;
+  const vec3 arriving = QUOTIENT || g.enclosed ? along.direction : to.u;
   const float cos_y = abs(dot(arriving, g.normal_y));
   const float spreading = along.density;
   if (!(spreading > 0.0)) return vec3(0.0);
@@ -271,8 +330,8 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
 // could have found this hit (`reachable`: after a diffuse vertex, with
 // glowing balls to sample; true returned), once its density is solved (dq,
 // kSolveDensity*).
-bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_direction, inout vec3 color,
-                   inout vec3 weight, out vec3 emission, out GlowDensity dq) {
+bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_direction, float from_cosine,
+                   inout vec3 color, inout vec3 weight, out vec3 emission, out GlowDensity dq) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
@@ -285,10 +344,33 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
       share = 0.0;  // next-event estimation counted it
     } else {
       density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
+      if (density) glow_density_known(h, dq);
+      if (density && dq.minimiser && dq.from_centre.w > 0.0) {  // known: no solve, its share at once
+        const float reflection = from_cosine / SOL_PI;
+        share = reflection / (reflection + glow_density_of(dq, 1, dq.from_centre));
+        density = false;
+      }
     }
   }
   if (HAS_EMISSION && !density) color += emission * share;  // (else once its density is solved)
   return density;
+}
+
+// Where a path's march from the vertex h starts (path_radiance): a
+// geodesic to a point of the glowing ball that encloses h leaves the ball
+// out, up to the connection's tolerance before y (glow_enclosed); a segment
+// that leaves the inner wall of h's convex exact ball inward (at the cosine
+// `exit_cos` > 0 with its normal) solves its exit first (exit_newton), from
+// the chord 2 r cos θ; else from the start. `limit` (the march's) is cut
+// to the enclosed connection's.
+MarchResume path_march_start(MarchHit h, bool to_glow, bool segment, GlowSample g, int way, float exit_cos,
+                             inout float limit) {
+  if (MARCH_SKIPS && to_glow && g.enclosed) {
+    limit = min(limit, glow_enclosed_limit(sol_slot_get(g.ways, way).w));
+    return MarchResume(0.0, 0u, 0, 1u << uint(g.k), -1, 0.0);
+  }
+  const bool exits = MARCH_SKIPS && segment && exit_cos > 0.0;
+  return MarchResume(0.0, 0u, 0, 0u, exits ? h.k : -1, exits ? 2.0 * g_radii[h.k] * exit_cos : 0.0);
 }
 
 // Paths from the eye: a pixel's camera ray is its path's first segment
@@ -340,8 +422,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   bool fresh = !from_eye;   // h is a hit not yet shaded
   GlowSample g;             // the hit's next-event estimation to a glowing ball: its geodesics from `way` on left to march
   g.count = 0;
+  g.enclosed = false;
   int way = 0;
   vec3 next = h.u;          // (from the eye: the camera ray's direction)
+  float exit_cos = 0.0;     // > 0: the next segment leaves h's convex exact ball inward at this cosine (path_march_start)
   LightGather lights;       // the hit's next-event estimation to the lights, its shadow rays and solves still to make
   bool gathering = false;
   // The hit's solves (kSolve*) from `solve` to `solves_end` - 1, for the
@@ -359,7 +443,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
     if (fresh) {
       fresh = false;
       reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
-      density = path_emission(h, f, glow_count > 0 && after_diffuse, from, from_direction, color, weight, emission, dq);
+      density = path_emission(h, f, glow_count > 0 && after_diffuse, from, from_direction, from_cosine, color, weight,
+                              emission, dq);
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
@@ -401,6 +486,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         from_direction = next;
         from_cosine = dot(n, next);
       }
+      exit_cos = on_convex_ball_inside(h) ? max(dot(next, n), 0.0) : 0.0;
       alive = goes_on;
       if (goes_on && depth >= 3) {
         const float q = min(1.0, max(weight.r, max(weight.g, weight.b)));
@@ -408,7 +494,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         weight /= max(q, 1e-30);
       }
       if (GLOW_SAMPLING && (density || sampled)) {  // the vertex's solves, in the next turns
-        solve = density ? kSolveDensityFromX : kSolveGlowSample;
+        solve = density ? (dq.minimiser ? kSolveDensityFromCentre : kSolveDensityFromX) : kSolveGlowSample;
         solves_end = sampled ? kSolveLight : kSolveGlowSample;
         glow_density = 0.0;
       }
@@ -443,9 +529,10 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
       // (From the eye the camera ray's segment is marched as a camera ray:
       // the purpose is then no constant, and this one march holds both
       // purposes' branches; otherwise it folds to kMarchShadow.)
-      const MarchHit m = march(h.q, shadow ? direction : (to_glow ? sol_slot_get(g.ways, way).xyz : next),
-                               shadow ? min(len, params.limits.x) : params.limits.x, kMarchFromStart,
-                               PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
+      float limit = shadow ? min(len, params.limits.x) : params.limits.x;
+      const MarchResume resume_at = path_march_start(h, to_glow, !shadow && !to_glow, g, way, exit_cos, limit);
+      const MarchHit m = march(h.q, shadow ? direction : (to_glow ? sol_slot_get(g.ways, way).xyz : next), limit,
+                               resume_at, PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
       if (shadow) {
         light_gather_blocked(lights, m.k >= 0);
       } else if (to_glow) {

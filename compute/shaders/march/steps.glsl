@@ -47,15 +47,17 @@ MarchStep march_step_none() { return MarchStep(1e30, 1e30, 1e30, 1e30, 0, 0, 0);
 
 // The objects' distances from q at arc length t (hz: q.z's half
 // exponentials), updating the mask of objects being passed. Planes x = c,
-// y = c whose crossing is solved (`xy`) answer the arc length left to it.
+// y = c whose crossing is solved (`xy`) answer the arc length left to it;
+// the objects of the mask `skip` are not there (MarchResume::skip).
 MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, const bool heights_only, const bool passes,
-                        PlaneRoot xy, ExactSeen seen, inout uint passing, uint leaving) {
+                        PlaneRoot xy, ExactSeen seen, inout uint passing, uint leaving, uint skip) {
   MarchStep s = march_step_none();
   int k = 0;
   if (g_count > 0) do {  // (tested at its end: see march.comp)
     float d = heights_only ? abs(q.z - g_constants[k])
                            : object_distance(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
     if (HAS_EXACT_BALLS && g_types[k] == kObjectExactBall) d = exact_seen_bound(seen, k, t, d);
+    if (MARCH_SKIPS && (skip & (1u << uint(k))) != 0u) d = 1e30;
     if (HAS_PLANES_XY && xy.solved && (g_types[k] == kObjectPlaneX || g_types[k] == kObjectPlaneY)) {
       d = k == xy.k ? max(xy.t - t, 0.0) : 1e30;  // solved: the arc length left to its crossing
     }
@@ -112,6 +114,86 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
   return min(s.others, HAS_EXACT_BALLS ? max(s.nearest, clear) : clear);
 }
 
+// ---- The exit of a convex exact ball (MarchResume::exit_k): a path
+// segment that leaves the inner wall of an exact ball of radius below
+// kConvexBallRadius (< π/2). There the distance f from its centre is convex
+// along the ray (the Hessian comparison with sectional curvatures at most
+// 1: Hess d >= cot(d) (g - ∇d ∇d) >= 0 below π/2, before the cut locus, at
+// least √2π away), so the exit, where f first reaches r - hit_epsilon/2
+// after the wall, is Newton's root from any trial where f' > 0: from
+// beyond the exit Newton falls to it monotonically, from before it (past
+// the nearest approach) it jumps beyond it first. A trial is one position
+// and one exact solve, a round of the march: about 3 rounds where the
+// ball's safe clearances (exact_ball_inside_clearance) take about 8 (a
+// chord has no tighter safe step: its curvature bound is within a quarter
+// of the truth). Found, the march goes back to the wall and marches the
+// other objects without the ball up to the exit, where, met by none, the
+// ray meets the ball; not found within kExitRounds (a solve that does not
+// land, a trial that is outside while heading in), it marches as any ray.
+const int kExitRounds = 8;
+
+struct ExitSearch {
+  int k;           // the ball (-1: none)
+  bool searching;  // t is the trial
+  bool ended;      // the search has just ended (found or given up): the march goes back to the wall
+  bool found;
+  float t;         // the trial, then the exit
+  int rounds;
+  ExactSolve solve;  // the solve at the exit, and the point
+  vec3 q;
+};
+
+// The search for ball k's exit (-1: none) from the trial `guess`, within the march's limit.
+ExitSearch exit_search_start(int k, float guess, float limit) {
+  return ExitSearch(k, k >= 0, false, false, min(guess, limit), 0, exact_solve_none(), vec3(0.0));
+}
+
+// The search has ended: the march goes back to its start (`start`), and
+// where the exit was found marches the others without the ball up to it.
+void exit_search_ended(inout ExitSearch e, float start, inout float t, inout float limit, inout uint skip) {
+  e.ended = false;
+  t = start;
+  if (e.found) {
+    limit = min(limit, e.t);
+    skip |= 1u << uint(e.k);
+  }
+}
+
+// The exit found and nothing met before it (the march past its limit): the
+// hit is the ball's, at its exit, with the solve there.
+void exit_met(ExitSearch e, float limit, inout int hit, inout float t, inout vec3 q, inout ExactSolve exact) {
+  if (hit != 0 || !(t > limit)) return;
+  hit = e.k + 1;
+  t = e.t;
+  q = e.q;
+  exact = e.solve;
+}
+
+// Newton's round at the trial e.t, from the exact solve x of ball e.k at
+// the ray's point q there (sdf = f - r, slope = f' where x.known), the
+// chord at most the ball's diameter (geodesics inside a strongly convex
+// ball minimise) and the march's limit.
+void exit_newton(inout ExitSearch e, ExactSolve x, float sdf, float slope, vec3 q, float hit_epsilon, float limit) {
+  const float F = sdf + 0.5 * hit_epsilon;
+  bool give_up = !x.known || ++e.rounds > kExitRounds;
+  if (!give_up && abs(F) < 0.25 * hit_epsilon && slope > 0.0) {
+    e.found = true;
+    e.solve = x;
+    e.q = q;
+  } else if (!give_up) {
+    float next = 0.0;
+    if (slope > 1e-3) {
+      next = min(e.t - F / slope, 2.0 * g_radii[e.k] + hit_epsilon);
+    } else if (F < 0.0) {
+      next = 1.5 * e.t;  // before the nearest approach: further on
+    }
+    give_up = !(next > 0.0 && next <= limit);  // (outside while heading in: not this ball's exit)
+    e.t = next;
+  }
+  e.searching = !(e.found || give_up);
+  e.ended = !e.searching;
+}
+
 // A step of the Sol march that came within kExactShell of an exact ball
 // (s.nearest_k), finished by its exact distance (steps, and hits on the
 // true sphere) against the least distance to every other object: the step
@@ -131,11 +213,17 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 // march goes on (march_step_end).
 bool march_exact_step(vec3 q, vec3 u, float hit_epsilon, float limit, const bool passes, bool leaving, inout MarchStep s,
                       inout ExactSolve x, inout ExactSeen seen, inout uint passing, inout float leave_sign, inout float t,
-                      inout int hit) {
-  const int e = leaving ? s.nearest_any : s.nearest_k;
+                      inout int hit, inout ExitSearch exit) {
+  const bool exiting = MARCH_SKIPS && exit.searching;
+  const int e = exiting ? exit.k : (leaving ? s.nearest_any : s.nearest_k);
   const float sdf = exact_ball_sdf(q, g_relative[e].xyz, g_radii[e], e, x);
   const float slope = dot(x.end.tangent, u);  // the exact distance's rate along the ray (where x.known)
   exact_seen_solved(seen, x.known, e, sdf, t);
+  if (exiting) {  // the exit search's round (exit_newton): the next trial
+    exit_newton(exit, x, sdf, slope, q, hit_epsilon, limit);
+    if (exit.searching) t = exit.t;
+    return true;
+  }
   if (leaving) {
     const float away = x.known ? abs(sdf) : 0.0;  // (where the solve did not land: the passing's least step)
     if (exact_pass_ends(x.known, away, slope, hit_epsilon, leave_sign)) passing &= ~(1u << uint(e));

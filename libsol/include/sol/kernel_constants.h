@@ -155,6 +155,12 @@ SOL_CONSTANT(SOL_REAL, kSpreadingStep, 0.1);
 /// The least area density J a light's irradiance I cos θ / J is divided by:
 /// at a caustic (J = 0) the irradiance is at most I / kMinSpreading.
 SOL_CONSTANT(SOL_REAL, kMinSpreading, 0.01);
+/// Glowing exact balls of radius below this are taken as strongly convex by
+/// next-event estimation from their inner wall (the march along a
+/// minimiser to a point of the sphere leaves the ball out): below π/2,
+/// since Sol's sectional curvatures are at most 1 and its injectivity
+/// radius is at least √2π (docs/lighting.md, "Enclosures").
+SOL_CONSTANT(SOL_REAL, kConvexBallRadius, 1.5);
 
 // ---- The sRGB transfer function (IEC 61966-2-1), for 8-bit output
 SOL_CONSTANT(SOL_REAL, kSrgbLinearLimit, 0.0031308);  ///< below it the curve is linear ...
