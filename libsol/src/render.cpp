@@ -789,6 +789,74 @@ glm::dvec3 specular_direction(const kernel::SolLobes& lobes, const MarchHit& hit
   return kernel::sol_specular_direction(hit.direction, n, lobes.roughness, xi1, xi2);
 }
 
+// The exit of a path segment from the inner wall of an exact ball of
+// radius below kernel::kConvexBallRadius (docs/lighting.md, "Enclosures";
+// the kernel's exit_newton): Newton's method on the arc length s for f(s)
+// = r − hit_epsilon/2, f the distance from the centre along the ray, from
+// the chord 2 r cos θ (θ the angle with the inner normal), trials below 2r
+// + hit_epsilon and the march's limit; found where |f − r +
+// hit_epsilon/2| < hit_epsilon/4 heading out. None where a solve fails, a
+// trial is outside while heading in, or after kernel::kExitRounds rounds.
+struct BallExit {
+  double t;
+  glm::dvec3 point, outward, direction;
+  int rounds;
+};
+
+std::optional<BallExit> exact_ball_exit(const Ball& ball, const glm::dvec3& from, const ClosedFormGeodesic<double>& ray,
+                                        double cosine, double eps, double limit) {
+  const detail::WarmSolves warm;  // each trial's solve from the last
+  double t = std::min(2.0 * ball.radius * cosine, limit);
+  for (int round = 1; round <= kernel::kExitRounds; ++round) {
+    const ClosedFormGeodesic<double>::State at = ray.at(t);
+    const glm::dvec3 q = multiply(from, at.position);
+    const std::optional<FromCentre> g = from_centre(ball, q);
+    if (!g) return std::nullopt;
+    const double f = g->length - (ball.radius - 0.5 * eps), slope = glm::dot(g->normal, at.direction);
+    if (std::abs(f) < 0.25 * eps && slope > 0.0) return BallExit{t, q, g->normal, at.direction, round};
+    double next = 0.0;
+    if (slope > 1e-3) {
+      next = std::min(t - f / slope, 2.0 * ball.radius + eps);
+    } else if (f < 0.0) {
+      next = 1.5 * t;  // before the nearest approach: further on
+    }
+    if (!(next > 0.0 && next <= limit)) return std::nullopt;  // (outside while heading in: not this ball's exit)
+    t = next;
+  }
+  return std::nullopt;
+}
+
+// A path's next segment from a hit along `direction` (n: the hit's normal
+// facing the ray): from the inner wall of a small exact ball, its exit
+// solved first (exact_ball_exit) and the other objects marched without
+// the ball up to it (met by none, the ray meets the ball there); else the
+// march from the hit.
+MarchHit march_segment(const MarchWorld& prepared, const MarchHit& hit, const glm::dvec3& n, const glm::dvec3& direction) {
+  const World& world = prepared.world();
+  const SceneObject* o = hit.object > 0 ? &world.objects[static_cast<std::size_t>(hit.object - 1)] : nullptr;
+  const Ball* ball = o ? std::get_if<Ball>(&o->shape) : nullptr;
+  const double cosine = glm::dot(direction, n);
+  if (prepared.features().quotient || !hit.inside || !ball || !ball->exact || !(ball->radius < kernel::kConvexBallRadius) ||
+      !(cosine > 0.0)) {
+    return march_from(prepared, hit.point, direction);
+  }
+  const double limit = world.max_distance;
+  const std::optional<BallExit> exit =
+      exact_ball_exit(*ball, hit.point, ClosedFormGeodesic<double>(direction), cosine, world.hit_epsilon, limit);
+  if (!exit) return march_from(prepared, hit.point, direction);
+  MarchHit met = march_from(prepared, hit.point, direction, exit->t, hit.object - 1);
+  if (met.object != 0 || met.out_of_steps) return met;
+  met.object = hit.object;
+  met.distance = exit->t;
+  met.point = exit->point;
+  met.direction = exit->direction;
+  met.inside = true;
+  met.normal = -exit->outward;  // facing the ray, which leaves the ball
+  met.pattern_uv = shape_pattern_uv(o->shape, exit->point, exit->point);
+  met.steps += exit->rounds;
+  return met;
+}
+
 // The march of the ray a specular lobe sends from a hit (n: its normal
 // facing the ray). A ray refracted out of a solid (glass, from inside)
 // starts past the surface it crosses, 3 hit_epsilon from it along the
@@ -798,7 +866,7 @@ glm::dvec3 specular_direction(const kernel::SolLobes& lobes, const MarchHit& hit
 // that face always does. The kernel does the same (march/shading.glsl).
 MarchHit march_specular(const MarchWorld& prepared, const MarchHit& hit, const kernel::SolLobes& lobes,
                         const glm::dvec3& n, const glm::dvec3& direction) {
-  if (!(lobes.ior > 0.0 && hit.inside && glm::dot(direction, n) < 0.0)) return march_from(prepared, hit.point, direction);
+  if (!(lobes.ior > 0.0 && hit.inside && glm::dot(direction, n) < 0.0)) return march_segment(prepared, hit, n, direction);
   const double skip = 3.0 * prepared.world().hit_epsilon / std::max(std::abs(glm::dot(direction, n)), 0.02);
   const ClosedFormGeodesic<double>::State s = ClosedFormGeodesic<double>(direction).at(skip);
   return march_from(prepared, multiply(hit.point, s.position), s.direction);
@@ -1146,7 +1214,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
       if (!(q > 0.0) || random.uniform() >= q) break;
       weight /= q;
     }
-    hit = after_specular ? march_specular(prepared, hit, lobes, n, next) : march_from(prepared, hit.point, next);
+    hit = after_specular ? march_specular(prepared, hit, lobes, n, next) : march_segment(prepared, hit, n, next);
   }
   return color;
 }

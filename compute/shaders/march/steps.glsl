@@ -130,7 +130,7 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 // other objects without the ball up to the exit, where, met by none, the
 // ray meets the ball; not found within kExitRounds (a solve that does not
 // land, a trial that is outside while heading in), it marches as any ray.
-const int kExitRounds = 8;
+// The CPU searches the same way (exact_ball_exit in libsol/src/render.cpp).
 
 struct ExitSearch {
   int k;           // the ball (-1: none)
