@@ -171,8 +171,9 @@ void exit_met(ExitSearch e, float limit, inout int hit, inout float t, inout vec
 
 // Newton's round at the trial e.t, from the exact solve x of ball e.k at
 // the ray's point q there (sdf = f - r, slope = f' where x.known), the
-// chord at most the ball's diameter (geodesics inside a strongly convex
-// ball minimise) and the march's limit.
+// trials below 2r + hit_epsilon (within which a geodesic that has left
+// the ball cannot meet it again: docs/lighting.md, "Enclosures") and the
+// march's limit.
 void exit_newton(inout ExitSearch e, ExactSolve x, float sdf, float slope, vec3 q, float hit_epsilon, float limit) {
   const float F = sdf + 0.5 * hit_epsilon;
   bool give_up = !x.known || ++e.rounds > kExitRounds;
