@@ -64,22 +64,25 @@ TEST(Spreading, MatchesFiniteDifferencesOfTheFlow) {
   std::printf("J against central differences: worst relative error %.2e over %d geodesics\n", worst, compared);
 }
 
-// The path tracer's J (a relative tolerance of 1e-8): within 1e-7 of the
-// default's (1e-12) over random geodesics up to length 6; a tolerance
-// outside [1e-14, 1e-4] is refused by name.
+// J at a looser tolerance (the path tracer's is 1e-6): within ten times
+// that tolerance of the default's (1e-12) over random geodesics up to
+// length 6 (measured at 1e-6: 1.1e-6); a tolerance outside [1e-14, 1e-4] is
+// refused by name.
 TEST(Spreading, ALooserToleranceStaysNearTheDefault) {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> length(0.05, 6.0);
-  double worst = 0.0;
-  for (int k = 0; k < 100; ++k) {
-    const dvec3 v = random_direction(rng);
-    const double t = length(rng);
-    const double j = sol::sphere_area_density(v, t);
-    const double error = std::abs(sol::sphere_area_density(v, t, 1e-8) - j) / std::max(j, t * t);
-    worst = std::max(worst, error);
-    EXPECT_LT(error, 1e-7) << "t " << t;
+  for (const double tolerance : {1e-8, 1e-6}) {
+    double worst = 0.0;
+    for (int k = 0; k < 100; ++k) {
+      const dvec3 v = random_direction(rng);
+      const double t = length(rng);
+      const double j = sol::sphere_area_density(v, t);
+      const double error = std::abs(sol::sphere_area_density(v, t, tolerance) - j) / std::max(j, t * t);
+      worst = std::max(worst, error);
+      EXPECT_LT(error, 10.0 * tolerance) << "t " << t;
+    }
+    std::printf("J at tolerance %.0e against 1e-12: worst relative difference %.2e\n", tolerance, worst);
   }
-  std::printf("J at tolerance 1e-8 against 1e-12: worst relative difference %.2e\n", worst);
   EXPECT_THROW(sol::sphere_area_density(dvec3(1.0, 0.0, 0.0), 1.0, 1e-3), sol::InvalidArgument);
   EXPECT_THROW(sol::sphere_area_density(dvec3(1.0, 0.0, 0.0), 1.0, 0.0), sol::InvalidArgument);
 }

@@ -1010,10 +1010,11 @@ std::vector<Connection> glow_connections(const GlowingBall& g, const glm::dvec3&
   return g.reach > 0.0 ? geodesics_between(x, y, distance(x, y) + g.reach) : minimising_geodesics(x, y);
 }
 
-constexpr double kPathSpreadingTolerance = 1e-8;
+constexpr double kPathSpreadingTolerance = 1e-6;
 
 // The spreading J of the geodesics a path connects by (sol::sphere_area_density
-// at the path tracer's tolerance: far below its noise, a sixth of the default's cost).
+// at the path tracer's tolerance: within about 1e-6 of the default's 1e-12,
+// far below any image's noise, at a tenth of its cost).
 double path_spreading(const glm::dvec3& direction, double t) {
   return sphere_area_density(direction, t, kPathSpreadingTolerance);
 }
