@@ -1037,7 +1037,7 @@ bool glow_enclosed(const MarchWorld& prepared, const GlowingBall& g, const March
 // (0 where none lists y, or where that geodesic is longer than the
 // distance plus the ball's reach: next-event estimation never takes it).
 double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object, const glm::dvec3& x,
-                    const glm::dvec3& d, double L, const MarchHit& hit) {
+                    const glm::dvec3& d, double L, const MarchHit& hit, bool quotient) {
   try {
     const glm::dvec3 y = multiply(x, ClosedFormGeodesic<double>(d).at(L).position);
     // The target whose sphere holds y: the object's own in Sol, its nearest image in a quotient.
@@ -1054,16 +1054,25 @@ double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object,
     if (!g) return 0.0;
     // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
-    // The minimiser from the centre to y, from the march's hit: the
+    // The minimiser from the centre to y. In Sol from the march's hit: the
     // sphere's outward normal there is its tangent, so the geodesic from y
-    // back along it ends at the centre after r (checked: else y lies on
-    // another image's sphere) with the initial direction's opposite.
+    // back along it ends at the centre after r (checked) with the initial
+    // direction's opposite. In a quotient the hit's frame may be turned by
+    // Γ against the cover's (a half turn), so solved, and checked to land
+    // on the sphere (else y lies on another image's).
     const double r = g->ball.radius;
-    const glm::dvec3 outward = hit.inside ? -hit.normal : hit.normal;
-    const ClosedFormGeodesic<double> back(-outward);
-    const ClosedFormGeodesic<double>::State centre = back.at(r);
-    if (glm::length(multiply(inverse(g->ball.center), multiply(y, centre.position))) > 1e-3 * std::max(1.0, r)) return 0.0;
-    const double j_centre = path_spreading(-centre.direction, r);
+    glm::dvec3 from_centre;
+    if (quotient) {
+      const Connection c = minimising_geodesics(g->ball.center, y).front();
+      if (std::abs(c.length - r) > 1e-3 * std::max(1.0, r)) return 0.0;
+      from_centre = glm::normalize(c.direction);
+    } else {
+      const glm::dvec3 outward = hit.inside ? -hit.normal : hit.normal;
+      const ClosedFormGeodesic<double>::State centre = ClosedFormGeodesic<double>(-outward).at(r);
+      if (glm::length(multiply(inverse(g->ball.center), multiply(y, centre.position))) > 1e-3 * std::max(1.0, r)) return 0.0;
+      from_centre = -centre.direction;
+    }
+    const double j_centre = path_spreading(from_centre, r);
     const double cos_y = std::abs(glm::dot(hit.direction, hit.normal));
     if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
     const double pick = glow_pick_weight(*g, x) / glow_pick_total(glowing, x);
@@ -1178,7 +1187,8 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
         if (sampling == PathSampling::GlowOnly) {
           share = 0.0;  // next-event estimation counted it
         } else {
-          const double glow = glow_density(glowing, object, from, from_direction, hit.distance, hit);
+          const double glow =
+              glow_density(glowing, object, from, from_direction, hit.distance, hit, prepared.features().quotient);
           const double reflection = from_cosine / std::numbers::pi;
           share = reflection / (reflection + glow);
         }
