@@ -1416,16 +1416,12 @@ TEST(Kernel, NextEventEstimationFromInsideAGlowingBallAgrees) {
     images.push_back(sol::render_scene(renderer, scene, sol::test::path_options(12, 10, 16, 31, sampling)));
     EXPECT_EQ(images.back().rays_out_of_steps, 0u);
   }
-  auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  };
-  agree(images[0], images[1], "kernel, combined - reflection");
-  agree(images[0], images[2], "kernel, combined - next-event estimation");
-  agree(images[1], images[2], "kernel, reflection - next-event estimation");
-  agree(images[0], sol::render_cpu(scene, sol::test::path_options(12, 10, 4, 32, sol::PathSampling::Combined)),
-        "combined, kernel - CPU");
+  sol::test::expect_estimators_agree(images[0], images[1], "kernel, combined - reflection");
+  sol::test::expect_estimators_agree(images[0], images[2], "kernel, combined - next-event estimation");
+  sol::test::expect_estimators_agree(images[1], images[2], "kernel, reflection - next-event estimation");
+  sol::test::expect_estimators_agree(
+      images[0], sol::render_cpu(scene, sol::test::path_options(12, 10, 4, 32, sol::PathSampling::Combined)),
+      "combined, kernel - CPU");
   expect_no_validation_errors();
 }
 
@@ -1705,14 +1701,9 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
     std::printf("glow, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", static_cast<int>(sampling), agree, n);
     EXPECT_GE(agree, n * 8 / 10) << static_cast<int>(sampling);
   }
-  auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
-    std::printf("kernel %s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  };
-  agree(images[0], images[1], "combined - reflection");
-  agree(images[0], images[2], "combined - glow");
-  agree(images[1], images[2], "reflection - glow");
+  sol::test::expect_estimators_agree(images[0], images[1], "kernel, combined - reflection");
+  sol::test::expect_estimators_agree(images[0], images[2], "kernel, combined - glow");
+  sol::test::expect_estimators_agree(images[1], images[2], "kernel, reflection - glow");
   expect_no_validation_errors();
 }
 

@@ -2150,14 +2150,9 @@ TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
   const sol::RenderResult both = render(sol::PathSampling::Combined, 8, 1);
   const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 8, 2);
   const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 8, 3);
-  auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  };
-  agree(both, reflection, "combined - reflection");
-  agree(both, glow, "combined - glow");
-  agree(reflection, glow, "reflection - glow");
+  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
+  sol::test::expect_estimators_agree(both, glow, "combined - glow");
+  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
   // The glow is seen: the plane under the ball is lit.
   double lit = 0.0;
   for (std::size_t k = 0; k < both.object.size(); ++k) lit += both.object[k] == 1.0f ? both.rgba[4 * k] : 0.0;
@@ -2189,14 +2184,9 @@ TEST(Path, NextEventEstimationFromInsideAGlowingBallAgrees) {
   const sol::RenderResult both = render(sol::PathSampling::Combined, 1);
   const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 2);
   const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 3);
-  auto agree = [](const sol::RenderResult& a, const sol::RenderResult& b, const char* what) {
-    const sol::test::MeanAndError d = sol::test::red_difference(a, b);
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  };
-  agree(both, reflection, "combined - reflection");
-  agree(both, glow, "combined - next-event estimation");
-  agree(reflection, glow, "reflection - next-event estimation");
+  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
+  sol::test::expect_estimators_agree(both, glow, "combined - next-event estimation");
+  sol::test::expect_estimators_agree(reflection, glow, "reflection - next-event estimation");
 }
 
 // The same in the golden quotient (glow_over_plane_golden): next-event
@@ -2218,13 +2208,9 @@ TEST(Path, GlowSamplingInTheQuotientAgreesAndHelps) {
   const sol::RenderResult both = render(sol::PathSampling::Combined, samples, 1);
   const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, samples, 2);
   const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, samples, 3);
-  for (const auto& [a, b, what] : {std::tuple{&both, &reflection, "combined - reflection"},
-                                   std::tuple{&both, &glow, "combined - glow"},
-                                   std::tuple{&reflection, &glow, "reflection - glow"}}) {
-    const sol::test::MeanAndError d = sol::test::red_difference(*a, *b);
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  }
+  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
+  sol::test::expect_estimators_agree(both, glow, "combined - glow");
+  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
   if (sol::test::kSanitizedBuild) return;
   const sol::RenderResult reference = render(sol::PathSampling::Combined, 32, 4);
   auto median_error = [&](const sol::RenderResult& a) { return sol::test::median_red_error_on(a, reference, 1); };
@@ -2253,13 +2239,9 @@ TEST(Path, GlowSamplingInATurningQuotientAgrees) {
   const sol::RenderResult both = render(sol::PathSampling::Combined, 1);
   const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 2);
   const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 3);
-  for (const auto& [a, b, what] : {std::tuple{&both, &reflection, "combined - reflection"},
-                                   std::tuple{&both, &glow, "combined - glow"},
-                                   std::tuple{&reflection, &glow, "reflection - glow"}}) {
-    const sol::test::MeanAndError d = sol::test::red_difference(*a, *b);
-    std::printf("%s: mean difference %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  }
+  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
+  sol::test::expect_estimators_agree(both, glow, "combined - glow");
+  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
 }
 
 // Next-event estimation along every geodesic within the glowing ball's
@@ -2291,11 +2273,8 @@ TEST(Path, GlowReachConnectsAlongTheLongerGeodesics) {
               sol::test::red_mean(within).mean, sol::test::red_mean(minimisers).mean, sol::test::red_mean(combined).mean,
               sol::test::red_mean(reflection).mean);
   EXPECT_GT(more, 0.0);
-  for (const auto& [other, what] : {std::pair{&combined, "combined"}, std::pair{&reflection, "reflection"}}) {
-    const sol::test::MeanAndError d = sol::test::red_difference(within, *other);
-    std::printf("next-event estimation - %s: %.4f, standard error %.4f\n", what, d.mean, d.error);
-    EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
-  }
+  sol::test::expect_estimators_agree(within, combined, "next-event estimation - combined");
+  sol::test::expect_estimators_agree(within, reflection, "next-event estimation - reflection");
 }
 
 // Paths are reproducible: their random numbers come from the seed, the

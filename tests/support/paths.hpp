@@ -54,6 +54,15 @@ inline MeanAndError red_difference(const sol::RenderResult& a, const sol::Render
   return red_mean(d);
 }
 
+/// Two unbiased estimators of one image agree: the mean of their red
+/// channels' pixel-by-pixel difference within 3 standard errors of 0,
+/// printed as `what` says.
+inline void expect_estimators_agree(const sol::RenderResult& a, const sol::RenderResult& b, const std::string& what) {
+  const MeanAndError d = red_difference(a, b);
+  std::printf("%s: mean difference %.4f, standard error %.4f\n", what.c_str(), d.mean, d.error);
+  EXPECT_LT(std::abs(d.mean), 3.0 * d.error) << what;
+}
+
 /// The pixels whose three channels agree to `tolerance` (relative above 1).
 inline std::size_t pixels_agreeing(const sol::RenderResult& a, const sol::RenderResult& b, float tolerance) {
   std::size_t agree = 0;
