@@ -574,18 +574,16 @@ std::vector<Solution> reduced_minimisers_of(const glm::dvec3& q, const Connectio
 // Minimisers of the reduced problem, in the reduced frame; degenerate
 // cases exact. In a WarmSolves scope a repeated target takes the last answer.
 std::vector<Solution> reduced_minimisers(const glm::dvec3& q, const ConnectionOptions& options) {
-  if (!t_warm.open) return reduced_minimisers_of(q, options);
-  if (t_warm.answered && q == t_warm.answered_q && options.tolerance == t_warm.answered_tolerance &&
-      options.scan_polar == ConnectionOptions{}.scan_polar && options.scan_azimuth == ConnectionOptions{}.scan_azimuth) {
-    return t_warm.answer;
-  }
-  std::vector<Solution> answer = reduced_minimisers_of(q, options);
-  const bool plain = options.scan_polar == ConnectionOptions{}.scan_polar && options.scan_azimuth == ConnectionOptions{}.scan_azimuth;
-  t_warm.answered = plain;
+  // (Answers are kept for the default scan only: its options then differ in the tolerance alone.)
+  const bool plain = options.scan_polar == ConnectionOptions{}.scan_polar &&
+                     options.scan_azimuth == ConnectionOptions{}.scan_azimuth;
+  if (!t_warm.open || !plain) return reduced_minimisers_of(q, options);
+  if (t_warm.answered && q == t_warm.answered_q && options.tolerance == t_warm.answered_tolerance) return t_warm.answer;
+  t_warm.answer = reduced_minimisers_of(q, options);
+  t_warm.answered = true;
   t_warm.answered_q = q;
   t_warm.answered_tolerance = options.tolerance;
-  t_warm.answer = answer;
-  return answer;
+  return t_warm.answer;
 }
 
 std::vector<Solution> reduced_minimisers_of(const glm::dvec3& q, const ConnectionOptions& options) {

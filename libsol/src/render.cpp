@@ -22,6 +22,7 @@
 #include "sol/connection.hpp"
 #include "sol/spreading.hpp"
 #include "sol/error.hpp"
+#include "sol/exit_search.h"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
 #include "sol/lens.hpp"
@@ -793,10 +794,9 @@ glm::dvec3 specular_direction(const kernel::SolLobes& lobes, const MarchHit& hit
 // radius below kernel::kConvexBallRadius (docs/lighting.md, "Enclosures";
 // the kernel's exit_newton): Newton's method on the arc length s for f(s)
 // = r − hit_epsilon/2, f the distance from the centre along the ray, from
-// the chord 2 r cos θ (θ the angle with the inner normal), trials below 2r
-// + hit_epsilon and the march's limit; found where |f − r +
-// hit_epsilon/2| < hit_epsilon/4 heading out. None where a solve fails, a
-// trial is outside while heading in, or after kernel::kExitRounds rounds.
+// the chord 2 r cos θ (θ the angle with the inner normal), its rounds
+// sol/exit_search.h's. None where a solve fails, a trial is outside while
+// heading in or past the march's limit, or after kernel::kExitRounds rounds.
 struct BallExit {
   double t;
   glm::dvec3 point, outward, direction;
@@ -812,16 +812,10 @@ std::optional<BallExit> exact_ball_exit(const Ball& ball, const glm::dvec3& from
     const glm::dvec3 q = multiply(from, at.position);
     const std::optional<FromCentre> g = from_centre(ball, q);
     if (!g) return std::nullopt;
-    const double f = g->length - (ball.radius - 0.5 * eps), slope = glm::dot(g->normal, at.direction);
-    if (std::abs(f) < 0.25 * eps && slope > 0.0) return BallExit{t, q, g->normal, at.direction, round};
-    double next = 0.0;
-    if (slope > 1e-3) {
-      next = std::min(t - f / slope, 2.0 * ball.radius + eps);
-    } else if (f < 0.0) {
-      next = 1.5 * t;  // before the nearest approach: further on
-    }
-    if (!(next > 0.0 && next <= limit)) return std::nullopt;  // (outside while heading in: not this ball's exit)
-    t = next;
+    const double excess = g->length - ball.radius, slope = glm::dot(g->normal, at.direction);
+    if (kernel::sol_exit_found(excess, slope, eps)) return BallExit{t, q, g->normal, at.direction, round};
+    t = kernel::sol_exit_next(t, excess, slope, ball.radius, eps);
+    if (!(t > 0.0 && t <= limit)) return std::nullopt;
   }
   return std::nullopt;
 }

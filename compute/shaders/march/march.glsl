@@ -284,9 +284,10 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
       shell = false;
     } else if (HAS_EXACT_BALLS && (shell || leaving_shell || (MARCH_SKIPS && exit.searching)) && alive) {
       steps = root_steps + step + 1;
+      const bool searched = MARCH_SKIPS && exit.searching;
       alive = march_exact_step(q, u, hit_epsilon, limit, passes, leaving_shell, s, exact, seen, passing,
                                leave_sign, t, hit, exit);
-      if (MARCH_SKIPS && exit.ended) exit_search_ended(exit, resume.t, t, limit, skip);
+      if (searched && !exit.searching) exit_search_ended(exit, resume.t, t, limit, skip);
       shell = leaving_shell = false;
       ++step;
     }

@@ -6,6 +6,8 @@
 #ifndef SOL_MARCH_STEPS_GLSL
 #define SOL_MARCH_STEPS_GLSL
 
+#include "sol/exit_search.h"  // the exit search's rounds, shared with libsol
+
 // The end of a march step whose nearest object (for a hit) is nearest_k at
 // nearest_hit and whose step is `nearest`: a hit (`hit` set), a pass
 // between a cutout plane's discs, or the advance (at least 2 hit_epsilon
@@ -121,8 +123,9 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 // 1: Hess d >= cot(d) (g - ∇d ∇d) >= 0 below π/2, before the cut locus, at
 // least √2π away), so the exit, where f first reaches r - hit_epsilon/2
 // after the wall, is Newton's root from any trial where f' > 0: from
-// beyond the exit Newton falls to it monotonically, from before it (past
-// the nearest approach) it jumps beyond it first. A trial is one position
+// before it (past the nearest approach) Newton jumps beyond it, and from
+// beyond it falls onto it (monotonically while f stays below π/2); the
+// rounds' arithmetic is sol/exit_search.h, shared. A trial is one position
 // and one exact solve, a round of the march: about 3 rounds where the
 // ball's safe clearances (exact_ball_inside_clearance) take about 8 (a
 // chord has no tighter safe step: its curvature bound is within a quarter
@@ -135,7 +138,6 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 struct ExitSearch {
   int k;           // the ball (-1: none)
   bool searching;  // t is the trial
-  bool ended;      // the search has just ended (found or given up): the march goes back to the wall
   bool found;
   float t;         // the trial, then the exit
   int rounds;
@@ -145,13 +147,12 @@ struct ExitSearch {
 
 // The search for ball k's exit (-1: none) from the trial `guess`, within the march's limit.
 ExitSearch exit_search_start(int k, float guess, float limit) {
-  return ExitSearch(k, k >= 0, false, false, min(guess, limit), 0, exact_solve_none(), vec3(0.0));
+  return ExitSearch(k, k >= 0, false, min(guess, limit), 0, exact_solve_none(), vec3(0.0));
 }
 
 // The search has ended: the march goes back to its start (`start`), and
 // where the exit was found marches the others without the ball up to it.
-void exit_search_ended(inout ExitSearch e, float start, inout float t, inout float limit, inout uint skip) {
-  e.ended = false;
+void exit_search_ended(ExitSearch e, float start, inout float t, inout float limit, inout uint skip) {
   t = start;
   if (e.found) {
     limit = min(limit, e.t);
@@ -175,24 +176,16 @@ void exit_met(ExitSearch e, float limit, inout int hit, inout float t, inout vec
 // the ball cannot meet it again: docs/lighting.md, "Enclosures") and the
 // march's limit.
 void exit_newton(inout ExitSearch e, ExactSolve x, float sdf, float slope, vec3 q, float hit_epsilon, float limit) {
-  const float F = sdf + 0.5 * hit_epsilon;
   bool give_up = !x.known || ++e.rounds > kExitRounds;
-  if (!give_up && abs(F) < 0.25 * hit_epsilon && slope > 0.0) {
+  if (!give_up && sol_exit_found(sdf, slope, hit_epsilon)) {
     e.found = true;
     e.solve = x;
     e.q = q;
   } else if (!give_up) {
-    float next = 0.0;
-    if (slope > 1e-3) {
-      next = min(e.t - F / slope, 2.0 * g_radii[e.k] + hit_epsilon);
-    } else if (F < 0.0) {
-      next = 1.5 * e.t;  // before the nearest approach: further on
-    }
-    give_up = !(next > 0.0 && next <= limit);  // (outside while heading in: not this ball's exit)
-    e.t = next;
+    e.t = sol_exit_next(e.t, sdf, slope, g_radii[e.k], hit_epsilon);
+    give_up = !(e.t > 0.0 && e.t <= limit);
   }
   e.searching = !(e.found || give_up);
-  e.ended = !e.searching;
 }
 
 // A step of the Sol march that came within kExactShell of an exact ball

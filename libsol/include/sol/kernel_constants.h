@@ -161,9 +161,6 @@ SOL_CONSTANT(SOL_REAL, kMinSpreading, 0.01);
 /// since Sol's sectional curvatures are at most 1 and its injectivity
 /// radius is at least √2π (docs/lighting.md, "Enclosures").
 SOL_CONSTANT(SOL_REAL, kConvexBallRadius, 1.5);
-/// The most Newton rounds a path segment's search for the exit of such a
-/// ball takes before it marches as any ray (docs/lighting.md, "Enclosures").
-SOL_CONSTANT(int, kExitRounds, 8);
 
 // ---- The sRGB transfer function (IEC 61966-2-1), for 8-bit output
 SOL_CONSTANT(SOL_REAL, kSrgbLinearLimit, 0.0031308);  ///< below it the curve is linear ...
