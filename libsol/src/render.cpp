@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <variant>
 
 #include <glm/geometric.hpp>
 
@@ -22,6 +23,7 @@
 #include "sol/connection.hpp"
 #include "sol/spreading.hpp"
 #include "sol/error.hpp"
+#include "sol/box_light.h"
 #include "sol/exit_search.h"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
@@ -929,78 +931,80 @@ glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit) {
 
 // ---- Path tracing (RenderOptions::transport = Transport::Path)
 
-// A direction about the unit normal n with density cos θ / π (the frame's
-// components are orthonormal coordinates of the tangent space, so the
-// Euclidean construction holds there): a point of the unit disc lifted to
-// the hemisphere, in a basis (t, b, n) (Duff et al. 2017's branchless one).
+// A direction about the unit normal n with density cos θ / π
+// (sol_cosine_direction, shared with the kernel), from the path's next two numbers.
 glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z), c = n.x * n.y * a;
-  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  const glm::dvec3 b(c, sign + n.y * n.y * a, -n.y);
-  const double r = std::sqrt(random.uniform()), phi = 2.0 * std::numbers::pi * random.uniform();
-  const double x = r * std::cos(phi), y = r * std::sin(phi);
-  return glm::normalize(x * t + y * b + std::sqrt(std::max(0.0, 1.0 - x * x - y * y)) * n);
+  const double xi1 = random.uniform(), xi2 = random.uniform();
+  return kernel::sol_cosine_direction(n, xi1, xi2);
 }
 
-// Next-event estimation to glowing exact balls. A glowing ball's sphere S
-// = exp_c(r S²) is sampled by a direction w at its centre, uniform on S²,
-// whose point y = exp_c(r w) has the area density 1 / (4π J_c(w, r)), J
-// the spreading of the geodesics from c (sol::sphere_area_density). y is
-// connected to the diffuse point x by its minimising geodesics, or with
-// the ball's glow_reach by every geodesic up to their distance plus that
-// reach, each a direction d at x and a length L, and each is one way light
-// comes (next-event estimation picks it with the density below; a longer
-// one is left to reflection sampling, whose weight there is 1): its
-// geometric term is cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen
-// from x, equal to that seen from y: reciprocity), where plain space has
-// 1 / |x - y|². A connection counts where the march from x along d first
-// meets that ball at arc length L. The density of d in solid angle at x is
-// then p_pick p_area J_x / cos θ_y, which weighs both strategies (the
-// balance heuristic) when they are combined.
+// Next-event estimation to glowing exact balls and boxes. A glowing
+// ball's sphere S = exp_c(r S²) is sampled by a direction w at its centre,
+// uniform on S², whose point y = exp_c(r w) has the area density
+// 1 / (4π J_c(w, r)), J the spreading of the geodesics from c
+// (sol::sphere_area_density); a glowing box's surface uniformly by area
+// (sol/box_light.h: density 1 / its area). y is connected to the diffuse
+// point x by its minimising geodesics, or with the ball's glow_reach by
+// every geodesic up to their distance plus that reach, each a direction d
+// at x and a length L, and each is one way light comes (next-event
+// estimation picks it with the density below; a longer one is left to
+// reflection sampling, whose weight there is 1): its geometric term is
+// cos θ_x cos θ_y / J_x(d, L) (J_x the spreading seen from x, equal to that
+// seen from y: reciprocity), where plain space has 1 / |x - y|². A
+// connection counts where the march from x along d first meets that
+// object at arc length L. The density of d in solid angle at x is then
+// p_pick p_area J_x / cos θ_y, which weighs both strategies (the balance
+// heuristic) when they are combined.
 //
-// The targets: in Sol the glowing balls; in a quotient each glowing ball's
-// images around D (MarchWorld::objects), in the cover, whose points x of D
-// join by geodesics of the cover. One is picked with a probability that
+// The targets: in Sol the glowing objects; in a quotient each one's images
+// around D (MarchWorld::objects), in the cover, whose points x of D join
+// by geodesics of the cover. One is picked with a probability that
 // depends on x alone (glow_pick_weight: about its solid angle), so that
 // the density of any direction can be evaluated again at a later hit. A
 // geodesic to an image no target lists is reflection sampling's alone.
-struct GlowingBall {
-  std::size_t object;  // the scene object
-  Ball ball;           // in world coordinates (the quotient: one image of it, in the cover)
-  double reach = 0.0;  // SceneObject::glow_reach: the connections up to the distance plus this
+struct GlowTarget {
+  std::size_t object;          // the scene object
+  std::variant<Ball, Box> shape;  // in world coordinates (the quotient: one image of it, in the cover)
+  double reach = 0.0;          // SceneObject::glow_reach: the connections up to the distance plus this
+
+  const Ball* ball() const { return std::get_if<Ball>(&shape); }
+  const Box* box() const { return std::get_if<Box>(&shape); }
+  const glm::dvec3& center() const { return box() ? box()->center : ball()->center; }
+  // The size it is picked by: a ball's radius, a box's sol_box_light_radius.
+  double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
 };
 
-std::vector<GlowingBall> glowing_balls(const MarchWorld& prepared) {
+std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
-  std::vector<GlowingBall> out;
-  auto glowing = [&](std::size_t k) { return world.objects[k].emission != glm::dvec3(0.0); };
+  std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
-    const Ball* b = std::get_if<Ball>(&o.shape);
-    if (b && b->exact && glowing(o.owner)) out.push_back({o.owner, *b, world.objects[o.owner].glow_reach});
+    if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
+    const double reach = world.objects[o.owner].glow_reach;
+    if (const Ball* b = std::get_if<Ball>(&o.shape); b && b->exact) out.push_back({o.owner, *b, reach});
+    if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
   }
   return out;
 }
 
 // The weight with which next-event estimation from x picks target g, about
-// the solid angle it fills: r² / (r² + |x⁻¹c|²), x⁻¹c the centre seen
-// from x (kernel: glow_pick_weight in march/paths.glsl).
-double glow_pick_weight(const GlowingBall& g, const glm::dvec3& x) {
-  const glm::dvec3 v = multiply(inverse(x), g.ball.center);
-  const double r2 = g.ball.radius * g.ball.radius;
-  return r2 / (r2 + glm::dot(v, v));
+// the solid angle it fills: s² / (s² + |x⁻¹c|²), x⁻¹c its centre seen from
+// x, s its size (kernel: glow_pick_weight in march/paths.glsl).
+double glow_pick_weight(const GlowTarget& g, const glm::dvec3& x) {
+  const glm::dvec3 v = multiply(inverse(x), g.center());
+  const double s2 = g.size() * g.size();
+  return s2 / (s2 + glm::dot(v, v));
 }
 
-double glow_pick_total(const std::vector<GlowingBall>& glowing, const glm::dvec3& x) {
+double glow_pick_total(const std::vector<GlowTarget>& glowing, const glm::dvec3& x) {
   double total = 0.0;
-  for (const GlowingBall& g : glowing) total += glow_pick_weight(g, x);
+  for (const GlowTarget& g : glowing) total += glow_pick_weight(g, x);
   return total;
 }
 
-// The geodesics next-event estimation connects x to y of glowing ball g
-// by: the minimising ones, or with a reach every one up to the distance
-// plus it (sol::geodesics_between), shortest first.
-std::vector<Connection> glow_connections(const GlowingBall& g, const glm::dvec3& x, const glm::dvec3& y) {
+// The geodesics next-event estimation connects x to y of target g by: the
+// minimising ones, or with a reach every one up to the distance plus it
+// (sol::geodesics_between), shortest first.
+std::vector<Connection> glow_connections(const GlowTarget& g, const glm::dvec3& x, const glm::dvec3& y) {
   return g.reach > 0.0 ? geodesics_between(x, y, distance(x, y) + g.reach) : minimising_geodesics(x, y);
 }
 
@@ -1020,67 +1024,114 @@ double path_spreading(const glm::dvec3& direction, double t) {
 // and stops short of y by the connection's tolerance (only the other
 // objects can be in the way). In Sol, with no reach (the longer geodesics
 // may leave the ball).
-bool glow_enclosed(const MarchWorld& prepared, const GlowingBall& g, const MarchHit& hit) {
-  return !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
-         g.ball.radius < kernel::kConvexBallRadius && !(g.reach > 0.0);
+bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchHit& hit) {
+  return g.ball() && !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
+         g.ball()->radius < kernel::kConvexBallRadius && !(g.reach > 0.0);
+}
+
+// How far y lies from target g's surface (the target that holds y is the
+// nearest): from a ball's centre, the squared norm of c⁻¹y; a box's bound.
+double glow_offset(const GlowTarget& g, const glm::dvec3& y) {
+  if (const Box* box = g.box()) return std::abs(kernel::sol_box_light_bound(multiply(inverse(box->center), y), box->half_size));
+  const glm::dvec3 v = multiply(inverse(g.center()), y);
+  return glm::dot(v, v);
+}
+
+// The area density with which ball g's sampling draws y, where the
+// geodesic from x along d met its sphere at L (the hit). In Sol from the
+// march's hit: the sphere's outward normal there is its tangent, so the
+// geodesic from y back along it ends at the centre after r (checked) with
+// the initial direction's opposite. In a quotient the hit's frame may be
+// turned by Γ against the cover's (a half turn), so solved, and checked
+// to land on the sphere (else y lies on another image's). 0 where neither holds.
+double ball_area_density(const Ball& ball, const glm::dvec3& y, const MarchHit& hit, bool quotient) {
+  const double r = ball.radius;
+  glm::dvec3 from_centre;
+  if (quotient) {
+    const Connection c = minimising_geodesics(ball.center, y).front();
+    if (std::abs(c.length - r) > 1e-3 * std::max(1.0, r)) return 0.0;
+    from_centre = glm::normalize(c.direction);
+  } else {
+    const glm::dvec3 outward = hit.inside ? -hit.normal : hit.normal;
+    const ClosedFormGeodesic<double>::State centre = ClosedFormGeodesic<double>(-outward).at(r);
+    if (glm::length(multiply(inverse(ball.center), multiply(y, centre.position))) > 1e-3 * std::max(1.0, r)) return 0.0;
+    from_centre = -centre.direction;
+  }
+  const double j_centre = path_spreading(from_centre, r);
+  return j_centre > 0.0 ? 1.0 / (4.0 * std::numbers::pi * j_centre) : 0.0;
 }
 
 // The density, in solid angle at x, with which next-event estimation picks
 // the direction d whose geodesic first meets the glowing scene object
-// `object` after L: at y = x exp(L d), on the sphere of one of its targets
+// `object` after L: at y = x exp(L d), on the surface of one of its targets
 // (0 where none lists y, or where that geodesic is longer than the
-// distance plus the ball's reach: next-event estimation never takes it).
-double glow_density(const std::vector<GlowingBall>& glowing, std::size_t object, const glm::dvec3& x,
+// distance plus the target's reach: next-event estimation never takes it).
+double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, const glm::dvec3& x,
                     const glm::dvec3& d, double L, const MarchHit& hit, bool quotient) {
   try {
     const glm::dvec3 y = multiply(x, ClosedFormGeodesic<double>(d).at(L).position);
-    // The target whose sphere holds y: the object's own in Sol, its nearest image in a quotient.
-    const GlowingBall* g = nullptr;
+    // The target whose surface holds y: the object's own in Sol, its nearest image in a quotient.
+    const GlowTarget* g = nullptr;
     double nearest = std::numeric_limits<double>::infinity();
-    for (const GlowingBall& b : glowing) {
+    for (const GlowTarget& b : glowing) {
       if (b.object != object) continue;
-      const glm::dvec3 v = multiply(inverse(b.ball.center), y);
-      if (glm::dot(v, v) < nearest) {
-        nearest = glm::dot(v, v);
+      if (const double offset = glow_offset(b, y); offset < nearest) {
+        nearest = offset;
         g = &b;
       }
     }
-    if (!g) return 0.0;
+    // (A box's image holds y where y lies on its surface, to the march's tolerance; a ball's is checked below.)
+    if (!g || (g->box() && nearest > 1e-3)) return 0.0;
     // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
-    // The minimiser from the centre to y. In Sol from the march's hit: the
-    // sphere's outward normal there is its tangent, so the geodesic from y
-    // back along it ends at the centre after r (checked) with the initial
-    // direction's opposite. In a quotient the hit's frame may be turned by
-    // Γ against the cover's (a half turn), so solved, and checked to land
-    // on the sphere (else y lies on another image's).
-    const double r = g->ball.radius;
-    glm::dvec3 from_centre;
-    if (quotient) {
-      const Connection c = minimising_geodesics(g->ball.center, y).front();
-      if (std::abs(c.length - r) > 1e-3 * std::max(1.0, r)) return 0.0;
-      from_centre = glm::normalize(c.direction);
+    double area = 0.0, cos_y = 0.0;
+    if (const Box* box = g->box()) {
+      const glm::dvec3 wy = multiply(inverse(box->center), y);
+      if (kernel::sol_box_light_same_face(multiply(inverse(box->center), x), wy, box->half_size)) return 0.0;
+      // The face's normal at y in the cover's frame, against the geodesic's own tangent there.
+      const glm::dvec3 normal = kernel::sol_box_light_normal(wy, box->half_size);
+      cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), normal));
+      area = 1.0 / kernel::sol_box_light_area(box->half_size);
     } else {
-      const glm::dvec3 outward = hit.inside ? -hit.normal : hit.normal;
-      const ClosedFormGeodesic<double>::State centre = ClosedFormGeodesic<double>(-outward).at(r);
-      if (glm::length(multiply(inverse(g->ball.center), multiply(y, centre.position))) > 1e-3 * std::max(1.0, r)) return 0.0;
-      from_centre = -centre.direction;
+      cos_y = std::abs(glm::dot(hit.direction, hit.normal));
+      area = ball_area_density(*g->ball(), y, hit, quotient);
     }
-    const double j_centre = path_spreading(from_centre, r);
-    const double cos_y = std::abs(glm::dot(hit.direction, hit.normal));
-    if (!(cos_y > 0.0) || !(j_centre > 0.0)) return 0.0;
+    if (!(cos_y > 0.0) || !(area > 0.0)) return 0.0;
     const double pick = glow_pick_weight(*g, x) / glow_pick_total(glowing, x);
-    return pick * path_spreading(d, L) / (4.0 * std::numbers::pi * j_centre * cos_y);
+    return pick * area * path_spreading(d, L) / cos_y;
   } catch (const OutOfRange&) {
     return 0.0;
   }
 }
 
+// A point y of target g's surface, drawn: y, the outward normal there
+// (frame components at y) and its area density.
+struct GlowPoint {
+  glm::dvec3 y, normal;
+  double area;
+};
+
+GlowPoint glow_point(const GlowTarget& g, PathRandom& random) {
+  if (const Box* box = g.box()) {
+    const double u0 = random.uniform(), u1 = random.uniform(), u2 = random.uniform();
+    const glm::dvec3 w = kernel::sol_box_light_point(box->half_size, u0, u1, u2);
+    return {multiply(box->center, w), kernel::sol_box_light_normal(w, box->half_size),
+            1.0 / kernel::sol_box_light_area(box->half_size)};
+  }
+  const Ball& ball = *g.ball();
+  const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
+  const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
+  const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
+  const ClosedFormGeodesic<double>::State on_sphere = ClosedFormGeodesic<double>(w).at(ball.radius);
+  return {multiply(ball.center, on_sphere.position), on_sphere.direction,
+          1.0 / (4.0 * std::numbers::pi * std::max(path_spreading(w, ball.radius), 1e-300))};
+}
+
 // Next-event estimation from a diffuse hit (normal n, albedo times the
 // path's weight in `weight`): the light of one sampled point of one glowing
-// ball, along each of its geodesics within reach (glow_connections), each
-// weighed by its own J, weighted for `sampling`.
-glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, const MarchHit& hit,
+// target, along each of its geodesics within reach (glow_connections),
+// each weighed by its own J, weighted for `sampling`.
+glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>& glowing, const MarchHit& hit,
                        const glm::dvec3& n, PathSampling sampling, PathRandom& random) {
   const World& world = prepared.world();
   const double total = glow_pick_total(glowing, hit.point);
@@ -1090,21 +1141,20 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
        w = glow_pick_weight(glowing[++pick], hit.point)) {
     left -= w;
   }
-  const GlowingBall& g = glowing[pick];
-  const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
-  const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
-  const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
-  const ClosedFormGeodesic<double>::State on_sphere = ClosedFormGeodesic<double>(w).at(g.ball.radius);
-  const glm::dvec3 y = multiply(g.ball.center, on_sphere.position);
-  const glm::dvec3 normal_y = on_sphere.direction;  // the sphere's outward normal at y
-  const double area = glow_pick_weight(g, hit.point) / total /
-                      (4.0 * std::numbers::pi * std::max(path_spreading(w, g.ball.radius), 1e-300));
+  const GlowTarget& g = glowing[pick];
+  const GlowPoint p = glow_point(g, random);
+  const Box* box = g.box();
+  if (box && kernel::sol_box_light_same_face(multiply(inverse(box->center), hit.point),
+                                             multiply(inverse(box->center), p.y), box->half_size)) {
+    return glm::dvec3(0.0);  // reflection sampling's alone (sol_box_light_same_face)
+  }
+  const double area = glow_pick_weight(g, hit.point) / total * p.area;
   // x on the inner wall of a convex ball: its geodesics to y march without it (glow_enclosed).
   const bool enclosed = glow_enclosed(prepared, g, hit);
   glm::dvec3 light(0.0);
   std::vector<Connection> ways;
   try {
-    ways = glow_connections(g, hit.point, y);
+    ways = glow_connections(g, hit.point, p.y);
   } catch (const OutOfRange&) {
     return light;
   }
@@ -1120,10 +1170,10 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
     } else {
       const MarchHit seen = march_from(prepared, hit.point, d);
       if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > tolerance) {
-        continue;  // something, or the ball's nearer side, is in the way
+        continue;  // something, or the target's nearer side, is in the way
       }
     }
-    const double cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(c.length), normal_y));
+    const double cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(c.length), p.normal));
     const double spreading = path_spreading(d, c.length);
     if (!(spreading > 0.0)) continue;
     double weight = 1.0;
@@ -1143,12 +1193,12 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
 // goes on along the reflected geodesic (its weight unchanged: the mirror's
 // share over its probability), else it is diffuse: the lights' light by
 // next-event estimation (light_received, every geodesic to an exact light
-// with its 1/J, and shadows) times the albedo, the glowing balls' by
+// with its 1/J, and shadows) times the albedo, the glowing objects' by
 // glow_sample, and the path goes on along a cosine-distributed direction,
 // its weight times the albedo (the Lambertian ρ/π times cos θ over the
 // density cos θ / π). A path scatters at most World::path_bounces times
 // (the camera ray's hit is the first vertex: with 0 a hit's emission and
-// the lights' light alone); the glowing balls' next-event estimation, whose
+// the lights' light alone); the glowing objects' next-event estimation, whose
 // weight counts on the path going on, is taken only where it may. Russian
 // roulette from the fourth hit: the path goes on with probability q =
 // min(1, the weight's largest component), its weight divided by q, so
@@ -1158,7 +1208,7 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowingBall
 // No ambient light.
 // `glowing`: next-event estimation's targets (glowing_balls; none for
 // reflection sampling alone), found once per render.
-glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBall>& glowing, MarchHit hit,
+glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarget>& glowing, MarchHit hit,
                          PathRandom& random, PathSampling sampling) {
   const World& world = prepared.world();
   glm::dvec3 color(0.0), weight(1.0);
@@ -1176,16 +1226,14 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowingBa
     if (o.emission != glm::dvec3(0.0)) {
       double share = 1.0;
       const auto object = static_cast<std::size_t>(hit.object - 1);
-      const bool target = std::any_of(glowing.begin(), glowing.end(), [&](const GlowingBall& b) { return b.object == object; });
+      const bool target = std::any_of(glowing.begin(), glowing.end(), [&](const GlowTarget& b) { return b.object == object; });
       if (after_diffuse && target) {
-        if (sampling == PathSampling::GlowOnly) {
-          share = 0.0;  // next-event estimation counted it
-        } else {
-          const double glow =
-              glow_density(glowing, object, from, from_direction, hit.distance, hit, prepared.features().quotient);
-          const double reflection = from_cosine / std::numbers::pi;
-          share = reflection / (reflection + glow);
-        }
+        const double glow =
+            glow_density(glowing, object, from, from_direction, hit.distance, hit, prepared.features().quotient);
+        // Next-event estimation alone counts what it could have drawn (a
+        // quotient's images it does not list are left to reflection).
+        const double reflection = from_cosine / std::numbers::pi;
+        share = sampling == PathSampling::GlowOnly ? (glow > 0.0 ? 0.0 : 1.0) : reflection / (reflection + glow);
       }
       color += weight * o.emission * share;
     }
@@ -1288,8 +1336,8 @@ class PathTracer final : public LightTransport {
  public:
   PathTracer(const MarchWorld& prepared, const RenderOptions& settings)
       : m_prepared(prepared),
-        m_glowing(settings.path_sampling != PathSampling::ReflectionOnly ? glowing_balls(prepared)
-                                                                         : std::vector<GlowingBall>()),
+        m_glowing(settings.path_sampling != PathSampling::ReflectionOnly ? glow_targets(prepared)
+                                                                         : std::vector<GlowTarget>()),
         m_seed(settings.seed),
         m_sampling(settings.path_sampling) {}
   glm::dvec3 radiance(const MarchHit& hit, std::uint64_t pixel, int sample) const override {
@@ -1299,7 +1347,7 @@ class PathTracer final : public LightTransport {
 
  private:
   const MarchWorld& m_prepared;
-  std::vector<GlowingBall> m_glowing;
+  std::vector<GlowTarget> m_glowing;
   std::uint64_t m_seed;
   PathSampling m_sampling;
 };

@@ -6,247 +6,14 @@
 #ifndef SOL_MARCH_PATHS_GLSL
 #define SOL_MARCH_PATHS_GLSL
 
-// A direction about the unit normal n with density cos θ / π, in frame
-// components (as the CPU's cosine_direction: the same basis, the same two numbers).
+// A direction about the unit normal n with density cos θ / π
+// (sol_cosine_direction, shared with the CPU's cosine_direction), from the path's next two numbers.
 vec3 cosine_direction(vec3 n, inout uvec2 state) {
-  const float sign = n.z >= 0.0 ? 1.0 : -1.0;
-  const float a = -1.0 / (sign + n.z), c = n.x * n.y * a;
-  const vec3 t = vec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  const vec3 b = vec3(c, sign + n.y * n.y * a, -n.y);
-  const float r = sqrt(path_uniform(state)), phi = 2.0 * SOL_PI * path_uniform(state);
-  const float x = r * cos(phi), y = r * sin(phi);
-  return normalize(x * t + y * b + sqrt(max(0.0, 1.0 - x * x - y * y)) * n);
+  const float xi1 = path_uniform(state), xi2 = path_uniform(state);
+  return sol_cosine_direction(n, xi1, xi2);
 }
 
-// ---- Next-event estimation to glowing exact balls (glow_sample and
-// glow_density in libsol/src/render.cpp, with the same numbers): a target
-// (in Sol a glowing ball, in a quotient one of its images around D) picked
-// by glow_pick_weight at x, a point y = c·exp(r w) of its sphere, w uniform
-// on S² (area density 1 / (4π J_c(w, r))), connected to the diffuse point x
-// by its geodesics up to the distance plus the ball's glow_reach
-// (scene_objects[k].glow.x; sol_connections, 0: the minimisers), each
-// weighed by its own J (sol_sphere_area_density) and counted where the
-// march along it first meets that ball at its length; combined with
-// reflection sampling by the balance heuristic.
-const bool GLOW_SAMPLING = HAS_EMISSION && HAS_EXACT_BALLS;
-
-// Scene object k (from the uniforms: a quotient's march loads no g_types).
-bool glowing(int k) {
-  return int(scene_objects[k].plane.x) == kObjectExactBall && scene_objects[k].material.rgb != vec3(0.0);
-}
-
-// The targets: Sol's objects, or the quotient's images.
-int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
-
-// Target i: whether it is one, and its scene object, centre (march
-// coordinates) and radius.
-bool glow_target(int i, out int object, out vec3 centre, out float radius) {
-  if (QUOTIENT) {
-    const Image m = images[i];
-    object = int(m.info.z);
-    centre = m.geometry.xyz;
-    radius = m.info.y;
-    return image_type(m) == kObjectExactBall && scene_objects[object].material.rgb != vec3(0.0);
-  }
-  object = i;
-  centre = g_relative[i].xyz;
-  radius = g_radii[i];
-  return glowing(i);
-}
-
-int glowing_count() {
-  int n = 0, object;
-  vec3 centre;
-  float radius;
-  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, radius) ? 1 : 0;
-  return n;
-}
-
-// The geodesic from q to p (march coordinates) as the connection solver
-// takes it: p seen from q, in frame components at q.
-vec3 seen_from(vec3 q, vec3 p) {
-  const vec3 d = p - q;
-  return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
-}
-
-// The weight with which x picks a target of centre c and radius r, about
-// its solid angle: r² / (r² + |x⁻¹c|²) (glow_pick_weight).
-float glow_pick_weight(vec3 x, vec3 c, float r) {
-  const vec3 v = seen_from(x, c);
-  return r * r / (r * r + dot(v, v));
-}
-
-float glow_pick_total(vec3 x) {
-  float total = 0.0, radius;
-  int object;
-  vec3 centre;
-  for (int i = 0; i < glow_target_slots(); ++i) {
-    if (glow_target(i, object, centre, radius)) total += glow_pick_weight(x, centre, radius);
-  }
-  return total;
-}
-
-// The density in solid angle at x with which glow_sample picks direction d
-// whose geodesic first meets the glowing scene object k after L, at y on
-// the sphere of one of its targets (the nearest; in Sol the hit point, in
-// a quotient x exp(L d) in the cover; cos_y: the cosine there with its
-// normal): 0 where none holds y, or where that geodesic is longer than the
-// distance plus the ball's reach. Its two connection solves (x to y, and
-// the target's centre c to y) are path_radiance's (kSolveDensity*), between
-// glow_density_target, which finds y, c and r (false: no target holds y),
-// and glow_density_of, which takes the second solve's minimiser. Both are
-// often known without a solve (glow_density_known): the geodesic from x
-// is the minimiser where it is shorter than its period (`minimiser`), and
-// the march that met the sphere solved the geodesic from its centre to
-// the hit (`from_centre`: its unit direction and length; w = 0: unknown).
-struct GlowDensity {
-  int k;
-  vec3 x, d, y, c;
-  float L, r, cos_y;
-  bool minimiser;
-  vec4 from_centre;
-};
-
-// What the march that met the ball at h already shows (GlowDensity's
-// `minimiser` and `from_centre`): a geodesic of length L shorter than its
-// period by the float margin is the unique minimiser (Coiculescu–Schwartz;
-// sol_connections' certificate), whatever the reach; and the march's last
-// exact solve, where it is the hit's and lands on the sphere (its length
-// the radius within the density's tolerance below), is the minimiser from
-// the centre: in a quotient from the image the march met, whose frame may
-// be turned by Γ (a half turn, under which J is unchanged).
-void glow_density_known(MarchHit h, inout GlowDensity q) {
-  q.minimiser = q.L < (1.0 - kMinimiserMargin) * sol_cut_time(q.d);
-  const float len = length(h.exact_v);
-  const bool solved = h.exact_k >= 0 && h.exact_k == h.k && abs(len - q.r) <= 1e-3 * max(1.0, q.r);
-  q.from_centre = solved ? vec4(h.exact_v / len, len) : vec4(0.0);
-}
-
-bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
-  q.k = k;
-  q.x = x;
-  q.d = d;
-  q.L = L;
-  q.cos_y = cos_y;
-  q.minimiser = false;
-  q.from_centre = vec4(0.0);
-  q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
-  q.c = vec3(0.0);
-  q.r = 0.0;
-  vec3 centre;
-  float radius, nearest = 1e30;
-  int object;
-  for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, radius) || object != k) continue;
-    const vec3 v = seen_from(centre, q.y);
-    if (dot(v, v) < nearest) {
-      nearest = dot(v, v);
-      q.c = centre;
-      q.r = radius;
-    }
-  }
-  return nearest < 1e30;
-}
-
-// The first solve's verdict: whether the geodesic of length L is within the
-// ball's reach of the minimiser from x to y (`count` connections, found[0]
-// the shortest).
-bool glow_density_reached(GlowDensity q, int count, vec4 shortest) {
-  return count > 0 && !(q.L > (shortest.w + scene_objects[q.k].glow.x) * (1.0 + 1e-3) + 1e-4);
-}
-
-// The density from the second solve (the minimiser from c to y).
-float glow_density_of(GlowDensity q, int count, vec4 shortest) {
-  if (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r) || !(q.cos_y > 0.0)) return 0.0;
-  // The spreading from the centre to y, then from x to y: one call of
-  // sol_sphere_area_density in a loop whose count the compiler cannot fold.
-  float spreading[2];
-  int i = 0;
-  do {
-    spreading[i] = sol_sphere_area_density(i == 0 ? shortest.xyz : q.d, i == 0 ? q.r : q.L);
-  } while (++i < count + 1 && spreading[0] > 0.0 && i < 2);
-  const float j_centre = spreading[0];
-  if (!(j_centre > 0.0)) return 0.0;
-  const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
-  return pick * spreading[1] / (4.0 * SOL_PI * j_centre * q.cos_y);
-}
-
-// One sampled point of one glowing ball seen from a diffuse hit: the
-// ball (its scene object k), the normal at x and at y, the area density,
-// the path's weight times the albedo there, and the geodesics to y within
-// reach, which path_radiance marches one by one (glow_connection).
-struct GlowSample {
-  int k;
-  vec3 n;         // the normal at x, facing the ray that came
-  vec3 normal_y;  // the sphere's outward normal at y
-  float area;     // the density of y per unit area (with the pick's)
-  vec3 factor;    // the path's weight times the albedo at x
-  vec3 towards;   // y seen from x (frame components at x): the target of its connections' solve
-  int count;      // geodesics in `ways`
-  vec4 ways[SOL_FOUND_SLOTS];
-  bool enclosed;  // x lies on the ball's sphere seen from inside, the ball convex (glow_enclosed)
-};
-
-// Whether the hit h lies on the inner wall of an exact ball of radius
-// below kConvexBallRadius (in Sol among listed objects: MARCH_SKIPS).
-bool on_convex_ball_inside(MarchHit h) {
-  return MARCH_SKIPS && h.k >= 0 && h.exact_k == h.k && h.exact_inside && g_types[h.k] == kObjectExactBall &&
-         g_radii[h.k] < kConvexBallRadius;
-}
-
-// A ball of radius below kConvexBallRadius (< π/2) is strongly convex
-// (sectional curvatures at most 1, the injectivity radius at least √2π:
-// docs/lighting.md, "Enclosures"): the minimising geodesic between two
-// of its points stays inside it. A path's vertex x on the inner wall of a
-// glowing exact ball that small reaches a sampled point y of its sphere
-// along its minimisers (reach 0) without meeting that sphere before y, so
-// the march along them leaves the ball out (MarchResume::skip) and stops
-// short of y by the connection's tolerance: only the other objects can be
-// in the way.
-bool glow_enclosed(MarchHit h, int k, float radius) {
-  return on_convex_ball_inside(h) && h.k == k && !(scene_objects[k].glow.x > 0.0);
-}
-
-// How far the march along a connection of length L goes where the ball is
-// left out: to the tolerance within which a hit counts as the sphere's.
-float glow_enclosed_limit(float L) { return L - 1e-3 * max(1.0, L); }
-
-// Draws a target and a point y of its sphere at the diffuse hit h (normal
-// n); the geodesics from h to y within its reach are path_radiance's solve
-// (kSolveGlowSample).
-GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
-  GlowSample g;
-  g.n = n;
-  g.factor = factor;
-  const float total = glow_pick_total(h.q);
-  float left = path_uniform(state) * total, weight_k = 0.0;
-  int object;
-  vec3 c = vec3(0.0), centre;
-  float r = 0.0, radius;
-  g.k = -1;
-  for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, radius)) continue;
-    const float w = glow_pick_weight(h.q, centre, radius);
-    if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
-      g.k = object;
-      c = centre;
-      r = radius;
-      weight_k = w;
-    }
-    left -= w;
-  }
-  const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
-  const float s = sqrt(max(0.0, 1.0 - u * u));
-  const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
-  const SolSpread on_sphere = sol_spread(w, r);  // the point, its normal and its J in one integration
-  const vec3 y = sol_translate(c, on_sphere.position);
-  g.normal_y = on_sphere.direction;
-  g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
-  g.towards = seen_from(h.q, y);
-  g.count = 0;
-  g.enclosed = glow_enclosed(h, g.k, r);
-  return g;
-}
+#include "glow.glsl"  // next-event estimation to glowing objects: targets, samples, densities
 
 // A path's connection solves, numbered: 0, the density's from x to y
 // (glow_density_reached), 1, the density's from c to y (skipped when 0
@@ -277,7 +44,9 @@ void path_solve(int i, GlowDensity dq, inout GlowSample g, inout LightGather lig
   if (i == kSolveLight) {
     light_gather_solved(lights, count, found);
   } else if (i == kSolveDensityFromX) {
-    solve = glow_density_reached(dq, count, found[0]) ? kSolveDensityFromCentre : kSolveGlowSample;
+    const bool reached = glow_density_reached(dq, count, found[0]);
+    if (reached && dq.half_size.x > 0.0) glow_density = glow_density_of(dq, count, found[0]);  // a box's: no second solve
+    solve = reached && !(dq.half_size.x > 0.0) ? kSolveDensityFromCentre : kSolveGlowSample;
   } else if (i == kSolveDensityFromCentre) {
     glow_density = glow_density_of(dq, count, found[0]);
     solve = kSolveGlowSample;
@@ -324,11 +93,21 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   return g.factor * scene_objects[g.k].material.rgb * (weight * cos_x * cos_y / (SOL_PI * spreading * g.area));
 }
 
+// The share of a glowing target's emission that reflection sampling
+// counts, where next-event estimation draws its direction with density
+// `glow` and the diffuse vertex with `reflection`: the balance heuristic's,
+// or with next-event estimation alone all or nothing (what it could not
+// have drawn, such as a quotient's image it does not list, is counted here).
+float emission_share(float reflection, float glow) {
+  if (params.path.w == kPathSamplingGlowOnly) return glow > 0.0 ? 0.0 : 1.0;
+  return reflection / (reflection + glow);
+}
+
 // A hit's fog and emission on a path (path_radiance): the fog of its
 // segment into `color` and its transmittance into `weight`; the emission
 // (`emission`, weighted) added at once, or, where next-event estimation
 // could have found this hit (`reachable`: after a diffuse vertex, with
-// glowing balls to sample; true returned), once its density is solved (dq,
+// glowing objects to sample; true returned), once its density is solved (dq,
 // kSolveDensity*).
 bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_direction, float from_cosine,
                    inout vec3 color, inout vec3 weight, out vec3 emission, out GlowDensity dq) {
@@ -340,16 +119,12 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
   float share = 1.0;
   bool density = false;
   if (HAS_EMISSION && GLOW_SAMPLING && reachable && glowing(f.object)) {
-    if (params.path.w == kPathSamplingGlowOnly) {
-      share = 0.0;  // next-event estimation counted it
-    } else {
-      density = glow_density_target(f.object, from, from_direction, h.t, h.q, abs(dot(h.u, f.n)), dq);
-      if (density) glow_density_known(h, dq);
-      if (density && dq.minimiser && dq.from_centre.w > 0.0) {  // known: no solve, its share at once
-        const float reflection = from_cosine / SOL_PI;
-        share = reflection / (reflection + glow_density_of(dq, 1, dq.from_centre));
-        density = false;
-      }
+    const float cos_y = int(scene_objects[f.object].plane.x) == kObjectBox ? box_hit_cosine(h) : abs(dot(h.u, f.n));
+    density = glow_density_target(f.object, from, from_direction, h.t, h.q, cos_y, dq);
+    if (density) glow_density_known(h, dq);
+    if (density && dq.minimiser && (dq.from_centre.w > 0.0 || dq.half_size.x > 0.0)) {  // known: no solve, its share at once
+      share = emission_share(from_cosine / SOL_PI, glow_density_of(dq, 1, dq.from_centre));
+      density = false;
     }
   }
   if (HAS_EMISSION && !density) color += emission * share;  // (else once its density is solved)
@@ -397,8 +172,8 @@ const bool HAS_LIGHT_STEPS = HAS_SHADOWS || HAS_EXACT_LIGHTS;
 // next-event estimation too (glow_sample, glow_connection), the emission a
 // path meets after a diffuse bounce weighed by the balance heuristic.
 // One call of march, for the path's next segment, the shadow rays of the
-// lights and the geodesics to a glowing ball's point alike (those first,
-// from the same hit), and one of sol_connections, for the glowing ball's
+// lights and the geodesics to a glowing object's point alike (those first,
+// from the same hit), and one of sol_connections, for the glowing object's
 // solves and the exact lights' alike (kSolve*; a turn of the loop makes a
 // solve or marches a ray): the driver inlines each call, and each holds a
 // march or a solve (see radiance). From the eye (PATH_FROM_EYE:
@@ -420,16 +195,17 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   int depth = from_eye ? -1 : 0;  // (the camera ray's segment is no scattering)
   bool alive = true;        // the path goes on from h (h to shade, or its next segment to march)
   bool fresh = !from_eye;   // h is a hit not yet shaded
-  GlowSample g;             // the hit's next-event estimation to a glowing ball: its geodesics from `way` on left to march
+  GlowSample g;             // the hit's next-event estimation to a glowing object: its geodesics from `way` on left to march
   g.count = 0;
   g.enclosed = false;
+  g.skip = false;
   int way = 0;
   vec3 next = h.u;          // (from the eye: the camera ray's direction)
   float exit_cos = 0.0;     // > 0: the next segment leaves h's convex exact ball inward at this cosine (path_march_start)
   LightGather lights;       // the hit's next-event estimation to the lights, its shadow rays and solves still to make
   bool gathering = false;
   // The hit's solves (kSolve*) from `solve` to `solves_end` - 1, for the
-  // glowing ball's density at it (dq: its emission's share, `emission` times
+  // glowing object's density at it (dq: its emission's share, `emission` times
   // reflection / (reflection + glow_density)) and its sample's geodesics (g).
   int solve = 0, solves_end = 0;
   GlowDensity dq;
@@ -447,7 +223,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
                               emission, dq);
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
-      bool sampled = false;  // a glowing ball's point drawn (g), its connections to solve
+      bool sampled = false;  // a glowing object's point drawn (g), its connections to solve
       g.count = 0;
       way = 0;
       // The material's lobes (sol/materials.h), as path_radiance in libsol.
@@ -477,7 +253,7 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
         }
         if (GLOW_SAMPLING && glow_count > 0 && goes_on) {
           g = glow_sample(h, n, weight * a, state);
-          sampled = true;
+          sampled = !g.skip;
         }
         weight *= a;
         next = cosine_direction(n, state);
@@ -501,18 +277,18 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
     }
     // The turn's ray: a connection solve of the vertex, else the next step
     // of the hit's lights (a solve or a shadow ray), else a geodesic to a
-    // glowing ball's point, else the path's next segment.
+    // glowing object's point, else the path's next segment.
     vec3 direction;
     float len;
     const bool vertex_solve = GLOW_SAMPLING && solve < solves_end;
     const int step = HAS_LIGHT_STEPS && gathering && !vertex_solve ? light_gather_step(lights, eye, direction, len)
                                                                     : kGatherDone;
-    // (A constant condition first: a world without glowing exact balls or
+    // (A constant condition first: a world without glowing exact balls, boxes or
     // exact lights holds no solve.)
     if ((GLOW_SAMPLING || HAS_EXACT_LIGHTS) && (vertex_solve || step == kGatherSolve)) {
       path_solve(vertex_solve ? solve : kSolveLight, dq, g, lights, solve, glow_density);
       if (HAS_EMISSION && vertex_solve && density && solve >= solves_end) {
-        color += emission * (reflection / (reflection + glow_density));
+        color += emission * emission_share(reflection, glow_density);
       }
       continue;
     }

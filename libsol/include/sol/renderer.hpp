@@ -37,12 +37,15 @@ namespace sol {
 /// (docs/lighting.md, "Path tracing").
 enum class Transport { Direct, Path };
 
-/// How the path tracer reaches glowing exact balls from a diffuse hit:
-/// both strategies combined by multiple importance sampling (the default),
-/// or one alone (the same expected image, for comparing the estimators):
-/// sampling the surface's reflection (a path that meets a glowing ball
-/// counts its emission), or next-event estimation (a point of a glowing
-/// ball's sphere sampled and connected; docs/lighting.md, "Path tracing").
+/// How the path tracer reaches glowing exact balls and boxes from a
+/// diffuse hit: both strategies combined by multiple importance sampling
+/// (the default), or one alone (the same expected image, for comparing the
+/// estimators): sampling the surface's reflection (a path that meets a
+/// glowing object counts its emission), or next-event estimation (a point
+/// of a glowing object's surface sampled and connected; what it cannot
+/// draw, such as a geodesic longer than a ball's glow_reach or a quotient's
+/// image it does not list, reflection sampling still counts;
+/// docs/lighting.md, "Path tracing").
 enum class PathSampling { Combined, ReflectionOnly, GlowOnly };
 
 struct RenderOptions {

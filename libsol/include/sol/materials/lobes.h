@@ -74,6 +74,24 @@ SOL_MATERIAL_FUNCTION SOL_VEC3 sol_dielectric_direction(SOL_VEC3 u, SOL_VEC3 n, 
   return normalize(eta * u + (eta * cos_i - cos_t) * n);
 }
 
+// The diffuse lobe's direction about the unit normal n, with density
+// cos θ / π, from two uniform numbers xi1, xi2: a point of the unit disc
+// (radius √ξ1, angle 2π ξ2) lifted to the hemisphere, in the basis (t, b,
+// n) of Duff et al. 2017, which turns over where its sign flips: there at
+// n_z = -1/2, away from the normals of the coordinate planes and boxes'
+// faces (n_z = 0 or ±1), where the CPU's normal by differences (n_z of
+// order 1e-7 either side) and the kernel's (exactly 0) would take
+// different sides of a seam at 0.
+SOL_MATERIAL_FUNCTION SOL_VEC3 sol_cosine_direction(SOL_VEC3 n, SOL_REAL xi1, SOL_REAL xi2) {
+  const SOL_REAL sign = n.z >= -0.5 ? 1.0 : -1.0;
+  const SOL_REAL a = -1.0 / (sign + n.z), c = n.x * n.y * a;
+  const SOL_VEC3 t = SOL_VEC3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  const SOL_VEC3 b = SOL_VEC3(c, sign + n.y * n.y * a, -n.y);
+  const SOL_REAL r = sqrt(xi1), phi = 6.28318530717958647692 * xi2;
+  const SOL_REAL x = r * cos(phi), y = r * sin(phi);
+  return normalize(x * t + y * b + sqrt(max(SOL_REAL(0.0), 1.0 - x * x - y * y)) * n);
+}
+
 // The specular lobe's direction for a ray of unit tangent u meeting a
 // surface of unit normal n (facing the ray) with roughness r, from two
 // uniform numbers xi (a path's next two; r = 0 takes none: the mirror's

@@ -1,0 +1,298 @@
+// Next-event estimation to glowing objects on a path (march/paths.glsl):
+// the targets, the points drawn on them and the densities of the
+// directions that meet them (glow_sample and glow_density in
+// libsol/src/render.cpp, with the same numbers). Included by paths.glsl.
+#ifndef SOL_MARCH_GLOW_GLSL
+#define SOL_MARCH_GLOW_GLSL
+
+// ---- Next-event estimation to glowing exact balls and boxes (glow_sample
+// and glow_density in libsol/src/render.cpp, with the same numbers): a
+// target (in Sol a glowing object, in a quotient one of its images around
+// D) picked by glow_pick_weight at x, a point y of its surface: a ball's
+// y = c·exp(r w), w uniform on S² (area density 1 / (4π J_c(w, r))), a
+// box's uniform by area (sol/box_light.h), connected to the diffuse point
+// x by its geodesics up to the distance plus the ball's glow_reach
+// (scene_objects[k].glow.x; sol_connections, 0: the minimisers), each
+// weighed by its own J (sol_sphere_area_density) and counted where the
+// march along it first meets that object at its length; combined with
+// reflection sampling by the balance heuristic.
+const bool GLOW_KINDS = HAS_EXACT_BALLS || HAS_BOXES;  // (one operation a constant: glslang)
+const bool GLOW_SAMPLING = HAS_EMISSION && GLOW_KINDS;
+
+// Whether an object of kind `type` emitting `emission` is a target.
+bool glow_kind(int type, vec3 emission) {
+  return ((HAS_EXACT_BALLS && type == kObjectExactBall) || (HAS_BOXES && type == kObjectBox)) && emission != vec3(0.0);
+}
+
+// Scene object k (from the uniforms: a quotient's march loads no g_types).
+bool glowing(int k) { return glow_kind(int(scene_objects[k].plane.x), scene_objects[k].material.rgb); }
+
+// The targets: Sol's objects, or the quotient's images.
+int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
+
+// A box's half size (a, b, c) from its centre's z and its coordinate half
+// widths (A, B) = (a e^{z}, b e^{-z}) there (sol::Box::coordinate_half_widths).
+vec3 box_half_size(float z, vec2 widths, float c) { return vec3(widths.x * exp(-z), widths.y * exp(z), c); }
+
+// Target i: whether it is one, and its scene object, centre (march
+// coordinates), the size it is picked by (a ball's radius, a box's
+// sol_box_light_radius) and a box's half size (0 for a ball).
+bool glow_target(int i, out int object, out vec3 centre, out float radius, out vec3 half_size) {
+  int type;
+  if (QUOTIENT) {
+    const Image m = images[i];
+    object = int(m.info.z);
+    type = image_type(m);
+    centre = m.geometry.xyz;
+    radius = m.info.y;
+    half_size = type == kObjectBox ? box_half_size(centre.z, m.heading.xy, m.geometry.w) : vec3(0.0);
+  } else {
+    object = i;
+    type = g_types[i];
+    centre = g_relative[i].xyz;
+    radius = g_radii[i];
+    half_size = type == kObjectBox ? box_half_size(centre.z, g_headings[i], g_relative[i].w) : vec3(0.0);
+  }
+  if (type == kObjectBox) radius = sol_box_light_radius(half_size);
+  return glow_kind(type, scene_objects[object].material.rgb);
+}
+
+int glowing_count() {
+  int n = 0, object;
+  vec3 centre, half_size;
+  float radius;
+  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, radius, half_size) ? 1 : 0;
+  return n;
+}
+
+// The geodesic from q to p (march coordinates) as the connection solver
+// takes it: p seen from q, in frame components at q.
+vec3 seen_from(vec3 q, vec3 p) {
+  const vec3 d = p - q;
+  return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
+}
+
+// The weight with which x picks a target of centre c and radius r, about
+// its solid angle: r² / (r² + |x⁻¹c|²) (glow_pick_weight).
+float glow_pick_weight(vec3 x, vec3 c, float r) {
+  const vec3 v = seen_from(x, c);
+  return r * r / (r * r + dot(v, v));
+}
+
+float glow_pick_total(vec3 x) {
+  float total = 0.0, radius;
+  int object;
+  vec3 centre, half_size;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (glow_target(i, object, centre, radius, half_size)) total += glow_pick_weight(x, centre, radius);
+  }
+  return total;
+}
+
+// The density in solid angle at x with which glow_sample picks direction d
+// whose geodesic first meets the glowing scene object k after L, at y on
+// the sphere of one of its targets (the nearest; in Sol the hit point, in
+// a quotient x exp(L d) in the cover; cos_y: the cosine there with its
+// normal): 0 where none holds y, or where that geodesic is longer than the
+// distance plus the ball's reach. Its two connection solves (x to y, and
+// the target's centre c to y) are path_radiance's (kSolveDensity*), between
+// glow_density_target, which finds y, c and r (false: no target holds y),
+// and glow_density_of, which takes the second solve's minimiser. Both are
+// often known without a solve (glow_density_known): the geodesic from x
+// is the minimiser where it is shorter than its period (`minimiser`), and
+// the march that met the sphere solved the geodesic from its centre to
+// the hit (`from_centre`: its unit direction and length; w = 0: unknown).
+struct GlowDensity {
+  int k;
+  vec3 x, d, y, c;
+  float L, r, cos_y;
+  vec3 half_size;  // a box's (its area density needs no solve from the centre); 0: a ball
+  bool minimiser;
+  vec4 from_centre;
+};
+
+// The cosine at the hit h on a box between the march's tangent and the
+// face's normal there (sol_box_light_normal; the CPU's is the cover's
+// geodesic against the cover's face, the same angle): the box the march
+// met, a listed one or a quotient's image.
+float box_hit_cosine(MarchHit h) {
+  vec3 centre, half_size;
+  if (QUOTIENT) {
+    const Image m = images[h.k];
+    centre = m.geometry.xyz;
+    half_size = box_half_size(centre.z, m.heading.xy, m.geometry.w);
+  } else {
+    centre = g_relative[h.k].xyz;
+    half_size = box_half_size(centre.z, g_headings[h.k], g_relative[h.k].w);
+  }
+  return abs(dot(h.u, sol_box_light_normal(seen_from(centre, h.q), half_size)));
+}
+
+// What the march that met the ball at h already shows (GlowDensity's
+// `minimiser` and `from_centre`): a geodesic of length L shorter than its
+// period by the float margin is the unique minimiser (Coiculescu–Schwartz;
+// sol_connections' certificate), whatever the reach; and the march's last
+// exact solve, where it is the hit's and lands on the sphere (its length
+// the radius within the density's tolerance below), is the minimiser from
+// the centre: in a quotient from the image the march met, whose frame may
+// be turned by Γ (a half turn, under which J is unchanged).
+void glow_density_known(MarchHit h, inout GlowDensity q) {
+  q.minimiser = q.L < (1.0 - kMinimiserMargin) * sol_cut_time(q.d);
+  const float len = length(h.exact_v);
+  const bool solved = h.exact_k >= 0 && h.exact_k == h.k && abs(len - q.r) <= 1e-3 * max(1.0, q.r);
+  q.from_centre = solved ? vec4(h.exact_v / len, len) : vec4(0.0);
+}
+
+bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
+  q.k = k;
+  q.x = x;
+  q.d = d;
+  q.L = L;
+  q.cos_y = cos_y;
+  q.minimiser = false;
+  q.from_centre = vec4(0.0);
+  q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
+  q.c = vec3(0.0);
+  q.r = 0.0;
+  q.half_size = vec3(0.0);
+  vec3 centre, half_size;
+  float radius, nearest = 1e30;
+  int object;
+  // The nearest target: a ball's by its centre, a box's by its bound.
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (!glow_target(i, object, centre, radius, half_size) || object != k) continue;
+    const vec3 v = seen_from(centre, q.y);
+    const float offset = half_size.x > 0.0 ? abs(sol_box_light_bound(v, half_size)) : dot(v, v);
+    if (offset < nearest) {
+      nearest = offset;
+      q.c = centre;
+      q.r = radius;
+      q.half_size = half_size;
+    }
+  }
+  // (A box's image holds y where y lies on its surface, to the march's
+  // tolerance, and x not on y's face; a ball's is checked later.)
+  if (q.half_size.x > 0.0) {
+    return nearest <= 1e-3 && !sol_box_light_same_face(seen_from(q.c, q.x), seen_from(q.c, q.y), q.half_size);
+  }
+  return nearest < 1e30;
+}
+
+// The first solve's verdict: whether the geodesic of length L is within the
+// ball's reach of the minimiser from x to y (`count` connections, found[0]
+// the shortest).
+bool glow_density_reached(GlowDensity q, int count, vec4 shortest) {
+  return count > 0 && !(q.L > (shortest.w + scene_objects[q.k].glow.x) * (1.0 + 1e-3) + 1e-4);
+}
+
+// The density from the second solve (a ball's minimiser from c to y; a
+// box's needs none: its area density is 1 / its area).
+float glow_density_of(GlowDensity q, int count, vec4 shortest) {
+  const bool box = q.half_size.x > 0.0;
+  if (!box && (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r))) return 0.0;
+  if (!(q.cos_y > 0.0)) return 0.0;
+  // The spreading from the centre to y (a ball's), then from x to y: one call
+  // of sol_sphere_area_density in a loop whose count the compiler cannot fold.
+  float spreading[2];
+  spreading[0] = 1.0;
+  int i = box ? 1 : 0;
+  do {
+    spreading[i] = sol_sphere_area_density(i == 0 ? shortest.xyz : q.d, i == 0 ? q.r : q.L);
+  } while (++i < count + 1 && spreading[0] > 0.0 && i < 2);
+  const float area = box ? 1.0 / sol_box_light_area(q.half_size) : 1.0 / (4.0 * SOL_PI * spreading[0]);
+  if (!(spreading[0] > 0.0)) return 0.0;
+  const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
+  return pick * area * spreading[1] / q.cos_y;
+}
+
+// One sampled point of one glowing object seen from a diffuse hit: the
+// object (its scene object k), the normal at x and at y, the area density,
+// the path's weight times the albedo there, and the geodesics to y within
+// reach, which path_radiance marches one by one (glow_connection).
+struct GlowSample {
+  int k;
+  vec3 n;         // the normal at x, facing the ray that came
+  vec3 normal_y;  // the surface's outward normal at y
+  float area;     // the density of y per unit area (with the pick's)
+  vec3 factor;    // the path's weight times the albedo at x
+  vec3 towards;   // y seen from x (frame components at x): the target of its connections' solve
+  int count;      // geodesics in `ways`
+  vec4 ways[SOL_FOUND_SLOTS];
+  bool enclosed;  // x lies on the ball's sphere seen from inside, the ball convex (glow_enclosed)
+  bool skip;      // y lies on the face of a box that holds x: reflection sampling's alone (sol_box_light_same_face)
+};
+
+// Whether the hit h lies on the inner wall of an exact ball of radius
+// below kConvexBallRadius (in Sol among listed objects: MARCH_SKIPS).
+bool on_convex_ball_inside(MarchHit h) {
+  return MARCH_SKIPS && h.k >= 0 && h.exact_k == h.k && h.exact_inside && g_types[h.k] == kObjectExactBall &&
+         g_radii[h.k] < kConvexBallRadius;
+}
+
+// A ball of radius below kConvexBallRadius (< π/2) is strongly convex
+// (sectional curvatures at most 1, the injectivity radius at least √2π:
+// docs/lighting.md, "Enclosures"): the minimising geodesic between two
+// of its points stays inside it. A path's vertex x on the inner wall of a
+// glowing exact ball that small reaches a sampled point y of its sphere
+// along its minimisers (reach 0) without meeting that sphere before y, so
+// the march along them leaves the ball out (MarchResume::skip) and stops
+// short of y by the connection's tolerance: only the other objects can be
+// in the way.
+bool glow_enclosed(MarchHit h, int k, float radius) {
+  return on_convex_ball_inside(h) && h.k == k && !(scene_objects[k].glow.x > 0.0);
+}
+
+// How far the march along a connection of length L goes where the ball is
+// left out: to the tolerance within which a hit counts as the sphere's.
+float glow_enclosed_limit(float L) { return L - 1e-3 * max(1.0, L); }
+
+// Draws a target and a point y of its sphere at the diffuse hit h (normal
+// n); the geodesics from h to y within its reach are path_radiance's solve
+// (kSolveGlowSample).
+GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
+  GlowSample g;
+  g.n = n;
+  g.factor = factor;
+  const float total = glow_pick_total(h.q);
+  float left = path_uniform(state) * total, weight_k = 0.0;
+  int object;
+  vec3 c = vec3(0.0), centre, half_size, box = vec3(0.0);
+  float r = 0.0, radius;
+  g.k = -1;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (!glow_target(i, object, centre, radius, half_size)) continue;
+    const float w = glow_pick_weight(h.q, centre, radius);
+    if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
+      g.k = object;
+      c = centre;
+      r = radius;
+      box = half_size;
+      weight_k = w;
+    }
+    left -= w;
+  }
+  vec3 y;
+  if (HAS_BOXES && box.x > 0.0) {  // a box's point, uniform by area
+    const float u0 = path_uniform(state), u1 = path_uniform(state), u2 = path_uniform(state);
+    const vec3 w = sol_box_light_point(box, u0, u1, u2);
+    y = sol_translate(c, w);
+    g.normal_y = sol_box_light_normal(w, box);
+    g.area = weight_k / total / sol_box_light_area(box);
+    g.skip = sol_box_light_same_face(seen_from(c, h.q), w, box);
+  } else {
+    const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
+    const float s = sqrt(max(0.0, 1.0 - u * u));
+    const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
+    const SolSpread on_sphere = sol_spread(w, r);  // the point, its normal and its J in one integration
+    y = sol_translate(c, on_sphere.position);
+    g.normal_y = on_sphere.direction;
+    g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
+  }
+  g.towards = seen_from(h.q, y);
+  g.count = 0;
+  if (!(HAS_BOXES && box.x > 0.0)) g.skip = false;
+  g.enclosed = glow_enclosed(h, g.k, r);
+  return g;
+}
+
+#endif  // SOL_MARCH_GLOW_GLSL
