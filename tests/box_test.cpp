@@ -3,8 +3,7 @@
 // references): a lower bound everywhere, equal to the distance to the
 // nearest face near the faces (where the perpendicular's foot lies on the
 // face); their coordinate box is the left translate's; the CPU renderer's
-// hits lie on the faces, in Sol and in the quotient; scene-file keys; a
-// glowing box's light points (sol/box_light.h) are uniform by area.
+// hits lie on the faces, in Sol and in the quotient; scene-file keys.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +13,6 @@
 
 #include <gtest/gtest.h>
 #include <sol/sol.hpp>
-#include <sol/box_light.h>
 
 #include "support/boxes.hpp"
 
@@ -156,68 +154,6 @@ TEST(Box, CpuHitsLieOnTheFacesInSol) {
 TEST(Box, CpuHitsLieOnTheFacesInTheQuotient) {
   const sol::Scene scene = sol::preset_scene("lattice-boxes");
   expect_hits_on_faces(render_small(scene), sol::test::box_images(scene), "lattice-boxes");
-}
-
-// A glowing box's light points (sol/box_light.h) are uniform by Sol's area:
-// on each face the map (u1, u2) -> centre · sol_box_light_point has, by
-// central differences, an area element in the metric (frame components
-// e^{-z}dx, e^{z}dy, dz) equal to the face's share of the total area
-// times the total (so the density is 1 / area everywhere); u0 picks each
-// face with that share (counted over a fine grid of u0); every point lies
-// on the box's surface (its bound 0), and the normal is the face's: unit,
-// orthogonal to both tangents in the metric, and outward (a step along it
-// leaves the box by that step's length).
-TEST(Box, LightPointsAreUniformByArea) {
-  for (const sol::Box& box : boxes()) {
-    const dvec3 h = box.half_size;
-    const double area = sol::kernel::sol_box_light_area(h);
-    // The faces' areas from the metric, integrated numerically (midpoint rule in z).
-    double side_x = 0.0, side_y = 0.0;
-    const int n = 2000;
-    for (int k = 0; k < n; ++k) {
-      const double z = -h.z + (k + 0.5) * 2.0 * h.z / n;
-      side_x += 2.0 * h.y * std::exp(z) * 2.0 * h.z / n;   // x = ±a: e^{z} dy dz
-      side_y += 2.0 * h.x * std::exp(-z) * 2.0 * h.z / n;  // y = ±b: e^{-z} dx dz
-    }
-    const double top = 4.0 * h.x * h.y;
-    EXPECT_NEAR(area, 2.0 * (top + side_x + side_y), 1e-6 * area);
-    // The faces u0 picks, in their order (z = +c, -c, x = +a, -a, y = +b, -b).
-    const std::array<double, 6> face_area = {top, top, side_x, side_x, side_y, side_y};
-    std::array<int, 6> counted{};
-    auto face_of = [&](const dvec3& w) {
-      const dvec3 v = sol::kernel::sol_box_light_normal(w, h);
-      return v.z > 0.5 ? 0 : v.z < -0.5 ? 1 : v.x > 0.5 ? 2 : v.x < -0.5 ? 3 : v.y > 0.5 ? 4 : 5;
-    };
-    const int grid = 100000;
-    for (int k = 0; k < grid; ++k) ++counted[face_of(sol::kernel::sol_box_light_point(h, (k + 0.5) / grid, 0.3, 0.6))];
-    double before = 0.0;
-    for (int f = 0; f < 6; ++f) {
-      EXPECT_NEAR(counted[f], grid * face_area[f] / area, 2.0) << "face " << f;
-      // The area element on face f, at a few (u1, u2).
-      const double u0 = (before + 0.5 * face_area[f]) / area;
-      before += face_area[f];
-      for (const double u1 : {0.1, 0.5, 0.93}) {
-        for (const double u2 : {0.05, 0.4, 0.8}) {
-          auto at = [&](double a, double b) { return sol::multiply(box.center, sol::kernel::sol_box_light_point(h, u0, a, b)); };
-          const dvec3 p = at(u1, u2);
-          const double e = 1e-6;
-          auto frame = [&](const dvec3& d) { return dvec3(std::exp(-p.z) * d.x, std::exp(p.z) * d.y, d.z); };
-          const dvec3 t1 = frame((at(u1 + e, u2) - at(u1 - e, u2)) / (2.0 * e));
-          const dvec3 t2 = frame((at(u1, u2 + e) - at(u1, u2 - e)) / (2.0 * e));
-          EXPECT_NEAR(glm::length(glm::cross(t1, t2)), face_area[f], 1e-6 * area) << "face " << f;
-          EXPECT_NEAR(box.distance(p), 0.0, 1e-12) << "face " << f;
-          const dvec3 w = sol::kernel::sol_box_light_point(h, u0, u1, u2);
-          const dvec3 normal = sol::kernel::sol_box_light_normal(w, h);
-          EXPECT_EQ(face_of(w), f);
-          EXPECT_DOUBLE_EQ(glm::length(normal), 1.0);
-          EXPECT_NEAR(glm::dot(normal, t1), 0.0, 1e-6 * glm::length(t1));
-          EXPECT_NEAR(glm::dot(normal, t2), 0.0, 1e-6 * glm::length(t2));
-          const double step = 1e-4;
-          EXPECT_NEAR(box.distance(sol::multiply(p, sol::ClosedFormGeodesic<double>(normal).at(step).position)), step, 1e-6) << "face " << f;
-        }
-      }
-    }
-  }
 }
 
 TEST(Box, SceneKeysRoundTripAndAreChecked) {

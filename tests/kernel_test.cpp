@@ -1707,19 +1707,22 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
   expect_no_validation_errors();
 }
 
-// The kernel's next-event estimation to a glowing box (glow_box_over_plane:
-// a flat lamp over a plane beside a ball; sol/box_light.h's points, shared
-// with the CPU, and the connection solves a world with exact balls takes,
-// which a world of boxes now loads too): in Sol and in the golden quotient,
+// The kernel's next-event estimation to a glowing box and a glowing bound
+// ball (lamp_over_plane: a lamp over a plane beside a ball;
+// sol/surface_light.h's points, shared with the CPU, and the connection
+// solves a world with exact balls takes, which such a world loads too):
+// in Sol and in the golden quotient,
 // for each strategy the kernel's paths are the CPU's for the same seed (at
 // least 80 % of the pixels to 1e-3, as PathsReachGlowingBallsAsTheCpuPathsDo;
 // without the connection table the kernel's light points found no way and
 // its image came out darker), and the kernel's three estimators agree.
-TEST(Kernel, PathsReachGlowingBoxesAsTheCpuPathsDo) {
+TEST(Kernel, PathsReachGlowingBoxesAndBoundBallsAsTheCpuPathsDo) {
   sol::vk::MarchRenderer renderer(vk_context());
-  for (const bool golden : {false, true}) {
-    const sol::Scene scene = sol::test::glow_box_over_plane(golden);
-    const std::string where = golden ? "golden, " : "Sol, ";
+  for (const auto& [lamp, golden] : {std::pair{sol::test::flat_box_lamp(), false}, std::pair{sol::test::flat_box_lamp(), true},
+                                     std::pair{sol::test::bound_ball_lamp(), false}, std::pair{sol::test::bound_ball_lamp(), true}}) {
+    const sol::Scene scene = sol::test::lamp_over_plane(lamp, golden);
+    const std::string where = std::string(std::holds_alternative<sol::Box>(lamp) ? "box, " : "bound ball, ") +
+                              (golden ? "golden, " : "Sol, ");
     std::vector<sol::RenderResult> images;
     for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
       const sol::RenderOptions settings{.width = 10, .height = 10, .samples = 4, .transport = sol::Transport::Path,
@@ -1728,7 +1731,7 @@ TEST(Kernel, PathsReachGlowingBoxesAsTheCpuPathsDo) {
       const sol::RenderResult cpu = sol::render_cpu(scene, settings);
       const std::size_t n = cpu.rgba.size() / 4;
       const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
-      std::printf("%sglowing box, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", where.c_str(),
+      std::printf("%ssampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", where.c_str(),
                   static_cast<int>(sampling), agree, n);
       EXPECT_GE(agree, n * 8 / 10) << where << static_cast<int>(sampling);
     }
@@ -2636,7 +2639,7 @@ TEST(Kernel, RejectsBadInput) {
   scene.objects[7].emission = {1.0, 1.0, 1.0};
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "");
   EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path)
-                .find("objects[7].emission: glowing exact balls and boxes in a world of more than 8"),
+                .find("objects[7].emission: glowing balls and boxes in a world of more than 8"),
             std::string::npos);
   scene.objects[7].shape = sol::Box{{0.0, 0.0, 1.0}, {0.3, 0.2, 0.1}};  // a glowing box likewise
   EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path).find("objects[7].emission"), std::string::npos);

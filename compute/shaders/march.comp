@@ -50,7 +50,7 @@
 #include "march/plane_roots.glsl"
 #include "march/march.glsl"
 #include "sol/materials.h"  // the materials' lobes, shared with libsol
-#include "sol/box_light.h"  // a glowing box's light points, shared with libsol
+#include "sol/surface_light.h"  // a glowing box's light points, shared with libsol
 #include "march/random.glsl"
 #include "march/shading.glsl"
 #include "march/paths.glsl"

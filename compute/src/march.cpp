@@ -580,14 +580,14 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                              .descriptor_sets = static_cast<std::uint32_t>(o.frames_in_flight)});
 }
 
-// Which connection table exact balls, point lights and glowing boxes
-// (next-event estimation's connections) need: none, the minimisers', or
+// Which connection table exact balls, point lights and glowing boxes and
+// bound balls (next-event estimation's connections) need: none, the minimisers', or
 // with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
 
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
-  if (!f.exact_balls && !f.exact_lights && !(f.boxes && f.emission)) return SeedTable::None;
+  if (!f.exact_balls && !f.exact_lights && !((f.boxes || f.bound_balls) && f.emission)) return SeedTable::None;
   return f.light_reach ? SeedTable::Longer : SeedTable::Minimisers;
 }
 
@@ -1088,12 +1088,12 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
   }
   if (transport == Transport::Path && world.quotient() == Quotient::None && world.objects.size() > sol::kListedObjects) {
     // A path's next-event estimation (march/glow.glsl) samples a listed
-    // world's glowing exact balls and boxes, not a crowd's.
+    // world's glowing balls and boxes, not a crowd's.
     for (std::size_t i = 0; i < world.objects.size(); ++i) {
-      const bool target = is_exact_ball(world.objects[i].shape) || std::holds_alternative<Box>(world.objects[i].shape);
+      const bool target = std::holds_alternative<Ball>(world.objects[i].shape) || std::holds_alternative<Box>(world.objects[i].shape);
       if (target && world.objects[i].emission != glm::dvec3(0.0)) {
         std::snprintf(message, sizeof message,
-                      "objects[%zu].emission: glowing exact balls and boxes in a world of more than %zu objects are "
+                      "objects[%zu].emission: glowing balls and boxes in a world of more than %zu objects are "
                       "path traced on the CPU only",
                       i, sol::kListedObjects);
         return message;

@@ -23,7 +23,7 @@
 #include "sol/connection.hpp"
 #include "sol/spreading.hpp"
 #include "sol/error.hpp"
-#include "sol/box_light.h"
+#include "sol/surface_light.h"
 #include "sol/exit_search.h"
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
@@ -938,12 +938,12 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
   return kernel::sol_cosine_direction(n, xi1, xi2);
 }
 
-// Next-event estimation to glowing exact balls and boxes. A glowing
+// Next-event estimation to glowing balls and boxes. A glowing exact
 // ball's sphere S = exp_c(r S²) is sampled by a direction w at its centre,
 // uniform on S², whose point y = exp_c(r w) has the area density
 // 1 / (4π J_c(w, r)), J the spreading of the geodesics from c
-// (sol::sphere_area_density); a glowing box's surface uniformly by area
-// (sol/box_light.h: density 1 / its area). y is connected to the diffuse
+// (sol::sphere_area_density); a glowing box's surface uniformly by area, a
+// bound ball's with a density in closed form (sol/surface_light.h). y is connected to the diffuse
 // point x by its minimising geodesics, or with the ball's glow_reach by
 // every geodesic up to their distance plus that reach, each a direction d
 // at x and a length L, and each is one way light comes (next-event
@@ -969,6 +969,10 @@ struct GlowTarget {
 
   const Ball* ball() const { return std::get_if<Ball>(&shape); }
   const Box* box() const { return std::get_if<Box>(&shape); }
+  // A ball drawn by its bound: its points and density from sol/surface_light.h, as a box's.
+  const Ball* bound_ball() const { return ball() && !ball()->exact ? ball() : nullptr; }
+  // Whether its area density is known in closed form (a box's, a bound ball's), else solved (an exact ball's).
+  bool closed_form() const { return box() || bound_ball(); }
   const glm::dvec3& center() const { return box() ? box()->center : ball()->center; }
   // The size it is picked by: a ball's radius, a box's sol_box_light_radius.
   double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
@@ -980,7 +984,7 @@ std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   for (const MarchObject& o : prepared.objects()) {
     if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
     const double reach = world.objects[o.owner].glow_reach;
-    if (const Ball* b = std::get_if<Ball>(&o.shape); b && b->exact) out.push_back({o.owner, *b, reach});
+    if (const Ball* b = std::get_if<Ball>(&o.shape)) out.push_back({o.owner, *b, reach});
     if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
   }
   return out;
@@ -1025,7 +1029,7 @@ double path_spreading(const glm::dvec3& direction, double t) {
 // objects can be in the way). In Sol, with no reach (the longer geodesics
 // may leave the ball).
 bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchHit& hit) {
-  return g.ball() && !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
+  return g.ball() && g.ball()->exact && !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
          g.ball()->radius < kernel::kConvexBallRadius && !(g.reach > 0.0);
 }
 
@@ -1034,6 +1038,7 @@ bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchH
 double glow_offset(const GlowTarget& g, const glm::dvec3& y) {
   if (const Box* box = g.box()) return std::abs(kernel::sol_box_light_bound(multiply(inverse(box->center), y), box->half_size));
   const glm::dvec3 v = multiply(inverse(g.center()), y);
+  if (g.bound_ball()) return std::abs(kernel::sol_ball_light_bound(v, g.ball()->radius));
   return glm::dot(v, v);
 }
 
@@ -1080,8 +1085,9 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
         g = &b;
       }
     }
-    // (A box's image holds y where y lies on its surface, to the march's tolerance; a ball's is checked below.)
-    if (!g || (g->box() && nearest > 1e-3)) return 0.0;
+    // (A box's or bound ball's image holds y where y lies on its surface,
+    // to the march's tolerance; an exact ball's is checked below.)
+    if (!g || (g->closed_form() && nearest > 1e-3)) return 0.0;
     // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
     double area = 0.0, cos_y = 0.0;
@@ -1092,6 +1098,10 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
       const glm::dvec3 normal = kernel::sol_box_light_normal(wy, box->half_size);
       cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), normal));
       area = 1.0 / kernel::sol_box_light_area(box->half_size);
+    } else if (const Ball* ball = g->bound_ball()) {
+      const glm::dvec3 wy = multiply(inverse(ball->center), y);
+      cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), kernel::sol_ball_light_normal(wy)));
+      area = kernel::sol_ball_light_density(wy, ball->radius);
     } else {
       cos_y = std::abs(glm::dot(hit.direction, hit.normal));
       area = ball_area_density(*g->ball(), y, hit, quotient);
@@ -1119,6 +1129,11 @@ GlowPoint glow_point(const GlowTarget& g, PathRandom& random) {
             1.0 / kernel::sol_box_light_area(box->half_size)};
   }
   const Ball& ball = *g.ball();
+  if (!ball.exact) {
+    const double u0 = random.uniform(), u1 = random.uniform(), u2 = random.uniform();
+    const glm::dvec3 w = kernel::sol_ball_light_point(ball.radius, u0, u1, u2);
+    return {multiply(ball.center, w), kernel::sol_ball_light_normal(w), kernel::sol_ball_light_density(w, ball.radius)};
+  }
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
   const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
   const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);

@@ -131,15 +131,18 @@ inline sol::Scene glow_over_plane_golden() {
   return s;
 }
 
-/// A glowing box (a flat lamp, tilted by nothing: its faces are planes
-/// x, y, z = const) over a diffuse plane, beside a diffuse ball, seen from
-/// above; in the golden quotient (`golden`) the plane is the torus fibre
-/// z = 0.1 and every one of them is seen again in its images around D.
-inline sol::Scene glow_box_over_plane(bool golden = false) {
+/// A glowing lamp (a flat box, or a ball drawn by its bound: the kinds
+/// whose points next-event estimation draws by sol/surface_light.h) over a
+/// diffuse plane, beside a diffuse ball, seen from above; in the golden
+/// quotient (`golden`) the plane is the torus fibre z = 0.1 and every one
+/// of them is seen again in its images around D.
+inline sol::Shape flat_box_lamp() { return sol::Box{{0.0, 0.1, 0.4}, {0.25, 0.15, 0.04}}; }
+inline sol::Shape bound_ball_lamp() { return sol::Ball{{0.0, 0.1, 0.4}, 0.12, false}; }
+inline sol::Scene lamp_over_plane(const sol::Shape& shape, bool golden = false) {
   sol::Scene s;
   if (golden) s.space = sol::GoldenSpace{};
   s.camera = {{0.45, 0.2, 0.8}, {-0.3, 0.0, -1.0}, {0.0, 1.0, 0.0}, 70.0};
-  sol::SceneObject lamp{sol::Box{{0.0, 0.1, 0.4}, {0.25, 0.15, 0.04}}, {0.5, 0.5, 0.5}};
+  sol::SceneObject lamp{shape, {0.5, 0.5, 0.5}};
   lamp.emission = {4.0, 3.0, 2.0};
   s.objects.clear();  // (one by one, as in glow_over_plane_golden)
   s.objects.push_back({sol::PlaneZ{golden ? 0.1 : 0.0}, {0.7, 0.7, 0.7}});

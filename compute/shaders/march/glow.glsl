@@ -5,23 +5,27 @@
 #ifndef SOL_MARCH_GLOW_GLSL
 #define SOL_MARCH_GLOW_GLSL
 
-// ---- Next-event estimation to glowing exact balls and boxes (glow_sample
-// and glow_density in libsol/src/render.cpp, with the same numbers): a
-// target (in Sol a glowing object, in a quotient one of its images around
-// D) picked by glow_pick_weight at x, a point y of its surface: a ball's
-// y = c·exp(r w), w uniform on S² (area density 1 / (4π J_c(w, r))), a
-// box's uniform by area (sol/box_light.h), connected to the diffuse point
+// ---- Next-event estimation to glowing exact balls, boxes and bound balls
+// (glow_sample and glow_density in libsol/src/render.cpp, with the same
+// numbers): a target (in Sol a glowing object, in a quotient one of its
+// images around D) picked by glow_pick_weight at x, a point y of its
+// surface: an exact ball's y = c·exp(r w), w uniform on S² (area density
+// 1 / (4π J_c(w, r))), a box's and a bound ball's with the density
+// sol/surface_light.h gives in closed form, connected to the diffuse point
 // x by its geodesics up to the distance plus the ball's glow_reach
 // (scene_objects[k].glow.x; sol_connections, 0: the minimisers), each
 // weighed by its own J (sol_sphere_area_density) and counted where the
 // march along it first meets that object at its length; combined with
 // reflection sampling by the balance heuristic.
-const bool GLOW_KINDS = HAS_EXACT_BALLS || HAS_BOXES;  // (one operation a constant: glslang)
+const bool GLOW_SURFACES = HAS_BOXES || HAS_BOUND_BALLS;  // (one operation a constant: glslang)
+const bool GLOW_KINDS = HAS_EXACT_BALLS || GLOW_SURFACES;
 const bool GLOW_SAMPLING = HAS_EMISSION && GLOW_KINDS;
 
 // Whether an object of kind `type` emitting `emission` is a target.
 bool glow_kind(int type, vec3 emission) {
-  return ((HAS_EXACT_BALLS && type == kObjectExactBall) || (HAS_BOXES && type == kObjectBox)) && emission != vec3(0.0);
+  return ((HAS_EXACT_BALLS && type == kObjectExactBall) || (HAS_BOXES && type == kObjectBox) ||
+          (HAS_BOUND_BALLS && type == kObjectBall)) &&
+         emission != vec3(0.0);
 }
 
 // Scene object k (from the uniforms: a quotient's march loads no g_types).
@@ -34,34 +38,74 @@ int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
 // widths (A, B) = (a e^{z}, b e^{-z}) there (sol::Box::coordinate_half_widths).
 vec3 box_half_size(float z, vec2 widths, float c) { return vec3(widths.x * exp(-z), widths.y * exp(z), c); }
 
-// Target i: whether it is one, and its scene object, centre (march
-// coordinates), the size it is picked by (a ball's radius, a box's
-// sol_box_light_radius) and a box's half size (0 for a ball).
-bool glow_target(int i, out int object, out vec3 centre, out float radius, out vec3 half_size) {
+// A target's surface in its own frame w = centre⁻¹·q: its kind, a box's
+// half size, a ball's radius.
+struct GlowShape {
   int type;
+  vec3 half_size;
+  float radius;
+};
+
+// Whether its points' density is known in closed form (sol/surface_light.h:
+// a box's, a bound ball's), else solved from its centre (an exact ball's).
+bool closed_form(GlowShape s) { return GLOW_SURFACES && s.type != kObjectExactBall; }
+
+// sol/surface_light.h's functions for a box or a bound ball.
+vec3 shape_point(GlowShape s, float u0, float u1, float u2) {
+  return s.type == kObjectBox ? sol_box_light_point(s.half_size, u0, u1, u2) : sol_ball_light_point(s.radius, u0, u1, u2);
+}
+vec3 shape_normal(GlowShape s, vec3 w) {
+  return s.type == kObjectBox ? sol_box_light_normal(w, s.half_size) : sol_ball_light_normal(w);
+}
+float shape_density(GlowShape s, vec3 w) {
+  return s.type == kObjectBox ? 1.0 / sol_box_light_area(s.half_size) : sol_ball_light_density(w, s.radius);
+}
+float shape_bound(GlowShape s, vec3 w) {
+  return s.type == kObjectBox ? sol_box_light_bound(w, s.half_size) : sol_ball_light_bound(w, s.radius);
+}
+// A point wy on the face of a box that holds wx: reflection sampling's alone (sol_box_light_same_face).
+bool shape_skips(GlowShape s, vec3 wx, vec3 wy) {
+  return s.type == kObjectBox && sol_box_light_same_face(wx, wy, s.half_size);
+}
+
+// Target i: whether it is one, and its scene object, centre (march
+// coordinates), surface and the size it is picked by (a ball's radius, a
+// box's sol_box_light_radius).
+bool glow_target(int i, out int object, out vec3 centre, out GlowShape shape, out float size) {
   if (QUOTIENT) {
     const Image m = images[i];
     object = int(m.info.z);
-    type = image_type(m);
+    shape.type = image_type(m);
     centre = m.geometry.xyz;
-    radius = m.info.y;
-    half_size = type == kObjectBox ? box_half_size(centre.z, m.heading.xy, m.geometry.w) : vec3(0.0);
+    shape.radius = m.info.y;
+    shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, m.heading.xy, m.geometry.w) : vec3(0.0);
   } else {
     object = i;
-    type = g_types[i];
+    shape.type = g_types[i];
     centre = g_relative[i].xyz;
-    radius = g_radii[i];
-    half_size = type == kObjectBox ? box_half_size(centre.z, g_headings[i], g_relative[i].w) : vec3(0.0);
+    shape.radius = g_radii[i];
+    shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, g_headings[i], g_relative[i].w) : vec3(0.0);
   }
-  if (type == kObjectBox) radius = sol_box_light_radius(half_size);
-  return glow_kind(type, scene_objects[object].material.rgb);
+  size = shape.type == kObjectBox ? sol_box_light_radius(shape.half_size) : shape.radius;
+  return glow_kind(shape.type, scene_objects[object].material.rgb);
+}
+
+// The surface of the object the march met at h (a listed one, or a
+// quotient's image) and its centre.
+GlowShape hit_shape(MarchHit h, out vec3 centre) {
+  int object;
+  GlowShape shape;
+  float size;
+  glow_target(h.k, object, centre, shape, size);
+  return shape;
 }
 
 int glowing_count() {
   int n = 0, object;
-  vec3 centre, half_size;
-  float radius;
-  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, radius, half_size) ? 1 : 0;
+  vec3 centre;
+  GlowShape shape;
+  float size;
+  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, shape, size) ? 1 : 0;
   return n;
 }
 
@@ -80,11 +124,12 @@ float glow_pick_weight(vec3 x, vec3 c, float r) {
 }
 
 float glow_pick_total(vec3 x) {
-  float total = 0.0, radius;
+  float total = 0.0, size;
   int object;
-  vec3 centre, half_size;
+  vec3 centre;
+  GlowShape shape;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (glow_target(i, object, centre, radius, half_size)) total += glow_pick_weight(x, centre, radius);
+    if (glow_target(i, object, centre, shape, size)) total += glow_pick_weight(x, centre, size);
   }
   return total;
 }
@@ -106,26 +151,19 @@ struct GlowDensity {
   int k;
   vec3 x, d, y, c;
   float L, r, cos_y;
-  vec3 half_size;  // a box's (its area density needs no solve from the centre); 0: a ball
+  GlowShape shape;  // the target's surface (closed_form: its area density needs no solve from the centre)
   bool minimiser;
   vec4 from_centre;
 };
 
-// The cosine at the hit h on a box between the march's tangent and the
-// face's normal there (sol_box_light_normal; the CPU's is the cover's
-// geodesic against the cover's face, the same angle): the box the march
-// met, a listed one or a quotient's image.
-float box_hit_cosine(MarchHit h) {
-  vec3 centre, half_size;
-  if (QUOTIENT) {
-    const Image m = images[h.k];
-    centre = m.geometry.xyz;
-    half_size = box_half_size(centre.z, m.heading.xy, m.geometry.w);
-  } else {
-    centre = g_relative[h.k].xyz;
-    half_size = box_half_size(centre.z, g_headings[h.k], g_relative[h.k].w);
-  }
-  return abs(dot(h.u, sol_box_light_normal(seen_from(centre, h.q), half_size)));
+// The cosine at the hit h on a box or bound ball between the march's
+// tangent and the surface's exact normal there (sol/surface_light.h; the
+// CPU's is the cover's geodesic against the cover's surface, the same
+// angle), not the bound's gradient by differences.
+float surface_hit_cosine(MarchHit h) {
+  vec3 centre;
+  const GlowShape shape = hit_shape(h, centre);
+  return abs(dot(h.u, shape_normal(shape, seen_from(centre, h.q))));
 }
 
 // What the march that met the ball at h already shows (GlowDensity's
@@ -154,27 +192,26 @@ bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, 
   q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
   q.c = vec3(0.0);
   q.r = 0.0;
-  q.half_size = vec3(0.0);
-  vec3 centre, half_size;
-  float radius, nearest = 1e30;
+  q.shape = GlowShape(kObjectExactBall, vec3(0.0), 0.0);
+  vec3 centre;
+  GlowShape shape;
+  float size, nearest = 1e30;
   int object;
-  // The nearest target: a ball's by its centre, a box's by its bound.
+  // The nearest target: an exact ball's by its centre, a box's or bound ball's by its bound.
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, radius, half_size) || object != k) continue;
+    if (!glow_target(i, object, centre, shape, size) || object != k) continue;
     const vec3 v = seen_from(centre, q.y);
-    const float offset = half_size.x > 0.0 ? abs(sol_box_light_bound(v, half_size)) : dot(v, v);
+    const float offset = closed_form(shape) ? abs(shape_bound(shape, v)) : dot(v, v);
     if (offset < nearest) {
       nearest = offset;
       q.c = centre;
-      q.r = radius;
-      q.half_size = half_size;
+      q.r = size;
+      q.shape = shape;
     }
   }
-  // (A box's image holds y where y lies on its surface, to the march's
-  // tolerance, and x not on y's face; a ball's is checked later.)
-  if (q.half_size.x > 0.0) {
-    return nearest <= 1e-3 && !sol_box_light_same_face(seen_from(q.c, q.x), seen_from(q.c, q.y), q.half_size);
-  }
+  // (A box's or bound ball's image holds y where y lies on its surface, to
+  // the march's tolerance, and x not on y's face; an exact ball's is checked later.)
+  if (closed_form(q.shape)) return nearest <= 1e-3 && !shape_skips(q.shape, seen_from(q.c, q.x), seen_from(q.c, q.y));
   return nearest < 1e30;
 }
 
@@ -185,10 +222,10 @@ bool glow_density_reached(GlowDensity q, int count, vec4 shortest) {
   return count > 0 && !(q.L > (shortest.w + scene_objects[q.k].glow.x) * (1.0 + 1e-3) + 1e-4);
 }
 
-// The density from the second solve (a ball's minimiser from c to y; a
-// box's needs none: its area density is 1 / its area).
+// The density from the second solve (an exact ball's minimiser from c to
+// y; a box's or bound ball's needs none: its area density is closed_form).
 float glow_density_of(GlowDensity q, int count, vec4 shortest) {
-  const bool box = q.half_size.x > 0.0;
+  const bool box = closed_form(q.shape);
   if (!box && (count == 0 || abs(shortest.w - q.r) > 1e-3 * max(1.0, q.r))) return 0.0;
   if (!(q.cos_y > 0.0)) return 0.0;
   // The spreading from the centre to y (a ball's), then from x to y: one call
@@ -199,7 +236,7 @@ float glow_density_of(GlowDensity q, int count, vec4 shortest) {
   do {
     spreading[i] = sol_sphere_area_density(i == 0 ? shortest.xyz : q.d, i == 0 ? q.r : q.L);
   } while (++i < count + 1 && spreading[0] > 0.0 && i < 2);
-  const float area = box ? 1.0 / sol_box_light_area(q.half_size) : 1.0 / (4.0 * SOL_PI * spreading[0]);
+  const float area = box ? shape_density(q.shape, seen_from(q.c, q.y)) : 1.0 / (4.0 * SOL_PI * spreading[0]);
   if (!(spreading[0] > 0.0)) return 0.0;
   const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
   return pick * area * spreading[1] / q.cos_y;
@@ -219,7 +256,7 @@ struct GlowSample {
   int count;      // geodesics in `ways`
   vec4 ways[SOL_FOUND_SLOTS];
   bool enclosed;  // x lies on the ball's sphere seen from inside, the ball convex (glow_enclosed)
-  bool skip;      // y lies on the face of a box that holds x: reflection sampling's alone (sol_box_light_same_face)
+  bool skip;      // y lies on the face of a box that holds x: reflection sampling's alone (shape_skips)
 };
 
 // Whether the hit h lies on the inner wall of an exact ball of radius
@@ -256,42 +293,42 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   const float total = glow_pick_total(h.q);
   float left = path_uniform(state) * total, weight_k = 0.0;
   int object;
-  vec3 c = vec3(0.0), centre, half_size, box = vec3(0.0);
-  float r = 0.0, radius;
+  vec3 c = vec3(0.0), centre;
+  GlowShape picked = GlowShape(kObjectExactBall, vec3(0.0), 0.0), shape;
+  float size;
   g.k = -1;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, radius, half_size)) continue;
-    const float w = glow_pick_weight(h.q, centre, radius);
+    if (!glow_target(i, object, centre, shape, size)) continue;
+    const float w = glow_pick_weight(h.q, centre, size);
     if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
       g.k = object;
       c = centre;
-      r = radius;
-      box = half_size;
+      picked = shape;
       weight_k = w;
     }
     left -= w;
   }
   vec3 y;
-  if (HAS_BOXES && box.x > 0.0) {  // a box's point, uniform by area
+  g.skip = false;
+  if (closed_form(picked)) {  // a box's or bound ball's point (sol/surface_light.h)
     const float u0 = path_uniform(state), u1 = path_uniform(state), u2 = path_uniform(state);
-    const vec3 w = sol_box_light_point(box, u0, u1, u2);
+    const vec3 w = shape_point(picked, u0, u1, u2);
     y = sol_translate(c, w);
-    g.normal_y = sol_box_light_normal(w, box);
-    g.area = weight_k / total / sol_box_light_area(box);
-    g.skip = sol_box_light_same_face(seen_from(c, h.q), w, box);
+    g.normal_y = shape_normal(picked, w);
+    g.area = weight_k / total * shape_density(picked, w);
+    g.skip = shape_skips(picked, seen_from(c, h.q), w);
   } else {
     const float u = 2.0 * path_uniform(state) - 1.0, phi = 2.0 * SOL_PI * path_uniform(state);
     const float s = sqrt(max(0.0, 1.0 - u * u));
     const vec3 w = vec3(s * cos(phi), s * sin(phi), u);
-    const SolSpread on_sphere = sol_spread(w, r);  // the point, its normal and its J in one integration
+    const SolSpread on_sphere = sol_spread(w, picked.radius);  // the point, its normal and its J in one integration
     y = sol_translate(c, on_sphere.position);
     g.normal_y = on_sphere.direction;
     g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
   }
   g.towards = seen_from(h.q, y);
   g.count = 0;
-  if (!(HAS_BOXES && box.x > 0.0)) g.skip = false;
-  g.enclosed = glow_enclosed(h, g.k, r);
+  g.enclosed = glow_enclosed(h, g.k, picked.radius);
   return g;
 }
 

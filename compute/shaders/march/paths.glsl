@@ -45,8 +45,8 @@ void path_solve(int i, GlowDensity dq, inout GlowSample g, inout LightGather lig
     light_gather_solved(lights, count, found);
   } else if (i == kSolveDensityFromX) {
     const bool reached = glow_density_reached(dq, count, found[0]);
-    if (reached && dq.half_size.x > 0.0) glow_density = glow_density_of(dq, count, found[0]);  // a box's: no second solve
-    solve = reached && !(dq.half_size.x > 0.0) ? kSolveDensityFromCentre : kSolveGlowSample;
+    if (reached && closed_form(dq.shape)) glow_density = glow_density_of(dq, count, found[0]);  // no second solve
+    solve = reached && !closed_form(dq.shape) ? kSolveDensityFromCentre : kSolveGlowSample;
   } else if (i == kSolveDensityFromCentre) {
     glow_density = glow_density_of(dq, count, found[0]);
     solve = kSolveGlowSample;
@@ -119,10 +119,11 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
   float share = 1.0;
   bool density = false;
   if (HAS_EMISSION && GLOW_SAMPLING && reachable && glowing(f.object)) {
-    const float cos_y = int(scene_objects[f.object].plane.x) == kObjectBox ? box_hit_cosine(h) : abs(dot(h.u, f.n));
+    const int kind = int(scene_objects[f.object].plane.x);
+    const float cos_y = GLOW_SURFACES && kind != kObjectExactBall ? surface_hit_cosine(h) : abs(dot(h.u, f.n));
     density = glow_density_target(f.object, from, from_direction, h.t, h.q, cos_y, dq);
     if (density) glow_density_known(h, dq);
-    if (density && dq.minimiser && (dq.from_centre.w > 0.0 || dq.half_size.x > 0.0)) {  // known: no solve, its share at once
+    if (density && dq.minimiser && (dq.from_centre.w > 0.0 || closed_form(dq.shape))) {  // known: no solve, its share at once
       share = emission_share(from_cosine / SOL_PI, glow_density_of(dq, 1, dq.from_centre));
       density = false;
     }

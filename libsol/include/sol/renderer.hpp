@@ -37,8 +37,8 @@ namespace sol {
 /// (docs/lighting.md, "Path tracing").
 enum class Transport { Direct, Path };
 
-/// How the path tracer reaches glowing exact balls and boxes from a
-/// diffuse hit: both strategies combined by multiple importance sampling
+/// How the path tracer reaches glowing balls and boxes from a diffuse
+/// hit: both strategies combined by multiple importance sampling
 /// (the default), or one alone (the same expected image, for comparing the
 /// estimators): sampling the surface's reflection (a path that meets a
 /// glowing object counts its emission), or next-event estimation (a point
