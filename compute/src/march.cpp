@@ -1088,13 +1088,13 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
   }
   if (transport == Transport::Path && world.quotient() == Quotient::None && world.objects.size() > sol::kListedObjects) {
     // A path's next-event estimation (march/glow.glsl) samples a listed
-    // world's glowing balls and boxes, not a crowd's.
+    // world's glowing exact balls, not a crowd's (a crowd's glowing boxes and
+    // bound balls are found by reflection alone on both devices).
     for (std::size_t i = 0; i < world.objects.size(); ++i) {
-      const bool target = std::holds_alternative<Ball>(world.objects[i].shape) || std::holds_alternative<Box>(world.objects[i].shape);
-      if (target && world.objects[i].emission != glm::dvec3(0.0)) {
+      if (is_exact_ball(world.objects[i].shape) && world.objects[i].emission != glm::dvec3(0.0)) {
         std::snprintf(message, sizeof message,
-                      "objects[%zu].emission: glowing balls and boxes in a world of more than %zu objects are "
-                      "path traced on the CPU only",
+                      "objects[%zu].emission: glowing exact balls in a world of more than %zu objects are path traced "
+                      "on the CPU only",
                       i, sol::kListedObjects);
         return message;
       }

@@ -978,14 +978,21 @@ struct GlowTarget {
   double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
 };
 
+// The targets: every glowing exact ball, box and bound ball; in a crowd
+// (a Sol world of more than kernel::kListedObjects objects, which the
+// kernel samples none of) the exact balls alone, as the kernel path
+// traces no such world (sol::vk::MarchRenderer::unsupported), while its
+// glowing boxes and bound balls are found by reflection on both devices.
 std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
+  const bool crowd = prepared.features().crowd;
   std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
     if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
     const double reach = world.objects[o.owner].glow_reach;
-    if (const Ball* b = std::get_if<Ball>(&o.shape)) out.push_back({o.owner, *b, reach});
-    if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
+    const Ball* ball = std::get_if<Ball>(&o.shape);
+    if (ball && (ball->exact || !crowd)) out.push_back({o.owner, *ball, reach});
+    if (const Box* b = std::get_if<Box>(&o.shape); b && !crowd) out.push_back({o.owner, *b, reach});
   }
   return out;
 }
