@@ -320,6 +320,7 @@ void section_path(Bench& b) {
       settings.samples = samples;
       settings.transport = sol::Transport::Path;
       settings.seed = seed;
+      settings.guides = true;  // (the denoiser's albedo and normal)
       const auto start = std::chrono::steady_clock::now();
       sol::RenderResult r = sol::render_scene(renderer, scene, settings);
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -587,7 +587,7 @@ enum class SeedTable { None, Minimisers, Longer };
 
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
-  if (!f.exact_balls && !f.exact_lights && !((f.boxes || f.bound_balls) && f.emission)) return SeedTable::None;
+  if (!f.exact_balls && !f.exact_lights && !((f.boxes || f.bound_balls) && f.emission && !f.quotient)) return SeedTable::None;
   return f.light_reach ? SeedTable::Longer : SeedTable::Minimisers;
 }
 

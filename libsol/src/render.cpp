@@ -978,14 +978,17 @@ struct GlowTarget {
   double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
 };
 
-// The targets: every glowing exact ball, box and bound ball; in a crowd
-// (a Sol world of more than kernel::kListedObjects objects, which the
-// kernel samples none of) the exact balls alone, as the kernel path
-// traces no such world (sol::vk::MarchRenderer::unsupported), while its
-// glowing boxes and bound balls are found by reflection on both devices.
+// The targets: every glowing exact ball, box and bound ball of a listed
+// world in Sol; in a crowd (a Sol world of more than
+// kernel::kListedObjects objects, which the kernel samples none of) and in
+// a quotient the exact balls alone (the kernel path traces no crowd with
+// them: sol::vk::MarchRenderer::unsupported), the glowing boxes and bound
+// balls found by reflection on both devices. (In a quotient every image
+// around D is a target, and next-event estimation to them cost more than
+// it saved: docs/lighting.md.)
 std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
-  const bool crowd = prepared.features().crowd;
+  const bool crowd = prepared.features().crowd || prepared.features().quotient;
   std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
     if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;

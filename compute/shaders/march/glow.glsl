@@ -21,10 +21,12 @@ const bool GLOW_SURFACES = HAS_BOXES || HAS_BOUND_BALLS;  // (one operation a co
 const bool GLOW_KINDS = HAS_EXACT_BALLS || GLOW_SURFACES;
 const bool GLOW_SAMPLING = HAS_EMISSION && GLOW_KINDS;
 
-// Whether an object of kind `type` emitting `emission` is a target.
+// Whether an object of kind `type` emitting `emission` is a target: an
+// exact ball, or in Sol a box or a bound ball (in a quotient those are
+// found by reflection: glow_targets in libsol/src/render.cpp says why).
 bool glow_kind(int type, vec3 emission) {
-  return ((HAS_EXACT_BALLS && type == kObjectExactBall) || (HAS_BOXES && type == kObjectBox) ||
-          (HAS_BOUND_BALLS && type == kObjectBall)) &&
+  return ((HAS_EXACT_BALLS && type == kObjectExactBall) ||
+          (!QUOTIENT && ((HAS_BOXES && type == kObjectBox) || (HAS_BOUND_BALLS && type == kObjectBall)))) &&
          emission != vec3(0.0);
 }
 
