@@ -1687,9 +1687,11 @@ TEST(Kernel, PathsInsideAClosedBallSeeNoLight) {
   expect_no_validation_errors();
 }
 
-TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
-  const sol::Scene scene = sol::test::glow_over_plane();
-  sol::vk::MarchRenderer renderer(vk_context());
+// The three strategies' images of `scene` on the kernel (10 × 10, 4 paths
+// a pixel, one seed: combined, reflection, next-event estimation), each
+// the CPU's paths for the same seed in at least 80 % of the pixels to 1e-3.
+std::vector<sol::RenderResult> three_strategies_as_the_cpu(sol::vk::MarchRenderer& renderer, const sol::Scene& scene,
+                                                           const std::string& where) {
   std::vector<sol::RenderResult> images;
   for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
     const sol::RenderOptions settings{.width = 10, .height = 10, .samples = 4, .transport = sol::Transport::Path,
@@ -1698,9 +1700,16 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
     const sol::RenderResult cpu = sol::render_cpu(scene, settings);
     const std::size_t n = cpu.rgba.size() / 4;
     const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
-    std::printf("glow, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", static_cast<int>(sampling), agree, n);
-    EXPECT_GE(agree, n * 8 / 10) << static_cast<int>(sampling);
+    std::printf("%s, sampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", where.c_str(), static_cast<int>(sampling),
+                agree, n);
+    EXPECT_GE(agree, n * 8 / 10) << where << ", sampling " << static_cast<int>(sampling);
   }
+  return images;
+}
+
+TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const std::vector<sol::RenderResult> images = three_strategies_as_the_cpu(renderer, sol::test::glow_over_plane(), "glow");
   sol::test::expect_estimators_agree(images[0], images[1], "kernel, combined - reflection");
   sol::test::expect_estimators_agree(images[0], images[2], "kernel, combined - glow");
   sol::test::expect_estimators_agree(images[1], images[2], "kernel, reflection - glow");
@@ -1714,7 +1723,7 @@ TEST(Kernel, PathsReachGlowingBallsAsTheCpuPathsDo) {
 // in Sol and in the golden quotient (where they are not targets: the
 // kernel's paths, reflection's alone, are still the CPU's),
 // for each strategy the kernel's paths are the CPU's for the same seed (at
-// least 80 % of the pixels to 1e-3, as PathsReachGlowingBallsAsTheCpuPathsDo;
+// least 80 % of the pixels to 1e-3: three_strategies_as_the_cpu;
 // without the connection table the kernel's light points found no way and
 // its image came out darker), and the kernel's three estimators agree (in
 // the quotient they are one, image for image).
@@ -1725,18 +1734,7 @@ TEST(Kernel, PathsReachGlowingBoxesAndBoundBallsAsTheCpuPathsDo) {
     const sol::Scene scene = sol::test::lamp_over_plane(lamp, golden);
     const std::string where = std::string(std::holds_alternative<sol::Box>(lamp) ? "box, " : "bound ball, ") +
                               (golden ? "golden, " : "Sol, ");
-    std::vector<sol::RenderResult> images;
-    for (const auto sampling : {sol::PathSampling::Combined, sol::PathSampling::ReflectionOnly, sol::PathSampling::GlowOnly}) {
-      const sol::RenderOptions settings{.width = 10, .height = 10, .samples = 4, .transport = sol::Transport::Path,
-                                        .seed = 21, .path_sampling = sampling};
-      images.push_back(sol::render_scene(renderer, scene, settings));
-      const sol::RenderResult cpu = sol::render_cpu(scene, settings);
-      const std::size_t n = cpu.rgba.size() / 4;
-      const std::size_t agree = sol::test::pixels_agreeing(images.back(), cpu, 1e-3f);
-      std::printf("%ssampling %d: %zu of %zu pixels agree with the CPU's to 1e-3\n", where.c_str(),
-                  static_cast<int>(sampling), agree, n);
-      EXPECT_GE(agree, n * 8 / 10) << where << static_cast<int>(sampling);
-    }
+    const std::vector<sol::RenderResult> images = three_strategies_as_the_cpu(renderer, scene, where);
     if (golden) {  // not targets: the three strategies are reflection's, path for path (the same seed)
       EXPECT_EQ(images[0].rgba, images[1].rgba) << where;
       EXPECT_EQ(images[0].rgba, images[2].rgba) << where;
