@@ -976,6 +976,26 @@ struct GlowTarget {
   const glm::dvec3& center() const { return box() ? box()->center : ball()->center; }
   // The size it is picked by: a ball's radius, a box's sol_box_light_radius.
   double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
+  // A closed_form target's surface in its own frame w = centre⁻¹·q
+  // (sol/surface_light.h): the point three numbers draw, the outward
+  // normal, the density per unit area and the bound there.
+  glm::dvec3 point(double u0, double u1, double u2) const {
+    return box() ? kernel::sol_box_light_point(box()->half_size, u0, u1, u2)
+                 : kernel::sol_ball_light_point(ball()->radius, u0, u1, u2);
+  }
+  glm::dvec3 normal(const glm::dvec3& w) const {
+    return box() ? kernel::sol_box_light_normal(w, box()->half_size) : kernel::sol_ball_light_normal(w);
+  }
+  double density(const glm::dvec3& w) const {
+    return box() ? 1.0 / kernel::sol_box_light_area(box()->half_size) : kernel::sol_ball_light_density(w, ball()->radius);
+  }
+  double bound(const glm::dvec3& w) const {
+    return box() ? kernel::sol_box_light_bound(w, box()->half_size) : kernel::sol_ball_light_bound(w, ball()->radius);
+  }
+  // A light point wy on the face of a box that holds wx: reflection sampling's alone (sol_box_light_same_face).
+  bool skips(const glm::dvec3& wx, const glm::dvec3& wy) const {
+    return box() && kernel::sol_box_light_same_face(wx, wy, box()->half_size);
+  }
 };
 
 // The targets: every glowing exact ball, box and bound ball of a listed
@@ -988,14 +1008,14 @@ struct GlowTarget {
 // it saved: docs/lighting.md.)
 std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
-  const bool crowd = prepared.features().crowd || prepared.features().quotient;
+  const bool surfaces = !prepared.features().crowd && !prepared.features().quotient;  // boxes and bound balls
   std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
     if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
     const double reach = world.objects[o.owner].glow_reach;
     const Ball* ball = std::get_if<Ball>(&o.shape);
-    if (ball && (ball->exact || !crowd)) out.push_back({o.owner, *ball, reach});
-    if (const Box* b = std::get_if<Box>(&o.shape); b && !crowd) out.push_back({o.owner, *b, reach});
+    if (ball && (ball->exact || surfaces)) out.push_back({o.owner, *ball, reach});
+    if (const Box* b = std::get_if<Box>(&o.shape); b && surfaces) out.push_back({o.owner, *b, reach});
   }
   return out;
 }
@@ -1044,12 +1064,10 @@ bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchH
 }
 
 // How far y lies from target g's surface (the target that holds y is the
-// nearest): from a ball's centre, the squared norm of c⁻¹y; a box's bound.
+// nearest): from an exact ball's centre, the squared norm of c⁻¹y; else its bound.
 double glow_offset(const GlowTarget& g, const glm::dvec3& y) {
-  if (const Box* box = g.box()) return std::abs(kernel::sol_box_light_bound(multiply(inverse(box->center), y), box->half_size));
   const glm::dvec3 v = multiply(inverse(g.center()), y);
-  if (g.bound_ball()) return std::abs(kernel::sol_ball_light_bound(v, g.ball()->radius));
-  return glm::dot(v, v);
+  return g.closed_form() ? std::abs(g.bound(v)) : glm::dot(v, v);
 }
 
 // The area density with which ball g's sampling draws y, where the
@@ -1101,17 +1119,12 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
     // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
     double area = 0.0, cos_y = 0.0;
-    if (const Box* box = g->box()) {
-      const glm::dvec3 wy = multiply(inverse(box->center), y);
-      if (kernel::sol_box_light_same_face(multiply(inverse(box->center), x), wy, box->half_size)) return 0.0;
-      // The face's normal at y in the cover's frame, against the geodesic's own tangent there.
-      const glm::dvec3 normal = kernel::sol_box_light_normal(wy, box->half_size);
-      cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), normal));
-      area = 1.0 / kernel::sol_box_light_area(box->half_size);
-    } else if (const Ball* ball = g->bound_ball()) {
-      const glm::dvec3 wy = multiply(inverse(ball->center), y);
-      cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), kernel::sol_ball_light_normal(wy)));
-      area = kernel::sol_ball_light_density(wy, ball->radius);
+    if (g->closed_form()) {
+      const glm::dvec3 wy = multiply(inverse(g->center()), y);
+      if (g->skips(multiply(inverse(g->center()), x), wy)) return 0.0;
+      // The surface's exact normal at y, against the geodesic's own tangent there.
+      cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), g->normal(wy)));
+      area = g->density(wy);
     } else {
       cos_y = std::abs(glm::dot(hit.direction, hit.normal));
       area = ball_area_density(*g->ball(), y, hit, quotient);
@@ -1132,18 +1145,12 @@ struct GlowPoint {
 };
 
 GlowPoint glow_point(const GlowTarget& g, PathRandom& random) {
-  if (const Box* box = g.box()) {
+  if (g.closed_form()) {
     const double u0 = random.uniform(), u1 = random.uniform(), u2 = random.uniform();
-    const glm::dvec3 w = kernel::sol_box_light_point(box->half_size, u0, u1, u2);
-    return {multiply(box->center, w), kernel::sol_box_light_normal(w, box->half_size),
-            1.0 / kernel::sol_box_light_area(box->half_size)};
+    const glm::dvec3 w = g.point(u0, u1, u2);
+    return {multiply(g.center(), w), g.normal(w), g.density(w)};
   }
   const Ball& ball = *g.ball();
-  if (!ball.exact) {
-    const double u0 = random.uniform(), u1 = random.uniform(), u2 = random.uniform();
-    const glm::dvec3 w = kernel::sol_ball_light_point(ball.radius, u0, u1, u2);
-    return {multiply(ball.center, w), kernel::sol_ball_light_normal(w), kernel::sol_ball_light_density(w, ball.radius)};
-  }
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
   const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
   const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), u);
@@ -1168,10 +1175,8 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>
   }
   const GlowTarget& g = glowing[pick];
   const GlowPoint p = glow_point(g, random);
-  const Box* box = g.box();
-  if (box && kernel::sol_box_light_same_face(multiply(inverse(box->center), hit.point),
-                                             multiply(inverse(box->center), p.y), box->half_size)) {
-    return glm::dvec3(0.0);  // reflection sampling's alone (sol_box_light_same_face)
+  if (g.skips(multiply(inverse(g.center()), hit.point), multiply(inverse(g.center()), p.y))) {
+    return glm::dvec3(0.0);  // reflection sampling's alone
   }
   const double area = glow_pick_weight(g, hit.point) / total * p.area;
   // x on the inner wall of a convex ball: its geodesics to y march without it (glow_enclosed).
@@ -1231,7 +1236,7 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>
 // the path goes on up to the bounces). Radiance is constant along a
 // geodesic, so the estimator needs no more than the geodesics themselves.
 // No ambient light.
-// `glowing`: next-event estimation's targets (glowing_balls; none for
+// `glowing`: next-event estimation's targets (glow_targets; none for
 // reflection sampling alone), found once per render.
 glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarget>& glowing, MarchHit hit,
                          PathRandom& random, PathSampling sampling) {
