@@ -278,6 +278,51 @@ TEST(Clearance, NeverReachesTheObjectAndOutrunsTheBoundBesideIt) {
   }
 }
 
+// The march's step where a plane z = c is the nearest object
+// (sol::plane_z_step): the geodesic stays more than hit_epsilon from the
+// plane up to it, so the hit is taken where the ray first comes within
+// hit_epsilon, as by steps of |z - c|; and for a ray leaving the plane
+// almost level (a path's next segment or connection from a floor) it is
+// far longer than |z - c|, by which such a ray crawled. Checked along the
+// independent reference geodesic, sampled densely up to the step (z is
+// smooth: a sample within 1e-4 of arc length of the closest approach
+// misses it by at most |z''| 1e-8 / 2 <= 1e-8 below the band).
+TEST(Clearance, PlaneStepStaysOutOfTheHitBandAndOutrunsTheDistanceOnLeaving) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double eps = 5e-5, c = 0.3;
+  int leaving = 0, outrun = 0;
+  for (int n = 0; n < 400; ++n) {
+    const double h = n % 4 == 0 ? eps * unit(rng) : eps + 0.3 * std::pow(unit(rng), 3.0);
+    const double side = n % 2 == 0 ? 1.0 : -1.0;
+    const dvec3 p(2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0, c + side * h);
+    dvec3 u = random_unit(rng);
+    if (n % 3 != 0) {  // two thirds graze: |u_z| below 0.02, either way
+      const double uz = 0.02 * (2.0 * unit(rng) - 1.0), k = std::sqrt((1.0 - uz * uz) / (u.x * u.x + u.y * u.y));
+      u = dvec3(u.x * k, u.y * k, uz);
+    }
+    const double step = sol::plane_z_step(p, u, c, eps);
+    if (h <= eps) {
+      EXPECT_EQ(step, 0.0) << "within the band: sample " << n;
+      continue;
+    }
+    Reference geodesic(p, u, false, 1e-13);
+    double closest = h;
+    for (double t = 0.0; t <= step; t += std::min(1e-4, step / 64.0)) {
+      closest = std::min(closest, std::abs(geodesic.at(t).position.z - c));
+    }
+    closest = std::min(closest, std::abs(geodesic.at(step).position.z - c));
+    EXPECT_GE(closest, eps - 1e-8) << "sample " << n << ": height " << h << ", u_z " << u.z << ", step " << step;
+    if (side * u.z > 0.0 && side * u.z < 0.02 && h > 2.0 * eps && h < 0.01) {  // (then the step >= √h)
+      ++leaving;
+      outrun += step > 10.0 * h;
+    }
+  }
+  std::printf("plane steps: %d leave almost level near the plane, %d step more than 10 |z - c|\n", leaving, outrun);
+  EXPECT_GT(leaving, 20);
+  EXPECT_EQ(outrun, leaving);
+}
+
 // The kernel's exact balls step by the convexity of the distance from the
 // centre (march/exact_balls.glsl, exact_ball_clearance): Sol's sectional curvatures are
 // at most 1, so by the Hessian comparison theorem d'' >= cot(d) |u⊥|² >=

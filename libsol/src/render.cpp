@@ -301,7 +301,9 @@ struct StepNearest {
   // The step from q along u: where the nearest object (`o`) is a solid, its
   // clearance along the ray (sol/clearance.hpp; longer than its bound beside
   // it) up to the runner-up's distance, seen from outside (`outside`) or
-  // from inside (`inside`: its faces'; an exact ball's own solve always).
+  // from inside (`inside`: its faces'; an exact ball's own solve always);
+  // where it is a plane z = c, its clearance to hit_epsilon (plane_z_step:
+  // a ray leaving a floor almost level would otherwise crawl by |z - c|).
   // Only the nearest's: it is what limits the step, and the kernel
   // evaluates one clearance a step.
   double step(const MarchObject& o, const glm::dvec3& q, const glm::dvec3& u, double eps, bool outside, bool inside) const {
@@ -314,6 +316,9 @@ struct StepNearest {
     }
     if (nearest_inside && inside && !is_exact_ball(shape)) {  // inside a solid: its faces' clearance
       return std::min(second, std::max(nearest, shape_inside_clearances(shape, q, u).ahead));
+    }
+    if (const PlaneZ* plane = std::get_if<PlaneZ>(&shape)) {
+      return std::min(second, std::max(nearest, plane_z_step(q, u, plane->c, eps)));  // (a cutout's gap bound may be more)
     }
     return nearest;
   }

@@ -259,12 +259,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
       if (MARCH_SKIPS && exit.searching) break;  // the exit search's trial point: solved below
       const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
       s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing, leaving, skip);
-      // A camera ray steps by the nearest solid's clearance; shadow rays by
-      // the bound (inside the light's loop over its geodesics one clearance
-      // a step made shadowed scenes 10-25 % slower on lavapipe though the
-      // steps fell tenfold); in a frame whose eye is inside a solid every
-      // ray (object_inside_clearances).
-      if ((camera || HAS_INSIDE) && object_is_solid(g_types[s.nearest_any])) s.nearest = march_clearance_step(s, q, u, hz);
+      s.nearest = march_step_length(s, q, u, hz, hit_epsilon, camera, rk4);
       shell = HAS_EXACT_BALLS && g_types[s.nearest_k] == kObjectExactBall && s.nearest_hit < kExactShell;
       // The exact ball the ray leaves, still passed, near enough to hold the step back: its exact distance below.
       leaving_shell = HAS_EXACT_BALLS && !camera && g_types[s.nearest_any] == kObjectExactBall &&

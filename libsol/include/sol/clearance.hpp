@@ -106,6 +106,20 @@ inline BoundTerm plane_z_term(const glm::dvec3& p, const glm::dvec3& u, double c
   return {std::abs(p.z - c), p.z >= c ? u.z : -u.z, 1.0};
 }
 
+/// How far the geodesic from p along u stays more than `eps` from the plane
+/// z = c: the first root of the term |z − c| less eps (0 within eps). The
+/// march's step where the plane is the nearest object: a clearance to the
+/// plane itself would land a ray anywhere in the band within eps of it,
+/// eps / |u_z| long at a grazing angle, where the hit is taken; this lands
+/// it at the band's edge, whence the plane's distance steps into it, so a
+/// hit's arc length is where the ray first comes within eps, as by |z − c|
+/// steps.
+inline double plane_z_step(const glm::dvec3& p, const glm::dvec3& u, double c, double eps) {
+  BoundTerm h = plane_z_term(p, u, c);
+  h.value -= eps;
+  return clearance_root(h);
+}
+
 /// asinh(|x − c| e^{-z}) − r, the slab of half-width r around the plane
 /// x = c: its rate is the plane's gradient (sol/distance.hpp) along u.
 inline BoundTerm slab_x_term(const glm::dvec3& p, const glm::dvec3& u, double c, double r) {
