@@ -80,6 +80,13 @@ vec3 plane_z_clearances(vec3 q, vec3 u, vec4 rel, vec2 heading, float radius, ve
   return vec3(d, max(vec2(d), clearance_roots(d, rate)));
 }
 
+// How far the ray stays more than hit_epsilon from the plane z = c: the
+// first root of |z - c| - hit_epsilon (sol::plane_z_step), the march's step
+// where the plane is the nearest object.
+float plane_z_step(vec3 q, vec3 u, float c, float hit_epsilon) {
+  return clearance_roots(abs(q.z - c) - hit_epsilon, q.z >= c ? u.z : -u.z).x;
+}
+
 vec3 plane_z_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
   const vec4 b = m.bound;
   return plane_z_clearances(q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));

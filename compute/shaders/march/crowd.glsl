@@ -305,8 +305,8 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
     const SeenObject o = crowd_item_seen(s.nearest_i);
     if (object_is_solid(o.type)) {
       nearest = min(s.second, max(s.nearest, object_clearance(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc).y));
-    } else if (HAS_PLANES_Z && o.type == kObjectPlaneZ) {  // (march_plane_z_step)
-      nearest = min(s.second, max(s.nearest, clearance_roots(abs(q.z - o.rel.x) - hit_epsilon, q.z >= o.rel.x ? u.z : -u.z).x));
+    } else if (HAS_PLANES_Z && o.type == kObjectPlaneZ) {
+      nearest = min(s.second, max(s.nearest, plane_z_step(q, u, o.rel.x, hit_epsilon)));
     }
     if (HAS_EXACT_BALLS) {
       nearest = crowd_exact_step(q, u, hit_epsilon, leaving, nearest, t, s, exact, seen, passing, leave_signs);

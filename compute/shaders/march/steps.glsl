@@ -123,13 +123,11 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 }
 
 // The step where the nearest object is a plane z = c: how far the ray
-// stays more than hit_epsilon from it (the first root of the term |z - c|
-// less hit_epsilon: sol::plane_z_step), up to the others' least distance;
+// stays more than hit_epsilon from it (plane_z_step), up to the others'
+// least distance;
 // at least the plane's distance (a cutout's gap bound may be more).
 float march_plane_z_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
-  const float c = g_relative[s.nearest_any].x;
-  const float clear = clearance_roots(abs(q.z - c) - hit_epsilon, q.z >= c ? u.z : -u.z).x;
-  return min(s.others, max(s.nearest, clear));
+  return min(s.others, max(s.nearest, plane_z_step(q, u, g_relative[s.nearest_any].x, hit_epsilon)));
 }
 
 // The step of march_sol from q (tangent u, known unless a camera ray in a
