@@ -38,9 +38,9 @@ bool color_edit(const char* label, glm::dvec3& c) {
 
 const char* const kPatterns[] = {"none", "circles", "checker"};
 
-// An object's image texture (sol/texture.hpp): its file, loaded through
-// the program's reader when Enter is pressed (the error shown below it), or
-// taken off; the pattern cells one copy spans along u and v, powers of two.
+}  // namespace
+
+// (Each object's field is kept by its widget's ID.)
 bool texture_controls(SceneObject& o) {
   bool changed = false;
   struct Entry {
@@ -78,6 +78,8 @@ bool texture_controls(SceneObject& o) {
   }
   return changed;
 }
+
+namespace {
 
 bool object_controls(SceneObject& o) {
   bool changed = color_edit("colour", o.color);

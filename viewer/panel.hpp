@@ -69,6 +69,13 @@ struct PanelText {
 /// Builds the panel in the current ImGui frame.
 PanelActions draw_panel(PanelModel& model, PanelText& text);
 
+/// An object's image texture in the current ImGui window: its file, read
+/// through the program's reader (sol::read_texture) when Enter is pressed
+/// in the field (an error shown below it, the texture kept), taken off by
+/// the "no texture" button (the last widget where there is one), and the
+/// pattern cells one copy spans as powers of two. Whether it changed.
+bool texture_controls(SceneObject& o);
+
 /// Why the world cannot be the golden quotient (sol::validate's message), or
 /// empty when it can.
 std::string quotient_refusal(const World& world);
