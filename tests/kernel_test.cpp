@@ -1768,12 +1768,7 @@ TEST(Kernel, PathsLeavingAFloorOrAFaceAlmostLevelDoNotRunOutOfSteps) {
               static_cast<unsigned long long>(gpu.rays_out_of_steps), static_cast<unsigned long long>(cpu.rays_out_of_steps));
   EXPECT_LE(gpu.rays_out_of_steps * 1000, paths);
   EXPECT_LE(cpu.rays_out_of_steps * 1000, paths);
-  double mean_gpu = 0.0, mean_cpu = 0.0;
-  for (std::size_t k = 0; k < cpu.rgba.size(); k += 4) {
-    mean_gpu += gpu.rgba[k] + gpu.rgba[k + 1] + gpu.rgba[k + 2];
-    mean_cpu += cpu.rgba[k] + cpu.rgba[k + 1] + cpu.rgba[k + 2];
-  }
-  EXPECT_NEAR(mean_gpu / mean_cpu, 1.0, 0.01);
+  EXPECT_NEAR(sol::test::red_mean(gpu).mean / sol::test::red_mean(cpu).mean, 1.0, 0.01);
   expect_no_validation_errors();
 }
 

@@ -124,8 +124,8 @@ float march_clearance_step(MarchStep s, vec3 q, vec3 u, vec2 hz) {
 
 // The step where the nearest object is a plane z = c: how far the ray
 // stays more than hit_epsilon from it (plane_z_step), up to the others'
-// least distance;
-// at least the plane's distance (a cutout's gap bound may be more).
+// least distance; at least the plane's distance (a cutout's gap bound may
+// be more).
 float march_plane_z_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
   return min(s.others, max(s.nearest, plane_z_step(q, u, g_relative[s.nearest_any].x, hit_epsilon)));
 }
