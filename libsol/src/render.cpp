@@ -245,7 +245,9 @@ bool exact_ball_turned_back(const Ball& ball, const glm::dvec3& q, const glm::dv
 // for a face (sol::InsideClearances::nearest_rate; an exact ball: where it
 // turns back towards its sphere, `leave_sign` as exact_ball_turned_back's;
 // a composite, whose hollows a ray may leave from outside at a grazing
-// angle: where its distance's rate, the normal's component along u, turns).
+// angle: where its distance's rate, the normal's component along u, turns;
+// a plane z = c: where u_z turns, as a ray that leaves it almost level
+// turns back into it, z'' = u2² − u1², before it is 2 hit_epsilon away).
 // Another solid's rule holds only for a ray that started into it: one that
 // leaves it through the face it starts on (leave_sign 1, leaving_sign)
 // heads for that face from the start, and passes it until 2 hit_epsilon away.
@@ -254,6 +256,7 @@ bool pass_ends(const Shape& shape, double d, bool inside, const glm::dvec3& q, c
   if (d > 2.0 * hit_epsilon) return true;
   if (is_exact_ball(shape)) return exact_ball_turned_back(std::get<Ball>(shape), q, u, leave_sign);
   if (const Composite* c = std::get_if<Composite>(&shape)) return turned_back(glm::dot(c->normal(q), u), leave_sign);
+  if (std::holds_alternative<PlaneZ>(shape)) return turned_back(u.z, leave_sign);
   return inside && leave_sign <= 0.0 && shape_inside_clearances(shape, q, u).nearest_rate < 0.0;
 }
 

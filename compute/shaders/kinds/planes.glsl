@@ -68,6 +68,21 @@ void plane_y_seen_from(inout vec4 rel, inout vec2 heading, vec4 camera, vec4 cam
   rel.x = (rel.x - camera.y) * camera.w;
 }
 
+// How far a ray stays more than hit_epsilon from the plane x = c or y = c
+// (`type`): the first root of its distance asinh|G| - hit_epsilon, which
+// bends by at most 1 along a geodesic (as a tube's slab about such a
+// plane, sol::tube_terms), G = (x - c) e^{-z} (rate u_x - G u_z) or
+// (y - c) e^{z} (rate u_y + G u_z): the march's step where the plane is the
+// nearest object and its crossing is not solved (a ray other than a
+// camera ray: one arriving at a grazing angle crawled by the distance).
+float plane_xy_step(vec3 q, vec3 u, int type, float c, float hit_epsilon) {
+  const bool across_x = type == kObjectPlaneX;
+  const float G = across_x ? (q.x - c) * exp(-q.z) : (q.y - c) * exp(q.z);
+  const float rate = across_x ? u.x - G * u.z : u.y + G * u.z;
+  const float root = sqrt(1.0 + G * G);
+  return clearance_roots(log(abs(G) + root) - hit_epsilon, (G >= 0.0 ? rate : -rate) / root).x;
+}
+
 // ---- plane_z: |z - c|, flat
 
 float plane_z_distance(vec3 q, vec4 rel, vec2 heading, float radius, vec2 hz, vec2 hc) { return abs(q.z - rel.x); }

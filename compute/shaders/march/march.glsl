@@ -126,13 +126,15 @@ void rk4_advance(inout vec3 p, inout vec3 u, float length, float step) {
 
 // The surfaces a ray from a surface starts on (within 2 hit_epsilon of
 // `origin`): passed (`passing`), and the solids among them it leaves
-// through the face it starts on (`leaving`).
+// through the face it starts on (`leaving`); for a plane z = c, `leaving`
+// says the ray starts upward (its pass ends where u_z turns: march_objects).
 void march_starts_on(vec3 origin, vec3 direction, float hit_epsilon, inout uint passing, inout uint leaving) {
   for (int k = 0; k < g_count; ++k) {
     if (object_distance(g_types[k], origin, g_relative[k], g_headings[k], g_radii[k]) < 2.0 * hit_epsilon) {
       passing |= 1u << uint(k);
       const bool leaves = HAS_INSIDE && leaves_through_start(g_types[k], origin, direction, g_relative[k], g_headings[k], g_radii[k]);
-      leaving |= leaves ? 1u << uint(k) : 0u;
+      const bool upward = HAS_PLANES_Z && g_types[k] == kObjectPlaneZ && direction.z > 0.0;
+      leaving |= leaves || upward ? 1u << uint(k) : 0u;
     }
   }
 }

@@ -87,7 +87,12 @@ MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, con
       // there (it would pass it 2 hit_epsilon a step). Exact balls keep
       // their own rule (march_exact_step).
       const bool into = HAS_SOLIDS && !HAS_INSIDE && d < -2.0 * hit_epsilon && g_types[k] != kObjectExactBall;
-      if (d > 2.0 * hit_epsilon || heads || into) passing &= ~bit;
+      // A plane z = c is passed until the ray turns back towards it (u_z
+      // turns from the start's: `leaving` says upward): one that leaves it
+      // almost level bends back into it (z'' = u2² - u1²) before it is 2
+      // hit_epsilon away (as the CPU's pass_ends).
+      const bool turned = HAS_PLANES_Z && g_types[k] == kObjectPlaneZ && ((leaving & bit) != 0u ? u.z < 0.0 : u.z > 0.0);
+      if (d > 2.0 * hit_epsilon || heads || into || turned) passing &= ~bit;
     }
     if (d < s.nearest) {
       s.others = s.nearest;
@@ -130,6 +135,14 @@ float march_plane_z_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
   return min(s.others, max(s.nearest, plane_z_step(q, u, g_relative[s.nearest_any].x, hit_epsilon)));
 }
 
+// The step where the nearest object is a plane x = c or y = c whose
+// crossing is not solved: how far the ray stays more than hit_epsilon from
+// it (plane_xy_step), up to the others' least distance.
+float march_plane_xy_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
+  const int k = s.nearest_any;
+  return min(s.others, max(s.nearest, plane_xy_step(q, u, g_types[k], g_constants[k], hit_epsilon)));
+}
+
 // The step of march_sol from q (tangent u, known unless a camera ray in a
 // world without solids). The nearest solid's clearance for camera rays, for
 // every segment and connection of a path (one that leaves a wall almost
@@ -141,11 +154,16 @@ float march_plane_z_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
 // slower on lavapipe though the steps fell tenfold). A plane z = c: its
 // clearance to hit_epsilon for every ray whose tangent is known
 // (march_plane_z_step: one square root; a ray leaving a floor almost level
-// crawled by |z - c|).
+// crawled by |z - c|). A plane x = c or y = c whose crossing is not solved
+// (every ray but a camera ray of the closed form): likewise its clearance
+// (march_plane_xy_step; one arriving at a grazing angle crawled by its distance).
 float march_step_length(MarchStep s, vec3 q, vec3 u, vec2 hz, float hit_epsilon, bool camera, bool rk4) {
   const int type = g_types[s.nearest_any];
   if ((camera || HAS_INSIDE || PATH_TRACING) && object_is_solid(type)) return march_clearance_step(s, q, u, hz);
   if (HAS_PLANES_Z && (HAS_SOLIDS || !camera || rk4) && type == kObjectPlaneZ) return march_plane_z_step(s, q, u, hit_epsilon);
+  if (HAS_PLANES_XY && (!camera || rk4) && (type == kObjectPlaneX || type == kObjectPlaneY)) {
+    return march_plane_xy_step(s, q, u, hit_epsilon);
+  }
   return s.nearest;
 }
 
