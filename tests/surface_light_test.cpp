@@ -1,9 +1,9 @@
-// Glowing boxes' and bound balls' light points (sol/surface_light.h):
+// Glowing boxes', bound balls' and tubes' light points (sol/surface_light.h):
 // each drawn with the density per unit of Sol's area the header claims,
 // checked against the area element of the sampler's own map by central
 // differences in the metric (frame components e^{-z}dx, e^{z}dy, dz); on
-// the surface the renderers draw (the objects' own bounds, sol::Box and
-// sol::sdf_ball); with the outward unit normal of that surface.
+// the surface the renderers draw (the objects' own bounds: sol::Box,
+// sol::sdf_ball, sol::Tube); with the outward unit normal of that surface.
 #include <array>
 #include <cmath>
 
@@ -119,6 +119,74 @@ TEST(SurfaceLight, BoundBallPointsHaveTheirDensity) {
       }
     }
   }
+}
+
+// A tube's light points over a window about a foot on its axis: for each
+// axis (x, y, vertical), radius and diffuse point's distance h, u0 picks
+// faces with shares counted over a fine grid, and on each face the density
+// times the area element of (u1, u2) -> foot · sol_tube_light_point
+// (central differences in the metric) is the face's share: the density
+// the header claims. Every point lies on sol::Tube's surface (its bound 0
+// to 1e-12) within the window, its normal is unit, orthogonal to both
+// tangents, sol::Tube's own (by differences, to 1e-4) and outward; the
+// density is 0 beyond the window; the foot lies on the axis with x's
+// coordinate along it.
+TEST(SurfaceLight, TubePointsHaveTheirDensityOverTheirWindow) {
+  const sol::Lattice axes = sol::Lattice::default_axes();
+  for (const sol::TubeAxis named : {sol::TubeAxis::X, sol::TubeAxis::Y, sol::TubeAxis::Z}) {
+    for (const double r : {0.05, 0.3, 1.0}) {
+      const sol::Tube tube = sol::make_tube(named, {0.3, -0.4, 0.25}, r, axes);
+      const int axis = named == sol::TubeAxis::X ? 0 : named == sol::TubeAxis::Y ? 1 : 2;
+      const dvec3 x(1.1, 0.7, -0.6);
+      const dvec3 foot = sol::kernel::sol_tube_light_foot(axis, tube.through, x);
+      EXPECT_NEAR(tube.distance(foot), -r, 1e-12);
+      EXPECT_NEAR(sol::multiply(sol::inverse(foot), x)[axis], 0.0, 1e-12) << "the foot has x's coordinate along the axis";
+      for (const double h : {0.0, 0.4, 3.0}) {
+        const std::string where = "axis " + std::to_string(axis) + ", r " + std::to_string(r) + ", h " + std::to_string(h);
+        auto face_of = [&](const dvec3& w) {
+          const dvec3 n = sol::kernel::sol_tube_light_normal(axis, w, r);
+          return (n.x > 0.5 ? 0 : n.x < -0.5 ? 1 : n.y > 0.5 ? 2 : n.y < -0.5 ? 3 : n.z > 0.0 ? 4 : 5);
+        };
+        std::array<int, 6> counted{};
+        const int grid = 40000;
+        for (int k = 0; k < grid; ++k) ++counted[face_of(sol::kernel::sol_tube_light_point(axis, r, h, (k + 0.5) / grid, 0.3, 0.6))];
+        for (int k = 0; k < grid; k += 97) {
+          const double u0 = (k + 0.5) / grid;
+          const double share = static_cast<double>(counted[face_of(sol::kernel::sol_tube_light_point(axis, r, h, u0, 0.5, 0.5))]) / grid;
+          for (const double u1 : {0.02, 0.5, 0.97}) {
+            for (const double u2 : {0.1, 0.6}) {
+              auto at = [&](double a, double b) { return sol::multiply(foot, sol::kernel::sol_tube_light_point(axis, r, h, u0, a, b)); };
+              const dvec3 w = sol::kernel::sol_tube_light_point(axis, r, h, u0, u1, u2), p = at(u1, u2);
+              const double e = 1e-6;
+              const dvec3 t1 = frame_at(p, (at(u1 + e, u2) - at(u1 - e, u2)) / (2.0 * e));
+              const dvec3 t2 = frame_at(p, (at(u1, u2 + e) - at(u1, u2 - e)) / (2.0 * e));
+              const double density = sol::kernel::sol_tube_light_density(axis, w, r, h);
+              ASSERT_NEAR(density * glm::length(glm::cross(t1, t2)), share, 2e-3 + 1e-5 * share) << where << " u0 " << u0;
+              EXPECT_NEAR(tube.distance(p), 0.0, 1e-12) << where;
+              EXPECT_NEAR(sol::kernel::sol_tube_light_bound(axis, w, r), 0.0, 1e-12) << where;
+              const dvec3 normal = sol::kernel::sol_tube_light_normal(axis, w, r);
+              EXPECT_NEAR(glm::length(normal), 1.0, 1e-12) << where;
+              EXPECT_NEAR(glm::dot(normal, t1), 0.0, 1e-6 * glm::length(t1)) << where;
+              EXPECT_NEAR(glm::dot(normal, t2), 0.0, 1e-6 * glm::length(t2)) << where;
+              EXPECT_LT(glm::length(normal - tube.normal(p)), 1e-4) << where;
+              const double step = 1e-4;
+              EXPECT_NEAR(tube.distance(sol::multiply(p, sol::ClosedFormGeodesic<double>(normal).at(step).position)), step, 1e-6) << where;
+            }
+          }
+        }
+        // Beyond the window along the axis: density 0.
+        dvec3 beyond = sol::kernel::sol_tube_light_point(axis, r, h, 0.9, 0.5, 0.5);
+        beyond[axis] = 1.01 * sol::kernel::sol_light_window(h);
+        EXPECT_EQ(sol::kernel::sol_tube_light_density(axis, beyond, r, h), 0.0) << where;
+      }
+    }
+  }
+}
+
+TEST(SurfaceLight, TheWindowGrowsWithTheDistanceUpToItsMost) {
+  EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(0.0), sol::kernel::kLightWindowBase);
+  EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(0.5), sol::kernel::kLightWindowBase + 0.5 * sol::kernel::kLightWindowSlope);
+  EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(100.0), sol::kernel::kLightWindowMost);
 }
 
 }  // namespace

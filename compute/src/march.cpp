@@ -580,14 +580,15 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                              .descriptor_sets = static_cast<std::uint32_t>(o.frames_in_flight)});
 }
 
-// Which connection table exact balls, point lights and glowing boxes and
-// bound balls (next-event estimation's connections) need: none, the minimisers', or
+// Which connection table exact balls, point lights and glowing boxes,
+// bound balls and tubes (next-event estimation's connections) need: none, the minimisers', or
 // with a reach the longer connections' (sol::ConnectionTable::shared).
 enum class SeedTable { None, Minimisers, Longer };
 
 SeedTable seed_table_of(const MarchFeatures& f) {
   // Exact balls take their minimisers' seeds from it too (sol_shortest).
-  if (!f.exact_balls && !f.exact_lights && !((f.boxes || f.bound_balls) && f.emission && !f.quotient)) return SeedTable::None;
+  const bool surfaces = f.boxes || f.bound_balls || f.tubes;  // (glowing: next-event estimation's)
+  if (!f.exact_balls && !f.exact_lights && !(surfaces && f.emission && !f.quotient)) return SeedTable::None;
   return f.light_reach ? SeedTable::Longer : SeedTable::Minimisers;
 }
 

@@ -946,12 +946,14 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
   return kernel::sol_cosine_direction(n, xi1, xi2);
 }
 
-// Next-event estimation to glowing balls and boxes. A glowing exact
+// Next-event estimation to glowing objects. A glowing exact
 // ball's sphere S = exp_c(r S²) is sampled by a direction w at its centre,
 // uniform on S², whose point y = exp_c(r w) has the area density
 // 1 / (4π J_c(w, r)), J the spreading of the geodesics from c
 // (sol::sphere_area_density); a glowing box's surface uniformly by area, a
-// bound ball's with a density in closed form (sol/surface_light.h). y is connected to the diffuse
+// bound ball's and a tube's with a density in closed form
+// (sol/surface_light.h; a tube's over a window about the foot of the
+// diffuse point on its axis, which the density depends on). y is connected to the diffuse
 // point x by its minimising geodesics, or with the ball's glow_reach by
 // every geodesic up to their distance plus that reach, each a direction d
 // at x and a length L, and each is one way light comes (next-event
@@ -972,58 +974,95 @@ glm::dvec3 cosine_direction(const glm::dvec3& n, PathRandom& random) {
 // geodesic to an image no target lists is reflection sampling's alone.
 struct GlowTarget {
   std::size_t object;          // the scene object
-  std::variant<Ball, Box> shape;  // in world coordinates (the quotient: one image of it, in the cover)
+  // In world coordinates (the quotient: one image of it, in the cover).
+  std::variant<Ball, Box, Tube> shape;
   double reach = 0.0;          // SceneObject::glow_reach: the connections up to the distance plus this
 
   const Ball* ball() const { return std::get_if<Ball>(&shape); }
   const Box* box() const { return std::get_if<Box>(&shape); }
+  const Tube* tube() const { return std::get_if<Tube>(&shape); }
   // A ball drawn by its bound: its points and density from sol/surface_light.h, as a box's.
   const Ball* bound_ball() const { return ball() && !ball()->exact ? ball() : nullptr; }
-  // Whether its area density is known in closed form (a box's, a bound ball's), else solved (an exact ball's).
-  bool closed_form() const { return box() || bound_ball(); }
-  const glm::dvec3& center() const { return box() ? box()->center : ball()->center; }
-  // The size it is picked by: a ball's radius, a box's sol_box_light_radius.
-  double size() const { return box() ? kernel::sol_box_light_radius(box()->half_size) : ball()->radius; }
-  // A closed_form target's surface in its own frame w = centre⁻¹·q
-  // (sol/surface_light.h): the point three numbers draw, the outward
-  // normal, the density per unit area and the bound there.
-  glm::dvec3 point(double u0, double u1, double u2) const {
-    return box() ? kernel::sol_box_light_point(box()->half_size, u0, u1, u2)
-                 : kernel::sol_ball_light_point(ball()->radius, u0, u1, u2);
+  // Whether its area density is known in closed form (every kind's but an exact ball's, which is solved).
+  bool closed_form() const { return !ball() || !ball()->exact; }
+  // A tube's coordinate axis (sol/surface_light.h: 0 x, 1 y, 2 z), drawn
+  // over a window about the foot of the diffuse point on it.
+  int axis() const { return tube()->vertical() ? 2 : tube()->direction.y == 0.0 ? 0 : 1; }
+  // The frame next-event estimation from x draws in: a ball's or box's
+  // centre, or the foot of x on a tube's axis.
+  glm::dvec3 centre(const glm::dvec3& x) const {
+    if (const Box* b = box()) return b->center;
+    if (const Ball* b = ball()) return b->center;
+    return kernel::sol_tube_light_foot(axis(), tube()->through, x);
+  }
+  // A tube's distance bound from x, which sets the window next-event
+  // estimation draws its points over (sol_light_window); 0 for the others.
+  double distance_from(const glm::dvec3& x) const { return tube() ? std::abs(bound(multiply(inverse(centre(x)), x))) : 0.0; }
+  // The size it is picked by from x: a ball's radius, a box's
+  // sol_box_light_radius, a tube's √(r W).
+  double size(const glm::dvec3& x) const {
+    if (const Box* b = box()) return kernel::sol_box_light_radius(b->half_size);
+    if (const Ball* b = ball()) return b->radius;
+    return std::sqrt(tube()->radius * kernel::sol_light_window(distance_from(x)));
+  }
+  // A closed_form target's surface in its own frame w = centre(x)⁻¹·q
+  // (sol/surface_light.h): the point three numbers draw (a tube's for a
+  // diffuse point at distance h), the outward normal, the density per unit
+  // area and the bound there.
+  glm::dvec3 point(double u0, double u1, double u2, double h) const {
+    if (const Box* b = box()) return kernel::sol_box_light_point(b->half_size, u0, u1, u2);
+    if (const Ball* b = ball()) return kernel::sol_ball_light_point(b->radius, u0, u1, u2);
+    return kernel::sol_tube_light_point(axis(), tube()->radius, h, u0, u1, u2);
   }
   glm::dvec3 normal(const glm::dvec3& w) const {
-    return box() ? kernel::sol_box_light_normal(w, box()->half_size) : kernel::sol_ball_light_normal(w);
+    if (const Box* b = box()) return kernel::sol_box_light_normal(w, b->half_size);
+    if (ball()) return kernel::sol_ball_light_normal(w);
+    return kernel::sol_tube_light_normal(axis(), w, tube()->radius);
   }
-  double density(const glm::dvec3& w) const {
-    return box() ? 1.0 / kernel::sol_box_light_area(box()->half_size) : kernel::sol_ball_light_density(w, ball()->radius);
+  // The density at w (a tube's for a diffuse point at distance h: 0 outside its window).
+  double density(const glm::dvec3& w, double h) const {
+    if (const Box* b = box()) return 1.0 / kernel::sol_box_light_area(b->half_size);
+    if (const Ball* b = ball()) return kernel::sol_ball_light_density(w, b->radius);
+    return kernel::sol_tube_light_density(axis(), w, tube()->radius, h);
   }
   double bound(const glm::dvec3& w) const {
-    return box() ? kernel::sol_box_light_bound(w, box()->half_size) : kernel::sol_ball_light_bound(w, ball()->radius);
+    if (const Box* b = box()) return kernel::sol_box_light_bound(w, b->half_size);
+    if (const Ball* b = ball()) return kernel::sol_ball_light_bound(w, b->radius);
+    return kernel::sol_tube_light_bound(axis(), w, tube()->radius);
   }
-  // A light point wy on the face of a box that holds wx: reflection sampling's alone (sol_box_light_same_face).
+  // A light point wy on the face of a box or tube that holds wx:
+  // reflection sampling's alone (sol_box_light_same_face, sol_tube_light_same_face).
   bool skips(const glm::dvec3& wx, const glm::dvec3& wy) const {
-    return box() && kernel::sol_box_light_same_face(wx, wy, box()->half_size);
+    if (const Box* b = box()) return kernel::sol_box_light_same_face(wx, wy, b->half_size);
+    return tube() && kernel::sol_tube_light_same_face(axis(), wx, wy, tube()->radius);
   }
 };
 
-// The targets: every glowing exact ball, box and bound ball of a listed
-// world in Sol; in a crowd (a Sol world of more than
+// The targets: every glowing exact ball, box, bound ball and tube about a
+// coordinate axis of a listed world in Sol (a glowing plane is found by
+// reflection: drawn over a window, it cost more than it saved,
+// docs/lighting.md); in a crowd (a Sol world of more than
 // kernel::kListedObjects objects, which the kernel samples none of) and in
 // a quotient the exact balls alone (the kernel path traces no crowd with
-// them: sol::vk::MarchRenderer::unsupported), the glowing boxes and bound
-// balls found by reflection on both devices. (In a quotient every image
+// them: sol::vk::MarchRenderer::unsupported), the other glowing objects
+// found by reflection on both devices. (In a quotient every image
 // around D is a target, and next-event estimation to them cost more than
 // it saved: docs/lighting.md.)
 std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
-  const bool surfaces = !prepared.features().crowd && !prepared.features().quotient;  // boxes and bound balls
+  // Boxes, bound balls and tubes about a coordinate axis.
+  const bool surfaces = !prepared.features().crowd && !prepared.features().quotient;
   std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
     if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
     const double reach = world.objects[o.owner].glow_reach;
     const Ball* ball = std::get_if<Ball>(&o.shape);
     if (ball && (ball->exact || surfaces)) out.push_back({o.owner, *ball, reach});
-    if (const Box* b = std::get_if<Box>(&o.shape); b && surfaces) out.push_back({o.owner, *b, reach});
+    if (!surfaces) continue;
+    if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
+    if (const Tube* t = std::get_if<Tube>(&o.shape); t && (t->vertical() || t->direction.x == 0.0 || t->direction.y == 0.0)) {
+      out.push_back({o.owner, *t, reach});
+    }
   }
   return out;
 }
@@ -1032,8 +1071,8 @@ std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
 // the solid angle it fills: s² / (s² + |x⁻¹c|²), x⁻¹c its centre seen from
 // x, s its size (kernel: glow_pick_weight in march/paths.glsl).
 double glow_pick_weight(const GlowTarget& g, const glm::dvec3& x) {
-  const glm::dvec3 v = multiply(inverse(x), g.center());
-  const double s2 = g.size() * g.size();
+  const glm::dvec3 v = multiply(inverse(x), g.centre(x));
+  const double size = g.size(x), s2 = size * size;
   return s2 / (s2 + glm::dot(v, v));
 }
 
@@ -1074,7 +1113,7 @@ bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchH
 // How far y lies from target g's surface (the target that holds y is the
 // nearest): from an exact ball's centre, the squared norm of c⁻¹y; else its bound.
 double glow_offset(const GlowTarget& g, const glm::dvec3& y) {
-  const glm::dvec3 v = multiply(inverse(g.center()), y);
+  const glm::dvec3 v = multiply(inverse(g.centre(y)), y);
   return g.closed_form() ? std::abs(g.bound(v)) : glm::dot(v, v);
 }
 
@@ -1128,11 +1167,12 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
     double area = 0.0, cos_y = 0.0;
     if (g->closed_form()) {
-      const glm::dvec3 wy = multiply(inverse(g->center()), y);
-      if (g->skips(multiply(inverse(g->center()), x), wy)) return 0.0;
+      const glm::dvec3 centre = g->centre(x);
+      const glm::dvec3 wy = multiply(inverse(centre), y);
+      if (g->skips(multiply(inverse(centre), x), wy)) return 0.0;
       // The surface's exact normal at y, against the geodesic's own tangent there.
       cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(L), g->normal(wy)));
-      area = g->density(wy);
+      area = g->density(wy, g->distance_from(x));
     } else {
       cos_y = std::abs(glm::dot(hit.direction, hit.normal));
       area = ball_area_density(*g->ball(), y, hit, quotient);
@@ -1152,11 +1192,12 @@ struct GlowPoint {
   double area;
 };
 
-GlowPoint glow_point(const GlowTarget& g, PathRandom& random) {
+GlowPoint glow_point(const GlowTarget& g, const glm::dvec3& x, PathRandom& random) {
   if (g.closed_form()) {
     const double u0 = random.uniform(), u1 = random.uniform(), u2 = random.uniform();
-    const glm::dvec3 w = g.point(u0, u1, u2);
-    return {multiply(g.center(), w), g.normal(w), g.density(w)};
+    const double h = g.distance_from(x);
+    const glm::dvec3 w = g.point(u0, u1, u2, h);
+    return {multiply(g.centre(x), w), g.normal(w), g.density(w, h)};
   }
   const Ball& ball = *g.ball();
   const double u = 2.0 * random.uniform() - 1.0, phi = 2.0 * std::numbers::pi * random.uniform();
@@ -1182,8 +1223,9 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>
     left -= w;
   }
   const GlowTarget& g = glowing[pick];
-  const GlowPoint p = glow_point(g, random);
-  if (g.skips(multiply(inverse(g.center()), hit.point), multiply(inverse(g.center()), p.y))) {
+  const GlowPoint p = glow_point(g, hit.point, random);
+  const glm::dvec3 centre = g.centre(hit.point);
+  if (g.skips(multiply(inverse(centre), hit.point), multiply(inverse(centre), p.y))) {
     return glm::dvec3(0.0);  // reflection sampling's alone
   }
   const double area = glow_pick_weight(g, hit.point) / total * p.area;

@@ -138,6 +138,16 @@ inline sol::Scene glow_over_plane_golden() {
 /// of them is seen again in its images around D.
 inline sol::Shape flat_box_lamp() { return sol::Box{{0.0, 0.1, 0.4}, {0.25, 0.15, 0.04}}; }
 inline sol::Shape bound_ball_lamp() { return sol::Ball{{0.0, 0.1, 0.4}, 0.12, false}; }
+/// Infinite lamps over the floor: a thin tube along x (y, vertical), a
+/// target of next-event estimation over a window about the diffuse point's
+/// foot on its axis (sol/surface_light.h); a glowing ceiling z = 1.2 and a
+/// wall x = -0.9, found by reflection.
+inline sol::Shape tube_lamp(sol::TubeAxis axis) {
+  const glm::dvec3 through = axis == sol::TubeAxis::Z ? glm::dvec3(-0.25, 0.35, 0.0) : glm::dvec3(0.0, 0.1, 0.4);
+  return sol::make_tube(axis, through, 0.04, sol::Lattice::default_axes());
+}
+inline sol::Shape ceiling_lamp() { return sol::PlaneZ{1.2}; }
+inline sol::Shape wall_lamp() { return sol::PlaneX{-0.9}; }
 inline sol::Scene lamp_over_plane(const sol::Shape& shape, bool golden = false) {
   sol::Scene s;
   if (golden) s.space = sol::GoldenSpace{};

@@ -5,75 +5,109 @@
 #ifndef SOL_MARCH_GLOW_GLSL
 #define SOL_MARCH_GLOW_GLSL
 
-// ---- Next-event estimation to glowing exact balls, boxes and bound balls
-// (glow_sample and glow_density in libsol/src/render.cpp, with the same
-// numbers): a target (in Sol a glowing object, in a quotient one of its
-// images around D) picked by glow_pick_weight at x, a point y of its
-// surface: an exact ball's y = c·exp(r w), w uniform on S² (area density
-// 1 / (4π J_c(w, r))), a box's and a bound ball's with the density
-// sol/surface_light.h gives in closed form, connected to the diffuse point
+// ---- Next-event estimation to glowing exact balls, boxes, bound balls
+// and tubes (glow_sample and glow_density in libsol/src/render.cpp, with
+// the same numbers): a target (in Sol a glowing object, in a quotient one
+// of its images around D) picked by glow_pick_weight at x, a point y of
+// its surface: an exact ball's y = c·exp(r w), w uniform on S² (area
+// density 1 / (4π J_c(w, r))), the other kinds' with the density
+// sol/surface_light.h gives in closed form (a tube's over a window about
+// x's foot on its axis), connected to the diffuse point
 // x by its geodesics up to the distance plus the ball's glow_reach
 // (scene_objects[k].glow.x; sol_connections, 0: the minimisers), each
 // weighed by its own J (sol_sphere_area_density) and counted where the
 // march along it first meets that object at its length; combined with
 // reflection sampling by the balance heuristic.
-const bool GLOW_SURFACES = HAS_BOXES || HAS_BOUND_BALLS;  // (one operation a constant: glslang)
+const bool GLOW_BOXES_BALLS = HAS_BOXES || HAS_BOUND_BALLS;  // (one operation a constant: glslang)
+const bool GLOW_SURFACES = GLOW_BOXES_BALLS || HAS_TUBES;
 const bool GLOW_KINDS = HAS_EXACT_BALLS || GLOW_SURFACES;
 const bool GLOW_SAMPLING = HAS_EMISSION && GLOW_KINDS;
 
 // Whether an object of kind `type` emitting `emission` is a target: an
-// exact ball, or in Sol a box or a bound ball (in a quotient those are
-// found by reflection: glow_targets in libsol/src/render.cpp says why).
-bool glow_kind(int type, vec3 emission) {
-  return ((HAS_EXACT_BALLS && type == kObjectExactBall) ||
-          (!QUOTIENT && ((HAS_BOXES && type == kObjectBox) || (HAS_BOUND_BALLS && type == kObjectBall)))) &&
-         emission != vec3(0.0);
+// exact ball, or in Sol a box, a bound ball or a tube about a coordinate
+// axis (`aligned`) (in a quotient those are found by reflection, as planes
+// everywhere: glow_targets in libsol/src/render.cpp says why).
+bool glow_kind(int type, vec3 emission, bool aligned) {
+  const bool surface = (HAS_BOXES && type == kObjectBox) || (HAS_BOUND_BALLS && type == kObjectBall) ||
+                       (HAS_TUBES && type == kObjectTube && aligned);
+  return ((HAS_EXACT_BALLS && type == kObjectExactBall) || (!QUOTIENT && surface)) && emission != vec3(0.0);
+}
+
+// A listed tube's axis (sol/surface_light.h: 0 x, 1 y, 2 vertical; -1
+// along another horizontal direction) from its record.
+int tube_axis(int k) {
+  if (int(g_relative[k].w) == kTubeVertical) return 2;
+  return g_headings[k].y == 0.0 ? 0 : (g_headings[k].x == 0.0 ? 1 : -1);
 }
 
 // Scene object k (from the uniforms: a quotient's march loads no g_types).
-bool glowing(int k) { return glow_kind(int(scene_objects[k].plane.x), scene_objects[k].material.rgb); }
+bool glowing(int k) {
+  const int type = int(scene_objects[k].plane.x);
+  return glow_kind(type, scene_objects[k].material.rgb, type != kObjectTube || (!QUOTIENT && !CROWD && tube_axis(k) >= 0));
+}
 
 // The targets: Sol's objects, or the quotient's images.
 int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
+
+// The geodesic from q to p (march coordinates) as the connection solver
+// takes it: p seen from q, in frame components at q.
+vec3 seen_from(vec3 q, vec3 p) {
+  const vec3 d = p - q;
+  return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
+}
 
 // A box's half size (a, b, c) from its centre's z and its coordinate half
 // widths (A, B) = (a e^{z}, b e^{-z}) there (sol::Box::coordinate_half_widths).
 vec3 box_half_size(float z, vec2 widths, float c) { return vec3(widths.x * exp(-z), widths.y * exp(z), c); }
 
 // A target's surface in its own frame w = centre⁻¹·q: its kind, a box's
-// half size, a ball's radius.
+// half size, a ball's or tube's radius, a tube's axis and the diffuse
+// point's distance h to it (which sets the window its points are drawn over).
 struct GlowShape {
   int type;
   vec3 half_size;
   float radius;
+  int axis;
+  float h;
 };
 
 // Whether its points' density is known in closed form (sol/surface_light.h:
-// a box's, a bound ball's), else solved from its centre (an exact ball's).
+// a box's, a bound ball's, a tube's), else solved from its centre (an exact ball's).
 bool closed_form(GlowShape s) { return GLOW_SURFACES && s.type != kObjectExactBall; }
 
-// sol/surface_light.h's functions for a box or a bound ball.
+bool shape_is_tube(GlowShape s) { return HAS_TUBES && s.type == kObjectTube; }
+
+// sol/surface_light.h's functions for a box, a bound ball or a tube.
 vec3 shape_point(GlowShape s, float u0, float u1, float u2) {
+  if (shape_is_tube(s)) return sol_tube_light_point(s.axis, s.radius, s.h, u0, u1, u2);
   return s.type == kObjectBox ? sol_box_light_point(s.half_size, u0, u1, u2) : sol_ball_light_point(s.radius, u0, u1, u2);
 }
 vec3 shape_normal(GlowShape s, vec3 w) {
+  if (shape_is_tube(s)) return sol_tube_light_normal(s.axis, w, s.radius);
   return s.type == kObjectBox ? sol_box_light_normal(w, s.half_size) : sol_ball_light_normal(w);
 }
 float shape_density(GlowShape s, vec3 w) {
+  if (shape_is_tube(s)) return sol_tube_light_density(s.axis, w, s.radius, s.h);
   return s.type == kObjectBox ? 1.0 / sol_box_light_area(s.half_size) : sol_ball_light_density(w, s.radius);
 }
 float shape_bound(GlowShape s, vec3 w) {
+  if (shape_is_tube(s)) return sol_tube_light_bound(s.axis, w, s.radius);
   return s.type == kObjectBox ? sol_box_light_bound(w, s.half_size) : sol_ball_light_bound(w, s.radius);
 }
-// A point wy on the face of a box that holds wx: reflection sampling's alone (sol_box_light_same_face).
+// A point wy on the face of a box or tube that holds wx: reflection
+// sampling's alone (sol_box_light_same_face, sol_tube_light_same_face).
 bool shape_skips(GlowShape s, vec3 wx, vec3 wy) {
+  if (shape_is_tube(s)) return sol_tube_light_same_face(s.axis, wx, wy, s.radius);
   return s.type == kObjectBox && sol_box_light_same_face(wx, wy, s.half_size);
 }
 
-// Target i: whether it is one, and its scene object, centre (march
-// coordinates), surface and the size it is picked by (a ball's radius, a
-// box's sol_box_light_radius).
-bool glow_target(int i, out int object, out vec3 centre, out GlowShape shape, out float size) {
+// Target i seen from the diffuse point x: whether it is one, and its scene
+// object, centre (march coordinates: a tube's the foot of x on its axis),
+// surface and the size it is picked by (a ball's radius, a box's
+// sol_box_light_radius, a tube's √(r W)).
+bool glow_target(int i, vec3 x, out int object, out vec3 centre, out GlowShape shape, out float size) {
+  shape.axis = 0;
+  shape.h = 0.0;
   if (QUOTIENT) {
     const Image m = images[i];
     object = int(m.info.z);
@@ -87,18 +121,24 @@ bool glow_target(int i, out int object, out vec3 centre, out GlowShape shape, ou
     centre = g_relative[i].xyz;
     shape.radius = g_radii[i];
     shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, g_headings[i], g_relative[i].w) : vec3(0.0);
+    if (shape_is_tube(shape)) {
+      shape.axis = tube_axis(i);
+      centre = sol_tube_light_foot(shape.axis, centre, x);
+      shape.h = abs(shape_bound(shape, seen_from(centre, x)));
+    }
   }
   size = shape.type == kObjectBox ? sol_box_light_radius(shape.half_size) : shape.radius;
-  return glow_kind(shape.type, scene_objects[object].material.rgb);
+  if (shape_is_tube(shape)) size = sqrt(shape.radius * sol_light_window(shape.h));
+  return glow_kind(shape.type, scene_objects[object].material.rgb, shape.axis >= 0);
 }
 
 // The surface of the object the march met at h (a listed one, or a
-// quotient's image) and its centre.
+// quotient's image) and its centre (a tube's: the foot of h on its axis).
 GlowShape hit_shape(MarchHit h, out vec3 centre) {
   int object;
   GlowShape shape;
   float size;
-  glow_target(h.k, object, centre, shape, size);
+  glow_target(h.k, h.q, object, centre, shape, size);
   return shape;
 }
 
@@ -107,15 +147,8 @@ int glowing_count() {
   vec3 centre;
   GlowShape shape;
   float size;
-  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, object, centre, shape, size) ? 1 : 0;
+  for (int i = 0; i < glow_target_slots(); ++i) n += glow_target(i, vec3(0.0), object, centre, shape, size) ? 1 : 0;
   return n;
-}
-
-// The geodesic from q to p (march coordinates) as the connection solver
-// takes it: p seen from q, in frame components at q.
-vec3 seen_from(vec3 q, vec3 p) {
-  const vec3 d = p - q;
-  return vec3(exp(-q.z) * d.x, exp(q.z) * d.y, d.z);
 }
 
 // The weight with which x picks a target of centre c and radius r, about
@@ -131,7 +164,7 @@ float glow_pick_total(vec3 x) {
   vec3 centre;
   GlowShape shape;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (glow_target(i, object, centre, shape, size)) total += glow_pick_weight(x, centre, size);
+    if (glow_target(i, x, object, centre, shape, size)) total += glow_pick_weight(x, centre, size);
   }
   return total;
 }
@@ -194,14 +227,14 @@ bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, 
   q.y = QUOTIENT ? sol_translate(x, sol_spread(d, L).position) : hit;
   q.c = vec3(0.0);
   q.r = 0.0;
-  q.shape = GlowShape(kObjectExactBall, vec3(0.0), 0.0);
+  q.shape = GlowShape(kObjectExactBall, vec3(0.0), 0.0, 0, 0.0);
   vec3 centre;
   GlowShape shape;
   float size, nearest = 1e30;
   int object;
   // The nearest target: an exact ball's by its centre, a box's or bound ball's by its bound.
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, shape, size) || object != k) continue;
+    if (!glow_target(i, x, object, centre, shape, size) || object != k) continue;
     const vec3 v = seen_from(centre, q.y);
     const float offset = closed_form(shape) ? abs(shape_bound(shape, v)) : dot(v, v);
     if (offset < nearest) {
@@ -296,11 +329,11 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   float left = path_uniform(state) * total, weight_k = 0.0;
   int object;
   vec3 c = vec3(0.0), centre;
-  GlowShape picked = GlowShape(kObjectExactBall, vec3(0.0), 0.0), shape;
+  GlowShape picked = GlowShape(kObjectExactBall, vec3(0.0), 0.0, 0, 0.0), shape;
   float size;
   g.k = -1;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, object, centre, shape, size)) continue;
+    if (!glow_target(i, h.q, object, centre, shape, size)) continue;
     const float w = glow_pick_weight(h.q, centre, size);
     if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
       g.k = object;
@@ -312,7 +345,7 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
   }
   vec3 y;
   g.skip = false;
-  if (closed_form(picked)) {  // a box's or bound ball's point (sol/surface_light.h)
+  if (closed_form(picked)) {  // a box's, bound ball's or tube's point (sol/surface_light.h)
     const float u0 = path_uniform(state), u1 = path_uniform(state), u2 = path_uniform(state);
     const vec3 w = shape_point(picked, u0, u1, u2);
     y = sol_translate(c, w);

@@ -161,6 +161,14 @@ SOL_CONSTANT(SOL_REAL, kMinSpreading, 0.01);
 /// since Sol's sectional curvatures are at most 1 and its injectivity
 /// radius is at least √2π (docs/lighting.md, "Enclosures").
 SOL_CONSTANT(SOL_REAL, kConvexBallRadius, 1.5);
+/// Glowing tubes are infinite: next-event estimation draws points of a
+/// window of them about the diffuse point's foot on the axis, of half
+/// length kLightWindowBase + kLightWindowSlope h (h the point's distance
+/// bound to the tube), at most kLightWindowMost (sol/surface_light.h);
+/// reflection sampling finds the light from beyond it.
+SOL_CONSTANT(SOL_REAL, kLightWindowBase, 1.0);
+SOL_CONSTANT(SOL_REAL, kLightWindowSlope, 3.0);
+SOL_CONSTANT(SOL_REAL, kLightWindowMost, 6.0);
 
 // ---- The sRGB transfer function (IEC 61966-2-1), for 8-bit output
 SOL_CONSTANT(SOL_REAL, kSrgbLinearLimit, 0.0031308);  ///< below it the curve is linear ...

@@ -1,7 +1,8 @@
-// Glowing boxes and bound balls as lights, written once for the CPU
-// renderer (double) and the kernels (float): next-event estimation draws a
-// point of the surface with a density per unit area known in closed form
-// (docs/lighting.md, "Glowing boxes and bound balls").
+// Glowing boxes, bound balls and tubes as lights, written once for the
+// CPU renderer (double) and the kernels (float): next-event estimation
+// draws a point of the surface with a density per unit area known in
+// closed form (docs/lighting.md, "Glowing boxes and bound balls", "Glowing
+// tubes").
 //
 // Boxes: uniformly by area. In the box's own frame w = centre⁻¹·q
 // the box is [−a, a] × [−b, b] × [−c, c], (a, b, c) its half size, and the
@@ -26,6 +27,7 @@ namespace sol::kernel {
 #define SOL_LIGHT_VEC3 glm::dvec3
 using std::abs;
 using std::asinh;
+using std::atan;
 using std::cos;
 using std::cosh;
 using std::exp;
@@ -33,7 +35,9 @@ using std::log;
 using std::sin;
 using std::sinh;
 using std::sqrt;
+using std::tan;
 using std::max;
+using std::min;
 #else
 #define SOL_SHARED_FUNCTION
 #define SOL_LIGHT_VEC3 vec3
@@ -155,6 +159,108 @@ SOL_SHARED_FUNCTION SOL_REAL sol_ball_light_bound(SOL_LIGHT_VEC3 w, SOL_REAL rad
   const SOL_REAL a = max(0.5 * w.x * w.x * exp(-w.z), 0.5 * w.y * w.y * exp(w.z));
   const SOL_REAL sh = sinh(0.5 * w.z);
   return 2.0 * asinh(sqrt(sh * sh + 0.5 * a)) - radius;
+}
+
+// Tubes about a coordinate axis are infinite: next-event estimation draws
+// a point of a window of them about the diffuse point x's foot f on the
+// axis (sol_tube_light_foot), in the frame w = f⁻¹·q, with a density per
+// unit area in closed form that depends on x's distance bound h to the
+// tube (which sets the window's half size W, sol_light_window, and how
+// the points gather about the foot), 0 outside the window: reflection
+// sampling's alone there.
+// The tubes are those of sol::sdf_tube: axis 2 (vertical), |x| e^{−z} <= S
+// and |y| e^{z} <= S (S = sinh r): four faces x = ±S e^{z}, y = ±S e^{−z},
+// area elements e^{z} cosh r dy dz and e^{−z} cosh r dx dz, each of area
+// 2S cosh r = sinh 2r per unit of z; axis 0 (along x), |y| e^{z} <= S and
+// |z| <= r: faces z = ±r (dx dy: 2S e^{∓r} per unit of x) and y = ±S e^{−z}
+// (e^{−z} cosh r dx dz: sinh 2r per unit of x); 4 sinh 2r a unit of length
+// either way. Axis 1 (along y) is axis 0's image under the isometry and
+// automorphism (x, y, z) -> (y, x, −z) (sol_axis_swap), which maps the
+// frame E1, E2, E3 to E2, E1, −E3. Along the axis the coordinate t
+// follows a Cauchy density a / (a² + t²) on [−W, W], a = h + r (the light
+// of a line at distance a falls off about so), uniformly across it.
+
+/// The window's half size for a diffuse point at distance bound h from a tube.
+SOL_SHARED_FUNCTION SOL_REAL sol_light_window(SOL_REAL h) {
+  return min(kLightWindowBase + kLightWindowSlope * max(h, SOL_REAL(0.0)), kLightWindowMost);
+}
+
+SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_axis_swap(SOL_LIGHT_VEC3 w) { return SOL_LIGHT_VEC3(w.y, w.x, -w.z); }
+
+/// The point of the tube's axis (through `through` along coordinate axis
+/// `axis`) with x's coordinate along it: the window's centre.
+SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_tube_light_foot(int axis, SOL_LIGHT_VEC3 through, SOL_LIGHT_VEC3 x) {
+  if (axis == 2) return SOL_LIGHT_VEC3(through.x, through.y, x.z);
+  return axis == 0 ? SOL_LIGHT_VEC3(x.x, through.y, through.z) : SOL_LIGHT_VEC3(through.x, x.y, through.z);
+}
+
+/// The tube's bound at w (the frame of a point of its axis): sol::sdf_tube's.
+SOL_SHARED_FUNCTION SOL_REAL sol_tube_light_bound(int axis, SOL_LIGHT_VEC3 w, SOL_REAL radius) {
+  const SOL_LIGHT_VEC3 v = axis == 1 ? sol_axis_swap(w) : w;
+  const SOL_REAL across = asinh(abs(v.y) * exp(v.z));
+  return max(axis == 2 ? asinh(abs(v.x) * exp(-v.z)) : abs(v.z), across) - radius;
+}
+
+/// The outward unit normal (frame components) of the tube's face nearest w
+/// (the larger term of its bound): vertical, (±1, 0, −S)/cosh r on x =
+/// ±S e^{z} and (0, ±1, S)/cosh r on y = ±S e^{−z}; along x, (0, 0, ±1) on
+/// z = ±r and (0, ±1, S)/cosh r on y = ±S e^{−z}.
+SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_tube_light_normal(int axis, SOL_LIGHT_VEC3 w, SOL_REAL radius) {
+  const SOL_LIGHT_VEC3 v = axis == 1 ? sol_axis_swap(w) : w;
+  const SOL_REAL across = asinh(abs(v.y) * exp(v.z));
+  const SOL_REAL other = axis == 2 ? asinh(abs(v.x) * exp(-v.z)) : abs(v.z);
+  const SOL_REAL s = sinh(radius), ch = cosh(radius);
+  SOL_LIGHT_VEC3 n = SOL_LIGHT_VEC3(0.0, v.y >= 0.0 ? 1.0 : -1.0, s) / ch;
+  if (other > across) {
+    n = axis == 2 ? SOL_LIGHT_VEC3(v.x >= 0.0 ? 1.0 : -1.0, 0.0, -s) / ch : SOL_LIGHT_VEC3(0.0, 0.0, v.z >= 0.0 ? 1.0 : -1.0);
+  }
+  return axis == 1 ? sol_axis_swap(n) : n;
+}
+
+/// Whether a path's vertex at wx lies on the tube's face that holds the
+/// light point wy (both in the frame of one foot): left to reflection, as
+/// a box's (sol_box_light_same_face).
+SOL_SHARED_FUNCTION bool sol_tube_light_same_face(int axis, SOL_LIGHT_VEC3 wx, SOL_LIGHT_VEC3 wy, SOL_REAL radius) {
+  return abs(sol_tube_light_bound(axis, wx, radius)) < 1e-3 &&
+         sol_tube_light_normal(axis, wx, radius) == sol_tube_light_normal(axis, wy, radius);
+}
+
+/// The coordinate along the tube's axis of w (its foot's frame).
+SOL_SHARED_FUNCTION SOL_REAL sol_tube_light_along(int axis, SOL_LIGHT_VEC3 w) { return axis == 2 ? w.z : (axis == 0 ? w.x : w.y); }
+
+/// The density per unit area of sol_tube_light_point at w (its foot's
+/// frame) for a diffuse point at distance h: the Cauchy density of t over
+/// the tube's area a unit of length, 4 sinh 2r; 0 beyond the window.
+SOL_SHARED_FUNCTION SOL_REAL sol_tube_light_density(int axis, SOL_LIGHT_VEC3 w, SOL_REAL radius, SOL_REAL h) {
+  const SOL_REAL window = sol_light_window(h), a = max(h, SOL_REAL(0.0)) + radius, t = sol_tube_light_along(axis, w);
+  if (!(abs(t) <= window)) return 0.0;
+  return a / ((a * a + t * t) * 2.0 * atan(window / a) * 4.0 * sinh(2.0 * radius));
+}
+
+/// The point of the tube's surface (its foot's frame) that three uniform
+/// numbers draw for a diffuse point at distance h: u0 picks a face by its
+/// share of the area, u1 the coordinate t = a tan θ along the axis (θ
+/// uniform), u2 the one across the face (along x, the side faces' z with
+/// density e^{−z}).
+SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_tube_light_point(int axis, SOL_REAL radius, SOL_REAL h, SOL_REAL u0, SOL_REAL u1,
+                                                        SOL_REAL u2) {
+  const SOL_REAL window = sol_light_window(h), a = max(h, SOL_REAL(0.0)) + radius;
+  const SOL_REAL s = sinh(radius), t = a * tan((2.0 * u1 - 1.0) * atan(window / a)), across = 2.0 * u2 - 1.0;
+  if (axis == 2) {  // four faces of equal area
+    if (u0 < 0.5) return SOL_LIGHT_VEC3(u0 < 0.25 ? s * exp(t) : -s * exp(t), across * s * exp(-t), t);
+    return SOL_LIGHT_VEC3(across * s * exp(t), u0 < 0.75 ? s * exp(-t) : -s * exp(-t), t);
+  }
+  // Along x: z = +r, z = −r, y = +S e^{−z}, y = −S e^{−z}, shares e^{−r}/(4 cosh r), e^{r}/(4 cosh r), 1/4, 1/4.
+  const SOL_REAL top = 0.25 * exp(-radius) / cosh(radius), bottom = 0.25 * exp(radius) / cosh(radius);
+  SOL_LIGHT_VEC3 p;
+  if (u0 < top + bottom) {
+    const SOL_REAL z = u0 < top ? radius : -radius;
+    p = SOL_LIGHT_VEC3(t, across * s * exp(-z), z);
+  } else {
+    const SOL_REAL z = -log(exp(radius) - u2 * (exp(radius) - exp(-radius)));  // density e^{−z} on [−r, r]
+    p = SOL_LIGHT_VEC3(t, u0 < top + bottom + 0.25 ? s * exp(-z) : -s * exp(-z), z);
+  }
+  return axis == 1 ? sol_axis_swap(p) : p;
 }
 
 #undef SOL_SHARED_FUNCTION
