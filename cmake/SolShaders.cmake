@@ -79,6 +79,8 @@ function(sol_add_shader target source)
   endforeach()
 
   file(RELATIVE_PATH shown "${PROJECT_SOURCE_DIR}" "${source_path}")
+  # (Ninja makes an output's folder itself; the Makefile generators do not.)
+  file(MAKE_DIRECTORY "${generated_dir}/shaders")
   add_custom_command(
     OUTPUT "${header}"
     COMMAND "${SOL_GLSLANG_VALIDATOR}" --target-env vulkan1.2 --spirv-val --quiet
