@@ -61,6 +61,7 @@ class Frames {
     ImGui::SetNextWindowSize(ImVec2(600.0f, 400.0f));
     ImGui::Begin("object");
     if (focus) ImGui::SetKeyboardFocusHere();
+    slider_width = ImGui::CalcItemWidth();
     const bool changed = sol::viewer::texture_controls(o);
     button_min = ImGui::GetItemRectMin();
     button_max = ImGui::GetItemRectMax();
@@ -96,8 +97,21 @@ class Frames {
   // Clicks the left button at the centre of the last frame's `button`
   // (moved there one frame, pressed the next, released the one after).
   bool click_button(sol::SceneObject& o) {
+    return click_at(o, ImVec2(0.5f * (button_min.x + button_max.x), 0.5f * (button_min.y + button_max.y)));
+  }
+  // Clicks the cells slider (the widget on the line above the button)
+  // at `share` of the width of its first (x) or second (y) half: a
+  // slider's value follows the mouse along it.
+  bool click_cells(sol::SceneObject& o, bool second, float share) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float width = 0.5f * (slider_width - style.ItemInnerSpacing.x);
+    const float left = button_min.x + (second ? width + style.ItemInnerSpacing.x : 0.0f);
+    const float y = button_min.y - style.ItemSpacing.y - 0.5f * ImGui::GetFrameHeight();
+    return click_at(o, ImVec2(left + share * width, y));
+  }
+  bool click_at(sol::SceneObject& o, ImVec2 where) {
     ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = ImVec2(0.5f * (button_min.x + button_max.x), 0.5f * (button_min.y + button_max.y));
+    io.MousePos = where;
     bool changed = frame(o);
     io.MouseDown[0] = true;
     changed |= frame(o);
@@ -107,9 +121,10 @@ class Frames {
   }
 
   ImVec2 button_min, button_max;
+  float slider_width = 0.0f;  // the window's item width: the cells slider's two halves and their spacing
 };
 
-TEST(Panel, ATextureTypedIsReadThroughTheProgramsReaderAndTakenOffByItsButton) {
+TEST(Panel, ATextureTypedIsReadThroughTheProgramsReaderItsCellsSetAndTakenOffByItsButton) {
   sol::set_texture_reader(two_texels);
   g_asked.clear();
   sol::SceneObject o{sol::Ball{{0.0, 0.0, 0.0}, 0.5}, {1.0, 1.0, 1.0}};
@@ -135,6 +150,16 @@ TEST(Panel, ATextureTypedIsReadThroughTheProgramsReaderAndTakenOffByItsButton) {
   EXPECT_FALSE(frames.type_and_enter(o, "missing.png"));
   ASSERT_EQ(g_asked.size(), 2u);
   EXPECT_EQ(g_asked[1], "missing.png");
+  EXPECT_EQ(o.texture, read);
+
+  // The cells slider, as powers of two from 1/16 to 64: its x half
+  // clicked at its right end sets 64 cells across, its y half at its left
+  // end 1/16; the texture stays.
+  frames.frame(o);
+  EXPECT_TRUE(frames.click_cells(o, false, 0.98f));
+  EXPECT_EQ(o.texture_cells, glm::dvec2(64.0, 1.0));
+  EXPECT_TRUE(frames.click_cells(o, true, 0.02f));
+  EXPECT_EQ(o.texture_cells, glm::dvec2(64.0, 1.0 / 16.0));
   EXPECT_EQ(o.texture, read);
 
   // The "no texture" button (the last widget drawn) takes it off.
