@@ -2147,12 +2147,7 @@ TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
   auto render = [&](sol::PathSampling sampling, int samples, std::uint64_t seed) {
     return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
   };
-  const sol::RenderResult both = render(sol::PathSampling::Combined, 8, 1);
-  const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 8, 2);
-  const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 8, 3);
-  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
-  sol::test::expect_estimators_agree(both, glow, "combined - glow");
-  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
+  const sol::RenderResult both = sol::test::three_strategies_agree(scene, 10, 10, 8).combined;
   // The glow is seen: the plane under the ball is lit.
   double lit = 0.0;
   for (std::size_t k = 0; k < both.object.size(); ++k) lit += both.object[k] == 1.0f ? both.rgba[4 * k] : 0.0;
@@ -2176,17 +2171,7 @@ TEST(Path, ReflectionSamplingGlowSamplingAndBothAgree) {
 // estimation's image by 0.061 against reflection sampling's, 5 standard
 // errors). The sanitizers run it at 1 sample.
 TEST(Path, NextEventEstimationFromInsideAGlowingBallAgrees) {
-  const sol::Scene scene = sol::test::room_in_a_glowing_ball();
-  const int samples = sol::test::kSanitizedBuild ? 1 : 12;
-  auto render = [&](sol::PathSampling sampling, std::uint64_t seed) {
-    return sol::render_cpu(scene, sol::test::path_options(10, 8, samples, seed, sampling));
-  };
-  const sol::RenderResult both = render(sol::PathSampling::Combined, 1);
-  const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 2);
-  const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 3);
-  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
-  sol::test::expect_estimators_agree(both, glow, "combined - next-event estimation");
-  sol::test::expect_estimators_agree(reflection, glow, "reflection - next-event estimation");
+  sol::test::three_strategies_agree(sol::test::room_in_a_glowing_ball(), 10, 8, sol::test::kSanitizedBuild ? 1 : 12);
 }
 
 // The same in the golden quotient (glow_over_plane_golden): next-event
@@ -2205,12 +2190,9 @@ TEST(Path, GlowSamplingInTheQuotientAgreesAndHelps) {
     return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
   };
   const int samples = sol::test::kSanitizedBuild ? 2 : 8;
-  const sol::RenderResult both = render(sol::PathSampling::Combined, samples, 1);
-  const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, samples, 2);
-  const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, samples, 3);
-  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
-  sol::test::expect_estimators_agree(both, glow, "combined - glow");
-  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
+  const sol::test::ThreeStrategies images = sol::test::three_strategies_agree(scene, 10, 10, samples);
+  const sol::RenderResult& both = images.combined;
+  const sol::RenderResult& reflection = images.reflection;
   if (sol::test::kSanitizedBuild) return;
   const sol::RenderResult reference = render(sol::PathSampling::Combined, 32, 4);
   auto median_error = [&](const sol::RenderResult& a) { return sol::test::median_red_error_on(a, reference, 1); };
@@ -2232,16 +2214,7 @@ TEST(Path, GlowSamplingInTheQuotientAgreesAndHelps) {
 TEST(Path, GlowSamplingInATurningQuotientAgrees) {
   sol::Scene scene = sol::test::glow_over_plane_golden();
   sol::set_space(scene, sol::MonodromySpace{{-3, -1, -2, -1}});
-  const int samples = sol::test::kSanitizedBuild ? 2 : 8;
-  auto render = [&](sol::PathSampling sampling, std::uint64_t seed) {
-    return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
-  };
-  const sol::RenderResult both = render(sol::PathSampling::Combined, 1);
-  const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, 2);
-  const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, 3);
-  sol::test::expect_estimators_agree(both, reflection, "combined - reflection");
-  sol::test::expect_estimators_agree(both, glow, "combined - glow");
-  sol::test::expect_estimators_agree(reflection, glow, "reflection - glow");
+  sol::test::three_strategies_agree(scene, 10, 10, sol::test::kSanitizedBuild ? 2 : 8);
 }
 
 // Next-event estimation to a glowing box and to a glowing ball drawn by
@@ -2268,12 +2241,9 @@ TEST(Path, GlowingBoxesAndBoundBallsAreLightsToo) {
       return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
     };
     const int samples = sol::test::kSanitizedBuild ? 2 : 16;
-    const sol::RenderResult both = render(sol::PathSampling::Combined, samples, 1);
-    const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, samples, 2);
-    const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, samples, 3);
-    sol::test::expect_estimators_agree(both, reflection, where + "combined - reflection");
-    sol::test::expect_estimators_agree(both, glow, where + "combined - glow");
-    sol::test::expect_estimators_agree(reflection, glow, where + "reflection - glow");
+    const sol::test::ThreeStrategies images = sol::test::three_strategies_agree(scene, 10, 10, samples, where);
+    const sol::RenderResult& both = images.combined;
+    const sol::RenderResult& reflection = images.reflection;
     const sol::Scene golden = sol::test::lamp_over_plane(lamp, true);
     EXPECT_EQ(sol::render_cpu(golden, sol::test::path_options(6, 4, 2, 5, sol::PathSampling::GlowOnly)).rgba,
               sol::render_cpu(golden, sol::test::path_options(6, 4, 2, 5, sol::PathSampling::ReflectionOnly)).rgba)
@@ -2314,13 +2284,10 @@ TEST(Path, GlowingTubesAreLightsOverAWindow) {
       return sol::render_cpu(scene, sol::test::path_options(10, 10, samples, seed, sampling));
     };
     const int samples = sol::test::kSanitizedBuild ? 2 : 16;
-    const sol::RenderResult both = render(sol::PathSampling::Combined, samples, 1);
-    const sol::RenderResult reflection = render(sol::PathSampling::ReflectionOnly, samples, 2);
-    const sol::RenderResult glow = render(sol::PathSampling::GlowOnly, samples, 3);
-    EXPECT_EQ(both.rays_out_of_steps + reflection.rays_out_of_steps + glow.rays_out_of_steps, 0u) << where;
-    sol::test::expect_estimators_agree(both, reflection, where + "combined - reflection");
-    sol::test::expect_estimators_agree(both, glow, where + "combined - glow");
-    sol::test::expect_estimators_agree(reflection, glow, where + "reflection - glow");
+    const sol::test::ThreeStrategies images = sol::test::three_strategies_agree(scene, 10, 10, samples, where);
+    const sol::RenderResult& both = images.combined;
+    const sol::RenderResult& reflection = images.reflection;
+    EXPECT_EQ(both.rays_out_of_steps + reflection.rays_out_of_steps + images.glow.rays_out_of_steps, 0u) << where;
     if (sol::test::kSanitizedBuild) continue;
     // The noise: the spread of the difference of two seeds' images.
     const double combined = sol::test::red_difference(both, render(sol::PathSampling::Combined, samples, 4)).error;

@@ -103,6 +103,25 @@ inline sol::RenderOptions path_options(int width, int height, int samples, std::
   return settings;
 }
 
+/// The three estimators' CPU images of `scene` (width × height, `samples`
+/// paths a pixel; combined from seed 1, reflection alone from 2, next-event
+/// estimation alone from 3), held to agree pairwise (expect_estimators_agree).
+struct ThreeStrategies {
+  sol::RenderResult combined, reflection, glow;
+};
+inline ThreeStrategies three_strategies_agree(const sol::Scene& scene, int width, int height, int samples,
+                                              const std::string& where = "") {
+  auto render = [&](sol::PathSampling sampling, std::uint64_t seed) {
+    return sol::render_cpu(scene, path_options(width, height, samples, seed, sampling));
+  };
+  ThreeStrategies out{render(sol::PathSampling::Combined, 1), render(sol::PathSampling::ReflectionOnly, 2),
+                      render(sol::PathSampling::GlowOnly, 3)};
+  expect_estimators_agree(out.combined, out.reflection, where + "combined - reflection");
+  expect_estimators_agree(out.combined, out.glow, where + "combined - glow");
+  expect_estimators_agree(out.reflection, out.glow, where + "reflection - glow");
+  return out;
+}
+
 /// A small glowing exact ball over a diffuse plane, seen from above.
 inline sol::Scene glow_over_plane() {
   sol::Scene s;
