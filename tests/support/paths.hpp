@@ -122,6 +122,14 @@ inline ThreeStrategies three_strategies_agree(const sol::Scene& scene, int width
   return out;
 }
 
+/// That `scene`'s glowing objects are no targets of next-event estimation:
+/// alone, it is reflection sampling, path for path (6 × 4, 2 paths, one seed).
+inline void expect_no_glow_targets(const sol::Scene& scene, const std::string& where) {
+  EXPECT_EQ(sol::render_cpu(scene, path_options(6, 4, 2, 5, sol::PathSampling::GlowOnly)).rgba,
+            sol::render_cpu(scene, path_options(6, 4, 2, 5, sol::PathSampling::ReflectionOnly)).rgba)
+      << where;
+}
+
 /// A small glowing exact ball over a diffuse plane, seen from above.
 inline sol::Scene glow_over_plane() {
   sol::Scene s;
