@@ -45,9 +45,8 @@ namespace {
 struct MarchLimits {
   double length = std::numeric_limits<double>::infinity();  ///< with the world's max_distance, the shorter
   bool leave_start = false;
-  /// A scene object the march leaves out (-1: none): a path's geodesic to a
-  /// point of the glowing exact ball that encloses its start (glow_enclosed),
-  /// in Sol.
+  /// A scene object the march leaves out (-1: none): a path's segment from
+  /// the inner wall of a convex exact ball up to its exit (the exit search), in Sol.
   int skip = -1;
 };
 
@@ -1069,17 +1068,30 @@ std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
 
 // The weight with which next-event estimation from x picks target g, about
 // the solid angle it fills: s² / (s² + |x⁻¹c|²), x⁻¹c its centre seen from
-// x, s its size (kernel: glow_pick_weight in march/paths.glsl).
-double glow_pick_weight(const GlowTarget& g, const glm::dvec3& x) {
+// x, s its size (kernel: glow_pick_weight in march/glow.glsl); 0 for the
+// glowing solid whose inner wall x lies on (`inside`, its scene object;
+// -1 for none): every direction from there meets that solid or what it
+// holds, so cosine-weighted reflection finds its light better than points
+// drawn on it (its emission then counts in full where a path meets it).
+double glow_pick_weight(const GlowTarget& g, const glm::dvec3& x, int inside) {
+  if (static_cast<int>(g.object) == inside) return 0.0;
   const glm::dvec3 v = multiply(inverse(x), g.centre(x));
   const double size = g.size(x), s2 = size * size;
   return s2 / (s2 + glm::dot(v, v));
 }
 
-double glow_pick_total(const std::vector<GlowTarget>& glowing, const glm::dvec3& x) {
+double glow_pick_total(const std::vector<GlowTarget>& glowing, const glm::dvec3& x, int inside) {
   double total = 0.0;
-  for (const GlowTarget& g : glowing) total += glow_pick_weight(g, x);
+  for (const GlowTarget& g : glowing) total += glow_pick_weight(g, x, inside);
   return total;
+}
+
+// The solid whose inner wall the hit lies on (met from inside it: seen so,
+// or heading out through its surface, as the quotient's march reports an
+// exact ball's inner wall), else -1 (the kernel's inner_wall_of).
+int inner_wall_of(const World& world, const MarchHit& hit) {
+  const bool solid = hit.object > 0 && is_solid(world.objects[static_cast<std::size_t>(hit.object - 1)].shape);
+  return solid && (hit.inside || glm::dot(hit.normal, hit.direction) > 0.0) ? hit.object - 1 : -1;
 }
 
 // The geodesics next-event estimation connects x to y of target g by: the
@@ -1096,18 +1108,6 @@ constexpr double kPathSpreadingTolerance = 1e-6;
 // far below any image's noise, at a tenth of its cost).
 double path_spreading(const glm::dvec3& direction, double t) {
   return sphere_area_density(direction, t, kPathSpreadingTolerance);
-}
-
-// Whether the diffuse hit lies on the inner wall of glowing ball g, a ball
-// small enough to be strongly convex (kernel::kConvexBallRadius): the
-// minimisers from it to a point y of the sphere stay inside the ball and
-// meet its sphere first at y, so the march along them leaves the ball out
-// and stops short of y by the connection's tolerance (only the other
-// objects can be in the way). In Sol, with no reach (the longer geodesics
-// may leave the ball).
-bool glow_enclosed(const MarchWorld& prepared, const GlowTarget& g, const MarchHit& hit) {
-  return g.ball() && g.ball()->exact && !prepared.features().quotient && hit.inside && hit.object == static_cast<int>(g.object) + 1 &&
-         g.ball()->radius < kernel::kConvexBallRadius && !(g.reach > 0.0);
 }
 
 // How far y lies from target g's surface (the target that holds y is the
@@ -1146,7 +1146,7 @@ double ball_area_density(const Ball& ball, const glm::dvec3& y, const MarchHit& 
 // `object` after L: at y = x exp(L d), on the surface of one of its targets
 // (0 where none lists y, or where that geodesic is longer than the
 // distance plus the target's reach: next-event estimation never takes it).
-double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, const glm::dvec3& x,
+double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, const glm::dvec3& x, int inside,
                     const glm::dvec3& d, double L, const MarchHit& hit, bool quotient) {
   try {
     const glm::dvec3 y = multiply(x, ClosedFormGeodesic<double>(d).at(L).position);
@@ -1178,7 +1178,9 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
       area = ball_area_density(*g->ball(), y, hit, quotient);
     }
     if (!(cos_y > 0.0) || !(area > 0.0)) return 0.0;
-    const double pick = glow_pick_weight(*g, x) / glow_pick_total(glowing, x);
+    const double weight = glow_pick_weight(*g, x, inside);
+    if (!(weight > 0.0)) return 0.0;
+    const double pick = weight / glow_pick_total(glowing, x, inside);
     return pick * area * path_spreading(d, L) / cos_y;
   } catch (const OutOfRange&) {
     return 0.0;
@@ -1215,22 +1217,24 @@ GlowPoint glow_point(const GlowTarget& g, const glm::dvec3& x, PathRandom& rando
 glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>& glowing, const MarchHit& hit,
                        const glm::dvec3& n, PathSampling sampling, PathRandom& random) {
   const World& world = prepared.world();
-  const double total = glow_pick_total(glowing, hit.point);
+  const int inside = inner_wall_of(world, hit);
+  const double total = glow_pick_total(glowing, hit.point, inside);
+  if (!(total > 0.0)) return glm::dvec3(0.0);  // no target from here
   double left = random.uniform() * total;
   std::size_t pick = 0;
-  for (double w = glow_pick_weight(glowing[0], hit.point); pick + 1 < glowing.size() && left >= w;
-       w = glow_pick_weight(glowing[++pick], hit.point)) {
+  for (double w = glow_pick_weight(glowing[0], hit.point, inside); pick + 1 < glowing.size() && left >= w;
+       w = glow_pick_weight(glowing[++pick], hit.point, inside)) {
     left -= w;
   }
   const GlowTarget& g = glowing[pick];
+  const double picked = glow_pick_weight(g, hit.point, inside);
+  if (!(picked > 0.0)) return glm::dvec3(0.0);  // (rounding past the last target drawn)
   const GlowPoint p = glow_point(g, hit.point, random);
   const glm::dvec3 centre = g.centre(hit.point);
   if (g.skips(multiply(inverse(centre), hit.point), multiply(inverse(centre), p.y))) {
     return glm::dvec3(0.0);  // reflection sampling's alone
   }
-  const double area = glow_pick_weight(g, hit.point) / total * p.area;
-  // x on the inner wall of a convex ball: its geodesics to y march without it (glow_enclosed).
-  const bool enclosed = glow_enclosed(prepared, g, hit);
+  const double area = picked / total * p.area;
   glm::dvec3 light(0.0);
   std::vector<Connection> ways;
   try {
@@ -1244,14 +1248,9 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>
     const double cos_x = glm::dot(n, d);
     if (cos_x <= 0.0) continue;
     const double tolerance = 1e-3 * std::max(1.0, c.length);
-    if (enclosed) {
-      const MarchHit seen = march_from(prepared, hit.point, d, c.length - tolerance, static_cast<int>(g.object));
-      if (seen.object != 0 || seen.out_of_steps) continue;  // another object is in the way
-    } else {
-      const MarchHit seen = march_from(prepared, hit.point, d);
-      if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > tolerance) {
-        continue;  // something, or the target's nearer side, is in the way
-      }
+    const MarchHit seen = march_from(prepared, hit.point, d);
+    if (seen.object != static_cast<int>(g.object) + 1 || std::abs(seen.distance - c.length) > tolerance) {
+      continue;  // something, or the target's nearer side, is in the way
     }
     const double cos_y = std::abs(glm::dot(ClosedFormGeodesic<double>(d).direction_at(c.length), p.normal));
     const double spreading = path_spreading(d, c.length);
@@ -1296,6 +1295,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarge
   bool after_diffuse = false;
   glm::dvec3 from(0.0), from_direction(0.0);
   double from_cosine = 0.0;
+  int from_inside = -1;  // the solid whose inner wall that hit lies on (inner_wall_of)
   const int bounces = world.path_bounces();
   for (int depth = 0; hit.object != 0; ++depth) {
     const bool goes_on = depth < bounces;  // this vertex may scatter the path further
@@ -1309,7 +1309,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarge
       const bool target = std::any_of(glowing.begin(), glowing.end(), [&](const GlowTarget& b) { return b.object == object; });
       if (after_diffuse && target) {
         const double glow =
-            glow_density(glowing, object, from, from_direction, hit.distance, hit, prepared.features().quotient);
+            glow_density(glowing, object, from, from_inside, from_direction, hit.distance, hit, prepared.features().quotient);
         // Next-event estimation alone counts what it could have drawn (a
         // quotient's images it does not list are left to reflection).
         const double reflection = from_cosine / std::numbers::pi;
@@ -1338,6 +1338,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarge
       next = cosine_direction(n, random);
       after_diffuse = true;
       from = hit.point;
+      from_inside = inner_wall_of(world, hit);
       from_direction = next;
       from_cosine = glm::dot(n, next);
     }

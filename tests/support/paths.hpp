@@ -239,15 +239,20 @@ inline sol::Scene furnace(double mirror) {
 }
 
 /// A room inside a glowing exact ball (radius 1 about the origin, emission
-/// 0.5, a checkered albedo 0.6) holding a grey box near its wall, seen from
-/// inside: next-event estimation from the wall finds the sphere along
-/// geodesics the box shadows, and every path's exit from the wall lands
-/// where the checker says (the march's exit search, MarchResume::exit_k).
+/// 0.5, a checkered albedo 0.6) holding a grey box near its wall and a
+/// small glowing bound ball, seen from inside: next-event estimation from
+/// the box finds the sphere along geodesics the box shadows, from the wall
+/// the lamp alone (the ball whose inner wall it is no target from there),
+/// and every path's exit from the wall lands where the checker says (the
+/// march's exit search, MarchResume::exit_k).
 inline sol::Scene room_in_a_glowing_ball() {
   sol::Scene s = furnace(0.0);
   s.objects[0].pattern = sol::Pattern::Checker;
   sol::SceneObject box{sol::Box{{0.45, 0.0, -0.1}, {0.15, 0.35, 0.3}}, {0.5, 0.5, 0.5}};
   s.objects.push_back(box);
+  sol::SceneObject lamp{sol::Ball{{-0.1, -0.4, 0.35}, 0.08, false}, {0.5, 0.5, 0.5}};
+  lamp.emission = {2.0, 2.0, 2.0};
+  s.objects.push_back(lamp);
   s.camera = {{-0.4, 0.05, 0.0}, {1.0, 0.0, 0.05}, {0.0, 0.0, 1.0}, 90.0};
   return s;
 }

@@ -158,13 +158,17 @@ float glow_pick_weight(vec3 x, vec3 c, float r) {
   return r * r / (r * r + dot(v, v));
 }
 
-float glow_pick_total(vec3 x) {
+// The total over the targets seen from x, but the glowing solid whose inner
+// wall x lies on (`inside`, its scene object; -1 for none): from there
+// every direction meets it or what it holds, and reflection finds its
+// light better (glow_pick_weight in libsol/src/render.cpp).
+float glow_pick_total(vec3 x, int inside) {
   float total = 0.0, size;
   int object;
   vec3 centre;
   GlowShape shape;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (glow_target(i, x, object, centre, shape, size)) total += glow_pick_weight(x, centre, size);
+    if (glow_target(i, x, object, centre, shape, size) && object != inside) total += glow_pick_weight(x, centre, size);
   }
   return total;
 }
@@ -184,6 +188,7 @@ float glow_pick_total(vec3 x) {
 // the hit (`from_centre`: its unit direction and length; w = 0: unknown).
 struct GlowDensity {
   int k;
+  int inside;  // the solid whose inner wall x lies on (no target from there), or -1
   vec3 x, d, y, c;
   float L, r, cos_y;
   GlowShape shape;  // the target's surface (closed_form: its area density needs no solve from the centre)
@@ -216,8 +221,9 @@ void glow_density_known(MarchHit h, inout GlowDensity q) {
   q.from_centre = solved ? vec4(h.exact_v / len, len) : vec4(0.0);
 }
 
-bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
+bool glow_density_target(int k, vec3 x, int inside, vec3 d, float L, vec3 hit, float cos_y, out GlowDensity q) {
   q.k = k;
+  q.inside = inside;
   q.x = x;
   q.d = d;
   q.L = L;
@@ -232,9 +238,10 @@ bool glow_density_target(int k, vec3 x, vec3 d, float L, vec3 hit, float cos_y, 
   GlowShape shape;
   float size, nearest = 1e30;
   int object;
-  // The nearest target: an exact ball's by its centre, a box's or bound ball's by its bound.
+  // The nearest target: an exact ball's by its centre, a box's or bound ball's by its bound
+  // (none where x lies on the inner wall of k: no target from there).
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, x, object, centre, shape, size) || object != k) continue;
+    if (!glow_target(i, x, object, centre, shape, size) || object != k || object == inside) continue;
     const vec3 v = seen_from(centre, q.y);
     const float offset = closed_form(shape) ? abs(shape_bound(shape, v)) : dot(v, v);
     if (offset < nearest) {
@@ -273,7 +280,7 @@ float glow_density_of(GlowDensity q, int count, vec4 shortest) {
   } while (++i < count + 1 && spreading[0] > 0.0 && i < 2);
   const float area = box ? shape_density(q.shape, seen_from(q.c, q.y)) : 1.0 / (4.0 * SOL_PI * spreading[0]);
   if (!(spreading[0] > 0.0)) return 0.0;
-  const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x);
+  const float pick = glow_pick_weight(q.x, q.c, q.r) / glow_pick_total(q.x, q.inside);
   return pick * area * spreading[1] / q.cos_y;
 }
 
@@ -290,8 +297,7 @@ struct GlowSample {
   vec3 towards;   // y seen from x (frame components at x): the target of its connections' solve
   int count;      // geodesics in `ways`
   vec4 ways[SOL_FOUND_SLOTS];
-  bool enclosed;  // x lies on the ball's sphere seen from inside, the ball convex (glow_enclosed)
-  bool skip;      // y lies on the face of a box that holds x: reflection sampling's alone (shape_skips)
+  bool skip;      // no point drawn (no target from x), or y on the face of a box or tube that holds x (shape_skips)
 };
 
 // Whether the hit h lies on the inner wall of an exact ball of radius
@@ -301,39 +307,26 @@ bool on_convex_ball_inside(MarchHit h) {
          g_radii[h.k] < kConvexBallRadius;
 }
 
-// A ball of radius below kConvexBallRadius (< π/2) is strongly convex
-// (sectional curvatures at most 1, the injectivity radius at least √2π:
-// docs/lighting.md, "Enclosures"): the minimising geodesic between two
-// of its points stays inside it. A path's vertex x on the inner wall of a
-// glowing exact ball that small reaches a sampled point y of its sphere
-// along its minimisers (reach 0) without meeting that sphere before y, so
-// the march along them leaves the ball out (MarchResume::skip) and stops
-// short of y by the connection's tolerance: only the other objects can be
-// in the way.
-bool glow_enclosed(MarchHit h, int k, float radius) {
-  return on_convex_ball_inside(h) && h.k == k && !(scene_objects[k].glow.x > 0.0);
-}
-
-// How far the march along a connection of length L goes where the ball is
-// left out: to the tolerance within which a hit counts as the sphere's.
-float glow_enclosed_limit(float L) { return L - 1e-3 * max(1.0, L); }
-
 // Draws a target and a point y of its sphere at the diffuse hit h (normal
-// n); the geodesics from h to y within its reach are path_radiance's solve
-// (kSolveGlowSample).
-GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
+// n; on the inner wall of the scene object `inside`, which is no target
+// from there, or -1); the geodesics from h to y within its reach are
+// path_radiance's solve (kSolveGlowSample).
+GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, int inside, inout uvec2 state) {
   GlowSample g;
   g.n = n;
   g.factor = factor;
-  const float total = glow_pick_total(h.q);
+  g.count = 0;
+  g.k = -1;
+  const float total = glow_pick_total(h.q, inside);
+  g.skip = !(total > 0.0);  // no target from here
+  if (g.skip) return g;
   float left = path_uniform(state) * total, weight_k = 0.0;
   int object;
   vec3 c = vec3(0.0), centre;
   GlowShape picked = GlowShape(kObjectExactBall, vec3(0.0), 0.0, 0, 0.0), shape;
   float size;
-  g.k = -1;
   for (int i = 0; i < glow_target_slots(); ++i) {
-    if (!glow_target(i, h.q, object, centre, shape, size)) continue;
+    if (!glow_target(i, h.q, object, centre, shape, size) || object == inside) continue;
     const float w = glow_pick_weight(h.q, centre, size);
     if (g.k < 0 || left >= 0.0) {  // the first target, then each the remaining share still reaches
       g.k = object;
@@ -344,7 +337,6 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
     left -= w;
   }
   vec3 y;
-  g.skip = false;
   if (closed_form(picked)) {  // a box's, bound ball's or tube's point (sol/surface_light.h)
     const float u0 = path_uniform(state), u1 = path_uniform(state), u2 = path_uniform(state);
     const vec3 w = shape_point(picked, u0, u1, u2);
@@ -362,8 +354,6 @@ GlowSample glow_sample(MarchHit h, vec3 n, vec3 factor, inout uvec2 state) {
     g.area = weight_k / total / (4.0 * SOL_PI * max(on_sphere.density, 1e-30));
   }
   g.towards = seen_from(h.q, y);
-  g.count = 0;
-  g.enclosed = glow_enclosed(h, g.k, picked.radius);
   return g;
 }
 

@@ -19,12 +19,10 @@ const int kMarchShadow = 1;  // from a hit point: towards a light, or a mirror's
 // passing the objects of the mask `passing` (cutout planes between their
 // discs, the surface a shadow ray leaves). A new ray starts at zero; the
 // resume pass goes on from the march pass's record (defer_exact). Paths
-// inside a convex exact ball (MARCH_SKIPS, exit_newton): a geodesic to a
-// point of the glowing ball that encloses its start marches without that
-// ball, `skip` (a mask of objects), up to its length, as it meets the
-// sphere there first (glow_sample); a segment that leaves the inner wall
-// of such a ball k (`exit_k`, else -1) has its exit solved first, from
-// `exit_guess`, and marches the others up to it.
+// inside a convex exact ball (MARCH_SKIPS, exit_newton): a segment that
+// leaves the inner wall of such a ball k (`exit_k`, else -1) has its exit
+// solved first, from `exit_guess`, and marches the others up to it
+// without that ball (`skip`, a mask of objects).
 struct MarchResume {
   float t;
   uint passing;

@@ -72,16 +72,13 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   const vec3 d = way.xyz;
   const float L = way.w, cos_x = dot(g.n, d);
   const int met = QUOTIENT && to.k >= 0 ? int(images[to.k].info.z) : to.k;  // the scene object met
-  // (Enclosed: the march without the ball went to its limit unhindered.)
-  const bool reached = g.enclosed ? to.k < 0 && !(to.t < glow_enclosed_limit(L))
-                                  : met == g.k && !(abs(to.t - L) > 1e-3 * max(1.0, L));
+  const bool reached = met == g.k && !(abs(to.t - L) > 1e-3 * max(1.0, L));
   if (!reached) return vec3(0.0);  // something, or the ball's nearer side, is in the way
   // The tangent at y: in Sol the march's own at its hit (met at L, within
   // the check above), which saves the path kernel a closed form; in a
-  // quotient the march's frame may be turned by Γ, and an enclosed march
-  // stops short of y, so the geodesic's own.
+  // quotient the march's frame may be turned by Γ, so the geodesic's own.
   const SolSpread along = sol_spread(d, L);
-  const vec3 arriving = QUOTIENT || g.enclosed ? along.direction : to.u;
+  const vec3 arriving = QUOTIENT ? along.direction : to.u;
   const float cos_y = abs(dot(arriving, g.normal_y));
   const float spreading = along.density;
   if (!(spreading > 0.0)) return vec3(0.0);
@@ -108,9 +105,10 @@ float emission_share(float reflection, float glow) {
 // (`emission`, weighted) added at once, or, where next-event estimation
 // could have found this hit (`reachable`: after a diffuse vertex, with
 // glowing objects to sample; true returned), once its density is solved (dq,
-// kSolveDensity*).
-bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_direction, float from_cosine,
-                   inout vec3 color, inout vec3 weight, out vec3 emission, out GlowDensity dq) {
+// kSolveDensity*). `from_inside`: the solid whose inner wall that vertex
+// lies on (no target from there), or -1.
+bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, int from_inside, vec3 from_direction,
+                   float from_cosine, inout vec3 color, inout vec3 weight, out vec3 emission, out GlowDensity dq) {
   const vec4 material = scene_objects[f.object].material;
   const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
   color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
@@ -121,7 +119,7 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
   if (HAS_EMISSION && GLOW_SAMPLING && reachable && glowing(f.object)) {
     const int kind = int(scene_objects[f.object].plane.x);
     const float cos_y = GLOW_SURFACES && kind != kObjectExactBall ? surface_hit_cosine(h) : abs(dot(h.u, f.n));
-    density = glow_density_target(f.object, from, from_direction, h.t, h.q, cos_y, dq);
+    density = glow_density_target(f.object, from, from_inside, from_direction, h.t, h.q, cos_y, dq);
     if (density) glow_density_known(h, dq);
     if (density && dq.minimiser && (dq.from_centre.w > 0.0 || closed_form(dq.shape))) {  // known: no solve, its share at once
       share = emission_share(from_cosine / SOL_PI, glow_density_of(dq, 1, dq.from_centre));
@@ -132,19 +130,20 @@ bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, vec3 from_d
   return density;
 }
 
-// Where a path's march from the vertex h starts (path_radiance): a
-// geodesic to a point of the glowing ball that encloses h leaves the ball
-// out, up to the connection's tolerance before y (glow_enclosed); a segment
+// The solid whose inner wall the hit lies on (met from inside: seen so,
+// or heading out through its surface where the float march took it as met
+// from outside), else -1: no target of next-event estimation from there
+// (the CPU's inner_wall_of).
+int inner_wall_of(MarchHit h, Surface f) {
+  const bool solid = object_is_solid(int(scene_objects[f.object].plane.x));
+  return HAS_INSIDE && solid && (f.inside || dot(h.u, f.n) > 0.0) ? f.object : -1;
+}
+
+// Where a path's march from the vertex h starts (path_radiance): a segment
 // that leaves the inner wall of h's convex exact ball inward (at the cosine
 // `exit_cos` > 0 with its normal) solves its exit first (exit_newton), from
-// the chord 2 r cos θ; else from the start. `limit` (the march's) is cut
-// to the enclosed connection's.
-MarchResume path_march_start(MarchHit h, bool to_glow, bool segment, GlowSample g, int way, float exit_cos,
-                             inout float limit) {
-  if (MARCH_SKIPS && to_glow && g.enclosed) {
-    limit = min(limit, glow_enclosed_limit(sol_slot_get(g.ways, way).w));
-    return MarchResume(0.0, 0u, 0, 1u << uint(g.k), -1, 0.0);
-  }
+// the chord 2 r cos θ; else from the start.
+MarchResume path_march_start(MarchHit h, bool segment, float exit_cos) {
   const bool exits = MARCH_SKIPS && segment && exit_cos > 0.0;
   return MarchResume(0.0, 0u, 0, 0u, exits ? h.k : -1, exits ? 2.0 * g_radii[h.k] * exit_cos : 0.0);
 }
@@ -192,14 +191,13 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
   bool after_diffuse = false;
   vec3 from = vec3(0.0), from_direction = vec3(0.0);
   float from_cosine = 0.0;
+  int from_inside = -1;  // the solid whose inner wall that hit lies on (no target from there)
   const int bounces = int(params.limits.z);  // World::path_bounces: the scatterings a path takes
   int depth = from_eye ? -1 : 0;  // (the camera ray's segment is no scattering)
   bool alive = true;        // the path goes on from h (h to shade, or its next segment to march)
   bool fresh = !from_eye;   // h is a hit not yet shaded
   GlowSample g;             // the hit's next-event estimation to a glowing object: its geodesics from `way` on left to march
-  g.count = 0;
-  g.enclosed = false;
-  g.skip = false;
+  g.count = 0;  // (g.skip: read only after glow_sample sets it)
   int way = 0;
   vec3 next = h.u;          // (from the eye: the camera ray's direction)
   float exit_cos = 0.0;     // > 0: the next segment leaves h's convex exact ball inward at this cosine (path_march_start)
@@ -220,8 +218,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
     if (fresh) {
       fresh = false;
       reflection = from_cosine / SOL_PI;  // the last diffuse vertex's density of this ray
-      density = path_emission(h, f, glow_count > 0 && after_diffuse, from, from_direction, from_cosine, color, weight,
-                              emission, dq);
+      density = path_emission(h, f, glow_count > 0 && after_diffuse, from, from_inside, from_direction, from_cosine,
+                              color, weight, emission, dq);
       const vec3 n = dot(f.n, h.u) > 0.0 ? -f.n : f.n;
       const bool goes_on = depth < bounces;  // this vertex may scatter the path further
       bool sampled = false;  // a glowing object's point drawn (g), its connections to solve
@@ -253,13 +251,14 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
           }
         }
         if (GLOW_SAMPLING && glow_count > 0 && goes_on) {
-          g = glow_sample(h, n, weight * a, state);
+          g = glow_sample(h, n, weight * a, inner_wall_of(h, f), state);
           sampled = !g.skip;
         }
         weight *= a;
         next = cosine_direction(n, state);
         after_diffuse = true;
         from = h.q;
+        from_inside = inner_wall_of(h, f);
         from_direction = next;
         from_cosine = dot(n, next);
       }
@@ -306,8 +305,8 @@ vec4 path_radiance(MarchHit h, Surface f, int eye, uint pixel, const bool from_e
       // (From the eye the camera ray's segment is marched as a camera ray:
       // the purpose is then no constant, and this one march holds both
       // purposes' branches; otherwise it folds to kMarchShadow.)
-      float limit = shadow ? min(len, params.limits.x) : params.limits.x;
-      const MarchResume resume_at = path_march_start(h, to_glow, !shadow && !to_glow, g, way, exit_cos, limit);
+      const float limit = shadow ? min(len, params.limits.x) : params.limits.x;
+      const MarchResume resume_at = path_march_start(h, !shadow && !to_glow, exit_cos);
       const MarchHit m = march(h.q, shadow ? direction : (to_glow ? sol_slot_get(g.ways, way).xyz : next), limit,
                                resume_at, PATH_FROM_EYE && depth < 0 ? kMarchCamera : kMarchShadow);
       if (shadow) {
