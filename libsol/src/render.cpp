@@ -980,8 +980,6 @@ struct GlowTarget {
   const Ball* ball() const { return std::get_if<Ball>(&shape); }
   const Box* box() const { return std::get_if<Box>(&shape); }
   const Tube* tube() const { return std::get_if<Tube>(&shape); }
-  // A ball drawn by its bound: its points and density from sol/surface_light.h, as a box's.
-  const Ball* bound_ball() const { return ball() && !ball()->exact ? ball() : nullptr; }
   // Whether its area density is known in closed form (every kind's but an exact ball's, which is solved).
   bool closed_form() const { return !ball() || !ball()->exact; }
   // A tube's coordinate axis (sol/surface_light.h: 0 x, 1 y, 2 z), drawn

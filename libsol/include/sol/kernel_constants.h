@@ -155,11 +155,11 @@ SOL_CONSTANT(SOL_REAL, kSpreadingStep, 0.1);
 /// The least area density J a light's irradiance I cos θ / J is divided by:
 /// at a caustic (J = 0) the irradiance is at most I / kMinSpreading.
 SOL_CONSTANT(SOL_REAL, kMinSpreading, 0.01);
-/// Glowing exact balls of radius below this are taken as strongly convex by
-/// next-event estimation from their inner wall (the march along a
-/// minimiser to a point of the sphere leaves the ball out): below π/2,
-/// since Sol's sectional curvatures are at most 1 and its injectivity
-/// radius is at least √2π (docs/lighting.md, "Enclosures").
+/// Exact balls of radius below this are taken as strongly convex by a
+/// path's exit search from their inner wall (the distance from the centre
+/// is convex along the segment): below π/2, since Sol's sectional
+/// curvatures are at most 1 and its injectivity radius is at least √2π
+/// (docs/lighting.md, "Enclosures").
 SOL_CONSTANT(SOL_REAL, kConvexBallRadius, 1.5);
 /// Glowing tubes are infinite: next-event estimation draws points of a
 /// window of them about the diffuse point's foot on the axis, of half
