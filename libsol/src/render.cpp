@@ -32,6 +32,7 @@
 #include "sol/quotient_field.hpp"
 #include "sol/shapes.hpp"
 #include "row_pool.hpp"
+#include "sphere_exit.hpp"
 #include "warm_solves.hpp"
 
 namespace sol {
@@ -800,12 +801,14 @@ glm::dvec3 specular_direction(const kernel::SolLobes& lobes, const MarchHit& hit
 }
 
 // The exit of a path segment from the inner wall of an exact ball of
-// radius below kernel::kConvexBallRadius (docs/lighting.md, "Enclosures";
-// the kernel's exit_newton): Newton's method on the arc length s for f(s)
-// = r − hit_epsilon/2, f the distance from the centre along the ray, from
-// the chord 2 r cos θ (θ the angle with the inner normal), its rounds
-// sol/exit_search.h's. None where a solve fails, a trial is outside while
-// heading in or past the march's limit, or after kernel::kExitRounds rounds.
+// radius below kernel::kConvexBallRadius (docs/lighting.md, "Enclosures"):
+// where the distance from the centre along the ray reaches r −
+// hit_epsilon/2 heading out, solved at once (detail::sphere_exit) from the
+// chord 2 r cos θ (θ the angle with the inner normal). Where that finds
+// none, the kernel's exit_newton: Newton's method on the arc length, one
+// exact solve a round (sol/exit_search.h's rounds); none where a solve
+// fails, a trial is outside while heading in or past the march's limit, or
+// after kernel::kExitRounds rounds.
 struct BallExit {
   double t;
   glm::dvec3 point, outward, direction;
@@ -814,8 +817,13 @@ struct BallExit {
 
 std::optional<BallExit> exact_ball_exit(const Ball& ball, const glm::dvec3& from, const ClosedFormGeodesic<double>& ray,
                                         double cosine, double eps, double limit) {
-  const detail::WarmSolves warm;  // each trial's solve from the last
   double t = std::min(2.0 * ball.radius * cosine, limit);
+  // The crossing of the search's level r − hit_epsilon/2 solved at once
+  // (detail::sphere_exit); the rounds where that fails.
+  if (const std::optional<detail::SphereExit> x = detail::sphere_exit(ball.center, ball.radius - 0.5 * eps, from, ray, t, limit)) {
+    return BallExit{x->s, multiply(from, ray.at(x->s).position), x->outward, x->direction, 1};
+  }
+  const detail::WarmSolves warm;  // each trial's solve from the last
   for (int round = 1; round <= kernel::kExitRounds; ++round) {
     const ClosedFormGeodesic<double>::State at = ray.at(t);
     const glm::dvec3 q = multiply(from, at.position);
@@ -1163,6 +1171,8 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
     if (!g || (g->closed_form() && nearest > 1e-3)) return 0.0;
     // Shorter than its period, the geodesic is the minimiser (Coiculescu–Schwartz): within any reach.
     if (!(L < (1.0 - 1e-9) * cut_time(d)) && L > (distance(x, y) + g->reach) * (1.0 + 1e-6) + 1e-9) return 0.0;
+    const double weight = glow_pick_weight(*g, x, inside);
+    if (!(weight > 0.0)) return 0.0;  // (before the area: the inner wall's solid is no target)
     double area = 0.0, cos_y = 0.0;
     if (g->closed_form()) {
       const glm::dvec3 centre = g->centre(x);
@@ -1176,8 +1186,6 @@ double glow_density(const std::vector<GlowTarget>& glowing, std::size_t object, 
       area = ball_area_density(*g->ball(), y, hit, quotient);
     }
     if (!(cos_y > 0.0) || !(area > 0.0)) return 0.0;
-    const double weight = glow_pick_weight(*g, x, inside);
-    if (!(weight > 0.0)) return 0.0;
     const double pick = weight / glow_pick_total(glowing, x, inside);
     return pick * area * path_spreading(d, L) / cos_y;
   } catch (const OutOfRange&) {

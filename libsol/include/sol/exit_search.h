@@ -1,10 +1,10 @@
-// The exit search's rounds, written once for the CPU renderer (double)
-// and the kernels (float): a path segment that leaves the inner wall of an
+// The exit search's rounds, written once for the kernels (float) and the
+// CPU renderer (double): a path segment that leaves the inner wall of an
 // exact ball of radius below kConvexBallRadius finds its exit by Newton's
 // method on the arc length s for f(s) = r − hit_epsilon/2, f the distance
 // from the ball's centre along the ray (docs/lighting.md, "Enclosures";
-// exact_ball_exit in libsol/src/render.cpp, exit_newton in
-// compute/shaders/march/steps.glsl). Valid C++ (namespace sol::kernel,
+// exit_newton in compute/shaders/march/steps.glsl, and exact_ball_exit in
+// libsol/src/render.cpp where its solve at once finds no exit). Valid C++ (namespace sol::kernel,
 // double) and GLSL (float), as sol/log_series.h.
 #ifndef SOL_EXIT_SEARCH_H
 #define SOL_EXIT_SEARCH_H
