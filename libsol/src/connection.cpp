@@ -16,6 +16,7 @@
 #include "sol/distance.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
+#include "newton_step.hpp"
 #include "warm_solves.hpp"
 
 // Method and the facts it rests on: see connection.hpp.
@@ -113,19 +114,8 @@ bool newton(glm::dvec3& v, double& t, const glm::dvec3& q, double tolerance, int
       const glm::dvec3 et = residual(g.at(t + h).position, q, kind);
       for (int k = 0; k < 3; ++k) J[k][3] = (et[k] - e[k]) / h;
     }
-    glm::dmat3 m(0.0);  // J Jᵀ (symmetric)
-    for (int row = 0; row < 3; ++row) {
-      for (int col = 0; col < 3; ++col) {
-        double sum = 0.0;
-        for (int j = 0; j < 4; ++j) sum += J[row][j] * J[col][j];
-        m[col][row] = sum;
-      }
-    }
-    const double det = glm::determinant(m);
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
-    const glm::dvec3 y = glm::inverse(m) * (-e);
     double step[4];
-    for (int j = 0; j < 4; ++j) step[j] = J[0][j] * y[0] + J[1][j] * y[1] + J[2][j] * y[2];
+    if (!detail::minimum_norm_step(J, e, step)) break;
     // Keep the step in a region where the linearisation can be trusted.
     const double dv = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
     double lambda = 1.0;

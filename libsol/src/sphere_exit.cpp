@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
 
 #include "sol/log_series.h"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
+#include "newton_step.hpp"
 
 namespace sol::detail {
 namespace {
@@ -89,24 +89,12 @@ std::optional<SphereExit> sphere_exit(const glm::dvec3& centre, double level, co
         have = fresh = true;
       }
       for (int k = 0; k < 3; ++k) J[k][3] = r.de_ds[k];
-      // The minimum-norm step: J Jᵀ y = −e, step = Jᵀ y.
-      glm::dmat3 m(0.0);
-      for (int row = 0; row < 3; ++row) {
-        for (int col = 0; col < 3; ++col) {
-          double sum = 0.0;
-          for (int j = 0; j < 4; ++j) sum += J[row][j] * J[col][j];
-          m[col][row] = sum;
-        }
-      }
-      const double det = glm::determinant(m);
-      if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
+      double step[4];
+      if (!minimum_norm_step(J, r.e, step)) {  // (J Jᵀ singular)
         if (fresh) return std::nullopt;
         have = false;
         continue;
       }
-      const glm::dvec3 y = glm::inverse(m) * (-r.e);
-      double step[4];
-      for (int j = 0; j < 4; ++j) step[j] = J[0][j] * y[0] + J[1][j] * y[1] + J[2][j] * y[2];
       // Trusted region: w by at most 0.5, s by at most half the level.
       double lambda = 1.0;
       const double dw = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
