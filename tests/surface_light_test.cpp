@@ -189,4 +189,14 @@ TEST(SurfaceLight, TheWindowGrowsWithTheDistanceUpToItsMost) {
   EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(100.0), sol::kernel::kLightWindowMost);
 }
 
+// Tubes along a coordinate axis are targets (their axis as the sampler's
+// frames number them: 0 x, 1 y, 2 vertical); along a lattice's direction
+// (both horizontal components) none.
+TEST(SurfaceLight, OnlyTubesAlongACoordinateAxisAreTargets) {
+  EXPECT_EQ(sol::kernel::sol_tube_light_axis(true, 0.0, 0.0), 2);
+  EXPECT_EQ(sol::kernel::sol_tube_light_axis(false, -1.0, 0.0), 0);
+  EXPECT_EQ(sol::kernel::sol_tube_light_axis(false, 0.0, 1.0), 1);
+  EXPECT_EQ(sol::kernel::sol_tube_light_axis(false, 0.6, 0.8), -1);
+}
+
 }  // namespace

@@ -992,7 +992,7 @@ struct GlowTarget {
   bool closed_form() const { return !ball() || !ball()->exact; }
   // A tube's coordinate axis (sol/surface_light.h: 0 x, 1 y, 2 z), drawn
   // over a window about the foot of the diffuse point on it.
-  int axis() const { return tube()->vertical() ? 2 : tube()->direction.y == 0.0 ? 0 : 1; }
+  int axis() const { return kernel::sol_tube_light_axis(tube()->vertical(), tube()->direction.x, tube()->direction.y); }
   // The frame next-event estimation from x draws in: a ball's or box's
   // centre, or the foot of x on a tube's axis.
   glm::dvec3 centre(const glm::dvec3& x) const {
@@ -1065,7 +1065,7 @@ std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
     if (ball && (ball->exact || surfaces)) out.push_back({o.owner, *ball, reach});
     if (!surfaces) continue;
     if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
-    if (const Tube* t = std::get_if<Tube>(&o.shape); t && (t->vertical() || t->direction.x == 0.0 || t->direction.y == 0.0)) {
+    if (const Tube* t = std::get_if<Tube>(&o.shape); t && kernel::sol_tube_light_axis(t->vertical(), t->direction.x, t->direction.y) >= 0) {
       out.push_back({o.owner, *t, reach});
     }
   }

@@ -36,8 +36,7 @@ bool glow_kind(int type, vec3 emission, bool aligned) {
 // A listed tube's axis (sol/surface_light.h: 0 x, 1 y, 2 vertical; -1
 // along another horizontal direction) from its record.
 int tube_axis(int k) {
-  if (int(g_relative[k].w) == kTubeVertical) return 2;
-  return g_headings[k].y == 0.0 ? 0 : (g_headings[k].x == 0.0 ? 1 : -1);
+  return sol_tube_light_axis(int(g_relative[k].w) == kTubeVertical, g_headings[k].x, g_headings[k].y);
 }
 
 // Scene object k (from the uniforms: a quotient's march loads no g_types).

@@ -187,6 +187,13 @@ SOL_SHARED_FUNCTION SOL_REAL sol_light_window(SOL_REAL h) {
 
 SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_axis_swap(SOL_LIGHT_VEC3 w) { return SOL_LIGHT_VEC3(w.y, w.x, -w.z); }
 
+/// A tube's coordinate axis from its direction: 2 vertical, 0 along x
+/// (dy = 0), 1 along y (dx = 0); -1 along another horizontal direction (a
+/// lattice's), which is no target.
+SOL_SHARED_FUNCTION int sol_tube_light_axis(bool vertical, SOL_REAL dx, SOL_REAL dy) {
+  return vertical ? 2 : (dy == 0.0 ? 0 : (dx == 0.0 ? 1 : -1));
+}
+
 /// The point of the tube's axis (through `through` along coordinate axis
 /// `axis`) with x's coordinate along it: the window's centre.
 SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_tube_light_foot(int axis, SOL_LIGHT_VEC3 through, SOL_LIGHT_VEC3 x) {
