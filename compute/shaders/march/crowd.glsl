@@ -292,7 +292,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
         }
         continue;
       }
-      if (HAS_INSIDE && inside && leave_signs[j] <= 0.0) {
+      if (HAS_INSIDE && inside && d > kHeadsDepth * hit_epsilon && leave_signs[j] <= 0.0) {
         ends = ends || object_inside_clearances(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc, d).w < 0.0;
       }
       crowd_consider(s, passed[j], d, inside, ends);

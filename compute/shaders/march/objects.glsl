@@ -200,6 +200,16 @@ bool object_is_solid(int type) { return (HAS_COMPOSITES && type == kObjectCompos
 // Exact balls have their own inside (exact_ball_inside, the exact solve).
 #define inside_by_bound(type) (HAS_INSIDE && (type) != kObjectExactBall && object_is_solid(type))
 
+// How deep inside a solid it passes (hit_epsilons, by its bound) a ray must
+// be before its pass ends where it heads for a face (the passes' `heads`):
+// a ray leaving a face met from outside almost tangentially runs along the
+// surface, where float's bound dips below 0 by rounding while the ray
+// heads for the face it leaves; ending its pass there met the same solid
+// again at once (a diffuse bounce off a glowing bound ball, in a world with
+// glass: its emission again at every bounce, in one path in 250), where
+// the CPU's double stays outside and passes it until 2 hit_epsilon away.
+const float kHeadsDepth = 0.5;
+
 float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
 
 // Inside a solid drawn by its bound (the bound -d < 0 given): its faces'

@@ -142,7 +142,7 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
           // quotient_exact_step).
           const int type = image_type(m);
           const bool heads = HAS_INSIDE && inside_by_bound(type) && leave_signs[p] <= 0.0 &&
-                             image_bound_clearances(type, e, direction, m, hz).x < 0.0 &&
+                             image_bound_clearances(type, e, direction, m, hz).x < -kHeadsDepth * hit_epsilon &&
                              image_inside_clearances(type, e, direction, m, hz, d).w < 0.0;
           if (d > 2.0 * hit_epsilon || heads) passing[p] = -1;
           else leaving = true;

@@ -78,7 +78,7 @@ MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, con
       bool heads = false;
       if (HAS_INSIDE && inside_by_bound(g_types[k]) && (leaving & bit) == 0u) {
         const float raw = object_bound(g_types[k], q, g_relative[k], g_headings[k], g_radii[k], hz, g_half_exp_z[k]);
-        heads = raw < 0.0 && object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
+        heads = raw < -kHeadsDepth * hit_epsilon && object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
                                                       g_half_exp_z[k], -raw).w < 0.0;
       }
       // Not seen from inside, a solid drawn by its bound is passed until
