@@ -1336,6 +1336,16 @@ sol::Scene floor_glow_and_mirror() {
   return scene;
 }
 
+// floor_glow_and_mirror with its mirror ball made clear glass (index 1.5).
+sol::Scene floor_glow_and_glass() {
+  sol::Scene scene = floor_glow_and_mirror();
+  scene.objects[2].material = sol::Material::Glass;
+  scene.objects[2].mirror = 0.0;
+  scene.objects[2].ior = 1.5;
+  scene.objects[2].color = {0.95, 0.95, 1.0};
+  return scene;
+}
+
 // The kernel's paths against the CPU's for the same seed: every value
 // finite, 80 % of the pixels within 1e-3 (paths that part by rounding make
 // the rest) and the mean difference within 3 standard errors.
@@ -1568,11 +1578,7 @@ TEST(Kernel, TheGlassMaterialIsTheCpus) {
     EXPECT_LE(unseen, 2 * own + 32 * 24 / 100) << quotient;
     EXPECT_LE(differ, 2 * own + 32 * 24 / 50) << quotient;
   }
-  sol::Scene paths = floor_glow_and_mirror();
-  paths.objects[2].material = sol::Material::Glass;
-  paths.objects[2].mirror = 0.0;
-  paths.objects[2].ior = 1.5;
-  paths.objects[2].color = {0.95, 0.95, 1.0};
+  const sol::Scene paths = floor_glow_and_glass();
   const sol::RenderOptions settings{.width = 24, .height = 16, .samples = 8, .transport = sol::Transport::Path, .seed = 11};
   expect_paths_agree(sol::render_scene(renderer, paths, settings), sol::render_cpu(paths, settings), "paths through a glass ball");
   // Lossless glass keeps a furnace (as Path.GlassInAFurnaceKeepsItsRadiance).
@@ -2899,11 +2905,7 @@ TEST(Kernel, PlanesXYHitAtTheirCrossing) {
 // seeds the mean difference is within 3 standard errors.
 TEST(Kernel, PathsLeavingAGlowingBallInAWorldWithGlassAreTheCpus) {
   sol::vk::MarchRenderer renderer(vk_context());
-  sol::Scene scene = floor_glow_and_mirror();
-  scene.objects[2].material = sol::Material::Glass;
-  scene.objects[2].mirror = 0.0;
-  scene.objects[2].ior = 1.5;
-  scene.objects[2].color = {0.95, 0.95, 1.0};
+  sol::Scene scene = floor_glow_and_glass();
   scene.max_bounces = 1;
   double sum = 0.0, variance = 0.0;
   int parted = 0;

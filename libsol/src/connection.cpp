@@ -16,6 +16,7 @@
 #include "sol/distance.hpp"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
+#include "log_series_at.hpp"
 #include "newton_step.hpp"
 #include "warm_solves.hpp"
 
@@ -632,9 +633,7 @@ glm::dvec3 log_series(const glm::dvec3& w) {
     throw InvalidArgument("sol::log_series: |w| = " + std::to_string(glm::length(w)) + " is not below the series' reach " +
                           std::to_string(kernel::kLogSeriesReach));
   }
-  const double p = w.x * w.x, q = w.y * w.y;
-  return {w.x * kernel::sol_log_series_f(p, q, w.z), w.y * kernel::sol_log_series_f(q, p, -w.z),
-          kernel::sol_log_series_h(p, q, w.z)};
+  return detail::log_series_at(w);
 }
 
 double distance(const glm::dvec3& p, const glm::dvec3& q) { return distance(p, q, ConnectionOptions{}); }

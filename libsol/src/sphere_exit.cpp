@@ -5,9 +5,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "sol/log_series.h"
 #include "sol/error.hpp"
 #include "sol/group.hpp"
+#include "log_series_at.hpp"
 #include "newton_step.hpp"
 
 namespace sol::detail {
@@ -63,9 +63,7 @@ std::optional<SphereExit> sphere_exit(const glm::dvec3& centre, double level, co
     const glm::dvec3 p0 = multiply(base, ray.at(s).position);
     // The start: the logarithm's series at the ray's point at s0 (a guess
     // beyond its reach too: it need only fall in Newton's basin).
-    const double px = p0.x * p0.x, py = p0.y * p0.y;
-    glm::dvec3 w(p0.x * kernel::sol_log_series_f(px, py, p0.z), p0.y * kernel::sol_log_series_f(py, px, -p0.z),
-                 kernel::sol_log_series_h(px, py, p0.z));
+    glm::dvec3 w = log_series_at(p0);
     if (!(glm::length(w) > 0.0) || !std::isfinite(glm::length(w))) w = p0;
     if (!(glm::length(w) > 0.0)) return std::nullopt;
     w = glm::normalize(w);
@@ -74,7 +72,6 @@ std::optional<SphereExit> sphere_exit(const glm::dvec3& centre, double level, co
     double J[3][4] = {};
     bool fresh = false;  // whether J holds differences (else Broyden's updates of them)
     bool have = false;
-    int steps = 0;
     for (int it = 0; it < kMostIterations && norm > kTolerance; ++it) {
       if (!have) {
         // The w columns by forward differences (ŵ's radial direction does
@@ -115,18 +112,19 @@ std::optional<SphereExit> sphere_exit(const glm::dvec3& centre, double level, co
         s = s1;
         r = r1;
         norm = norm1;
-        ++steps;
         accepted = true;
         break;
       }
       if (!accepted && fresh) return std::nullopt;
       fresh = false;
-      if (!accepted) have = false;  // differences again (this try not counted)
-      if (!accepted) --it;
+      if (!accepted) {  // differences again (this try not counted)
+        have = false;
+        --it;
+      }
     }
     if (!(norm <= kTolerance)) return std::nullopt;
     if (!(s > 0.0 && s <= limit) || !(glm::dot(r.end_direction, r.ray_direction) > 0.0)) return std::nullopt;
-    return SphereExit{s, r.end_direction, r.ray_direction, steps};
+    return SphereExit{s, r.end_direction, r.ray_direction};
   } catch (const OutOfRange&) {
     return std::nullopt;
   }

@@ -15,7 +15,6 @@ struct SphereExit {
   double s = 0.0;             ///< arc length along the ray
   glm::dvec3 outward{0.0};    ///< the sphere's outward unit normal there (frame components)
   glm::dvec3 direction{0.0};  ///< the ray's unit tangent there (frame components)
-  int iterations = 0;         ///< Newton's steps taken
 };
 
 /// Where the geodesic `ray` from the point `from` crosses the sphere of
