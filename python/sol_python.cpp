@@ -120,6 +120,7 @@ py::dict render_dict(const sol::RenderResult& r) {
   out["point"] = image(point, r.height, r.width, 3);
   out["steps"] = image(r.steps, r.height, r.width, 1);
   if (!r.albedo.empty()) out["albedo"] = image(r.albedo, r.height, r.width, 3);
+  if (!r.emission.empty()) out["emission"] = image(r.emission, r.height, r.width, 3);
   if (!r.normal.empty()) out["normal"] = image(r.normal, r.height, r.width, 3);
   if (!r.out_of_steps.empty()) out["out_of_steps"] = image(r.out_of_steps, r.height, r.width, 1);
   return out;
@@ -162,7 +163,7 @@ struct PyCpuRenderer {
                                      .threads = threads,
                                      .transport = transport_named(transport, "sol.CpuRenderer.render"),
                                      .seed = static_cast<std::uint64_t>(seed),
-                                     .guides = true};  // (the dict's albedo and normal)
+                                     .guides = true};  // (the dict's albedo, emission and normal)
     // The CPU renderer's 88 bytes a pixel and the arrays it becomes here,
     // 64 more (the result lives until they are made): refused up front
     // where that cannot fit.
@@ -252,7 +253,7 @@ struct PyRenderer {
                                .transport = transport_named(transport, "sol.Renderer.render"),
                                .seed = static_cast<std::uint64_t>(seed)};
     options.aovs = aovs || denoise;  // (the denoiser's guides)
-    options.guides = options.aovs;   // (the dict's albedo and normal)
+    options.guides = options.aovs;   // (the dict's albedo, emission and normal)
     options.first_sample = first_sample;
     if (denoise && first_sample != 0) {
       throw sol::InvalidArgument("sol.Renderer.render: denoise takes a render from sample 0 (its AOVs), not first_sample " +
@@ -336,7 +337,7 @@ struct PyRenderer {
     }
     if (!aovs) {  // (rendered for the denoiser alone)
       for (auto* plane : {&result.object, &result.distance, &result.px, &result.py, &result.pz, &result.steps,
-                          &result.albedo, &result.normal, &result.out_of_steps}) {
+                          &result.albedo, &result.emission, &result.normal, &result.out_of_steps}) {
         plane->clear();
       }
     }
@@ -845,8 +846,9 @@ void bind_scenes(py::module_& m) {
       "Renders the scene on the CPU, preparing its world for this one render (CpuRenderer keeps it for many), with "
       "CpuRenderer.render's arguments and defaults; returns a dict of float32 arrays: rgba (H, W, 4; linear RGB, "
       "alpha 1: sol.save writes it as solrender does), object (H, W; 0 = no hit, k = k-th object), distance (H, W; "
-      "arc length to the hit), point (H, W, 3; Sol coordinates of the hit), steps (H, W; march steps), albedo (H, W, 3) "
-      "and normal (H, W, 3; frame components, facing the ray).");
+      "arc length to the hit), point (H, W, 3; Sol coordinates of the hit), steps (H, W; march steps), albedo (H, W, 3; "
+      "the samples' mean), emission (H, W, 3; what the hits emit towards the eye, the samples' mean) and normal (H, W, 3; "
+      "the centre's, frame components, facing the ray).");
 #ifdef SOL_PYTHON_IMAGES
   m.def(
       "save",

@@ -44,8 +44,10 @@
 namespace {
 
 // The AOV file's channels, in interleave_aovs' order.
-const std::vector<std::string> kAovChannels = {"object",   "distance", "Px",       "Py",  "Pz",  "steps", "out_of_steps",
-                                                "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
+const std::vector<std::string> kAovChannels = {"object",     "distance",   "Px",         "Py",       "Pz",
+                                                "steps",      "out_of_steps", "albedo.R", "albedo.G", "albedo.B",
+                                                "emission.R", "emission.G", "emission.B", "N.X",      "N.Y",
+                                                "N.Z"};
 
 // Interleaves the AOV planes into kAovChannels' order.
 std::vector<float> interleave_aovs(const sol::RenderResult& r) {
@@ -61,7 +63,8 @@ std::vector<float> interleave_aovs(const sol::RenderResult& r) {
     out[c * k + 6] = r.out_of_steps[k];
     for (std::size_t i = 0; i < 3; ++i) {
       out[c * k + 7 + i] = r.albedo[3 * k + i];
-      out[c * k + 10 + i] = r.normal[3 * k + i];
+      out[c * k + 10 + i] = r.emission[3 * k + i];
+      out[c * k + 13 + i] = r.normal[3 * k + i];
     }
   }
   return out;
@@ -79,7 +82,7 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
   const bool aovs = !both.object.empty();  // (rendered with RenderOptions::aovs)
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->resize(n);
-    for (auto* plane : {&r.albedo, &r.normal}) plane->resize(3 * n);
+    for (auto* plane : {&r.albedo, &r.emission, &r.normal}) plane->resize(3 * n);
   }
   r.rays_out_of_steps = both.rays_out_of_steps;
   for (int j = 0; j < h; ++j) {
@@ -100,6 +103,7 @@ sol::RenderResult to_anaglyph(const sol::RenderResult& both) {
       r.out_of_steps[k] = both.out_of_steps[left] + both.out_of_steps[right];  // (both eyes' rays make the pixel)
       for (std::size_t c = 0; c < 3; ++c) {
         r.albedo[3 * k + c] = both.albedo[3 * left + c];
+        r.emission[3 * k + c] = both.emission[3 * left + c];
         r.normal[3 * k + c] = both.normal[3 * left + c];
       }
     }
@@ -363,7 +367,7 @@ int image_width(const Options& o) { return o.width * (o.stereo() && !o.anaglyph(
 void declare(sol::cli::CommandLine& cl, Options& o) {
   cl.add_text("--scene", o.scene, "NAME|FILE", "a preset (" + sol::cli::preset_list() + ") or a JSON scene file (default plane)");
   cl.add_text("-o,--output", o.output, "OUT", "image file; the format follows the extension (png, exr, jpg, tif, ...)");
-  cl.add_text("--aov", o.aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps, out_of_steps, albedo.RGB, N.XYZ");
+  cl.add_text("--aov", o.aov, "FILE.exr", "also write float channels object, distance, Px, Py, Pz, steps, out_of_steps, albedo.RGB, emission.RGB, N.XYZ");
   cl.add_integer("--width", o.width, 1, 16384, "W", "image width in pixels, 1..16384 (default 512)");
   cl.add_integer("--height", o.height, 1, 16384, "H", "image height in pixels, 1..16384 (default 512)");
   o.overrides.add_to(cl, "camera");

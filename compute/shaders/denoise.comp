@@ -2,7 +2,8 @@
 // The denoiser on the device (sol::vk::MarchRenderer::denoise): the filter
 // of sol/denoise.h, step by step as sol::denoise (libsol/src/denoise.cpp)
 // takes it on the host, in float. Three kinds of dispatch (push.mode):
-//   0  prepare: each pixel's colour divided by its albedo's modulation, its
+//   0  prepare: each pixel's colour (less its emission: the host takes it
+//      out before and puts it back after) divided by its albedo's modulation, its
 //      light's variance over its 3 × 3 neighbours of the same object, and
 //      its distance slope;
 //   1  one à-trous pass, taps push.step pixels apart, `light_in` to `light_out`;
@@ -77,7 +78,7 @@ void pass(ivec2 p) {
       const vec4 light = light_in[kq], n = normals[kq], a = albedos[kq];
       const float w = sol_denoise_tap(x) * sol_denoise_tap(y) *
                       sol_denoise_weight(guide_a.w, a.w, l, sol_denoise_luminance(light.rgb), centre.w, guide_n.xyz, n.xyz,
-                                         guide_n.w, n.w, slope, float(push.step) * length(vec2(x, y)), guide_a.rgb, a.rgb);
+                                         guide_n.w, n.w, slope, float(push.step) * length(vec2(x, y)));
       sum += w * light.rgb;
       weights += w;
       variance += w * w * light.w;

@@ -33,7 +33,11 @@ DenoiseFilter::DenoiseFilter(Context& context) : m_context(context), m_pipeline(
 double DenoiseFilter::run(RenderResult& image, int eyes) {
   const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   std::vector<glm::vec4> normals(n), albedos(n);
+  // The device filters the colour less the emission (sol/denoise.h); the
+  // emission is added back to what it reads back.
+  std::vector<float> rgba = image.rgba;
   for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) rgba[4 * k + c] -= image.emission[3 * k + c];
     normals[k] = glm::vec4(image.normal[3 * k], image.normal[3 * k + 1], image.normal[3 * k + 2], image.distance[k]);
     albedos[k] = glm::vec4(image.albedo[3 * k], image.albedo[3 * k + 1], image.albedo[3 * k + 2], image.object[k]);
   }
@@ -42,7 +46,7 @@ double DenoiseFilter::run(RenderResult& image, int eyes) {
   Buffer slopes(m_context, n * sizeof(float), BufferUsage::DeviceStorage);
   std::array<Buffer, 2> light{Buffer(m_context, vec4s, BufferUsage::DeviceStorage),
                               Buffer(m_context, vec4s, BufferUsage::DeviceStorage)};
-  color.write(image.rgba);
+  color.write(rgba);
   normal.write(normals);
   albedo.write(albedos);
   m_pipeline.bind(0, color);
@@ -67,6 +71,9 @@ double DenoiseFilter::run(RenderResult& image, int eyes) {
   for (int pass = 0; pass < kernel::kDenoisePasses; ++pass) ms += dispatch(1, 1 << pass);
   ms += dispatch(2, 1);
   color.read(image.rgba);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) image.rgba[4 * k + c] += image.emission[3 * k + c];
+  }
   return ms;
 }
 

@@ -573,7 +573,8 @@ ComputePipeline make_pipeline(Context& c, const MarchOptions& o, const KernelVar
                                           {kernel::kBindingParts, DescriptorType::StorageBuffer},
                                           {kernel::kBindingAlbedo, DescriptorType::StorageImage},
                                           {kernel::kBindingNormal, DescriptorType::StorageImage},
-                                          {kernel::kBindingTextures, DescriptorType::StorageBuffer}},
+                                          {kernel::kBindingTextures, DescriptorType::StorageBuffer},
+                                          {kernel::kBindingEmission, DescriptorType::StorageImage}},
                              .push_constant_size = 0,
                              .specialization = specialization(o, v, pass),
                              .specialization_folding = o.specialization_folding,
@@ -1031,7 +1032,8 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
                           std::to_string(f.width) + " x " + std::to_string(f.height));
   }
   // The AOV bindings must hold valid images; with WRITE_AOVS off the kernel never writes them.
-  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal}) {
+  for (int b : {kernel::kBindingColor, kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal,
+                kernel::kBindingEmission}) {
     f.pipeline->bind(f.set, b, target);
   }
   m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
@@ -1050,8 +1052,8 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
   f.pipeline->bind(f.set, kernel::kBindingColor, color);
   f.pipeline->bind(f.set, kernel::kBindingHit, hit);
   f.pipeline->bind(f.set, kernel::kBindingPoint, point);
-  // (A probe's samples write no albedo or normal: their bindings hold the colour's image, never written through them.)
-  for (int b : {kernel::kBindingAlbedo, kernel::kBindingNormal}) f.pipeline->bind(f.set, b, color);
+  // (A probe's samples write no guides: their bindings hold the colour's image, never written through them.)
+  for (int b : {kernel::kBindingAlbedo, kernel::kBindingNormal, kernel::kBindingEmission}) f.pipeline->bind(f.set, b, color);
   m_impl->record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
                         group_count(f.height, kernel::kGroupSize), f.data());
 }
@@ -1138,7 +1140,8 @@ void MarchRenderer::record(VkCommandBuffer command_buffer, std::span<const Camer
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
   f.pipeline->bind(f.set, kernel::kBindingColor, target.view);
-  for (int b : {kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal}) {
+  for (int b : {kernel::kBindingHit, kernel::kBindingPoint, kernel::kBindingAlbedo, kernel::kBindingNormal,
+                kernel::kBindingEmission}) {
     f.pipeline->bind(f.set, b, *m.placeholder);
   }
   m.record_passes(command_buffer, *f.pipeline, f.set, group_count(f.width, kernel::kGroupSize),
@@ -1164,7 +1167,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // The AOV images only when asked for (the kernel variant without AOVs
   // never writes them: a 1 x 1 placeholder holds their bindings).
   StorageImage color(m.context, f.width, f.height);
-  std::optional<StorageImage> hit, point, albedo, normal;
+  std::optional<StorageImage> hit, point, albedo, normal, emission;
   if (options.aovs) {
     hit.emplace(m.context, f.width, f.height);
     point.emplace(m.context, f.width, f.height);
@@ -1172,6 +1175,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (options.guides) {
     albedo.emplace(m.context, f.width, f.height);
     normal.emplace(m.context, f.width, f.height);
+    emission.emplace(m.context, f.width, f.height);
   }
   if (!m.placeholder) m.placeholder.emplace(m.context, 1, 1);
   Impl::Built& pipeline = *f.pipeline;
@@ -1180,6 +1184,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   pipeline.bind(f.set, kernel::kBindingPoint, point ? *point : *m.placeholder);
   pipeline.bind(f.set, kernel::kBindingAlbedo, albedo ? *albedo : *m.placeholder);
   pipeline.bind(f.set, kernel::kBindingNormal, normal ? *normal : *m.placeholder);
+  pipeline.bind(f.set, kernel::kBindingEmission, emission ? *emission : *m.placeholder);
   Params& g = f.params;
   // Paths: the seed's halves and the sampling (each dispatch its sample's index, below).
   g.path = path_uniform(options.seed, 0, options.path_sampling);
@@ -1203,8 +1208,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample k of the range: the range's first overwrites (sample 0, the
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
-        // (w: sample 0 writes the AOVs, 2: the albedo and normal too.)
-        const double aovs_written = k != 0 ? 0.0 : options.guides ? 2.0 : 1.0;
+        // (w: 1 sample 0 writes the AOVs, 2 the guides too; 3 a later
+        // sample joins the guides' albedo and emission to their mean.)
+        const double aovs_written = k != 0 ? (options.guides ? 3.0 : 0.0) : options.guides ? 2.0 : 1.0;
         g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), aovs_written));
         const glm::dvec2 disk = lens_sample(k);
         g.lens.x = static_cast<float>(disk.x);
@@ -1254,9 +1260,11 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   const std::vector<float> hits = hit->download(), points = point->download();
   const std::vector<float> albedos = albedo ? albedo->download() : std::vector<float>{};
   const std::vector<float> normals = normal ? normal->download() : std::vector<float>{};
+  const std::vector<float> emissions = emission ? emission->download() : std::vector<float>{};
   const std::size_t n = static_cast<std::size_t>(w) * h;
   r.albedo.resize(albedo ? 3 * n : 0);
   r.normal.resize(normal ? 3 * n : 0);
+  r.emission.resize(emission ? 3 * n : 0);
   r.object.resize(n);
   r.distance.resize(n);
   r.steps.resize(n);
@@ -1275,6 +1283,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     for (std::size_t c = 0; c < 3 && albedo; ++c) {
       r.albedo[3 * k + c] = albedos[4 * k + c];
       r.normal[3 * k + c] = normals[4 * k + c];
+      r.emission[3 * k + c] = emissions[4 * k + c];
     }
   }
   return r;

@@ -27,7 +27,7 @@ void validate_denoise(const RenderResult& image, int eyes, const char* who) {
     std::size_t size, expected;
   } planes[] = {{"rgba", image.rgba.size(), 4 * n},     {"object", image.object.size(), n},
                 {"distance", image.distance.size(), n}, {"albedo", image.albedo.size(), 3 * n},
-                {"normal", image.normal.size(), 3 * n}};
+                {"emission", image.emission.size(), 3 * n}, {"normal", image.normal.size(), 3 * n}};
   for (const auto& p : planes) {
     if (p.size != p.expected) {
       throw InvalidArgument(where + "the image's " + p.name + " holds " + std::to_string(p.size) + " values, not " +
@@ -41,7 +41,7 @@ namespace {
 // One pixel's guides, as the filter reads them.
 struct Guide {
   double object = 0.0, distance = 0.0, slope = 0.0;
-  glm::dvec3 albedo{0.0}, normal{0.0};
+  glm::dvec3 normal{0.0};
 };
 
 }  // namespace
@@ -57,16 +57,15 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
 
   std::vector<Guide> guide(n);
   std::vector<glm::dvec3> modulation(n);
-  std::vector<glm::dvec4> current(n), next(n);  // the demodulated colour (rgb) and its luminance's variance (w)
+  std::vector<glm::dvec4> current(n), next(n);  // the light (rgb) and its luminance's variance (w)
   for (std::size_t k = 0; k < n; ++k) {
     Guide& g = guide[k];
     g.object = image.object[k];
     g.distance = image.distance[k];
     for (int c = 0; c < 3; ++c) {
-      g.albedo[c] = image.albedo[3 * k + c];
       g.normal[c] = image.normal[3 * k + c];
-      modulation[k][c] = kernel::sol_denoise_modulation(g.albedo[c], g.object);
-      current[k][c] = image.rgba[4 * k + c] / modulation[k][c];
+      modulation[k][c] = kernel::sol_denoise_modulation(image.albedo[3 * k + c], g.object);
+      current[k][c] = (image.rgba[4 * k + c] - image.emission[3 * k + c]) / modulation[k][c];
     }
   }
   // Each pixel's distance slope and the variance of its light over its 3 × 3
@@ -114,8 +113,7 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
             const double wq = kernel::sol_denoise_tap(dx) * kernel::sol_denoise_tap(dy) *
                               kernel::sol_denoise_weight(g.object, o.object, l,
                                                          kernel::sol_denoise_luminance(glm::dvec3(current[q])), current[k].w,
-                                                         g.normal, o.normal, g.distance, o.distance, g.slope, offset,
-                                                         g.albedo, o.albedo);
+                                                         g.normal, o.normal, g.distance, o.distance, g.slope, offset);
             sum += wq * glm::dvec3(current[q]);
             weights += wq;
             variance += wq * wq * current[q].w;
@@ -128,7 +126,9 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
     std::swap(current, next);
   }
   for (std::size_t k = 0; k < n; ++k) {
-    for (int c = 0; c < 3; ++c) image.rgba[4 * k + c] = static_cast<float>(current[k][c] * modulation[k][c]);
+    for (int c = 0; c < 3; ++c) {
+      image.rgba[4 * k + c] = static_cast<float>(current[k][c] * modulation[k][c] + image.emission[3 * k + c]);
+    }
   }
 }
 

@@ -769,6 +769,18 @@ glm::dvec3 albedo_at(const SceneObject& o, const MarchHit& hit) {
   return o.texture ? a * texture_color(*o.texture, o.texture_cells, hit.pattern_uv) : a;
 }
 
+// What a camera ray's first hit gives the denoiser's guides: its albedo
+// and what it emits towards the eye (the emission times the fog's
+// transmittance over the ray, as both transports add it); 0 on a miss.
+struct FirstHitGuides {
+  glm::dvec3 albedo{0.0}, emission{0.0};
+};
+FirstHitGuides first_hit_guides(const World& world, const MarchHit& hit) {
+  if (hit.object == 0) return {};
+  const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
+  return {albedo_at(o, hit), o.emission * std::exp(-world.fog_density * hit.distance)};
+}
+
 // A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the
 // seed, the pixel and the sample, so that an image does not depend on the
 // threads that rendered it.
@@ -1384,6 +1396,7 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   r.pz = join(left.pz, right.pz, 1);
   r.steps = join(left.steps, right.steps, 1);
   r.albedo = join(left.albedo, right.albedo, 3);
+  r.emission = join(left.emission, right.emission, 3);
   r.normal = join(left.normal, right.normal, 3);
   r.out_of_steps = join(left.out_of_steps, right.out_of_steps, 1);
   r.rays_out_of_steps = left.rays_out_of_steps + right.rays_out_of_steps;
@@ -1534,9 +1547,10 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->assign(pixels, 0.0f);
     if (settings.guides) {
-      for (auto* plane : {&r.albedo, &r.normal}) plane->assign(3 * pixels, 0.0f);
+      for (auto* plane : {&r.albedo, &r.emission, &r.normal}) plane->assign(3 * pixels, 0.0f);
     }
   }
+  const bool guides = aovs && settings.guides;
   std::atomic<std::uint64_t> out_of_steps{0};
 
   // Every ray starts at the camera, except an ODS eye's: each column at its
@@ -1584,21 +1598,36 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       const int first = settings.first_sample;
       const bool sees = first == 0 && camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}, 0) : MarchHit{};
-      const auto colour = [&](const MarchHit& at, int s) { return transport->radiance(at, k, s); };
+      // Each sample's colour, and with the guides its first hit's albedo and emission (their means).
+      glm::dvec3 albedo(0.0), emission(0.0);
+      const auto colour = [&](const MarchHit& at, int s) {
+        if (guides) {
+          const FirstHitGuides g = first_hit_guides(prepared.world(), at);
+          albedo += g.albedo;
+          emission += g.emission;
+        }
+        return transport->radiance(at, k, s);
+      };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
-      for (int s = std::max(first, 1); s < first + settings.samples; ++s) {  // the other samples: colour only
+      for (int s = std::max(first, 1); s < first + settings.samples; ++s) {  // the other samples: no AOVs but the guides
         const glm::dvec2 offset = pixel_sample(s);
         if (!camera_sees(camera, i, j, w, h, offset)) continue;
         const MarchHit other = march_at(i, j, offset, s);
         c += colour(other, s);
       }
       c /= static_cast<double>(settings.samples);
+      albedo /= static_cast<double>(settings.samples);
+      emission /= static_cast<double>(settings.samples);
       r.rgba[4 * k + 0] = static_cast<float>(c.r);
       r.rgba[4 * k + 1] = static_cast<float>(c.g);
       r.rgba[4 * k + 2] = static_cast<float>(c.b);
       r.rgba[4 * k + 3] = 1.0f;
       out_of_steps.fetch_add(t_out_of_steps, std::memory_order_relaxed);
       if (!aovs) continue;
+      for (int channel = 0; channel < 3 && guides; ++channel) {
+        r.albedo[3 * k + channel] = static_cast<float>(albedo[channel]);
+        r.emission[3 * k + channel] = static_cast<float>(emission[channel]);
+      }
       r.out_of_steps[k] = static_cast<float>(t_out_of_steps);
       r.object[k] = static_cast<float>(hit.object);
       r.steps[k] = static_cast<float>(hit.steps);
@@ -1607,12 +1636,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
         r.px[k] = static_cast<float>(hit.point.x);
         r.py[k] = static_cast<float>(hit.point.y);
         r.pz[k] = static_cast<float>(hit.point.z);
-        if (!settings.guides) continue;
-        const glm::dvec3 a = albedo_at(prepared.world().objects[static_cast<std::size_t>(hit.object - 1)], hit);
-        for (int channel = 0; channel < 3; ++channel) {
-          r.albedo[3 * k + channel] = static_cast<float>(a[channel]);
-          r.normal[3 * k + channel] = static_cast<float>(hit.normal[channel]);
-        }
+        for (int channel = 0; channel < 3 && guides; ++channel) r.normal[3 * k + channel] = static_cast<float>(hit.normal[channel]);
       }
     }
   });

@@ -69,6 +69,7 @@ def test_denoised_from_python_is_solrenders():
     assert set(got) >= {"rgba"} and "albedo" not in got and "object" not in got
     assert np.abs(got["rgba"] - raw["rgba"]).max() > 0.01  # the filter changed the colour
     assert raw["albedo"].shape == (16, 24, 3) and raw["normal"].shape == (16, 24, 3)
+    assert raw["emission"].shape == (16, 24, 3) and "emission" not in got
     assert same_as_solrender(scene, got["rgba"], "--device", "vulkan", "--width", 24, "--height", 16, "--spp", 2,
                              "--transport", "path", "--seed", 3, "--denoise")
     with pytest.raises(ValueError, match="first_sample"):

@@ -8,10 +8,13 @@
 // luminance weight of Schied et al.'s SVGF, HPG 2017; spatial variance
 // here, a still having no earlier frames).
 //
-// The filter works on the colour divided by the albedo (the light that
-// reaches the surface, without its pattern), so that a checker or a
-// coloured object's edge keeps its sharpness; kDenoisePasses passes of a
-// 5 × 5 B3-spline kernel whose taps lie 1, 2, 4, ... pixels apart.
+// The filter works on the light that reaches the surfaces: the colour less
+// the emission, divided by the albedo, both the means over the pixel's
+// samples (so that a pixel whose samples straddle a pattern's edge, or a
+// glowing and a dark object, is divided by what its samples saw), and put
+// back after; a checker or a coloured object's edge keeps its sharpness.
+// kDenoisePasses passes of a 5 × 5 B3-spline kernel whose taps lie 1, 2,
+// 4, ... pixels apart.
 // docs/lighting.md ("Denoising") derives the weights. Valid C++ (namespace
 // sol::kernel, double) and GLSL (float), as sol/tone.h.
 #ifndef SOL_DENOISE_H
@@ -54,8 +57,6 @@ SOL_CONSTANT(SOL_REAL, kDenoiseNormalPower, 128.0);
 /// The distance weight's width, in the pixel's distance slope times the
 /// tap's offset: a neighbour off the pixel's tangent plane is another surface.
 SOL_CONSTANT(SOL_REAL, kDenoiseSigmaDistance, 1.0);
-/// The albedo weight's width (an albedo difference of this is exp(-1)).
-SOL_CONSTANT(SOL_REAL, kDenoiseSigmaAlbedo, 0.1);
 /// Albedos below this (per channel) do not divide the colour.
 SOL_CONSTANT(SOL_REAL, kDenoiseMinAlbedo, 0.01);
 
@@ -71,32 +72,31 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_luminance(SOL_DENOISE_VEC3 c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
-/// What divides a channel of a pixel's colour before filtering (and
-/// multiplies it after): the albedo's channel, or 1 where it is too dark
-/// to divide by, or the pixel is a miss (object 0).
+/// What divides a channel of a pixel's colour, less its emission, before
+/// filtering (and multiplies it after): the albedo's channel, or 1 where it
+/// is too dark to divide by, or the pixel is a miss (object 0).
 SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_modulation(SOL_REAL albedo, SOL_REAL object) {
   return object > 0.5 && albedo >= kDenoiseMinAlbedo ? albedo : 1.0;
 }
 
 /// The edge-stopping weight of neighbour q for pixel p (the B3 tap apart):
 /// zero for another object (misses are object 0, of no normal or
-/// distance), else the product of the luminance weight (their demodulated
+/// distance), else the product of the luminance weight (their lights'
 /// luminances l against kDenoiseSigmaLuminance standard deviations of p's
-/// noise, sqrt(variance_p)), the normal weight (cos^kDenoiseNormalPower),
-/// the distance weight (|z_p − z_q| against kDenoiseSigmaDistance ×
+/// noise, sqrt(variance_p)), the normal weight (cos^kDenoiseNormalPower)
+/// and the distance weight (|z_p − z_q| against kDenoiseSigmaDistance ×
 /// slope_p × the offset's length in pixels, slope_p the change of p's
-/// distance per pixel) and the albedo weight.
+/// distance per pixel). No albedo weight: the light filtered is the
+/// albedo's quotient already, and a pixel on a pattern's edge, whose albedo
+/// is its samples' blend, takes from both sides.
 SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_weight(SOL_REAL object_p, SOL_REAL object_q, SOL_REAL l_p, SOL_REAL l_q,
                                                  SOL_REAL variance_p, SOL_DENOISE_VEC3 n_p, SOL_DENOISE_VEC3 n_q,
-                                                 SOL_REAL z_p, SOL_REAL z_q, SOL_REAL slope_p, SOL_REAL offset,
-                                                 SOL_DENOISE_VEC3 a_p, SOL_DENOISE_VEC3 a_q) {
+                                                 SOL_REAL z_p, SOL_REAL z_q, SOL_REAL slope_p, SOL_REAL offset) {
   if (object_p != object_q) return 0.0;
   SOL_REAL w = SOL_DENOISE_EXP(-abs(l_p - l_q) / (kDenoiseSigmaLuminance * sqrt(SOL_DENOISE_MAX(variance_p, 0.0)) + 1e-6));
   if (object_p > 0.5) {
     w *= SOL_DENOISE_POW(SOL_DENOISE_MAX(dot(n_p, n_q), 0.0), kDenoiseNormalPower);
     w *= SOL_DENOISE_EXP(-abs(z_p - z_q) / (kDenoiseSigmaDistance * slope_p * offset + 1e-4 * z_p + 1e-6));
-    const SOL_DENOISE_VEC3 da = a_p - a_q;
-    w *= SOL_DENOISE_EXP(-dot(da, da) / (kDenoiseSigmaAlbedo * kDenoiseSigmaAlbedo));
   }
   return w;
 }

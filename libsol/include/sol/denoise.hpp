@@ -16,7 +16,7 @@
 namespace sol {
 
 /// The checks of an image to denoise: its colour and the AOVs the filter
-/// reads (object, distance, albedo, normal) of its size, and `eyes` (1 or
+/// reads (object, distance, albedo, emission, normal) of its size, and `eyes` (1 or
 /// 2, side by side) dividing its width; InvalidArgument naming `who` and
 /// the field otherwise (an image rendered without RenderOptions::aovs has
 /// none).

@@ -53,7 +53,8 @@ struct RenderOptions {
   int height = 512;  ///< in [1, 16384]
   /// Samples per pixel, in [1, 4096]: the colour is their mean
   /// (anti-aliasing, at sol::pixel_sample 0, 1, ...; a box filter over the
-  /// pixel); the AOVs are the pixel centre's (sample 0).
+  /// pixel); the AOVs are the pixel centre's (sample 0), but for the
+  /// guides' albedo and emission, which are the samples' mean.
   int samples = 1;
   /// The index of the first of them: the samples are first_sample ..
   /// first_sample + samples - 1 (their points sol::pixel_sample, their
@@ -82,10 +83,11 @@ struct RenderOptions {
   /// neither reads them back from a device nor holds them (solrender
   /// without --aov).
   bool aovs = true;
-  /// With `aovs`: the denoiser's guides too (RenderResult::albedo and
-  /// ::normal). Asked for apart: the kernel's two more images cost about a
-  /// tenth of an AOV render's device time on lavapipe (plane at 512²: 27
-  /// -> 31 ms).
+  /// With `aovs`: the denoiser's guides too (RenderResult::albedo,
+  /// ::emission and ::normal). Asked for apart: the kernel's three more
+  /// images, two of them joined by every sample, cost up to a twentieth of
+  /// a path render's device time on lavapipe (256 × 192, 16 paths:
+  /// lattice-balls 1647 -> 1724 ms, plane 367 -> 386 ms).
   bool guides = false;
   /// Called now and then with the finished fraction in [0, 1] (0 first, 1 last).
   std::function<void(double)> progress;
@@ -108,10 +110,17 @@ struct RenderResult {
   std::vector<float> distance;  ///< arc length to the hit (0 on a miss)
   std::vector<float> px, py, pz;  ///< hit point, world Sol coordinates (0 on a miss)
   std::vector<float> steps;     ///< march steps used
-  /// 3 per pixel: the hit's albedo (its colour times its pattern and
-  /// texture, whatever its material), 0 on a miss: the denoiser's guide
+  /// 3 per pixel: the mean over the pixel's samples (as the colour) of
+  /// their camera rays' first hits' albedo (its colour times its pattern
+  /// and texture, whatever its material; 0 on a miss): the denoiser's guide
   /// (sol/denoise.hpp); with RenderOptions::guides, else empty.
   std::vector<float> albedo;
+  /// 3 per pixel: the mean over the pixel's samples of what their first
+  /// hits emit towards the eye (the object's emission times the fog's
+  /// transmittance over the camera ray; 0 on a miss): the part of the
+  /// colour that needs no light, which the denoiser takes out before it
+  /// divides by the albedo; with RenderOptions::guides, else empty.
+  std::vector<float> emission;
   /// 3 per pixel: the hit's unit surface normal in the frame components at
   /// the hit, facing the ray (a solid seen from inside: its inward normal);
   /// 0 on a miss; with RenderOptions::guides, else empty.

@@ -49,11 +49,12 @@ SOL_CONSTANT(int, kBindingObjects, 12);     ///< storage buffer (read-only): the
 SOL_CONSTANT(int, kBindingCrowdNodes, 13);  ///< storage buffer (read-only): a crowd's tree of bounds (CrowdNode)
 SOL_CONSTANT(int, kBindingCrowdItems, 14);  ///< storage buffer (read-only): a crowd's objects in leaf order (CrowdItem)
 SOL_CONSTANT(int, kBindingParts, 15);       ///< storage buffer (read-only): the composites' parts (Part)
-SOL_CONSTANT(int, kBindingAlbedo, 16);      ///< storage image: the hit's albedo R, G, B, 0 (AOVs, the denoiser's guide)
+SOL_CONSTANT(int, kBindingAlbedo, 16);      ///< storage image: the hits' albedo R, G, B, 0, the samples' mean (the denoiser's guide)
 SOL_CONSTANT(int, kBindingNormal, 17);      ///< storage image: the hit's normal, frame components, 0 (AOVs, the denoiser's guide)
 SOL_CONSTANT(int, kBindingTextures, 18);    ///< storage buffer (read-only): the objects' image textures' texels (vec4, rgb linear)
+SOL_CONSTANT(int, kBindingEmission, 19);    ///< storage image: what the hits emit towards the eye R, G, B, 0, the samples' mean (the denoiser's guide)
 /// The number of bindings (the last one's, plus one).
-SOL_CONSTANT(int, kBindingCount, 19);
+SOL_CONSTANT(int, kBindingCount, 20);
 
 // ---- Specialisation constants: what a scene uses is compiled in, the rest
 // folded away. The world's features are sol/march_features.h (their ids
