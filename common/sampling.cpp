@@ -64,6 +64,9 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
   int counted[2] = {0, 0};
   double device_ms = 0.0;
   std::uint64_t out_of_steps = 0;
+  // The guides' albedo and emission, summed as the colour where every batch has them.
+  std::vector<double> albedo, emission;
+  int guided = 0;
   int pair = std::max(1, (goal.min_samples + 1) / 2);
   for (;;) {
     for (int side = 0; side < 2; ++side) {
@@ -75,6 +78,15 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
         throw std::logic_error("sol::programs::render_batches: a batch of another size");
       }
       for (std::size_t k = 0; k < r.rgba.size(); ++k) half[side][k] += static_cast<double>(r.rgba[k]) * pair;
+      if (!r.albedo.empty() && r.emission.size() == r.albedo.size()) {
+        albedo.resize(r.albedo.size(), 0.0);
+        emission.resize(r.albedo.size(), 0.0);
+        for (std::size_t k = 0; k < r.albedo.size() && k < albedo.size(); ++k) {
+          albedo[k] += static_cast<double>(r.albedo[k]) * pair;
+          emission[k] += static_cast<double>(r.emission[k]) * pair;
+        }
+        guided += pair;
+      }
       device_ms += r.device_ms;
       out_of_steps += r.rays_out_of_steps;
       if (report.samples == 0) result = std::move(r);  // its size and AOVs (its colour replaced at the end)
@@ -103,9 +115,16 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
     if (next < 1 || (!goal.seconds && !goal.noise && report.samples >= goal.min_samples)) break;
     pair = next;
   }
-  // The mean of all samples (the first batch's AOVs kept).
+  // The mean of all samples (the first batch's AOVs kept), and so the guides' albedo and emission where
+  // every batch rendered them (else the first batch's).
   for (std::size_t k = 0; k < result.rgba.size(); ++k) {
     result.rgba[k] = static_cast<float>((half[0][k] + half[1][k]) / report.samples);
+  }
+  if (guided == report.samples && result.albedo.size() == albedo.size()) {
+    for (std::size_t k = 0; k < albedo.size(); ++k) {
+      result.albedo[k] = static_cast<float>(albedo[k] / guided);
+      result.emission[k] = static_cast<float>(emission[k] / guided);
+    }
   }
   result.device_ms = device_ms;
   result.rays_out_of_steps = out_of_steps;

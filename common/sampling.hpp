@@ -50,7 +50,8 @@ double noise_estimate(const std::vector<double>& a, const std::vector<double>& b
 /// [first, first + count) (their mean colour; the AOVs when asked, only
 /// for the first batch, with `aovs`), until `goal` says stop. The result is
 /// the mean colour of all samples (the first batch's AOVs), as one render
-/// of them all would be up to rounding. `progress`, when set, hears the
+/// of them all would be up to rounding; where every batch has the guides'
+/// albedo and emission (RenderOptions::guides), theirs too. `progress`, when set, hears the
 /// report after each pair.
 RenderResult render_batches(const std::function<RenderResult(int first, int count, bool aovs)>& batch, bool aovs,
                             const SamplingGoal& goal, SamplingReport& report,

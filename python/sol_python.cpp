@@ -311,7 +311,7 @@ struct PyRenderer {
               o.first_sample = first;
               o.samples = count;
               o.aovs = with_aovs;
-              o.guides = with_aovs && options.guides;
+              o.guides = options.guides;  // (every batch's albedo and emission, joined as the colour)
               // The whole render's progress, not each batch's: the time spent of the limit, else the samples
               // of the most there may be.
               o.progress = [&, first, count](double fraction) {

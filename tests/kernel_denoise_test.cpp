@@ -14,6 +14,7 @@
 #include <sol/sol.hpp>
 #include <sol/vk/march.hpp>
 
+#include "support/batch_guides.hpp"
 #include "support/guides.hpp"
 #include "support/kernel.hpp"
 #include "support/textures.hpp"
@@ -86,6 +87,15 @@ TEST(KernelDenoise, TheGuidesAreTheSamplesMeans) {
   // values below 1), and part from the centre's on the edges.
   sol::vk::MarchRenderer kernel(vk_context());
   sol::test::expect_guides_are_the_samples_means(kernel, 1e-5);
+  expect_no_validation_errors();
+}
+
+TEST(KernelDenoise, BatchesJoinTheirGuides) {
+  // As the CPU's: the kernel's batches' albedo and emission (running means
+  // in float) joined are one render's (its running mean over all 14) to
+  // float's rounding of the blends, 1e-5.
+  sol::vk::MarchRenderer kernel(vk_context());
+  sol::test::expect_batches_join_the_guides(kernel, 1e-5);
   expect_no_validation_errors();
 }
 

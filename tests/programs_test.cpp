@@ -32,8 +32,10 @@
 #include "output_file.hpp"
 #include "progress.hpp"
 #include "sampling.hpp"
+#include "support/batch_guides.hpp"
 
 #include <sol/render.hpp>
+#include <sol/renderer.hpp>
 #include <sol/error.hpp>
 #include <sol/scene.hpp>
 
@@ -522,6 +524,13 @@ TEST(Sampling, BatchesStopAtTheTargetOrTheLimit) {
   sol::programs::render_batches(slow, false, goal, report);
   EXPECT_LT(report.seconds, 0.36);
   EXPECT_GE(report.samples, 30);  // 5 ms a sample: 60 fit; pairs 1, 2, 4, 8 make 30 in 0.15 s
+}
+
+TEST(Sampling, TheCpuRenderersBatchesJoinTheirGuides) {
+  // (Each batch's means are floats: their weighted mean is the one
+  // render's to a few float roundings of values below 2.)
+  sol::CpuRenderer cpu;
+  sol::test::expect_batches_join_the_guides(cpu, 1e-6);
 }
 
 // A path-traced render stopped at a noise target, against a reference of

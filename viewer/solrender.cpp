@@ -803,7 +803,8 @@ std::unique_ptr<sol::Renderer> renderer_for(const Options& o, const sol::Scene& 
 
 // --time-limit, --noise-target: the image in batches of samples
 // (sampling.hpp), each a render of consecutive samples; the colour the
-// mean of all of them, the AOVs the first batch's. What was reached is said.
+// mean of all of them, the AOVs the first batch's (the guides' albedo and
+// emission the mean of all, as the colour). What was reached is said.
 sol::RenderResult render_until(const Options& o, const sol::Camera& camera, const sol::RenderOptions& options,
                                const std::function<sol::RenderResult(const sol::Camera&, const sol::RenderOptions&)>& render,
                                ProgressLine& progress, bool tty, int& samples_done) {
@@ -817,7 +818,7 @@ sol::RenderResult render_until(const Options& o, const sol::Camera& camera, cons
     these.first_sample = first;
     these.samples = count;
     these.aovs = aovs;
-    these.guides = aovs && options.guides;
+    these.guides = options.guides;  // (every batch's albedo and emission, joined as the colour)
     these.rows = nullptr;    // the colour is the batches' mean, handed over whole
     these.progress = nullptr;  // (progress: per pair, below)
     return render(camera, these);

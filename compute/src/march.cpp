@@ -1160,7 +1160,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;
   const bool path = options.transport == Transport::Path;
-  Frame f = prepare_frame(eyes, options.width, height, options.aovs, false, {}, true, path);
+  // (The guides alone, a later batch's, take the AOV variant too: it writes them.)
+  const bool aov_variant = options.aovs || options.guides;
+  Frame f = prepare_frame(eyes, options.width, height, aov_variant, false, {}, true, path);
   // The kernel is built: the work begins now (a progress estimate counts from here).
   if (options.progress) options.progress(0.0);
   const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
@@ -1168,7 +1170,7 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   // never writes them: a 1 x 1 placeholder holds their bindings).
   StorageImage color(m.context, f.width, f.height);
   std::optional<StorageImage> hit, point, albedo, normal, emission;
-  if (options.aovs) {
+  if (aov_variant) {  // (never read back without `aovs`, but the variant writes them)
     hit.emplace(m.context, f.width, f.height);
     point.emplace(m.context, f.width, f.height);
   }
@@ -1208,9 +1210,11 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample k of the range: the range's first overwrites (sample 0, the
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
-        // (w: 1 sample 0 writes the AOVs, 2 the guides too; 3 a later
-        // sample joins the guides' albedo and emission to their mean.)
-        const double aovs_written = k != 0 ? (options.guides ? 3.0 : 0.0) : options.guides ? 2.0 : 1.0;
+        // (w: 1 sample 0 writes the AOVs, 2 the guides too; 3 any other
+        // sample, or one of a render without AOVs, joins the guides'
+        // albedo and emission to their mean.)
+        const bool writes_aovs = k == 0 && options.aovs;
+        const double aovs_written = options.guides ? (writes_aovs ? 2.0 : 3.0) : writes_aovs ? 1.0 : 0.0;
         g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), aovs_written));
         const glm::dvec2 disk = lens_sample(k);
         g.lens.x = static_cast<float>(disk.x);
@@ -1256,15 +1260,22 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   m.stats.read(counted);
   r.rays_out_of_steps = counted[0].out_of_steps.x;
   if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
-  if (!options.aovs) return r;  // the colour alone: nothing more read back or held
-  const std::vector<float> hits = hit->download(), points = point->download();
-  const std::vector<float> albedos = albedo ? albedo->download() : std::vector<float>{};
-  const std::vector<float> normals = normal ? normal->download() : std::vector<float>{};
-  const std::vector<float> emissions = emission ? emission->download() : std::vector<float>{};
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  r.albedo.resize(albedo ? 3 * n : 0);
-  r.normal.resize(normal ? 3 * n : 0);
-  r.emission.resize(emission ? 3 * n : 0);
+  // The guides' albedo and emission (every sample's), the normal with the AOVs (sample 0's).
+  const auto read_rgb = [n](StorageImage& image, std::vector<float>& plane) {
+    const std::vector<float> values = image.download();
+    plane.resize(3 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (std::size_t c = 0; c < 3; ++c) plane[3 * k + c] = values[4 * k + c];
+    }
+  };
+  if (options.guides) {
+    read_rgb(*albedo, r.albedo);
+    read_rgb(*emission, r.emission);
+    if (options.aovs) read_rgb(*normal, r.normal);
+  }
+  if (!options.aovs) return r;  // nothing more read back or held
+  const std::vector<float> hits = hit->download(), points = point->download();
   r.object.resize(n);
   r.distance.resize(n);
   r.steps.resize(n);
@@ -1280,11 +1291,6 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
     r.px[k] = points[4 * k + 0];
     r.py[k] = points[4 * k + 1];
     r.pz[k] = points[4 * k + 2];
-    for (std::size_t c = 0; c < 3 && albedo; ++c) {
-      r.albedo[3 * k + c] = albedos[4 * k + c];
-      r.normal[3 * k + c] = normals[4 * k + c];
-      r.emission[3 * k + c] = emissions[4 * k + c];
-    }
   }
   return r;
 }

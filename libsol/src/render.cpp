@@ -1546,11 +1546,12 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
   const bool aovs = settings.aovs;
   if (aovs) {
     for (auto* plane : {&r.object, &r.distance, &r.px, &r.py, &r.pz, &r.steps, &r.out_of_steps}) plane->assign(pixels, 0.0f);
-    if (settings.guides) {
-      for (auto* plane : {&r.albedo, &r.emission, &r.normal}) plane->assign(3 * pixels, 0.0f);
-    }
+    if (settings.guides) r.normal.assign(3 * pixels, 0.0f);
   }
-  const bool guides = aovs && settings.guides;
+  const bool guides = settings.guides;  // (the albedo and emission; the normal with the AOVs)
+  if (guides) {
+    for (auto* plane : {&r.albedo, &r.emission}) plane->assign(3 * pixels, 0.0f);
+  }
   std::atomic<std::uint64_t> out_of_steps{0};
 
   // Every ray starts at the camera, except an ODS eye's: each column at its
@@ -1623,11 +1624,11 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       r.rgba[4 * k + 2] = static_cast<float>(c.b);
       r.rgba[4 * k + 3] = 1.0f;
       out_of_steps.fetch_add(t_out_of_steps, std::memory_order_relaxed);
-      if (!aovs) continue;
       for (int channel = 0; channel < 3 && guides; ++channel) {
         r.albedo[3 * k + channel] = static_cast<float>(albedo[channel]);
         r.emission[3 * k + channel] = static_cast<float>(emission[channel]);
       }
+      if (!aovs) continue;
       r.out_of_steps[k] = static_cast<float>(t_out_of_steps);
       r.object[k] = static_cast<float>(hit.object);
       r.steps[k] = static_cast<float>(hit.steps);

@@ -59,9 +59,6 @@ void validate_render(std::span<const Camera> eyes, const RenderOptions& options,
   if (options.first_sample < 0 || options.first_sample > RenderOptions::kMaxFirstSample) {
     throw InvalidArgument(at + "first_sample must be in [0, 2^24], got " + std::to_string(options.first_sample));
   }
-  if (options.guides && !options.aovs) {
-    throw InvalidArgument(std::string(who) + ": guides (the albedo and normal AOVs) need aovs");
-  }
   if (options.first_sample > 0 && options.aovs) {
     throw InvalidArgument(at + "a batch of samples after the first (first_sample " + std::to_string(options.first_sample) +
                           ") renders no AOVs (they are sample 0's): set aovs to false");

@@ -83,8 +83,10 @@ struct RenderOptions {
   /// neither reads them back from a device nor holds them (solrender
   /// without --aov).
   bool aovs = true;
-  /// With `aovs`: the denoiser's guides too (RenderResult::albedo,
-  /// ::emission and ::normal). Asked for apart: the kernel's three more
+  /// The denoiser's guides: RenderResult::albedo and ::emission (the means
+  /// over the range's samples) and, with `aovs`, ::normal (sample 0's).
+  /// Without `aovs` (a batch after the first) the albedo and emission
+  /// alone, which batches join as they join their colours. Asked for apart: the kernel's three more
   /// images, two of them joined by every sample, cost up to a twentieth of
   /// a path render's device time on lavapipe (256 × 192, 16 paths:
   /// lattice-balls 1647 -> 1724 ms, plane 367 -> 386 ms).
