@@ -81,7 +81,7 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
       if (!r.albedo.empty() && r.emission.size() == r.albedo.size()) {
         albedo.resize(r.albedo.size(), 0.0);
         emission.resize(r.albedo.size(), 0.0);
-        for (std::size_t k = 0; k < r.albedo.size() && k < albedo.size(); ++k) {
+        for (std::size_t k = 0; k < r.albedo.size(); ++k) {
           albedo[k] += static_cast<double>(r.albedo[k]) * pair;
           emission[k] += static_cast<double>(r.emission[k]) * pair;
         }

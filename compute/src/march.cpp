@@ -1153,9 +1153,9 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   (void)world();  // a world first (logic_error)
   // Peak host memory per pixel, measured on lavapipe (whose device memory
   // is the host's): with the AOVs 120 bytes (the images, their staging
-  // copies and the result) before the albedo and normal, which add two
-  // images, their copies and 24 bytes of result: rounded up.
-  validate_render(eyes, options, "sol::vk::MarchRenderer::render", 216.0);
+  // copies and the result) before the guides' albedo, emission and normal,
+  // which add three images, their copies and 36 bytes of result: rounded up.
+  validate_render(eyes, options, "sol::vk::MarchRenderer::render", 256.0);
   // At once, before the kernel is prepared (compiled on a cold cache: seconds).
   if (options.progress) options.progress(0.0);
   const int samples = options.samples, height = options.height;

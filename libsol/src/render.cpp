@@ -1511,9 +1511,9 @@ RenderResult CpuRenderer::render(std::span<const Camera> eyes, const RenderOptio
   // The world as it is now (logic_error without one), whatever set_world does meanwhile.
   const std::shared_ptr<const MarchWorld> prepared = current_world();
   // Peak memory per pixel, measured: 55 bytes (the result's colour and
-  // AOVs, 40, and the tiles' working copies) before the albedo and normal
-  // (24 more), rounded up.
-  validate_render(eyes, options, "sol::CpuRenderer::render", 88.0);
+  // AOVs, 40, and the tiles' working copies) before the guides' albedo,
+  // emission and normal (36 more), rounded up.
+  validate_render(eyes, options, "sol::CpuRenderer::render", 96.0);
   // Each eye on its own; the progress of all of them together.
   RenderOptions eye_options = options;
   RenderResult r;
