@@ -20,7 +20,7 @@ Lattice::Lattice(const glm::dvec2& g1, const glm::dvec2& g2, double height, cons
       m_monodromy(monodromy),
       m_turns(turns),
       m_loops(loops) {
-  // Inverse of the 2x2 matrix with columns g1, g2 (none for a z loop: zero rows).
+  // Inverse of the 2x2 matrix with columns g1, g2 (none for a z loop: its rows stay zero).
   if (loops == Loops::Z) return;
   const double det = g1.x * g2.y - g2.x * g1.y;
   m_coordinates_row0 = glm::dvec2(g2.y, -g2.x) / det;

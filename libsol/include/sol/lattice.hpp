@@ -218,8 +218,8 @@ class Lattice {
   Monodromy m_monodromy;
   bool m_turns = false;
   Loops m_loops = Loops::All;
-  glm::dvec2 m_coordinates_row0;  // rows of [γ1 γ2]^{-1}
-  glm::dvec2 m_coordinates_row1;
+  glm::dvec2 m_coordinates_row0{0.0};  // rows of [γ1 γ2]^{-1} (zero for a z loop)
+  glm::dvec2 m_coordinates_row1{0.0};
 };
 
 }  // namespace sol
