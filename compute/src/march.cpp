@@ -955,7 +955,7 @@ MarchRenderer::Frame MarchRenderer::prepare_frame(std::span<const Camera> eyes, 
       }
     }
   }
-  g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? 1.0 : 0.0));
+  g.pixel_sample = glm::vec4(glm::dvec4(sample.offset, sample.weight, sample_aovs ? kernel::kSampleAovs : kernel::kSampleColourOnly));
   // Depth of field: the eyes share their camera's lens (sol::stereo_eyes copies it).
   g.lens = glm::vec4(glm::dvec4(lens_sample(sample.index), eyes[0].aperture, eyes[0].focus_distance));
   g.tile = glm::ivec4(0, 0, width * static_cast<int>(eyes.size()), height);  // the whole image
@@ -1210,12 +1210,12 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
         // Sample k of the range: the range's first overwrites (sample 0, the
         // centre, writes the AOVs too); each later one joins the mean.
         const int k = options.first_sample + n;
-        // (w: 1 sample 0 writes the AOVs, 2 the guides too; 3 any other
-        // sample, or one of a render without AOVs, joins the guides'
-        // albedo and emission to their mean.)
+        // (Sample 0 writes the AOVs; with the guides every other sample,
+        // or one of a render without AOVs, joins their albedo and emission.)
         const bool writes_aovs = k == 0 && options.aovs;
-        const double aovs_written = options.guides ? (writes_aovs ? 2.0 : 3.0) : writes_aovs ? 1.0 : 0.0;
-        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), aovs_written));
+        const int writes = options.guides ? (writes_aovs ? kernel::kSampleAovsAndGuides : kernel::kSampleJoinsGuides)
+                                          : (writes_aovs ? kernel::kSampleAovs : kernel::kSampleColourOnly);
+        g.pixel_sample = glm::vec4(glm::dvec4(pixel_sample(k), 1.0 / (n + 1), writes));
         const glm::dvec2 disk = lens_sample(k);
         g.lens.x = static_cast<float>(disk.x);
         g.lens.y = static_cast<float>(disk.y);

@@ -755,11 +755,14 @@ bool blocked(const MarchWorld& prepared, const glm::dvec3& from, const glm::dvec
 // pattern times the ambient and the lights' (shade_hit, radiance).
 glm::dvec3 diffuse_light(const MarchWorld& prepared, const MarchHit& hit);
 
+// The fog's transmittance over a ray's arc length to its hit.
+double fog_transmittance(const World& world, const MarchHit& hit) { return std::exp(-world.fog_density * hit.distance); }
+
 glm::dvec3 shade_hit(const MarchWorld& prepared, const MarchHit& hit) {
   if (hit.object == 0) return glm::dvec3(0.0);
   const World& world = prepared.world();
   const glm::dvec3 surface = diffuse_light(prepared, hit);
-  const double transmittance = std::exp(-world.fog_density * hit.distance);
+  const double transmittance = fog_transmittance(world, hit);
   return world.fog_color + (surface - world.fog_color) * transmittance;
 }
 
@@ -778,7 +781,7 @@ struct FirstHitGuides {
 FirstHitGuides first_hit_guides(const World& world, const MarchHit& hit) {
   if (hit.object == 0) return {};
   const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
-  return {albedo_at(o, hit), o.emission * std::exp(-world.fog_density * hit.distance)};
+  return {albedo_at(o, hit), o.emission * fog_transmittance(world, hit)};
 }
 
 // A path's random numbers: splitmix64 (Steele, Lea, Flood 2014) from the
@@ -912,7 +915,7 @@ glm::dvec3 radiance(const MarchWorld& prepared, const MarchHit& first, PathRando
   MarchHit hit = first;
   for (int bounce = 0; hit.object != 0; ++bounce) {
     const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
-    const double transmittance = std::exp(-world.fog_density * hit.distance);
+    const double transmittance = fog_transmittance(world, hit);
     color += weight * ((1.0 - transmittance) * world.fog_color);
     // The material's lobes (sol/materials.h): its diffuse share of the
     // diffuse light, and the reflected ray's weight.
@@ -1318,7 +1321,7 @@ glm::dvec3 path_radiance(const MarchWorld& prepared, const std::vector<GlowTarge
   for (int depth = 0; hit.object != 0; ++depth) {
     const bool goes_on = depth < bounces;  // this vertex may scatter the path further
     const SceneObject& o = world.objects[static_cast<std::size_t>(hit.object - 1)];
-    const double transmittance = std::exp(-world.fog_density * hit.distance);
+    const double transmittance = fog_transmittance(world, hit);
     color += weight * ((1.0 - transmittance) * world.fog_color);
     weight *= transmittance;
     if (o.emission != glm::dvec3(0.0)) {

@@ -210,6 +210,16 @@ bool object_is_solid(int type) { return (HAS_COMPOSITES && type == kObjectCompos
 // the CPU's double stays outside and passes it until 2 hit_epsilon away.
 const float kHeadsDepth = 0.5;
 
+// Whether a ray passing a solid it leaves (its bound d from the ray's
+// point), where solids drawn by their bound are not seen from inside, has
+// gone 2 hit_epsilon into it: a ray that leaves a face at a grazing angle
+// and bends back into the solid is blocked there, not passed through it 2
+// hit_epsilon a step until it runs out of steps. Exact balls keep their
+// own rule (their exact solves).
+bool passed_into(int type, float d, float hit_epsilon) {
+  return HAS_SOLIDS && !HAS_INSIDE && type != kObjectExactBall && d < -2.0 * hit_epsilon;
+}
+
 float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
 
 // Inside a solid drawn by its bound (the bound -d < 0 given): its faces'

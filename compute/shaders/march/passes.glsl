@@ -16,11 +16,12 @@ void report_out_of_steps(ivec2 pixel, bool written) {
   if (WRITE_AOVS && !written) imageStore(aov_hit, pixel, imageLoad(aov_hit, pixel) + vec4(0.0, 0.0, 0.0, float(g_out_of_steps)));
 }
 
-// The sample's w (MarchRenderer::render): 1 sample 0 writes the AOVs, 2
-// the guides too, 3 a later sample joins the guides' albedo and emission
-// (a presenter's probe binds no images for the guides and never asks).
-bool writes_aovs(float w) { return WRITE_AOVS && w > 0.5 && w < 2.5; }
-bool writes_guides(float w) { return WRITE_AOVS && w > 1.5; }
+// What the sample writes besides the colour (pixel_sample.w: kSampleColourOnly
+// ... kSampleJoinsGuides; a presenter's probe binds no images for the guides
+// and never asks for them).
+int sample_writes() { return int(params.pixel_sample.w + 0.5); }
+bool writes_aovs() { return WRITE_AOVS && (sample_writes() == kSampleAovs || sample_writes() == kSampleAovsAndGuides); }
+bool writes_guides() { return WRITE_AOVS && sample_writes() >= kSampleAovsAndGuides; }
 
 // A camera ray's hit's albedo and what it emits towards the eye (over the
 // fog of `t`), joined to the pixel's means with the sample's weight (1
@@ -30,7 +31,7 @@ void write_guides_of(ivec2 pixel, Surface f, float t) {
   vec4 a = vec4(0.0), e = vec4(0.0);
   if (hit) {
     a.rgb = albedo(f.object, f.uv);
-    if (HAS_EMISSION) e.rgb = scene_objects[f.object].material.rgb * (HAS_FOG ? exp(-params.shading.y * t) : 1.0);
+    if (HAS_EMISSION) e.rgb = scene_objects[f.object].material.rgb * fog_transmittance(t);
   }
   const float weight = params.pixel_sample.z;
   if (weight < 1.0) {
@@ -39,18 +40,17 @@ void write_guides_of(ivec2 pixel, Surface f, float t) {
   }
   imageStore(aov_albedo, pixel, a);
   imageStore(aov_emission, pixel, e);
-  if (params.pixel_sample.w < 2.5) imageStore(aov_normal, pixel, hit ? vec4(f.n, 0.0) : vec4(0.0));
+  if (sample_writes() == kSampleAovsAndGuides) imageStore(aov_normal, pixel, hit ? vec4(f.n, 0.0) : vec4(0.0));
 }
 
 // The AOVs of a camera ray's hit (`hit`, its surface `f`; `f.object` < 0
 // a miss, all 0) where the sample writes them, and the guides where it joins them.
 void write_aovs_of(ivec2 pixel, vec4 hit_aov, vec4 point_aov, Surface f) {
-  const float w = params.pixel_sample.w;
-  if (writes_aovs(w)) {
+  if (writes_aovs()) {
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);
   }
-  if (writes_guides(w)) write_guides_of(pixel, f, hit_aov.y);
+  if (writes_guides()) write_guides_of(pixel, f, hit_aov.y);
 }
 
 // From the eye (PATH_FROM_EYE, march/paths.glsl; DIRECT_FROM_EYE,
@@ -79,7 +79,7 @@ void from_eye_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction
     }
     write_aovs_of(pixel, hit_aov, point_aov, first_f);
   }
-  report_out_of_steps(pixel, writes_aovs(params.pixel_sample.w));
+  report_out_of_steps(pixel, writes_aovs());
 }
 
 // The march and resume passes: a pixel's camera ray, marched (the resume
@@ -108,7 +108,7 @@ void march_pass() {
   const ivec2 local = ivec2(pixel.x - eye * width, pixel.y);
   // The point of the pixel this dispatch samples (the centre without anti-aliasing).
   const vec4 sample_at = params.pixel_sample;
-  const bool write_aovs = WRITE_AOVS && sample_at.w != 0.0;  // (the AOVs, or the guides alone: write_aovs_of)
+  const bool write_aovs = WRITE_AOVS && sample_writes() != kSampleColourOnly;  // (the AOVs, or the guides alone: write_aovs_of)
   const CameraRay ray = camera_ray(eye, local, width, height, sample_at);
   if (!ray.sees) {
     imageStore(color_image, pixel, output_color(accumulate(pixel, vec4(0.0, 0.0, 0.0, 1.0), sample_at.z)));
@@ -174,7 +174,7 @@ void march_pass() {
     hit_aov.w = float(g_out_of_steps);
     write_aovs_of(pixel, hit_aov, point_aov, hit_f);
   }
-  report_out_of_steps(pixel, writes_aovs(params.pixel_sample.w));
+  report_out_of_steps(pixel, writes_aovs());
 }
 
 // The shade pass: the hits the march pass listed (defer_shading), shaded

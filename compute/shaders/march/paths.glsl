@@ -110,7 +110,7 @@ float emission_share(float reflection, float glow) {
 bool path_emission(MarchHit h, Surface f, bool reachable, vec3 from, int from_inside, vec3 from_direction,
                    float from_cosine, inout vec3 color, inout vec3 weight, out vec3 emission, out GlowDensity dq) {
   const vec4 material = scene_objects[f.object].material;
-  const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+  const float transmittance = fog_transmittance(h.t);
   color += weight * ((1.0 - transmittance) * params.fog_color.rgb);
   weight *= transmittance;
   emission = weight * material.rgb;

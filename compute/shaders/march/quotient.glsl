@@ -146,10 +146,8 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
                              image_inside_clearances(type, e, direction, m, hz, d).w < 0.0;
           // Not seen from inside, a solid drawn by its bound is passed
           // until the ray is 2 hit_epsilon out of it or into it, as in Sol
-          // (march_objects): a ray that leaves it at a grazing angle and
-          // bends back in is blocked there, not passed through 2
-          // hit_epsilon a step until it runs out of steps.
-          const bool into = HAS_SOLIDS && !HAS_INSIDE && d < -2.0 * hit_epsilon && !exact_ball;
+          // (passed_into).
+          const bool into = passed_into(type, d, hit_epsilon);
           if (d > 2.0 * hit_epsilon || heads || into) passing[p] = -1;
           else leaving = true;
         }

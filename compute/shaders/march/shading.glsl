@@ -318,6 +318,9 @@ Surface surface_at(MarchHit h) {
   return f;
 }
 
+// The fog's transmittance over arc length t.
+float fog_transmittance(float t) { return HAS_FOG ? exp(-params.shading.y * t) : 1.0; }
+
 // One hit's share (radiance): over the fog of its segment, its emission and
 // its material's diffuse share of its diffuse light, times `weight`;
 // returns its material's specular weight times the fog's transmittance,
@@ -327,7 +330,7 @@ Surface surface_at(MarchHit h) {
 // colour.
 vec3 radiance_of_hit(MarchHit h, Surface f, vec3 light, vec3 weight, inout vec3 color, out vec2 lobe) {
   const vec4 material = scene_objects[f.object].material;
-  const float transmittance = HAS_FOG ? exp(-params.shading.y * h.t) : 1.0;
+  const float transmittance = fog_transmittance(h.t);
   const SolLobes lobes = lobes_of(f.object, albedo(f.object, f.uv));
   // (Every hit's light is gathered whatever the diffuse share, as before
   // materials: a light received under `lobes.diffuse > 0.0` made the

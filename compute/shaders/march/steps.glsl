@@ -82,11 +82,9 @@ MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, con
                                                       g_half_exp_z[k], -raw).w < 0.0;
       }
       // Not seen from inside, a solid drawn by its bound is passed until
-      // the ray is 2 hit_epsilon out of it or into it: a ray that leaves a
-      // face at a grazing angle and bends back into the solid is blocked
-      // there (it would pass it 2 hit_epsilon a step). Exact balls keep
-      // their own rule (march_exact_step).
-      const bool into = HAS_SOLIDS && !HAS_INSIDE && d < -2.0 * hit_epsilon && g_types[k] != kObjectExactBall;
+      // the ray is 2 hit_epsilon out of it or into it (passed_into; exact
+      // balls: march_exact_step).
+      const bool into = passed_into(g_types[k], d, hit_epsilon);
       // A plane z = c is passed until the ray turns back towards it (u_z
       // turns from the start's: `leaving` says upward): one that leaves it
       // almost level bends back into it (z'' = u2² - u1²) before it is 2

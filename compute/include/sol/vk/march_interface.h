@@ -117,6 +117,12 @@ SOL_CONSTANT(int, kSpecPass, 18);           ///< int: which pass this pipeline r
 // second list's hits: each an indirect dispatch over its list alone, so
 // that the pixels that need none of that work do not pay for it (lavapipe
 // runs every branch of a SIMD group, masked, whatever its lanes take).
+// What a dispatch's sample writes besides the colour (Params::pixel_sample.w).
+SOL_CONSTANT(int, kSampleColourOnly, 0);     ///< the colour alone
+SOL_CONSTANT(int, kSampleAovs, 1);           ///< the AOVs too (sample 0, the centre)
+SOL_CONSTANT(int, kSampleAovsAndGuides, 2);  ///< the AOVs and the guides (sample 0 of render())
+SOL_CONSTANT(int, kSampleJoinsGuides, 3);    ///< the guides' albedo and emission joined to their means (any other sample)
+
 SOL_CONSTANT(int, kPassMarch, 0);
 SOL_CONSTANT(int, kPassResume, 1);
 SOL_CONSTANT(int, kPassShade, 2);
@@ -200,9 +206,8 @@ struct Params {
   /// This dispatch's sample of every pixel: xy its point in the pixel (from
   /// the top-left corner; 0.5, 0.5 the centre), z its weight in the colour
   /// already in the image (1: overwrite; 1/(k + 1) for a running mean of
-  /// k + 1 samples), w 1 when the AOVs are written (the centre's sample),
-  /// 2 when the albedo and normal are written too (render()'s, not a
-  /// presenter's probe).
+  /// k + 1 samples), w what it writes besides the colour (kSampleColourOnly
+  /// ... kSampleJoinsGuides; the guides are render()'s, never a presenter's).
   vec4 pixel_sample;
   /// This dispatch's tile of the (side-by-side) image: xy its first pixel,
   /// zw its size; the dispatch covers it, pixels outside it are left alone.
