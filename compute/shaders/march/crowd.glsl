@@ -253,11 +253,14 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
                  passing);
     // A solid it leaves through the face it starts on: leave sign 1, its
     // pass ends 2 hit_epsilon away (the CPU's leaving_sign; exact balls'
-    // signs are their solves').
+    // signs are their solves'). A plane z = c it leaves upward: leave sign
+    // 1, its pass ends where u_z turns (as march_starts_on's `leaving`).
     for (int j = 0; j < 4; ++j) {
-      if (!HAS_INSIDE || passing[j] < 0) continue;
+      if (passing[j] < 0) continue;
       const SeenObject o = crowd_item_seen(passing[j]);
-      if (leaves_through_start(o.type, origin, direction, o.rel, o.heading, o.radius)) leave_signs[j] = 1.0;
+      const bool leaves = HAS_INSIDE && leaves_through_start(o.type, origin, direction, o.rel, o.heading, o.radius);
+      const bool upward = HAS_PLANES_Z && o.type == kObjectPlaneZ && direction.z > 0.0;
+      if (leaves || upward) leave_signs[j] = 1.0;
     }
   }
   float t = 0.0;
@@ -284,7 +287,14 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
       float d = crowd_distance(o, q, hz, inside);
       const bool exact_ball = HAS_EXACT_BALLS && o.type == kObjectExactBall;
       if (exact_ball) d = exact_seen_bound(seen, passed[j], t, d);
-      bool ends = d > 2.0 * hit_epsilon;
+      // Until 2 hit_epsilon out of it, or (a solid not seen from inside)
+      // into it (passed_into, sinks_into), or (a plane z = c) where u_z turns, as
+      // march_objects.
+      const bool turned = HAS_PLANES_Z && o.type == kObjectPlaneZ && (leave_signs[j] > 0.0 ? u.z < 0.0 : u.z > 0.0);
+      const bool into = passed_into(o.type, d, hit_epsilon) ||
+                        (may_sink_into(o.type, d) &&
+                         sinks_into(object_inside_clearances(o.type, q, u, o.rel, o.heading, o.radius, hz, o.hc, -d)));
+      bool ends = d > 2.0 * hit_epsilon || into || turned;
       if (exact_ball && !ends && d < kExactShell) {
         if (d < leaving_d) {
           leaving = j;
@@ -328,6 +338,7 @@ MarchHit march_crowd(vec3 origin, vec3 direction, float limit, const int purpose
       for (int j = 0; j < 4; ++j) {
         if (passing[j] < 0) {
           passing[j] = s.hit_i;
+          leave_signs[j] = 0.0;
           break;
         }
       }

@@ -220,6 +220,22 @@ bool passed_into(int type, float d, float hit_epsilon) {
   return HAS_SOLIDS && !HAS_INSIDE && type != kObjectExactBall && d < -2.0 * hit_epsilon;
 }
 
+// Whether passed_into's solid, where the ray is inside it by less (d < 0),
+// ends its pass where the ray heads away from its nearest face (sinks_into:
+// that face's distance seen from inside rising). Without it a ray that
+// leaves a face at a grazing angle and bends back into the solid passed it
+// 2 hit_epsilon a step until 2 hit_epsilon deep: connections from a
+// glowing box's top towards points of its sides, skimming the top, sank
+// too slowly and ran out of steps (the CPU sees the solid from inside and
+// steps by its faces; docs/renderer.md).
+bool may_sink_into(int type, float d) {
+  return HAS_SOLIDS && !HAS_INSIDE && d < 0.0 && type != kObjectExactBall && object_is_solid(type);
+}
+
+// The rule itself, from the solid's clearances seen from inside (w: the
+// nearest face's rate g').
+bool sinks_into(vec4 inside) { return inside.w > 0.0; }
+
 float seen_from_inside(int type, float d) { return inside_by_bound(type) && d < 0.0 ? -d : d; }
 
 // Inside a solid drawn by its bound (the bound -d < 0 given): its faces'

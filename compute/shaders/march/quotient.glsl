@@ -146,8 +146,9 @@ QuotientCandidates quotient_candidates(uint word, bool all, int listed, vec3 e, 
                              image_inside_clearances(type, e, direction, m, hz, d).w < 0.0;
           // Not seen from inside, a solid drawn by its bound is passed
           // until the ray is 2 hit_epsilon out of it or into it, as in Sol
-          // (passed_into).
-          const bool into = passed_into(type, d, hit_epsilon);
+          // (passed_into, sinks_into).
+          const bool into = passed_into(type, d, hit_epsilon) ||
+                            (may_sink_into(type, d) && sinks_into(image_inside_clearances(type, e, direction, m, hz, -d)));
           if (d > 2.0 * hit_epsilon || heads || into) passing[p] = -1;
           else leaving = true;
         }

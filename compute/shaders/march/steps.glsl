@@ -82,9 +82,12 @@ MarchStep march_objects(vec3 q, vec3 u, vec2 hz, float t, float hit_epsilon, con
                                                       g_half_exp_z[k], -raw).w < 0.0;
       }
       // Not seen from inside, a solid drawn by its bound is passed until
-      // the ray is 2 hit_epsilon out of it or into it (passed_into; exact
-      // balls: march_exact_step).
-      const bool into = passed_into(g_types[k], d, hit_epsilon);
+      // the ray is 2 hit_epsilon out of it or into it (passed_into,
+      // sinks_into; exact balls: march_exact_step).
+      const bool into = passed_into(g_types[k], d, hit_epsilon) ||
+                        (may_sink_into(g_types[k], d) &&
+                         sinks_into(object_inside_clearances(g_types[k], q, u, g_relative[k], g_headings[k], g_radii[k], hz,
+                                                             g_half_exp_z[k], -d)));
       // A plane z = c is passed until the ray turns back towards it (u_z
       // turns from the start's: `leaving` says upward): one that leaves it
       // almost level bends back into it (z'' = u2² - u1²) before it is 2
