@@ -102,6 +102,12 @@ float plane_z_step(vec3 q, vec3 u, float c, float hit_epsilon) {
   return clearance_roots(abs(q.z - c) - hit_epsilon, q.z >= c ? u.z : -u.z).x;
 }
 
+// plane_z_step where only |u_z| (`speed`) is known: the ray taken as
+// heading for the plane, so a safe step whichever way it goes (one
+// passing a plane near the top or the bottom of its climb, u_z ≈ 0, steps
+// about √(2 (|z - c| - hit_epsilon)) rather than |z - c|).
+float plane_z_step_heading(float d, float speed, float hit_epsilon) { return clearance_roots(d - hit_epsilon, -speed).x; }
+
 vec3 plane_z_record_clearances(vec3 q, vec3 u, Image m, vec2 hz) {
   const vec4 b = m.bound;
   return plane_z_clearances(q, u, b, vec2(0.0), 0.0, hz, vec2(1.0));

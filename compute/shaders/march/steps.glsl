@@ -144,8 +144,19 @@ float march_plane_xy_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
   return min(s.others, max(s.nearest, plane_xy_step(q, u, g_types[k], g_constants[k], hit_epsilon)));
 }
 
+// A camera ray's |u_z| at height z from its direction at its start's
+// height z0 alone: u1 e^{-z} and u2 e^{z} are constant along a geodesic
+// (u1' = u1 u3, u2' = -u2 u3), and u3² = 1 - u1² - u2². For the camera
+// rays of a world without solids or cutouts, whose march takes positions
+// (or heights) alone: the plane z = c step of march_step_length.
+float climb_speed(vec3 direction, float z0, float z) {
+  const float e = exp(z - z0);
+  const float u1 = direction.x * e, u2 = direction.y / e;
+  return sqrt(max(1.0 - u1 * u1 - u2 * u2, 0.0));
+}
+
 // The step of march_sol from q (tangent u, known unless a camera ray in a
-// world without solids). The nearest solid's clearance for camera rays, for
+// world without solids or cutouts: then u.z holds |u_z|, climb_speed). The nearest solid's clearance for camera rays, for
 // every segment and connection of a path (one that leaves a wall almost
 // level crawled by the bound, 2 hit_epsilon a step while it passed the
 // wall, and ran out of steps: the CPU steps every ray so), and for every
@@ -155,13 +166,20 @@ float march_plane_xy_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
 // slower on lavapipe though the steps fell tenfold). A plane z = c: its
 // clearance to hit_epsilon for every ray whose tangent is known
 // (march_plane_z_step: one square root; a ray leaving a floor almost level
-// crawled by |z - c|). A plane x = c or y = c whose crossing is not solved
+// crawled by |z - c|), and for the other camera rays the same with the
+// ray taken as heading for it (plane_z_step_heading: a ray that turns
+// just short of a plane crawled by |z - c| about its turning point and
+// could run out of steps). A plane x = c or y = c whose crossing is not solved
 // (every ray but a camera ray of the closed form): likewise its clearance
 // (march_plane_xy_step; one arriving at a grazing angle crawled by its distance).
 float march_step_length(MarchStep s, vec3 q, vec3 u, vec2 hz, float hit_epsilon, bool camera, bool rk4) {
   const int type = g_types[s.nearest_any];
   if ((camera || HAS_INSIDE || PATH_TRACING) && object_is_solid(type)) return march_clearance_step(s, q, u, hz);
-  if (HAS_PLANES_Z && (HAS_SOLIDS || !camera || rk4) && type == kObjectPlaneZ) return march_plane_z_step(s, q, u, hit_epsilon);
+  if (HAS_PLANES_Z && type == kObjectPlaneZ) {
+    if (HAS_SOLIDS || HAS_CUTOUT || !camera || rk4) return march_plane_z_step(s, q, u, hit_epsilon);
+    // A camera ray whose tangent the march does not take: |u_z| alone (u.z, climb_speed).
+    return min(s.others, max(s.nearest, plane_z_step_heading(s.nearest, u.z, hit_epsilon)));
+  }
   if (HAS_PLANES_XY && (!camera || rk4) && (type == kObjectPlaneX || type == kObjectPlaneY)) {
     return march_plane_xy_step(s, q, u, hit_epsilon);
   }
