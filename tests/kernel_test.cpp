@@ -1796,6 +1796,43 @@ TEST(Kernel, PathsReachGlowingTubesAsTheCpuPathsDo) {
   expect_no_validation_errors();
 }
 
+// The same lamps in a crowd (eight small balls far away make the world
+// one: march/crowd.glsl): a crowd's glowing objects are targets on both
+// devices (its first kListedObjects of them: sol::glow_target_objects, the
+// kernel's Params::crowd_targets), an exact ball's too (before, a crowd's
+// boxes, bound balls and tubes were found by reflection alone and its
+// exact balls path traced on the CPU alone). For each strategy the
+// kernel's paths are the CPU's for the same seed, the three estimators
+// agree, and next-event estimation is taken (its image is not
+// reflection's, as it is where there is no target). With nine glowing
+// balls the ninth is reflection's alone and the estimators still agree.
+TEST(Kernel, PathsReachACrowdsGlowingObjectsAsTheCpuPathsDo) {
+  sol::vk::MarchRenderer renderer(vk_context());
+  const auto crowded = [](sol::Scene s) {
+    for (int k = 0; k < 8; ++k) s.objects.push_back({sol::Ball{{6.0 + k, 6.0, 2.0}, 0.1, false}, {0.5, 0.5, 0.5}});
+    return s;
+  };
+  sol::Scene nine = crowded(sol::test::lamp_over_plane(sol::test::bound_ball_lamp()));
+  for (std::size_t k = 3; k < nine.objects.size(); ++k) nine.objects[k].emission = {0.5, 0.5, 0.5};
+  ASSERT_EQ(sol::glow_target_objects(sol::MarchWorld(nine)).size(), sol::kListedObjects);
+  const std::pair<std::string, sol::Scene> worlds[] = {
+      {"box, crowd", crowded(sol::test::lamp_over_plane(sol::test::flat_box_lamp()))},
+      {"bound ball, crowd", crowded(sol::test::lamp_over_plane(sol::test::bound_ball_lamp()))},
+      {"tube along x, crowd", crowded(sol::test::lamp_over_plane(sol::test::tube_lamp(sol::TubeAxis::X)))},
+      {"exact ball, crowd", crowded(sol::test::lamp_over_plane(sol::Ball{{0.0, 0.1, 0.4}, 0.12, true}))},
+      {"nine glowing balls, crowd", nine}};
+  for (const auto& [where, scene] : worlds) {
+    ASSERT_GT(scene.objects.size(), sol::kListedObjects) << where;
+    EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path), "") << where;
+    const std::vector<sol::RenderResult> images = three_strategies_as_the_cpu(renderer, scene, where);
+    EXPECT_NE(images[1].rgba, images[2].rgba) << where;
+    sol::test::expect_estimators_agree(images[0], images[1], "kernel, " + where + ", combined - reflection");
+    sol::test::expect_estimators_agree(images[0], images[2], "kernel, " + where + ", combined - glow");
+    sol::test::expect_estimators_agree(images[1], images[2], "kernel, " + where + ", reflection - glow");
+  }
+  expect_no_validation_errors();
+}
+
 // A lamp over a floor, path traced: next-event estimation's connections
 // and the paths' segments leave the floor and the lamp's faces almost
 // level, and a segment or connection that grazes a face bends back into
@@ -2805,20 +2842,18 @@ TEST(Kernel, RejectsBadInput) {
   sol::vk::MarchRenderer renderer(vk_context());
   sol::Scene scene = sol::preset_scene("plane");
   EXPECT_THROW(sol::test::render(renderer, scene, 0, 10), sol::InvalidArgument);
-  // Paths to a glowing exact ball among more objects than the kernel lists
-  // (next-event estimation samples a listed world's): not rendered here,
-  // said so up front, naming the object (which --device auto takes as
-  // "render on the CPU"); direct light is; more objects than any world
-  // holds: invalid on every renderer.
+  // An exact ball too large for the kernel's float solves: not rendered
+  // here, said so up front, naming the field (which --device auto takes as
+  // "render on the CPU"); a glowing exact ball among more objects than the
+  // kernel lists is (a crowd's targets: Params::crowd_targets); more
+  // objects than any world holds: invalid on every renderer.
   scene.objects.resize(9, scene.objects[0]);
   scene.objects[7].shape = sol::Ball{{0.0, 0.0, 1.0}, 0.3, true};
   scene.objects[7].emission = {1.0, 1.0, 1.0};
-  EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene), "");
-  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path)
-                .find("objects[7].emission: glowing exact balls in a world of more than 8"),
-            std::string::npos);
-  scene.objects[7].shape = sol::Box{{0.0, 0.0, 1.0}, {0.3, 0.2, 0.1}};  // a glowing box: found by reflection alone
   EXPECT_EQ(sol::vk::MarchRenderer::unsupported(scene, sol::Transport::Path), "");
+  scene.objects[7].shape = sol::Ball{{0.0, 0.0, 1.0}, 2.5, true};
+  EXPECT_NE(sol::vk::MarchRenderer::unsupported(scene).find("objects[7].radius: exact balls of a radius above 2"),
+            std::string::npos);
   scene.objects[7] = scene.objects[0];
   scene.objects.resize(sol::kMaxObjects + 1, scene.objects[0]);
   EXPECT_THROW(sol::test::render(renderer, scene, 8, 8), sol::InvalidArgument);

@@ -183,6 +183,26 @@ TEST(SurfaceLight, TubePointsHaveTheirDensityOverTheirWindow) {
   }
 }
 
+// A tube's light point at the ends of u1's range (0, and the largest
+// double below 1) stays in its window, where its density is positive: t =
+// a tan(θ) with θ = ±atan(W / a) rounds above W for about one distance h in
+// six, and a point there has density 0, by which the renderers' next-event
+// estimation divided (a NaN pixel on the kernel, whose float rounds so for
+// a u1 within about 1e-7 of its ends: one pixel in 3072 at 768 paths).
+TEST(SurfaceLight, TubePointsAtTheEndsOfTheirRangeStayInTheirWindow) {
+  const double below_one = std::nextafter(1.0, 0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 1; i <= 400; ++i) {
+      const double h = 0.003 * i, radius = 0.04;
+      for (const double u1 : {0.0, below_one}) {
+        const dvec3 w = sol::kernel::sol_tube_light_point(axis, radius, h, 0.6, u1, 0.3);
+        EXPECT_LE(std::abs(sol::kernel::sol_tube_light_along(axis, w)), sol::kernel::sol_light_window(h)) << axis << " " << h;
+        EXPECT_GT(sol::kernel::sol_tube_light_density(axis, w, radius, h), 0.0) << axis << " " << h << " " << u1;
+      }
+    }
+  }
+}
+
 TEST(SurfaceLight, TheWindowGrowsWithTheDistanceUpToItsMost) {
   EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(0.0), sol::kernel::kLightWindowBase);
   EXPECT_DOUBLE_EQ(sol::kernel::sol_light_window(0.5), sol::kernel::kLightWindowBase + 0.5 * sol::kernel::kLightWindowSlope);

@@ -129,6 +129,17 @@ Params world_params(const MarchWorld& prepared) {
   g.limits = glm::vec4(world.max_distance, world.hit_epsilon, world.mirror_bounces(), world.max_steps);
   // Objects (the quotient: the images around D).
   g.counts.x = static_cast<int>(prepared.objects().size());
+  // A crowd's targets of next-event estimation: their items in the tree's leaf order.
+  for (glm::ivec4& v : g.crowd_targets) v = glm::ivec4(-1);
+  if (const BoundsTree* tree = prepared.tree()) {
+    const std::vector<std::size_t> targets = glow_target_objects(prepared);
+    const std::vector<std::uint32_t>& items = tree->items();
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      // (Item k of the tree is objects()[k], one per scene object in a crowd.)
+      const auto at = std::find(items.begin(), items.end(), static_cast<std::uint32_t>(targets[i]));
+      g.crowd_targets[i / 4][static_cast<glm::length_t>(i % 4)] = static_cast<int>(at - items.begin());
+    }
+  }
   return g;
 }
 
@@ -1087,20 +1098,6 @@ std::string MarchRenderer::unsupported(const World& world, Transport transport) 
                     "objects[%zu].radius: exact balls of a radius above %g render on the CPU only", i,
                     kMaxExactBallRadius);
       return message;
-    }
-  }
-  if (transport == Transport::Path && world.quotient() == Quotient::None && world.objects.size() > sol::kListedObjects) {
-    // A path's next-event estimation (march/glow.glsl) samples a listed
-    // world's glowing exact balls, not a crowd's (a crowd's glowing boxes and
-    // bound balls are found by reflection alone on both devices).
-    for (std::size_t i = 0; i < world.objects.size(); ++i) {
-      if (is_exact_ball(world.objects[i].shape) && world.objects[i].emission != glm::dvec3(0.0)) {
-        std::snprintf(message, sizeof message,
-                      "objects[%zu].emission: glowing exact balls in a world of more than %zu objects are path traced "
-                      "on the CPU only",
-                      i, sol::kListedObjects);
-        return message;
-      }
     }
   }
   const auto* bundle = std::get_if<MonodromySpace>(&world.space);

@@ -15,6 +15,7 @@
 #include "sol/group.hpp"
 #include "sol/lattice.hpp"
 #include "sol/quotient_field.hpp"
+#include "sol/surface_light.h"
 
 namespace sol {
 
@@ -224,6 +225,25 @@ std::vector<MarchObject> MarchWorld::seen_from(const glm::dvec3& origin) const {
   std::vector<MarchObject> out;
   out.reserve(m_objects.size());
   for (const MarchObject& o : m_objects) out.push_back(relative_to(o, origin));
+  return out;
+}
+
+std::vector<std::size_t> glow_target_objects(const MarchWorld& prepared) {
+  const World& world = prepared.world();
+  const bool quotient = prepared.features().quotient;
+  const std::size_t most = prepared.features().crowd ? kListedObjects : world.objects.size();
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < world.objects.size() && out.size() < most; ++k) {
+    const SceneObject& o = world.objects[k];
+    if (o.emission == glm::dvec3(0.0)) continue;
+    const Ball* ball = std::get_if<Ball>(&o.shape);
+    const Tube* tube = std::get_if<Tube>(&o.shape);
+    const bool target = (ball && ball->exact) ||
+                        (!quotient && (ball || std::holds_alternative<Box>(o.shape) ||
+                                       (tube && kernel::sol_tube_light_axis(tube->vertical(), tube->direction.x,
+                                                                            tube->direction.y) >= 0)));
+    if (target) out.push_back(k);
+  }
   return out;
 }
 

@@ -1058,31 +1058,21 @@ struct GlowTarget {
   }
 };
 
-// The targets: every glowing exact ball, box, bound ball and tube about a
-// coordinate axis of a listed world in Sol (a glowing plane is found by
-// reflection: drawn over a window, it cost more than it saved,
-// docs/lighting.md); in a crowd (a Sol world of more than
-// kernel::kListedObjects objects, which the kernel samples none of) and in
-// a quotient the exact balls alone (the kernel path traces no crowd with
-// them: sol::vk::MarchRenderer::unsupported), the other glowing objects
-// found by reflection on both devices. (In a quotient every image
-// around D is a target, and next-event estimation to them cost more than
-// it saved: docs/lighting.md.)
+// The targets: sol::glow_target_objects' (a glowing plane is found by
+// reflection: drawn over a window, it cost more than it saved; in a
+// quotient every image around D is a target, and next-event estimation to
+// other kinds than exact balls cost more than it saved: docs/lighting.md),
+// each of its MarchObjects (the quotient: its images).
 std::vector<GlowTarget> glow_targets(const MarchWorld& prepared) {
   const World& world = prepared.world();
-  // Boxes, bound balls and tubes about a coordinate axis.
-  const bool surfaces = !prepared.features().crowd && !prepared.features().quotient;
+  const std::vector<std::size_t> objects = glow_target_objects(prepared);
   std::vector<GlowTarget> out;
   for (const MarchObject& o : prepared.objects()) {
-    if (world.objects[o.owner].emission == glm::dvec3(0.0)) continue;
+    if (!std::binary_search(objects.begin(), objects.end(), o.owner)) continue;
     const double reach = world.objects[o.owner].glow_reach;
-    const Ball* ball = std::get_if<Ball>(&o.shape);
-    if (ball && (ball->exact || surfaces)) out.push_back({o.owner, *ball, reach});
-    if (!surfaces) continue;
+    if (const Ball* ball = std::get_if<Ball>(&o.shape)) out.push_back({o.owner, *ball, reach});
     if (const Box* b = std::get_if<Box>(&o.shape)) out.push_back({o.owner, *b, reach});
-    if (const Tube* t = std::get_if<Tube>(&o.shape); t && kernel::sol_tube_light_axis(t->vertical(), t->direction.x, t->direction.y) >= 0) {
-      out.push_back({o.owner, *t, reach});
-    }
+    if (const Tube* t = std::get_if<Tube>(&o.shape)) out.push_back({o.owner, *t, reach});
   }
   return out;
 }
@@ -1257,6 +1247,7 @@ glm::dvec3 glow_sample(const MarchWorld& prepared, const std::vector<GlowTarget>
   }
   const double area = picked / total * p.area;
   glm::dvec3 light(0.0);
+  if (!(area > 0.0)) return light;  // (a point of density 0 is never drawn)
   std::vector<Connection> ways;
   try {
     ways = glow_connections(g, hit.point, p.y);

@@ -140,21 +140,20 @@ def test_the_device_is_chosen_and_errors_name_the_keyword():
         sol.Renderer(sol.preset_scene("plane"), transport="paths")
     with pytest.raises(sol.InvalidArgumentError, match="seed"):
         sol.Renderer(sol.preset_scene("plane"), device="cpu").render(4, 4, seed=-1)
-    # Paths to glowing exact balls in a world of more than eight objects are traced on the CPU only: "auto"
+    # Exact balls of a radius above 2 are rendered on the CPU only (the kernel's float solves): "auto"
     # takes it and says why; "vulkan" refuses, naming the keyword that would render it.
     scene = json.loads(sol.preset_scene("plane").to_json())
-    scene["objects"] = [{"type": "ball", "center": [1 + 0.3 * i, 0, 0], "radius": 0.1, "exact": True,
-                         "emission": [1, 1, 1]} for i in range(9)]
-    crowd = sol.parse_scene(json.dumps(scene))
-    auto = sol.Renderer(crowd, transport="path")
+    scene["objects"] = [{"type": "ball", "center": [1, 0, 3], "radius": 2.5, "exact": True}]
+    large = sol.parse_scene(json.dumps(scene))
+    auto = sol.Renderer(large, transport="path")
     assert auto.device == "cpu"
     if sol.has_vulkan():
-        assert any("glowing exact balls" in note and "CPU" in note for note in auto.notes), auto.notes
+        assert any("radius above" in note and "CPU" in note for note in auto.notes), auto.notes
         with pytest.raises(sol.UnsupportedError, match='device="cpu" or "auto"'):
-            sol.Renderer(crowd, device="vulkan", transport="path")
+            sol.Renderer(large, device="vulkan", transport="path")
     else:
         with pytest.raises(sol.UnsupportedError, match="without the Vulkan kernel"):
-            sol.Renderer(crowd, device="vulkan", transport="path")
+            sol.Renderer(large, device="vulkan", transport="path")
 
 
 def test_progress_is_reported_and_its_errors_stop_the_render():

@@ -7,8 +7,9 @@
 
 // ---- Next-event estimation to glowing exact balls, boxes, bound balls
 // and tubes (glow_sample and glow_density in libsol/src/render.cpp, with
-// the same numbers): a target (in Sol a glowing object, in a quotient one
-// of its images around D) picked by glow_pick_weight at x, a point y of
+// the same numbers): a target (in Sol a glowing object, in a crowd one of
+// its first kListedObjects glowing objects, in a quotient one of its
+// images around D: sol::glow_target_objects) picked by glow_pick_weight at x, a point y of
 // its surface: an exact ball's y = c·exp(r w), w uniform on S² (area
 // density 1 / (4π J_c(w, r))), the other kinds' with the density
 // sol/surface_light.h gives in closed form (a tube's over a window about
@@ -39,14 +40,35 @@ int tube_axis(int k) {
   return sol_tube_light_axis(int(g_relative[k].w) == kTubeVertical, g_headings[k].x, g_headings[k].y);
 }
 
-// Scene object k (from the uniforms: a quotient's march loads no g_types).
-bool glowing(int k) {
-  const int type = int(scene_objects[k].plane.x);
-  return glow_kind(type, scene_objects[k].material.rgb, type != kObjectTube || (!QUOTIENT && !CROWD && tube_axis(k) >= 0));
+// A crowd's target i: its crowd item (Params::crowd_targets; -1 after the last).
+int crowd_target_item(int i) { return params.crowd_targets[i >> 2][i & 3]; }
+
+// The targets: Sol's objects, a crowd's listed targets, or the quotient's images.
+int glow_target_slots() {
+  if (QUOTIENT) return params.counts.x;
+  if (!CROWD) return g_count;
+  int n = 0;
+  while (n < kListedObjects && crowd_target_item(n) >= 0) ++n;
+  return n;
 }
 
-// The targets: Sol's objects, or the quotient's images.
-int glow_target_slots() { return QUOTIENT ? params.counts.x : g_count; }
+// The target slot of scene object k (a listed world's and a quotient's
+// march name their slot; a crowd's its scene object): -1 where none is.
+int glow_target_slot(int k) {
+  if (!CROWD) return k;
+  for (int i = 0; i < glow_target_slots(); ++i) {
+    if (int(crowd_items[crowd_target_item(i)].info.x) == k) return i;
+  }
+  return -1;
+}
+
+// Scene object k (from the uniforms: a quotient's march loads no g_types;
+// a crowd's targets are its listed ones).
+bool glowing(int k) {
+  if (CROWD) return glow_target_slot(k) >= 0;
+  const int type = int(scene_objects[k].plane.x);
+  return glow_kind(type, scene_objects[k].material.rgb, type != kObjectTube || (!QUOTIENT && tube_axis(k) >= 0));
+}
 
 // The geodesic from q to p (march coordinates) as the connection solver
 // takes it: p seen from q, in frame components at q.
@@ -115,13 +137,27 @@ bool glow_target(int i, vec3 x, out int object, out vec3 centre, out GlowShape s
     shape.radius = m.info.y;
     shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, m.heading.xy, m.geometry.w) : vec3(0.0);
   } else {
-    object = i;
-    shape.type = g_types[i];
-    centre = g_relative[i].xyz;
-    shape.radius = g_radii[i];
-    shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, g_headings[i], g_relative[i].w) : vec3(0.0);
+    // A listed object's record, or a crowd's target's as the crowd's march sees it.
+    vec4 rel;
+    vec2 heading;
+    if (CROWD) {
+      const SeenObject o = crowd_item_seen(crowd_target_item(i));
+      object = o.object;
+      shape.type = o.type;
+      rel = o.rel;
+      heading = o.heading;
+      shape.radius = o.radius;
+    } else {
+      object = i;
+      shape.type = g_types[i];
+      rel = g_relative[i];
+      heading = g_headings[i];
+      shape.radius = g_radii[i];
+    }
+    centre = rel.xyz;
+    shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, heading, rel.w) : vec3(0.0);
     if (shape_is_tube(shape)) {
-      shape.axis = tube_axis(i);
+      shape.axis = sol_tube_light_axis(int(rel.w) == kTubeVertical, heading.x, heading.y);
       centre = sol_tube_light_foot(shape.axis, centre, x);
       shape.h = abs(shape_bound(shape, seen_from(centre, x)));
     }
@@ -137,7 +173,7 @@ GlowShape hit_shape(MarchHit h, out vec3 centre) {
   int object;
   GlowShape shape;
   float size;
-  glow_target(h.k, h.q, object, centre, shape, size);
+  glow_target(glow_target_slot(h.k), h.q, object, centre, shape, size);
   return shape;
 }
 

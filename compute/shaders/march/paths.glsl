@@ -81,7 +81,7 @@ vec3 glow_connection(GlowSample g, int j, MarchHit to) {
   const vec3 arriving = QUOTIENT ? along.direction : to.u;
   const float cos_y = abs(dot(arriving, g.normal_y));
   const float spreading = along.density;
-  if (!(spreading > 0.0)) return vec3(0.0);
+  if (!(spreading > 0.0) || !(g.area > 0.0)) return vec3(0.0);  // (a point of density 0 is never drawn)
   float weight = 1.0;
   if (params.path.w == kPathSamplingCombined) {
     const float glow = g.area * spreading / max(cos_y, 1e-30), reflection = cos_x / SOL_PI;

@@ -166,4 +166,14 @@ class MarchWorld {
   std::vector<std::vector<glm::dvec3>> m_light_images;
 };
 
+/// The glowing scene objects next-event estimation draws points of on a
+/// path (both renderers; docs/lighting.md): in Sol every glowing exact
+/// ball, box, ball drawn by its bound and tube about a coordinate axis
+/// (a glowing plane is found by reflection), in a crowd (more than the
+/// listed objects) the first kListedObjects of them in the scene's order
+/// (the kernel holds that many; the others found by reflection), in a
+/// quotient the glowing exact balls (each image around D a target; the
+/// other kinds found by reflection). Their indices, ascending.
+std::vector<std::size_t> glow_target_objects(const MarchWorld& prepared);
+
 }  // namespace sol

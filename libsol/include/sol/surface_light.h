@@ -252,7 +252,9 @@ SOL_SHARED_FUNCTION SOL_REAL sol_tube_light_density(int axis, SOL_LIGHT_VEC3 w, 
 SOL_SHARED_FUNCTION SOL_LIGHT_VEC3 sol_tube_light_point(int axis, SOL_REAL radius, SOL_REAL h, SOL_REAL u0, SOL_REAL u1,
                                                         SOL_REAL u2) {
   const SOL_REAL window = sol_light_window(h), a = max(h, SOL_REAL(0.0)) + radius;
-  const SOL_REAL s = sinh(radius), t = a * tan((2.0 * u1 - 1.0) * atan(window / a)), across = 2.0 * u2 - 1.0;
+  // (t held to the window: tan(atan(W / a)) rounds above W / a for u1 near 0 or 1, where the density would be 0.)
+  const SOL_REAL s = sinh(radius), across = 2.0 * u2 - 1.0;
+  const SOL_REAL t = min(max(a * tan((2.0 * u1 - 1.0) * atan(window / a)), -window), window);
   if (axis == 2) {  // four faces of equal area
     if (u0 < 0.5) return SOL_LIGHT_VEC3(u0 < 0.25 ? s * exp(t) : -s * exp(t), across * s * exp(-t), t);
     return SOL_LIGHT_VEC3(across * s * exp(t), u0 < 0.75 ? s * exp(-t) : -s * exp(-t), t);

@@ -223,9 +223,8 @@ class MarchRenderer final : public Renderer {
   /// at 10^4, 36 % at 10^9 + 1; test Kernel.LargeMonodromyTracesRenderOnTheCpu).
   static constexpr long long kMaxMonodromyTrace = 200;
 
-  /// Whether the kernel renders the world: all but those with exact balls
-  /// among more than sol::kListedObjects objects, monodromies of |trace| above
-  /// kMaxMonodromyTrace, those with exact point
+  /// Whether the kernel renders the world: all but monodromies of |trace|
+  /// above kMaxMonodromyTrace, those with exact point
   /// lights of a reach above sol::ConnectionTable::kReach (its seeds stop
   /// there), or in the quotient above 1 (the light's images within reach
   /// of the domain, sol::quotient_light_images, outgrow kMaxGpuLightImages),

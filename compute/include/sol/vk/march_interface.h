@@ -228,6 +228,10 @@ struct Params {
   /// Depth of field (HAS_LENS, sol/lens.hpp): xy this dispatch's point of
   /// the unit disk (sol::lens_sample), z the aperture, w the focus distance.
   vec4 lens;
+  /// A crowd's targets of next-event estimation (sol::glow_target_objects,
+  /// at most SOL_LISTED_OBJECTS): their crowd items (leaf order), -1 after
+  /// the last (march/glow.glsl).
+  ivec4 crowd_targets[SOL_LISTED_OBJECTS / 4];
 };
 
 // ---- The quotient's images of the objects around D (binding 4, std430), world coordinates
@@ -327,6 +331,7 @@ constexpr bool distinct_spec_ids() {
 }
 static_assert(distinct_spec_ids(), "two specialisation constants share an id (sol/march_features.h, SOL_KERNEL_VARIANT_FLAGS)");
 static_assert(kMaxLights == 4, "Params::light_shadows holds one component per light");
+static_assert(SOL_LISTED_OBJECTS % 4 == 0, "Params::crowd_targets holds four items a vector");
 static_assert(sizeof(Object) == 7 * 16 && sizeof(CrowdNode) == 2 * 16 && sizeof(CrowdItem) == 3 * 16 && sizeof(Part) == 3 * 16 && sizeof(Image) == 4 * 16 && sizeof(Column) == 4 * 16 && sizeof(QueueHeader) == 2 * 16 &&
                   sizeof(Stats) == 16,
               "vec4 records");
@@ -344,7 +349,8 @@ static_assert(offsetof(Params, shading) == 2 * sizeof(Eye) && offsetof(Params, c
                   offsetof(Params, path) == 2 * sizeof(Eye) + (9 + kMaxLights) * 16 &&
                   offsetof(Params, display) == 2 * sizeof(Eye) + (10 + kMaxLights) * 16 &&
                   offsetof(Params, lens) == 2 * sizeof(Eye) + (11 + kMaxLights) * 16 &&
-                  sizeof(Params) == 2 * sizeof(Eye) + (11 + kMaxLights) * 16 + 16,
+                  offsetof(Params, crowd_targets) == 2 * sizeof(Eye) + (12 + kMaxLights) * 16 &&
+                  sizeof(Params) == 2 * sizeof(Eye) + (12 + kMaxLights) * 16 + SOL_LISTED_OBJECTS * 4,
               "std140 layout of Params");
 }  // namespace sol::vk::kernel
 #endif
