@@ -36,21 +36,11 @@ bool glow_kind(int type, vec3 emission, bool aligned) {
 
 // A listed tube's axis (sol/surface_light.h: 0 x, 1 y, 2 vertical; -1
 // along another horizontal direction) from its record.
-int tube_axis(int k) {
-  return sol_tube_light_axis(int(g_relative[k].w) == kTubeVertical, g_headings[k].x, g_headings[k].y);
-}
-
-// A crowd's target i: its crowd item (Params::crowd_targets; -1 after the last).
-int crowd_target_item(int i) { return params.crowd_targets[i >> 2][i & 3]; }
+int tube_axis_of(vec4 rel, vec2 heading) { return sol_tube_light_axis(int(rel.w) == kTubeVertical, heading.x, heading.y); }
+int tube_axis(int k) { return tube_axis_of(g_relative[k], g_headings[k]); }
 
 // The targets: Sol's objects, a crowd's listed targets, or the quotient's images.
-int glow_target_slots() {
-  if (QUOTIENT) return params.counts.x;
-  if (!CROWD) return g_count;
-  int n = 0;
-  while (n < kListedObjects && crowd_target_item(n) >= 0) ++n;
-  return n;
-}
+int glow_target_slots() { return QUOTIENT ? params.counts.x : (CROWD ? g_crowd_targets : g_count); }
 
 // The target slot of scene object k (a listed world's and a quotient's
 // march name their slot; a crowd's its scene object): -1 where none is.
@@ -157,7 +147,7 @@ bool glow_target(int i, vec3 x, out int object, out vec3 centre, out GlowShape s
     centre = rel.xyz;
     shape.half_size = shape.type == kObjectBox ? box_half_size(centre.z, heading, rel.w) : vec3(0.0);
     if (shape_is_tube(shape)) {
-      shape.axis = sol_tube_light_axis(int(rel.w) == kTubeVertical, heading.x, heading.y);
+      shape.axis = tube_axis_of(rel, heading);
       centre = sol_tube_light_foot(shape.axis, centre, x);
       shape.h = abs(shape_bound(shape, seen_from(centre, x)));
     }

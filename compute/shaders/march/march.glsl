@@ -240,14 +240,14 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
   if (!planes_xy_only) do {
     if (step < max_steps && alive) do {
       if (!rk4) {
-        // Cutout planes need the full position for their gap bounds.
-        if (HAS_SOLIDS || HAS_CUTOUT || !camera) {
+        // Cutout planes need the full position for their gap bounds (march_takes_tangent).
+        if (march_takes_tangent(camera)) {
           const SolForward forward = zeta_only ? sol_forward_zeta(ray, t)
                                      : (zeta && zeta_round ? sol_forward_zeta(ray, t) : sol_forward(ray, t));
           q = forward.position;
           u = forward.direction;
         } else {
-          q = (heights_only && !HAS_CUTOUT) ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
+          q = heights_only ? vec3(0.0, 0.0, sol_height(ray, t)) : sol_position_forward(ray, t);
         }
       } else {
         rk4_advance(rk_p, rk_u, t - rk_t, g_rk4_step);
@@ -256,7 +256,7 @@ MarchHit march_sol(vec3 origin, vec3 direction, float limit, MarchResume resume,
         u = rk_u;
       }
       if (translated) q = sol_translate(origin, q);
-      if (HAS_PLANES_Z && !rk4 && !(HAS_SOLIDS || HAS_CUTOUT || !camera)) u.z = climb_speed(direction, origin.z, q.z);
+      if (HAS_PLANES_Z && !rk4 && !march_takes_tangent(camera)) u.z = climb_speed(direction, origin.z, q.z);
       if (MARCH_SKIPS && exit.searching) break;  // the exit search's trial point: solved below
       const vec2 hz = heights_only ? vec2(1.0) : half_exp(q.z);  // shared by the objects
       s = march_objects(q, u, hz, t, hit_epsilon, heights_only, passes, xy, seen, passing, leaving, skip);

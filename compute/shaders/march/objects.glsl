@@ -404,7 +404,11 @@ float cutout_gap_bound(int pattern, vec2 uv, float ez) { return sol_cutout_gap_b
 // ---- The objects of a world in Sol, relative to one eye (its uniforms
 // copied once: lavapipe does not hoist uniform loads out of loops).
 
+// A crowd's target i of next-event estimation: its crowd item (Params::crowd_targets; -1 after the last).
+int crowd_target_item(int i) { return params.crowd_targets[i >> 2][i & 3]; }
+
 int g_count;  // a listed world's objects (0 for a crowd: march/crowd.glsl)
+int g_crowd_targets;  // a crowd's targets of next-event estimation (Params::crowd_targets before the first -1)
 int g_types[kListedObjects];
 float g_constants[kListedObjects];  // planes: c
 float g_radii[kListedObjects];
@@ -418,6 +422,10 @@ float g_rk4_step;  // RK4's substep (INTEGRATOR = 1)
 void load_objects(int eye) {
   // (The host pads the objects' records to kListedObjects.)
   g_count = CROWD ? 0 : min(params.counts.x, kListedObjects);
+  g_crowd_targets = 0;
+  while (CROWD && g_crowd_targets < kListedObjects && crowd_target_item(g_crowd_targets) >= 0) {
+    ++g_crowd_targets;
+  }
   for (int k = 0; k < (CROWD ? 0 : kListedObjects); ++k) {
     g_types[k] = int(scene_objects[k].plane.x);
     g_cutouts[k] = HAS_CUTOUT && g_types[k] == kObjectPlaneZ && scene_objects[k].plane.w != 0.0

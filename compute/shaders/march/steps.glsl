@@ -144,6 +144,11 @@ float march_plane_xy_step(MarchStep s, vec3 q, vec3 u, float hit_epsilon) {
   return min(s.others, max(s.nearest, plane_xy_step(q, u, g_types[k], g_constants[k], hit_epsilon)));
 }
 
+// Whether march_sol takes the ray's tangent at each step (full positions by
+// sol_forward): every ray but the camera rays of a world without solids or
+// cutouts (RK4 carries its own), which take climb_speed's |u_z| instead.
+bool march_takes_tangent(bool camera) { return HAS_SOLIDS || HAS_CUTOUT || !camera; }
+
 // A camera ray's |u_z| at height z from its direction at its start's
 // height z0 alone: u1 e^{-z} and u2 e^{z} are constant along a geodesic
 // (u1' = u1 u3, u2' = -u2 u3), and u3² = 1 - u1² - u2². For the camera
@@ -176,7 +181,7 @@ float march_step_length(MarchStep s, vec3 q, vec3 u, vec2 hz, float hit_epsilon,
   const int type = g_types[s.nearest_any];
   if ((camera || HAS_INSIDE || PATH_TRACING) && object_is_solid(type)) return march_clearance_step(s, q, u, hz);
   if (HAS_PLANES_Z && type == kObjectPlaneZ) {
-    if (HAS_SOLIDS || HAS_CUTOUT || !camera || rk4) return march_plane_z_step(s, q, u, hit_epsilon);
+    if (march_takes_tangent(camera) || rk4) return march_plane_z_step(s, q, u, hit_epsilon);
     // A camera ray whose tangent the march does not take: |u_z| alone (u.z, climb_speed).
     return min(s.others, max(s.nearest, plane_z_step_heading(s.nearest, u.z, hit_epsilon)));
   }
