@@ -64,8 +64,9 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
   int counted[2] = {0, 0};
   double device_ms = 0.0;
   std::uint64_t out_of_steps = 0;
-  // The guides' albedo and emission, summed as the colour where every batch has them.
-  std::vector<double> albedo, emission;
+  // The guides' albedo, emission and light moment, summed as the colour where every batch has them.
+  std::vector<double> albedo, emission, moment;
+  bool moments_missing = false;
   int guided = 0;
   int pair = std::max(1, (goal.min_samples + 1) / 2);
   for (;;) {
@@ -84,6 +85,12 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
         for (std::size_t k = 0; k < r.albedo.size(); ++k) {
           albedo[k] += static_cast<double>(r.albedo[k]) * pair;
           emission[k] += static_cast<double>(r.emission[k]) * pair;
+        }
+        if (r.light_moment.size() == r.albedo.size() / 3) {
+          moment.resize(r.light_moment.size(), 0.0);
+          for (std::size_t k = 0; k < r.light_moment.size(); ++k) moment[k] += static_cast<double>(r.light_moment[k]) * pair;
+        } else {
+          moments_missing = true;
         }
         guided += pair;
       }
@@ -125,7 +132,15 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
       result.albedo[k] = static_cast<float>(albedo[k] / guided);
       result.emission[k] = static_cast<float>(emission[k] / guided);
     }
+    if (!moments_missing && result.light_moment.size() == moment.size()) {
+      for (std::size_t k = 0; k < moment.size(); ++k) result.light_moment[k] = static_cast<float>(moment[k] / guided);
+    } else {
+      result.light_moment.clear();
+    }
+  } else {
+    result.light_moment.clear();  // (the first batch's alone is not the colour's: the noise from the neighbours)
   }
+  result.samples = report.samples;
   result.device_ms = device_ms;
   result.rays_out_of_steps = out_of_steps;
   return result;

@@ -90,6 +90,16 @@ TEST(KernelDenoise, TheGuidesAreTheSamplesMeans) {
   expect_no_validation_errors();
 }
 
+TEST(KernelDenoise, TheLightMomentIsTheSamplesMeanSquare) {
+  // As the CPU's: the kernel's light moment of 8 samples (the emission
+  // guide's w, a running mean in float of squares below about 1, from the
+  // march pass, the shade pass and paths from the eye) is the mean of the
+  // squares of its samples rendered alone, to float's rounding of the blends.
+  sol::vk::MarchRenderer kernel(vk_context());
+  sol::test::expect_light_moment_is_the_samples_mean_square(kernel, 1e-5);
+  expect_no_validation_errors();
+}
+
 TEST(KernelDenoise, BatchesJoinTheirGuides) {
   // As the CPU's: the kernel's batches' albedo and emission (running means
   // in float) joined are one render's (its running mean over all 14) to
@@ -111,17 +121,20 @@ TEST(KernelDenoise, TheKernelsFilterIsTheHosts) {
   kernel.set_world(scene);
   sol::RenderOptions o{.width = 40, .height = 30, .samples = 4, .transport = sol::Transport::Path, .seed = 5, .guides = true};
   for (const bool stereo : {false, true}) {
-    const sol::RenderResult image = stereo ? cpu.render_stereo(scene.camera, 0.2, o) : cpu.render(scene.camera, o);
-    sol::RenderResult on_host = image, on_device = image;
-    cpu.denoise(on_host, stereo ? 2 : 1);
-    kernel.denoise(on_device, stereo ? 2 : 1);
-    double worst = 0.0, changed = 0.0;
-    for (std::size_t k = 0; k < image.rgba.size(); ++k) {
-      worst = std::max(worst, std::abs(static_cast<double>(on_host.rgba[k]) - on_device.rgba[k]));
-      changed = std::max(changed, std::abs(static_cast<double>(on_host.rgba[k]) - image.rgba[k]));
+    for (const bool own : {true, false}) {  // (the noise from the samples' light moment, or from the neighbours)
+      sol::RenderResult image = stereo ? cpu.render_stereo(scene.camera, 0.2, o) : cpu.render(scene.camera, o);
+      if (!own) image.light_moment.clear();
+      sol::RenderResult on_host = image, on_device = image;
+      cpu.denoise(on_host, stereo ? 2 : 1);
+      kernel.denoise(on_device, stereo ? 2 : 1);
+      double worst = 0.0, changed = 0.0;
+      for (std::size_t k = 0; k < image.rgba.size(); ++k) {
+        worst = std::max(worst, std::abs(static_cast<double>(on_host.rgba[k]) - on_device.rgba[k]));
+        changed = std::max(changed, std::abs(static_cast<double>(on_host.rgba[k]) - image.rgba[k]));
+      }
+      EXPECT_LT(worst, 1e-4) << (stereo ? "stereo" : "mono") << (own ? ", own noise" : ", the neighbours'");
+      EXPECT_GT(changed, 0.05) << "the filter changed nothing";
     }
-    EXPECT_LT(worst, 1e-4) << (stereo ? "stereo" : "mono");
-    EXPECT_GT(changed, 0.05) << "the filter changed nothing";
   }
   expect_no_validation_errors();
 }

@@ -4,8 +4,9 @@
 // takes it on the host, in float. Three kinds of dispatch (push.mode):
 //   0  prepare: each pixel's colour (less its emission: the host takes it
 //      out before and puts it back after) divided by its albedo's modulation, its
-//      light's variance over its 3 × 3 neighbours of the same object, and
-//      its distance slope;
+//      noise (the mean of its 3 × 3 neighbours' of the same object own
+//      variances, which the host computes from the light moment, or
+//      without them their light's variance), and its distance slope;
 //   1  one à-trous pass, taps push.step pixels apart, `light_in` to `light_out`;
 //   2  finish: the filtered light times the modulation into `color` (alpha kept).
 #extension GL_GOOGLE_include_directive : require
@@ -20,6 +21,7 @@ layout(std430, set = 0, binding = 2) readonly buffer Albedos { vec4 albedos[]; }
 layout(std430, set = 0, binding = 3) buffer Slopes { float slopes[]; };           // distance per pixel (prepare writes)
 layout(std430, set = 0, binding = 4) buffer LightIn { vec4 light_in[]; };         // light rgb, its variance
 layout(std430, set = 0, binding = 5) buffer LightOut { vec4 light_out[]; };
+layout(std430, set = 0, binding = 6) readonly buffer Own { float own[]; };  // each pixel's own noise; < 0 unknown
 
 layout(push_constant) uniform Push {
   int width, height, eye_width;
@@ -49,7 +51,7 @@ void prepare(ivec2 p) {
   const float z = normals[k].w;
   slopes[k] = max(sol_denoise_slope_along(z, z_at(p, p - dx), same(p, p - dx), z_at(p, p + dx), same(p, p + dx)),
                   sol_denoise_slope_along(z, z_at(p, p - dy), same(p, p - dy), z_at(p, p + dy), same(p, p + dy)));
-  float sum = 0.0, squares = 0.0, count = 0.0;
+  float sum = 0.0, squares = 0.0, count = 0.0, owns = 0.0;
   for (int y = -1; y <= 1; ++y) {
     for (int x = -1; x <= 1; ++x) {
       const ivec2 q = p + ivec2(x, y);
@@ -59,9 +61,11 @@ void prepare(ivec2 p) {
       sum += l;
       squares += l * l;
       count += 1.0;
+      owns += own[kq];
     }
   }
-  light_out[k] = vec4(color[k].rgb / modulation(k), max(squares / count - (sum / count) * (sum / count), 0.0));
+  const float spatial = max(squares / count - (sum / count) * (sum / count), 0.0);
+  light_out[k] = vec4(color[k].rgb / modulation(k), own[k] < 0.0 ? spatial : owns / count);
 }
 
 void pass(ivec2 p) {

@@ -54,6 +54,7 @@
 #include "march/random.glsl"
 #include "march/shading.glsl"
 #include "march/paths.glsl"
+#include "sol/denoise.h"  // the luminance of the denoiser's light moment, shared with libsol
 #include "march/passes.glsl"
 
 void main() {

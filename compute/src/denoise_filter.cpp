@@ -6,6 +6,7 @@
 
 #include <glm/vec4.hpp>
 #include <sol/denoise.h>
+#include <sol/denoise.hpp>
 
 #include "sol/vk/buffer.hpp"
 
@@ -21,7 +22,7 @@ static_assert(sizeof(Push) == 20, "denoise.comp's push block");
 
 ComputePipelineDesc describe() {
   ComputePipelineDesc d{.name = "denoise", .spirv = denoise_comp_spv, .validated = true};
-  for (std::uint32_t b = 0; b < 6; ++b) d.bindings.push_back({b, DescriptorType::StorageBuffer});
+  for (std::uint32_t b = 0; b < 7; ++b) d.bindings.push_back({b, DescriptorType::StorageBuffer});
   d.push_constant_size = sizeof(Push);
   return d;
 }
@@ -46,13 +47,21 @@ double DenoiseFilter::run(RenderResult& image, int eyes) {
   Buffer slopes(m_context, n * sizeof(float), BufferUsage::DeviceStorage);
   std::array<Buffer, 2> light{Buffer(m_context, vec4s, BufferUsage::DeviceStorage),
                               Buffer(m_context, vec4s, BufferUsage::DeviceStorage)};
+  // Each pixel's own noise, from its samples' light moment (sol::own_variances;
+  // -1 throughout for an image without: the device takes the neighbours').
+  std::vector<float> own(n, -1.0f);
+  const std::vector<double> owns = own_variances(image);
+  for (std::size_t k = 0; k < owns.size(); ++k) own[k] = static_cast<float>(owns[k]);
+  Buffer noise(m_context, n * sizeof(float));
   color.write(rgba);
   normal.write(normals);
   albedo.write(albedos);
+  noise.write(own);
   m_pipeline.bind(0, color);
   m_pipeline.bind(1, normal);
   m_pipeline.bind(2, albedo);
   m_pipeline.bind(3, slopes);
+  m_pipeline.bind(6, noise);
   const std::uint32_t gx = group_count(static_cast<std::uint32_t>(image.width), 8);
   const std::uint32_t gy = group_count(static_cast<std::uint32_t>(image.height), 8);
   Push push{image.width, image.height, image.width / eyes, 0, 1};

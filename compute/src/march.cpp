@@ -1258,18 +1258,22 @@ RenderResult MarchRenderer::render(std::span<const Camera> eyes, const RenderOpt
   r.rays_out_of_steps = counted[0].out_of_steps.x;
   if (!options.rows) r.rgba = color.download();  // (else handed over band by band above, never held whole)
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  // The guides' albedo and emission (every sample's), the normal with the AOVs (sample 0's).
-  const auto read_rgb = [n](StorageImage& image, std::vector<float>& plane) {
+  // The guides' albedo and emission (every sample's; the emission's w the
+  // light moment), the normal with the AOVs (sample 0's).
+  const auto read_rgb = [n](StorageImage& image, std::vector<float>& plane, std::vector<float>* fourth) {
     const std::vector<float> values = image.download();
     plane.resize(3 * n);
+    if (fourth) fourth->resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       for (std::size_t c = 0; c < 3; ++c) plane[3 * k + c] = values[4 * k + c];
+      if (fourth) (*fourth)[k] = values[4 * k + 3];
     }
   };
+  r.samples = options.samples;
   if (options.guides) {
-    read_rgb(*albedo, r.albedo);
-    read_rgb(*emission, r.emission);
-    if (options.aovs) read_rgb(*normal, r.normal);
+    read_rgb(*albedo, r.albedo, nullptr);
+    read_rgb(*emission, r.emission, &r.light_moment);
+    if (options.aovs) read_rgb(*normal, r.normal, nullptr);
   }
   if (!options.aovs) return r;  // nothing more read back or held
   const std::vector<float> hits = hit->download(), points = point->download();

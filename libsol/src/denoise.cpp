@@ -34,6 +34,29 @@ void validate_denoise(const RenderResult& image, int eyes, const char* who) {
                             std::to_string(p.expected) + (p.size == 0 ? " (render with RenderOptions::aovs and guides)" : ""));
     }
   }
+  // (The light moment is optional: without it the noise is the neighbours'.)
+  if (!image.light_moment.empty() && image.light_moment.size() != n) {
+    throw InvalidArgument(where + "the image's light_moment holds " + std::to_string(image.light_moment.size()) +
+                          " values, not " + std::to_string(n) + " (or none)");
+  }
+  if (image.samples < 0) throw InvalidArgument(where + "the image's samples must be 0 or more, got " + std::to_string(image.samples));
+}
+
+std::vector<double> own_variances(const RenderResult& image) {
+  const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  if (image.samples < 2 || image.light_moment.size() != n || image.emission.size() != 3 * n) return {};
+  std::vector<double> own(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    glm::dvec3 light, modulation;
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t channel = static_cast<std::size_t>(c);
+      light[c] = static_cast<double>(image.rgba[4 * k + channel]) - image.emission[3 * k + channel];
+      modulation[c] = kernel::sol_denoise_modulation(image.albedo[3 * k + channel], image.object[k]);
+    }
+    own[k] = kernel::sol_denoise_own_variance(image.light_moment[k], kernel::sol_denoise_luminance(light),
+                                              static_cast<double>(image.samples), kernel::sol_denoise_luminance(modulation));
+  }
+  return own;
 }
 
 namespace {
@@ -68,9 +91,11 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
       current[k][c] = (image.rgba[4 * k + c] - image.emission[3 * k + c]) / modulation[k][c];
     }
   }
-  // Each pixel's distance slope and the variance of its light over its 3 × 3
-  // neighbours of the same object (the pixel's noise, and what the light
-  // itself varies there).
+  // Each pixel's distance slope and its noise: the mean over its 3 × 3
+  // neighbours of the same object of their own variances where the image
+  // has them, else the variance of their light (the noise, and what the
+  // light itself varies there).
+  const std::vector<double> own = own_variances(image);
   detail::for_each_row(h, threads, {}, [&](int j, const std::atomic<bool>&) {
     for (int i = 0; i < w; ++i) {
       const std::size_t k = index(i, j);
@@ -81,17 +106,19 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
       auto z = [&](int x, int y) { return same(x, y) ? guide[index(x, y)].distance : 0.0; };
       g.slope = std::max(kernel::sol_denoise_slope_along(g.distance, z(i - 1, j), same(i - 1, j), z(i + 1, j), same(i + 1, j)),
                          kernel::sol_denoise_slope_along(g.distance, z(i, j - 1), same(i, j - 1), z(i, j + 1), same(i, j + 1)));
-      double sum = 0.0, squares = 0.0, count = 0.0;
+      double sum = 0.0, squares = 0.0, count = 0.0, owns = 0.0;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           if (!same(i + dx, j + dy)) continue;
-          const double l = kernel::sol_denoise_luminance(glm::dvec3(current[index(i + dx, j + dy)]));
+          const std::size_t q = index(i + dx, j + dy);
+          const double l = kernel::sol_denoise_luminance(glm::dvec3(current[q]));
           sum += l;
           squares += l * l;
           count += 1.0;
+          if (!own.empty()) owns += own[q];
         }
       }
-      current[k].w = std::max(squares / count - (sum / count) * (sum / count), 0.0);
+      current[k].w = own.empty() ? std::max(squares / count - (sum / count) * (sum / count), 0.0) : owns / count;
     }
   });
   for (int pass = 0; pass < kernel::kDenoisePasses; ++pass) {

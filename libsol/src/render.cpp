@@ -21,6 +21,7 @@
 
 #include "sol/closed_form.hpp"
 #include "sol/connection.hpp"
+#include "sol/denoise.h"
 #include "sol/spreading.hpp"
 #include "sol/error.hpp"
 #include "sol/surface_light.h"
@@ -1391,6 +1392,8 @@ RenderResult side_by_side(const RenderResult& left, const RenderResult& right) {
   r.steps = join(left.steps, right.steps, 1);
   r.albedo = join(left.albedo, right.albedo, 3);
   r.emission = join(left.emission, right.emission, 3);
+  r.light_moment = join(left.light_moment, right.light_moment, 1);
+  r.samples = left.samples;
   r.normal = join(left.normal, right.normal, 3);
   r.out_of_steps = join(left.out_of_steps, right.out_of_steps, 1);
   r.rays_out_of_steps = left.rays_out_of_steps + right.rays_out_of_steps;
@@ -1545,7 +1548,9 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
   const bool guides = settings.guides;  // (the albedo and emission; the normal with the AOVs)
   if (guides) {
     for (auto* plane : {&r.albedo, &r.emission}) plane->assign(3 * pixels, 0.0f);
+    r.light_moment.assign(pixels, 0.0f);
   }
+  r.samples = settings.samples;
   std::atomic<std::uint64_t> out_of_steps{0};
 
   // Every ray starts at the camera, except an ODS eye's: each column at its
@@ -1593,15 +1598,20 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
       const int first = settings.first_sample;
       const bool sees = first == 0 && camera_sees(camera, i, j, w, h);
       const MarchHit hit = sees ? march_at(i, j, {0.5, 0.5}, 0) : MarchHit{};
-      // Each sample's colour, and with the guides its first hit's albedo and emission (their means).
+      // Each sample's colour, and with the guides its first hit's albedo and
+      // emission (their means) and the square of its light's luminance (the
+      // colour less the emission: its mean the denoiser's light moment).
       glm::dvec3 albedo(0.0), emission(0.0);
+      double moment = 0.0;
       const auto colour = [&](const MarchHit& at, int s) {
+        const glm::dvec3 radiance = transport->radiance(at, k, s);
         if (guides) {
           const FirstHitGuides g = first_hit_guides(prepared.world(), at);
           albedo += g.albedo;
           emission += g.emission;
+          moment += std::pow(kernel::sol_denoise_luminance(radiance - g.emission), 2.0);
         }
-        return transport->radiance(at, k, s);
+        return radiance;
       };
       glm::dvec3 c = sees ? colour(hit, 0) : glm::dvec3(0.0);
       for (int s = std::max(first, 1); s < first + settings.samples; ++s) {  // the other samples: no AOVs but the guides
@@ -1622,6 +1632,7 @@ RenderResult CpuRenderer::render_eye(const MarchWorld& prepared, const Camera& c
         r.albedo[3 * k + channel] = static_cast<float>(albedo[channel]);
         r.emission[3 * k + channel] = static_cast<float>(emission[channel]);
       }
+      if (guides) r.light_moment[k] = static_cast<float>(moment / static_cast<double>(settings.samples));
       if (!aovs) continue;
       r.out_of_steps[k] = static_cast<float>(t_out_of_steps);
       r.object[k] = static_cast<float>(hit.object);

@@ -57,6 +57,11 @@ inline void expect_batches_join_the_guides(sol::Renderer& renderer, double toler
   EXPECT_LT(worst(joined.emission, one.emission, 3), tolerance) << "emission";
   EXPECT_EQ(joined.normal, one.normal);
   EXPECT_GT(worst(first.albedo, one.albedo, 3), 0.05) << "the first batch's albedo alone";
+  // The light moment too (squares up to about 1: the same tolerance), and the count of samples.
+  ASSERT_EQ(joined.light_moment.size(), one.light_moment.size());
+  EXPECT_LT(worst(joined.light_moment, one.light_moment, 1), tolerance) << "light moment";
+  EXPECT_EQ(joined.samples, 14);
+  EXPECT_EQ(one.samples, 14);
 }
 
 }  // namespace sol::test

@@ -23,34 +23,63 @@ int sample_writes() { return int(params.pixel_sample.w + 0.5); }
 bool writes_aovs() { return WRITE_AOVS && (sample_writes() == kSampleAovs || sample_writes() == kSampleAovsAndGuides); }
 bool writes_guides() { return WRITE_AOVS && sample_writes() >= kSampleAovsAndGuides; }
 
+// What a camera ray's hit (its surface `f`, at arc length t) emits towards the eye.
+vec3 emitted_towards_eye(Surface f, float t) {
+  return HAS_EMISSION ? scene_objects[f.object].material.rgb * fog_transmittance(t) : vec3(0.0);
+}
+
+// The square of the luminance of a sample's light, its colour less what
+// its first hit emits: joined to the pixel's mean, the denoiser's light
+// moment (sol/denoise.h), in the emission guide's w.
+float light_square(vec3 color, vec3 emitted) {
+  const float l = sol_denoise_luminance(color - emitted);
+  return l * l;
+}
+
 // A camera ray's hit's albedo and what it emits towards the eye (over the
 // fog of `t`), joined to the pixel's means with the sample's weight (1
-// overwrites); its normal with sample 0 (the centre's). `f.object` < 0: a miss, 0.
-void write_guides_of(ivec2 pixel, Surface f, float t) {
+// overwrites), and with the sample's colour (`shaded`; else the shade pass
+// joins it: join_light_square) its light's square; its normal with sample
+// 0 (the centre's). `f.object` < 0: a miss, 0.
+void write_guides_of(ivec2 pixel, Surface f, float t, vec3 color, bool shaded) {
   const bool hit = f.object >= 0;
   vec4 a = vec4(0.0), e = vec4(0.0);
   if (hit) {
     a.rgb = albedo(f.object, f.uv);
-    if (HAS_EMISSION) e.rgb = scene_objects[f.object].material.rgb * fog_transmittance(t);
+    e.rgb = emitted_towards_eye(f, t);
   }
+  e.w = shaded ? light_square(color, e.rgb) : 0.0;
   const float weight = params.pixel_sample.z;
   if (weight < 1.0) {
     a = mix(imageLoad(aov_albedo, pixel), a, weight);
-    e = mix(imageLoad(aov_emission, pixel), e, weight);
+    const vec4 before = imageLoad(aov_emission, pixel);
+    e = mix(before, e, weight);
+    if (!shaded) e.w = before.w;
   }
   imageStore(aov_albedo, pixel, a);
   imageStore(aov_emission, pixel, e);
   if (sample_writes() == kSampleAovsAndGuides) imageStore(aov_normal, pixel, hit ? vec4(f.n, 0.0) : vec4(0.0));
 }
 
+// The shade pass's colour of a deferred hit: its light's square joined to
+// the pixel's light moment, as write_guides_of joins the others'.
+void join_light_square(ivec2 pixel, Surface f, float t, vec3 color) {
+  vec4 e = imageLoad(aov_emission, pixel);
+  const float square = light_square(color, emitted_towards_eye(f, t));
+  const float weight = params.pixel_sample.z;
+  e.w = weight < 1.0 ? mix(e.w, square, weight) : square;
+  imageStore(aov_emission, pixel, e);
+}
+
 // The AOVs of a camera ray's hit (`hit`, its surface `f`; `f.object` < 0
-// a miss, all 0) where the sample writes them, and the guides where it joins them.
-void write_aovs_of(ivec2 pixel, vec4 hit_aov, vec4 point_aov, Surface f) {
+// a miss, all 0) where the sample writes them, and the guides where it
+// joins them (with its colour where `shaded`).
+void write_aovs_of(ivec2 pixel, vec4 hit_aov, vec4 point_aov, Surface f, vec3 color, bool shaded) {
   if (writes_aovs()) {
     imageStore(aov_hit, pixel, hit_aov);
     imageStore(aov_point, pixel, point_aov);
   }
-  if (writes_guides()) write_guides_of(pixel, f, hit_aov.y);
+  if (writes_guides()) write_guides_of(pixel, f, hit_aov.y, color, shaded);
 }
 
 // From the eye (PATH_FROM_EYE, march/paths.glsl; DIRECT_FROM_EYE,
@@ -77,7 +106,7 @@ void from_eye_pass(ivec2 pixel, int eye, uint index, vec3 origin, vec3 direction
     } else {
       first_f.object = -1;
     }
-    write_aovs_of(pixel, hit_aov, point_aov, first_f);
+    write_aovs_of(pixel, hit_aov, point_aov, first_f, color.rgb, true);
   }
   report_out_of_steps(pixel, writes_aovs());
 }
@@ -115,7 +144,7 @@ void march_pass() {
     if (write_aovs) {
       Surface none;
       none.object = -1;
-      write_aovs_of(pixel, vec4(0.0), vec4(0.0), none);
+      write_aovs_of(pixel, vec4(0.0), vec4(0.0), none, vec3(0.0), true);
     }
     return;
   }
@@ -172,7 +201,7 @@ void march_pass() {
   if (!DEFER_SHADING || h.k < 0) imageStore(color_image, pixel, output_color(accumulate(pixel, color, sample_at.z)));
   if (write_aovs) {
     hit_aov.w = float(g_out_of_steps);
-    write_aovs_of(pixel, hit_aov, point_aov, hit_f);
+    write_aovs_of(pixel, hit_aov, point_aov, hit_f, color.rgb, !DEFER_SHADING || h.k < 0);
   }
   report_out_of_steps(pixel, writes_aovs());
 }
@@ -210,6 +239,7 @@ void shade_pass() {
     color = radiance(h, f, eye, uint(local.y * width + local.x), first, first_f);  // (its reflected rays marched here)
   }
   imageStore(color_image, pixel, output_color(accumulate(pixel, color, params.pixel_sample.z)));
+  if (writes_guides()) join_light_square(pixel, f, h.t, color.rgb);
   report_out_of_steps(pixel, false);  // (its shadow rays' and paths')
 }
 

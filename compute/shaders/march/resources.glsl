@@ -88,7 +88,7 @@ layout(set = 0, binding = kBindingHit, rgba32f) uniform image2D aov_hit;      //
 layout(set = 0, binding = kBindingPoint, rgba32f) uniform writeonly image2D aov_point;  // Px, Py, Pz, 0
 // (The guides' albedo and emission read too: each sample joins their mean.)
 layout(set = 0, binding = kBindingAlbedo, rgba32f) uniform image2D aov_albedo;  // R, G, B, 0
-layout(set = 0, binding = kBindingEmission, rgba32f) uniform image2D aov_emission;  // R, G, B, 0
+layout(set = 0, binding = kBindingEmission, rgba32f) uniform image2D aov_emission;  // R, G, B, the light moment
 layout(set = 0, binding = kBindingNormal, rgba32f) uniform writeonly image2D aov_normal;  // frame components, 0
 // The scene objects' appearance and kind (Object records, one per object).
 layout(std430, set = 0, binding = kBindingObjects) readonly buffer SceneObjects {

@@ -5,8 +5,9 @@
 // Filtering", HPG 2010) whose edges are those of the AOVs (the albedo, the
 // normal, the distance and the object of each pixel's camera ray) and of
 // the colour itself, measured against the colour's own noise (as the
-// luminance weight of Schied et al.'s SVGF, HPG 2017; spatial variance
-// here, a still having no earlier frames).
+// luminance weight of Schied et al.'s SVGF, HPG 2017: each pixel's own
+// sample variance averaged over its neighbours where it has two samples or
+// more, else the spatial variance, a still having no earlier frames).
 //
 // The filter works on the light that reaches the surfaces: the colour less
 // the emission, divided by the albedo, both the means over the pixel's
@@ -77,6 +78,19 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_luminance(SOL_DENOISE_VEC3 c) {
 /// is too dark to divide by, or the pixel is a miss (object 0).
 SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_modulation(SOL_REAL albedo, SOL_REAL object) {
   return object > 0.5 && albedo >= kDenoiseMinAlbedo ? albedo : 1.0;
+}
+
+/// A pixel's own noise, the variance of its light's luminance as the mean
+/// of `samples` samples: from `moment`, the mean over them of the squared
+/// luminance of each one's colour less its emission, `mean`, the luminance
+/// of their mean colour less emission, and `modulation`, the luminance of
+/// what divides it; the unbiased sample variance over samples − 1, over
+/// the modulation squared. Negative (unknown) below 2 samples, where the
+/// filter takes the spatial variance instead.
+SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_own_variance(SOL_REAL moment, SOL_REAL mean, SOL_REAL samples,
+                                                       SOL_REAL modulation) {
+  if (samples < 1.5) return -1.0;
+  return SOL_DENOISE_MAX(moment - mean * mean, 0.0) / ((samples - 1.0) * modulation * modulation);
 }
 
 /// The edge-stopping weight of neighbour q for pixel p (the B3 tap apart):

@@ -11,16 +11,24 @@
 // the kernel's (sol::vk::MarchRenderer::denoise) computes it in float.
 #pragma once
 
+#include <vector>
+
 #include "sol/renderer.hpp"
 
 namespace sol {
 
 /// The checks of an image to denoise: its colour and the AOVs the filter
-/// reads (object, distance, albedo, emission, normal) of its size, and `eyes` (1 or
+/// reads (object, distance, albedo, emission, normal; the light moment
+/// where there is one) of its size, `samples` not negative, and `eyes` (1 or
 /// 2, side by side) dividing its width; InvalidArgument naming `who` and
 /// the field otherwise (an image rendered without RenderOptions::aovs has
 /// none).
 void validate_denoise(const RenderResult& image, int eyes, const char* who);
+
+/// Each pixel's own noise from its samples (sol_denoise_own_variance of
+/// sol/denoise.h): empty where the image has no light moment or fewer than
+/// 2 samples, whose noise the filter takes from the neighbours' light.
+std::vector<double> own_variances(const RenderResult& image);
 
 /// Replaces `image`'s colour by the filter's, on the host in double, rows
 /// on `threads` threads (0: all). Pixels of one eye never take from the

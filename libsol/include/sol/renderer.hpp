@@ -123,6 +123,15 @@ struct RenderResult {
   /// colour that needs no light, which the denoiser takes out before it
   /// divides by the albedo; with RenderOptions::guides, else empty.
   std::vector<float> emission;
+  /// Per pixel: the mean over the pixel's samples of the squared luminance
+  /// (Rec. 709) of each one's colour less its emission, from which the
+  /// denoiser takes the pixel's own noise (with `samples`); with
+  /// RenderOptions::guides, else empty (the denoiser then estimates the
+  /// noise from the neighbours). Not written to image files.
+  std::vector<float> light_moment;
+  /// How many samples a pixel's colour is the mean of (RenderOptions::samples,
+  /// or every batch's together); 0 where unknown.
+  int samples = 0;
   /// 3 per pixel: the hit's unit surface normal in the frame components at
   /// the hit, facing the ray (a solid seen from inside: its inward normal);
   /// 0 on a miss; with RenderOptions::guides, else empty.

@@ -52,7 +52,7 @@ SOL_CONSTANT(int, kBindingParts, 15);       ///< storage buffer (read-only): the
 SOL_CONSTANT(int, kBindingAlbedo, 16);      ///< storage image: the hits' albedo R, G, B, 0, the samples' mean (the denoiser's guide)
 SOL_CONSTANT(int, kBindingNormal, 17);      ///< storage image: the hit's normal, frame components, 0 (AOVs, the denoiser's guide)
 SOL_CONSTANT(int, kBindingTextures, 18);    ///< storage buffer (read-only): the objects' image textures' texels (vec4, rgb linear)
-SOL_CONSTANT(int, kBindingEmission, 19);    ///< storage image: what the hits emit towards the eye R, G, B, 0, the samples' mean (the denoiser's guide)
+SOL_CONSTANT(int, kBindingEmission, 19);    ///< storage image: what the hits emit towards the eye R, G, B and the light moment (the squared luminance of the colour less the emission), the samples' means (the denoiser's guides)
 /// The number of bindings (the last one's, plus one).
 SOL_CONSTANT(int, kBindingCount, 20);
 
