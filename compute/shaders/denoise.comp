@@ -8,7 +8,9 @@
 //      variances, which the host computes from the light moment, or
 //      without them their light's variance), and its distance slope;
 //   1  one à-trous pass, taps push.step pixels apart, `light_in` to `light_out`;
-//   2  finish: the filtered light times the modulation into `color` (alpha kept).
+//   2  finish: the filtered light times the modulation into `color` (alpha
+//      kept), held to within the pixel's own noise of its unfiltered light
+//      where push.clamp (its own noise known from kDenoiseClampSamples on).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sol/denoise.h"
@@ -27,6 +29,7 @@ layout(push_constant) uniform Push {
   int width, height, eye_width;
   int mode;
   int step;
+  int clamp;  // finish: hold the filtered light to the pixel's own noise (sol_denoise_clamp)
 } push;
 
 int index_of(ivec2 p) { return p.y * push.width + p.x; }
@@ -45,12 +48,9 @@ bool same(ivec2 p, ivec2 q) { return in_eye(p, q) && albedos[index_of(q)].w == a
 
 float z_at(ivec2 p, ivec2 q) { return same(p, q) ? normals[index_of(q)].w : 0.0; }
 
-void prepare(ivec2 p) {
-  const int k = index_of(p);
-  const ivec2 dx = ivec2(1, 0), dy = ivec2(0, 1);
-  const float z = normals[k].w;
-  slopes[k] = max(sol_denoise_slope_along(z, z_at(p, p - dx), same(p, p - dx), z_at(p, p + dx), same(p, p + dx)),
-                  sol_denoise_slope_along(z, z_at(p, p - dy), same(p, p - dy), z_at(p, p + dy), same(p, p + dy)));
+// A pixel's noise: its 3 × 3 neighbours' of the same object own variances'
+// mean, or without them (own < 0) the variance of their light's luminance.
+float noise_of(ivec2 p) {
   float sum = 0.0, squares = 0.0, count = 0.0, owns = 0.0;
   for (int y = -1; y <= 1; ++y) {
     for (int x = -1; x <= 1; ++x) {
@@ -64,8 +64,30 @@ void prepare(ivec2 p) {
       owns += own[kq];
     }
   }
-  const float spatial = max(squares / count - (sum / count) * (sum / count), 0.0);
-  light_out[k] = vec4(color[k].rgb / modulation(k), own[k] < 0.0 ? spatial : owns / count);
+  return own[index_of(p)] < 0.0 ? max(squares / count - (sum / count) * (sum / count), 0.0) : owns / count;
+}
+
+void prepare(ivec2 p) {
+  const int k = index_of(p);
+  const ivec2 dx = ivec2(1, 0), dy = ivec2(0, 1);
+  const float z = normals[k].w;
+  slopes[k] = max(sol_denoise_slope_along(z, z_at(p, p - dx), same(p, p - dx), z_at(p, p + dx), same(p, p + dx)),
+                  sol_denoise_slope_along(z, z_at(p, p - dy), same(p, p - dy), z_at(p, p + dy), same(p, p + dy)));
+  light_out[k] = vec4(color[k].rgb / modulation(k), noise_of(p));
+}
+
+// The filtered light times the modulation into the colour (alpha kept),
+// held to the pixel's own noise about its unfiltered light where asked.
+void finish(ivec2 p) {
+  const int k = index_of(p);
+  vec3 light = light_in[k].rgb;
+  if (push.clamp != 0) {
+    const vec3 before = color[k].rgb / modulation(k);
+    const float noise = noise_of(p);
+    light = vec3(sol_denoise_clamp(light.r, before.r, noise), sol_denoise_clamp(light.g, before.g, noise),
+                 sol_denoise_clamp(light.b, before.b, noise));
+  }
+  color[k] = vec4(light * modulation(k), color[k].a);
 }
 
 void pass(ivec2 p) {
@@ -99,7 +121,6 @@ void main() {
   } else if (push.mode == 1) {
     pass(p);
   } else {
-    const int k = index_of(p);
-    color[k] = vec4(light_in[k].rgb * modulation(k), color[k].a);
+    finish(p);
   }
 }

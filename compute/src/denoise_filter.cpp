@@ -16,9 +16,9 @@ namespace {
 
 // denoise.comp's push constants.
 struct Push {
-  std::int32_t width, height, eye_width, mode, step;
+  std::int32_t width, height, eye_width, mode, step, clamp;
 };
-static_assert(sizeof(Push) == 20, "denoise.comp's push block");
+static_assert(sizeof(Push) == 24, "denoise.comp's push block");
 
 ComputePipelineDesc describe() {
   ComputePipelineDesc d{.name = "denoise", .spirv = denoise_comp_spv, .validated = true};
@@ -64,7 +64,8 @@ double DenoiseFilter::run(RenderResult& image, int eyes) {
   m_pipeline.bind(6, noise);
   const std::uint32_t gx = group_count(static_cast<std::uint32_t>(image.width), 8);
   const std::uint32_t gy = group_count(static_cast<std::uint32_t>(image.height), 8);
-  Push push{image.width, image.height, image.width / eyes, 0, 1};
+  const bool clamp = !owns.empty() && image.samples >= kernel::kDenoiseClampSamples;  // (as sol::denoise)
+  Push push{image.width, image.height, image.width / eyes, 0, 1, clamp ? 1 : 0};
   // Each dispatch reads the light the one before wrote: `in` and `out` swap.
   int in = 1;
   auto dispatch = [&](int mode, int step) {

@@ -121,6 +121,9 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
       current[k].w = own.empty() ? std::max(squares / count - (sum / count) * (sum / count), 0.0) : owns / count;
     }
   });
+  // The unfiltered light and each pixel's noise, to hold the filtered light to (sol_denoise_clamp).
+  const bool clamp = !own.empty() && image.samples >= kernel::kDenoiseClampSamples;
+  const std::vector<glm::dvec4> unfiltered = clamp ? current : std::vector<glm::dvec4>{};
   for (int pass = 0; pass < kernel::kDenoisePasses; ++pass) {
     const int step = 1 << pass;
     detail::for_each_row(h, threads, {}, [&](int j, const std::atomic<bool>&) {
@@ -154,7 +157,8 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
   }
   for (std::size_t k = 0; k < n; ++k) {
     for (int c = 0; c < 3; ++c) {
-      image.rgba[4 * k + c] = static_cast<float>(current[k][c] * modulation[k][c] + image.emission[3 * k + c]);
+      const double light = clamp ? kernel::sol_denoise_clamp(current[k][c], unfiltered[k][c], unfiltered[k].w) : current[k][c];
+      image.rgba[4 * k + c] = static_cast<float>(light * modulation[k][c] + image.emission[3 * k + c]);
     }
   }
 }

@@ -15,7 +15,8 @@
 // glowing and a dark object, is divided by what its samples saw), and put
 // back after; a checker or a coloured object's edge keeps its sharpness.
 // kDenoisePasses passes of a 5 × 5 B3-spline kernel whose taps lie 1, 2,
-// 4, ... pixels apart.
+// 4, ... pixels apart; from kDenoiseClampSamples samples on, the result
+// held to the pixel's own noise about its unfiltered light.
 // docs/lighting.md ("Denoising") derives the weights. Valid C++ (namespace
 // sol::kernel, double) and GLSL (float), as sol/tone.h.
 #ifndef SOL_DENOISE_H
@@ -37,12 +38,14 @@ using std::sqrt;
 #define SOL_DENOISE_EXP std::exp
 #define SOL_DENOISE_POW std::pow
 #define SOL_DENOISE_MAX std::max
+#define SOL_DENOISE_MIN std::min
 #else
 #define SOL_DENOISE_FUNCTION
 #define SOL_DENOISE_VEC3 vec3
 #define SOL_DENOISE_EXP exp
 #define SOL_DENOISE_POW pow
 #define SOL_DENOISE_MAX max
+#define SOL_DENOISE_MIN min
 #endif
 
 /// Passes of the filter: the taps of pass i lie 2^i pixels apart, so the
@@ -93,6 +96,23 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_own_variance(SOL_REAL moment, SOL_REAL
   return SOL_DENOISE_MAX(moment - mean * mean, 0.0) / ((samples - 1.0) * modulation * modulation);
 }
 
+/// From this many samples a pixel on, where its own noise is known well
+/// enough (the estimate of a variance from N samples is off by about
+/// sqrt(2 / (N − 1)), a third at 16 before the 3 × 3 average), the filtered
+/// light stays within kDenoiseClampSigmas of the pixel's own standard
+/// deviations of its unfiltered light: the filter may not move a pixel
+/// further than its noise explains (sol_denoise_clamp).
+SOL_CONSTANT(int, kDenoiseClampSamples, 16);
+SOL_CONSTANT(SOL_REAL, kDenoiseClampSigmas, 3.0);
+
+/// A channel of the filtered light held to within kDenoiseClampSigmas
+/// standard deviations (`variance` the pixel's noise, its own averaged
+/// over its neighbours) of the unfiltered light `before`.
+SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_clamp(SOL_REAL filtered, SOL_REAL before, SOL_REAL variance) {
+  const SOL_REAL spread = kDenoiseClampSigmas * sqrt(SOL_DENOISE_MAX(variance, 0.0));
+  return SOL_DENOISE_MAX(before - spread, SOL_DENOISE_MIN(filtered, before + spread));
+}
+
 /// The edge-stopping weight of neighbour q for pixel p (the B3 tap apart):
 /// zero for another object (misses are object 0, of no normal or
 /// distance), else the product of the luminance weight (their lights'
@@ -131,6 +151,7 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_slope_along(SOL_REAL z, SOL_REAL z_min
 #undef SOL_DENOISE_EXP
 #undef SOL_DENOISE_POW
 #undef SOL_DENOISE_MAX
+#undef SOL_DENOISE_MIN
 }  // namespace sol::kernel
 #endif
 
