@@ -127,18 +127,19 @@ RenderResult render_batches(const std::function<RenderResult(int first, int coun
   for (std::size_t k = 0; k < result.rgba.size(); ++k) {
     result.rgba[k] = static_cast<float>((half[0][k] + half[1][k]) / report.samples);
   }
-  if (guided == report.samples && result.albedo.size() == albedo.size()) {
+  const bool joined = guided == report.samples;
+  if (joined && result.albedo.size() == albedo.size()) {
     for (std::size_t k = 0; k < albedo.size(); ++k) {
       result.albedo[k] = static_cast<float>(albedo[k] / guided);
       result.emission[k] = static_cast<float>(emission[k] / guided);
     }
-    if (!moments_missing && result.light_moment.size() == moment.size()) {
-      for (std::size_t k = 0; k < moment.size(); ++k) result.light_moment[k] = static_cast<float>(moment[k] / guided);
-    } else {
-      result.light_moment.clear();
-    }
+  }
+  // The light moment likewise, or none (the first batch's alone is not the
+  // colour's: the denoiser then takes the neighbours' noise).
+  if (joined && !moments_missing && result.light_moment.size() == moment.size()) {
+    for (std::size_t k = 0; k < moment.size(); ++k) result.light_moment[k] = static_cast<float>(moment[k] / guided);
   } else {
-    result.light_moment.clear();  // (the first batch's alone is not the colour's: the noise from the neighbours)
+    result.light_moment.clear();
   }
   result.samples = report.samples;
   result.device_ms = device_ms;
