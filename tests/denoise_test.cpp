@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -192,6 +193,27 @@ TEST(Denoise, AnImageWithoutItsAovsIsRefusedByName) {
   sol::RenderResult odd = flat_image(9, 8, 1.0, 0.0, grey);
   EXPECT_THROW(sol::denoise(odd, 2), sol::InvalidArgument);  // two eyes of an odd width
   EXPECT_THROW(sol::denoise(odd, 3), sol::InvalidArgument);
+}
+
+TEST(Denoise, ALightMomentOfTheWrongSizeOrNegativeSamplesAreRefusedByName) {
+  // (An image without a light moment is filtered with the neighbours' noise;
+  // one with a moment of another size, or a negative count, is an error.)
+  const auto grey = [](int, int) { return 0.5; };
+  const sol::RenderResult good = flat_image(8, 8, 1.0, 0.05, grey);
+  sol::RenderResult short_moment = good, negative = good;
+  short_moment.light_moment.assign(63, 0.25f);
+  short_moment.samples = 4;
+  negative.samples = -1;
+  const sol::RenderResult before = short_moment;
+  for (auto [image, field] : {std::pair{&short_moment, "light_moment"}, std::pair{&negative, "samples"}}) {
+    try {
+      sol::denoise(*image);
+      ADD_FAILURE() << field << " accepted";
+    } catch (const sol::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(short_moment.rgba, before.rgba);  // (refused before any pixel changed)
 }
 
 TEST(Denoise, TheCpuRenderersAlbedoAndNormalAreTheHitsOwn) {
