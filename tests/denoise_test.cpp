@@ -359,6 +359,49 @@ TEST(Denoise, FromSixteenSamplesNoPixelMovesFurtherThanItsNoise) {
   EXPECT_GT(furthest(samples - 1), sol::kernel::kDenoiseClampSigmas + 0.5);
 }
 
+TEST(Denoise, AColouredFireflyIsHeldByItsLuminancesNoise) {
+  // Fireflies: on the grey plane of light 1 (16 samples a pixel, each of
+  // grey noise 0.1), every 7th pixel has one sample with 3 more red. Its
+  // noise is the luminance's, a fifth of the red excess's: held channel
+  // by channel to 3 of those deviations the red kept most of its excess
+  // (a red dot); held in luminance, the filter takes out most of it, as it
+  // does where it is free (8 samples, no hold).
+  const int w = 24, h = 24;
+  const auto fireflies = [&](int samples) {
+    const auto grey = [](int, int) { return 0.5; };
+    sol::RenderResult r = flat_image(w, h, 1.0, 0.0, grey);
+    std::mt19937 random(5);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    r.light_moment.resize(r.object.size());
+    r.samples = samples;
+    for (std::size_t k = 0; k < r.object.size(); ++k) {
+      glm::dvec3 sum(0.0);
+      double squares = 0.0;
+      for (int s = 0; s < samples; ++s) {
+        glm::dvec3 v(0.5 + noise(random));
+        if (k % 7 == 3 && s == 0) v.r += 3.0;
+        sum += v;
+        squares += std::pow(sol::kernel::sol_denoise_luminance(v), 2.0);
+      }
+      for (int c = 0; c < 3; ++c) r.rgba[4 * k + c] = static_cast<float>(sum[c] / samples);
+      r.light_moment[k] = static_cast<float>(squares / samples);
+    }
+    return r;
+  };
+  // The fireflies' red above the plane's 0.5, filtered, over raw (3 / samples).
+  const auto kept = [&](int samples) {
+    sol::RenderResult r = fireflies(samples);
+    sol::denoise(r);
+    double excess = 0.0;
+    int count = 0;
+    for (std::size_t k = 3; k < r.object.size(); k += 7, ++count) excess += r.rgba[4 * k] - 0.5;
+    return excess / count / (3.0 / samples);
+  };
+  // Measured: 0.13 at 8 samples, 0.14 at 16 (channel by channel: 0.53).
+  EXPECT_LT(kept(8), 0.3);
+  EXPECT_LT(kept(16), 0.3);
+}
+
 TEST(Denoise, AShadowsEdgeStaysSharpWithThePixelsOwnNoise) {
   // At 64 samples a pixel the mean's noise (0.025) is far below the
   // edge's step (0.2 of colour): the pixel's own noise makes the step an

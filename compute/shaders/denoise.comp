@@ -82,10 +82,7 @@ void finish(ivec2 p) {
   const int k = index_of(p);
   vec3 light = light_in[k].rgb;
   if (push.clamp != 0) {
-    const vec3 before = color[k].rgb / modulation(k);
-    const float noise = noise_of(p);
-    light = vec3(sol_denoise_clamp(light.r, before.r, noise), sol_denoise_clamp(light.g, before.g, noise),
-                 sol_denoise_clamp(light.b, before.b, noise));
+    light = sol_denoise_clamp(light, color[k].rgb / modulation(k), noise_of(p));
   }
   color[k] = vec4(light * modulation(k), color[k].a);
 }

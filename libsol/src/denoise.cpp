@@ -156,9 +156,10 @@ void denoise(RenderResult& image, int eyes, unsigned threads) {
     std::swap(current, next);
   }
   for (std::size_t k = 0; k < n; ++k) {
+    const glm::dvec3 filtered(current[k]);
+    const glm::dvec3 light = clamp ? kernel::sol_denoise_clamp(filtered, glm::dvec3(unfiltered[k]), unfiltered[k].w) : filtered;
     for (int c = 0; c < 3; ++c) {
-      const double light = clamp ? kernel::sol_denoise_clamp(current[k][c], unfiltered[k][c], unfiltered[k].w) : current[k][c];
-      image.rgba[4 * k + c] = static_cast<float>(light * modulation[k][c] + image.emission[3 * k + c]);
+      image.rgba[4 * k + c] = static_cast<float>(light[c] * modulation[k][c] + image.emission[3 * k + c]);
     }
   }
 }

@@ -38,14 +38,12 @@ using std::sqrt;
 #define SOL_DENOISE_EXP std::exp
 #define SOL_DENOISE_POW std::pow
 #define SOL_DENOISE_MAX std::max
-#define SOL_DENOISE_MIN std::min
 #else
 #define SOL_DENOISE_FUNCTION
 #define SOL_DENOISE_VEC3 vec3
 #define SOL_DENOISE_EXP exp
 #define SOL_DENOISE_POW pow
 #define SOL_DENOISE_MAX max
-#define SOL_DENOISE_MIN min
 #endif
 
 /// Passes of the filter: the taps of pass i lie 2^i pixels apart, so the
@@ -100,17 +98,24 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_own_variance(SOL_REAL moment, SOL_REAL
 /// enough (the estimate of a variance from N samples is off by about
 /// sqrt(2 / (N − 1)), a third at 16 before the 3 × 3 average), the filtered
 /// light stays within kDenoiseClampSigmas of the pixel's own standard
-/// deviations of its unfiltered light: the filter may not move a pixel
-/// further than its noise explains (sol_denoise_clamp).
+/// deviations of its unfiltered light (in luminance): the filter may not
+/// move a pixel further than its noise explains (sol_denoise_clamp).
 SOL_CONSTANT(int, kDenoiseClampSamples, 16);
 SOL_CONSTANT(SOL_REAL, kDenoiseClampSigmas, 3.0);
 
-/// A channel of the filtered light held to within kDenoiseClampSigmas
-/// standard deviations (`variance` the pixel's noise, its own averaged
-/// over its neighbours) of the unfiltered light `before`.
-SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_clamp(SOL_REAL filtered, SOL_REAL before, SOL_REAL variance) {
+/// The filtered light held to within kDenoiseClampSigmas standard
+/// deviations (`variance` the pixel's noise, its own averaged over its
+/// neighbours: of the light's luminance) of the unfiltered light `before`,
+/// in luminance: where the filter moved the luminance further, the move is
+/// shortened along its own direction to that bound. (Held channel by
+/// channel with the luminance's deviation, a coloured firefly, whose
+/// luminance is a fraction of its brightest channel's excess, kept most of
+/// it.)
+SOL_DENOISE_FUNCTION SOL_DENOISE_VEC3 sol_denoise_clamp(SOL_DENOISE_VEC3 filtered, SOL_DENOISE_VEC3 before,
+                                                        SOL_REAL variance) {
   const SOL_REAL spread = kDenoiseClampSigmas * sqrt(SOL_DENOISE_MAX(variance, 0.0));
-  return SOL_DENOISE_MAX(before - spread, SOL_DENOISE_MIN(filtered, before + spread));
+  const SOL_REAL moved = abs(sol_denoise_luminance(filtered) - sol_denoise_luminance(before));
+  return moved <= spread ? filtered : before + (filtered - before) * (spread / moved);
 }
 
 /// The edge-stopping weight of neighbour q for pixel p (the B3 tap apart):
@@ -151,7 +156,6 @@ SOL_DENOISE_FUNCTION SOL_REAL sol_denoise_slope_along(SOL_REAL z, SOL_REAL z_min
 #undef SOL_DENOISE_EXP
 #undef SOL_DENOISE_POW
 #undef SOL_DENOISE_MAX
-#undef SOL_DENOISE_MIN
 }  // namespace sol::kernel
 #endif
 
